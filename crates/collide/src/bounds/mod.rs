@@ -1,0 +1,1 @@
+//! Bounding volumes: AABBs by expansion and their overlap test, bounding spheres.

@@ -1,0 +1,5 @@
+//! Contact queries: where a sphere touches or sinks into another shape.
+
+mod contact;
+
+pub use contact::Contact;

@@ -1,0 +1,5 @@
+//! Segment intersection queries.
+
+mod hit;
+
+pub use hit::{Intersection, SegmentHit};

@@ -1,0 +1,34 @@
+//! # collide — collision queries from scratch
+//!
+//! The methods of a computer-animation lecture on collision, written faithfully,
+//! and beside each one that is fragile or slow, a robust or faster method. Both are
+//! public: crashtest runs them side by side against parry and an exact referee to
+//! show where each stands.
+//!
+//! Decisions:
+//! - **Generic over `f32` and `f64`** ([`Real`]), so precision is measurable.
+//! - **Conventions are the fixture format's** (`shared/FIXTURES.md`): in
+//!   `contact(a, b)` the normal points from `b` toward `a` and is unit length, the
+//!   point lies on `b`'s surface, depth ≥ 0 and touching counts as contact. A
+//!   plane `n · x = d` bounds the solid `n · x ≤ d`. A triangle's face normal is
+//!   `(v1 − v0) × (v2 − v0)`, normalized.
+//! - **Naming** (after Ericson): `test_*` answers yes/no, `intersect_*` and
+//!   `contact_*` say where, `closest_pt_*` returns a point. The lecture's form of a
+//!   query carries the suffix `_lecture`; the unsuffixed function is the robust one.
+//!   One argument order everywhere; the reverse order is a thin wrapper.
+//! - **Degenerate input never panics and never yields NaN**: it is answered with a
+//!   documented fallback and a `degenerate` flag.
+//! - **No serde, no parry, no rapier**: nalgebra only. This is a library someone
+//!   could use alone.
+#![deny(missing_docs)]
+
+pub mod barycentric;
+pub mod bounds;
+pub mod contact;
+pub mod exact;
+pub mod intersect;
+pub mod real;
+pub mod shapes;
+
+pub use real::{Real, Vec3};
+pub use shapes::{Aabb, Plane, Segment, Sphere, Triangle};

@@ -1,0 +1,99 @@
+//! The scalar type collide is generic over.
+//!
+//! Every query is written once for [`Real`] and run in `f32` and `f64`, so precision
+//! is one more axis on crashtest's accuracy–speed chart. Exact predicates are
+//! evaluated on the `f64` value of each input: every `f32` is exactly an `f64`, so
+//! the conversion loses nothing and one exact code path serves both precisions.
+
+use nalgebra::RealField;
+
+/// A floating-point scalar: `f32` or `f64`.
+pub trait Real: RealField + Copy + Default + core::fmt::Debug {
+    /// The value as an `f64` (exact for both implementors).
+    fn wide(self) -> f64;
+    /// The nearest value of this type to `x` (rounds for `f32`).
+    fn of(x: f64) -> Self;
+    /// Machine epsilon of this type (the gap between 1 and the next value).
+    const EPSILON: Self;
+    /// Whether the value is neither infinite nor NaN.
+    fn finite(self) -> bool;
+}
+
+impl Real for f64 {
+    #[inline(always)]
+    fn wide(self) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn of(x: f64) -> Self {
+        x
+    }
+    const EPSILON: Self = f64::EPSILON;
+    #[inline(always)]
+    fn finite(self) -> bool {
+        self.is_finite()
+    }
+}
+
+impl Real for f32 {
+    #[inline(always)]
+    fn wide(self) -> f64 {
+        f64::from(self)
+    }
+    #[inline(always)]
+    fn of(x: f64) -> Self {
+        x as f32
+    }
+    const EPSILON: Self = f32::EPSILON;
+    #[inline(always)]
+    fn finite(self) -> bool {
+        self.is_finite()
+    }
+}
+
+/// A 3-vector; collide uses it for points and directions alike.
+pub type Vec3<T> = nalgebra::Vector3<T>;
+
+/// Shorthand for a literal constant in generic code.
+#[inline(always)]
+pub(crate) fn c<T: Real>(x: f64) -> T {
+    T::of(x)
+}
+
+/// Whether every component of `v` is finite.
+#[inline(always)]
+pub(crate) fn finite3<T: Real>(v: &Vec3<T>) -> bool {
+    v.x.finite() && v.y.finite() && v.z.finite()
+}
+
+/// The components of `v` as `f64`.
+#[inline(always)]
+pub(crate) fn to_f64_3<T: Real>(v: &Vec3<T>) -> [f64; 3] {
+    [v.x.wide(), v.y.wide(), v.z.wide()]
+}
+
+/// Euclidean norm computed without spurious overflow or underflow: the vector is
+/// scaled by its largest component first. The naive `sqrt(x² + y² + z²)` returns
+/// 0 for components below about 1e-154 (f64) and infinity above about 1e154.
+#[inline]
+pub fn stable_norm<T: Real>(v: &Vec3<T>) -> T {
+    let m = v.x.abs().max(v.y.abs()).max(v.z.abs());
+    if m == T::zero() || !m.finite() {
+        return m;
+    }
+    let s = v / m;
+    m * s.norm()
+}
+
+/// `v / ‖v‖` with the norm from [`stable_norm`]; `None` for a zero or
+/// non-finite vector.
+#[inline]
+pub fn try_normalize_stable<T: Real>(v: &Vec3<T>) -> Option<Vec3<T>> {
+    let m = v.x.abs().max(v.y.abs()).max(v.z.abs());
+    if m == T::zero() || !m.finite() {
+        return None;
+    }
+    let s = v / m;
+    let n = s.norm();
+    Some(s / n)
+}

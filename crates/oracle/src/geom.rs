@@ -1,0 +1,140 @@
+//! The neutral vocabulary every reference speaks: plain `f64` data, no engine
+//! types. Field names and conventions are those of the fixture format
+//! (`shared/FIXTURES.md`), so the harness reads and writes these structs directly:
+//!
+//! - a contact normal points from `b` toward `a` and is unit length; the contact
+//!   point lies on `b`'s surface; depth ≥ 0 is the penetration; touching counts;
+//! - a plane is the surface `normal · x = offset` bounding the solid `normal · x ≤ offset`;
+//! - a triangle's face normal is `(v1 − v0) × (v2 − v0)`, normalized;
+//! - a segment hit's `normal` is the surface's own normal, never flipped.
+
+use serde::{Deserialize, Serialize};
+
+/// A point or vector.
+pub type P3 = [f64; 3];
+
+/// A solid ball.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sphere {
+    /// Centre.
+    pub center: P3,
+    /// Radius, > 0.
+    pub radius: f64,
+}
+
+/// The surface `normal · x = offset` (normal need not be unit).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Plane {
+    /// Normal, non-zero.
+    pub normal: P3,
+    /// Offset.
+    pub offset: f64,
+}
+
+/// The points `start + t (end − start)`, `t ∈ [0, 1]`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Segment {
+    /// `t = 0`.
+    pub start: P3,
+    /// `t = 1`.
+    pub end: P3,
+}
+
+/// A triangle `[v0, v1, v2]`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Triangle {
+    /// The vertices.
+    pub vertices: [P3; 3],
+}
+
+/// An axis-aligned box.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Aabb {
+    /// Lower corner.
+    pub min: P3,
+    /// Upper corner.
+    pub max: P3,
+}
+
+/// A contact (see the module docs for the convention).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Contact {
+    /// On `b`'s surface.
+    pub point: P3,
+    /// Unit, from `b` toward `a`.
+    pub normal: P3,
+    /// Penetration, ≥ 0.
+    pub depth: f64,
+}
+
+/// The answer to a `contact` query.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct ContactAnswer {
+    /// The contact, or `None` when the shapes are apart.
+    pub contact: Option<Contact>,
+    /// The answer is a documented fallback (concentric spheres, centre on a triangle).
+    pub degenerate: bool,
+}
+
+/// The first hit of a segment.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SegmentHit {
+    /// Segment parameter in `[0, 1]`.
+    pub t: f64,
+    /// The hit point.
+    pub point: P3,
+    /// The surface's own unit normal.
+    pub normal: P3,
+    /// `[α, β, γ]` for triangles and meshes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub barycentric: Option<[f64; 3]>,
+    /// The face index, for meshes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub triangle: Option<usize>,
+}
+
+/// The answer to an `intersect` query.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct IntersectAnswer {
+    /// The first hit, if any.
+    pub hit: Option<SegmentHit>,
+    /// The segment is parallel to the surface (coplanar included).
+    pub parallel: bool,
+    /// The input is degenerate (zero-length segment, zero-area triangle).
+    pub degenerate: bool,
+}
+
+/// The answer to a `barycentric` query.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct BarycentricAnswer {
+    /// `[α, β, γ]`, summing to 1, signed.
+    pub coords: [f64; 3],
+    /// The triangle has zero area; `coords` is a fallback.
+    pub degenerate: bool,
+}
+
+/// A bounding sphere as an engine reports it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Ball {
+    /// Centre.
+    pub center: P3,
+    /// Radius, ≥ 0.
+    pub radius: f64,
+}
+
+/// The answer to a `bounds` query.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct BoundsAnswer {
+    /// The tight AABB, if the engine computes one.
+    pub aabb: Option<Aabb>,
+    /// The engine's bounding sphere, if it computes one.
+    pub sphere: Option<Ball>,
+}
