@@ -17,6 +17,8 @@ pub trait Real: RealField + Copy + Default + core::fmt::Debug {
     const EPSILON: Self;
     /// Whether the value is neither infinite nor NaN.
     fn finite(self) -> bool;
+    /// Whether the value is NaN.
+    fn is_nan(self) -> bool;
 }
 
 impl Real for f64 {
@@ -33,6 +35,10 @@ impl Real for f64 {
     fn finite(self) -> bool {
         self.is_finite()
     }
+    #[inline(always)]
+    fn is_nan(self) -> bool {
+        <f64>::is_nan(self)
+    }
 }
 
 impl Real for f32 {
@@ -48,6 +54,10 @@ impl Real for f32 {
     #[inline(always)]
     fn finite(self) -> bool {
         self.is_finite()
+    }
+    #[inline(always)]
+    fn is_nan(self) -> bool {
+        <f32>::is_nan(self)
     }
 }
 

@@ -26,12 +26,13 @@ pub struct Contact<T: Real> {
 }
 
 impl<T: Real> Contact<T> {
-    /// The same contact seen from the other shape: for `contact(b, a)` the normal
-    /// flips, and the point moves from `b`'s surface to `a`'s, `depth` along the
-    /// normal.
+    /// The same contact seen from the other shape, as `contact(b, a)` reports it:
+    /// the normal flips, and the point moves from `b`'s surface to the deepest
+    /// point of `a`, `depth` against the old normal (`a` sinks into `b` along
+    /// `−normal`).
     pub fn swapped(&self) -> Self {
         Self {
-            point: self.point + self.normal * self.depth,
+            point: self.point - self.normal * self.depth,
             normal: -self.normal,
             depth: self.depth,
             degenerate: self.degenerate,

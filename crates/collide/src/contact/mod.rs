@@ -1,5 +1,17 @@
 //! Contact queries: where a sphere touches or sinks into another shape.
+//!
+//! One file per shape pair; every function takes `(a, b)` and answers in the
+//! convention of [`Contact`] (normal from `b` toward `a`, point on `b`). The
+//! reverse orders are thin wrappers over [`Contact::swapped`].
 
+mod closest_pt_triangle;
 mod contact;
+mod sphere_plane;
+mod sphere_sphere;
+mod sphere_triangle;
 
+pub use closest_pt_triangle::{closest_pt_point_segment, closest_pt_point_triangle};
 pub use contact::Contact;
+pub use sphere_plane::{contact_plane_sphere, contact_sphere_plane};
+pub use sphere_sphere::{CONCENTRIC_FALLBACK_NORMAL, contact_sphere_sphere, contact_sphere_sphere_lecture};
+pub use sphere_triangle::{contact_sphere_triangle, contact_triangle_sphere};
