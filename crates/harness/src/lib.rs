@@ -1,1 +1,21 @@
-pub fn x(){}
+//! # harness — crashtest's vocabulary and machinery
+//!
+//! Cases come in (from fixture files, [`load`]), go to every [`engine::Engine`]
+//! (adapters in [`engines`]), and each answer is judged against the case's
+//! expectation and against the referee ([`judge`]). Nothing flows back: engines
+//! never see each other's answers.
+//!
+//! Decisions:
+//! - The fixture format (`shared/FIXTURES.md`) is read and written exactly by
+//!   [`case`]; its JSON Schema is generated from these types
+//!   (`fixtures/schema.json`, kept current by a test).
+//! - Conventions are translated once per engine, in that engine's adapter.
+//! - Every tolerance is a named constant with its reason ([`tolerance`]).
+#![deny(missing_docs)]
+
+pub mod case;
+pub mod engine;
+pub mod judge;
+pub mod load;
+pub mod mesh;
+pub mod tolerance;

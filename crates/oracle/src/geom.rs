@@ -8,13 +8,14 @@
 //! - a triangle's face normal is `(v1 − v0) × (v2 − v0)`, normalized;
 //! - a segment hit's `normal` is the surface's own normal, never flipped.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// A point or vector.
 pub type P3 = [f64; 3];
 
 /// A solid ball.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Sphere {
     /// Centre.
@@ -24,7 +25,7 @@ pub struct Sphere {
 }
 
 /// The surface `normal · x = offset` (normal need not be unit).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Plane {
     /// Normal, non-zero.
@@ -34,7 +35,7 @@ pub struct Plane {
 }
 
 /// The points `start + t (end − start)`, `t ∈ [0, 1]`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Segment {
     /// `t = 0`.
@@ -44,7 +45,7 @@ pub struct Segment {
 }
 
 /// A triangle `[v0, v1, v2]`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Triangle {
     /// The vertices.
@@ -52,7 +53,7 @@ pub struct Triangle {
 }
 
 /// An axis-aligned box.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Aabb {
     /// Lower corner.
@@ -62,7 +63,7 @@ pub struct Aabb {
 }
 
 /// A contact (see the module docs for the convention).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Contact {
     /// On `b`'s surface.
@@ -83,7 +84,7 @@ pub struct ContactAnswer {
 }
 
 /// The first hit of a segment.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SegmentHit {
     /// Segment parameter in `[0, 1]`.
@@ -121,7 +122,7 @@ pub struct BarycentricAnswer {
 }
 
 /// A bounding sphere as an engine reports it.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Ball {
     /// Centre.

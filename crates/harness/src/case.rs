@@ -1,0 +1,353 @@
+//! The fixture format `crashtest-fixture/1` (shared/FIXTURES.md): the contract
+//! between whoever writes cases and every engine the harness runs.
+//!
+//! These types read and write the format exactly. Optional fields the project adds
+//! are marked as such and never change the meaning of the format's own fields.
+//! Shapes and expectations reject unknown fields (a misspelt `raduis` must not
+//! silently become a default); a case's own unknown keys are ignored, so a case
+//! written elsewhere with a comment field still runs.
+
+use oracle::geom::{Aabb, Contact, P3, SegmentHit};
+use schemars::JsonSchema;
+use serde::{Deserialize, Deserializer, Serialize};
+
+/// The schema tag every fixture file carries.
+pub const SCHEMA: &str = "crashtest-fixture/1";
+
+/// The default absolute tolerance on every scalar of an expected answer, from the
+/// format: `1e-9`.
+pub const DEFAULT_TOL: f64 = 1e-9;
+
+/// The default end of the time interval of a `toi` case, from the format: 1.
+pub const DEFAULT_T_MAX: f64 = 1.0;
+
+/// One fixture file.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+pub struct FixtureFile {
+    /// Always [`SCHEMA`].
+    pub schema: String,
+    /// The cases; names are unique within a file.
+    pub cases: Vec<Case>,
+}
+
+/// One case: a query about two shapes (one for `bounds`), with an optional
+/// expected answer.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+pub struct Case {
+    /// Unique within its file.
+    pub name: String,
+    /// Where the case comes from (free text; hand derivations go here).
+    #[serde(default)]
+    pub source: String,
+    /// What is asked.
+    pub query: Query,
+    /// The first shape.
+    pub a: Shape,
+    /// The second shape (absent for `bounds`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub b: Option<Shape>,
+    /// The expected answer; only what it names is checked.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub expect: Option<Expect>,
+    /// Absolute tolerance on every scalar of the answer (default [`DEFAULT_TOL`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tol: Option<f64>,
+    /// End of the time interval for `toi` (default [`DEFAULT_T_MAX`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t_max: Option<f64>,
+    /// Coefficient of restitution for `response`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restitution: Option<f64>,
+}
+
+impl Case {
+    /// The tolerance in force for this case.
+    pub fn tol(&self) -> f64 {
+        self.tol.unwrap_or(DEFAULT_TOL)
+    }
+}
+
+/// The query kinds of the format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum Query {
+    /// Sphere against sphere, plane or triangle: point, normal, depth.
+    Contact,
+    /// Segment against plane, triangle or mesh: first hit.
+    Intersect,
+    /// Signed barycentric coordinates of a point's projection on a triangle.
+    Barycentric,
+    /// AABB and minimal bounding sphere of points or a mesh.
+    Bounds,
+    /// AABB against AABB.
+    Overlap,
+    /// Time of impact of a moving sphere.
+    Toi,
+    /// Velocities after one frictionless impulse.
+    Response,
+}
+
+impl Query {
+    /// Every query kind, in the format's order.
+    pub const ALL: [Query; 7] = [
+        Query::Contact,
+        Query::Intersect,
+        Query::Barycentric,
+        Query::Bounds,
+        Query::Overlap,
+        Query::Toi,
+        Query::Response,
+    ];
+
+    /// The name used in fixture files.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Query::Contact => "contact",
+            Query::Intersect => "intersect",
+            Query::Barycentric => "barycentric",
+            Query::Bounds => "bounds",
+            Query::Overlap => "overlap",
+            Query::Toi => "toi",
+            Query::Response => "response",
+        }
+    }
+}
+
+impl std::fmt::Display for Query {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// A shape, written `{"<kind>": {fields}}`.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum Shape {
+    /// Solid ball.
+    Sphere(SphereSpec),
+    /// The surface `normal · x = offset` (solid below for contact and toi).
+    Plane(PlaneSpec),
+    /// `start + t (end − start)`, `t ∈ [0, 1]`.
+    Segment(SegmentSpec),
+    /// Three vertices.
+    Triangle(TriangleSpec),
+    /// One point.
+    Point(PointSpec),
+    /// A point cloud (at least one point).
+    Points(PointsSpec),
+    /// A triangle soup, inline or from a file.
+    Mesh(MeshSpec),
+    /// Axis-aligned box.
+    Aabb(AabbSpec),
+}
+
+impl Shape {
+    /// The shape's key in the format.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Shape::Sphere(_) => "sphere",
+            Shape::Plane(_) => "plane",
+            Shape::Segment(_) => "segment",
+            Shape::Triangle(_) => "triangle",
+            Shape::Point(_) => "point",
+            Shape::Points(_) => "points",
+            Shape::Mesh(_) => "mesh",
+            Shape::Aabb(_) => "aabb",
+        }
+    }
+}
+
+/// `sphere`.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SphereSpec {
+    /// Centre.
+    pub center: P3,
+    /// Radius, > 0.
+    pub radius: f64,
+    /// Linear velocity for `toi` and `response` (default zero).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<P3>,
+    /// Mass for `response`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f64>,
+}
+
+/// `plane`.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneSpec {
+    /// Non-zero, need not be unit.
+    pub normal: P3,
+    /// `d` in `normal · x = d`.
+    pub offset: f64,
+    /// Linear velocity for `toi` (default zero).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<P3>,
+}
+
+/// `segment`.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SegmentSpec {
+    /// `t = 0`.
+    pub start: P3,
+    /// `t = 1`.
+    pub end: P3,
+}
+
+/// `triangle`.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TriangleSpec {
+    /// `[v0, v1, v2]`.
+    pub vertices: [P3; 3],
+    /// Linear velocity for `toi` (default zero).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<P3>,
+}
+
+/// `point`.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PointSpec {
+    /// The point.
+    pub at: P3,
+}
+
+/// `points`.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PointsSpec {
+    /// At least one point.
+    pub points: Vec<P3>,
+}
+
+/// `mesh`: `vertices` + `triangles`, or `file`.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// Inline vertices.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vertices: Option<Vec<P3>>,
+    /// Inline faces, 0-based vertex indices.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub triangles: Option<Vec<[usize; 3]>>,
+    /// A mesh file, relative to the fixture file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// Linear velocity for `toi` (default zero).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<P3>,
+}
+
+/// `aabb`.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AabbSpec {
+    /// Lower corner.
+    pub min: P3,
+    /// Upper corner (≥ `min` per axis).
+    pub max: P3,
+}
+
+/// A time of impact: the first touching time and the contact then.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Toi {
+    /// First time in `[0, t_max]` at which the shapes touch.
+    pub t: f64,
+    /// Contact point at that time (on `b`'s surface).
+    pub point: P3,
+    /// Unit normal at that time, from `b` toward `a`.
+    pub normal: P3,
+}
+
+/// An expected answer. Every field is optional; a check compares only what is
+/// named. For `contact`, `hit` and `toi`, `null` means "nothing is found" and is
+/// distinct from the field's absence.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Expect {
+    /// `contact`: the contact, or `null`.
+    #[serde(default, deserialize_with = "present", skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<Contact>")]
+    pub contact: Option<Option<Contact>>,
+    /// `intersect`: the first hit, or `null`.
+    #[serde(default, deserialize_with = "present", skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<SegmentHit>")]
+    pub hit: Option<Option<SegmentHit>>,
+    /// `intersect`: the segment is parallel to the surface.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parallel: Option<bool>,
+    /// Any query: the answer is not defined by the rules (fallback in use).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub degenerate: Option<bool>,
+    /// `barycentric`: `[α, β, γ]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub barycentric: Option<[f64; 3]>,
+    /// `bounds`: the exact AABB.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub aabb: Option<Aabb>,
+    /// `bounds`: the radius of the smallest enclosing sphere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_radius: Option<f64>,
+    /// `overlap`: whether the boxes overlap (touching overlaps).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub overlap: Option<bool>,
+    /// `toi`: the first touching time and contact, or `null`.
+    #[serde(default, deserialize_with = "present", skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<Toi>")]
+    pub toi: Option<Option<Toi>>,
+    /// `response`: `a`'s velocity after the impulse.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity_a: Option<P3>,
+    /// `response`: `b`'s velocity after the impulse.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity_b: Option<P3>,
+}
+
+/// A field that is present, with `null` kept apart from absence: absent →
+/// `None` (through `#[serde(default)]`), `null` → `Some(None)`.
+fn present<'de, D, T>(d: D) -> Result<Option<Option<T>>, D::Error>
+where
+    D: Deserializer<'de>,
+    T: Deserialize<'de>,
+{
+    Option::<T>::deserialize(d).map(Some)
+}
+
+impl SphereSpec {
+    /// The sphere at time 0.
+    pub fn to_geom(&self) -> oracle::geom::Sphere {
+        oracle::geom::Sphere { center: self.center, radius: self.radius }
+    }
+}
+
+impl PlaneSpec {
+    /// The plane at time 0.
+    pub fn to_geom(&self) -> oracle::geom::Plane {
+        oracle::geom::Plane { normal: self.normal, offset: self.offset }
+    }
+}
+
+impl SegmentSpec {
+    /// The segment.
+    pub fn to_geom(&self) -> oracle::geom::Segment {
+        oracle::geom::Segment { start: self.start, end: self.end }
+    }
+}
+
+impl TriangleSpec {
+    /// The triangle at time 0.
+    pub fn to_geom(&self) -> oracle::geom::Triangle {
+        oracle::geom::Triangle { vertices: self.vertices }
+    }
+}
+
+impl AabbSpec {
+    /// The box.
+    pub fn to_geom(&self) -> Aabb {
+        Aabb { min: self.min, max: self.max }
+    }
+}

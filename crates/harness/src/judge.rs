@@ -1,0 +1,417 @@
+//! Judging answers: against a case's expectation (the fixture's `expect`, with its
+//! absolute `tol`) and against the referee (the tolerance table, relative to the
+//! scene's scale, with borderline cases and known divergences kept apart).
+
+use crate::case::{Case, Expect, Shape};
+use crate::engine::Answer;
+use crate::load::LoadedCase;
+use crate::tolerance::Tolerance;
+use oracle::geom::{Contact, P3, SegmentHit};
+use serde::Serialize;
+
+/// One field of an answer that does not meet the expectation.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Mismatch {
+    /// The expectation's field: `contact.depth`, `hit`, `parallel`, …
+    pub field: String,
+    /// What the fixture expects.
+    pub expected: String,
+    /// What the engine answered.
+    pub got: String,
+}
+
+fn mm(field: &str, expected: impl std::fmt::Debug, got: impl std::fmt::Debug) -> Mismatch {
+    Mismatch { field: field.into(), expected: format!("{expected:?}"), got: format!("{got:?}") }
+}
+
+fn dist3(a: &P3, b: &P3) -> f64 {
+    (0..3).map(|i| (a[i] - b[i]).abs()).fold(0.0, f64::max)
+}
+
+fn cmp3(out: &mut Vec<Mismatch>, field: &str, want: &P3, got: &P3, tol: f64) {
+    if !(dist3(want, got) <= tol) {
+        out.push(mm(field, want, got));
+    }
+}
+
+fn cmp1(out: &mut Vec<Mismatch>, field: &str, want: f64, got: f64, tol: f64) {
+    if !((want - got).abs() <= tol) {
+        out.push(mm(field, want, got));
+    }
+}
+
+/// Whether an answer carries the degenerate flag.
+pub fn degenerate(answer: &Answer) -> bool {
+    match answer {
+        Answer::Contact(a) => a.degenerate,
+        Answer::Intersect(a) => a.degenerate,
+        Answer::Barycentric(a) => a.degenerate,
+        Answer::Bounds(_) | Answer::Overlap(_) => false,
+    }
+}
+
+/// The points a `bounds` case bounds.
+pub fn bounded_points(lc: &LoadedCase) -> &[P3] {
+    match (&lc.case.a, &lc.meshes[0]) {
+        (Shape::Points(p), _) => &p.points,
+        (_, Some(m)) => &m.vertices,
+        _ => &[],
+    }
+}
+
+/// Compares an answer with the case's `expect`, every scalar within the case's
+/// absolute `tol`. Only what `expect` names is compared. An empty list is a pass.
+pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
+    let case: &Case = &lc.case;
+    let Some(e): Option<&Expect> = case.expect.as_ref() else { return Vec::new() };
+    let tol = case.tol();
+    let mut out = Vec::new();
+    if let Some(want) = e.degenerate {
+        let got = degenerate(answer);
+        if want != got {
+            out.push(mm("degenerate", want, got));
+        }
+    }
+    match answer {
+        Answer::Contact(a) => {
+            if let Some(want) = &e.contact {
+                match (want, &a.contact) {
+                    (None, None) => {}
+                    (Some(w), Some(g)) => {
+                        cmp3(&mut out, "contact.point", &w.point, &g.point, tol);
+                        cmp3(&mut out, "contact.normal", &w.normal, &g.normal, tol);
+                        cmp1(&mut out, "contact.depth", w.depth, g.depth, tol);
+                    }
+                    (w, g) => out.push(mm("contact", w, g)),
+                }
+            }
+        }
+        Answer::Intersect(a) => {
+            if let Some(want) = &e.hit {
+                match (want, &a.hit) {
+                    (None, None) => {}
+                    (Some(w), Some(g)) => {
+                        cmp1(&mut out, "hit.t", w.t, g.t, tol);
+                        cmp3(&mut out, "hit.point", &w.point, &g.point, tol);
+                        cmp3(&mut out, "hit.normal", &w.normal, &g.normal, tol);
+                        if let Some(wb) = &w.barycentric {
+                            match &g.barycentric {
+                                Some(gb) => cmp3(&mut out, "hit.barycentric", wb, gb, tol),
+                                None => out.push(mm("hit.barycentric", wb, "none")),
+                            }
+                        }
+                        if let Some(wt) = w.triangle {
+                            if g.triangle != Some(wt) {
+                                out.push(mm("hit.triangle", wt, g.triangle));
+                            }
+                        }
+                    }
+                    (w, g) => out.push(mm("hit", w, g)),
+                }
+            }
+            if let Some(want) = e.parallel {
+                if want != a.parallel {
+                    out.push(mm("parallel", want, a.parallel));
+                }
+            }
+        }
+        Answer::Barycentric(a) => {
+            if let Some(w) = &e.barycentric {
+                cmp3(&mut out, "barycentric", w, &a.coords, tol);
+            }
+        }
+        Answer::Bounds(a) => {
+            if let Some(w) = &e.aabb {
+                match &a.aabb {
+                    Some(g) => {
+                        cmp3(&mut out, "aabb.min", &w.min, &g.min, tol);
+                        cmp3(&mut out, "aabb.max", &w.max, &g.max, tol);
+                    }
+                    None => out.push(mm("aabb", w, "none")),
+                }
+            }
+            if let Some(r) = e.min_radius {
+                match &a.sphere {
+                    Some(s) => {
+                        cmp1(&mut out, "min_radius", r, s.radius, tol);
+                        let pts = bounded_points(lc);
+                        if let Some((i, d)) = farthest_outside(&s.center, s.radius, pts, tol) {
+                            out.push(mm("min_radius (encloses every point)", format!("point {i} inside"), format!("{d:e} outside")));
+                        }
+                    }
+                    None => out.push(mm("min_radius", r, "no sphere")),
+                }
+            }
+        }
+        Answer::Overlap(g) => {
+            if let Some(w) = e.overlap {
+                if w != *g {
+                    out.push(mm("overlap", w, g));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The first point farther than `radius + tol` from `center`, with its excess.
+fn farthest_outside(center: &P3, radius: f64, pts: &[P3], tol: f64) -> Option<(usize, f64)> {
+    pts.iter().enumerate().find_map(|(i, p)| {
+        let d = ((p[0] - center[0]).powi(2) + (p[1] - center[1]).powi(2) + (p[2] - center[2]).powi(2)).sqrt();
+        (!(d <= radius + tol)).then_some((i, d - radius))
+    })
+}
+
+/// The scene's scale: the largest magnitude among the case's coordinates, radii and
+/// plane offsets (offsets in units of the normal's length), or 1 for an empty or
+/// all-zero scene. Errors of lengths are divided by it.
+pub fn scene_scale(lc: &LoadedCase) -> f64 {
+    let mut m: f64 = 0.0;
+    let mut p3 = |p: &P3| m = p.iter().fold(m, |m, x| m.max(x.abs()));
+    let mut scalars = Vec::new();
+    for (slot, shape) in [Some(&lc.case.a), lc.case.b.as_ref()].into_iter().enumerate() {
+        match shape {
+            Some(Shape::Sphere(s)) => {
+                p3(&s.center);
+                scalars.push(s.radius);
+            }
+            Some(Shape::Plane(p)) => {
+                let n = p.normal.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if n > 0.0 && n.is_finite() {
+                    scalars.push(p.offset / n);
+                }
+            }
+            Some(Shape::Segment(s)) => {
+                p3(&s.start);
+                p3(&s.end);
+            }
+            Some(Shape::Triangle(t)) => t.vertices.iter().for_each(&mut p3),
+            Some(Shape::Point(p)) => p3(&p.at),
+            Some(Shape::Points(p)) => p.points.iter().for_each(&mut p3),
+            Some(Shape::Mesh(_)) => {
+                if let Some(mesh) = &lc.meshes[slot] {
+                    mesh.vertices.iter().for_each(&mut p3);
+                }
+            }
+            Some(Shape::Aabb(b)) => {
+                p3(&b.min);
+                p3(&b.max);
+            }
+            None => {}
+        }
+    }
+    let m = scalars.iter().fold(m, |m, x| m.max(x.abs()));
+    if m > 0.0 && m.is_finite() { m } else { 1.0 }
+}
+
+/// Errors of an answer against the referee's, each `None` where not applicable.
+/// Lengths are absolute here; divide by [`scene_scale`] for relative ones.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Errors {
+    /// Largest coordinate error of the contact or hit point (or bounding centre).
+    pub point: Option<f64>,
+    /// Depth error (contact) or radius error (bounds).
+    pub depth: Option<f64>,
+    /// Angle between the normals, radians.
+    pub normal: Option<f64>,
+    /// Error of the segment parameter `t`.
+    pub t: Option<f64>,
+    /// Largest barycentric coordinate error.
+    pub barycentric: Option<f64>,
+}
+
+/// A verdict on one engine's answer to one case, against the referee.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "verdict", rename_all = "snake_case")]
+pub enum Verdict {
+    /// Same classification, every error within tolerance.
+    Agree,
+    /// Beyond tolerance; each reason names the field and the sizes.
+    Disagree {
+        /// What differs.
+        reasons: Vec<String>,
+    },
+    /// A classification differs, but the referee's margin is inside the tolerance
+    /// band: counted apart, neither agreement nor disagreement.
+    Borderline {
+        /// What differs.
+        reasons: Vec<String>,
+    },
+    /// A documented convention of the engine, not an error.
+    KnownDivergence {
+        /// The documented reason.
+        reason: String,
+    },
+    /// The engine does not answer this case.
+    Unsupported {
+        /// Why.
+        reason: String,
+    },
+    /// The engine panicked or returned a non-finite number.
+    Failed {
+        /// What happened.
+        reason: String,
+    },
+}
+
+impl Verdict {
+    /// A short label for tables.
+    pub fn label(&self) -> &'static str {
+        match self {
+            Verdict::Agree => "agree",
+            Verdict::Disagree { .. } => "DISAGREE",
+            Verdict::Borderline { .. } => "borderline",
+            Verdict::KnownDivergence { .. } => "known",
+            Verdict::Unsupported { .. } => "unsupported",
+            Verdict::Failed { .. } => "FAILED",
+        }
+    }
+}
+
+fn angle(a: &P3, b: &P3) -> f64 {
+    // atan2(‖a × b‖, a · b): accurate for small and large angles alike.
+    let c = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    let s = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+    let d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    s.atan2(d)
+}
+
+fn all_finite(answer: &Answer) -> bool {
+    let f3 = |p: &P3| p.iter().all(|x| x.is_finite());
+    match answer {
+        Answer::Contact(a) => a.contact.is_none_or(|c| f3(&c.point) && f3(&c.normal) && c.depth.is_finite()),
+        Answer::Intersect(a) => a.hit.is_none_or(|h| {
+            h.t.is_finite() && f3(&h.point) && f3(&h.normal) && h.barycentric.is_none_or(|b| f3(&b))
+        }),
+        Answer::Barycentric(a) => f3(&a.coords),
+        Answer::Bounds(a) => {
+            a.aabb.is_none_or(|b| f3(&b.min) && f3(&b.max))
+                && a.sphere.is_none_or(|s| f3(&s.center) && s.radius.is_finite())
+        }
+        Answer::Overlap(_) => true,
+    }
+}
+
+/// Judges `answer` against the referee's `truth` for the case `lc`, with the
+/// tolerances `tol`. `margin` is the referee's signed distance of the case from
+/// its nearest decision boundary (relative to the scene's scale); a
+/// classification difference within the tolerance band of the boundary is
+/// borderline.
+pub fn judge(lc: &LoadedCase, answer: &Answer, truth: &Answer, tol: &Tolerance, margin: Option<f64>) -> (Verdict, Errors) {
+    let scale = scene_scale(lc);
+    let mut e = Errors::default();
+    if !all_finite(answer) {
+        return (Verdict::Failed { reason: "non-finite number in the answer".into() }, e);
+    }
+    let mut class = Vec::new();
+    let mut value = Vec::new();
+    let len_tol = tol.rel * scale;
+    let mut len = |what: &str, err: f64, slot: &mut Option<f64>, value: &mut Vec<String>| {
+        *slot = Some(err);
+        if !(err <= len_tol) {
+            value.push(format!("{what} off by {err:.3e} (allowed {len_tol:.1e})"));
+        }
+    };
+    let contact_cmp = |g: &Contact, w: &Contact, e: &mut Errors, value: &mut Vec<String>, len: &mut dyn FnMut(&str, f64, &mut Option<f64>, &mut Vec<String>)| {
+        len("point", dist3(&g.point, &w.point), &mut e.point, value);
+        len("depth", (g.depth - w.depth).abs(), &mut e.depth, value);
+        let a = angle(&g.normal, &w.normal);
+        e.normal = Some(a);
+        if !(a <= tol.normal_rad) {
+            value.push(format!("normal off by {a:.3e} rad (allowed {:.1e})", tol.normal_rad));
+        }
+    };
+    if degenerate(answer) != degenerate(truth) {
+        class.push(format!("degenerate: {} (referee {})", degenerate(answer), degenerate(truth)));
+    }
+    match (answer, truth) {
+        (Answer::Contact(g), Answer::Contact(w)) => match (&g.contact, &w.contact) {
+            (Some(gc), Some(wc)) => contact_cmp(gc, wc, &mut e, &mut value, &mut len),
+            (None, None) => {}
+            (Some(_), None) => class.push("false contact (referee: apart)".into()),
+            (None, Some(_)) => class.push("missed contact (referee: touching)".into()),
+        },
+        (Answer::Intersect(g), Answer::Intersect(w)) => {
+            if g.parallel != w.parallel {
+                class.push(format!("parallel: {} (referee {})", g.parallel, w.parallel));
+            }
+            match (&g.hit, &w.hit) {
+                (Some(gh), Some(wh)) => hit_cmp(gh, wh, tol, &mut e, &mut value, &mut len),
+                (None, None) => {}
+                (Some(_), None) => class.push("false hit (referee: miss)".into()),
+                (None, Some(_)) => class.push("missed hit (referee: hit)".into()),
+            }
+        }
+        (Answer::Barycentric(g), Answer::Barycentric(w)) => {
+            let err = dist3(&g.coords, &w.coords);
+            e.barycentric = Some(err);
+            if !(err <= tol.unitless) {
+                value.push(format!("barycentric off by {err:.3e} (allowed {:.1e})", tol.unitless));
+            }
+        }
+        (Answer::Bounds(g), Answer::Bounds(w)) => {
+            if let (Some(gb), Some(wb)) = (&g.aabb, &w.aabb) {
+                let err = dist3(&gb.min, &wb.min).max(dist3(&gb.max, &wb.max));
+                len("aabb", err, &mut e.point, &mut value);
+            }
+            if let (Some(gs), Some(ws)) = (&g.sphere, &w.sphere) {
+                // The engine's sphere must enclose every point; its excess radius
+                // over the minimal one is its error (parry's and the lecture's are
+                // not minimal by design: a known divergence).
+                let pts = bounded_points(lc);
+                if let Some((i, d)) = farthest_outside(&gs.center, gs.radius, pts, len_tol) {
+                    class.push(format!("bounding sphere misses point {i} by {d:.3e}"));
+                }
+                len("bounding radius", gs.radius - ws.radius, &mut e.depth, &mut value);
+            }
+        }
+        (Answer::Overlap(g), Answer::Overlap(w)) => {
+            if g != w {
+                class.push(format!("overlap: {g} (referee {w})"));
+            }
+        }
+        _ => class.push("answer of another query kind".into()),
+    }
+    let verdict = if !class.is_empty() {
+        match margin {
+            Some(m) if m.abs() <= tol.rel => Verdict::Borderline { reasons: class },
+            _ => {
+                class.extend(value);
+                Verdict::Disagree { reasons: class }
+            }
+        }
+    } else if !value.is_empty() {
+        Verdict::Disagree { reasons: value }
+    } else {
+        Verdict::Agree
+    };
+    (verdict, e)
+}
+
+fn hit_cmp(
+    g: &SegmentHit,
+    w: &SegmentHit,
+    tol: &Tolerance,
+    e: &mut Errors,
+    value: &mut Vec<String>,
+    len: &mut dyn FnMut(&str, f64, &mut Option<f64>, &mut Vec<String>),
+) {
+    len("hit point", dist3(&g.point, &w.point), &mut e.point, value);
+    let dt = (g.t - w.t).abs();
+    e.t = Some(dt);
+    if !(dt <= tol.unitless) {
+        value.push(format!("t off by {dt:.3e} (allowed {:.1e})", tol.unitless));
+    }
+    let a = angle(&g.normal, &w.normal);
+    e.normal = Some(a);
+    if !(a <= tol.normal_rad) {
+        value.push(format!("normal off by {a:.3e} rad (allowed {:.1e})", tol.normal_rad));
+    }
+    if let (Some(gb), Some(wb)) = (&g.barycentric, &w.barycentric) {
+        let err = dist3(gb, wb);
+        e.barycentric = Some(err);
+        if !(err <= tol.unitless) {
+            value.push(format!("barycentric off by {err:.3e} (allowed {:.1e})", tol.unitless));
+        }
+    }
+}

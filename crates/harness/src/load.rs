@@ -1,0 +1,488 @@
+//! Reading fixture files: every error names the file, the case and the field
+//! (line and column for JSON syntax), and one bad case or file never costs the
+//! others.
+//!
+//! A file is read in two passes. The first checks the JSON syntax and splits the
+//! `cases` array into raw slices without converting a single number, so a number
+//! beyond `f64` in one case does not sink its neighbours. The second reads each
+//! case on its own (the field path of a type error comes from
+//! `serde_path_to_error`, its line and column are made absolute in the file), then
+//! checks what the type system cannot: finite numbers, positive radii, non-zero
+//! normals, `min ≤ max`, mesh indices in range, shapes that fit the query.
+
+use crate::case::{Case, Expect, MeshSpec, Query, SCHEMA, Shape};
+use crate::mesh::{Mesh, load_mesh_file};
+use oracle::geom::P3;
+use serde::Deserialize;
+use serde_json::value::RawValue;
+use std::collections::BTreeSet;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// A refusal of malformed input.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InputError {
+    /// The file.
+    pub file: PathBuf,
+    /// The case's name (or `#index` when it has none), if the error is inside a case.
+    pub case: Option<String>,
+    /// The field's path inside the case (or file), if known: `a.sphere.radius`.
+    pub field: Option<String>,
+    /// Line and column (1-based) in the file, for JSON syntax and type errors.
+    pub position: Option<(usize, usize)>,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.file.display())?;
+        if let Some((line, col)) = self.position {
+            write!(f, ":{line}:{col}")?;
+        }
+        if let Some(case) = &self.case {
+            write!(f, ": case \"{case}\"")?;
+        }
+        if let Some(field) = &self.field {
+            write!(f, ": field `{field}`")?;
+        }
+        write!(f, ": {}", self.message)
+    }
+}
+
+/// A case ready to run: the parsed case with its mesh files read.
+#[derive(Clone, Debug)]
+pub struct LoadedCase {
+    /// The file it came from.
+    pub file: PathBuf,
+    /// The case as written.
+    pub case: Case,
+    /// Meshes of `a` and `b`, resolved (inline or read from their files).
+    pub meshes: [Option<Mesh>; 2],
+}
+
+/// What reading some paths gave: the good cases, and an error for each bad one.
+#[derive(Clone, Debug, Default)]
+pub struct Loaded {
+    /// Cases that passed every check, in file order.
+    pub cases: Vec<LoadedCase>,
+    /// One error per refused file or case.
+    pub errors: Vec<InputError>,
+    /// Files read (including ones with errors).
+    pub files: Vec<PathBuf>,
+}
+
+/// Reads files, and folders searched recursively for `*.json` (in sorted order).
+pub fn load_paths<P: AsRef<Path>>(paths: &[P]) -> Loaded {
+    let mut out = Loaded::default();
+    for p in paths {
+        let p = p.as_ref();
+        if p.is_dir() {
+            let mut files = Vec::new();
+            collect_json(p, &mut files, &mut out.errors);
+            files.sort();
+            for f in files {
+                load_file_into(&f, &mut out);
+            }
+        } else {
+            load_file_into(p, &mut out);
+        }
+    }
+    out
+}
+
+fn collect_json(dir: &Path, files: &mut Vec<PathBuf>, errors: &mut Vec<InputError>) {
+    let entries = match std::fs::read_dir(dir) {
+        Ok(e) => e,
+        Err(e) => {
+            errors.push(file_error(dir, format!("cannot read folder: {e}")));
+            return;
+        }
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            collect_json(&path, files, errors);
+        } else if path.extension().is_some_and(|x| x == "json") {
+            files.push(path);
+        }
+    }
+}
+
+fn file_error(file: &Path, message: String) -> InputError {
+    InputError { file: file.to_path_buf(), case: None, field: None, position: None, message }
+}
+
+/// Reads one file into `out`.
+pub fn load_file_into(path: &Path, out: &mut Loaded) {
+    out.files.push(path.to_path_buf());
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => {
+            out.errors.push(file_error(path, format!("cannot read file: {e}")));
+            return;
+        }
+    };
+    load_str_into(path, &text, out);
+}
+
+#[derive(Deserialize)]
+struct RawFile<'a> {
+    schema: Option<String>,
+    #[serde(borrow)]
+    cases: Option<Vec<&'a RawValue>>,
+}
+
+#[derive(Deserialize)]
+struct NameOnly {
+    name: Option<serde_json::Value>,
+}
+
+/// Reads fixture text (named `path` in errors; meshes resolved beside `path`).
+pub fn load_str_into(path: &Path, text: &str, out: &mut Loaded) {
+    let raw: RawFile = match serde_json::from_str(text) {
+        Ok(r) => r,
+        Err(e) => {
+            let syntax = e.is_syntax() || e.is_eof();
+            out.errors.push(InputError {
+                file: path.to_path_buf(),
+                case: None,
+                field: None,
+                position: Some((e.line(), e.column())),
+                message: if syntax {
+                    format!("JSON syntax: {e}")
+                } else {
+                    format!("not a fixture file: {e}")
+                }
+                .replace(&format!(" at line {} column {}", e.line(), e.column()), ""),
+            });
+            return;
+        }
+    };
+    match raw.schema.as_deref() {
+        Some(SCHEMA) => {}
+        Some(other) => {
+            out.errors.push(InputError {
+                field: Some("schema".into()),
+                ..file_error(path, format!("unknown schema \"{other}\", expected \"{SCHEMA}\""))
+            });
+            return;
+        }
+        None => {
+            out.errors.push(InputError {
+                field: Some("schema".into()),
+                ..file_error(path, format!("missing field, expected \"{SCHEMA}\""))
+            });
+            return;
+        }
+    }
+    let Some(cases) = raw.cases else {
+        out.errors.push(InputError {
+            field: Some("cases".into()),
+            ..file_error(path, "missing field".into())
+        });
+        return;
+    };
+    let base = path.parent().unwrap_or(Path::new("."));
+    let mut names = BTreeSet::new();
+    for (i, rawcase) in cases.iter().enumerate() {
+        let slice = rawcase.get();
+        let offset = slice.as_ptr() as usize - text.as_ptr() as usize;
+        let label = match serde_json::from_str::<NameOnly>(slice).ok().and_then(|n| n.name) {
+            Some(serde_json::Value::String(s)) => s,
+            _ => format!("#{i}"),
+        };
+        let err = |field: Option<String>, position, message: String| InputError {
+            file: path.to_path_buf(),
+            case: Some(label.clone()),
+            field,
+            position,
+            message,
+        };
+        let mut de = serde_json::Deserializer::from_str(slice);
+        let case: Case = match serde_path_to_error::deserialize(&mut de) {
+            Ok(c) => c,
+            Err(e) => {
+                let field = e.path().to_string();
+                let inner = e.into_inner();
+                let pos = absolute(text, offset, inner.line(), inner.column());
+                let msg = inner.to_string();
+                let msg = msg.split(" at line ").next().unwrap_or(&msg).to_string();
+                out.errors.push(err((field != ".").then_some(field), Some(pos), msg));
+                continue;
+            }
+        };
+        if !names.insert(case.name.clone()) {
+            out.errors.push(err(Some("name".into()), None, "duplicate case name in this file".into()));
+            continue;
+        }
+        if let Err((field, msg)) = validate(&case) {
+            out.errors.push(err(Some(field), None, msg));
+            continue;
+        }
+        let mut meshes = [None, None];
+        let mut failed = false;
+        for (slot, (key, shape)) in [("a", Some(&case.a)), ("b", case.b.as_ref())].into_iter().enumerate() {
+            if let Some(Shape::Mesh(m)) = shape {
+                match resolve_mesh(m, base) {
+                    Ok(mesh) => meshes[slot] = Some(mesh),
+                    Err((field, msg)) => {
+                        out.errors.push(err(Some(format!("{key}.mesh.{field}")), None, msg));
+                        failed = true;
+                    }
+                }
+            }
+        }
+        if failed {
+            continue;
+        }
+        out.cases.push(LoadedCase { file: path.to_path_buf(), case, meshes });
+    }
+}
+
+/// Line and column in the whole text of a (line, column) inside the slice that
+/// starts at byte `offset`.
+fn absolute(text: &str, offset: usize, line: usize, column: usize) -> (usize, usize) {
+    let before = &text[..offset];
+    let start_line = before.matches('\n').count() + 1;
+    let start_col = offset - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+    if line <= 1 { (start_line, start_col + column.saturating_sub(1)) } else { (start_line + line - 1, column) }
+}
+
+fn resolve_mesh(m: &MeshSpec, base: &Path) -> Result<Mesh, (String, String)> {
+    match (&m.vertices, &m.triangles, &m.file) {
+        (Some(v), Some(t), None) => Mesh::new(v.clone(), t.clone()),
+        (None, None, Some(f)) => load_mesh_file(&base.join(f)).map_err(|m| ("file".to_string(), m)),
+        (_, _, Some(_)) => Err(("file".into(), "give either `file` or `vertices` and `triangles`, not both".into())),
+        (None, _, None) => Err(("vertices".into(), "missing field (or give `file`)".into())),
+        (Some(_), None, None) => Err(("triangles".into(), "missing field".into())),
+    }
+}
+
+type FieldResult = Result<(), (String, String)>;
+
+fn bad(field: impl Into<String>, msg: impl Into<String>) -> FieldResult {
+    Err((field.into(), msg.into()))
+}
+
+fn finite3(field: &str, v: &P3) -> FieldResult {
+    for (i, x) in v.iter().enumerate() {
+        if !x.is_finite() {
+            return bad(format!("{field}[{i}]"), "not a finite number");
+        }
+    }
+    Ok(())
+}
+
+fn finite(field: &str, x: f64) -> FieldResult {
+    if x.is_finite() { Ok(()) } else { bad(field, "not a finite number") }
+}
+
+fn validate_shape(key: &str, shape: &Shape, query: Query) -> FieldResult {
+    let k = format!("{key}.{}", shape.kind());
+    let velocity = |v: &Option<P3>| match v {
+        Some(v) => finite3(&format!("{k}.velocity"), v),
+        None => Ok(()),
+    };
+    match shape {
+        Shape::Sphere(s) => {
+            finite3(&format!("{k}.center"), &s.center)?;
+            finite(&format!("{k}.radius"), s.radius)?;
+            if s.radius <= 0.0 {
+                return bad(format!("{k}.radius"), format!("radius must be > 0, got {}", s.radius));
+            }
+            velocity(&s.velocity)?;
+            if let Some(m) = s.mass {
+                finite(&format!("{k}.mass"), m)?;
+                if m <= 0.0 {
+                    return bad(format!("{k}.mass"), format!("mass must be > 0, got {m}"));
+                }
+            }
+            if query == Query::Response && s.mass.is_none() {
+                return bad(format!("{k}.mass"), "missing field (response needs masses)");
+            }
+        }
+        Shape::Plane(p) => {
+            finite3(&format!("{k}.normal"), &p.normal)?;
+            finite(&format!("{k}.offset"), p.offset)?;
+            if p.normal == [0.0; 3] {
+                return bad(format!("{k}.normal"), "zero normal");
+            }
+            velocity(&p.velocity)?;
+        }
+        Shape::Segment(s) => {
+            finite3(&format!("{k}.start"), &s.start)?;
+            finite3(&format!("{k}.end"), &s.end)?;
+        }
+        Shape::Triangle(t) => {
+            for (i, v) in t.vertices.iter().enumerate() {
+                finite3(&format!("{k}.vertices[{i}]"), v)?;
+            }
+            velocity(&t.velocity)?;
+        }
+        Shape::Point(p) => finite3(&format!("{k}.at"), &p.at)?,
+        Shape::Points(p) => {
+            if p.points.is_empty() {
+                return bad(format!("{k}.points"), "needs at least one point");
+            }
+            for (i, v) in p.points.iter().enumerate() {
+                finite3(&format!("{k}.points[{i}]"), v)?;
+            }
+        }
+        Shape::Mesh(m) => {
+            // Inline meshes are checked where they are built (indices, finiteness);
+            // here only what a file mesh shares with them.
+            velocity(&m.velocity)?;
+        }
+        Shape::Aabb(b) => {
+            finite3(&format!("{k}.min"), &b.min)?;
+            finite3(&format!("{k}.max"), &b.max)?;
+            for i in 0..3 {
+                if b.min[i] > b.max[i] {
+                    return bad(format!("{k}.min[{i}]"), format!("min {} > max {}", b.min[i], b.max[i]));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The shape kinds the format allows for `a` and `b` of each query.
+fn fits(query: Query, a: &str, b: Option<&str>) -> bool {
+    match (query, a, b) {
+        (Query::Contact, "sphere", Some("sphere" | "plane" | "triangle")) => true,
+        (Query::Contact, "plane" | "triangle", Some("sphere")) => true,
+        (Query::Intersect, "segment", Some("plane" | "triangle" | "mesh")) => true,
+        (Query::Barycentric, "point", Some("triangle")) => true,
+        (Query::Bounds, "points" | "mesh", None) => true,
+        (Query::Overlap, "aabb", Some("aabb")) => true,
+        (Query::Toi, "sphere", Some("sphere" | "plane" | "triangle" | "mesh")) => true,
+        (Query::Response, "sphere", Some("sphere" | "plane")) => true,
+        _ => false,
+    }
+}
+
+/// The `expect` fields that belong to each query.
+fn expect_fields(query: Query) -> &'static [&'static str] {
+    match query {
+        Query::Contact => &["contact", "degenerate"],
+        Query::Intersect => &["hit", "parallel", "degenerate"],
+        Query::Barycentric => &["barycentric", "degenerate"],
+        Query::Bounds => &["aabb", "min_radius", "degenerate"],
+        Query::Overlap => &["overlap", "degenerate"],
+        Query::Toi => &["toi", "degenerate"],
+        Query::Response => &["velocity_a", "velocity_b", "degenerate"],
+    }
+}
+
+fn named_fields(e: &Expect) -> Vec<&'static str> {
+    let mut v = Vec::new();
+    let mut add = |present: bool, name| {
+        if present {
+            v.push(name)
+        }
+    };
+    add(e.contact.is_some(), "contact");
+    add(e.hit.is_some(), "hit");
+    add(e.parallel.is_some(), "parallel");
+    add(e.degenerate.is_some(), "degenerate");
+    add(e.barycentric.is_some(), "barycentric");
+    add(e.aabb.is_some(), "aabb");
+    add(e.min_radius.is_some(), "min_radius");
+    add(e.overlap.is_some(), "overlap");
+    add(e.toi.is_some(), "toi");
+    add(e.velocity_a.is_some(), "velocity_a");
+    add(e.velocity_b.is_some(), "velocity_b");
+    v
+}
+
+/// Checks what the types cannot; the error is `(field path, message)`.
+pub fn validate(case: &Case) -> FieldResult {
+    if case.name.is_empty() {
+        return bad("name", "empty name");
+    }
+    let b_kind = case.b.as_ref().map(Shape::kind);
+    if !fits(case.query, case.a.kind(), b_kind) {
+        let field = if case.query == Query::Bounds && case.b.is_some() { "b" } else { "query" };
+        return bad(
+            field,
+            format!(
+                "query `{}` does not take a = {}{}",
+                case.query,
+                case.a.kind(),
+                b_kind.map(|k| format!(", b = {k}")).unwrap_or_else(|| ", no b".into())
+            ),
+        );
+    }
+    validate_shape("a", &case.a, case.query)?;
+    if let Some(b) = &case.b {
+        validate_shape("b", b, case.query)?;
+    }
+    if let Some(t) = case.tol {
+        if !(t.is_finite() && t >= 0.0) {
+            return bad("tol", format!("tolerance must be finite and ≥ 0, got {t}"));
+        }
+    }
+    if let Some(t) = case.t_max {
+        if !(t.is_finite() && t >= 0.0) {
+            return bad("t_max", format!("t_max must be finite and ≥ 0, got {t}"));
+        }
+    }
+    match case.restitution {
+        Some(e) if !(e.is_finite() && (0.0..=1.0).contains(&e)) => {
+            return bad("restitution", format!("restitution must be in [0, 1], got {e}"));
+        }
+        None if case.query == Query::Response => return bad("restitution", "missing field"),
+        _ => {}
+    }
+    if let Some(e) = &case.expect {
+        let allowed = expect_fields(case.query);
+        for f in named_fields(e) {
+            if !allowed.contains(&f) {
+                return bad(format!("expect.{f}"), format!("not an answer of query `{}`", case.query));
+            }
+        }
+        validate_expect(e)?;
+    }
+    Ok(())
+}
+
+fn validate_expect(e: &Expect) -> FieldResult {
+    if let Some(Some(c)) = &e.contact {
+        finite3("expect.contact.point", &c.point)?;
+        finite3("expect.contact.normal", &c.normal)?;
+        finite("expect.contact.depth", c.depth)?;
+    }
+    if let Some(Some(h)) = &e.hit {
+        finite("expect.hit.t", h.t)?;
+        finite3("expect.hit.point", &h.point)?;
+        finite3("expect.hit.normal", &h.normal)?;
+        if let Some(b) = &h.barycentric {
+            finite3("expect.hit.barycentric", b)?;
+        }
+    }
+    if let Some(b) = &e.barycentric {
+        finite3("expect.barycentric", b)?;
+    }
+    if let Some(b) = &e.aabb {
+        finite3("expect.aabb.min", &b.min)?;
+        finite3("expect.aabb.max", &b.max)?;
+    }
+    if let Some(r) = e.min_radius {
+        finite("expect.min_radius", r)?;
+        if r < 0.0 {
+            return bad("expect.min_radius", format!("radius must be ≥ 0, got {r}"));
+        }
+    }
+    if let Some(Some(t)) = &e.toi {
+        finite("expect.toi.t", t.t)?;
+        finite3("expect.toi.point", &t.point)?;
+        finite3("expect.toi.normal", &t.normal)?;
+    }
+    for (name, v) in [("expect.velocity_a", &e.velocity_a), ("expect.velocity_b", &e.velocity_b)] {
+        if let Some(v) = v {
+            finite3(name, v)?;
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,58 @@
+//! Tolerances for judging an engine against the referee: one entry per precision
+//! and quantity, each with its reason. Errors of points, depths and times are
+//! measured relative to the scene's scale (the largest coordinate, radius or
+//! offset in the case), so the same table serves a scene at the origin and one at
+//! 1e9; normals are judged by their angle.
+
+/// Relative (to the scene's scale) error allowed of an `f64` engine's points,
+/// depths and barycentric reconstructions: 1e-9. A well-conditioned query loses a
+/// few hundred ulps at most (2.2e-16 each); the remaining six orders of magnitude
+/// are left for the conditioning of near-degenerate cases (grazing contacts,
+/// near-parallel segments), which the stability sweeps chart separately.
+pub const F64_REL: f64 = 1e-9;
+
+/// Relative error allowed of an `f32` engine: 1e-4. Rounding the inputs to `f32`
+/// alone costs 6e-8 of the scale (half an ulp), and each operation as much again;
+/// 1e-4 leaves three orders of magnitude for conditioning, as for f64.
+pub const F32_REL: f64 = 1e-4;
+
+/// Normal angle allowed of an `f64` engine, in radians: 1e-7. A unit normal from a
+/// difference of points of the scene's size is off by about `ε · scale / distance`;
+/// 1e-7 admits distances down to 1e-9 of the scene before a normal is called
+/// wrong.
+pub const F64_NORMAL_RAD: f64 = 1e-7;
+
+/// Normal angle allowed of an `f32` engine, in radians: 1e-2 (`f32`'s ε is 1.2e-7;
+/// the same reasoning as [`F64_NORMAL_RAD`], with distances down to 1e-5 of the
+/// scene).
+pub const F32_NORMAL_RAD: f64 = 1e-2;
+
+/// Barycentric coordinates are dimensionless: an `f64` engine may be off by 1e-9
+/// in each (the same allowance as [`F64_REL`], since a coordinate is a ratio of
+/// lengths of the scene's size).
+pub const F64_BARY: f64 = 1e-9;
+
+/// Barycentric allowance of an `f32` engine (as [`F32_REL`]).
+pub const F32_BARY: f64 = 1e-4;
+
+/// The tolerances in force for one engine.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tolerance {
+    /// Points, depths, distances, radii: relative to the scene's scale.
+    pub rel: f64,
+    /// Normals: radians.
+    pub normal_rad: f64,
+    /// Barycentric coordinates and segment parameters `t`: absolute.
+    pub unitless: f64,
+}
+
+impl Tolerance {
+    /// The table entry for an engine of `precision` mantissa bits (53 for f64, 24
+    /// for f32; `None`, the referee itself, is held to the f64 entry).
+    pub fn for_precision(precision: Option<u32>) -> Self {
+        match precision {
+            Some(p) if p < 53 => Tolerance { rel: F32_REL, normal_rad: F32_NORMAL_RAD, unitless: F32_BARY },
+            _ => Tolerance { rel: F64_REL, normal_rad: F64_NORMAL_RAD, unitless: F64_BARY },
+        }
+    }
+}
