@@ -14,7 +14,9 @@
 #![deny(missing_docs)]
 
 pub mod case;
+pub mod check;
 pub mod engine;
+pub mod engines;
 pub mod judge;
 pub mod load;
 pub mod mesh;

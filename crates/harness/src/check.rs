@@ -1,0 +1,262 @@
+//! `crashtest check`: every case through every engine, each answer compared with
+//! the case's `expect` and with the referee.
+//!
+//! A case passes when the default engine ([`DEFAULT_ENGINE`]) meets every named
+//! expectation and does not disagree with the referee (borderline is not a
+//! disagreement). An engine that panics is caught and recorded as failing that
+//! case; the run goes on.
+
+use crate::case::{Expect, Query};
+use crate::engine::{Answer, Engine};
+use crate::engines::{self, DEFAULT_ENGINE, REFEREE};
+use crate::judge::{self, Errors, Mismatch, Verdict};
+use crate::load::{InputError, LoadedCase};
+use crate::tolerance::Tolerance;
+use serde::Serialize;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+/// One engine's result on one case.
+#[derive(Clone, Debug, Serialize)]
+pub struct EngineResult {
+    /// The engine's name.
+    pub engine: String,
+    /// Its answer, written as a fixture's `expect` would be (absent when it gave none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub answer: Option<Expect>,
+    /// Against the referee.
+    #[serde(flatten)]
+    pub verdict: Verdict,
+    /// Its errors against the referee (absolute; see `scale`).
+    pub errors: Errors,
+    /// Mismatches with the case's `expect`: `None` when the case has no
+    /// expectation or the engine gave no answer.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub expect_mismatches: Option<Vec<Mismatch>>,
+}
+
+/// Everything about one case.
+#[derive(Clone, Debug, Serialize)]
+pub struct CaseResult {
+    /// Its file.
+    pub file: String,
+    /// Its name.
+    pub name: String,
+    /// Its query.
+    pub query: Query,
+    /// The scene's scale (relative errors divide by it).
+    pub scale: f64,
+    /// The referee's margin from the nearest decision boundary, if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub margin: Option<f64>,
+    /// The referee's answer (absent when it refused the case).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub referee: Option<Expect>,
+    /// Whether the referee meets the case's expectation (absent without one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub referee_meets_expect: Option<bool>,
+    /// Each judged engine's result.
+    pub engines: Vec<EngineResult>,
+    /// Whether the default engine passed.
+    pub passed: bool,
+}
+
+/// The whole check.
+#[derive(Clone, Debug, Serialize)]
+pub struct CheckResult {
+    /// Per case, in file order.
+    pub cases: Vec<CaseResult>,
+    /// Refused input, one line each.
+    pub errors: Vec<String>,
+    /// Cases the default engine passed.
+    pub passed: usize,
+    /// Cases it failed.
+    pub failed: usize,
+}
+
+impl CheckResult {
+    /// The process exit code: 2 for bad input, 1 when the default engine failed a
+    /// case, 0 otherwise.
+    pub fn exit_code(&self) -> i32 {
+        if !self.errors.is_empty() {
+            2
+        } else if self.failed > 0 {
+            1
+        } else {
+            0
+        }
+    }
+}
+
+/// Writes an answer as a fixture's `expect`.
+pub fn answer_as_expect(a: &Answer) -> Expect {
+    let mut e = Expect::default();
+    match a {
+        Answer::Contact(c) => {
+            e.contact = Some(c.contact);
+            e.degenerate = Some(c.degenerate);
+        }
+        Answer::Intersect(i) => {
+            e.hit = Some(i.hit);
+            e.parallel = Some(i.parallel);
+            e.degenerate = Some(i.degenerate);
+        }
+        Answer::Barycentric(b) => {
+            e.barycentric = Some(b.coords);
+            e.degenerate = Some(b.degenerate);
+        }
+        Answer::Bounds(b) => {
+            e.aabb = b.aabb;
+            e.min_radius = b.sphere.map(|s| s.radius);
+        }
+        Answer::Overlap(o) => e.overlap = Some(*o),
+    }
+    e
+}
+
+/// Runs one engine on one case, catching a panic.
+pub fn run_caught(engine: &Engine, lc: &LoadedCase) -> Result<Answer, Verdict> {
+    match catch_unwind(AssertUnwindSafe(|| engine.run(lc))) {
+        Ok(Ok(a)) => Ok(a),
+        Ok(Err(u)) => Err(Verdict::Unsupported { reason: u.0 }),
+        Err(p) => {
+            let msg = p
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| p.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "panic".into());
+            Err(Verdict::Failed { reason: format!("panicked: {msg}") })
+        }
+    }
+}
+
+/// Judges one case with every engine.
+pub fn check_case(lc: &LoadedCase, judged: &[Engine], referee: &Engine) -> CaseResult {
+    let truth = run_caught(referee, lc).ok();
+    let scale = judge::scene_scale(lc);
+    let margin = engines::referee::margin(lc);
+    let rel_margin = margin.map(|m| m / scale);
+    let has_expect = lc.case.expect.is_some();
+    let mut results = Vec::new();
+    let mut passed = false;
+    for engine in judged {
+        let tol = Tolerance::for_precision(engine.precision);
+        let (answer, verdict, errors, mism) = match run_caught(engine, lc) {
+            Ok(a) => {
+                let mism = has_expect.then(|| judge::check_expect(lc, &a));
+                let (v, e) = match &truth {
+                    Some(t) => judge::judge(lc, &a, t, &tol, rel_margin),
+                    None => (Verdict::Unsupported { reason: "the referee gave no answer".into() }, Errors::default()),
+                };
+                (Some(answer_as_expect(&a)), v, e, mism)
+            }
+            Err(v) => (None, v, Errors::default(), None),
+        };
+        if engine.name == DEFAULT_ENGINE {
+            let expect_ok = mism.as_ref().is_none_or(|m| m.is_empty());
+            let referee_ok = matches!(verdict, Verdict::Agree | Verdict::Borderline { .. })
+                || (truth.is_none() && has_expect && answer.is_some());
+            passed = answer.is_some() && expect_ok && referee_ok;
+        }
+        results.push(EngineResult { engine: engine.name.clone(), answer, verdict, errors, expect_mismatches: mism });
+    }
+    let referee_meets_expect = match (&truth, has_expect) {
+        (Some(t), true) => Some(judge::check_expect(lc, t).is_empty()),
+        _ => None,
+    };
+    CaseResult {
+        file: lc.file.display().to_string(),
+        name: lc.case.name.clone(),
+        query: lc.case.query,
+        scale,
+        margin,
+        referee: truth.as_ref().map(answer_as_expect),
+        referee_meets_expect,
+        engines: results,
+        passed,
+    }
+}
+
+/// Checks every loaded case; `errors` are the input errors met while loading.
+pub fn check(cases: &[LoadedCase], errors: &[InputError]) -> CheckResult {
+    let judged = engines::judged();
+    let referee = engines::referee();
+    debug_assert_eq!(referee.name, REFEREE);
+    let results: Vec<CaseResult> = cases.iter().map(|lc| check_case(lc, &judged, &referee)).collect();
+    let passed = results.iter().filter(|c| c.passed).count();
+    CheckResult {
+        failed: results.len() - passed,
+        passed,
+        cases: results,
+        errors: errors.iter().map(|e| e.to_string()).collect(),
+    }
+}
+
+fn fmt_err(x: Option<f64>) -> String {
+    x.map(|v| format!("{v:.1e}")).unwrap_or_else(|| "-".into())
+}
+
+/// The human-readable report: a table per case, the input errors, and last the
+/// line `N passed, M failed` (cases, default engine).
+pub fn render_text(r: &CheckResult) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    for c in &r.cases {
+        let _ = writeln!(
+            s,
+            "{} {} › {} [{}]{}",
+            if c.passed { "PASS" } else { "FAIL" },
+            c.file,
+            c.name,
+            c.query,
+            match c.referee_meets_expect {
+                Some(false) => "  (the referee does not meet this case's expectation)",
+                _ => "",
+            }
+        );
+        let _ = writeln!(
+            s,
+            "  {:<20} {:<11} {:<8} {:>8} {:>8} {:>8} {:>8} {:>8}",
+            "engine", "referee", "expect", "point", "depth", "normal", "t", "bary"
+        );
+        for e in &c.engines {
+            let expect = match &e.expect_mismatches {
+                None => "-",
+                Some(m) if m.is_empty() => "ok",
+                Some(_) => "MISMATCH",
+            };
+            let _ = writeln!(
+                s,
+                "  {:<20} {:<11} {:<8} {:>8} {:>8} {:>8} {:>8} {:>8}",
+                e.engine,
+                e.verdict.label(),
+                expect,
+                fmt_err(e.errors.point),
+                fmt_err(e.errors.depth),
+                fmt_err(e.errors.normal),
+                fmt_err(e.errors.t),
+                fmt_err(e.errors.barycentric)
+            );
+            if e.engine == DEFAULT_ENGINE || !c.passed {
+                for m in e.expect_mismatches.iter().flatten() {
+                    let _ = writeln!(s, "      expect.{}: want {}, got {}", m.field, m.expected, m.got);
+                }
+            }
+            match &e.verdict {
+                Verdict::Disagree { reasons } | Verdict::Borderline { reasons } if e.engine == DEFAULT_ENGINE => {
+                    for why in reasons {
+                        let _ = writeln!(s, "      {why}");
+                    }
+                }
+                Verdict::Failed { reason } | Verdict::Unsupported { reason } if e.engine == DEFAULT_ENGINE => {
+                    let _ = writeln!(s, "      {reason}");
+                }
+                _ => {}
+            }
+        }
+    }
+    for e in &r.errors {
+        let _ = writeln!(s, "error: {e}");
+    }
+    let _ = writeln!(s, "{} passed, {} failed", r.passed, r.failed);
+    s
+}

@@ -1,0 +1,89 @@
+//! The referee as an engine: the exact answer every other engine is judged
+//! against, and the margin of each case from its nearest decision boundary.
+
+use crate::case::{Query, Shape};
+use crate::engine::{Queries, Reply, Unsupported};
+use crate::load::LoadedCase;
+use crate::mesh::Mesh;
+use oracle::geom::{Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, Segment, Sphere, Triangle};
+use oracle::referee::{self, RefereeError};
+
+/// The referee's queries.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RefereeQueries;
+
+fn r<T>(x: Result<T, RefereeError>) -> Reply<T> {
+    x.map_err(|e| Unsupported(format!("referee refused the input: {e:?}")))
+}
+
+impl Queries for RefereeQueries {
+    fn contact_sphere_sphere(&self, a: &Sphere, b: &Sphere) -> Reply<ContactAnswer> {
+        r(referee::contact_sphere_sphere(a, b))
+    }
+    fn contact_sphere_plane(&self, a: &Sphere, b: &Plane) -> Reply<ContactAnswer> {
+        r(referee::contact_sphere_plane(a, b))
+    }
+    fn contact_plane_sphere(&self, a: &Plane, b: &Sphere) -> Reply<ContactAnswer> {
+        r(referee::contact_plane_sphere(a, b))
+    }
+    fn contact_sphere_triangle(&self, a: &Sphere, b: &Triangle) -> Reply<ContactAnswer> {
+        r(referee::contact_sphere_triangle(a, b))
+    }
+    fn contact_triangle_sphere(&self, a: &Triangle, b: &Sphere) -> Reply<ContactAnswer> {
+        r(referee::contact_triangle_sphere(a, b))
+    }
+    fn intersect_segment_plane(&self, s: &Segment, p: &Plane) -> Reply<IntersectAnswer> {
+        r(referee::intersect_segment_plane(s, p))
+    }
+    fn intersect_segment_triangle(&self, s: &Segment, t: &Triangle) -> Reply<IntersectAnswer> {
+        r(referee::intersect_segment_triangle(s, t))
+    }
+    fn intersect_segment_mesh(&self, s: &Segment, m: &Mesh) -> Reply<IntersectAnswer> {
+        r(referee::intersect_segment_mesh(s, &m.vertices, &m.triangles))
+    }
+    fn barycentric_triangle(&self, p: &P3, t: &Triangle) -> Reply<BarycentricAnswer> {
+        r(referee::barycentric_triangle(p, t))
+    }
+    fn bounds(&self, points: &[P3]) -> Reply<BoundsAnswer> {
+        Ok(BoundsAnswer { aabb: Some(r(referee::aabb_of_points(points))?), sphere: Some(r(referee::min_ball(points))?) })
+    }
+    fn overlap(&self, a: &Aabb, b: &Aabb) -> Reply<bool> {
+        r(referee::overlap_aabb_aabb(a, b))
+    }
+}
+
+fn length(s: &Segment) -> f64 {
+    (0..3).map(|i| (s.end[i] - s.start[i]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The referee's signed distance of a case from its nearest decision boundary
+/// (touching, the segment's ends and the triangle's edges, the boxes' faces), as
+/// a length; `None` where a case has no such boundary or the referee gives none.
+/// A segment parameter margin is turned into a length by the segment's length.
+pub fn margin(lc: &LoadedCase) -> Option<f64> {
+    let case = &lc.case;
+    use Shape as S;
+    match (case.query, &case.a, case.b.as_ref()) {
+        (Query::Contact, S::Sphere(a), Some(S::Sphere(b))) => {
+            referee::contact_margin_sphere_sphere(&a.to_geom(), &b.to_geom()).ok()
+        }
+        (Query::Contact, S::Sphere(a), Some(S::Plane(b))) | (Query::Contact, S::Plane(b), Some(S::Sphere(a))) => {
+            referee::contact_margin_sphere_plane(&a.to_geom(), &b.to_geom()).ok()
+        }
+        (Query::Contact, S::Sphere(a), Some(S::Triangle(b))) | (Query::Contact, S::Triangle(b), Some(S::Sphere(a))) => {
+            referee::contact_margin_sphere_triangle(&a.to_geom(), &b.to_geom()).ok()
+        }
+        (Query::Intersect, S::Segment(s), Some(S::Plane(p))) => {
+            let s = s.to_geom();
+            referee::intersect_margin_segment_plane(&s, &p.to_geom()).ok().flatten().map(|m| m * length(&s))
+        }
+        (Query::Intersect, S::Segment(s), Some(S::Triangle(t))) => {
+            let s = s.to_geom();
+            referee::intersect_margin_segment_triangle(&s, &t.to_geom()).ok().flatten().map(|m| m * length(&s))
+        }
+        (Query::Overlap, S::Aabb(a), Some(S::Aabb(b))) => {
+            referee::overlap_margin_aabb_aabb(&a.to_geom(), &b.to_geom()).ok()
+        }
+        _ => None,
+    }
+}

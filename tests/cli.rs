@@ -1,0 +1,169 @@
+//! The command line as a user meets it: exit codes, the closing line, and the
+//! messages for bad input (file, case, field; line and column for JSON syntax),
+//! with the rest of the run still checked.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn crashtest(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_crashtest")).args(args).output().expect("crashtest runs");
+    let text = String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    (out.status.code().unwrap_or(-1), text)
+}
+
+/// A scratch folder of this test binary, emptied first.
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    dir
+}
+
+const GOOD: &str = r#"{
+  "schema": "crashtest-fixture/1",
+  "cases": [
+    {
+      "name": "ball sunk half a unit into the ground",
+      "source": "FIXTURES.md example: s = 0.5, depth = r − s = 0.5, p = M − s n = 0",
+      "query": "contact",
+      "a": { "sphere": { "center": [0, 0, 0.5], "radius": 1 } },
+      "b": { "plane": { "normal": [0, 0, 1], "offset": 0 } },
+      "expect": { "contact": { "point": [0, 0, 0], "normal": [0, 0, 1], "depth": 0.5 } },
+      "tol": 1e-12
+    }
+  ]
+}"#;
+
+fn last_line(text: &str) -> &str {
+    text.lines().last().unwrap_or("")
+}
+
+#[test]
+fn the_shipped_fixtures_pass_with_exit_0() {
+    let (code, out) = crashtest(&["check", "fixtures"]);
+    assert_eq!(code, 0, "crashtest check fixtures:\n{out}");
+    assert!(last_line(&out).ends_with(" 0 failed"), "closing line: {}", last_line(&out));
+}
+
+#[test]
+fn a_good_file_passes_and_the_closing_line_counts_it() {
+    let dir = scratch("good");
+    std::fs::write(dir.join("good.json"), GOOD).unwrap();
+    let (code, out) = crashtest(&["check", dir.join("good.json").to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}");
+    assert_eq!(last_line(&out), "1 passed, 0 failed");
+}
+
+#[test]
+fn a_wrong_expectation_exits_1() {
+    let dir = scratch("wrong");
+    std::fs::write(dir.join("wrong.json"), GOOD.replace("\"depth\": 0.5", "\"depth\": 0.25")).unwrap();
+    let (code, out) = crashtest(&["check", dir.to_str().unwrap()]);
+    assert_eq!(code, 1, "{out}");
+    assert_eq!(last_line(&out), "0 passed, 1 failed");
+    assert!(out.contains("expect.contact.depth"), "names the mismatching field:\n{out}");
+}
+
+#[test]
+fn json_output_is_json_and_the_closing_line_follows() {
+    let dir = scratch("json");
+    std::fs::write(dir.join("good.json"), GOOD).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .args(["check", "--json", dir.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("stdout is JSON");
+    assert_eq!(v["passed"], 1);
+    assert_eq!(v["cases"][0]["engines"][0]["engine"], "collide/robust");
+    assert_eq!(String::from_utf8_lossy(&out.stderr).lines().last(), Some("1 passed, 0 failed"));
+}
+
+/// Each broken file gets one line naming it (and the case and field), exit 2, and
+/// the good file beside them is still checked.
+#[test]
+fn bad_input_is_named_and_the_rest_of_the_run_still_happens() {
+    let dir = scratch("bad");
+    std::fs::write(dir.join("a_good.json"), GOOD).unwrap();
+    let case = |name: &str, body: &str| {
+        format!(r#"{{"schema": "crashtest-fixture/1", "cases": [{{"name": "{name}", "query": "contact", {body}}}]}}"#)
+    };
+    let sphere = r#""a": {"sphere": {"center": [0, 0, 0], "radius": 1}}"#;
+    let files: &[(&str, String, &[&str])] = &[
+        ("syntax.json", "{\n  \"schema\": \"crashtest-fixture/1\",\n  \"cases\": [ {,] }".into(), &["syntax.json:3:", "JSON syntax"]),
+        (
+            "radius.json",
+            case("negative radius", &format!(r#""a": {{"sphere": {{"center": [0,0,0], "radius": -1}}}}, "b": {{"plane": {{"normal": [0,0,1], "offset": 0}}}}"#)),
+            &["radius.json", "case \"negative radius\"", "a.sphere.radius", "> 0"],
+        ),
+        (
+            "normal.json",
+            case("zero normal", &format!(r#"{sphere}, "b": {{"plane": {{"normal": [0,0,0], "offset": 0}}}}"#)),
+            &["normal.json", "case \"zero normal\"", "b.plane.normal", "zero normal"],
+        ),
+        (
+            "length.json",
+            case("short vector", &format!(r#"{sphere}, "b": {{"sphere": {{"center": [0,0], "radius": 1}}}}"#)),
+            &["length.json", "case \"short vector\"", "b.sphere.center", "length"],
+        ),
+        (
+            "missing.json",
+            case("no radius", &format!(r#"{sphere}, "b": {{"sphere": {{"center": [0,0,0]}}}}"#)),
+            &["missing.json", "case \"no radius\"", "b.sphere", "radius"],
+        ),
+        (
+            "huge.json",
+            case("beyond f64", &format!(r#"{sphere}, "b": {{"sphere": {{"center": [0,1e400,0], "radius": 1}}}}"#)),
+            &["huge.json:1:", "case \"beyond f64\"", "b.sphere.center", "out of range"],
+        ),
+        (
+            "typed.json",
+            case("string radius", &format!(r#"{sphere}, "b": {{"sphere": {{"center": [0,0,0], "radius": "one"}}}}"#)),
+            &["typed.json", "case \"string radius\"", "b.sphere.radius"],
+        ),
+        (
+            "query.json",
+            r#"{"schema": "crashtest-fixture/1", "cases": [{"name": "what", "query": "teleport", "a": {"point": {"at": [0,0,0]}}}]}"#.into(),
+            &["query.json", "case \"what\"", "query", "teleport"],
+        ),
+        (
+            "index.json",
+            r#"{"schema": "crashtest-fixture/1", "cases": [{"name": "bad index", "query": "intersect",
+               "a": {"segment": {"start": [0,0,1], "end": [0,0,-1]}},
+               "b": {"mesh": {"vertices": [[0,0,0],[1,0,0],[0,1,0]], "triangles": [[0,1,3]]}}}]}"#
+                .into(),
+            &["index.json", "case \"bad index\"", "b.mesh.triangles[0][2]", "out of range"],
+        ),
+    ];
+    for (name, text, _) in files {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    let missing = dir.join("no_such_file.json");
+    let (code, out) = crashtest(&["check", dir.to_str().unwrap(), missing.to_str().unwrap()]);
+    assert_eq!(code, 2, "{out}");
+    for (name, _, needles) in files {
+        let line = out.lines().find(|l| l.starts_with("error:") && l.contains(name)).unwrap_or_else(|| panic!("no error line for {name}:\n{out}"));
+        for n in *needles {
+            assert!(line.contains(n), "error line for {name} lacks {n:?}: {line}");
+        }
+    }
+    assert!(out.lines().any(|l| l.starts_with("error:") && l.contains("no_such_file.json") && l.contains("cannot read")), "{out}");
+    assert!(out.contains("PASS") && out.contains("ball sunk half a unit"), "the good file was still checked:\n{out}");
+    assert_eq!(last_line(&out), "1 passed, 0 failed");
+}
+
+#[test]
+fn one_bad_case_does_not_sink_its_neighbours() {
+    let dir = scratch("neighbours");
+    let text = GOOD.replace(
+        "  ]\n}",
+        r#"  , {"name": "huge", "query": "contact", "a": {"sphere": {"center": [1e999, 0, 0], "radius": 1}},
+       "b": {"sphere": {"center": [0, 0, 0], "radius": 1}}}
+  ]
+}"#,
+    );
+    std::fs::write(dir.join("mixed.json"), text).unwrap();
+    let (code, out) = crashtest(&["check", dir.to_str().unwrap()]);
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("case \"huge\"") && out.contains("a.sphere.center"), "{out}");
+    assert_eq!(last_line(&out), "1 passed, 0 failed");
+}
