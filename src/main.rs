@@ -25,6 +25,8 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Print the JSON Schema of the fixture format (crashtest-fixture/1).
+    Schema,
 }
 
 fn main() -> ExitCode {
@@ -43,6 +45,10 @@ fn main() -> ExitCode {
                 print!("{}", harness::check::render_text(&result));
             }
             ExitCode::from(result.exit_code() as u8)
+        }
+        Command::Schema => {
+            print!("{}", harness::case::json_schema());
+            ExitCode::SUCCESS
         }
     }
 }

@@ -351,3 +351,12 @@ impl AabbSpec {
         Aabb { min: self.min, max: self.max }
     }
 }
+
+/// The JSON Schema of a fixture file, generated from these types (committed as
+/// `schema/crashtest-fixture-1.schema.json`; a test keeps the copy current).
+pub fn json_schema() -> String {
+    let schema = schemars::schema_for!(FixtureFile);
+    let mut text = serde_json::to_string_pretty(&schema).unwrap_or_default();
+    text.push('\n');
+    text
+}
