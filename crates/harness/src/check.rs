@@ -144,7 +144,18 @@ pub fn check_case(lc: &LoadedCase, judged: &[Engine], referee: &Engine) -> CaseR
             Ok(a) => {
                 let mism = has_expect.then(|| judge::check_expect(lc, &a));
                 let (v, e) = match &truth {
-                    Some(t) => judge::judge(lc, &a, t, &tol, rel_margin),
+                    Some(t) => {
+                        let (v, e) = judge::judge(lc, &a, t, &tol, rel_margin);
+                        match &v {
+                            Verdict::Disagree { reasons } => {
+                                match crate::divergence::explain(&engine.name, lc, &a, t, reasons) {
+                                    Some(reason) => (Verdict::KnownDivergence { reason }, e),
+                                    None => (v, e),
+                                }
+                            }
+                            _ => (v, e),
+                        }
+                    }
                     None => (Verdict::Unsupported { reason: "the referee gave no answer".into() }, Errors::default()),
                 };
                 (Some(answer_as_expect(&a)), v, e, mism)

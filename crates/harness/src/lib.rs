@@ -15,6 +15,7 @@
 
 pub mod case;
 pub mod check;
+pub mod divergence;
 pub mod engine;
 pub mod engines;
 pub mod judge;

@@ -1,0 +1,1067 @@
+//! The adapter body, written once and compiled once per precision (from
+//! `parry64.rs` and `parry32.rs`): the parent module supplies `backend` (the parry
+//! crate), `Real` (its scalar), `Engine` (the unit struct implemented here),
+//! `narrow` and `widen` (the edge conversions).
+//!
+//! The conventions table is in [`crate::parry`]; the translations it describes
+//! live here, one function per kind of answer: [`translate_contact`],
+//! [`translate_hit`] and [`translate_location`]. Everything else builds parry's
+//! shapes from crashtest's and checks what comes back.
+
+use super::backend::bounding_volume::details::point_cloud_bounding_sphere;
+use super::backend::bounding_volume::{Aabb as EngineAabb, BoundingVolume};
+use super::backend::math::{DEFAULT_EPSILON, Pose, Vector};
+use super::backend::query::details::line_toi_with_halfspace;
+use super::backend::query::{
+    self, PointQuery, PointQueryWithLocation, Ray, RayCast, RayIntersection, Unsupported,
+};
+use super::backend::shape::{
+    Ball as EngineBall, HalfSpace, Triangle as EngineTriangle, TrianglePointLocation,
+};
+use super::{Engine, Real, narrow, widen};
+use crate::geom::{
+    Aabb, Ball, BarycentricAnswer, Contact, ContactAnswer, IntersectAnswer, P3, Plane, Segment,
+    SegmentHit, Sphere, Triangle,
+};
+use crate::parry::ParryEngine;
+
+/// Prediction distance handed to `query::contact`: 0, so parry reports only
+/// touching or overlapping pairs (crashtest's definition of a contact). A positive
+/// value would also report separated pairs and is not used, even though it would
+/// make ball–ball report exact touching (see `TOUCHING_SPHERES`).
+const PREDICTION: Real = 0.0;
+
+/// Largest time of impact of a ray cast: the segment ends at `t = 1` (ray direction
+/// `end − start`); parry's comparison `toi ≤ max` keeps a hit at the very end.
+const MAX_TIME_OF_IMPACT: Real = 1.0;
+
+/// Barycentric fallback when no coordinates can be given: the centroid's weights,
+/// which sum to 1.
+const CENTROID_WEIGHTS: [f64; 3] = [1.0 / 3.0; 3];
+
+/// No contact, flagged: the fallback of every contact query.
+const NO_CONTACT_DEGENERATE: ContactAnswer = ContactAnswer {
+    contact: None,
+    degenerate: true,
+};
+
+/// No hit, not parallel, flagged: the fallback of every intersect query.
+const NO_HIT_DEGENERATE: IntersectAnswer = IntersectAnswer {
+    hit: None,
+    parallel: false,
+    degenerate: true,
+};
+
+// ---------------------------------------------------------------------------
+// The edge: crashtest's f64 in, the engine's scalar out, and back.
+
+/// An input scalar in the engine's precision, or `None` when it is not finite there.
+fn scalar(x: f64) -> Option<Real> {
+    let r = narrow(x);
+    r.is_finite().then_some(r)
+}
+
+/// An input point in the engine's precision, or `None` when not finite there.
+fn vector(p: P3) -> Option<Vector> {
+    Some(Vector::new(scalar(p[0])?, scalar(p[1])?, scalar(p[2])?))
+}
+
+/// An engine scalar as an answer, or `None` when parry returned a NaN or infinity.
+fn answer_scalar(x: Real) -> Option<f64> {
+    x.is_finite().then(|| widen(x))
+}
+
+/// An engine vector as an answer, or `None` when parry returned a NaN or infinity.
+fn answer_point(v: Vector) -> Option<P3> {
+    Some([
+        answer_scalar(v.x)?,
+        answer_scalar(v.y)?,
+        answer_scalar(v.z)?,
+    ])
+}
+
+/// A sphere as parry places it: a ball of radius `r` at the translation of its
+/// centre. `None` for a radius that is not positive or a non-finite input.
+fn ball(s: &Sphere) -> Option<(Pose, EngineBall)> {
+    let center = vector(s.center)?;
+    let radius = scalar(s.radius)?;
+    (radius > 0.0).then(|| (Pose::from_translation(center), EngineBall::new(radius)))
+}
+
+/// The plane `n · x = d` as parry's half-space: unit normal `n̂ = n/‖n‖` placed at
+/// the translation `(d/‖n‖) n̂`, so that its boundary `n̂ · (x − (d/‖n‖) n̂) = 0` is
+/// `n · x = d` and its solid side `n · x ≤ d`. `None` when `n` cannot be normalized
+/// (zero, or non-finite in the engine's scalar) or the placement overflows.
+fn half_space(p: &Plane) -> Option<(Pose, HalfSpace)> {
+    let n = vector(p.normal)?;
+    let d = scalar(p.offset)?;
+    let unit = n.try_normalize()?;
+    let origin = unit * (d / n.length());
+    origin
+        .is_finite()
+        .then(|| (Pose::from_translation(origin), HalfSpace::new(unit)))
+}
+
+/// A triangle as parry's, from its world vertices (placed at the identity pose).
+/// `None` for a non-finite input.
+fn triangle(t: &Triangle) -> Option<EngineTriangle> {
+    let [a, b, c] = t.vertices;
+    Some(EngineTriangle::new(vector(a)?, vector(b)?, vector(c)?))
+}
+
+/// A segment as parry's ray: origin `start`, direction `end − start` (computed in
+/// the engine's scalar). `None` for a zero-length segment (the direction is exactly
+/// zero in the engine's scalar) or a non-finite input or direction.
+fn ray(s: &Segment) -> Option<Ray> {
+    let start = vector(s.start)?;
+    let dir = vector(s.end)? - start;
+    (dir.is_finite() && dir != Vector::ZERO).then(|| Ray::new(start, dir))
+}
+
+/// Every point of a non-empty set in the engine's precision; `None` when the set
+/// is empty (parry's point-cloud functions would panic) or a point is not finite.
+fn points(ps: &[P3]) -> Option<Vec<Vector>> {
+    if ps.is_empty() {
+        return None;
+    }
+    ps.iter().map(|&p| vector(p)).collect()
+}
+
+/// A box in the engine's precision, bounds rounded as they are (infinities kept:
+/// `overlap` needs no refusal).
+fn engine_aabb(b: &Aabb) -> EngineAabb {
+    let v = |p: P3| Vector::new(narrow(p[0]), narrow(p[1]), narrow(p[2]));
+    EngineAabb::new(v(b.min), v(b.max))
+}
+
+// ---------------------------------------------------------------------------
+// The translations: the only places where parry's conventions meet crashtest's.
+
+/// parry's contact between shape 1 = `a` and shape 2 = `b` (world frame) in
+/// crashtest's convention: point = `point2` (on `b`'s surface), normal =
+/// `−normal1` (parry's points from `a` toward `b`; crashtest's from `b` toward
+/// `a`), depth = `−dist` (parry's `dist < 0` is penetration), written `0 − dist`
+/// so that an exact touch gives `+0`. `None` when parry returned a non-finite
+/// number.
+fn translate_contact(c: &query::Contact) -> Option<Contact> {
+    Some(Contact {
+        point: answer_point(c.point2)?,
+        normal: answer_point(-c.normal1)?,
+        depth: answer_scalar(0.0 - c.dist)?,
+    })
+}
+
+/// parry's ray hit in crashtest's convention: `t` = parry's time of impact (the ray
+/// direction is `end − start`), point = `ray.point_at(t)`, normal = parry's normal
+/// re-oriented to the surface's own normal `own` (parry turns it toward the ray's
+/// origin side). `None` when parry returned a non-finite number.
+fn translate_hit(ray: &Ray, hit: &RayIntersection, own: Vector) -> Option<SegmentHit> {
+    let normal = if hit.normal.dot(own) < 0.0 {
+        -hit.normal
+    } else {
+        hit.normal
+    };
+    Some(SegmentHit {
+        t: answer_scalar(hit.time_of_impact)?,
+        point: answer_point(ray.point_at(hit.time_of_impact))?,
+        normal: answer_point(normal)?,
+        barycentric: None,
+        triangle: None,
+    })
+}
+
+/// parry's location of a projection on a triangle as `[α, β, γ]` for
+/// `[v0, v1, v2]`: `TrianglePointLocation::barycentric_coordinates` (an edge's two
+/// weights placed on its vertices, a vertex weighted 1). `None` for `OnSolid`
+/// (never produced in 3-D) or non-finite coordinates.
+fn translate_location(loc: &TrianglePointLocation) -> Option<[f64; 3]> {
+    let [a, b, c] = loc.barycentric_coordinates()?;
+    Some([answer_scalar(a)?, answer_scalar(b)?, answer_scalar(c)?])
+}
+
+/// A contact answer from parry's result, flagged `degenerate` as the caller found.
+/// A non-finite answer, or parry refusing the pair (it dispatches every pair used
+/// here, so this does not happen), gives no contact, flagged.
+fn contact_answer(
+    result: Result<Option<query::Contact>, Unsupported>,
+    degenerate: bool,
+) -> ContactAnswer {
+    match result {
+        Ok(None) => ContactAnswer {
+            contact: None,
+            degenerate,
+        },
+        Ok(Some(c)) => match translate_contact(&c) {
+            Some(contact) => ContactAnswer {
+                contact: Some(contact),
+                degenerate,
+            },
+            None => NO_CONTACT_DEGENERATE,
+        },
+        Err(Unsupported) => NO_CONTACT_DEGENERATE,
+    }
+}
+
+/// Whether parry answers a ball centred at `center` against `tri` with a fallback:
+/// the triangle has no normal (parry's `Triangle::normal()` is `None`: zero area),
+/// or the centre lies closer than `DEFAULT_EPSILON` to its projection on the
+/// triangle — the branch condition of `contact_convex_polyhedron_ball`, evaluated
+/// with the same projection (`project_local_point_and_get_feature`) on the same
+/// local point (the triangle sits at the identity pose).
+fn triangle_contact_fallback(tri: &EngineTriangle, center: Vector) -> bool {
+    if tri.normal().is_none() {
+        return true;
+    }
+    let (proj, _) = tri.project_local_point_and_get_feature(center);
+    (proj.point - center).length() < DEFAULT_EPSILON
+}
+
+impl ParryEngine for Engine {
+    fn name(&self) -> &'static str {
+        Engine::NAME
+    }
+
+    fn contact_sphere_sphere(&self, a: Sphere, b: Sphere) -> ContactAnswer {
+        let (Some((pa, ba)), Some((pb, bb))) = (ball(&a), ball(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        // parry's own concentric branch: ‖Δ‖² = 0 (with identity rotations,
+        // `pos1.inv_mul(pos2)` has the translation Δ exactly).
+        let concentric = (pb.translation - pa.translation).length_squared() == 0.0;
+        contact_answer(query::contact(&pa, &ba, &pb, &bb, PREDICTION), concentric)
+    }
+
+    fn contact_sphere_plane(&self, a: Sphere, b: Plane) -> ContactAnswer {
+        let (Some((pa, ba)), Some((pb, hb))) = (ball(&a), half_space(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        contact_answer(query::contact(&pa, &ba, &pb, &hb, PREDICTION), false)
+    }
+
+    fn contact_plane_sphere(&self, a: Plane, b: Sphere) -> ContactAnswer {
+        let (Some((pa, ha)), Some((pb, bb))) = (half_space(&a), ball(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        contact_answer(query::contact(&pa, &ha, &pb, &bb, PREDICTION), false)
+    }
+
+    fn contact_sphere_triangle(&self, a: Sphere, b: Triangle) -> ContactAnswer {
+        let (Some((pa, ba)), Some(tb)) = (ball(&a), triangle(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        let degenerate = triangle_contact_fallback(&tb, pa.translation);
+        let result = query::contact(&pa, &ba, &Pose::IDENTITY, &tb, PREDICTION);
+        contact_answer(result, degenerate)
+    }
+
+    fn contact_triangle_sphere(&self, a: Triangle, b: Sphere) -> ContactAnswer {
+        let (Some(ta), Some((pb, bb))) = (triangle(&a), ball(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        let degenerate = triangle_contact_fallback(&ta, pb.translation);
+        let result = query::contact(&Pose::IDENTITY, &ta, &pb, &bb, PREDICTION);
+        contact_answer(result, degenerate)
+    }
+
+    fn intersect_segment_plane(&self, s: Segment, b: Plane) -> IntersectAnswer {
+        let (Some(ray), Some((pose, hs))) = (ray(&s), half_space(&b)) else {
+            return NO_HIT_DEGENERATE;
+        };
+        match hs.cast_ray_and_get_normal(&pose, &ray, MAX_TIME_OF_IMPACT, false) {
+            Some(hit) => match translate_hit(&ray, &hit, hs.normal) {
+                Some(hit) => IntersectAnswer {
+                    hit: Some(hit),
+                    parallel: false,
+                    degenerate: false,
+                },
+                None => NO_HIT_DEGENERATE,
+            },
+            None => IntersectAnswer {
+                hit: None,
+                parallel: line_toi_with_halfspace(pose.translation, hs.normal, ray.origin, ray.dir)
+                    .is_none(),
+                degenerate: false,
+            },
+        }
+    }
+
+    fn intersect_segment_triangle(&self, s: Segment, b: Triangle) -> IntersectAnswer {
+        let (Some(ray), Some(tri)) = (ray(&s), triangle(&b)) else {
+            return NO_HIT_DEGENERATE;
+        };
+        let Some(face_normal) = tri.normal() else {
+            return NO_HIT_DEGENERATE;
+        };
+        let Some(hit) = tri.cast_local_ray_and_get_normal(&ray, MAX_TIME_OF_IMPACT, false) else {
+            // parry gives no parallel verdict for triangles (NO_TRIANGLE_PARALLEL).
+            return IntersectAnswer::default();
+        };
+        let Some(mut answer) = translate_hit(&ray, &hit, face_normal) else {
+            return NO_HIT_DEGENERATE;
+        };
+        let (_, location) =
+            tri.project_local_point_and_get_location(ray.point_at(hit.time_of_impact), false);
+        let Some(coords) = translate_location(&location) else {
+            return NO_HIT_DEGENERATE;
+        };
+        answer.barycentric = Some(coords);
+        IntersectAnswer {
+            hit: Some(answer),
+            parallel: false,
+            degenerate: false,
+        }
+    }
+
+    fn barycentric_triangle(&self, p: P3, b: Triangle) -> BarycentricAnswer {
+        const FALLBACK: BarycentricAnswer = BarycentricAnswer {
+            coords: CENTROID_WEIGHTS,
+            degenerate: true,
+        };
+        let (Some(p), Some(tri)) = (vector(p), triangle(&b)) else {
+            return FALLBACK;
+        };
+        let (_, location) = tri.project_local_point_and_get_location(p, false);
+        match translate_location(&location) {
+            Some(coords) => BarycentricAnswer {
+                coords,
+                degenerate: tri.normal().is_none(),
+            },
+            None => FALLBACK,
+        }
+    }
+
+    fn aabb_of_points(&self, ps: &[P3]) -> Option<Aabb> {
+        let aabb = EngineAabb::from_points(points(ps)?);
+        Some(Aabb {
+            min: answer_point(aabb.mins)?,
+            max: answer_point(aabb.maxs)?,
+        })
+    }
+
+    fn bounding_sphere_of_points(&self, ps: &[P3]) -> Option<Ball> {
+        let sphere = point_cloud_bounding_sphere(&points(ps)?);
+        Some(Ball {
+            center: answer_point(sphere.center())?,
+            radius: answer_scalar(sphere.radius())?,
+        })
+    }
+
+    fn overlap_aabb_aabb(&self, a: Aabb, b: Aabb) -> bool {
+        engine_aabb(&a).intersects(&engine_aabb(&b))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! One body for both precisions: every test here runs once for parry3d-f64 and
+    //! once for parry3d (f32). Cases use coordinates exact in `f32`, so the only
+    //! differences between the two runs are parry's own roundings.
+
+    use super::super::SMOKE_TOL;
+    use super::*;
+    use crate::parry::{
+        CENTRE_NEAR_TRIANGLE, CENTROID_SPHERE, CLAMPED_BARYCENTRICS, CONCENTRIC_SPHERES,
+        DIVERGENCES, Divergence, NO_TRIANGLE_PARALLEL, PLANE_PARALLEL_EPSILON, TOUCHING_SPHERES,
+        known_divergences,
+    };
+    use proptest::prelude::*;
+
+    fn engine() -> Engine {
+        Engine::default()
+    }
+
+    fn sphere(center: P3, radius: f64) -> Sphere {
+        Sphere { center, radius }
+    }
+
+    fn plane(normal: P3, offset: f64) -> Plane {
+        Plane { normal, offset }
+    }
+
+    fn segment(start: P3, end: P3) -> Segment {
+        Segment { start, end }
+    }
+
+    fn tri(v0: P3, v1: P3, v2: P3) -> Triangle {
+        Triangle {
+            vertices: [v0, v1, v2],
+        }
+    }
+
+    /// The engine's machine epsilon (parry's `DEFAULT_EPSILON`) as an `f64`.
+    fn eps() -> f64 {
+        widen(DEFAULT_EPSILON)
+    }
+
+    fn close(got: f64, want: f64) -> bool {
+        (got - want).abs() <= SMOKE_TOL
+    }
+
+    fn assert_close(what: &str, got: f64, want: f64) {
+        assert!(
+            close(got, want),
+            "{}: {what} = {got}, want {want}",
+            Engine::NAME
+        );
+    }
+
+    fn assert_p3(what: &str, got: P3, want: P3) {
+        assert!(
+            (0..3).all(|i| close(got[i], want[i])),
+            "{}: {what} = {got:?}, want {want:?}",
+            Engine::NAME
+        );
+    }
+
+    fn assert_contact(answer: ContactAnswer, point: P3, normal: P3, depth: f64) {
+        assert!(!answer.degenerate, "{}: not degenerate", Engine::NAME);
+        let c = answer
+            .contact
+            .unwrap_or_else(|| panic!("{}: a contact is expected", Engine::NAME));
+        assert_p3("point", c.point, point);
+        assert_p3("normal", c.normal, normal);
+        assert_close("depth", c.depth, depth);
+    }
+
+    fn assert_listed(d: &Divergence) {
+        assert!(
+            known_divergences()
+                .iter()
+                .any(|k| k.engine == Engine::NAME && k.query == d.query && k.what == d.what),
+            "{}: `{}` is listed",
+            Engine::NAME,
+            d.what
+        );
+    }
+
+    // --- translations --------------------------------------------------------
+
+    #[test]
+    fn parry_translate_contact_flips_normal1_and_takes_point2() {
+        // parry: a on the left, b on the right, normal1 from a toward b (+x),
+        // point2 on b, overlap 0.5 (dist −0.5).
+        let raw = query::Contact::new(
+            Vector::new(1.0, 0.0, 0.0),
+            Vector::new(0.5, 0.0, 0.0),
+            Vector::new(1.0, 0.0, 0.0),
+            Vector::new(-1.0, 0.0, 0.0),
+            -0.5,
+        );
+        let c = translate_contact(&raw).expect("finite contact");
+        assert_p3("point", c.point, [0.5, 0.0, 0.0]);
+        assert_p3("normal", c.normal, [-1.0, 0.0, 0.0]);
+        assert_close("depth", c.depth, 0.5);
+        let touching = query::Contact::new(Vector::ZERO, Vector::ZERO, Vector::X, -Vector::X, -0.0);
+        let depth = translate_contact(&touching).expect("finite").depth;
+        assert!(
+            depth.is_sign_positive(),
+            "an exact touch has depth +0, got {depth}"
+        );
+    }
+
+    #[test]
+    fn parry_translations_refuse_non_finite_numbers() {
+        let nan = Real::NAN;
+        let raw = query::Contact::new(Vector::ZERO, Vector::ZERO, Vector::X, -Vector::X, nan);
+        assert!(translate_contact(&raw).is_none(), "NaN depth caught");
+        let raw = query::Contact::new(
+            Vector::ZERO,
+            Vector::new(nan, 0.0, 0.0),
+            Vector::X,
+            -Vector::X,
+            0.0,
+        );
+        assert!(translate_contact(&raw).is_none(), "NaN point caught");
+        let ray = Ray::new(Vector::ZERO, Vector::X);
+        let hit = RayIntersection::new(nan, Vector::Z, Default::default());
+        assert!(
+            translate_hit(&ray, &hit, Vector::Z).is_none(),
+            "NaN t caught"
+        );
+        let hit = RayIntersection::new(
+            0.5,
+            Vector::new(0.0, 0.0, Real::INFINITY),
+            Default::default(),
+        );
+        assert!(
+            translate_hit(&ray, &hit, Vector::Z).is_none(),
+            "infinite normal caught"
+        );
+        let loc = TrianglePointLocation::OnFace(0, [nan, 0.5, 0.5]);
+        assert!(translate_location(&loc).is_none(), "NaN coordinate caught");
+    }
+
+    #[test]
+    fn parry_translate_hit_orients_normal_to_the_surface() {
+        let ray = Ray::new(Vector::ZERO, Vector::new(0.0, 0.0, 2.0));
+        let toward_origin = RayIntersection::new(0.25, -Vector::Z, Default::default());
+        let h = translate_hit(&ray, &toward_origin, Vector::Z).expect("finite");
+        assert_p3("normal", h.normal, [0.0, 0.0, 1.0]);
+        assert_p3("point", h.point, [0.0, 0.0, 0.5]);
+        assert_close("t", h.t, 0.25);
+    }
+
+    // --- contact ---------------------------------------------------------------
+
+    #[test]
+    fn parry_contact_sphere_sphere_smoke() {
+        // M_a = 0, r_a = 1; M_b = (1.5, 0, 0), r_b = 1. n = (M_a − M_b)/‖·‖ = −x,
+        // p = M_b + r_b n = (0.5, 0, 0), depth = 2 − 1.5 = 0.5.
+        let answer =
+            engine().contact_sphere_sphere(sphere([0.0; 3], 1.0), sphere([1.5, 0.0, 0.0], 1.0));
+        assert_contact(answer, [0.5, 0.0, 0.0], [-1.0, 0.0, 0.0], 0.5);
+        let apart =
+            engine().contact_sphere_sphere(sphere([0.0; 3], 1.0), sphere([2.5, 0.0, 0.0], 1.0));
+        assert_eq!(apart, ContactAnswer::default(), "apart: no contact");
+    }
+
+    #[test]
+    fn parry_contact_sphere_plane_smoke() {
+        // Plane 2z = 2, i.e. z = 1 with n̂ = +z, anchored at (0, 0, 1). Centre on the
+        // anchor, r = 1: height 0, depth r = 1, point M − (r − x) n̂ = M, normal +z.
+        // (The anchor is the one place parry's defect in this order, pinned below,
+        // leaves the answer right.)
+        let answer = engine()
+            .contact_sphere_plane(sphere([0.0, 0.0, 1.0], 1.0), plane([0.0, 0.0, 2.0], 2.0));
+        assert_contact(answer, [0.0, 0.0, 1.0], [0.0, 0.0, 1.0], 1.0);
+    }
+
+    #[test]
+    fn parry_contact_plane_sphere_smoke() {
+        // Plane z = 1 as above; centre (1, 2, 1.5), r = 1, height 0.5 above: normal
+        // from the sphere toward the plane, −z; point on the sphere, its deepest
+        // point M − r n̂ = (1, 2, 0.5); depth 1 − 0.5 = 0.5.
+        let p = plane([0.0, 0.0, 2.0], 2.0);
+        let answer = engine().contact_plane_sphere(p, sphere([1.0, 2.0, 1.5], 1.0));
+        assert_contact(answer, [1.0, 2.0, 0.5], [0.0, 0.0, -1.0], 0.5);
+        // Touching (height exactly r) counts: depth 0 at (1, 2, 1).
+        let touching = engine().contact_plane_sphere(p, sphere([1.0, 2.0, 2.0], 1.0));
+        assert_contact(touching, [1.0, 2.0, 1.0], [0.0, 0.0, -1.0], 0.0);
+        let apart = engine().contact_plane_sphere(p, sphere([1.0, 2.0, 2.5], 1.0));
+        assert_eq!(apart, ContactAnswer::default(), "apart: no contact");
+    }
+
+    #[test]
+    fn parry_defect_sphere_plane_mirrors_the_sphere_through_the_anchor() {
+        // Plane z = 1 (anchor (0, 0, 1)), centre M = (1, 2, 1.5), r = 1. Right answer:
+        // point (1, 2, 1), normal +z, depth 0.5. parry treats the ball as centred at
+        // 2·(0, 0, 1) − M = (−1, −2, 0.5), half a unit *below* the plane: depth 1.5,
+        // point (−1, −2, 1). A fixed parry fails this test; then the defect note
+        // on `contact_sphere_plane` goes.
+        let p = plane([0.0, 0.0, 2.0], 2.0);
+        let answer = engine().contact_sphere_plane(sphere([1.0, 2.0, 1.5], 1.0), p);
+        assert_contact(answer, [-1.0, -2.0, 1.0], [0.0, 0.0, 1.0], 1.5);
+        // A ball sunk deep into the solid (M = (0, 0, −5)) is mirrored far above it:
+        // no contact.
+        let sunk = engine().contact_sphere_plane(sphere([0.0, 0.0, -5.0], 1.0), p);
+        assert_eq!(sunk, ContactAnswer::default(), "parry misses the sunk ball");
+    }
+
+    #[test]
+    fn parry_contact_sphere_triangle_smoke() {
+        // Triangle in z = 0 with face normal +z. Centre (0.5, 0.5, 0.25), r = 1:
+        // closest point q = (0.5, 0.5, 0), normal (M − q)/‖·‖ = +z, depth 0.75.
+        let t = tri([0.0; 3], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
+        let answer = engine().contact_sphere_triangle(sphere([0.5, 0.5, 0.25], 1.0), t);
+        assert_contact(answer, [0.5, 0.5, 0.0], [0.0, 0.0, 1.0], 0.75);
+        // Behind the face the normal points toward the centre: −z (two-sided).
+        let behind = engine().contact_sphere_triangle(sphere([0.5, 0.5, -0.25], 1.0), t);
+        assert_contact(behind, [0.5, 0.5, 0.0], [0.0, 0.0, -1.0], 0.75);
+        // Beyond the edge x + y = 2: closest point (1, 1, 0), distance √2·0.5 ≈ 0.707
+        // from (1.5, 1.5, 0), so r = 0.5 misses.
+        let apart = engine().contact_sphere_triangle(sphere([1.5, 1.5, 0.0], 0.5), t);
+        assert_eq!(apart, ContactAnswer::default(), "apart: no contact");
+    }
+
+    #[test]
+    fn parry_contact_triangle_sphere_smoke() {
+        // The same pair reversed: normal from the sphere toward the triangle, −z;
+        // point on the sphere, M − r·(+z) = (0.5, 0.5, −0.75); depth 0.75.
+        let t = tri([0.0; 3], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
+        let answer = engine().contact_triangle_sphere(t, sphere([0.5, 0.5, 0.25], 1.0));
+        assert_contact(answer, [0.5, 0.5, -0.75], [0.0, 0.0, -1.0], 0.75);
+    }
+
+    // --- intersect -------------------------------------------------------------
+
+    #[test]
+    fn parry_intersect_segment_plane_smoke() {
+        // Plane 2z = 2 (z = 1). From (0, 0, 3) to (0, 0, −1): t = (3 − 1)/4 = 0.5,
+        // point (0, 0, 1), normal +z.
+        let p = plane([0.0, 0.0, 2.0], 2.0);
+        let answer =
+            engine().intersect_segment_plane(segment([0.0, 0.0, 3.0], [0.0, 0.0, -1.0]), p);
+        let h = answer.hit.expect("a hit");
+        assert!(!answer.parallel && !answer.degenerate, "plain hit");
+        assert_close("t", h.t, 0.5);
+        assert_p3("point", h.point, [0.0, 0.0, 1.0]);
+        assert_p3("normal", h.normal, [0.0, 0.0, 1.0]);
+        assert_eq!(h.barycentric, None, "no barycentrics for planes");
+        // From below (inside the solid, where parry turns its normal to −z): the
+        // plane's own normal +z all the same. (1, 1, 0) → (1, 1, 2): t = 0.5.
+        let below = engine().intersect_segment_plane(segment([1.0, 1.0, 0.0], [1.0, 1.0, 2.0]), p);
+        let h = below.hit.expect("a hit from below");
+        assert_close("t", h.t, 0.5);
+        assert_p3("point", h.point, [1.0, 1.0, 1.0]);
+        assert_p3("normal", h.normal, [0.0, 0.0, 1.0]);
+        // Parallel above the plane, and in it: no hit, parallel.
+        for z in [0.0, 1.0] {
+            let answer = engine().intersect_segment_plane(segment([0.0, 0.0, z], [1.0, 0.0, z]), p);
+            assert_eq!(
+                answer,
+                IntersectAnswer {
+                    hit: None,
+                    parallel: true,
+                    degenerate: false
+                },
+                "parallel at z = {z}"
+            );
+        }
+        // Short of the plane: no hit, not parallel.
+        let short = engine().intersect_segment_plane(segment([0.0, 0.0, 3.0], [0.0, 0.0, 2.0]), p);
+        assert_eq!(short, IntersectAnswer::default(), "short of the plane");
+    }
+
+    #[test]
+    fn parry_intersect_segment_triangle_smoke() {
+        // Triangle (0,0,0), (2,0,0), (0,2,0), face normal +z. From (0.5, 0.25, 1) to
+        // (0.5, 0.25, −1): t = 0.5, point (0.5, 0.25, 0) = α v0 + β v1 + γ v2 with
+        // β = x/2 = 0.25, γ = y/2 = 0.125, α = 1 − β − γ = 0.625.
+        let t = tri([0.0; 3], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
+        for (start, end) in [
+            ([0.5, 0.25, 1.0], [0.5, 0.25, -1.0]),
+            ([0.5, 0.25, -1.0], [0.5, 0.25, 1.0]),
+        ] {
+            // Both directions: the face normal is reported unflipped.
+            let answer = engine().intersect_segment_triangle(segment(start, end), t);
+            assert!(!answer.parallel && !answer.degenerate, "plain hit");
+            let h = answer.hit.expect("a hit");
+            assert_close("t", h.t, 0.5);
+            assert_p3("point", h.point, [0.5, 0.25, 0.0]);
+            assert_p3("normal", h.normal, [0.0, 0.0, 1.0]);
+            assert_p3(
+                "barycentric",
+                h.barycentric.expect("barycentrics"),
+                [0.625, 0.25, 0.125],
+            );
+        }
+        let beside =
+            engine().intersect_segment_triangle(segment([3.0, 3.0, 1.0], [3.0, 3.0, -1.0]), t);
+        assert_eq!(beside, IntersectAnswer::default(), "beside the triangle");
+    }
+
+    // --- barycentric, bounds, overlap -----------------------------------------
+
+    #[test]
+    fn parry_barycentric_triangle_smoke() {
+        // (0.5, 0.25, 7) projects to (0.5, 0.25, 0): [0.625, 0.25, 0.125] as above;
+        // the height above the plane does not matter.
+        let t = tri([0.0; 3], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
+        let answer = engine().barycentric_triangle([0.5, 0.25, 7.0], t);
+        assert!(!answer.degenerate, "not degenerate");
+        assert_p3("coords", answer.coords, [0.625, 0.25, 0.125]);
+    }
+
+    #[test]
+    fn parry_aabb_of_points_smoke() {
+        // Component-wise extremes of (1, −2, 3), (−1, 5, 0), (0, 0, −4).
+        let pts = [[1.0, -2.0, 3.0], [-1.0, 5.0, 0.0], [0.0, 0.0, -4.0]];
+        let b = engine().aabb_of_points(&pts).expect("a box");
+        assert_p3("min", b.min, [-1.0, -2.0, -4.0]);
+        assert_p3("max", b.max, [1.0, 5.0, 3.0]);
+    }
+
+    #[test]
+    fn parry_bounding_sphere_of_points_smoke() {
+        // (±1, 0, 0), (0, ±1, 0): centroid 0, farthest point at distance 1.
+        let pts = [
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+        ];
+        let s = engine().bounding_sphere_of_points(&pts).expect("a sphere");
+        assert_p3("center", s.center, [0.0; 3]);
+        assert_close("radius", s.radius, 1.0);
+        let both = engine().bounds_of_points(&pts);
+        assert_eq!(both.sphere, Some(s), "bounds carries the sphere");
+        assert!(both.aabb.is_some(), "bounds carries the box");
+    }
+
+    #[test]
+    fn parry_overlap_aabb_aabb_smoke() {
+        // [0,1]³ against boxes shifted along x: overlapping, touching (x = 1), apart.
+        let unit = Aabb {
+            min: [0.0; 3],
+            max: [1.0; 3],
+        };
+        let shifted = |x: f64| Aabb {
+            min: [x, 0.0, 0.0],
+            max: [x + 1.0, 1.0, 1.0],
+        };
+        assert!(
+            engine().overlap_aabb_aabb(unit, shifted(0.5)),
+            "overlapping"
+        );
+        assert!(
+            engine().overlap_aabb_aabb(unit, shifted(1.0)),
+            "touching faces overlap"
+        );
+        assert!(!engine().overlap_aabb_aabb(unit, shifted(1.5)), "apart");
+    }
+
+    // --- degenerate input ------------------------------------------------------
+
+    #[test]
+    fn parry_concentric_spheres_are_flagged() {
+        // Centres equal: parry's fallback normal1 = +x, so normal −x, point
+        // M_b − r_b x̂ = (1 − 2, 2, 3), depth r_a + r_b = 3.
+        let answer = engine()
+            .contact_sphere_sphere(sphere([1.0, 2.0, 3.0], 1.0), sphere([1.0, 2.0, 3.0], 2.0));
+        assert!(answer.degenerate, "flagged");
+        let c = answer.contact.expect("a contact");
+        assert_p3("normal", c.normal, [-1.0, 0.0, 0.0]);
+        assert_p3("point", c.point, [-1.0, 2.0, 3.0]);
+        assert_close("depth", c.depth, 3.0);
+    }
+
+    #[test]
+    fn parry_zero_plane_normal_is_degenerate() {
+        let zero = plane([0.0; 3], 1.0);
+        let s = sphere([0.0; 3], 1.0);
+        assert_eq!(
+            engine().contact_sphere_plane(s, zero),
+            NO_CONTACT_DEGENERATE
+        );
+        assert_eq!(
+            engine().contact_plane_sphere(zero, s),
+            NO_CONTACT_DEGENERATE
+        );
+        let seg = segment([0.0, 0.0, -1.0], [0.0, 0.0, 1.0]);
+        assert_eq!(
+            engine().intersect_segment_plane(seg, zero),
+            NO_HIT_DEGENERATE
+        );
+    }
+
+    #[test]
+    fn parry_zero_length_segment_is_degenerate() {
+        let seg = segment([0.5, 0.25, 0.0], [0.5, 0.25, 0.0]);
+        let p = plane([0.0, 0.0, 1.0], 0.0);
+        let t = tri([0.0; 3], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
+        assert_eq!(engine().intersect_segment_plane(seg, p), NO_HIT_DEGENERATE);
+        assert_eq!(
+            engine().intersect_segment_triangle(seg, t),
+            NO_HIT_DEGENERATE
+        );
+    }
+
+    #[test]
+    fn parry_zero_area_triangle_is_degenerate() {
+        // Collinear vertices on the x axis.
+        let t = tri([0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]);
+        let seg = segment([0.5, 0.0, 1.0], [0.5, 0.0, -1.0]);
+        assert_eq!(
+            engine().intersect_segment_triangle(seg, t),
+            NO_HIT_DEGENERATE
+        );
+        // Barycentric: parry projects onto the longest edge v0–v2: (0.5, 0, 0) is a
+        // quarter of the way, so [0.75, 0, 0.25]; flagged.
+        let b = engine().barycentric_triangle([0.5, 0.0, 0.0], t);
+        assert!(b.degenerate, "flagged");
+        assert_p3("coords", b.coords, [0.75, 0.0, 0.25]);
+        // Contact: parry's answer against the segment the triangle collapses to,
+        // flagged. Centre (0.5, 0, 0.5), r = 1: q = (0.5, 0, 0), depth 0.5, normal +z.
+        let c = engine().contact_sphere_triangle(sphere([0.5, 0.0, 0.5], 1.0), t);
+        assert!(c.degenerate, "flagged");
+        let contact = c.contact.expect("a contact");
+        assert_p3("point", contact.point, [0.5, 0.0, 0.0]);
+        assert_p3("normal", contact.normal, [0.0, 0.0, 1.0]);
+        assert_close("depth", contact.depth, 0.5);
+    }
+
+    #[test]
+    fn parry_centre_on_triangle_is_flagged() {
+        // Centre exactly on the face: parry's fallback, face normal +z, depth r.
+        let t = tri([0.0; 3], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
+        let answer = engine().contact_sphere_triangle(sphere([0.5, 0.5, 0.0], 1.0), t);
+        assert!(answer.degenerate, "flagged");
+        let c = answer.contact.expect("a contact");
+        assert_p3("point", c.point, [0.5, 0.5, 0.0]);
+        assert_p3("normal", c.normal, [0.0, 0.0, 1.0]);
+        assert_close("depth", c.depth, 1.0);
+        let reversed = engine().contact_triangle_sphere(t, sphere([0.5, 0.5, 0.0], 1.0));
+        assert!(reversed.degenerate, "flagged in either order");
+        assert_p3(
+            "normal",
+            reversed.contact.expect("a contact").normal,
+            [0.0, 0.0, -1.0],
+        );
+    }
+
+    #[test]
+    fn parry_bad_radius_and_empty_sets_are_refused() {
+        let p = plane([0.0, 0.0, 1.0], 0.0);
+        for r in [0.0, -1.0] {
+            let s = sphere([0.0; 3], r);
+            assert_eq!(
+                engine().contact_sphere_plane(s, p),
+                NO_CONTACT_DEGENERATE,
+                "radius {r}"
+            );
+            assert_eq!(
+                engine().contact_sphere_sphere(s, s),
+                NO_CONTACT_DEGENERATE,
+                "radius {r}"
+            );
+        }
+        assert_eq!(engine().aabb_of_points(&[]), None, "empty set: no box");
+        assert_eq!(
+            engine().bounding_sphere_of_points(&[]),
+            None,
+            "empty set: no sphere"
+        );
+    }
+
+    #[test]
+    fn parry_non_finite_input_is_degenerate() {
+        let t = tri([0.0; 3], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
+        for bad in [f64::NAN, f64::INFINITY, -f64::INFINITY] {
+            let s = sphere([bad, 0.0, 0.0], 1.0);
+            assert_eq!(
+                engine().contact_sphere_triangle(s, t),
+                NO_CONTACT_DEGENERATE,
+                "{bad}"
+            );
+            let seg = segment([0.0, 0.0, bad], [0.0, 0.0, -1.0]);
+            assert_eq!(
+                engine().intersect_segment_triangle(seg, t),
+                NO_HIT_DEGENERATE,
+                "{bad}"
+            );
+            let b = engine().barycentric_triangle([bad, 0.0, 0.0], t);
+            assert!(
+                b.degenerate && b.coords == CENTROID_WEIGHTS,
+                "{bad}: centroid fallback"
+            );
+            assert_eq!(
+                engine().aabb_of_points(&[[0.0; 3], [bad; 3]]),
+                None,
+                "{bad}"
+            );
+        }
+    }
+
+    // --- known divergences: each still happens --------------------------------
+
+    #[test]
+    fn parry_divergence_touching_spheres_give_no_contact() {
+        assert_listed(&TOUCHING_SPHERES);
+        // ‖M_a − M_b‖ = 2 = r_a + r_b exactly.
+        let answer =
+            engine().contact_sphere_sphere(sphere([0.0; 3], 1.0), sphere([2.0, 0.0, 0.0], 1.0));
+        assert_eq!(
+            answer,
+            ContactAnswer::default(),
+            "parry reports no contact at a touch"
+        );
+    }
+
+    #[test]
+    fn parry_divergence_concentric_fallback_is_not_plus_z() {
+        assert_listed(&CONCENTRIC_SPHERES);
+        let answer = engine().contact_sphere_sphere(sphere([0.0; 3], 1.0), sphere([0.0; 3], 1.0));
+        let n = answer.contact.expect("a contact").normal;
+        assert!(!close(n[2], 1.0), "parry's fallback normal {n:?} is not +z");
+        assert_p3("normal", n, [-1.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn parry_divergence_centre_near_triangle_takes_face_normal() {
+        assert_listed(&CENTRE_NEAR_TRIANGLE);
+        // Centre ε/2 *behind* the face (ε the scalar's machine epsilon): the exact
+        // normal points from q = (0.25, 0.25, 0) toward the centre, −z, depth
+        // 1 − ε/2. parry takes its fallback: the face normal +z, depth 1.
+        let t = tri([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        let answer = engine().contact_sphere_triangle(sphere([0.25, 0.25, -eps() / 2.0], 1.0), t);
+        assert!(answer.degenerate, "flagged as parry's fallback");
+        assert_p3(
+            "normal",
+            answer.contact.expect("a contact").normal,
+            [0.0, 0.0, 1.0],
+        );
+    }
+
+    #[test]
+    fn parry_divergence_triangle_gives_no_parallel_verdict() {
+        assert_listed(&NO_TRIANGLE_PARALLEL);
+        // In the triangle's plane, crossing it; and parallel one unit above.
+        let t = tri([0.0; 3], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
+        for z in [0.0, 1.0] {
+            let seg = segment([-1.0, 0.5, z], [3.0, 0.5, z]);
+            let answer = engine().intersect_segment_triangle(seg, t);
+            assert_eq!(
+                answer,
+                IntersectAnswer::default(),
+                "z = {z}: a plain miss, parallel unset"
+            );
+        }
+    }
+
+    #[test]
+    fn parry_divergence_plane_parallel_within_machine_epsilon() {
+        assert_listed(&PLANE_PARALLEL_EPSILON);
+        // Plane z = 0; from (0, 0, 1) to (1, 0, 1 − ε/2): n̂ · (p1 − p0) = −ε/2 ≠ 0
+        // (exactly: 1 − ε/2 is representable in both scalars), so not parallel —
+        // parry calls it parallel. At −4ε it does not.
+        let p = plane([0.0, 0.0, 1.0], 0.0);
+        let tilted = |drop: f64| segment([0.0, 0.0, 1.0], [1.0, 0.0, 1.0 - drop]);
+        assert_eq!(
+            engine().intersect_segment_plane(tilted(eps() / 2.0), p),
+            IntersectAnswer {
+                hit: None,
+                parallel: true,
+                degenerate: false
+            },
+            "slope ε/2 called parallel"
+        );
+        assert_eq!(
+            engine().intersect_segment_plane(tilted(4.0 * eps()), p),
+            IntersectAnswer::default(),
+            "slope 4ε not parallel"
+        );
+    }
+
+    #[test]
+    fn parry_divergence_barycentrics_are_clamped_outside() {
+        assert_listed(&CLAMPED_BARYCENTRICS);
+        // Triangle (0,0,0), (1,0,0), (0,1,0); p = (−1, 0.25, 0). Signed: β = x = −1,
+        // γ = y = 0.25, α = 1.75. parry: p is in edge v0–v2's Voronoi region, its
+        // closest point (0, 0.25, 0) = 0.75 v0 + 0.25 v2.
+        let t = tri([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        let answer = engine().barycentric_triangle([-1.0, 0.25, 0.0], t);
+        assert!(!answer.degenerate, "not degenerate");
+        assert_p3("parry's clamped coords", answer.coords, [0.75, 0.0, 0.25]);
+        assert!(!close(answer.coords[1], -1.0), "not the signed β = −1");
+    }
+
+    #[test]
+    fn parry_divergence_bounding_sphere_is_not_minimal() {
+        assert_listed(&CENTROID_SPHERE);
+        // (−1,0,0), (1,0,0) twice: the minimal sphere is the unit sphere at 0; parry
+        // centres on the centroid (1/3, 0, 0), radius 4/3.
+        let pts = [[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
+        let s = engine().bounding_sphere_of_points(&pts).expect("a sphere");
+        assert_p3("center", s.center, [1.0 / 3.0, 0.0, 0.0]);
+        assert_close("radius", s.radius, 4.0 / 3.0);
+        assert!(
+            s.radius > 1.0 + SMOKE_TOL,
+            "larger than the minimal radius 1"
+        );
+    }
+
+    #[test]
+    fn parry_every_divergence_is_pinned() {
+        // The divergences the tests above pin; a new entry needs a pin here.
+        let pinned = [
+            TOUCHING_SPHERES,
+            CONCENTRIC_SPHERES,
+            CENTRE_NEAR_TRIANGLE,
+            NO_TRIANGLE_PARALLEL,
+            PLANE_PARALLEL_EPSILON,
+            CLAMPED_BARYCENTRICS,
+            CENTROID_SPHERE,
+        ];
+        for d in DIVERGENCES {
+            assert!(
+                pinned.iter().any(|p| p.what == d.what),
+                "`{}` has a pin",
+                d.what
+            );
+        }
+        assert_eq!(pinned.len(), DIVERGENCES.len(), "no pin without an entry");
+    }
+
+    // --- never a panic, never a NaN ----------------------------------------------
+
+    /// Coordinates across the whole range: small integers, zeros, and values from
+    /// 1e-300 to 1e300 (beyond `f32`'s range, so the `f32` run meets its overflow).
+    fn coordinate() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            (-3i32..=3).prop_map(f64::from),
+            -2.0..2.0f64,
+            (-1.0..1.0f64, -300i32..=300).prop_map(|(m, e)| m * 10f64.powi(e)),
+        ]
+    }
+
+    fn point() -> impl Strategy<Value = P3> {
+        [coordinate(), coordinate(), coordinate()]
+    }
+
+    fn finite(p: &P3) -> bool {
+        p.iter().all(|x| x.is_finite())
+    }
+
+    fn check_contact(what: &str, answer: ContactAnswer) -> Result<(), TestCaseError> {
+        if let Some(c) = answer.contact {
+            prop_assert!(
+                finite(&c.point) && finite(&c.normal),
+                "{what}: finite {c:?}"
+            );
+            prop_assert!(c.depth >= 0.0, "{what}: depth ≥ 0 in {c:?}");
+        }
+        Ok(())
+    }
+
+    fn check_intersect(what: &str, answer: IntersectAnswer) -> Result<(), TestCaseError> {
+        if let Some(h) = answer.hit {
+            prop_assert!(
+                finite(&h.point) && finite(&h.normal),
+                "{what}: finite {h:?}"
+            );
+            prop_assert!((0.0..=1.0).contains(&h.t), "{what}: t in [0, 1] in {h:?}");
+            prop_assert!(!answer.parallel, "{what}: a hit is not parallel");
+            if let Some(b) = h.barycentric {
+                prop_assert!(finite(&b), "{what}: finite barycentrics {b:?}");
+            }
+        }
+        Ok(())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+
+        #[test]
+        fn parry_never_panics_nor_answers_nan(
+            c in point(), r in coordinate(), n in point(), d in coordinate(),
+            v0 in point(), v1 in point(), v2 in point(), p0 in point(), p1 in point(),
+        ) {
+            let e = engine();
+            let s = sphere(c, r.abs());
+            let s2 = sphere(p0, r.abs());
+            let pl = plane(n, d);
+            let t = tri(v0, v1, v2);
+            let seg = segment(p0, p1);
+            check_contact("sphere–sphere", e.contact_sphere_sphere(s, s2))?;
+            check_contact("sphere–plane", e.contact_sphere_plane(s, pl))?;
+            check_contact("plane–sphere", e.contact_plane_sphere(pl, s))?;
+            check_contact("sphere–triangle", e.contact_sphere_triangle(s, t))?;
+            check_contact("triangle–sphere", e.contact_triangle_sphere(t, s))?;
+            check_intersect("segment–plane", e.intersect_segment_plane(seg, pl))?;
+            check_intersect("segment–triangle", e.intersect_segment_triangle(seg, t))?;
+            let b = e.barycentric_triangle(c, t);
+            prop_assert!(finite(&b.coords), "finite barycentrics {b:?}");
+            let pts = [c, n, v0, v1, v2];
+            if let Some(aabb) = e.aabb_of_points(&pts) {
+                prop_assert!(finite(&aabb.min) && finite(&aabb.max), "finite box {aabb:?}");
+            }
+            if let Some(ball) = e.bounding_sphere_of_points(&pts) {
+                prop_assert!(finite(&ball.center) && ball.radius.is_finite(), "finite {ball:?}");
+            }
+            let _ = e.overlap_aabb_aabb(
+                Aabb { min: v0, max: v1 },
+                Aabb { min: v2, max: p0 },
+            );
+        }
+    }
+}
