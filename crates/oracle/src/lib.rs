@@ -14,3 +14,5 @@
 #![deny(missing_docs)]
 
 pub mod geom;
+pub mod parry;
+pub mod referee;

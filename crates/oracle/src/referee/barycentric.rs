@@ -1,0 +1,240 @@
+//! Barycentric coordinates of a point with respect to a triangle, exactly.
+
+use super::RefereeError;
+use super::exact::{Q, V3, dot, round, sub, v3};
+use crate::geom::{BarycentricAnswer, P3, Triangle};
+
+/// Exact signed barycentrics `[α, β, γ]` of `p`'s orthogonal projection onto the
+/// plane of `v`, or `None` when the triangle has zero area.
+///
+/// With `e1 = v1 − v0`, `e2 = v2 − v0`, `w = p − v0`, the projection is
+/// `v0 + β e1 + γ e2` where `(β, γ)` solve the normal equations of the least
+/// squares problem `min ‖β e1 + γ e2 − w‖`:
+///
+/// ```text
+/// [e1·e1  e1·e2] [β]   [w·e1]
+/// [e1·e2  e2·e2] [γ] = [w·e2],   det = (e1·e1)(e2·e2) − (e1·e2)² = ‖e1 × e2‖²
+/// ```
+///
+/// solved by Cramer's rule; `α = 1 − β − γ`, so the sum is exactly 1.
+pub(crate) fn barycentric_exact(p: &V3, v: &[V3; 3]) -> Option<[Q; 3]> {
+    let e1 = sub(&v[1], &v[0]);
+    let e2 = sub(&v[2], &v[0]);
+    let w = sub(p, &v[0]);
+    let (a, b, c) = (dot(&e1, &e1), dot(&e1, &e2), dot(&e2, &e2));
+    let (d, e) = (dot(&w, &e1), dot(&w, &e2));
+    let det = &a * &c - &b * &b;
+    if det.is_zero() {
+        return None;
+    }
+    let beta = (&c * &d - &b * &e) / &det;
+    let gamma = (&a * &e - &b * &d) / &det;
+    let alpha = Q::ONE - &beta - &gamma;
+    Some([alpha, beta, gamma])
+}
+
+/// The fallback for a zero-area triangle: barycentrics of the point of the
+/// longest edge closest to `p` (edges in the order v0v1, v1v2, v2v0; the first
+/// wins a tie), or `[1, 0, 0]` when all three vertices coincide.
+fn longest_edge_fallback(p: &V3, v: &[V3; 3]) -> [Q; 3] {
+    let edges = [(0usize, 1usize), (1, 2), (2, 0)];
+    let mut best = 0;
+    let mut best_len = Q::ZERO;
+    for (k, &(i, j)) in edges.iter().enumerate() {
+        let e = sub(&v[j], &v[i]);
+        let len = dot(&e, &e);
+        if len > best_len {
+            best_len = len;
+            best = k;
+        }
+    }
+    let mut coords = [Q::ZERO, Q::ZERO, Q::ZERO];
+    if best_len.is_zero() {
+        coords[0] = Q::ONE;
+        return coords;
+    }
+    let (i, j) = edges[best];
+    let s = dot(&sub(p, &v[i]), &sub(&v[j], &v[i])) / &best_len;
+    let s = if s < Q::ZERO {
+        Q::ZERO
+    } else if s > Q::ONE {
+        Q::ONE
+    } else {
+        s
+    };
+    coords[i] = Q::ONE - &s;
+    coords[j] = s;
+    coords
+}
+
+/// Signed barycentric coordinates `[α, β, γ]` of the orthogonal projection of `p`
+/// onto the plane of triangle `t`, with `projection = α v0 + β v1 + γ v2` and
+/// `α + β + γ = 1` (negative outside the triangle).
+///
+/// **Method.** The normal equations above, solved exactly in rationals by
+/// Cramer's rule (`det = ‖(v1 − v0) × (v2 − v0)‖²`); they are equivalent to the
+/// signed-area ratios `β = ((w × e2)·N)/‖N‖²`, `γ = ((e1 × w)·N)/‖N‖²` with
+/// `N = e1 × e2` (Lagrange's identity), and for a point in the plane to the
+/// lecture's area ratios with signs. The three coordinates sum to exactly 1
+/// before each is correctly rounded. Source: Ericson §3.4 (`Barycentric`, the same
+/// normal equations with `d00, d01, d11, d20, d21`), here in exact arithmetic.
+///
+/// **Degenerate input.** A zero-area triangle (`det = 0` exactly) has no plane:
+/// `degenerate: true`, and the coordinates are those of the point of the longest
+/// edge closest to `p` (clamped to the edge; the first of v0v1, v1v2, v2v0 wins a
+/// tie), or `[1, 0, 0]` when all three vertices coincide. They still sum to 1.
+pub fn barycentric_triangle(p: &P3, t: &Triangle) -> Result<BarycentricAnswer, RefereeError> {
+    let p = v3(p, "a.at")?;
+    let v = [
+        v3(&t.vertices[0], "b.vertices")?,
+        v3(&t.vertices[1], "b.vertices")?,
+        v3(&t.vertices[2], "b.vertices")?,
+    ];
+    let (coords, degenerate) = match barycentric_exact(&p, &v) {
+        Some(c) => (c, false),
+        None => (longest_edge_fallback(&p, &v), true),
+    };
+    Ok(BarycentricAnswer {
+        coords: [round(&coords[0]), round(&coords[1]), round(&coords[2])],
+        degenerate,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::referee::exact::within_ulps;
+
+    /// Largest accepted distance, in ulps, from a correctly rounded reference
+    /// computed independently. The referee is correctly rounded, so 0; kept named
+    /// so every comparison states its allowance.
+    const EXACT_ULPS: u64 = 0;
+
+    fn tri(v: [[f64; 3]; 3]) -> Triangle {
+        Triangle { vertices: v }
+    }
+
+    fn assert_coords(got: [f64; 3], want: [f64; 3], what: &str) {
+        for k in 0..3 {
+            assert!(
+                within_ulps(got[k], want[k], EXACT_ULPS),
+                "{what}: coord {k}: {got:?} vs {want:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn referee_barycentric_vertices_centroid_and_outside() {
+        // Right triangle (0,0,0), (2,0,0), (0,2,0): for a point (x, y, z),
+        // β = x/2, γ = y/2, α = 1 − β − γ; z is dropped by the projection.
+        let t = tri([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]]);
+        let cases = [
+            ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], "v0"),
+            ([2.0, 0.0, 5.0], [0.0, 1.0, 0.0], "v1 lifted"),
+            ([0.0, 2.0, -1.0], [0.0, 0.0, 1.0], "v2 lowered"),
+            ([1.0, 1.0, 0.0], [0.0, 0.5, 0.5], "midpoint of v1v2"),
+            ([3.0, 1.0, 0.0], [-1.0, 1.5, 0.5], "outside past v1v2"),
+            ([-2.0, -2.0, 0.0], [3.0, -1.0, -1.0], "outside behind v0"),
+        ];
+        for (p, want, what) in cases {
+            let got = barycentric_triangle(&p, &t).unwrap();
+            assert!(!got.degenerate, "{what}");
+            assert_coords(got.coords, want, what);
+        }
+    }
+
+    #[test]
+    fn referee_barycentric_thirds_are_correctly_rounded() {
+        // Centroid of (0,0,0), (3,0,0), (0,3,0) is (1,1,0): every coordinate is
+        // exactly 1/3, whose correct rounding is the literal 1.0/3.0 (IEEE
+        // division is correctly rounded).
+        let t = tri([[0.0, 0.0, 0.0], [3.0, 0.0, 0.0], [0.0, 3.0, 0.0]]);
+        let got = barycentric_triangle(&[1.0, 1.0, 7.0], &t).unwrap();
+        let third = 1.0 / 3.0;
+        assert_coords(got.coords, [third, third, third], "centroid");
+    }
+
+    #[test]
+    fn referee_barycentric_tilted_triangle_projects() {
+        // Triangle (1,0,0), (0,1,0), (0,0,1) with normal (1,1,1)/√3. The point
+        // (1,1,1) projects to (1/3,1/3,1/3) + ... : (1,1,1) − ((3 − 1)/3)(1,1,1)
+        // = (1/3,1/3,1/3), the centroid: all coordinates 1/3.
+        let t = tri([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        let got = barycentric_triangle(&[1.0, 1.0, 1.0], &t).unwrap();
+        let third = 1.0 / 3.0;
+        assert_coords(got.coords, [third, third, third], "tilted centroid");
+    }
+
+    #[test]
+    fn referee_barycentric_zero_area_uses_longest_edge() {
+        // Collinear (0,0,0), (1,0,0), (4,0,0): the longest edge is v2v0
+        // (length 4, from v2 to v0). The point (1,5,0) is closest to (1,0,0) on
+        // it: s = ((1,5,0) − v2)·(v0 − v2)/16 = (−3·−4)/16 = 3/4, so v2 gets 1/4
+        // and v0 gets 3/4.
+        let t = tri([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [4.0, 0.0, 0.0]]);
+        let got = barycentric_triangle(&[1.0, 5.0, 0.0], &t).unwrap();
+        assert!(got.degenerate);
+        assert_coords(got.coords, [0.75, 0.0, 0.25], "collinear");
+        // All vertices equal: [1, 0, 0].
+        let dot = tri([[2.0, 2.0, 2.0]; 3]);
+        let got = barycentric_triangle(&[0.0, 0.0, 0.0], &dot).unwrap();
+        assert!(got.degenerate);
+        assert_coords(got.coords, [1.0, 0.0, 0.0], "coincident");
+    }
+
+    #[test]
+    fn referee_barycentric_huge_and_tiny_scales() {
+        // The unit right triangle scaled by 1e300 and by 1e-300, point at
+        // (0.25, 0.5)·scale: β = 0.25, γ = 0.5, α = 0.25 exactly (the scale
+        // cancels in the ratios; the f64 products 0.25·s and 0.5·s are exact
+        // power-of-two scalings, and s itself is the same f64 in every vertex).
+        for s in [1e300, 1e-300] {
+            let t = tri([[0.0, 0.0, 0.0], [s, 0.0, 0.0], [0.0, s, 0.0]]);
+            let got = barycentric_triangle(&[0.25 * s, 0.5 * s, s], &t).unwrap();
+            assert_coords(got.coords, [0.25, 0.25, 0.5], "scaled");
+        }
+    }
+
+    #[test]
+    fn referee_barycentric_refuses_nan() {
+        let t = tri([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+        assert_eq!(
+            barycentric_triangle(&[f64::NAN, 0.0, 0.0], &t),
+            Err(RefereeError::NonFinite { field: "a.at" })
+        );
+    }
+}
+
+#[cfg(test)]
+mod properties {
+    use super::*;
+    use crate::referee::exact::{cross, is_zero};
+    use proptest::prelude::*;
+
+    fn coord() -> impl Strategy<Value = f64> {
+        prop_oneof![(-2i8..=2).prop_map(f64::from), -3.0..3.0f64]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(512))]
+
+        #[test]
+        fn referee_barycentric_exact_sum_and_reconstruction(p in [coord(), coord(), coord()], v in [[coord(), coord(), coord()], [coord(), coord(), coord()], [coord(), coord(), coord()]]) {
+            // Before rounding: α + β + γ = 1 exactly, and αv0 + βv1 + γv2 − p is
+            // parallel to the face normal (it is the projection's offset).
+            let pe = v3(&p, "p").unwrap();
+            let ve = [v3(&v[0], "v").unwrap(), v3(&v[1], "v").unwrap(), v3(&v[2], "v").unwrap()];
+            let normal = cross(&sub(&ve[1], &ve[0]), &sub(&ve[2], &ve[0]));
+            match barycentric_exact(&pe, &ve) {
+                None => prop_assert!(is_zero(&normal), "only a zero-area triangle has no barycentrics"),
+                Some(b) => {
+                    prop_assert!((&b[0] + &b[1] + &b[2]) == Q::ONE, "sum is exactly 1");
+                    let rebuilt: V3 = std::array::from_fn(|k| &b[0] * &ve[0][k] + &b[1] * &ve[1][k] + &b[2] * &ve[2][k]);
+                    prop_assert!(is_zero(&cross(&sub(&rebuilt, &pe), &normal)), "offset along the normal");
+                }
+            }
+            let answer = barycentric_triangle(&p, &Triangle { vertices: v }).unwrap();
+            prop_assert_eq!(answer.degenerate, is_zero(&normal));
+        }
+    }
+}
