@@ -1,0 +1,880 @@
+//! Tests of the barycentric queries: hand-derived cases (derivation beside each),
+//! degenerate inputs, and properties. Every test body is generic and runs for
+//! `f32` and `f64`.
+
+use super::*;
+use crate::real::{Real, Vec3};
+use crate::shapes::{Segment, Triangle};
+use proptest::prelude::*;
+
+/// Hand-derived cases: small integer or dyadic inputs whose answers are short
+/// ratios; a handful of roundings, each at most ε/2 of a value ≤ 8 in magnitude.
+/// Units: ε of the type under test, absolute on each coordinate.
+const HAND_TOL_EPS: f64 = 16.0;
+
+/// Sum of the signed coordinates: the largest-magnitude one is `fl(fl(1 − a) − b)`
+/// (or `fl(1 − t)` on a segment), whose two roundings are each at most `ε/2` of
+/// a value `≤ 1 + 2M`, `M` the largest coordinate magnitude. Proven bound
+/// `1.5 ε max(1, M)`; units: ε times `max(1, M)`.
+const SUM_TOL_EPS: f64 = 2.0;
+
+/// Reconstruction of the projected point from the coordinates, for triangles of
+/// thinness `τ = ‖n‖/L² ≥ MIN_THINNESS`: each numerator carries rounding of about
+/// `ε ‖p − v‖ L ‖n‖` and the coordinate error is that over `‖n‖²`, so the
+/// reconstructed point is off by about `ε (‖p − v0‖ + L)/τ`; 32 covers the few
+/// terms and the measured spread. Units: ε times `(‖p − v0‖ + L)/τ`.
+const RECON_TOL_EPS: f64 = 32.0;
+
+/// The shapes the reconstruction properties use are no thinner than this
+/// (`‖n‖/L²`; an equilateral triangle has √3/2): thinner ones are the subject of
+/// the degeneracy sweeps, not of identities with a fixed tolerance.
+const MIN_THINNESS: f64 = 1e-2;
+
+/// Translation on a dyadic grid is exact (see [`translation_invariant`]), so the
+/// results must agree to the last bit; one ε of slack keeps this a tolerance.
+/// Units: ε times `max(1, M)`.
+const TRANSLATION_TOL_EPS: f64 = 1.0;
+
+fn v<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
+    Vec3::new(T::of(x), T::of(y), T::of(z))
+}
+
+fn eps<T: Real>() -> f64 {
+    T::EPSILON.wide()
+}
+
+fn wide3<T: Real>(p: &Vec3<T>) -> Vec3<f64> {
+    Vec3::new(p.x.wide(), p.y.wide(), p.z.wide())
+}
+
+fn assert_coords<T: Real, const N: usize>(
+    got: &Barycentric<T, N>,
+    want: [f64; N],
+    degenerate: bool,
+    what: &str,
+) {
+    let tol = HAND_TOL_EPS * eps::<T>();
+    for (i, (g, w)) in got.coords.iter().zip(want).enumerate() {
+        let g = g.wide();
+        assert!(
+            (g - w).abs() <= tol,
+            "{what}: coordinate {i} is {g}, want {w} (all: {:?})",
+            got.coords
+        );
+    }
+    assert_eq!(got.degenerate, degenerate, "{what}: degenerate flag");
+}
+
+fn max_abs_coord<T: Real, const N: usize>(b: &Barycentric<T, N>) -> f64 {
+    b.coords.iter().map(|x| x.wide().abs()).fold(1.0, f64::max)
+}
+
+fn sum_error<T: Real, const N: usize>(b: &Barycentric<T, N>) -> f64 {
+    (b.coords.iter().map(|x| x.wide()).sum::<f64>() - 1.0).abs()
+}
+
+/// Runs a generic test body for both precisions.
+macro_rules! both {
+    ($name:ident, $body:ident) => {
+        mod $name {
+            #[test]
+            fn f32() {
+                super::$body::<f32>();
+            }
+            #[test]
+            fn f64() {
+                super::$body::<f64>();
+            }
+        }
+    };
+}
+
+// ---------------------------------------------------------------- segment
+
+fn segment_hand<T: Real>() {
+    let seg = Segment::new(v::<T>(0.0, 0.0, 0.0), v(4.0, 0.0, 0.0));
+    // t = (p − a)·(b − a)/‖b − a‖² = (1·4 + 2·0)/16 = 1/4, off the line by 2.
+    assert_coords(
+        &barycentric_segment(&v(1.0, 2.0, 0.0), &seg),
+        [0.75, 0.25],
+        false,
+        "inside, off line",
+    );
+    // Before a: t = (−2·4)/16 = −1/2 → [3/2, −1/2].
+    assert_coords(
+        &barycentric_segment(&v(-2.0, 1.0, 0.0), &seg),
+        [1.5, -0.5],
+        false,
+        "before a",
+    );
+    // Past b: t = (6·4)/16 = 3/2 → [−1/2, 3/2].
+    assert_coords(
+        &barycentric_segment(&v(6.0, 0.0, -3.0), &seg),
+        [-0.5, 1.5],
+        false,
+        "past b",
+    );
+    // Endpoints are exact.
+    assert_coords(
+        &barycentric_segment(&seg.end, &seg),
+        [0.0, 1.0],
+        false,
+        "at b",
+    );
+}
+both!(segment_hand_derived, segment_hand);
+
+fn segment_lecture_hand<T: Real>() {
+    let seg = Segment::new(v::<T>(0.0, 0.0, 0.0), v(4.0, 0.0, 0.0));
+    // On the segment: ‖p − b‖/4 = 3/4, ‖p − a‖/4 = 1/4 (same as signed).
+    assert_coords(
+        &barycentric_segment_lecture(&v(1.0, 0.0, 0.0), &seg),
+        [0.75, 0.25],
+        false,
+        "on segment",
+    );
+    // Before a at −4: ‖p − b‖ = 8, ‖p − a‖ = 4 → [2, 1], sum 3 (signed: [2, −1]).
+    assert_coords(
+        &barycentric_segment_lecture(&v(-4.0, 0.0, 0.0), &seg),
+        [2.0, 1.0],
+        false,
+        "before a",
+    );
+    // Off the line at (0, 3, 0): ‖p − b‖ = 5 (3-4-5), ‖p − a‖ = 3 → [5/4, 3/4].
+    assert_coords(
+        &barycentric_segment_lecture(&v(0.0, 3.0, 0.0), &seg),
+        [1.25, 0.75],
+        false,
+        "off line",
+    );
+}
+both!(segment_lecture_hand_derived, segment_lecture_hand);
+
+fn segment_degenerate<T: Real>() {
+    let a = v::<T>(1.0, -2.0, 3.0);
+    let seg = Segment::new(a, a);
+    let p = v(5.0, 5.0, 5.0);
+    assert_coords(
+        &barycentric_segment(&p, &seg),
+        [1.0, 0.0],
+        true,
+        "signed, zero length",
+    );
+    assert_coords(
+        &barycentric_segment_lecture(&p, &seg),
+        [1.0, 0.0],
+        true,
+        "lecture, zero length",
+    );
+    // A segment 1/max long (subnormal) with the point max/2 away: t ≈ max²/2
+    // overflows in either type.
+    let max = T::max_value().unwrap_or(T::one());
+    let (tiny, huge) = (T::one() / max, max * T::of(0.5));
+    let seg = Segment::new(Vec3::zeros(), Vec3::new(tiny, T::zero(), T::zero()));
+    let far = Vec3::new(huge, T::zero(), T::zero());
+    assert_coords(
+        &barycentric_segment(&far, &seg),
+        [0.0, 1.0],
+        true,
+        "signed, t overflows toward b",
+    );
+    assert_coords(
+        &barycentric_segment(&-far, &seg),
+        [1.0, 0.0],
+        true,
+        "signed, t overflows toward a",
+    );
+    let lec = barycentric_segment_lecture(&far, &seg);
+    assert!(lec.degenerate, "lecture, ratio overflows: flagged");
+    assert!(
+        sum_error(&lec) <= eps::<T>(),
+        "lecture fallback sums to 1: {:?}",
+        lec.coords
+    );
+}
+both!(segment_degenerate_inputs, segment_degenerate);
+
+/// A segment, a point, and an exact dyadic translation.
+#[derive(Clone, Debug)]
+struct SegScene {
+    a: [f64; 3],
+    b: [f64; 3],
+    p: [f64; 3],
+    shift: [f64; 3],
+}
+
+fn grid() -> impl Strategy<Value = f64> {
+    // Multiples of 1/64 in [−16, 16]: 11 significant bits.
+    (-1024i32..=1024).prop_map(|k| f64::from(k) / 64.0)
+}
+
+fn grid3() -> impl Strategy<Value = [f64; 3]> {
+    [grid(), grid(), grid()]
+}
+
+fn shift3() -> impl Strategy<Value = [f64; 3]> {
+    // Integers in [−1024, 1024]: with the grid above, sums need ≤ 17 bits, exact
+    // in f32 (24) and f64 (53).
+    [-1024i32..=1024, -1024i32..=1024, -1024i32..=1024].prop_map(|k| k.map(f64::from))
+}
+
+fn seg_scene() -> impl Strategy<Value = SegScene> {
+    (grid3(), grid3(), grid3(), shift3()).prop_map(|(a, b, p, shift)| SegScene { a, b, p, shift })
+}
+
+fn of3<T: Real>(x: [f64; 3]) -> Vec3<T> {
+    v(x[0], x[1], x[2])
+}
+
+fn check_segment_identities<T: Real>(s: &SegScene) -> Result<(), TestCaseError> {
+    let (a, b, p) = (of3::<T>(s.a), of3::<T>(s.b), of3::<T>(s.p));
+    prop_assume!(a != b);
+    let seg = Segment::new(a, b);
+    let got = barycentric_segment(&p, &seg);
+    prop_assert!(!got.degenerate, "non-zero segment flagged degenerate");
+    let m = max_abs_coord(&got);
+    prop_assert!(
+        sum_error(&got) <= SUM_TOL_EPS * eps::<T>() * m,
+        "sum {:?}",
+        got.coords
+    );
+    // Reconstruction: a + t (b − a) is the projection of p (in f64 from the same
+    // inputs; exact enough here, the inputs having 11 bits).
+    let (aw, bw, pw) = (wide3(&a), wide3(&b), wide3(&p));
+    let d = bw - aw;
+    let proj = aw + d * ((pw - aw).dot(&d) / d.norm_squared());
+    let rec = aw * got.coords[0].wide() + bw * got.coords[1].wide();
+    let scale = (pw - aw).norm() + d.norm();
+    prop_assert!(
+        (rec - proj).norm() <= RECON_TOL_EPS * eps::<T>() * scale,
+        "reconstruction {rec:?} vs projection {proj:?}"
+    );
+    // Lecture: never negative; sums to ≥ 1 (triangle inequality
+    // ‖p − a‖ + ‖p − b‖ ≥ ‖b − a‖), up to rounding.
+    let lec = barycentric_segment_lecture(&p, &seg);
+    prop_assert!(
+        lec.coords.iter().all(|x| *x >= T::zero()),
+        "lecture negative: {:?}",
+        lec.coords
+    );
+    let lsum: f64 = lec.coords.iter().map(|x| x.wide()).sum();
+    prop_assert!(
+        lsum >= 1.0 - SUM_TOL_EPS * eps::<T>() * 4.0,
+        "lecture sum {lsum} < 1"
+    );
+    Ok(())
+}
+
+fn check_segment_translation<T: Real>(s: &SegScene) -> Result<(), TestCaseError> {
+    let t = of3::<T>(s.shift);
+    let (a, b, p) = (of3::<T>(s.a), of3::<T>(s.b), of3::<T>(s.p));
+    let here = barycentric_segment(&p, &Segment::new(a, b));
+    let there = barycentric_segment(&(p + t), &Segment::new(a + t, b + t));
+    let tol = TRANSLATION_TOL_EPS * eps::<T>() * max_abs_coord(&here);
+    for i in 0..2 {
+        prop_assert!(
+            (here.coords[i].wide() - there.coords[i].wide()).abs() <= tol,
+            "{here:?} vs {there:?}"
+        );
+    }
+    prop_assert_eq!(here.degenerate, there.degenerate);
+    Ok(())
+}
+
+fn check_segment_on_segment<T: Real>(s: &SegScene) -> Result<(), TestCaseError> {
+    // Points on the segment: the lecture's ratios equal the signed coordinates.
+    let (a, b) = (of3::<T>(s.a), of3::<T>(s.b));
+    prop_assume!(a != b);
+    let t = (s.p[0] + 16.0) / 32.0; // in [0, 1]
+    let p = a + (b - a) * T::of(t);
+    let seg = Segment::new(a, b);
+    let (lec, sig) = (
+        barycentric_segment_lecture(&p, &seg),
+        barycentric_segment(&p, &seg),
+    );
+    for i in 0..2 {
+        prop_assert!(
+            (lec.coords[i].wide() - sig.coords[i].wide()).abs() <= HAND_TOL_EPS * eps::<T>(),
+            "lecture {:?} vs signed {:?}",
+            lec.coords,
+            sig.coords
+        );
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------- triangle
+
+fn right_triangle<T: Real>() -> Triangle<T> {
+    Triangle::new(v(0.0, 0.0, 0.0), v(4.0, 0.0, 0.0), v(0.0, 4.0, 0.0))
+}
+
+fn triangle_hand<T: Real>() {
+    let tri = right_triangle::<T>();
+    // Projection of (1, 2, 7) is (1, 2, 0) = α v0 + β (4,0,0) + γ (0,4,0):
+    // β = 1/4, γ = 2/4, α = 1/4. The height 7 does not matter.
+    assert_coords(
+        &barycentric_triangle(&v(1.0, 2.0, 7.0), &tri),
+        [0.25, 0.25, 0.5],
+        false,
+        "inside, above",
+    );
+    // Fourth corner of the parallelogram, v1 + v2 − v0 = (4, 4, 0): [−1, 1, 1].
+    assert_coords(
+        &barycentric_triangle(&v(4.0, 4.0, 0.0), &tri),
+        [-1.0, 1.0, 1.0],
+        false,
+        "outside",
+    );
+    // The vertices themselves.
+    assert_coords(
+        &barycentric_triangle(&tri.vertices[2], &tri),
+        [0.0, 0.0, 1.0],
+        false,
+        "at v2",
+    );
+    // Reversed winding (v0, v2, v1): coordinates follow the vertices.
+    let rev = Triangle::new(tri.vertices[0], tri.vertices[2], tri.vertices[1]);
+    assert_coords(
+        &barycentric_triangle(&v(1.0, 2.0, -3.0), &rev),
+        [0.25, 0.5, 0.25],
+        false,
+        "reversed",
+    );
+    // A thin but genuine triangle, height 1e-3 over base 1 (τ = 1e-3, far above
+    // the flatness threshold): midpoint of the height's foot and apex is
+    // γ = 1/2, α = β = 1/4. Error grows like ε/τ: allow that factor.
+    let thin = Triangle::new(v::<T>(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), v(0.5, 1e-3, 0.0));
+    let got = barycentric_triangle(&v(0.5, 0.5e-3, 0.0), &thin);
+    assert!(!got.degenerate, "thin triangle is not degenerate");
+    for (g, w) in got.coords.iter().zip([0.25, 0.25, 0.5]) {
+        assert!(
+            (g.wide() - w).abs() <= HAND_TOL_EPS * eps::<T>() * 1e3,
+            "thin: {:?}",
+            got.coords
+        );
+    }
+}
+both!(triangle_hand_derived, triangle_hand);
+
+fn triangle_lecture_hand<T: Real>() {
+    let tri = right_triangle::<T>();
+    // S = 8. p = (1, 2, 0): area(p, v1, v2) = 8 − area(v0,p,v2) − area(v0,v1,p)
+    // = 8 − ½·4·1 − ½·4·2 = 2 → α = 1/4; β = 2/8, γ = 4/8.
+    assert_coords(
+        &barycentric_triangle_lecture(&v(1.0, 2.0, 0.0), &tri),
+        [0.25, 0.25, 0.5],
+        false,
+        "inside",
+    );
+    // p = (4, 4, 0): area(p, v1, v2) = ½·|(0,−4)×(−4,0)| = 8 → 1; area(v0, p, v2)
+    // = ½·4·4 = 8 → 1; area(v0, v1, p) = 8 → 1. Raw: [1, 1, 1], sum 3.
+    assert_coords(
+        &barycentric_triangle_lecture(&v(4.0, 4.0, 0.0), &tri),
+        [1.0, 1.0, 1.0],
+        false,
+        "outside",
+    );
+    // p = (0, 0, 3), above v0: (v1 − p) × (v2 − p) = (4,0,−3) × (0,4,−3) =
+    // (12, 12, 16), norm √544; (v2 − p) × (v0 − p) = (−12, 0, 0); (v0 − p) ×
+    // (v1 − p) = (0, −12, 0); over ‖n‖ = 16: [√544/16, 3/4, 3/4] — the height
+    // inflates every area (signed: [1, 0, 0]).
+    let want = [544f64.sqrt() / 16.0, 0.75, 0.75];
+    assert_coords(
+        &barycentric_triangle_lecture(&v(0.0, 0.0, 3.0), &tri),
+        want,
+        false,
+        "above v0",
+    );
+    assert_coords(
+        &barycentric_triangle(&v(0.0, 0.0, 3.0), &tri),
+        [1.0, 0.0, 0.0],
+        false,
+        "above v0, signed",
+    );
+}
+both!(triangle_lecture_hand_derived, triangle_lecture_hand);
+
+fn triangle_degenerate<T: Real>() {
+    let p = v::<T>(2.0, 5.0, 0.0);
+    // Collinear (0,0,0), (1,0,0), (3,0,0): edges 1, 2, 3; the longest is v2 → v0.
+    // t = (p − v2)·(v0 − v2)/9 = ((−1,5,0)·(−3,0,0))/9 = 1/3 → v2 gets 2/3, v0 1/3:
+    // reconstructs (2, 0, 0), the closest point of the line.
+    let col = Triangle::new(v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), v(3.0, 0.0, 0.0));
+    let want = [1.0 / 3.0, 0.0, 2.0 / 3.0];
+    assert_coords(&barycentric_triangle(&p, &col), want, true, "collinear");
+    assert_coords(
+        &barycentric_triangle_lecture(&p, &col),
+        want,
+        true,
+        "collinear, lecture",
+    );
+    // Two coincident vertices (0,0,0), (0,0,0), (2,0,0), p = (1,1,0): edges 0, 2,
+    // 2; the first longest is v1 → v2, t = (1·2)/4 = 1/2 → [0, 1/2, 1/2].
+    let dup = Triangle::new(v::<T>(0.0, 0.0, 0.0), v(0.0, 0.0, 0.0), v(2.0, 0.0, 0.0));
+    assert_coords(
+        &barycentric_triangle(&v(1.0, 1.0, 0.0), &dup),
+        [0.0, 0.5, 0.5],
+        true,
+        "duplicate vertex",
+    );
+    // All coincident: [1, 0, 0].
+    let pt = Triangle::new(p, p, p);
+    assert_coords(
+        &barycentric_triangle(&v(9.0, 9.0, 9.0), &pt),
+        [1.0, 0.0, 0.0],
+        true,
+        "coincident",
+    );
+    assert_coords(
+        &barycentric_triangle_lecture(&v(9.0, 9.0, 9.0), &pt),
+        [1.0, 0.0, 0.0],
+        true,
+        "coincident, lecture",
+    );
+    // Collinear up to 1e-20 relative (far below 16 ε in either type): flagged.
+    // Closest point of edge v2 → v0 to (1, 1, 0) is t = 2/3 → [2/3, 0, 1/3].
+    let near = Triangle::new(v::<T>(0.0, 0.0, 0.0), v(1.0, 1e-20, 0.0), v(3.0, 0.0, 0.0));
+    assert_coords(
+        &barycentric_triangle(&v(1.0, 1.0, 0.0), &near),
+        [2.0 / 3.0, 0.0, 1.0 / 3.0],
+        true,
+        "near collinear",
+    );
+    // A point beyond the type's range relative to a tiny triangle: coordinates
+    // overflow, answered by the fallback (non-negative, summing to 1).
+    let max = T::max_value().unwrap_or(T::one());
+    let (tiny, huge) = (T::one() / max, max * T::of(0.5));
+    let small = Triangle::new(
+        Vec3::zeros(),
+        Vec3::new(tiny, T::zero(), T::zero()),
+        Vec3::new(T::zero(), tiny, T::zero()),
+    );
+    let far = Vec3::new(huge, huge, T::zero());
+    for got in [
+        barycentric_triangle(&far, &small),
+        barycentric_triangle_lecture(&far, &small),
+    ] {
+        assert!(got.degenerate, "overflowing coordinates flagged: {got:?}");
+        assert!(
+            got.coords.iter().all(|x| x.finite() && *x >= T::zero()),
+            "fallback: {got:?}"
+        );
+        assert!(sum_error(&got) <= eps::<T>(), "fallback sums to 1: {got:?}");
+    }
+}
+both!(triangle_degenerate_inputs, triangle_degenerate);
+
+fn triangle_extreme_scales<T: Real>() {
+    // The right-angled triangle (−M,−M), (M,−M), (−M,M) and p = (0, 0, ·): β = γ = 1/2,
+    // α = 0 at any scale M. At 0.75 × the largest finite value the differences
+    // overflow (the halving path); at the reciprocal of the largest finite value
+    // the inputs are subnormal in f32 (the scaling path).
+    let max = T::max_value().unwrap_or(T::one());
+    for m in [max * T::of(0.75), T::one() / max, T::of(1e-3)] {
+        let z = T::zero();
+        let tri = Triangle::new(
+            Vec3::new(-m, -m, z),
+            Vec3::new(m, -m, z),
+            Vec3::new(-m, m, z),
+        );
+        let p = Vec3::new(z, z, m);
+        assert_coords(
+            &barycentric_triangle(&p, &tri),
+            [0.0, 0.5, 0.5],
+            false,
+            &format!("signed at scale {m:?}"),
+        );
+        let q = Vec3::new(z, z, z);
+        assert_coords(
+            &barycentric_triangle_lecture(&q, &tri),
+            [0.0, 0.5, 0.5],
+            false,
+            &format!("lecture at scale {m:?}"),
+        );
+        let seg = Segment::new(tri.vertices[0], tri.vertices[1]);
+        assert_coords(
+            &barycentric_segment(&p, &seg),
+            [0.5, 0.5],
+            false,
+            &format!("segment at scale {m:?}"),
+        );
+        let on = Vec3::new(z, -m, z);
+        assert_coords(
+            &barycentric_segment_lecture(&on, &seg),
+            [0.5, 0.5],
+            false,
+            &format!("segment lecture at {m:?}"),
+        );
+    }
+}
+both!(extreme_scales, triangle_extreme_scales);
+
+/// A triangle, a point given by its coordinates and height, and a translation.
+#[derive(Clone, Debug)]
+struct TriScene {
+    v: [[f64; 3]; 3],
+    /// `[β, γ, h]`: p = v0 + β e0 + γ e1 + h L n̂.
+    coords: [f64; 3],
+    shift: [f64; 3],
+}
+
+fn tri_scene() -> impl Strategy<Value = TriScene> {
+    (
+        [grid3(), grid3(), grid3()],
+        [-2.0f64..3.0, -2.0f64..3.0, -2.0f64..2.0],
+        shift3(),
+    )
+        .prop_map(|(v, coords, shift)| TriScene { v, coords, shift })
+}
+
+struct Built<T: Real> {
+    tri: Triangle<T>,
+    p: Vec3<T>,
+    /// ‖n‖/L².
+    thinness: f64,
+    /// Longest edge.
+    l: f64,
+}
+
+fn build<T: Real>(s: &TriScene) -> Built<T> {
+    let tri = Triangle::new(of3::<T>(s.v[0]), of3(s.v[1]), of3(s.v[2]));
+    let [a, b, c] = tri.vertices.map(|x| wide3(&x));
+    let n = (b - a).cross(&(c - a));
+    let l = (b - a).norm().max((c - a).norm()).max((c - b).norm());
+    let thinness = if l > 0.0 { n.norm() / (l * l) } else { 0.0 };
+    let nhat = if n.norm() > 0.0 {
+        n / n.norm()
+    } else {
+        Vec3::zeros()
+    };
+    let [be, ga, h] = s.coords;
+    let pw = a + (b - a) * be + (c - a) * ga + nhat * (h * l);
+    Built {
+        tri,
+        p: v(pw.x, pw.y, pw.z),
+        thinness,
+        l,
+    }
+}
+
+fn check_triangle_identities<T: Real>(s: &TriScene) -> Result<(), TestCaseError> {
+    let Built {
+        tri,
+        p,
+        thinness,
+        l,
+    } = build::<T>(s);
+    prop_assume!(thinness >= MIN_THINNESS);
+    let got = barycentric_triangle(&p, &tri);
+    prop_assert!(!got.degenerate, "well-shaped triangle flagged degenerate");
+    let m = max_abs_coord(&got);
+    prop_assert!(
+        sum_error(&got) <= SUM_TOL_EPS * eps::<T>() * m,
+        "sum {:?}",
+        got.coords
+    );
+    // Reconstruction of the projection, both relative to v0, in f64.
+    let [a, b, c] = tri.vertices.map(|x| wide3(&x));
+    let n = (b - a).cross(&(c - a));
+    let q = wide3(&p) - a;
+    let proj = q - n * (q.dot(&n) / n.norm_squared());
+    let rec = (b - a) * got.coords[1].wide() + (c - a) * got.coords[2].wide();
+    let tol = RECON_TOL_EPS * eps::<T>() * (q.norm() + l) / thinness;
+    prop_assert!(
+        (rec - proj).norm() <= tol,
+        "reconstruction {rec:?} vs projection {proj:?}, tol {tol:e}"
+    );
+    // Lecture: never negative, sum ≥ 1 (the three sub-areas cover the triangle),
+    // and equal to the signed coordinates when p is inside and in the plane.
+    let lec = barycentric_triangle_lecture(&p, &tri);
+    prop_assert!(!lec.degenerate, "lecture flagged a well-shaped triangle");
+    prop_assert!(
+        lec.coords.iter().all(|x| *x >= T::zero()),
+        "lecture negative: {:?}",
+        lec.coords
+    );
+    let lsum: f64 = lec.coords.iter().map(|x| x.wide()).sum();
+    prop_assert!(
+        lsum >= 1.0 - RECON_TOL_EPS * eps::<T>() / thinness,
+        "lecture sum {lsum} < 1"
+    );
+    Ok(())
+}
+
+fn check_triangle_lecture_inside<T: Real>(s: &TriScene) -> Result<(), TestCaseError> {
+    // p inside and in the plane: fold (β, γ) into the triangle, no height.
+    let mut s = s.clone();
+    let (mut be, mut ga) = ((s.coords[0] + 2.0) / 5.0, (s.coords[1] + 2.0) / 5.0);
+    if be + ga > 1.0 {
+        (be, ga) = (1.0 - be, 1.0 - ga);
+    }
+    s.coords = [be, ga, 0.0];
+    let Built {
+        tri,
+        p,
+        thinness,
+        l,
+    } = build::<T>(&s);
+    prop_assume!(thinness >= MIN_THINNESS);
+    let (lec, sig) = (
+        barycentric_triangle_lecture(&p, &tri),
+        barycentric_triangle(&p, &tri),
+    );
+    let q = (wide3(&p) - wide3(&tri.vertices[0])).norm();
+    let tol = RECON_TOL_EPS * eps::<T>() * (q + l) / (l * thinness);
+    for i in 0..3 {
+        prop_assert!(
+            (lec.coords[i].wide() - sig.coords[i].wide()).abs() <= tol,
+            "lecture {:?} vs signed {:?}",
+            lec.coords,
+            sig.coords
+        );
+    }
+    Ok(())
+}
+
+fn check_triangle_translation<T: Real>(s: &TriScene) -> Result<(), TestCaseError> {
+    let Built { tri, p, .. } = build::<T>(s);
+    // Round p to the grid so that p + shift is exact too.
+    let p = p.map(|x| T::of((x.wide() * 64.0).round() / 64.0));
+    let t = of3::<T>(s.shift);
+    let moved = Triangle::new(
+        tri.vertices[0] + t,
+        tri.vertices[1] + t,
+        tri.vertices[2] + t,
+    );
+    for (here, there) in [
+        (
+            barycentric_triangle(&p, &tri),
+            barycentric_triangle(&(p + t), &moved),
+        ),
+        (
+            barycentric_triangle_lecture(&p, &tri),
+            barycentric_triangle_lecture(&(p + t), &moved),
+        ),
+    ] {
+        let tol = TRANSLATION_TOL_EPS * eps::<T>() * max_abs_coord(&here);
+        for i in 0..3 {
+            prop_assert!(
+                (here.coords[i].wide() - there.coords[i].wide()).abs() <= tol,
+                "{here:?} vs {there:?}"
+            );
+        }
+        prop_assert_eq!(here.degenerate, there.degenerate);
+    }
+    Ok(())
+}
+
+fn check_triangle_recovers<T: Real>(s: &TriScene) -> Result<(), TestCaseError> {
+    // p built from (β, γ) and a height: the signed coordinates recover them. The
+    // rounding of p itself (ε/2 of its coordinates' magnitude) enters too.
+    let Built {
+        tri,
+        p,
+        thinness,
+        l,
+    } = build::<T>(s);
+    prop_assume!(thinness >= MIN_THINNESS);
+    let got = barycentric_triangle(&p, &tri);
+    let [be, ga, _] = s.coords;
+    let mag = tri
+        .vertices
+        .iter()
+        .chain([&p])
+        .map(|x| wide3(x).amax())
+        .fold(0.0, f64::max);
+    let q = (wide3(&p) - wide3(&tri.vertices[0])).norm();
+    let tol = RECON_TOL_EPS * eps::<T>() * (q + l + mag) / (l * thinness);
+    for (g, w) in got.coords.iter().zip([1.0 - be - ga, be, ga]) {
+        prop_assert!(
+            (g.wide() - w).abs() <= tol,
+            "got {:?}, built from [{}, {be}, {ga}]",
+            got.coords,
+            1.0 - be - ga
+        );
+    }
+    Ok(())
+}
+
+fn check_collinear_fallback<T: Real>(s: &TriScene) -> Result<(), TestCaseError> {
+    // Exactly collinear vertices on the grid: v2 = v0 + k (v1 − v0), k an integer
+    // in [−3, 3] (exact: grid values times small integers stay on the grid).
+    // Both functions flag them and return the closest point of the longest edge.
+    let k = (s.coords[0] * 1.2).round().clamp(-3.0, 3.0);
+    let [a, b, _] = s.v;
+    let c = [0, 1, 2].map(|i| a[i] + k * (b[i] - a[i]));
+    let tri = Triangle::new(of3::<T>(a), of3(b), of3(c));
+    let p = of3::<T>(s.shift).map(|x| x / T::of(64.0));
+    let vw = tri.vertices.map(|x| wide3(&x));
+    // Longest edge (first of equals), edge j joining vertex j to (j + 1) % 3.
+    let lens = [0, 1, 2].map(|j| (vw[(j + 1) % 3] - vw[j]).norm());
+    let j = (0..3).fold(0, |best, j| if lens[j] > lens[best] { j } else { best });
+    let (u, w) = (vw[j], vw[(j + 1) % 3]);
+    let d = w - u;
+    let closest = if d.norm() > 0.0 {
+        u + d * ((wide3(&p) - u).dot(&d) / d.norm_squared()).clamp(0.0, 1.0)
+    } else {
+        u
+    };
+    for got in [
+        barycentric_triangle(&p, &tri),
+        barycentric_triangle_lecture(&p, &tri),
+    ] {
+        prop_assert!(got.degenerate, "collinear triangle not flagged: {got:?}");
+        prop_assert!(
+            got.coords.iter().all(|x| *x >= T::zero()),
+            "fallback negative: {got:?}"
+        );
+        prop_assert!(sum_error(&got) <= eps::<T>(), "fallback sum: {got:?}");
+        let rec = vw[0] * got.coords[0].wide()
+            + vw[1] * got.coords[1].wide()
+            + vw[2] * got.coords[2].wide();
+        let scale = lens[j] + (wide3(&p) - u).norm();
+        prop_assert!(
+            (rec - closest).norm() <= RECON_TOL_EPS * eps::<T>() * scale,
+            "fallback reconstructs {rec:?}, closest point of the longest edge is {closest:?}"
+        );
+    }
+    Ok(())
+}
+
+// ------------------------------------------------------- any finite input
+
+/// A finite value of `T` from a mantissa in [−1, 1] and an exponent fraction,
+/// spread over the type's whole range (subnormals to the largest finite value).
+fn finite_of<T: Real>(m: f64, frac: f64) -> T {
+    let max = T::max_value().unwrap_or(T::one()).wide();
+    let top = max.log2();
+    let bottom = -top - T::EPSILON.wide().log2().abs();
+    let e = bottom + frac * (top - bottom);
+    let x = T::of((m * e.exp2()).clamp(-max, max));
+    if x.finite() {
+        x
+    } else {
+        T::of(max.copysign(m))
+    }
+}
+
+fn any_point() -> impl Strategy<Value = [(f64, f64); 3]> {
+    [
+        (-1.0f64..=1.0, 0.0f64..=1.0),
+        (-1.0f64..=1.0, 0.0f64..=1.0),
+        (-1.0f64..=1.0, 0.0f64..=1.0),
+    ]
+}
+
+fn any_of3<T: Real>(x: &[(f64, f64); 3]) -> Vec3<T> {
+    Vec3::new(
+        finite_of(x[0].0, x[0].1),
+        finite_of(x[1].0, x[1].1),
+        finite_of(x[2].0, x[2].1),
+    )
+}
+
+fn check_any_finite<T: Real>(pts: &[[(f64, f64); 3]; 4]) -> Result<(), TestCaseError> {
+    let [a, b, c, p] = [0, 1, 2, 3].map(|i| any_of3::<T>(&pts[i]));
+    let tri = Triangle::new(a, b, c);
+    let seg = Segment::new(a, b);
+    for got in [
+        barycentric_triangle(&p, &tri),
+        barycentric_triangle_lecture(&p, &tri),
+    ] {
+        prop_assert!(got.coords.iter().all(|x| x.finite()), "non-finite: {got:?}");
+        if got.degenerate {
+            prop_assert!(
+                got.coords.iter().all(|x| *x >= T::zero()),
+                "fallback negative: {got:?}"
+            );
+            prop_assert!(sum_error(&got) <= eps::<T>(), "fallback sum: {got:?}");
+        }
+    }
+    let signed = barycentric_triangle(&p, &tri);
+    prop_assert!(
+        sum_error(&signed) <= SUM_TOL_EPS * eps::<T>() * max_abs_coord(&signed),
+        "sum {signed:?}"
+    );
+    for got in [
+        barycentric_segment(&p, &seg),
+        barycentric_segment_lecture(&p, &seg),
+    ] {
+        prop_assert!(got.coords.iter().all(|x| x.finite()), "non-finite: {got:?}");
+    }
+    let signed = barycentric_segment(&p, &seg);
+    prop_assert!(
+        sum_error(&signed) <= SUM_TOL_EPS * eps::<T>() * max_abs_coord(&signed),
+        "sum {signed:?}"
+    );
+    Ok(())
+}
+
+/// Runs a generic property for both precisions.
+macro_rules! prop_both {
+    ($cases:expr, $name:ident, $strat:expr, $check:ident) => {
+        mod $name {
+            use super::*;
+            proptest! {
+                #![proptest_config(ProptestConfig::with_cases($cases))]
+                #[test]
+                fn f32(s in $strat) { $check::<f32>(&s)?; }
+                #[test]
+                fn f64(s in $strat) { $check::<f64>(&s)?; }
+            }
+        }
+    };
+}
+
+prop_both!(
+    1000,
+    segment_sums_to_one_and_reconstructs,
+    seg_scene(),
+    check_segment_identities
+);
+prop_both!(
+    500,
+    segment_translation_invariant,
+    seg_scene(),
+    check_segment_translation
+);
+prop_both!(
+    500,
+    segment_lecture_equals_signed_on_segment,
+    seg_scene(),
+    check_segment_on_segment
+);
+prop_both!(
+    1000,
+    triangle_sums_to_one_and_reconstructs,
+    tri_scene(),
+    check_triangle_identities
+);
+prop_both!(
+    500,
+    triangle_lecture_equals_signed_inside,
+    tri_scene(),
+    check_triangle_lecture_inside
+);
+prop_both!(
+    500,
+    translation_invariant,
+    tri_scene(),
+    check_triangle_translation
+);
+prop_both!(
+    500,
+    collinear_triangle_falls_back_to_longest_edge,
+    tri_scene(),
+    check_collinear_fallback
+);
+prop_both!(
+    1000,
+    triangle_recovers_built_coordinates,
+    tri_scene(),
+    check_triangle_recovers
+);
+prop_both!(
+    2000,
+    any_finite_input_is_finite,
+    [any_point(), any_point(), any_point(), any_point()],
+    check_any_finite
+);
