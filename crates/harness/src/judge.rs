@@ -218,6 +218,22 @@ pub struct Errors {
     pub t: Option<f64>,
     /// Largest barycentric coordinate error.
     pub barycentric: Option<f64>,
+    /// The classification differs from the referee's, and how.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub misclass: Option<Misclass>,
+}
+
+/// How a classification differs from the referee's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Misclass {
+    /// A contact, hit or overlap the referee does not have.
+    FalsePositive,
+    /// A contact, hit or overlap the referee has, missed (or a bounding sphere
+    /// that misses a point).
+    FalseNegative,
+    /// Only a flag differs: `parallel` or `degenerate`.
+    Flag,
 }
 
 /// A verdict on one engine's answer to one case, against the referee.
@@ -312,41 +328,87 @@ pub fn judge(lc: &LoadedCase, answer: &Answer, truth: &Answer, tol: &Tolerance, 
             value.push(format!("{what} off by {err:.3e} (allowed {len_tol:.1e})"));
         }
     };
-    let contact_cmp = |g: &Contact, w: &Contact, e: &mut Errors, value: &mut Vec<String>, len: &mut dyn FnMut(&str, f64, &mut Option<f64>, &mut Vec<String>)| {
-        len("point", dist3(&g.point, &w.point), &mut e.point, value);
-        len("depth", (g.depth - w.depth).abs(), &mut e.depth, value);
+    // The conditioning allowance of a contact normal (see
+    // `tolerance::NORMAL_CONDITION_ULPS`): the referee's distance between the
+    // points the normal joins is the sum of the radii (sphere–sphere) or the
+    // sphere's radius (sphere–triangle) less the depth; a plane's normal is an
+    // input, not a difference.
+    let normal_extra = |w: &Contact| -> f64 {
+        let d = match (&lc.case.a, lc.case.b.as_ref()) {
+            (Shape::Sphere(a), Some(Shape::Sphere(b))) => a.radius + b.radius - w.depth,
+            (Shape::Sphere(s), Some(Shape::Triangle(_))) | (Shape::Triangle(_), Some(Shape::Sphere(s))) => {
+                s.radius - w.depth
+            }
+            _ => return 0.0,
+        };
+        if d > 0.0 { crate::tolerance::NORMAL_CONDITION_ULPS * tol.eps * scale / d } else { f64::INFINITY }
+    };
+    let contact_cmp = |g: &Contact, w: &Contact, e: &mut Errors, value: &mut Vec<String>| {
+        let extra = normal_extra(w);
+        // A point built from the normal (the reverse orders: centre − r·n) moves
+        // by up to the scene's scale times the normal's allowance.
+        let point_tol = len_tol + scale * extra.min(2.0);
+        let dp = dist3(&g.point, &w.point);
+        e.point = Some(dp);
+        if !(dp <= point_tol) {
+            value.push(format!("point off by {dp:.3e} (allowed {point_tol:.1e})"));
+        }
+        let dd = (g.depth - w.depth).abs();
+        e.depth = Some(dd);
+        if !(dd <= len_tol) {
+            value.push(format!("depth off by {dd:.3e} (allowed {len_tol:.1e})"));
+        }
         let a = angle(&g.normal, &w.normal);
         e.normal = Some(a);
-        if !(a <= tol.normal_rad) {
-            value.push(format!("normal off by {a:.3e} rad (allowed {:.1e})", tol.normal_rad));
+        let allowed = tol.normal_rad + extra;
+        if !(a <= allowed) {
+            value.push(format!("normal off by {a:.3e} rad (allowed {allowed:.1e})"));
         }
     };
     if degenerate(answer) != degenerate(truth) {
         class.push(format!("degenerate: {} (referee {})", degenerate(answer), degenerate(truth)));
+        e.misclass = Some(Misclass::Flag);
     }
+    let fp = |e: &mut Errors| e.misclass = Some(Misclass::FalsePositive);
+    let fneg = |e: &mut Errors| e.misclass = Some(Misclass::FalseNegative);
     match (answer, truth) {
         (Answer::Contact(g), Answer::Contact(w)) => match (&g.contact, &w.contact) {
-            (Some(gc), Some(wc)) => contact_cmp(gc, wc, &mut e, &mut value, &mut len),
+            (Some(gc), Some(wc)) => contact_cmp(gc, wc, &mut e, &mut value),
             (None, None) => {}
-            (Some(_), None) => class.push("false contact (referee: apart)".into()),
-            (None, Some(_)) => class.push("missed contact (referee: touching)".into()),
+            (Some(_), None) => {
+                class.push("false contact (referee: apart)".into());
+                fp(&mut e);
+            }
+            (None, Some(_)) => {
+                class.push("missed contact (referee: touching)".into());
+                fneg(&mut e);
+            }
         },
         (Answer::Intersect(g), Answer::Intersect(w)) => {
             if g.parallel != w.parallel {
                 class.push(format!("parallel: {} (referee {})", g.parallel, w.parallel));
+                e.misclass = Some(Misclass::Flag);
             }
             match (&g.hit, &w.hit) {
                 (Some(gh), Some(wh)) => hit_cmp(gh, wh, tol, &mut e, &mut value, &mut len),
                 (None, None) => {}
-                (Some(_), None) => class.push("false hit (referee: miss)".into()),
-                (None, Some(_)) => class.push("missed hit (referee: hit)".into()),
+                (Some(_), None) => {
+                    class.push("false hit (referee: miss)".into());
+                    fp(&mut e);
+                }
+                (None, Some(_)) => {
+                    class.push("missed hit (referee: hit)".into());
+                    fneg(&mut e);
+                }
             }
         }
         (Answer::Barycentric(g), Answer::Barycentric(w)) => {
             let err = dist3(&g.coords, &w.coords);
             e.barycentric = Some(err);
-            if !(err <= tol.unitless) {
-                value.push(format!("barycentric off by {err:.3e} (allowed {:.1e})", tol.unitless));
+            let size = w.coords.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+            let allowed = tol.unitless + bary_extra(lc, tol, scale) * size;
+            if !(err <= allowed) {
+                value.push(format!("barycentric off by {err:.3e} (allowed {allowed:.1e})"));
             }
         }
         (Answer::Bounds(g), Answer::Bounds(w)) => {
@@ -361,6 +423,7 @@ pub fn judge(lc: &LoadedCase, answer: &Answer, truth: &Answer, tol: &Tolerance, 
                 let pts = bounded_points(lc);
                 if let Some((i, d)) = farthest_outside(&gs.center, gs.radius, pts, len_tol) {
                     class.push(format!("bounding sphere misses point {i} by {d:.3e}"));
+                    fneg(&mut e);
                 }
                 len("bounding radius", gs.radius - ws.radius, &mut e.depth, &mut value);
             }
@@ -368,6 +431,7 @@ pub fn judge(lc: &LoadedCase, answer: &Answer, truth: &Answer, tol: &Tolerance, 
         (Answer::Overlap(g), Answer::Overlap(w)) => {
             if g != w {
                 class.push(format!("overlap: {g} (referee {w})"));
+                if *g { fp(&mut e) } else { fneg(&mut e) }
             }
         }
         _ => class.push("answer of another query kind".into()),
@@ -386,6 +450,26 @@ pub fn judge(lc: &LoadedCase, answer: &Answer, truth: &Answer, tol: &Tolerance, 
         Verdict::Agree
     };
     (verdict, e)
+}
+
+/// The conditioning allowance of barycentric coordinates on the case's triangle
+/// (see `tolerance::BARY_CONDITION_ULPS`): `K · ε · scale · L / ‖n‖`, per unit of
+/// the coordinates' size (a coordinate is a ratio of areas, and the relative
+/// error of the triangle's area carries over to every coordinate in proportion).
+fn bary_extra(lc: &LoadedCase, tol: &Tolerance, scale: f64) -> f64 {
+    let Some(Shape::Triangle(t)) = &lc.case.b else { return 0.0 };
+    let [a, b, c] = t.vertices;
+    let sub = |p: &P3, q: &P3| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+    let norm = |v: &P3| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let (u, v, w) = (sub(&b, &a), sub(&c, &a), sub(&c, &b));
+    let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+    let longest = norm(&u).max(norm(&v)).max(norm(&w));
+    let twice_area = norm(&n);
+    if twice_area > 0.0 {
+        crate::tolerance::BARY_CONDITION_ULPS * tol.eps * scale * longest / twice_area
+    } else {
+        f64::INFINITY
+    }
 }
 
 fn hit_cmp(

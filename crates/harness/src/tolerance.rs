@@ -35,6 +35,23 @@ pub const F64_BARY: f64 = 1e-9;
 /// Barycentric allowance of an `f32` engine (as [`F32_REL`]).
 pub const F32_BARY: f64 = 1e-4;
 
+/// Conditioning allowance for normals, in units of the engine's epsilon: a normal
+/// built from a difference of points of the scene's size carries an absolute
+/// error of a few ulps of the scale in each component, and dividing by the true
+/// distance `d` between them turns that into an angle of about
+/// `ε · scale / d`. When `d` is tiny (a centre almost on a triangle, two nearly
+/// concentric spheres) no method working in the engine's precision can do
+/// better, so the allowance is `NORMAL_CONDITION_ULPS · ε · scale / d` on top of
+/// the fixed one. 16 covers the few roundings of a closest-point computation.
+pub const NORMAL_CONDITION_ULPS: f64 = 16.0;
+
+/// Conditioning allowance for barycentric coordinates, in units of the engine's
+/// epsilon: perturbing the inputs by `ε · scale` moves a coordinate (a ratio of
+/// areas) by about `(1 + max |coordinate|) · ε · scale · L / ‖n‖`, with `L` the
+/// longest edge and `‖n‖` twice the area; a sliver makes that large for every
+/// method in the engine's precision. 16 covers the cross and dot products.
+pub const BARY_CONDITION_ULPS: f64 = 16.0;
+
 /// The tolerances in force for one engine.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tolerance {
@@ -44,6 +61,9 @@ pub struct Tolerance {
     pub normal_rad: f64,
     /// Barycentric coordinates and segment parameters `t`: absolute.
     pub unitless: f64,
+    /// The engine's machine epsilon (unit roundoff × 2), for the conditioning
+    /// allowances.
+    pub eps: f64,
 }
 
 impl Tolerance {
@@ -51,8 +71,10 @@ impl Tolerance {
     /// for f32; `None`, the referee itself, is held to the f64 entry).
     pub fn for_precision(precision: Option<u32>) -> Self {
         match precision {
-            Some(p) if p < 53 => Tolerance { rel: F32_REL, normal_rad: F32_NORMAL_RAD, unitless: F32_BARY },
-            _ => Tolerance { rel: F64_REL, normal_rad: F64_NORMAL_RAD, unitless: F64_BARY },
+            Some(p) if p < 53 => {
+                Tolerance { rel: F32_REL, normal_rad: F32_NORMAL_RAD, unitless: F32_BARY, eps: f64::from(f32::EPSILON) }
+            }
+            _ => Tolerance { rel: F64_REL, normal_rad: F64_NORMAL_RAD, unitless: F64_BARY, eps: f64::EPSILON },
         }
     }
 }

@@ -9,7 +9,8 @@ use crate::shapes::{Sphere, Triangle};
 /// Contact between a sphere `a` (centre `M`, radius `r`) and a triangle `b`.
 ///
 /// **Method.** The triangle's point closest to the centre, `q`
-/// ([`closest_pt_point_triangle`]), is where the sphere meets the triangle first;
+/// ([`closest_pt_point_triangle`], computed in the frame of the centre — see the
+/// comment in the body), is where the sphere meets the triangle first;
 /// then, as for two spheres with `b` shrunk to the point `q`:
 ///
 /// ```text
@@ -19,30 +20,106 @@ use crate::shapes::{Sphere, Triangle};
 /// The triangle is two-sided and has no thickness: a centre behind the face is
 /// pushed out through the face it is behind, as for one in front.
 ///
-/// **Degenerate input.** A centre exactly on the triangle (`q = M`) has no
-/// direction: the normal falls back to the face normal `(v1 − v0) × (v2 − v0)`,
-/// normalized, depth `r`, flagged; if the triangle has zero area as well, to
-/// [`CONCENTRIC_FALLBACK_NORMAL`]. A zero-area triangle otherwise is answered
-/// exactly as the segment or point it collapsed to.
+/// **Degenerate input.** A centre exactly on the triangle (decided exactly, with
+/// `orient3d` and `orient2d`) has no direction: the normal falls back to the face
+/// normal `(v1 − v0) × (v2 − v0)`, normalized, depth `r`, point `M`, flagged. A
+/// centre off the triangle but nearer than the rounding of `q` can resolve gets
+/// the face normal on the centre's (exactly known) side, not flagged. A zero-area
+/// triangle is answered as the segment or point it collapsed to; if even its
+/// direction is lost, the normal is [`CONCENTRIC_FALLBACK_NORMAL`], flagged.
 pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Option<Contact<T>> {
-    let q = closest_pt_point_triangle(&a.center, b);
-    let delta = a.center - q;
+    // Work in the frame of the centre: `M − q` is then computed as `−q'`, the
+    // closest point of the translated triangle to the origin, whose rounding is
+    // relative to the triangle's distance and size, not to the coordinates' size.
+    // A scene far from the origin (1e14, say) otherwise loses every digit of a
+    // small `M − q` to the rounding of `q`. The translation overflows only for
+    // coordinates of opposite signs near the top of the range: then the global
+    // frame is used.
+    let [v0, v1, v2] = b.vertices;
+    let local = Triangle::new(v0 - a.center, v1 - a.center, v2 - a.center);
+    let (q, delta) = if local.vertices.iter().all(crate::real::finite3) {
+        let q_local = closest_pt_point_triangle(&Vec3::zeros(), &local);
+        (a.center + q_local, -q_local)
+    } else {
+        let q = closest_pt_point_triangle(&a.center, b);
+        (q, a.center - q)
+    };
     let dist = stable_norm(&delta);
     if !(dist <= a.radius) {
         return None;
     }
-    let (normal, degenerate) = match try_normalize_stable(&delta) {
-        Some(n) => (n, false),
-        None => {
-            let [v0, v1, v2] = b.vertices;
-            let face = try_normalize_stable(&(v1 - v0).cross(&(v2 - v0))).unwrap_or_else(|| {
-                let [x, y, z] = CONCENTRIC_FALLBACK_NORMAL;
-                Vec3::new(c(x), c(y), c(z))
-            });
-            (face, true)
-        }
+    let on = centre_on_triangle(&a.center, b);
+    let face = || {
+        let [v0, v1, v2] = b.vertices;
+        try_normalize_stable(&(v1 - v0).cross(&(v2 - v0)))
     };
-    Some(Contact { point: q, normal, depth: a.radius - dist, degenerate })
+    if on == OnTriangle::Exactly {
+        // Exactly on the triangle: no direction is defined.
+        let normal = face().unwrap_or_else(|| {
+            let [x, y, z] = CONCENTRIC_FALLBACK_NORMAL;
+            Vec3::new(c(x), c(y), c(z))
+        });
+        return Some(Contact { point: a.center, normal, depth: a.radius, degenerate: true });
+    }
+    let normal = match try_normalize_stable(&delta) {
+        Some(n) => n,
+        // Off the triangle, but closer than the rounding of `q` can resolve: the
+        // direction is the face normal toward the side the centre is on, which the
+        // exact test knows.
+        None => match (on, face()) {
+            (OnTriangle::Side(s), Some(n)) if s != 0.0 => n * c::<T>(s),
+            _ => {
+                let [x, y, z] = CONCENTRIC_FALLBACK_NORMAL;
+                return Some(Contact {
+                    point: q,
+                    normal: Vec3::new(c(x), c(y), c(z)),
+                    depth: a.radius - dist,
+                    degenerate: true,
+                });
+            }
+        },
+    };
+    Some(Contact { point: q, normal, depth: a.radius - dist, degenerate: false })
+}
+
+/// Where a point is with respect to a triangle, decided exactly.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum OnTriangle {
+    /// On the triangle (its plane, within or on its edges).
+    Exactly,
+    /// Not on it; the sign of the side of its plane (+1 the face normal's side,
+    /// −1 the other, 0 in the plane but outside the triangle).
+    Side(f64),
+}
+
+/// Decides exactly whether `p` lies on the triangle: coplanar (`orient3d = 0`)
+/// and inside or on the boundary, tested by `orient2d` in a coordinate plane onto
+/// which the triangle projects with non-zero area (projection preserves
+/// inside-ness for coplanar points). A zero-area triangle is never "exactly on":
+/// its contacts are those of the segment or point it collapsed to.
+fn centre_on_triangle<T: Real>(p: &Vec3<T>, t: &Triangle<T>) -> OnTriangle {
+    use crate::exact::{Sign, orient2d, orient3d};
+    let w = |v: &Vec3<T>| [v.x.wide(), v.y.wide(), v.z.wide()];
+    let [a, b, cc] = t.vertices.map(|v| w(&v));
+    let q = w(p);
+    match orient3d(a, b, cc, q) {
+        // Shewchuk's sign: positive below, i.e. against the face normal.
+        Sign::Positive => return OnTriangle::Side(-1.0),
+        Sign::Negative => return OnTriangle::Side(1.0),
+        Sign::Zero => {}
+    }
+    for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+        let pr = |v: [f64; 3]| [v[i], v[j]];
+        let area = orient2d(pr(a), pr(b), pr(cc));
+        if area == Sign::Zero {
+            continue;
+        }
+        let inside = [(a, b), (b, cc), (cc, a)]
+            .iter()
+            .all(|&(u, v)| { let s = orient2d(pr(u), pr(v), pr(q)); s == area || s == Sign::Zero });
+        return if inside { OnTriangle::Exactly } else { OnTriangle::Side(0.0) };
+    }
+    OnTriangle::Side(0.0)
 }
 
 /// Contact between a triangle `a` and a sphere `b`: the reverse order of
@@ -143,5 +220,36 @@ mod tests {
         let k = contact_triangle_sphere(&tri::<f64>(), &Sphere::new(v(0.5, 0.5, 0.75), 1.0))
             .expect("overlap");
         assert!(close(k.normal.z, -1.0) && close(k.point.z, -0.25) && close(k.depth, 0.25));
+    }
+
+    #[test]
+    fn far_from_the_origin_the_normal_keeps_its_digits() {
+        // The triangle of `tri` and a centre 0.75 above (0.5, 0.5), all shifted by
+        // 2^46 (about 7e13) on x and y: the shift is exact, so the answer is the
+        // unshifted one, normal +z, depth 0.25. Without the centre's frame, `q`
+        // rounds to 2^-6 at that size and the normal tilts.
+        let s = 2f64.powi(46);
+        let t = Triangle::new(v(s, s, 0.0), v(s + 2.0, s, 0.0), v(s, s + 2.0, 0.0));
+        let k = contact_sphere_triangle(&Sphere::new(v(s + 0.5, s + 0.5, 0.75), 1.0), &t).expect("overlap");
+        assert!(close(k.normal.z, 1.0) && close(k.depth, 0.25), "{k:?}");
+    }
+
+    #[test]
+    fn a_centre_a_hair_off_the_face_gets_the_side_it_is_on() {
+        // Centre 1e-300 below the face z = 0 (inside it in x, y): the closest point
+        // rounds onto the centre, but the exact side test says below, so the
+        // normal is −z and the contact is not degenerate.
+        let k = contact_sphere_triangle(&Sphere::new(v(0.5, 0.5, -1e-300), 1.0), &tri::<f64>())
+            .expect("overlap");
+        assert!(!k.degenerate && close(k.normal.z, -1.0), "{k:?}");
+    }
+
+    #[test]
+    fn a_centre_in_the_plane_but_outside_the_triangle_is_not_degenerate() {
+        // Centre (3, 3, 0), r = 2: in the plane, beyond the hypotenuse; q = (1,1,0),
+        // ‖M − q‖ = 2√2 > 2: no contact. With r = 3: normal (1,1,0)/√2.
+        assert!(contact_sphere_triangle(&Sphere::new(v(3.0, 3.0, 0.0), 2.0), &tri::<f64>()).is_none());
+        let k = contact_sphere_triangle(&Sphere::new(v(3.0, 3.0, 0.0), 3.0), &tri::<f64>()).expect("overlap");
+        assert!(!k.degenerate && close(k.normal.x, 0.5f64.sqrt()), "{k:?}");
     }
 }
