@@ -139,3 +139,37 @@ pub struct BoundsAnswer {
     /// The engine's bounding sphere, if it computes one.
     pub sphere: Option<Ball>,
 }
+
+/// A time of impact: the first touching time and the contact then.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Toi {
+    /// First time in `[0, t_max]` at which the shapes touch.
+    pub t: f64,
+    /// Contact point at that time, on `b`'s surface (`b` moved by its velocity).
+    pub point: P3,
+    /// Unit normal at that time, from `b` toward `a`.
+    pub normal: P3,
+}
+
+/// The answer to a `toi` query.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct ToiAnswer {
+    /// The first contact in `[0, t_max]`, or `None` when the shapes never touch.
+    pub toi: Option<Toi>,
+    /// The normal is a documented fallback (concentric spheres or a centre on a
+    /// triangle at `t = 0`, shapes of zero total radius meeting at a point).
+    pub degenerate: bool,
+}
+
+/// The answer to a `response` query: velocities after one frictionless impulse.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct ResponseAnswer {
+    /// `a`'s velocity after the impulse.
+    pub velocity_a: P3,
+    /// `b`'s velocity after the impulse (zero for a static plane).
+    pub velocity_b: P3,
+    /// The normal or the impulse is a documented fallback (concentric spheres,
+    /// a mass that is not positive).
+    pub degenerate: bool,
+}

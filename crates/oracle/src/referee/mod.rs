@@ -41,6 +41,8 @@ pub mod contact;
 mod exact;
 pub mod intersect;
 pub mod overlap;
+pub mod response;
+pub mod toi;
 
 pub use barycentric::barycentric_triangle;
 pub use bounds::{aabb_of_points, enclosure_margin, min_ball};
@@ -54,6 +56,12 @@ pub use intersect::{
     intersect_segment_plane, intersect_segment_triangle,
 };
 pub use overlap::{overlap_aabb_aabb, overlap_margin_aabb_aabb};
+pub use response::{response_sphere_plane, response_sphere_sphere};
+pub use toi::{
+    toi_margin_sphere_mesh, toi_margin_sphere_plane, toi_margin_sphere_sphere,
+    toi_margin_sphere_triangle, toi_sphere_mesh, toi_sphere_plane, toi_sphere_sphere,
+    toi_sphere_triangle,
+};
 
 use std::fmt;
 

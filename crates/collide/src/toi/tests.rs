@@ -1,0 +1,1101 @@
+//! Tests of the time-of-impact queries: hand-derived cases (derivation beside
+//! each), the lecture's halving shown missing what it misses, and properties —
+//! no contact anywhere before the reported time, touching at it, no impact
+//! missed, and halving's error within `t_max / 2^k`. Every body runs for `f32`
+//! and `f64`.
+
+use super::*;
+use crate::contact::{contact_sphere_plane, contact_sphere_sphere, contact_sphere_triangle};
+use crate::real::{Real, Vec3};
+use crate::shapes::{Plane, Sphere, Triangle};
+use proptest::prelude::*;
+
+/// Hand-derived scenes have coordinates of at most 10 and answers reached by a
+/// few roundings and one or two square roots: 32 ε of the scene's scale covers
+/// them with room. Units: ε times the scene's scale (10 unless stated).
+const HAND_TOL_EPS: f64 = 32.0;
+
+/// The scale of the hand-derived scenes: their largest coordinate or
+/// displacement. Units: length (and time, for speeds of order 1).
+const HAND_SCALE: f64 = 10.0;
+
+/// How far below touching a sampled time must be to count as contact in the
+/// "no contact before `t`" checks, and how far from touching the distance at the
+/// reported `t` may be: the static tests and the closed forms each carry a few ε
+/// of the scene's scale of rounding, and an error `δt` in the time moves the
+/// distance by at most the closing speed times `δt`, itself a few ε·scale. 256
+/// keeps the properties about the methods, not about rounding. Units: ε·scale.
+const TOUCH_TOL_EPS: f64 = 256.0;
+
+/// Time error allowed against a constructed impact time: the inputs rounded to
+/// the type move the true impact by about ε·scale over the closing speed, and
+/// the method adds a few such roundings. Units: ε·scale / closing speed.
+const TIME_TOL_EPS: f64 = 64.0;
+
+/// Samples per interval in the "no contact before `t`" checks (the brief's
+/// "sampled finely").
+const SAMPLES: u32 = 200;
+
+fn v<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
+    Vec3::new(T::of(x), T::of(y), T::of(z))
+}
+
+fn eps<T: Real>() -> f64 {
+    T::EPSILON.wide()
+}
+
+fn hand_tol<T: Real>() -> f64 {
+    HAND_TOL_EPS * eps::<T>() * HAND_SCALE
+}
+
+fn close<T: Real>(got: T, want: f64, what: &str) {
+    let g = got.wide();
+    assert!(
+        (g - want).abs() <= hand_tol::<T>(),
+        "{what}: got {g}, want {want}"
+    );
+}
+
+fn close_v<T: Real>(got: &Vec3<T>, want: [f64; 3], what: &str) {
+    for (k, w) in want.iter().enumerate() {
+        let g = got[k].wide();
+        assert!(
+            (g - w).abs() <= hand_tol::<T>(),
+            "{what}[{k}]: got {got:?}, want {want:?}"
+        );
+    }
+}
+
+fn ball<T: Real>(x: f64, y: f64, z: f64, r: f64) -> Sphere<T> {
+    Sphere::new(v(x, y, z), T::of(r))
+}
+
+fn ground<T: Real>() -> Plane<T> {
+    // z = 0 with a normal of length 2: the solid is z ≤ 0.
+    Plane::new(v(0.0, 0.0, 2.0), T::zero())
+}
+
+fn tri<T: Real>() -> Triangle<T> {
+    // Right triangle in z = 0 with legs 2 on x and y; face normal +z.
+    Triangle::new(v(0.0, 0.0, 0.0), v(2.0, 0.0, 0.0), v(0.0, 2.0, 0.0))
+}
+
+fn still<T: Real>() -> Vec3<T> {
+    Vec3::zeros()
+}
+
+/// Runs a generic test body for both precisions.
+macro_rules! both {
+    ($name:ident, $body:ident) => {
+        mod $name {
+            #[test]
+            fn f32() {
+                super::$body::<f32>();
+            }
+            #[test]
+            fn f64() {
+                super::$body::<f64>();
+            }
+        }
+    };
+}
+
+// ------------------------------------------------------------ sphere–sphere
+
+fn sphere_sphere_head_on<T: Real>() {
+    // a at (−5,0,0) → +2 x, b at (5,0,0) → −2 x, radii 1: the gap 10 − 2 = 8
+    // closes at 4, so t = 2; the centres are then (−1,0,0) and (1,0,0), the normal
+    // from b toward a is −x and the point on b is (1,0,0) − x = (0,0,0).
+    let (a, va) = (ball::<T>(-5.0, 0.0, 0.0, 1.0), v::<T>(2.0, 0.0, 0.0));
+    let (b, vb) = (ball::<T>(5.0, 0.0, 0.0, 1.0), v::<T>(-2.0, 0.0, 0.0));
+    let k = toi_sphere_sphere(&a, &va, &b, &vb, T::of(3.0)).expect("head-on");
+    assert_eq!(k.status, ToiStatus::Converged);
+    assert!(!k.degenerate);
+    close(k.t, 2.0, "t");
+    close_v(&k.point, [0.0; 3], "point");
+    close_v(&k.normal, [-1.0, 0.0, 0.0], "normal");
+    // Halving brackets the same time within t_max / 2^k, never before it.
+    for steps in [0u32, 1, 5, 10] {
+        let h = toi_sphere_sphere_halving(&a, &va, &b, &vb, T::of(3.0), Halving::Steps(steps))
+            .expect("halving: the end of the interval overlaps");
+        let bound = 3.0 / f64::from(2u32.pow(steps));
+        assert!(
+            h.t.wide() >= 2.0 - hand_tol::<T>(),
+            "halving {steps}: {:?} before",
+            h.t
+        );
+        assert!(
+            h.t.wide() - 2.0 <= bound + hand_tol::<T>(),
+            "halving {steps}: {:?}",
+            h.t
+        );
+        assert_eq!(h.iterations, steps);
+        if steps >= 5 {
+            close_v(&h.normal, [-1.0, 0.0, 0.0], "halving normal");
+        } else {
+            // With 0 or 1 bisections hi is still t_max = 3, where the centres
+            // (1,0,0) and (−1,0,0) have passed each other: the static contact
+            // there points the other way. Halving's contact is the one at the
+            // overshoot, asserted as it is.
+            close_v(
+                &h.normal,
+                [1.0, 0.0, 0.0],
+                "halving normal at the overshoot",
+            );
+        }
+    }
+}
+both!(sphere_sphere_head_on_case, sphere_sphere_head_on);
+
+fn sphere_sphere_glancing<T: Real>() {
+    // a at (−5,1,0) → +x, b still at 0, radii 1 (R = 2): along = 5, h = 1,
+    // w = √(R² − h²) = √3, t = along − w = 5 − √3. Then a's centre is (−√3, 1, 0),
+    // the normal (−√3/2, 1/2, 0) and the point on b (−√3/2, 1/2, 0).
+    let k = toi_sphere_sphere(
+        &ball::<T>(-5.0, 1.0, 0.0, 1.0),
+        &v(1.0, 0.0, 0.0),
+        &ball(0.0, 0.0, 0.0, 1.0),
+        &still(),
+        T::of(10.0),
+    )
+    .expect("glancing");
+    let r3 = 3f64.sqrt();
+    close(k.t, 5.0 - r3, "t");
+    close_v(&k.normal, [-r3 / 2.0, 0.5, 0.0], "normal");
+    close_v(&k.point, [-r3 / 2.0, 0.5, 0.0], "point");
+}
+both!(sphere_sphere_glancing_case, sphere_sphere_glancing);
+
+fn sphere_sphere_grazing<T: Real>() {
+    // a at (−5,2,0) → +x past b at 0, radii 1: the closest approach is h = 2 = R,
+    // touching exactly once, at t = 5, point (0,1,0), normal +y.
+    let (a, va, b) = (
+        ball::<T>(-5.0, 2.0, 0.0, 1.0),
+        v::<T>(1.0, 0.0, 0.0),
+        ball(0.0, 0.0, 0.0, 1.0),
+    );
+    let k = toi_sphere_sphere(&a, &va, &b, &still(), T::of(10.0)).expect("grazing counts");
+    close(k.t, 5.0, "t");
+    close_v(&k.normal, [0.0, 1.0, 0.0], "normal");
+    close_v(&k.point, [0.0, 1.0, 0.0], "point");
+    // One ulp wider (y = 2(1 + ε)): h > R exactly, no impact.
+    let y = T::of(2.0) * (T::one() + T::EPSILON);
+    let wide = Sphere::new(Vec3::new(T::of(-5.0), y, T::zero()), T::one());
+    assert!(toi_sphere_sphere(&wide, &va, &b, &still(), T::of(10.0)).is_none());
+    // The lecture's halving misses the grazing touch: at t_max = 10 the spheres
+    // are apart again. Asserted as it is (tunneling, see `toi_halving`).
+    assert!(
+        toi_sphere_sphere_halving(&a, &va, &b, &still(), T::of(10.0), Halving::Steps(30)).is_none()
+    );
+}
+both!(sphere_sphere_grazing_case, sphere_sphere_grazing);
+
+fn sphere_sphere_tunneling<T: Real>() {
+    // A small fast sphere (r 0.1, speed 100) through a unit sphere within one
+    // step: the gap 10 − 1.1 = 8.9 closes at t = 0.089, and at t_max = 1 it is at
+    // x = 90, far past. The closed form finds the impact; halving, which only
+    // tests the end of the step, reports none — the lecture's known miss,
+    // asserted as it is.
+    let (a, va, b) = (
+        ball::<T>(-10.0, 0.0, 0.0, 0.1),
+        v::<T>(100.0, 0.0, 0.0),
+        ball(0.0, 0.0, 0.0, 1.0),
+    );
+    let k = toi_sphere_sphere(&a, &va, &b, &still(), T::one()).expect("closed form sees it");
+    close(k.t, 0.089, "t");
+    close_v(&k.point, [-1.0, 0.0, 0.0], "point");
+    assert!(
+        toi_sphere_sphere_halving(&a, &va, &b, &still(), T::one(), Halving::Steps(40)).is_none()
+    );
+}
+both!(sphere_sphere_tunneling_case, sphere_sphere_tunneling);
+
+fn sphere_sphere_t_max_boundary<T: Real>() {
+    // Head-on with t = 2 exactly (every step exact: along 10, w 2, c 96, q 48):
+    // t_max = 2 finds it, the largest value below 2 does not.
+    let (a, va) = (ball::<T>(-5.0, 0.0, 0.0, 1.0), v::<T>(2.0, 0.0, 0.0));
+    let (b, vb) = (ball::<T>(5.0, 0.0, 0.0, 1.0), v::<T>(-2.0, 0.0, 0.0));
+    let k = toi_sphere_sphere(&a, &va, &b, &vb, T::of(2.0)).expect("t = t_max");
+    close(k.t, 2.0, "t");
+    let below = T::of(2.0) * (T::one() - T::EPSILON / T::of(2.0));
+    assert!(toi_sphere_sphere(&a, &va, &b, &vb, below).is_none());
+}
+both!(
+    sphere_sphere_t_max_boundary_case,
+    sphere_sphere_t_max_boundary
+);
+
+fn sphere_sphere_no_impact<T: Real>() {
+    let b = ball::<T>(0.0, 0.0, 0.0, 1.0);
+    let a = ball::<T>(-5.0, 0.0, 0.0, 1.0);
+    // Moving apart, moving together (no relative motion), passing wide, and
+    // arriving after t_max (gap 3 at speed 1: t = 3 > 2).
+    assert!(toi_sphere_sphere(&a, &v(-1.0, 0.0, 0.0), &b, &still(), T::of(10.0)).is_none());
+    assert!(toi_sphere_sphere(&a, &v(1.0, 1.0, 0.0), &b, &v(1.0, 1.0, 0.0), T::of(10.0)).is_none());
+    assert!(
+        toi_sphere_sphere(
+            &ball(-5.0, 3.0, 0.0, 1.0),
+            &v(1.0, 0.0, 0.0),
+            &b,
+            &still(),
+            T::of(10.0)
+        )
+        .is_none()
+    );
+    assert!(toi_sphere_sphere(&a, &v(1.0, 0.0, 0.0), &b, &still(), T::of(2.0)).is_none());
+    // A negative t_max is the interval [0, 0].
+    assert!(toi_sphere_sphere(&a, &v(1.0, 0.0, 0.0), &b, &still(), T::of(-1.0)).is_none());
+}
+both!(sphere_sphere_no_impact_case, sphere_sphere_no_impact);
+
+fn sphere_sphere_already_overlapping<T: Real>() {
+    // Centres 1.5 apart, radii 1: overlapping at t = 0 whatever the motion:
+    // t = 0 with the static contact (normal +x, point (1,0,0), from b at 0).
+    let a = ball::<T>(1.5, 0.0, 0.0, 1.0);
+    let b = ball::<T>(0.0, 0.0, 0.0, 1.0);
+    for va in [v::<T>(1.0, 0.0, 0.0), v(-1.0, 0.0, 0.0), still()] {
+        let k = toi_sphere_sphere(&a, &va, &b, &still(), T::one()).expect("overlap");
+        assert_eq!(k.status, ToiStatus::Penetrating);
+        close(k.t, 0.0, "t");
+        close_v(&k.normal, [1.0, 0.0, 0.0], "normal");
+        close_v(&k.point, [1.0, 0.0, 0.0], "point");
+        let h = toi_sphere_sphere_halving(&a, &va, &b, &still(), T::one(), Halving::Steps(8))
+            .expect("halving: overlap");
+        assert_eq!(h.status, ToiStatus::Penetrating);
+        assert_eq!(h.iterations, 0);
+    }
+    // Touching at t = 0 counts; concentric is flagged with the fallback normal.
+    let touching = toi_sphere_sphere(
+        &ball::<T>(2.0, 0.0, 0.0, 1.0),
+        &still(),
+        &b,
+        &still(),
+        T::one(),
+    );
+    assert!(touching.is_some_and(|k| k.status == ToiStatus::Penetrating));
+    let k = toi_sphere_sphere(
+        &ball::<T>(0.0, 0.0, 0.0, 0.5),
+        &v(1.0, 0.0, 0.0),
+        &b,
+        &still(),
+        T::one(),
+    )
+    .expect("concentric");
+    assert!(k.degenerate && k.status == ToiStatus::Penetrating);
+    close_v(&k.normal, [0.0, 0.0, 1.0], "fallback normal");
+}
+both!(
+    sphere_sphere_already_overlapping_case,
+    sphere_sphere_already_overlapping
+);
+
+fn sphere_sphere_zero_radii<T: Real>() {
+    // Two points meeting head-on at the origin at t = 1 (c = 4, q = 4): no
+    // direction between them, so the normal is where a came from, −x; flagged.
+    let k = toi_sphere_sphere(
+        &ball::<T>(-1.0, 0.0, 0.0, 0.0),
+        &v(1.0, 0.0, 0.0),
+        &ball(1.0, 0.0, 0.0, 0.0),
+        &v(-1.0, 0.0, 0.0),
+        T::of(2.0),
+    )
+    .expect("points meet");
+    assert!(k.degenerate);
+    close(k.t, 1.0, "t");
+    close_v(&k.point, [0.0; 3], "point");
+    close_v(&k.normal, [-1.0, 0.0, 0.0], "normal");
+}
+both!(sphere_sphere_zero_radii_case, sphere_sphere_zero_radii);
+
+// ------------------------------------------------------------- sphere–plane
+
+fn sphere_plane_falling_ball<T: Real>() {
+    // Centre (1,2,5), r 1, falling at 2 onto z = 0 (normal of length 2): s0 = 5,
+    // t = (5 − 1)/2 = 2, point (1,2,0), normal +z.
+    let a = ball::<T>(1.0, 2.0, 5.0, 1.0);
+    let va = v::<T>(0.0, 0.0, -2.0);
+    let k = toi_sphere_plane(&a, &va, &ground(), &still(), T::of(3.0)).expect("falls");
+    assert_eq!(k.status, ToiStatus::Converged);
+    close(k.t, 2.0, "t");
+    close_v(&k.point, [1.0, 2.0, 0.0], "point");
+    close_v(&k.normal, [0.0, 0.0, 1.0], "normal");
+    // The ground rising at 2: closing speed 4, t = 1, the plane then at z = 2.
+    let k = toi_sphere_plane(&a, &va, &ground(), &v(0.0, 0.0, 2.0), T::of(3.0)).expect("meets");
+    close(k.t, 1.0, "t");
+    close_v(&k.point, [1.0, 2.0, 2.0], "point");
+    // Halving after k steps: within 3/2^k, never before.
+    for steps in [3u32, 12, 20] {
+        let h = toi_sphere_plane_halving(
+            &a,
+            &va,
+            &ground(),
+            &still(),
+            T::of(3.0),
+            Halving::Steps(steps),
+        )
+        .expect("halving");
+        let bound = 3.0 / f64::from(2u32.pow(steps));
+        assert!(h.t.wide() >= 2.0 - hand_tol::<T>() && h.t.wide() - 2.0 <= bound + hand_tol::<T>());
+    }
+    // By tolerance: the bracket ends no wider than 1e-3.
+    let h = toi_sphere_plane_halving(
+        &a,
+        &va,
+        &ground(),
+        &still(),
+        T::of(3.0),
+        Halving::Tolerance(T::of(1e-3)),
+    )
+    .expect("halving");
+    assert!(h.t.wide() - 2.0 <= 1e-3 + hand_tol::<T>(), "{:?}", h.t);
+    assert_eq!(h.iterations, 12, "3/2^12 < 1e-3 ≤ 3/2^11");
+}
+both!(sphere_plane_falling_ball_case, sphere_plane_falling_ball);
+
+fn sphere_plane_tilted<T: Real>() {
+    // Plane x + y = 0, centre (3,3,0), r 1, velocity (−1,−1,0): s0 = 3√2,
+    // closing √2, t = (3√2 − 1)/√2 = 3 − 1/√2; the sphere's lowest point is then
+    // the origin; normal (1,1,0)/√2.
+    let k = toi_sphere_plane(
+        &ball::<T>(3.0, 3.0, 0.0, 1.0),
+        &v(-1.0, -1.0, 0.0),
+        &Plane::new(v(1.0, 1.0, 0.0), T::zero()),
+        &still(),
+        T::of(5.0),
+    )
+    .expect("tilted");
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    close(k.t, 3.0 - h, "t");
+    close_v(&k.point, [0.0; 3], "point");
+    close_v(&k.normal, [h, h, 0.0], "normal");
+}
+both!(sphere_plane_tilted_case, sphere_plane_tilted);
+
+fn sphere_plane_no_impact_and_overlap<T: Real>() {
+    let a = ball::<T>(0.0, 0.0, 5.0, 1.0);
+    // Parallel motion, moving away, arriving after t_max (t = 4 > 3).
+    assert!(toi_sphere_plane(&a, &v(1.0, 0.0, 0.0), &ground(), &still(), T::of(10.0)).is_none());
+    assert!(toi_sphere_plane(&a, &v(0.0, 0.0, 1.0), &ground(), &still(), T::of(10.0)).is_none());
+    assert!(toi_sphere_plane(&a, &v(0.0, 0.0, -1.0), &ground(), &still(), T::of(3.0)).is_none());
+    // Deep in the solid half-space, or touching: t = 0, the static contact.
+    let k = toi_sphere_plane(
+        &ball::<T>(0.0, 0.0, -3.0, 1.0),
+        &v(0.0, 0.0, 1.0),
+        &ground(),
+        &still(),
+        T::one(),
+    )
+    .expect("inside");
+    assert_eq!(k.status, ToiStatus::Penetrating);
+    close_v(&k.point, [0.0; 3], "point");
+    let k = toi_sphere_plane(
+        &ball::<T>(0.0, 0.0, 1.0, 1.0),
+        &still(),
+        &ground(),
+        &still(),
+        T::one(),
+    );
+    assert!(
+        k.is_some_and(|k| k.status == ToiStatus::Penetrating),
+        "touching counts"
+    );
+    // A zero normal is no plane.
+    let none = Plane::new(still::<T>(), T::zero());
+    assert!(toi_sphere_plane(&a, &v(0.0, 0.0, -1.0), &none, &still(), T::one()).is_none());
+}
+both!(
+    sphere_plane_no_impact_and_overlap_case,
+    sphere_plane_no_impact_and_overlap
+);
+
+// ---------------------------------------------------------- sphere–triangle
+
+fn sphere_triangle_regions<T: Real>() {
+    let rule = Advancement::default();
+    // (centre, velocity, t, point, normal, steps) by hand, r = 1:
+    // face: from z = 3 down at 1, the distance is linear: one step to t = 2;
+    // edge v0v1 (y = 0): from y = −3 up at 1, in the plane: t = 2 at (1,0,0);
+    // vertex v1 = (2,0,0): from x = 5 toward −x: t = 2.
+    let cases = [
+        (
+            [0.5, 0.5, 3.0],
+            [0.0, 0.0, -1.0],
+            [0.5, 0.5, 0.0],
+            [0.0, 0.0, 1.0],
+            "face",
+        ),
+        (
+            [1.0, -3.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, -1.0, 0.0],
+            "edge",
+        ),
+        (
+            [5.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            "vertex",
+        ),
+    ];
+    for (c, vel, point, normal, what) in cases {
+        let a = ball::<T>(c[0], c[1], c[2], 1.0);
+        let va = v::<T>(vel[0], vel[1], vel[2]);
+        let k = toi_sphere_triangle(&a, &va, &tri(), &still(), T::of(5.0), &rule).expect(what);
+        assert_eq!(k.status, ToiStatus::Converged, "{what}");
+        assert!(
+            k.iterations <= 2,
+            "{what}: linear distance, {} steps",
+            k.iterations
+        );
+        close(k.t, 2.0, what);
+        close_v(&k.point, point, what);
+        close_v(&k.normal, normal, what);
+    }
+    // The triangle moving up at 1 toward a still sphere at z = 3: t = 2, and the
+    // point is on the moved triangle, (0.5, 0.5, 2).
+    let k = toi_sphere_triangle(
+        &ball::<T>(0.5, 0.5, 3.0, 1.0),
+        &still(),
+        &tri(),
+        &v(0.0, 0.0, 1.0),
+        T::of(5.0),
+        &rule,
+    )
+    .expect("moving triangle");
+    close(k.t, 2.0, "t");
+    close_v(&k.point, [0.5, 0.5, 2.0], "point");
+}
+both!(sphere_triangle_regions_case, sphere_triangle_regions);
+
+/// The grazing case below ends with a gap of at most the advancement tolerance
+/// `tol`, where the distance is `√(r² + τ²) − r ≈ τ²/(2r)` for the time `τ` left:
+/// `τ ≤ √(2 r tol)` (unit speed). The factor 2 covers the last step's rounding.
+/// Units: time.
+fn grazing_time_tol<T: Real>(scale: f64) -> f64 {
+    2.0 * (2.0 * ADVANCE_TOL_EPS * eps::<T>() * scale).sqrt() + hand_tol::<T>()
+}
+
+fn sphere_triangle_grazing_edge<T: Real>() {
+    // Centre (−1, y, 0) sliding up y at 1 from y = −5, r 1: for y < 0 the closest
+    // point is v0 at distance √(1 + y²); from y = 0 on, it slides along edge v0v2
+    // (x = 0) at distance exactly 1. First touch: t = 5, at v0, normal −x. The
+    // distance is flat there, so advancement approaches it with halving time
+    // steps; the scale is 10 (the displacement).
+    let a = ball::<T>(-1.0, -5.0, 0.0, 1.0);
+    let va = v::<T>(0.0, 1.0, 0.0);
+    let k = toi_sphere_triangle(
+        &a,
+        &va,
+        &tri(),
+        &still(),
+        T::of(10.0),
+        &Advancement::default(),
+    )
+    .expect("grazing");
+    assert_eq!(k.status, ToiStatus::Converged);
+    let tol = grazing_time_tol::<T>(10.0);
+    assert!(
+        k.t.wide() <= 5.0 + hand_tol::<T>(),
+        "conservative: {:?}",
+        k.t
+    );
+    assert!(5.0 - k.t.wide() <= tol, "t {:?}, within {tol}", k.t);
+    close_v(&k.point, [0.0; 3], "point");
+    assert!(
+        (k.normal.x.wide() + 1.0).abs() <= tol && k.normal.y.wide().abs() <= tol,
+        "{:?}",
+        k.normal
+    );
+    assert!(
+        k.iterations > 5,
+        "a grazing approach takes many steps: {}",
+        k.iterations
+    );
+    // The same pass ends clear of the triangle at t = 10 (centre (−1, 5, 0),
+    // √10 from v2): halving misses it, as the lecture's method does.
+    assert!(
+        toi_sphere_triangle_halving(&a, &va, &tri(), &still(), T::of(10.0), Halving::Steps(30))
+            .is_none()
+    );
+}
+both!(
+    sphere_triangle_grazing_edge_case,
+    sphere_triangle_grazing_edge
+);
+
+fn sphere_triangle_iteration_cap<T: Real>() {
+    // The grazing pass with a cap of 3 steps: reported as OutOfIterations, with
+    // a time before which there is no contact (the remaining time halves per
+    // step, so about 5/8 is left, a gap of ~0.18) and the separation then.
+    let rule = Advancement {
+        tol_eps: ADVANCE_TOL_EPS,
+        max_steps: 3,
+    };
+    let a = ball::<T>(-1.0, -5.0, 0.0, 1.0);
+    let va = v::<T>(0.0, 1.0, 0.0);
+    let k = toi_sphere_triangle(&a, &va, &tri(), &still(), T::of(10.0), &rule).expect("capped");
+    assert_eq!(k.status, ToiStatus::OutOfIterations);
+    assert_eq!(k.iterations, 3);
+    assert!(k.t > T::zero() && k.t.wide() < 5.0, "{:?}", k.t);
+    let moved = Sphere::new(a.center + va * k.t, a.radius);
+    assert!(
+        contact_sphere_triangle(&moved, &tri()).is_none(),
+        "t is safe"
+    );
+    close_v(&k.point, [0.0; 3], "closest point of b");
+}
+both!(
+    sphere_triangle_iteration_cap_case,
+    sphere_triangle_iteration_cap
+);
+
+fn sphere_triangle_tunneling<T: Real>() {
+    // A small fast sphere (r 0.1, speed 10) through the face within one step:
+    // t = (3 − 0.1)/10 = 0.29, and at t_max = 1 it is 7 below. Advancement finds
+    // it; halving reports none (asserted as it is).
+    let a = ball::<T>(0.5, 0.5, 3.0, 0.1);
+    let va = v::<T>(0.0, 0.0, -10.0);
+    let k = toi_sphere_triangle(&a, &va, &tri(), &still(), T::one(), &Advancement::default())
+        .expect("seen");
+    close(k.t, 0.29, "t");
+    close_v(&k.normal, [0.0, 0.0, 1.0], "normal");
+    assert!(
+        toi_sphere_triangle_halving(&a, &va, &tri(), &still(), T::one(), Halving::Steps(40))
+            .is_none()
+    );
+    // With the step ending inside the sheet's reach (t_max = 0.3), halving sees it.
+    let h = toi_sphere_triangle_halving(&a, &va, &tri(), &still(), T::of(0.3), Halving::Steps(20))
+        .expect("seen");
+    assert!(
+        h.t.wide() >= 0.29 - hand_tol::<T>()
+            && h.t.wide() - 0.29 <= 0.3 / f64::from(1u32 << 20) + hand_tol::<T>()
+    );
+}
+both!(sphere_triangle_tunneling_case, sphere_triangle_tunneling);
+
+fn sphere_triangle_no_impact_and_overlap<T: Real>() {
+    let rule = Advancement::default();
+    let a = ball::<T>(0.5, 0.5, 3.0, 1.0);
+    // Moving away, sideways past the triangle, arriving after t_max.
+    assert!(
+        toi_sphere_triangle(&a, &v(0.0, 0.0, 1.0), &tri(), &still(), T::of(10.0), &rule).is_none()
+    );
+    assert!(
+        toi_sphere_triangle(&a, &v(1.0, 0.0, 0.0), &tri(), &still(), T::of(10.0), &rule).is_none()
+    );
+    assert!(
+        toi_sphere_triangle(&a, &v(0.0, 0.0, -1.0), &tri(), &still(), T::one(), &rule).is_none()
+    );
+    // Overlapping at t = 0 (depth 0.25): Penetrating with the static contact.
+    let k = toi_sphere_triangle(
+        &ball::<T>(0.5, 0.5, 0.75, 1.0),
+        &v(0.0, 0.0, 1.0),
+        &tri(),
+        &still(),
+        T::one(),
+        &rule,
+    )
+    .expect("overlap");
+    assert_eq!(k.status, ToiStatus::Penetrating);
+    close(k.t, 0.0, "t");
+    close_v(&k.point, [0.5, 0.5, 0.0], "point");
+    // A centre on the face at t = 0: the static fallback (face normal), flagged.
+    let k = toi_sphere_triangle(
+        &ball::<T>(0.5, 0.5, 0.0, 1.0),
+        &still(),
+        &tri(),
+        &still(),
+        T::one(),
+        &rule,
+    )
+    .expect("on the face");
+    assert!(k.degenerate);
+    close_v(&k.normal, [0.0, 0.0, 1.0], "face normal");
+}
+both!(
+    sphere_triangle_no_impact_and_overlap_case,
+    sphere_triangle_no_impact_and_overlap
+);
+
+fn sphere_triangle_zero_radius<T: Real>() {
+    // A point falling onto the face from z = 3 at 1: t = 3 at (0.5, 0.5, 0); no
+    // direction between a point and the face it touches, so the normal is where
+    // it came from, +z; flagged.
+    let k = toi_sphere_triangle(
+        &ball::<T>(0.5, 0.5, 3.0, 0.0),
+        &v(0.0, 0.0, -1.0),
+        &tri(),
+        &still(),
+        T::of(5.0),
+        &Advancement::default(),
+    )
+    .expect("point hits");
+    assert!(k.degenerate);
+    close(k.t, 3.0, "t");
+    close_v(&k.point, [0.5, 0.5, 0.0], "point");
+    close_v(&k.normal, [0.0, 0.0, 1.0], "normal");
+}
+both!(
+    sphere_triangle_zero_radius_case,
+    sphere_triangle_zero_radius
+);
+
+fn zero_area_triangle<T: Real>() {
+    // A triangle collapsed onto the segment x ∈ [0, 2] (v2 repeats v1): a sphere
+    // falling onto its middle from z = 3 touches at t = 2, point (1,0,0), +z.
+    let flat = Triangle::new(v::<T>(0.0, 0.0, 0.0), v(2.0, 0.0, 0.0), v(2.0, 0.0, 0.0));
+    let k = toi_sphere_triangle(
+        &ball::<T>(1.0, 0.0, 3.0, 1.0),
+        &v(0.0, 0.0, -1.0),
+        &flat,
+        &still(),
+        T::of(5.0),
+        &Advancement::default(),
+    )
+    .expect("segment");
+    assert!(!k.degenerate);
+    close(k.t, 2.0, "t");
+    close_v(&k.point, [1.0, 0.0, 0.0], "point");
+}
+both!(zero_area_triangle_case, zero_area_triangle);
+
+// --------------------------------------------------------------- properties
+
+/// A scene in `f64`, rounded to the type under test when run.
+#[derive(Clone, Debug)]
+struct Scene {
+    a: ([f64; 3], f64),
+    va: [f64; 3],
+    b: [[f64; 3]; 3],
+    rb: f64,
+    vb: [f64; 3],
+    t_max: f64,
+}
+
+fn p3() -> impl Strategy<Value = [f64; 3]> {
+    [-4.0..4.0f64, -4.0..4.0f64, -4.0..4.0f64]
+}
+
+fn vel() -> impl Strategy<Value = [f64; 3]> {
+    [-6.0..6.0f64, -6.0..6.0f64, -6.0..6.0f64]
+}
+
+fn random_scene() -> impl Strategy<Value = Scene> {
+    (
+        p3(),
+        0.05..1.2f64,
+        vel(),
+        [p3(), p3(), p3()],
+        0.05..1.2f64,
+        vel(),
+        0.1..2.0f64,
+    )
+        .prop_map(|(ca, ra, va, b, rb, vb, t_max)| Scene {
+            a: (ca, ra),
+            va,
+            b,
+            rb,
+            vb,
+            t_max,
+        })
+}
+
+fn scene() -> impl Strategy<Value = Scene> {
+    // Aimed: `a` heads for a point of `b` (a barycentric mix of its vertices),
+    // reaching it at a time around t_max, with some jitter: impacts, near misses
+    // and grazes become common.
+    let aimed = (
+        random_scene(),
+        [0.0..1.0f64, 0.0..1.0f64, 0.0..1.0f64],
+        0.3..1.5f64,
+        [-0.5..0.5f64, -0.5..0.5f64, -0.5..0.5f64],
+    )
+        .prop_map(|(mut s, w, when, jitter)| {
+            let sum = w[0] + w[1] + w[2] + 1e-3;
+            let target: [f64; 3] = std::array::from_fn(|k| {
+                (w[0] * s.b[0][k] + w[1] * s.b[1][k] + w[2] * s.b[2][k]) / sum
+            });
+            let t = when * s.t_max;
+            s.va = std::array::from_fn(|k| (target[k] - s.a.0[k]) / t + s.vb[k] + jitter[k]);
+            s
+        });
+    prop_oneof![1 => random_scene(), 3 => aimed]
+}
+
+fn vt<T: Real>(p: &[f64; 3]) -> Vec3<T> {
+    v(p[0], p[1], p[2])
+}
+
+fn amax<T: Real>(p: &Vec3<T>) -> f64 {
+    p.iter().map(|x| x.wide().abs()).fold(0.0, f64::max)
+}
+
+/// The scale of a scene: its largest coordinate, radius or displacement.
+fn scale<T: Real>(points: &[Vec3<T>], radii: f64, v: &Vec3<T>, t_max: f64) -> f64 {
+    points
+        .iter()
+        .map(amax)
+        .fold(radii.max(amax(v) * t_max), f64::max)
+}
+
+/// What a pair answers at time `t` (a static test on the moved shapes, with
+/// `a`'s radius changed by `dr`), for the sampling checks.
+trait Pair<T: Real> {
+    fn touches_at(&self, t: T, dr: T) -> bool;
+    fn scale(&self) -> f64;
+}
+
+struct Spheres<T: Real> {
+    a: Sphere<T>,
+    va: Vec3<T>,
+    b: Sphere<T>,
+    vb: Vec3<T>,
+    t_max: T,
+}
+
+impl<T: Real> Pair<T> for Spheres<T> {
+    fn touches_at(&self, t: T, dr: T) -> bool {
+        let r = (self.a.radius + dr).max(T::zero());
+        contact_sphere_sphere(
+            &Sphere::new(self.a.center + self.va * t, r),
+            &Sphere::new(self.b.center + self.vb * t, self.b.radius),
+        )
+        .is_some()
+    }
+    fn scale(&self) -> f64 {
+        scale(
+            &[self.a.center, self.b.center],
+            self.a.radius.wide() + self.b.radius.wide(),
+            &(self.va - self.vb),
+            self.t_max.wide(),
+        )
+    }
+}
+
+struct HalfSpace<T: Real> {
+    a: Sphere<T>,
+    va: Vec3<T>,
+    b: Plane<T>,
+    vb: Vec3<T>,
+    t_max: T,
+}
+
+impl<T: Real> Pair<T> for HalfSpace<T> {
+    fn touches_at(&self, t: T, dr: T) -> bool {
+        let r = (self.a.radius + dr).max(T::zero());
+        let plane = Plane::new(
+            self.b.normal,
+            self.b.offset + self.b.normal.dot(&self.vb) * t,
+        );
+        contact_sphere_plane(&Sphere::new(self.a.center + self.va * t, r), &plane).is_some()
+    }
+    fn scale(&self) -> f64 {
+        let offset = self.b.offset.wide().abs() / self.b.normal.norm().wide();
+        scale(
+            &[self.a.center],
+            self.a.radius.wide().max(offset),
+            &(self.va - self.vb),
+            self.t_max.wide(),
+        )
+    }
+}
+
+struct Sheet<T: Real> {
+    a: Sphere<T>,
+    va: Vec3<T>,
+    b: Triangle<T>,
+    vb: Vec3<T>,
+    t_max: T,
+}
+
+impl<T: Real> Pair<T> for Sheet<T> {
+    fn touches_at(&self, t: T, dr: T) -> bool {
+        let r = (self.a.radius + dr).max(T::zero());
+        let d = self.vb * t;
+        let [v0, v1, v2] = self.b.vertices;
+        contact_sphere_triangle(
+            &Sphere::new(self.a.center + self.va * t, r),
+            &Triangle::new(v0 + d, v1 + d, v2 + d),
+        )
+        .is_some()
+    }
+    fn scale(&self) -> f64 {
+        let [v0, v1, v2] = self.b.vertices;
+        scale(
+            &[self.a.center, v0, v1, v2],
+            self.a.radius.wide(),
+            &(self.va - self.vb),
+            self.t_max.wide(),
+        )
+    }
+}
+
+/// The shared property: a converged answer has no contact anywhere on `[0, t)`
+/// (200 samples, `a` shrunk by the touch tolerance) and touches at `t` (`a`
+/// grown by it: `extra` adds a method's own stopping tolerance); a penetrating
+/// one touches at 0; an out-of-iterations one has no contact before its `t`; no
+/// answer means no contact anywhere on `[0, t_max]` (200 samples, shrunk).
+fn check_answer<T: Real>(
+    pair: &impl Pair<T>,
+    got: Option<Toi<T>>,
+    t_max: T,
+    extra: f64,
+) -> Result<(), TestCaseError> {
+    let scale = pair.scale();
+    let delta = T::of(TOUCH_TOL_EPS * eps::<T>() * scale);
+    let samples = |end: T| -> Option<T> {
+        (0..=SAMPLES)
+            .map(|i| end * T::of(f64::from(i) / f64::from(SAMPLES)))
+            .find(|&t| pair.touches_at(t, -delta))
+    };
+    match got {
+        None => {
+            let hit = samples(t_max);
+            prop_assert!(
+                hit.is_none(),
+                "no impact reported, but in contact at t = {:?}",
+                hit
+            );
+        }
+        Some(k) => {
+            prop_assert!(
+                k.t >= T::zero() && k.t <= t_max,
+                "t {:?} outside [0, {:?}]",
+                k.t,
+                t_max
+            );
+            prop_assert!(
+                k.point.iter().chain(k.normal.iter()).all(|x| x.finite()),
+                "non-finite {k:?}"
+            );
+            prop_assert!(
+                (k.normal.norm().wide() - 1.0).abs() <= TOUCH_TOL_EPS * eps::<T>(),
+                "normal not unit: {k:?}"
+            );
+            match k.status {
+                ToiStatus::Penetrating => {
+                    prop_assert!(
+                        k.t == T::zero() && pair.touches_at(T::zero(), T::zero()),
+                        "penetrating at 0"
+                    );
+                }
+                ToiStatus::Converged | ToiStatus::OutOfIterations => {
+                    // Strictly before t: the last sample is t·199/200.
+                    let before = k.t * T::of(f64::from(SAMPLES - 1) / f64::from(SAMPLES));
+                    let hit = samples(before);
+                    prop_assert!(hit.is_none(), "contact at {:?} before t = {:?}", hit, k.t);
+                    if k.status == ToiStatus::Converged {
+                        let grow = delta + T::of(extra);
+                        prop_assert!(pair.touches_at(k.t, grow), "not touching at t = {:?}", k.t);
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn spheres_of<T: Real>(s: &Scene) -> Spheres<T> {
+    Spheres {
+        a: Sphere::new(vt(&s.a.0), T::of(s.a.1)),
+        va: vt(&s.va),
+        b: Sphere::new(vt(&s.b[0]), T::of(s.rb)),
+        vb: vt(&s.vb),
+        t_max: T::of(s.t_max),
+    }
+}
+
+fn check_sphere_sphere<T: Real>(s: &Scene) -> Result<(), TestCaseError> {
+    let p = spheres_of::<T>(s);
+    let got = toi_sphere_sphere(&p.a, &p.va, &p.b, &p.vb, p.t_max);
+    check_answer(&p, got, p.t_max, 0.0)
+}
+
+fn check_sphere_plane<T: Real>(s: &Scene) -> Result<(), TestCaseError> {
+    // The plane through b's first vertex with b's second vertex as its normal.
+    let n = vt::<T>(&s.b[1]);
+    prop_assume!(n.norm().wide() > 0.1);
+    let p = HalfSpace {
+        a: Sphere::new(vt(&s.a.0), T::of(s.a.1)),
+        va: vt(&s.va),
+        b: Plane::new(n, n.dot(&vt(&s.b[0]))),
+        vb: vt(&s.vb),
+        t_max: T::of(s.t_max),
+    };
+    let got = toi_sphere_plane(&p.a, &p.va, &p.b, &p.vb, p.t_max);
+    check_answer(&p, got, p.t_max, 0.0)
+}
+
+fn check_sphere_triangle<T: Real>(s: &Scene) -> Result<(), TestCaseError> {
+    let p = Sheet {
+        a: Sphere::new(vt(&s.a.0), T::of(s.a.1)),
+        va: vt(&s.va),
+        b: Triangle::new(vt(&s.b[0]), vt(&s.b[1]), vt(&s.b[2])),
+        vb: vt(&s.vb),
+        t_max: T::of(s.t_max),
+    };
+    let got = toi_sphere_triangle(&p.a, &p.va, &p.b, &p.vb, p.t_max, &Advancement::default());
+    let tol = ADVANCE_TOL_EPS * eps::<T>() * p.scale() * 2.0;
+    check_answer(&p, got, p.t_max, tol)?;
+    // Whatever halving sees, advancement sees too (it sees more: tunneling).
+    let halving =
+        toi_sphere_triangle_halving(&p.a, &p.va, &p.b, &p.vb, p.t_max, Halving::Steps(30));
+    if halving.is_some() {
+        prop_assert!(
+            got.is_some(),
+            "halving found {halving:?}, advancement nothing"
+        );
+    }
+    Ok(())
+}
+
+/// Runs a generic property for both precisions.
+macro_rules! prop_both {
+    ($cases:expr, $name:ident, $strat:expr, $check:ident) => {
+        mod $name {
+            use super::*;
+            proptest! {
+                #![proptest_config(ProptestConfig::with_cases($cases))]
+                #[test]
+                fn f32(s in $strat) { $check::<f32>(&s)?; }
+                #[test]
+                fn f64(s in $strat) { $check::<f64>(&s)?; }
+            }
+        }
+    };
+}
+
+prop_both!(
+    512,
+    sphere_sphere_no_contact_before_and_touching_at_t,
+    scene(),
+    check_sphere_sphere
+);
+prop_both!(
+    512,
+    sphere_plane_no_contact_before_and_touching_at_t,
+    scene(),
+    check_sphere_plane
+);
+prop_both!(
+    256,
+    sphere_triangle_no_contact_before_and_touching_at_t,
+    scene(),
+    check_sphere_triangle
+);
+
+/// A sphere–sphere impact built backwards from its answer: contact normal `n`,
+/// relative velocity `v` meeting it at an angle whose cosine is at least 0.2
+/// (away from grazing, where `t` is ill-conditioned), impact time `t*`, and
+/// `t_max` inside the time the spheres overlap after it, so that the end of the
+/// interval intersects and halving applies.
+#[derive(Clone, Debug)]
+struct Built {
+    ra: f64,
+    rb: f64,
+    cb: [f64; 3],
+    vb: [f64; 3],
+    n: [f64; 3],
+    m: [f64; 3],
+    speed: f64,
+    cos: f64,
+    t_star: f64,
+    frac: f64,
+}
+
+fn built() -> impl Strategy<Value = Built> {
+    (
+        (0.1..2.0f64, 0.1..2.0f64, p3(), vel()),
+        (
+            p3(),
+            p3(),
+            0.5..5.0f64,
+            0.2..1.0f64,
+            0.05..2.0f64,
+            0.1..0.9f64,
+        ),
+    )
+        .prop_map(
+            |((ra, rb, cb, vb), (n, m, speed, cos, t_star, frac))| Built {
+                ra,
+                rb,
+                cb,
+                vb,
+                n,
+                m,
+                speed,
+                cos,
+                t_star,
+                frac,
+            },
+        )
+}
+
+fn unit(p: [f64; 3]) -> Option<Vec3<f64>> {
+    let v = Vec3::new(p[0], p[1], p[2]);
+    (v.norm() > 0.1).then(|| v.normalize())
+}
+
+fn check_built<T: Real>(s: &Built) -> Result<(), TestCaseError> {
+    let (Some(n), Some(m0)) = (unit(s.n), unit(s.m)) else {
+        return Err(TestCaseError::reject("short direction"));
+    };
+    let Some(m) = unit((m0 - n * n.dot(&m0)).into()) else {
+        return Err(TestCaseError::reject("parallel directions"));
+    };
+    let sin = (1.0 - s.cos * s.cos).sqrt();
+    let v = (-n * s.cos + m * sin) * s.speed;
+    let r = s.ra + s.rb;
+    let cb = Vec3::new(s.cb[0], s.cb[1], s.cb[2]);
+    let ca = cb + n * r - v * s.t_star;
+    let duration = 2.0 * r * s.cos / s.speed;
+    let t_max = s.t_star + s.frac * duration;
+    let a = Sphere::new(vt::<T>(&ca.into()), T::of(s.ra));
+    let b = Sphere::new(vt::<T>(&s.cb), T::of(s.rb));
+    let vb = vt::<T>(&s.vb);
+    let va = vb + vt::<T>(&v.into());
+    let scale = scale(&[a.center, b.center], r, &(va - vb), t_max);
+    let time_tol = TIME_TOL_EPS * eps::<T>() * scale / (s.speed * s.cos);
+    let closed = toi_sphere_sphere(&a, &va, &b, &vb, T::of(t_max));
+    let closed = closed.ok_or_else(|| TestCaseError::fail("closed form: no impact"))?;
+    prop_assert!(
+        (closed.t.wide() - s.t_star).abs() <= time_tol,
+        "closed form t {:?}, want {}",
+        closed.t,
+        s.t_star
+    );
+    for k in [0u32, 1, 4, 12, 24] {
+        let h = toi_sphere_sphere_halving(&a, &va, &b, &vb, T::of(t_max), Halving::Steps(k))
+            .ok_or_else(|| TestCaseError::fail(format!("halving {k}: no impact")))?;
+        let err = h.t.wide() - s.t_star;
+        let bound = t_max / 2f64.powi(k as i32);
+        prop_assert!(
+            err >= -time_tol,
+            "halving {k}: {:?} before t* = {}",
+            h.t,
+            s.t_star
+        );
+        prop_assert!(
+            err <= bound + time_tol,
+            "halving {k}: error {err} > t_max/2^k = {bound}"
+        );
+        // The same bound measured against the closed form's answer.
+        let vs_closed = h.t.wide() - closed.t.wide();
+        prop_assert!(
+            vs_closed >= -2.0 * time_tol && vs_closed <= bound + 2.0 * time_tol,
+            "halving {k}: {:?} vs closed form {:?}, bound {bound}",
+            h.t,
+            closed.t
+        );
+    }
+    Ok(())
+}
+
+prop_both!(
+    512,
+    halving_error_within_t_max_over_two_to_the_k,
+    built(),
+    check_built
+);
