@@ -7,7 +7,7 @@
 //! silently become a default); a case's own unknown keys are ignored, so a case
 //! written elsewhere with a comment field still runs.
 
-use oracle::geom::{Aabb, Contact, P3, SegmentHit};
+use oracle::geom::{Aabb, Contact, P3, SegmentHit, Toi};
 use schemars::JsonSchema;
 use serde::{Deserialize, Deserializer, Serialize};
 
@@ -251,18 +251,6 @@ pub struct AabbSpec {
     pub max: P3,
 }
 
-/// A time of impact: the first touching time and the contact then.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct Toi {
-    /// First time in `[0, t_max]` at which the shapes touch.
-    pub t: f64,
-    /// Contact point at that time (on `b`'s surface).
-    pub point: P3,
-    /// Unit normal at that time, from `b` toward `a`.
-    pub normal: P3,
-}
-
 /// An expected answer. Every field is optional; a check compares only what is
 /// named. For `contact`, `hit` and `toi`, `null` means "nothing is found" and is
 /// distinct from the field's absence.
@@ -359,4 +347,25 @@ pub fn json_schema() -> String {
     let mut text = serde_json::to_string_pretty(&schema).unwrap_or_default();
     text.push('\n');
     text
+}
+
+impl Case {
+    /// `t_max` in force (default [`DEFAULT_T_MAX`]).
+    pub fn t_max(&self) -> f64 {
+        self.t_max.unwrap_or(DEFAULT_T_MAX)
+    }
+}
+
+impl Shape {
+    /// The shape's velocity (zero when not given or not movable).
+    pub fn velocity(&self) -> P3 {
+        match self {
+            Shape::Sphere(s) => s.velocity,
+            Shape::Plane(p) => p.velocity,
+            Shape::Triangle(t) => t.velocity,
+            Shape::Mesh(m) => m.velocity,
+            _ => None,
+        }
+        .unwrap_or([0.0; 3])
+    }
 }

@@ -109,6 +109,15 @@ pub fn answer_as_expect(a: &Answer) -> Expect {
             e.min_radius = b.sphere.map(|s| s.radius);
         }
         Answer::Overlap(o) => e.overlap = Some(*o),
+        Answer::Toi(t) => {
+            e.toi = Some(t.toi);
+            e.degenerate = Some(t.degenerate);
+        }
+        Answer::Response(r) => {
+            e.velocity_a = Some(r.velocity_a);
+            e.velocity_b = Some(r.velocity_b);
+            e.degenerate = Some(r.degenerate);
+        }
     }
     e
 }

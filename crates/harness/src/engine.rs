@@ -10,7 +10,8 @@ use crate::case::{Query, Shape};
 use crate::load::LoadedCase;
 use crate::mesh::Mesh;
 use oracle::geom::{
-    Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, Segment, Sphere, Triangle,
+    Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, ResponseAnswer, Segment, Sphere,
+    ToiAnswer, Triangle,
 };
 use std::fmt;
 
@@ -27,6 +28,10 @@ pub enum Answer {
     Bounds(BoundsAnswer),
     /// `overlap`.
     Overlap(bool),
+    /// `toi`.
+    Toi(ToiAnswer),
+    /// `response`.
+    Response(ResponseAnswer),
 }
 
 /// The engine does not answer this kind of case, with the reason.
@@ -96,6 +101,40 @@ pub trait Queries: Send + Sync {
     /// `overlap`, two boxes.
     fn overlap(&self, a: &Aabb, b: &Aabb) -> Reply<bool> {
         unsupported("AABB overlap")
+    }
+    /// `toi`, sphere `a` moving at `va` against sphere `b` moving at `vb`.
+    fn toi_sphere_sphere(&self, a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        unsupported("sphere–sphere time of impact")
+    }
+    /// `toi`, sphere against plane.
+    fn toi_sphere_plane(&self, a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        unsupported("sphere–plane time of impact")
+    }
+    /// `toi`, sphere against triangle.
+    fn toi_sphere_triangle(&self, a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        unsupported("sphere–triangle time of impact")
+    }
+    /// `toi`, sphere against mesh.
+    fn toi_sphere_mesh(&self, a: &Sphere, va: &P3, b: &Mesh, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        unsupported("sphere–mesh time of impact")
+    }
+    /// `response`, two spheres with velocities and masses, restitution `e`.
+    #[allow(clippy::too_many_arguments)]
+    fn response_sphere_sphere(
+        &self,
+        a: &Sphere,
+        va: &P3,
+        ma: f64,
+        b: &Sphere,
+        vb: &P3,
+        mb: f64,
+        e: f64,
+    ) -> Reply<ResponseAnswer> {
+        unsupported("sphere–sphere response")
+    }
+    /// `response`, a sphere with velocity against a static plane, restitution `e`.
+    fn response_sphere_plane(&self, a: &Sphere, va: &P3, b: &Plane, e: f64) -> Reply<ResponseAnswer> {
+        unsupported("sphere–plane response")
     }
 }
 
@@ -172,6 +211,37 @@ impl Engine {
                 None => Err(Unsupported("mesh not loaded".into())),
             },
             (Query::Overlap, S::Aabb(a), Some(S::Aabb(b))) => q.overlap(&a.to_geom(), &b.to_geom()).map(Answer::Overlap),
+            (Query::Toi, S::Sphere(a), Some(bs)) => {
+                let (va, vb, t_max) = (case.a.velocity(), bs.velocity(), case.t_max());
+                let a = a.to_geom();
+                match bs {
+                    S::Sphere(b) => q.toi_sphere_sphere(&a, &va, &b.to_geom(), &vb, t_max),
+                    S::Plane(b) => q.toi_sphere_plane(&a, &va, &b.to_geom(), &vb, t_max),
+                    S::Triangle(b) => q.toi_sphere_triangle(&a, &va, &b.to_geom(), &vb, t_max),
+                    S::Mesh(_) => match &lc.meshes[1] {
+                        Some(m) => q.toi_sphere_mesh(&a, &va, m, &vb, t_max),
+                        None => Err(Unsupported("mesh not loaded".into())),
+                    },
+                    other => Err(Unsupported(format!("toi against {}", other.kind()))),
+                }
+                .map(Answer::Toi)
+            }
+            // Masses and restitution are required of response cases when they are
+            // loaded; the defaults below only keep this function total.
+            (Query::Response, S::Sphere(a), Some(S::Sphere(b))) => q
+                .response_sphere_sphere(
+                    &a.to_geom(),
+                    &case.a.velocity(),
+                    a.mass.unwrap_or(1.0),
+                    &b.to_geom(),
+                    &case.b.as_ref().map(Shape::velocity).unwrap_or_default(),
+                    b.mass.unwrap_or(1.0),
+                    case.restitution.unwrap_or(1.0),
+                )
+                .map(Answer::Response),
+            (Query::Response, S::Sphere(a), Some(S::Plane(b))) => q
+                .response_sphere_plane(&a.to_geom(), &case.a.velocity(), &b.to_geom(), case.restitution.unwrap_or(1.0))
+                .map(Answer::Response),
             (query, a, b) => Err(Unsupported(format!(
                 "{query} of {}{} is not implemented by the harness yet",
                 a.kind(),

@@ -46,6 +46,8 @@ pub fn degenerate(answer: &Answer) -> bool {
         Answer::Contact(a) => a.degenerate,
         Answer::Intersect(a) => a.degenerate,
         Answer::Barycentric(a) => a.degenerate,
+        Answer::Toi(a) => a.degenerate,
+        Answer::Response(a) => a.degenerate,
         Answer::Bounds(_) | Answer::Overlap(_) => false,
     }
 }
@@ -150,6 +152,27 @@ pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
                 }
             }
         }
+        Answer::Toi(a) => {
+            if let Some(want) = &e.toi {
+                match (want, &a.toi) {
+                    (None, None) => {}
+                    (Some(w), Some(g)) => {
+                        cmp1(&mut out, "toi.t", w.t, g.t, tol);
+                        cmp3(&mut out, "toi.point", &w.point, &g.point, tol);
+                        cmp3(&mut out, "toi.normal", &w.normal, &g.normal, tol);
+                    }
+                    (w, g) => out.push(mm("toi", w, g)),
+                }
+            }
+        }
+        Answer::Response(a) => {
+            if let Some(w) = &e.velocity_a {
+                cmp3(&mut out, "velocity_a", w, &a.velocity_a, tol);
+            }
+            if let Some(w) = &e.velocity_b {
+                cmp3(&mut out, "velocity_b", w, &a.velocity_b, tol);
+            }
+        }
     }
     out
 }
@@ -218,6 +241,10 @@ pub struct Errors {
     pub t: Option<f64>,
     /// Largest barycentric coordinate error.
     pub barycentric: Option<f64>,
+    /// Largest velocity component error (response), relative to the largest
+    /// input speed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<f64>,
     /// The classification differs from the referee's, and how.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub misclass: Option<Misclass>,
@@ -305,6 +332,8 @@ fn all_finite(answer: &Answer) -> bool {
                 && a.sphere.is_none_or(|s| f3(&s.center) && s.radius.is_finite())
         }
         Answer::Overlap(_) => true,
+        Answer::Toi(a) => a.toi.is_none_or(|t| t.t.is_finite() && f3(&t.point) && f3(&t.normal)),
+        Answer::Response(a) => f3(&a.velocity_a) && f3(&a.velocity_b),
     }
 }
 
@@ -432,6 +461,45 @@ pub fn judge(lc: &LoadedCase, answer: &Answer, truth: &Answer, tol: &Tolerance, 
             if g != w {
                 class.push(format!("overlap: {g} (referee {w})"));
                 if *g { fp(&mut e) } else { fneg(&mut e) }
+            }
+        }
+        (Answer::Toi(g), Answer::Toi(w)) => match (&g.toi, &w.toi) {
+            (Some(gt), Some(wt)) => {
+                // A time is judged relative to the interval: t_max plays the
+                // scene's scale for the time axis.
+                let t_scale = lc.case.t_max().max(f64::MIN_POSITIVE);
+                let dt = (gt.t - wt.t).abs();
+                e.t = Some(dt / t_scale);
+                if !(dt <= tol.rel * t_scale) {
+                    value.push(format!("t off by {dt:.3e} (allowed {:.1e})", tol.rel * t_scale));
+                }
+                len("point", dist3(&gt.point, &wt.point), &mut e.point, &mut value);
+                let a = angle(&gt.normal, &wt.normal);
+                e.normal = Some(a);
+                if !(a <= tol.normal_rad) {
+                    value.push(format!("normal off by {a:.3e} rad (allowed {:.1e})", tol.normal_rad));
+                }
+            }
+            (None, None) => {}
+            (Some(_), None) => {
+                class.push("false impact (referee: none)".into());
+                fp(&mut e);
+            }
+            (None, Some(_)) => {
+                class.push("missed impact (referee: impact)".into());
+                fneg(&mut e);
+            }
+        },
+        (Answer::Response(g), Answer::Response(w)) => {
+            let speed = [lc.case.a.velocity(), lc.case.b.as_ref().map(Shape::velocity).unwrap_or_default()]
+                .iter()
+                .flatten()
+                .fold(0.0_f64, |m, x| m.max(x.abs()));
+            let speed = if speed > 0.0 { speed } else { 1.0 };
+            let err = dist3(&g.velocity_a, &w.velocity_a).max(dist3(&g.velocity_b, &w.velocity_b));
+            e.velocity = Some(err / speed);
+            if !(err <= tol.rel * speed) {
+                value.push(format!("velocity off by {err:.3e} (allowed {:.1e})", tol.rel * speed));
             }
         }
         _ => class.push("answer of another query kind".into()),

@@ -18,58 +18,81 @@ use crate::shapes::Triangle;
 /// closest point on a segment, a zero-length edge being its endpoint), which is
 /// the exact answer for a triangle collapsed onto a segment or a point.
 pub fn closest_pt_point_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Vec3<T> {
+    closest_pt_point_triangle_region(p, tri).0
+}
+
+/// Which feature of a triangle a closest point lies on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Region {
+    /// A vertex or an edge (or a zero-area triangle's segment).
+    Boundary,
+    /// The open face.
+    Face,
+}
+
+/// [`closest_pt_point_triangle`], with the region the point was found in. A
+/// triangle whose vertices are exactly collinear (decided exactly) goes straight
+/// to its edges: Ericson's region tests assume a non-zero area, and on a
+/// zero-area triangle they can pick an edge region whose point is not the
+/// nearest.
+pub(crate) fn closest_pt_point_triangle_region<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Vec3<T>, Region) {
+    let w = |v: &Vec3<T>| [v.x.wide(), v.y.wide(), v.z.wide()];
     let [a, b, c] = tri.vertices;
+    if crate::exact::collinear(w(&a), w(&b), w(&c)) {
+        return (nearest_on_edges(p, tri), Region::Boundary);
+    }
+    let q = |x: Vec3<T>| (x, Region::Boundary);
     let ab = b - a;
     let ac = c - a;
     let ap = p - a;
     let d1 = ab.dot(&ap);
     let d2 = ac.dot(&ap);
     if d1 <= T::zero() && d2 <= T::zero() {
-        return a;
+        return q(a);
     }
     let bp = p - b;
     let d3 = ab.dot(&bp);
     let d4 = ac.dot(&bp);
     if d3 >= T::zero() && d4 <= d3 {
-        return b;
+        return q(b);
     }
     let vc = d1 * d4 - d3 * d2;
     if vc <= T::zero() && d1 >= T::zero() && d3 <= T::zero() {
         let v = d1 / (d1 - d3);
         if v.finite() {
-            return a + ab * v;
+            return q(a + ab * v);
         }
     }
     let cp = p - c;
     let d5 = ab.dot(&cp);
     let d6 = ac.dot(&cp);
     if d6 >= T::zero() && d5 <= d6 {
-        return c;
+        return q(c);
     }
     let vb = d5 * d2 - d1 * d6;
     if vb <= T::zero() && d2 >= T::zero() && d6 <= T::zero() {
         let w = d2 / (d2 - d6);
         if w.finite() {
-            return a + ac * w;
+            return q(a + ac * w);
         }
     }
     let va = d3 * d6 - d5 * d4;
     if va <= T::zero() && (d4 - d3) >= T::zero() && (d5 - d6) >= T::zero() {
         let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
         if w.finite() {
-            return b + (c - b) * w;
+            return q(b + (c - b) * w);
         }
     }
     let denom = va + vb + vc;
     if denom > T::zero() && denom.finite() {
         let v = vb / denom;
         let w = vc / denom;
-        let q = a + ab * v + ac * w;
-        if crate::real::finite3(&q) {
-            return q;
+        let x = a + ab * v + ac * w;
+        if crate::real::finite3(&x) {
+            return (x, Region::Face);
         }
     }
-    nearest_on_edges(p, tri)
+    (nearest_on_edges(p, tri), Region::Boundary)
 }
 
 /// The closest point of segment `[a, b]` to `p` (a zero-length segment is `a`).
@@ -86,7 +109,7 @@ pub fn closest_pt_point_segment<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) 
     a + ab * t
 }
 
-fn nearest_on_edges<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Vec3<T> {
+pub(crate) fn nearest_on_edges<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Vec3<T> {
     let [a, b, c] = tri.vertices;
     let candidates = [
         closest_pt_point_segment(p, &a, &b),

@@ -1,6 +1,7 @@
 //! Sphere–plane contact.
 
 use super::Contact;
+use crate::exact::norm::safe_squared_range;
 use crate::real::{Real, Vec3, c};
 use crate::shapes::{Plane, Sphere};
 
@@ -23,6 +24,13 @@ use crate::shapes::{Plane, Sphere};
 /// The lecture has no other method beside this one: the formula is one dot product
 /// and is already well conditioned (its error is a few ulps of `|M|` and `d`).
 ///
+/// **Cost.** Where `n · n` lies in the range in which its plain square root
+/// loses nothing (`[2^−918, 2^920]` in `f64`), `s = (n · M − d) · (1/√(n · n))`:
+/// one root, one division; a centre clearly beyond `r` is answered from the
+/// squares `(n · M − d)² > r² (n · n)` without the root, with the same
+/// decision. Other normals, and scenes whose distance overflows, take the
+/// scaled path described below.
+///
 /// **Degenerate input.** A zero (or non-finite) normal defines no plane: the answer
 /// is `None`; crashtest's fixtures refuse such planes as malformed before they
 /// reach here. A scene whose signed distance overflows (coordinates near the top of
@@ -30,6 +38,48 @@ use crate::shapes::{Plane, Sphere};
 /// if the penetration still overflows it is saturated to the largest finite value
 /// and the contact is flagged `degenerate`.
 pub fn contact_sphere_plane<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<Contact<T>> {
+    let nn = b.normal.norm_squared();
+    let (lo, hi) = safe_squared_range::<T>();
+    if nn >= lo && nn <= hi {
+        // s' = n · M − d = s ‖n‖. A centre clearly farther than r from the
+        // plane needs no root: s' > 0 and s'² > r² (n · n)(1 + 16u), with both
+        // squares accurate (≥ lo), implies s' / ‖n‖ > r (1 + 6u), so the
+        // computed s below would exceed r too.
+        let sp = b.normal.dot(&a.center) - b.offset;
+        let (sp2, r2) = (sp * sp, a.radius * a.radius);
+        if sp > T::zero() && sp2 >= lo && r2 >= lo && sp2 > r2 * nn * clear_miss_factor::<T>() {
+            return None;
+        }
+        let inv = T::one() / nn.sqrt();
+        let s = sp * inv;
+        if s.finite() {
+            if s > a.radius {
+                return None;
+            }
+            let n = b.normal * inv;
+            let depth = a.radius - s;
+            let point = a.center - n * s;
+            if depth.finite() && crate::real::finite3(&point) {
+                return Some(Contact { point, normal: n, depth, degenerate: false });
+            }
+        }
+    }
+    contact_sphere_plane_scaled(a, b)
+}
+
+/// `1 + 16u` (`u` the unit roundoff of `T`): covers the four roundings of the
+/// squared test (`s'²`, `r²`, `r² (n · n)`, the factor) and the three of the
+/// computed `s = s' · (1/√(n · n))`, with `2u` to spare (see
+/// [`contact_sphere_plane`]).
+#[inline(always)]
+fn clear_miss_factor<T: Real>() -> T {
+    T::one() + c::<T>(8.0) * T::EPSILON
+}
+
+/// The scaled path of [`contact_sphere_plane`]: a normal whose squared length
+/// would underflow or overflow, or a scene whose signed distance overflows.
+#[inline(never)]
+fn contact_sphere_plane_scaled<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<Contact<T>> {
     let len = crate::real::stable_norm(&b.normal);
     if len == T::zero() || !len.finite() {
         return None;

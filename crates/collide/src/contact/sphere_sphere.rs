@@ -1,6 +1,7 @@
 //! Sphere–sphere contact: the lecture's form and the robust form.
 
 use super::Contact;
+use crate::exact::norm::safe_squared_range;
 use crate::real::{Real, Vec3, c, try_normalize_stable};
 use crate::shapes::Sphere;
 
@@ -54,13 +55,60 @@ pub fn contact_sphere_sphere_lecture<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> O
 /// [`crate::real::stable_norm`] does), so only exactly concentric spheres lack a
 /// normal.
 ///
+/// **Cost.** Where `‖M1 − M2‖²` lies in the range in which the plain sum of
+/// squares loses nothing (`[2^−918, 2^920]` in `f64`), the distance is its
+/// plain square root and the normal `Δ · (1/‖Δ‖)`: one root and one division;
+/// a pair apart by more than the roundings (`‖Δ‖² > (r1 + r2)² (1 + 8u)`) is
+/// answered from the squares alone, with the same decision. Outside that
+/// range the components are scaled first, as above.
+///
 /// **Degenerate input.** Concentric centres (`M1 = M2` exactly): normal
 /// [`CONCENTRIC_FALLBACK_NORMAL`], point `M2 + r2 n`, depth `r1 + r2`, flagged.
 /// Centres so far apart that `M1 − M2` overflows are compared at half scale
 /// (exact); they are never in contact with finite radii below the overflow
 /// threshold, and a contact whose depth overflows is flagged.
 pub fn contact_sphere_sphere<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> Option<Contact<T>> {
-    let mut delta = a.center - b.center;
+    let delta = a.center - b.center;
+    let dd = delta.norm_squared();
+    let (lo, hi) = safe_squared_range::<T>();
+    if dd >= lo && dd <= hi {
+        // The plain distance is as accurate as the scaled one here (see
+        // `safe_squared_range`), and a clear miss needs no root at all.
+        let reach = a.radius + b.radius;
+        if dd > reach * reach * clear_miss_factor::<T>() {
+            return None;
+        }
+        let dist = dd.sqrt();
+        if dist > reach {
+            return None;
+        }
+        let normal = delta * (T::one() / dist);
+        let depth = reach - dist;
+        return Some(Contact {
+            point: b.center + normal * b.radius,
+            normal,
+            depth,
+            degenerate: !depth.finite(),
+        });
+    }
+    contact_sphere_sphere_scaled(a, b, delta)
+}
+
+/// `1 + 8u` (`u` the unit roundoff of `T`): a computed `‖Δ‖²` above
+/// `fl(fl(reach²) · (1 + 8u))` exceeds `reach² (1 + 5u)` exactly, so
+/// `fl(√‖Δ‖²) > reach (1 + 2u) > reach`: the test `dist > reach` would say
+/// "apart" too, and the square root is skipped. Shared by the contact queries
+/// and the batch API, which make the same decisions.
+#[inline(always)]
+pub(crate) fn clear_miss_factor<T: Real>() -> T {
+    T::one() + c::<T>(4.0) * T::EPSILON
+}
+
+/// The robust form's scaled path: centres whose squared distance would
+/// underflow or overflow (see [`contact_sphere_sphere`]).
+#[inline(never)]
+fn contact_sphere_sphere_scaled<T: Real>(a: &Sphere<T>, b: &Sphere<T>, delta: Vec3<T>) -> Option<Contact<T>> {
+    let mut delta = delta;
     let mut scale = T::one();
     if !crate::real::finite3(&delta) {
         let h: T = c(0.5);

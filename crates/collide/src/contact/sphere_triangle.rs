@@ -1,7 +1,7 @@
 //! Sphere–triangle contact.
 
 use super::Contact;
-use super::closest_pt_triangle::closest_pt_point_triangle;
+use super::closest_pt_triangle::{Region, closest_pt_point_triangle, closest_pt_point_triangle_region, nearest_on_edges};
 use super::sphere_sphere::CONCENTRIC_FALLBACK_NORMAL;
 use crate::real::{Real, Vec3, c, stable_norm, try_normalize_stable};
 use crate::shapes::{Sphere, Triangle};
@@ -36,14 +36,33 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
     // coordinates of opposite signs near the top of the range: then the global
     // frame is used.
     let [v0, v1, v2] = b.vertices;
+    let wide = |v: &Vec3<T>| [v.x.wide(), v.y.wide(), v.z.wide()];
+    let flat = crate::exact::collinear(wide(&v0), wide(&v1), wide(&v2));
     let local = Triangle::new(v0 - a.center, v1 - a.center, v2 - a.center);
-    let (q, delta) = if local.vertices.iter().all(crate::real::finite3) {
-        let q_local = closest_pt_point_triangle(&Vec3::zeros(), &local);
-        (a.center + q_local, -q_local)
+    let (q, delta, region) = if local.vertices.iter().all(crate::real::finite3) {
+        let (q_local, region) = if flat {
+            (nearest_on_edges(&Vec3::zeros(), &local), Region::Boundary)
+        } else {
+            closest_pt_point_triangle_region(&Vec3::zeros(), &local)
+        };
+        (a.center + q_local, -q_local, region)
     } else {
-        let q = closest_pt_point_triangle(&a.center, b);
-        (q, a.center - q)
+        let (q, region) = closest_pt_point_triangle_region(&a.center, b);
+        (q, a.center - q, region)
     };
+    // In the face region the direction is the face normal and the distance the
+    // plane distance; both come accurately from exact-filtered volumes, where
+    // the closest point's own rounding would tilt the normal of a thin triangle
+    // by (its rounding) / (the distance).
+    if region == Region::Face {
+        if let Some((n, d)) = face_normal_and_distance(wide(&a.center), [wide(&v0), wide(&v1), wide(&v2)]) {
+            let (normal, dist) = (Vec3::new(c(n[0]), c(n[1]), c(n[2])), c::<T>(d));
+            if !(dist <= a.radius) {
+                return None;
+            }
+            return Some(Contact { point: a.center - normal * dist, normal, depth: a.radius - dist, degenerate: false });
+        }
+    }
     let dist = stable_norm(&delta);
     if !(dist <= a.radius) {
         return None;
@@ -80,6 +99,50 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
         },
     };
     Some(Contact { point: q, normal, depth: a.radius - dist, degenerate: false })
+}
+
+/// The unit face normal on `p`'s side and `p`'s distance from the triangle's
+/// plane, from the triangle's cross product and the volume `orient3d`, each
+/// refined to a relative error of 2^-40 by the exact filters: accurate however
+/// thin the triangle. `None` for `p` in the plane, a zero-area triangle, or a
+/// distance beyond `f64`'s range.
+fn face_normal_and_distance(p: [f64; 3], v: [[f64; 3]; 3]) -> Option<([f64; 3], f64)> {
+    use crate::exact::{Estimate, Sign, cross_estimate, orient3d_estimate};
+    const REL: f64 = 1.0 / (1u64 << 40) as f64;
+    let vol = orient3d_estimate(v[0], v[1], v[2], p, REL);
+    let n = cross_estimate(v[0], v[1], v[2], REL);
+    let unit = Estimate::unit_vector(n)?;
+    let emax = n.iter().filter(|e| e.sign != Sign::Zero).map(|e| e.exp).max()?;
+    let norm = n
+        .iter()
+        .filter(|e| e.sign != Sign::Zero)
+        .map(|e| {
+            let m = e.mant * pow2(e.exp - emax);
+            m * m
+        })
+        .sum::<f64>()
+        .sqrt();
+    // orient3d is −n · (p − v0): positive when p is on the side n points away from.
+    let side = match vol.sign {
+        Sign::Zero => return None,
+        Sign::Positive => -1.0,
+        Sign::Negative => 1.0,
+    };
+    let d = vol.mant / norm * pow2(vol.exp - emax);
+    d.is_finite().then_some((unit.map(|x| x * side), d))
+}
+
+/// `2^k` as an `f64` (0 below the subnormal range, infinity above the top).
+fn pow2(k: i64) -> f64 {
+    if k < -1074 {
+        0.0
+    } else if k > 1023 {
+        f64::INFINITY
+    } else if k < -1022 {
+        f64::from_bits(1u64 << (k + 1074))
+    } else {
+        f64::from_bits(((k + 1023) as u64) << 52)
+    }
 }
 
 /// Where a point is with respect to a triangle, decided exactly.

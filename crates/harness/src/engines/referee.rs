@@ -5,7 +5,10 @@ use crate::case::{Query, Shape};
 use crate::engine::{Queries, Reply, Unsupported};
 use crate::load::LoadedCase;
 use crate::mesh::Mesh;
-use oracle::geom::{Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, Segment, Sphere, Triangle};
+use oracle::geom::{
+    Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, ResponseAnswer, Segment, Sphere,
+    ToiAnswer, Triangle,
+};
 use oracle::referee::{self, RefereeError};
 
 /// The referee's queries.
@@ -50,6 +53,33 @@ impl Queries for RefereeQueries {
     fn overlap(&self, a: &Aabb, b: &Aabb) -> Reply<bool> {
         r(referee::overlap_aabb_aabb(a, b))
     }
+    fn toi_sphere_sphere(&self, a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        r(referee::toi_sphere_sphere(a, va, b, vb, t_max))
+    }
+    fn toi_sphere_plane(&self, a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        r(referee::toi_sphere_plane(a, va, b, vb, t_max))
+    }
+    fn toi_sphere_triangle(&self, a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        r(referee::toi_sphere_triangle(a, va, b, vb, t_max))
+    }
+    fn toi_sphere_mesh(&self, a: &Sphere, va: &P3, b: &Mesh, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        r(referee::toi_sphere_mesh(a, va, &b.vertices, &b.triangles, vb, t_max))
+    }
+    fn response_sphere_sphere(
+        &self,
+        a: &Sphere,
+        va: &P3,
+        ma: f64,
+        b: &Sphere,
+        vb: &P3,
+        mb: f64,
+        e: f64,
+    ) -> Reply<ResponseAnswer> {
+        r(referee::response_sphere_sphere(a, va, ma, b, vb, mb, e))
+    }
+    fn response_sphere_plane(&self, _a: &Sphere, va: &P3, b: &Plane, e: f64) -> Reply<ResponseAnswer> {
+        r(referee::response_sphere_plane(va, b, e))
+    }
 }
 
 fn length(s: &Segment) -> f64 {
@@ -83,6 +113,18 @@ pub fn margin(lc: &LoadedCase) -> Option<f64> {
         }
         (Query::Overlap, S::Aabb(a), Some(S::Aabb(b))) => {
             referee::overlap_margin_aabb_aabb(&a.to_geom(), &b.to_geom()).ok()
+        }
+        (Query::Toi, S::Sphere(a), Some(bs)) => {
+            let (va, vb, t_max, a) = (case.a.velocity(), bs.velocity(), case.t_max(), a.to_geom());
+            match bs {
+                S::Sphere(b) => referee::toi_margin_sphere_sphere(&a, &va, &b.to_geom(), &vb, t_max).ok(),
+                S::Plane(b) => referee::toi_margin_sphere_plane(&a, &va, &b.to_geom(), &vb, t_max).ok(),
+                S::Triangle(b) => referee::toi_margin_sphere_triangle(&a, &va, &b.to_geom(), &vb, t_max).ok(),
+                S::Mesh(_) => lc.meshes[1].as_ref().and_then(|m| {
+                    referee::toi_margin_sphere_mesh(&a, &va, &m.vertices, &m.triangles, &vb, t_max).ok()
+                }),
+                _ => None,
+            }
         }
         _ => None,
     }
