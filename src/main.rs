@@ -25,8 +25,61 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Run the campaign (every fixture, seeded random cases per query kind, every
+    /// engine, timings) and write a report: reports/<id>/index.html, summary.md,
+    /// summary.json, discrepancies.json, charts/*.svg; reports/latest names it.
+    Report {
+        /// Random cases per query kind.
+        #[arg(long, default_value_t = harness::report::campaign::DEFAULT_CASES)]
+        cases: u64,
+        /// Seed of the random cases.
+        #[arg(long, default_value_t = harness::report::campaign::DEFAULT_SEED)]
+        seed: u64,
+        /// Folder the report folders go in.
+        #[arg(long, default_value = "reports")]
+        out: PathBuf,
+        /// Only this query kind (contact, intersect, barycentric, bounds, overlap).
+        #[arg(long, value_parser = parse_query)]
+        only: Option<harness::case::Query>,
+        /// Run one deterministic slice of the cases, `i/n` (0-based): shard i of n.
+        /// Join shard reports with `crashtest merge`.
+        #[arg(long, value_parser = parse_shard)]
+        shard: Option<(u32, u32)>,
+        /// Fixture files or folders to include.
+        #[arg(long, default_value = "fixtures")]
+        fixtures: Vec<PathBuf>,
+        /// Skip the timing loops.
+        #[arg(long)]
+        no_timing: bool,
+    },
+    /// Join shard reports (folders written by `report --shard`) into one report.
+    Merge {
+        /// The shard report folders.
+        #[arg(required = true)]
+        reports: Vec<PathBuf>,
+        /// Folder the merged report folder goes in.
+        #[arg(long, default_value = "reports")]
+        out: PathBuf,
+    },
     /// Print the JSON Schema of the fixture format (crashtest-fixture/1).
     Schema,
+}
+
+fn parse_query(s: &str) -> Result<harness::case::Query, String> {
+    harness::case::Query::ALL
+        .into_iter()
+        .find(|q| q.as_str() == s)
+        .ok_or_else(|| format!("unknown query `{s}` (contact, intersect, barycentric, bounds, overlap)"))
+}
+
+fn parse_shard(s: &str) -> Result<(u32, u32), String> {
+    let (i, n) = s.split_once('/').ok_or("expected i/n, for example 0/4")?;
+    let i: u32 = i.trim().parse().map_err(|e| format!("shard index: {e}"))?;
+    let n: u32 = n.trim().parse().map_err(|e| format!("shard count: {e}"))?;
+    if n == 0 || i >= n {
+        return Err(format!("shard {i}/{n}: need 0 ≤ i < n"));
+    }
+    Ok((i, n))
 }
 
 fn main() -> ExitCode {
@@ -45,6 +98,83 @@ fn main() -> ExitCode {
                 print!("{}", harness::check::render_text(&result));
             }
             ExitCode::from(result.exit_code() as u8)
+        }
+        Command::Report { cases, seed, out, only, shard, fixtures, no_timing } => {
+            let config = harness::report::campaign::Config {
+                seed,
+                cases_per_query: cases,
+                only,
+                shard,
+                fixtures,
+                timing: !no_timing,
+                progress: true,
+            };
+            let started = std::time::SystemTime::now();
+            let outcome = harness::report::campaign::run(&config, harness::report::provenance::here());
+            let mut id = format!("{}-seed{seed}", harness::report::provenance::stamp(started));
+            if let Some((i, n)) = shard {
+                id.push_str(&format!("-shard{i}of{n}"));
+            }
+            for e in &outcome.input_errors {
+                eprintln!("error: {e}");
+            }
+            match harness::report::write::write_outcome(&out, &id, &outcome) {
+                Ok(dir) => {
+                    let p = &outcome.summary.provenance;
+                    println!(
+                        "{} cases ({} fixtures, {} random) in {:.1} s; {} discrepancies",
+                        p.fixture_cases + p.random_cases,
+                        p.fixture_cases,
+                        p.random_cases,
+                        p.wall_seconds,
+                        outcome.summary.discrepancies
+                    );
+                    for (name, rate) in &outcome.summary.throughput {
+                        println!("  {name}: {rate:.0} cases/s");
+                    }
+                    println!("report: {}", dir.join("index.html").display());
+                }
+                Err(e) => {
+                    eprintln!("error: cannot write the report under {}: {e}", out.display());
+                    return ExitCode::from(1);
+                }
+            }
+            ExitCode::from(if outcome.input_errors.is_empty() { 0 } else { 2 })
+        }
+        Command::Merge { reports, out } => {
+            let mut read = Vec::new();
+            for dir in &reports {
+                match harness::report::write::read_report(dir) {
+                    Ok(r) => read.push(r),
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::from(2);
+                    }
+                }
+            }
+            let (summary, discrepancies) = match harness::report::write::merge(&read) {
+                Ok(m) => m,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            let id = format!(
+                "{}-seed{}-merged",
+                harness::report::provenance::stamp(std::time::SystemTime::now()),
+                summary.provenance.seed
+            );
+            let files = harness::report::write::render_files(&summary, &discrepancies);
+            match harness::report::write::write_report(&out, &id, &files) {
+                Ok(dir) => {
+                    println!("merged {} shards: {}", reports.len(), dir.join("index.html").display());
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: cannot write the report under {}: {e}", out.display());
+                    ExitCode::from(1)
+                }
+            }
         }
         Command::Schema => {
             print!("{}", harness::case::json_schema());

@@ -534,7 +534,18 @@ fn bary_extra(lc: &LoadedCase, tol: &Tolerance, scale: f64) -> f64 {
     let longest = norm(&u).max(norm(&v)).max(norm(&w));
     let twice_area = norm(&n);
     if twice_area > 0.0 {
+        // A point at height D off the plane moves its projection by D times the
+        // plane's tilt, and a sliver's plane tilts by about ε · scale · L / ‖n‖
+        // when its vertices move by ε · scale: the factor (1 + D · L / ‖n‖).
+        let height = match &lc.case.a {
+            Shape::Point(p) => {
+                let d = sub(&p.at, &a);
+                (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]).abs() / twice_area
+            }
+            _ => 0.0,
+        };
         crate::tolerance::BARY_CONDITION_ULPS * tol.eps * scale * longest / twice_area
+            * (1.0 + height * longest / twice_area)
     } else {
         f64::INFINITY
     }

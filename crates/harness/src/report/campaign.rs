@@ -1,0 +1,422 @@
+//! The campaign behind `crashtest report`: every fixture plus seeded random cases
+//! per query kind, through every engine, judged against the referee, with
+//! timings; folded into a [`Summary`] and a list of [`Discrepancy`].
+//!
+//! Cases are judged in parallel (rayon) and folded in case order, so the same seed
+//! gives the same summary whatever the thread count. Timing runs afterwards, one
+//! engine at a time on one thread, over the same cases.
+
+use crate::case::{Case, Expect, FixtureFile, Query, SCHEMA};
+use crate::check::{CaseResult, check_case, run_caught};
+use crate::engine::Engine;
+use crate::engines;
+use crate::judge::{Errors, Misclass, Verdict};
+use crate::load::{LoadedCase, load_paths};
+use crate::report::summary::{Dist, EngineInfo, EngineQueryStats, Provenance, Summary, Timing};
+use crate::tolerance::Tolerance;
+use rayon::prelude::*;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// The query kinds the random campaign generates.
+pub const CAMPAIGN_QUERIES: [Query; 5] =
+    [Query::Contact, Query::Intersect, Query::Barycentric, Query::Bounds, Query::Overlap];
+
+/// The built-in campaign's random cases per query kind.
+pub const DEFAULT_CASES: u64 = 10_000;
+
+/// The built-in campaign's seed.
+pub const DEFAULT_SEED: u64 = 20_261_122;
+
+/// At most this many discrepancies per engine and query kind are written out in
+/// full (the summary counts all of them): enough to study every failure family,
+/// few enough to keep `discrepancies.json` readable.
+pub const MAX_DISCREPANCIES_PER_GROUP: usize = 25;
+
+/// Timing loops run over at most this many cases per query kind: enough to mix
+/// the families as the campaign does, small enough that a repetition takes
+/// milliseconds.
+pub const TIMING_CASES: usize = 2_000;
+
+/// Repetitions of each timing loop; the median is reported with the spread.
+pub const TIMING_REPS: u32 = 7;
+
+/// What to run.
+#[derive(Clone, Debug)]
+pub struct Config {
+    /// Seed of the random cases.
+    pub seed: u64,
+    /// Random cases per query kind, before sharding.
+    pub cases_per_query: u64,
+    /// Only this query kind (fixtures included only for it).
+    pub only: Option<Query>,
+    /// This shard `(i, n)`, 0 ≤ i < n: the cases with index in
+    /// `[i·N/n, (i+1)·N/n)` of each query kind, and the fixtures for shard 0 only.
+    pub shard: Option<(u32, u32)>,
+    /// Fixture files or folders.
+    pub fixtures: Vec<PathBuf>,
+    /// Whether to time the engines.
+    pub timing: bool,
+    /// Whether to draw a progress bar (only on a terminal).
+    pub progress: bool,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self {
+            seed: DEFAULT_SEED,
+            cases_per_query: DEFAULT_CASES,
+            only: None,
+            shard: None,
+            fixtures: vec![PathBuf::from("fixtures")],
+            timing: true,
+            progress: true,
+        }
+    }
+}
+
+/// One disagreement or failure, with everything needed to reproduce it: its case
+/// as a fixture (`crashtest check` on `fixture` shows the same verdict), every
+/// engine's answer, the errors and the tolerance.
+#[derive(Clone, Debug, Serialize)]
+pub struct Discrepancy {
+    /// The engine that disagreed or failed.
+    pub engine: String,
+    /// The query kind.
+    pub query: Query,
+    /// Where the case came from (its fixture file, or its generator).
+    pub origin: String,
+    /// Its verdict and reasons.
+    pub verdict: Verdict,
+    /// Its errors against the referee (absolute lengths).
+    pub errors: Errors,
+    /// The scene's scale (relative errors divide by it).
+    pub scale: f64,
+    /// The tolerances the engine was held to.
+    pub tolerance: ToleranceJson,
+    /// Every engine's answer, and the referee's, as a fixture's `expect`.
+    pub answers: BTreeMap<String, Expect>,
+    /// The case as a fixture file whose `expect` is the referee's answer.
+    pub fixture: FixtureFile,
+}
+
+/// A [`Tolerance`] as written in a report.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ToleranceJson {
+    /// Relative to the scene's scale.
+    pub rel: f64,
+    /// Normals, radians.
+    pub normal_rad: f64,
+    /// Segment parameters and barycentrics.
+    pub unitless: f64,
+}
+
+/// The campaign's outcome.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    /// The summary (`summary.json`).
+    pub summary: Summary,
+    /// The discrepancies written out (`discrepancies.json`), capped per group.
+    pub discrepancies: Vec<Discrepancy>,
+    /// Input errors met reading the fixtures (the run went on without them).
+    pub input_errors: Vec<String>,
+}
+
+/// The slice `[lo, hi)` of `0..n` that shard `i` of `count` takes.
+pub fn shard_range(n: u64, shard: Option<(u32, u32)>) -> (u64, u64) {
+    match shard {
+        None => (0, n),
+        Some((i, count)) => {
+            let (i, count) = (u128::from(i), u128::from(count.max(1)));
+            let n = u128::from(n);
+            ((n * i / count) as u64, (n * (i + 1) / count) as u64)
+        }
+    }
+}
+
+/// Every case the campaign runs, fixtures first, then random cases query by query.
+pub fn cases(config: &Config) -> (Vec<LoadedCase>, Vec<String>) {
+    let mut out = Vec::new();
+    let mut errors = Vec::new();
+    if config.shard.is_none_or(|(i, _)| i == 0) {
+        let loaded = load_paths(&config.fixtures);
+        errors.extend(loaded.errors.iter().map(|e| e.to_string()));
+        out.extend(loaded.cases.into_iter().filter(|c| config.only.is_none_or(|q| c.case.query == q)));
+    }
+    let (lo, hi) = shard_range(config.cases_per_query, config.shard);
+    for q in CAMPAIGN_QUERIES {
+        if config.only.is_some_and(|o| o != q) {
+            continue;
+        }
+        let generated: Vec<LoadedCase> =
+            (lo..hi).into_par_iter().map(|i| crate::generate::generate(q, config.seed, i)).collect();
+        out.extend(generated);
+    }
+    (out, errors)
+}
+
+/// The engines and their versions, for the provenance.
+pub fn engine_infos(judged: &[Engine]) -> Vec<EngineInfo> {
+    let mut v: Vec<EngineInfo> = judged
+        .iter()
+        .map(|e| EngineInfo {
+            name: e.name.clone(),
+            version: if e.name.starts_with("parry") {
+                format!("{} {} ({})", e.name, oracle::parry::PARRY_VERSION, precision_name(e.precision))
+            } else {
+                format!("collide {} ({})", env!("CARGO_PKG_VERSION"), precision_name(e.precision))
+            },
+        })
+        .collect();
+    v.push(EngineInfo {
+        name: engines::REFEREE.into(),
+        version: format!(
+            "exact rationals, {}-bit floats for square roots (dashu 0.6)",
+            oracle::referee::PRECISION_BITS
+        ),
+    });
+    v
+}
+
+fn precision_name(p: Option<u32>) -> &'static str {
+    match p {
+        Some(53) => "f64",
+        Some(24) => "f32",
+        _ => "exact",
+    }
+}
+
+fn headline(e: &Errors, scale: f64) -> f64 {
+    [
+        e.point.map(|x| x / scale),
+        e.depth.map(|x| x.abs() / scale),
+        e.normal,
+        e.t,
+        e.barycentric,
+    ]
+    .into_iter()
+    .flatten()
+    .fold(0.0, f64::max)
+}
+
+fn stats_for<'a>(map: &'a mut BTreeMap<(usize, Query), EngineQueryStats>, ix: usize, name: &str, q: Query) -> &'a mut EngineQueryStats {
+    map.entry((ix, q)).or_insert_with(|| EngineQueryStats { engine: name.to_string(), query: Some(q), ..Default::default() })
+}
+
+/// Folds one case's results into the statistics.
+fn fold(map: &mut BTreeMap<(usize, Query), EngineQueryStats>, c: &CaseResult) {
+    for (ix, r) in c.engines.iter().enumerate() {
+        let s = stats_for(map, ix, &r.engine, c.query);
+        s.cases += 1;
+        let e = &r.errors;
+        let record_values = |s: &mut EngineQueryStats| {
+            let add = |d: &mut Dist, x: Option<f64>| {
+                if let Some(x) = x {
+                    d.add(x)
+                }
+            };
+            add(&mut s.point_abs, e.point);
+            add(&mut s.point_rel, e.point.map(|x| x / c.scale));
+            add(&mut s.depth_abs, e.depth.map(f64::abs));
+            add(&mut s.depth_rel, e.depth.map(|x| x.abs() / c.scale));
+            add(&mut s.normal_rad, e.normal);
+            add(&mut s.t, e.t);
+            add(&mut s.barycentric, e.barycentric);
+        };
+        match &r.verdict {
+            Verdict::Agree => {
+                s.agree += 1;
+                record_values(s);
+                s.headline.add(headline(e, c.scale));
+            }
+            Verdict::Borderline { .. } => {
+                s.borderline += 1;
+                record_values(s);
+                s.headline.add(headline(e, c.scale));
+            }
+            Verdict::Disagree { .. } => {
+                s.disagree += 1;
+                record_values(s);
+                match e.misclass {
+                    Some(Misclass::FalsePositive) => s.false_positives += 1,
+                    Some(Misclass::FalseNegative) => s.false_negatives += 1,
+                    Some(Misclass::Flag) => s.flag_mismatches += 1,
+                    None => {}
+                }
+                s.headline.add(if e.misclass.is_some() { 1.0 } else { headline(e, c.scale) });
+            }
+            Verdict::KnownDivergence { .. } => s.known += 1,
+            Verdict::Unsupported { .. } => s.unsupported += 1,
+            Verdict::Failed { .. } => {
+                s.failed += 1;
+                s.headline.add(1.0);
+            }
+        }
+    }
+}
+
+fn discrepancy(c: &CaseResult, lc: &LoadedCase, ix: usize, tol: Tolerance) -> Discrepancy {
+    let r = &c.engines[ix];
+    let mut answers = BTreeMap::new();
+    for e in &c.engines {
+        if let Some(a) = &e.answer {
+            answers.insert(e.engine.clone(), a.clone());
+        }
+    }
+    if let Some(a) = &c.referee {
+        answers.insert(engines::REFEREE.into(), a.clone());
+    }
+    let case = Case { expect: c.referee.clone().map(|mut e| {
+        // Bounding spheres are checked by their radius; the AABB exactly.
+        if lc.case.query != Query::Bounds {
+            e.min_radius = None;
+        }
+        e
+    }), ..lc.case.clone() };
+    Discrepancy {
+        engine: r.engine.clone(),
+        query: c.query,
+        origin: if lc.case.source.starts_with("generated") { lc.case.source.clone() } else { c.file.clone() },
+        verdict: r.verdict.clone(),
+        errors: r.errors,
+        scale: c.scale,
+        tolerance: ToleranceJson { rel: tol.rel, normal_rad: tol.normal_rad, unitless: tol.unitless },
+        answers,
+        fixture: FixtureFile { schema: SCHEMA.into(), cases: vec![case] },
+    }
+}
+
+/// Times `engine` on `cases`: [`TIMING_REPS`] repetitions of a loop over them;
+/// `None` when it answers none of them.
+pub fn time_engine(engine: &Engine, cases: &[&LoadedCase]) -> Option<Timing> {
+    let answered: Vec<&LoadedCase> =
+        cases.iter().copied().filter(|lc| run_caught(engine, lc).is_ok()).take(TIMING_CASES).collect();
+    if answered.is_empty() {
+        return None;
+    }
+    let mut per_query = Vec::with_capacity(TIMING_REPS as usize);
+    for _ in 0..TIMING_REPS {
+        let start = Instant::now();
+        for lc in &answered {
+            let _ = std::hint::black_box(engine.run(std::hint::black_box(lc)));
+        }
+        per_query.push(start.elapsed().as_nanos() as f64 / answered.len() as f64);
+    }
+    per_query.sort_by(f64::total_cmp);
+    Some(Timing {
+        median_ns: per_query[per_query.len() / 2],
+        min_ns: per_query[0],
+        max_ns: per_query[per_query.len() - 1],
+        reps: TIMING_REPS,
+        queries: answered.len() as u64,
+    })
+}
+
+/// Runs the campaign.
+pub fn run(config: &Config, provenance: Provenance) -> Outcome {
+    let wall = Instant::now();
+    let judged = engines::judged();
+    let referee = engines::referee();
+    let (cases, input_errors) = cases(config);
+    let bar = progress_bar(config.progress, cases.len() as u64);
+    let results: Vec<CaseResult> = cases
+        .par_iter()
+        .map(|lc| {
+            let r = check_case(lc, &judged, &referee);
+            bar.inc(1);
+            r
+        })
+        .collect();
+    bar.finish_and_clear();
+
+    let mut map = BTreeMap::new();
+    let mut discrepancies = Vec::new();
+    let mut per_group: BTreeMap<(usize, Query), usize> = BTreeMap::new();
+    let mut total_discrepancies = 0u64;
+    for (c, lc) in results.iter().zip(&cases) {
+        fold(&mut map, c);
+        for (ix, r) in c.engines.iter().enumerate() {
+            if matches!(r.verdict, Verdict::Disagree { .. } | Verdict::Failed { .. }) {
+                total_discrepancies += 1;
+                let n = per_group.entry((ix, c.query)).or_default();
+                if *n < MAX_DISCREPANCIES_PER_GROUP {
+                    *n += 1;
+                    discrepancies.push(discrepancy(c, lc, ix, Tolerance::for_precision(judged[ix].precision)));
+                }
+            }
+        }
+    }
+    let judge_seconds = wall.elapsed().as_secs_f64();
+
+    let mut throughput = Vec::new();
+    let mut referee_seconds = 0.0;
+    if config.timing {
+        for q in CAMPAIGN_QUERIES {
+            let qcases: Vec<&LoadedCase> = cases.iter().filter(|c| c.case.query == q).collect();
+            if qcases.is_empty() {
+                continue;
+            }
+            for (ix, engine) in judged.iter().enumerate() {
+                if let Some(t) = time_engine(engine, &qcases) {
+                    stats_for(&mut map, ix, &engine.name, q).timing = Some(t);
+                }
+            }
+            if let Some(t) = time_engine(&referee, &qcases) {
+                referee_seconds += t.median_ns * 1e-9 * qcases.len() as f64;
+                let ix = judged.len();
+                stats_for(&mut map, ix, &referee.name, q).timing = Some(t);
+            }
+        }
+        for engine in judged.iter().chain([&referee]) {
+            let ns: Vec<f64> = map
+                .values()
+                .filter(|s| s.engine == engine.name)
+                .filter_map(|s| s.timing.map(|t| t.median_ns))
+                .collect();
+            if !ns.is_empty() {
+                throughput.push((engine.name.clone(), 1e9 * ns.len() as f64 / ns.iter().sum::<f64>()));
+            }
+        }
+        let n = cases.len() as f64;
+        throughput.push(("campaign (referee included)".into(), n / judge_seconds));
+        let without = (judge_seconds - referee_seconds / rayon::current_num_threads() as f64).max(1e-9);
+        throughput.push(("campaign (referee excluded, estimated)".into(), n / without));
+    }
+
+    let fixture_cases = cases.iter().filter(|c| !c.case.source.starts_with("generated")).count() as u64;
+    let mut provenance = provenance;
+    provenance.engines = engine_infos(&judged);
+    provenance.seed = config.seed;
+    provenance.cases_per_query = config.cases_per_query;
+    provenance.shards = config.shard.into_iter().collect();
+    provenance.fixture_cases = fixture_cases;
+    provenance.random_cases = cases.len() as u64 - fixture_cases;
+    provenance.wall_seconds = wall.elapsed().as_secs_f64();
+    Outcome {
+        summary: Summary {
+            format: "crashtest-summary/1".into(),
+            provenance,
+            stats: map.into_values().collect(),
+            discrepancies: total_discrepancies,
+            throughput,
+        },
+        discrepancies,
+        input_errors,
+    }
+}
+
+fn progress_bar(wanted: bool, len: u64) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !(wanted && std::io::stderr().is_terminal()) {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    if let Ok(style) =
+        indicatif::ProgressStyle::with_template("{spinner} judging {pos}/{len} cases [{bar:40}] {per_sec} ETA {eta}")
+    {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar
+}

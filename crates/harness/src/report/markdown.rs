@@ -1,0 +1,444 @@
+//! `summary.md`, and the tables it shares with `index.html`.
+//!
+//! The tables are built once as plain text cells ([`Table`]); each page escapes
+//! them for its own syntax. Every function is pure: the same [`Summary`] gives
+//! byte-identical text.
+
+use super::summary::{BINS_PER_DECADE, Dist, EngineQueryStats, Summary, Timing};
+use crate::case::Query;
+use std::fmt::Write;
+
+/// A table of plain-text cells (not yet escaped for any page).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Table {
+    /// Column titles.
+    pub header: Vec<String>,
+    /// Whether each column holds numbers (right-aligned).
+    pub numeric: Vec<bool>,
+    /// Rows of cells, as many as there are columns.
+    pub rows: Vec<Vec<String>>,
+}
+
+impl Table {
+    fn new(columns: &[(&str, bool)]) -> Self {
+        Table {
+            header: columns.iter().map(|c| c.0.to_string()).collect(),
+            numeric: columns.iter().map(|c| c.1).collect(),
+            rows: Vec::new(),
+        }
+    }
+}
+
+/// A number in compact scientific notation with two significant digits
+/// (`1.2e-15`, `3.0e2`): histogram quantiles are only good to 5% (see
+/// [`BINS_PER_DECADE`]), so more digits would claim what was not measured.
+/// Exactly zero is `0`, infinity `inf`, NaN `NaN`.
+pub fn sci(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else if x.is_nan() {
+        "NaN".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "inf".into() } else { "-inf".into() }
+    } else {
+        format!("{x:.1e}")
+    }
+}
+
+/// A quantity with three significant digits, plain between 1 and 10^6 (`41.2`,
+/// `1530`, `87500`), in scientific notation outside (`5.00e-1`).
+pub fn sig3(x: f64) -> String {
+    let a = x.abs();
+    if !(1.0..1e6).contains(&a) {
+        return format!("{x:.2e}");
+    }
+    let mut digits = a.log10().floor() as i32;
+    if (a / 10f64.powi(digits - 2)).round() >= 1000.0 {
+        // Rounding carried into the next decade (9.996 → 10.0).
+        digits += 1;
+    }
+    if digits >= 2 {
+        let unit = 10f64.powi(digits - 2);
+        format!("{:.0}", (x / unit).round() * unit)
+    } else {
+        let decimals = (2 - digits) as usize;
+        format!("{x:.decimals$}")
+    }
+}
+
+/// Time per query: the median and, in parentheses, the fastest and slowest
+/// repetition (`41.2 (40.8–43.0)`), nanoseconds; `—` when not timed.
+pub fn timing(t: Option<&Timing>) -> String {
+    match t {
+        None => "—".into(),
+        Some(t) => format!(
+            "{} ({}–{})",
+            sig3(t.median_ns),
+            sig3(t.min_ns),
+            sig3(t.max_ns)
+        ),
+    }
+}
+
+/// The p99 of a distribution, or `—` when it holds no sample.
+fn p99(d: &Dist) -> String {
+    d.p99().map_or_else(|| "—".into(), sci)
+}
+
+/// The query kinds present in a summary, in [`Query::ALL`] order, with `None`
+/// (statistics not tied to a query kind) last when present.
+pub fn queries(summary: &Summary) -> Vec<Option<Query>> {
+    let mut out: Vec<Option<Query>> = Query::ALL
+        .into_iter()
+        .filter(|q| summary.stats.iter().any(|s| s.query == Some(*q)))
+        .map(Some)
+        .collect();
+    if summary.stats.iter().any(|s| s.query.is_none()) {
+        out.push(None);
+    }
+    out
+}
+
+/// A section title for a query kind.
+pub fn query_title(query: Option<Query>) -> String {
+    query.map_or_else(|| "other".into(), |q| q.as_str().into())
+}
+
+/// The statistics of one query kind, in summary order.
+fn stats_of(summary: &Summary, query: Option<Query>) -> Vec<&EngineQueryStats> {
+    summary.stats.iter().filter(|s| s.query == query).collect()
+}
+
+/// The error measures of a [`EngineQueryStats`], with their column title in the
+/// main table (absent: only in the detail table) and their name in the detail table.
+#[allow(clippy::type_complexity)]
+const MEASURES: [(Option<&str>, &str, fn(&EngineQueryStats) -> &Dist); 8] = [
+    (None, "point, absolute", |s| &s.point_abs),
+    (Some("point p99 (rel)"), "point, relative to scale", |s| {
+        &s.point_rel
+    }),
+    (None, "depth / radius, absolute", |s| &s.depth_abs),
+    (
+        Some("depth p99 (rel)"),
+        "depth / radius, relative to scale",
+        |s| &s.depth_rel,
+    ),
+    (Some("normal p99 (rad)"), "normal angle, rad", |s| {
+        &s.normal_rad
+    }),
+    (Some("t p99"), "segment parameter t", |s| &s.t),
+    (Some("bary p99"), "barycentric coordinates", |s| {
+        &s.barycentric
+    }),
+    (None, "headline", |s| &s.headline),
+];
+
+/// The main table of one query kind: per engine its counts (cases, agree,
+/// disagree, borderline, known, unsupported, failed, false +, false −), the p99
+/// of its relative point and depth errors, normal angle, t and barycentric
+/// errors, the largest headline error and the time per query.
+///
+/// An error column appears only when some engine of this query measured that
+/// error (so a contact table has no barycentric column); a "flags ≠" column
+/// appears only when some engine's parallel or degenerate flags differed from
+/// the referee's.
+pub fn query_table(summary: &Summary, query: Option<Query>) -> Table {
+    let stats = stats_of(summary, query);
+    let measures: Vec<_> = MEASURES
+        .iter()
+        .filter_map(|(col, _, get)| col.map(|c| (c, get)))
+        .filter(|(_, get)| stats.iter().any(|s| get(s).n > 0))
+        .collect();
+    let flags = stats.iter().any(|s| s.flag_mismatches > 0);
+    let mut cols: Vec<(&str, bool)> = vec![
+        ("engine", false),
+        ("cases", true),
+        ("agree", true),
+        ("disagree", true),
+        ("borderline", true),
+        ("known", true),
+        ("unsupported", true),
+        ("failed", true),
+        ("false +", true),
+        ("false −", true),
+    ];
+    if flags {
+        cols.push(("flags ≠", true));
+    }
+    cols.extend(measures.iter().map(|(c, _)| (*c, true)));
+    cols.push(("max headline", true));
+    cols.push(("ns/query (min–max)", true));
+    let mut t = Table::new(&cols);
+    for s in stats {
+        let mut row = vec![
+            s.engine.clone(),
+            s.cases.to_string(),
+            s.agree.to_string(),
+            s.disagree.to_string(),
+            s.borderline.to_string(),
+            s.known.to_string(),
+            s.unsupported.to_string(),
+            s.failed.to_string(),
+            s.false_positives.to_string(),
+            s.false_negatives.to_string(),
+        ];
+        if flags {
+            row.push(s.flag_mismatches.to_string());
+        }
+        row.extend(measures.iter().map(|(_, get)| p99(get(s))));
+        row.push(if s.headline.n > 0 {
+            sci(s.headline.max)
+        } else {
+            "—".into()
+        });
+        row.push(timing(s.timing.as_ref()));
+        t.rows.push(row);
+    }
+    t
+}
+
+/// The error distributions of one query kind in full: per engine and measured
+/// error, the sample count, exact zeros, median, p99 and maximum.
+pub fn detail_table(summary: &Summary, query: Option<Query>) -> Table {
+    let mut t = Table::new(&[
+        ("engine", false),
+        ("error", false),
+        ("n", true),
+        ("exact zeros", true),
+        ("median", true),
+        ("p99", true),
+        ("max", true),
+    ]);
+    for s in stats_of(summary, query) {
+        for (_, name, get) in &MEASURES {
+            let d = get(s);
+            if d.n == 0 {
+                continue;
+            }
+            t.rows.push(vec![
+                s.engine.clone(),
+                (*name).into(),
+                d.n.to_string(),
+                d.zeros.to_string(),
+                d.median().map_or_else(|| "—".into(), sci),
+                p99(d),
+                sci(d.max),
+            ]);
+        }
+    }
+    t
+}
+
+/// Campaign throughput: cases per second per engine and for the whole run.
+pub fn throughput_table(summary: &Summary) -> Table {
+    let mut t = Table::new(&[("engine", false), ("cases / s", true)]);
+    for (name, rate) in &summary.throughput {
+        t.rows.push(vec![name.clone(), sig3(*rate)]);
+    }
+    t
+}
+
+/// The engines and their versions.
+pub fn engines_table(summary: &Summary) -> Table {
+    let mut t = Table::new(&[("engine", false), ("version", false)]);
+    for e in &summary.provenance.engines {
+        t.rows.push(vec![e.name.clone(), e.version.clone()]);
+    }
+    t
+}
+
+/// The provenance as `(field, value)` lines, in the order a report shows them.
+pub fn provenance_lines(summary: &Summary) -> Vec<(String, String)> {
+    let p = &summary.provenance;
+    let shards = if p.shards.is_empty() {
+        "none (one run)".to_string()
+    } else {
+        p.shards
+            .iter()
+            .map(|(i, n)| format!("{i}/{n}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    vec![
+        ("crashtest".into(), p.crashtest.clone()),
+        (
+            "commit".into(),
+            p.commit.clone().unwrap_or_else(|| "unknown".into()),
+        ),
+        ("rustc".into(), p.rustc.clone()),
+        ("profile".into(), p.profile.clone()),
+        ("machine".into(), p.machine.clone()),
+        ("started".into(), p.started.clone()),
+        ("wall time".into(), format!("{} s", sig3(p.wall_seconds))),
+        ("seed".into(), p.seed.to_string()),
+        (
+            "random cases per query".into(),
+            p.cases_per_query.to_string(),
+        ),
+        ("shards".into(), shards),
+        ("fixture cases".into(), p.fixture_cases.to_string()),
+        ("random cases".into(), p.random_cases.to_string()),
+        (
+            "discrepancies".into(),
+            format!("{} (discrepancies.json)", summary.discrepancies),
+        ),
+        ("format".into(), summary.format.clone()),
+    ]
+}
+
+/// How to read the tables, one paragraph per item.
+pub fn reading_notes() -> Vec<String> {
+    vec![
+        "Counts are against the exact referee: agree (same classification, errors within tolerance), \
+         disagree (beyond tolerance), borderline (classification differs inside the referee's \
+         tolerance band), known (a documented divergence), unsupported, failed (panicked or \
+         non-finite); false + and false − are misclassifications outside the band."
+            .into(),
+        "Errors are relative to the scene's scale (points, depths, radii), in radians (normals), or \
+         as they are (t, barycentric coordinates). The headline error of a case is the largest of \
+         them, and 1 for a misclassification or failure."
+            .into(),
+        format!(
+            "Quantiles are read from log histograms with {BINS_PER_DECADE} bins per decade: within 5% \
+             of the sample's. Maxima are exact. — means nothing was measured."
+        ),
+        "Time per query: median over repetitions of a tight loop over the same cases, with the \
+         fastest and slowest repetition."
+            .into(),
+    ]
+}
+
+/// Escapes text for a Markdown table cell or line: every character that could
+/// start Markdown or HTML syntax is backslash-escaped (CommonMark allows that for
+/// any ASCII punctuation), and line breaks become spaces.
+pub fn escape_md(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '\\' | '`' | '*' | '_' | '[' | ']' | '<' | '>' | '|' | '#' | '&' | '!' | '~' => {
+                out.push('\\');
+                out.push(c);
+            }
+            '\n' | '\r' => out.push(' '),
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+/// A [`Table`] as a Markdown (GitHub) table, cells escaped.
+pub fn table_md(t: &Table) -> String {
+    let mut out = String::new();
+    let row = |cells: &[String]| {
+        let cells: Vec<String> = cells.iter().map(|c| escape_md(c)).collect();
+        format!("| {} |\n", cells.join(" | "))
+    };
+    out.push_str(&row(&t.header));
+    let rule: Vec<&str> = t
+        .numeric
+        .iter()
+        .map(|&n| if n { "---:" } else { "---" })
+        .collect();
+    let _ = writeln!(out, "| {} |", rule.join(" | "));
+    for r in &t.rows {
+        out.push_str(&row(r));
+    }
+    out
+}
+
+/// The whole of `summary.md`: provenance (commit, rustc, profile, machine,
+/// engine versions, seed, case counts, wall time), then per query kind its main
+/// table and its error details, then throughput, then how to read it all.
+pub fn summary_md(summary: &Summary) -> String {
+    let mut out = String::from("# crashtest report\n\n## Provenance\n\n");
+    for (k, v) in provenance_lines(summary) {
+        let _ = writeln!(out, "- **{}**: {}", escape_md(&k), escape_md(&v));
+    }
+    out.push('\n');
+    if !summary.provenance.engines.is_empty() {
+        out.push_str(&table_md(&engines_table(summary)));
+        out.push('\n');
+    }
+    let queries = queries(summary);
+    if queries.is_empty() {
+        out.push_str("No results.\n\n");
+    }
+    for q in queries {
+        let _ = writeln!(out, "## {}\n", escape_md(&query_title(q)));
+        out.push_str(&table_md(&query_table(summary, q)));
+        let detail = detail_table(summary, q);
+        if !detail.rows.is_empty() {
+            out.push_str("\nError distributions:\n\n");
+            out.push_str(&table_md(&detail));
+        }
+        out.push('\n');
+    }
+    if !summary.throughput.is_empty() {
+        out.push_str("## Throughput\n\n");
+        out.push_str(&table_md(&throughput_table(summary)));
+        out.push('\n');
+    }
+    out.push_str("## Reading the tables\n\n");
+    for note in reading_notes() {
+        let _ = writeln!(out, "- {note}");
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::charts::fixture;
+
+    #[test]
+    fn sci_is_compact_and_total() {
+        assert_eq!(sci(0.0), "0");
+        assert_eq!(sci(1.234e-15), "1.2e-15");
+        assert_eq!(sci(250.0), "2.5e2");
+        assert_eq!(sci(f64::INFINITY), "inf");
+        assert_eq!(sig3(41.25), "41.2");
+        assert_eq!(sig3(1530.4), "1530");
+        assert_eq!(sig3(87494.0), "87500");
+        assert_eq!(sig3(9.996), "10.0");
+        assert_eq!(sig3(0.5), "5.00e-1");
+    }
+
+    #[test]
+    fn summary_md_opens_with_provenance_and_has_a_table_per_query() {
+        let md = summary_md(&fixture::summary());
+        let prov = md.find("## Provenance").expect("provenance");
+        let contact = md.find("## contact").expect("contact section");
+        let intersect = md.find("## intersect").expect("intersect section");
+        assert!(prov < contact && contact < intersect, "order");
+        for needle in [
+            "abc1234-dirty",
+            "rustc 1.95.0",
+            "release",
+            "linux x86\\_64, 2 cores",
+            "collide (this commit), f32",
+            "**seed**: 42",
+            "**fixture cases**: 12",
+            "**random cases**: 200",
+            "3.25 s",
+            "**discrepancies**: 3",
+        ] {
+            assert!(md.contains(needle), "missing {needle:?} in\n{md}");
+        }
+        assert!(
+            md.contains("| fast\\<f32\\> | 100 | 97 | 1 | 1 | 1 | 0 | 0 | 1 | 0 |"),
+            "{md}"
+        );
+        assert!(md.contains("1.0e-6"), "p99 of fast on contact: {md}");
+        assert!(md.contains("20.0 (18.0–24.0)"), "timing with spread: {md}");
+        assert!(
+            !md.contains("bary p99"),
+            "no barycentric column without samples"
+        );
+        assert!(md.find("## Throughput").expect("throughput") > intersect);
+    }
+
+    #[test]
+    fn markdown_escapes_table_syntax() {
+        assert_eq!(escape_md("a|b<c>*"), "a\\|b\\<c\\>\\*");
+    }
+}

@@ -1,0 +1,223 @@
+//! What a campaign measured, as data: `summary.json` is this, serialized. It is
+//! mergeable (counts add, histograms add, maxima take the larger), so sharded
+//! campaigns join into one summary without their raw samples.
+
+use crate::case::Query;
+use serde::{Deserialize, Serialize};
+
+/// Error histograms have this many bins per decade (bin edges 10^(k/BINS_PER_DECADE)):
+/// quantiles read from them are within a factor 10^(1/50) ≈ 1.047 (under 5%) of
+/// the sample's.
+pub const BINS_PER_DECADE: i32 = 50;
+/// The smallest error a histogram resolves: 1e-30. Smaller positive errors count
+/// in the lowest bin; exact zeros are counted apart.
+pub const HIST_MIN_EXP: i32 = -30;
+/// The largest: 1e10 (larger errors count in the top bin; the maximum is kept exactly).
+pub const HIST_MAX_EXP: i32 = 10;
+
+/// A mergeable distribution of non-negative errors: exact zeros, a log-scale
+/// histogram, and the exact maximum.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Dist {
+    /// Number of samples.
+    pub n: u64,
+    /// Samples exactly 0.
+    pub zeros: u64,
+    /// Largest sample.
+    pub max: f64,
+    /// Counts per bin, sparse: `(bin, count)` with bin `k` covering
+    /// `[10^(k/B), 10^((k+1)/B))`, `B` = [`BINS_PER_DECADE`], sorted by bin.
+    pub bins: Vec<(i32, u64)>,
+}
+
+impl Dist {
+    /// Adds one sample (negative or NaN samples are taken as their absolute value
+    /// or as infinity, so nothing is lost silently).
+    pub fn add(&mut self, x: f64) {
+        let x = if x.is_nan() { f64::INFINITY } else { x.abs() };
+        self.n += 1;
+        if x > self.max {
+            self.max = x;
+        }
+        if x == 0.0 {
+            self.zeros += 1;
+            return;
+        }
+        let k = (x.log10() * BINS_PER_DECADE as f64).floor();
+        let k = k.clamp(
+            (HIST_MIN_EXP * BINS_PER_DECADE) as f64,
+            (HIST_MAX_EXP * BINS_PER_DECADE) as f64,
+        ) as i32;
+        match self.bins.binary_search_by_key(&k, |b| b.0) {
+            Ok(i) => self.bins[i].1 += 1,
+            Err(i) => self.bins.insert(i, (k, 1)),
+        }
+    }
+
+    /// Joins another distribution into this one.
+    pub fn merge(&mut self, o: &Dist) {
+        self.n += o.n;
+        self.zeros += o.zeros;
+        self.max = self.max.max(o.max);
+        for &(k, c) in &o.bins {
+            match self.bins.binary_search_by_key(&k, |b| b.0) {
+                Ok(i) => self.bins[i].1 += c,
+                Err(i) => self.bins.insert(i, (k, c)),
+            }
+        }
+    }
+
+    /// The `q`-quantile (0 ≤ q ≤ 1), read from the histogram as the upper edge
+    /// of the bin that holds it (capped at the exact maximum); `None` when empty.
+    pub fn quantile(&self, q: f64) -> Option<f64> {
+        if self.n == 0 {
+            return None;
+        }
+        let rank = ((q * self.n as f64).ceil() as u64).clamp(1, self.n);
+        if rank <= self.zeros {
+            return Some(0.0);
+        }
+        let mut seen = self.zeros;
+        for &(k, c) in &self.bins {
+            seen += c;
+            if seen >= rank {
+                let upper = 10f64.powf((k + 1) as f64 / BINS_PER_DECADE as f64);
+                return Some(upper.min(self.max));
+            }
+        }
+        Some(self.max)
+    }
+
+    /// Median.
+    pub fn median(&self) -> Option<f64> {
+        self.quantile(0.5)
+    }
+
+    /// 99th percentile.
+    pub fn p99(&self) -> Option<f64> {
+        self.quantile(0.99)
+    }
+}
+
+/// Time per query of one engine on one query kind: the median over repetitions of
+/// a tight loop over the same cases, with the spread of the repetitions.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Timing {
+    /// Median over repetitions, nanoseconds per query.
+    pub median_ns: f64,
+    /// Fastest repetition.
+    pub min_ns: f64,
+    /// Slowest repetition.
+    pub max_ns: f64,
+    /// Repetitions.
+    pub reps: u32,
+    /// Queries per repetition.
+    pub queries: u64,
+}
+
+/// One engine on one query kind.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct EngineQueryStats {
+    /// Engine name.
+    pub engine: String,
+    /// Query kind.
+    pub query: Option<Query>,
+    /// Cases run.
+    pub cases: u64,
+    /// Same classification, errors within tolerance.
+    pub agree: u64,
+    /// Beyond tolerance.
+    pub disagree: u64,
+    /// Classification differs inside the referee's tolerance band.
+    pub borderline: u64,
+    /// Explained by a documented divergence.
+    pub known: u64,
+    /// Not answered by the engine.
+    pub unsupported: u64,
+    /// Panicked or returned a non-finite number.
+    pub failed: u64,
+    /// Reported contact / hit / overlap where the referee has none (outside the band).
+    pub false_positives: u64,
+    /// Missed a contact / hit / overlap the referee has (outside the band).
+    pub false_negatives: u64,
+    /// Other classification differences (parallel, degenerate flags).
+    pub flag_mismatches: u64,
+    /// Point errors, absolute.
+    pub point_abs: Dist,
+    /// Point errors relative to the scene's scale.
+    pub point_rel: Dist,
+    /// Depth (or bounding radius) errors, absolute.
+    pub depth_abs: Dist,
+    /// Depth (or radius) errors relative to the scene's scale.
+    pub depth_rel: Dist,
+    /// Normal angle errors, radians.
+    pub normal_rad: Dist,
+    /// Segment parameter errors.
+    pub t: Dist,
+    /// Barycentric coordinate errors.
+    pub barycentric: Dist,
+    /// The headline error per case: the largest of its relative errors (points,
+    /// depths, radii relative to the scene; normals in radians; t and
+    /// barycentrics as they are), and 1 for a misclassification outside the band
+    /// or a failure. The accuracy–speed chart plots its p99.
+    pub headline: Dist,
+    /// Time per query, if timed.
+    pub timing: Option<Timing>,
+}
+
+/// An engine's identity in the provenance.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct EngineInfo {
+    /// Its name.
+    pub name: String,
+    /// What it is and its version (`parry3d-f64 0.31.1`, `collide (this commit), f32`).
+    pub version: String,
+}
+
+/// Where and how a report was made.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Provenance {
+    /// crashtest's version.
+    pub crashtest: String,
+    /// `git rev-parse HEAD` of the working tree (with `-dirty` when it has changes), if known.
+    pub commit: Option<String>,
+    /// `rustc --version` at build time.
+    pub rustc: String,
+    /// Build profile (`release`, `debug`).
+    pub profile: String,
+    /// Machine: OS, architecture, CPU model, cores.
+    pub machine: String,
+    /// The engines and their versions.
+    pub engines: Vec<EngineInfo>,
+    /// The campaign's seed.
+    pub seed: u64,
+    /// Random cases per query kind (before sharding).
+    pub cases_per_query: u64,
+    /// Shards joined in this report: `(index, count)` of each.
+    pub shards: Vec<(u32, u32)>,
+    /// Fixture cases run.
+    pub fixture_cases: u64,
+    /// Random cases run (all query kinds).
+    pub random_cases: u64,
+    /// Wall time of the run, seconds (for merged reports, the sum over shards).
+    pub wall_seconds: f64,
+    /// When the run started, UTC, RFC 3339.
+    pub started: String,
+}
+
+/// The whole of `summary.json`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Summary {
+    /// The format of this file.
+    pub format: String,
+    /// Where and how it was made.
+    pub provenance: Provenance,
+    /// Per engine and query kind, in engine order then query order.
+    pub stats: Vec<EngineQueryStats>,
+    /// Disagreements and failures found, all engines (`discrepancies.json` holds
+    /// the first few of each engine and query kind in full).
+    pub discrepancies: u64,
+    /// Campaign throughput, cases per second, per engine (referee included) and
+    /// for the whole run with and without the referee's share.
+    pub throughput: Vec<(String, f64)>,
+}

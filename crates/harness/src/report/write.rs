@@ -1,0 +1,207 @@
+//! Writing a report folder atomically, and joining shards.
+//!
+//! A report is assembled in a hidden sibling folder and renamed into place in one
+//! step, and `latest` is switched only after that, so a run killed at any point
+//! leaves the previous report (and `latest`) intact.
+
+use crate::report::campaign::{MAX_DISCREPANCIES_PER_GROUP, Outcome};
+use crate::report::summary::{EngineQueryStats, Summary};
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::io;
+use std::path::{Path, PathBuf};
+
+/// The files of a report, as (path relative to the report folder, contents).
+pub fn render_files(summary: &Summary, discrepancies: &[Value]) -> Vec<(PathBuf, String)> {
+    let mut files = vec![
+        ("summary.json".into(), pretty(summary)),
+        ("discrepancies.json".into(), pretty(&discrepancies)),
+    ];
+    files.extend(crate::report::pages(summary));
+    files
+}
+
+/// Pretty JSON, newline-terminated.
+fn pretty<T: serde::Serialize + ?Sized>(v: &T) -> String {
+    let mut s = serde_json::to_string_pretty(v).unwrap_or_else(|e| format!("\"unserializable: {e}\""));
+    s.push('\n');
+    s
+}
+
+/// Writes `files` as the report `root/id` atomically and points `root/latest`
+/// at it. Returns the report's folder.
+pub fn write_report(root: &Path, id: &str, files: &[(PathBuf, String)]) -> io::Result<PathBuf> {
+    std::fs::create_dir_all(root)?;
+    let tmp = root.join(format!(".incomplete-{id}-{}", std::process::id()));
+    if tmp.exists() {
+        std::fs::remove_dir_all(&tmp)?;
+    }
+    for (rel, contents) in files {
+        let path = tmp.join(rel);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent)?;
+        }
+        std::fs::write(&path, contents)?;
+    }
+    // A report never replaces another: a second run in the same second with the
+    // same seed gets a numbered id.
+    let mut name = id.to_string();
+    let mut n = 1;
+    while root.join(&name).exists() {
+        n += 1;
+        name = format!("{id}-{n}");
+    }
+    let dest = root.join(&name);
+    std::fs::rename(&tmp, &dest)?;
+    point_latest(root, &name)?;
+    Ok(dest)
+}
+
+/// Makes `root/latest` name `id`: a symbolic link where the platform has them
+/// (replaced by an atomic rename), a one-line file elsewhere.
+fn point_latest(root: &Path, id: &str) -> io::Result<()> {
+    let latest = root.join("latest");
+    #[cfg(unix)]
+    {
+        let tmp = root.join(format!(".latest-{}", std::process::id()));
+        let _ = std::fs::remove_file(&tmp);
+        std::os::unix::fs::symlink(id, &tmp)?;
+        if latest.is_dir() && !latest.is_symlink() {
+            std::fs::remove_dir_all(&latest)?;
+        }
+        std::fs::rename(&tmp, &latest)
+    }
+    #[cfg(not(unix))]
+    {
+        std::fs::write(&latest, format!("{id}\n"))
+    }
+}
+
+/// Writes a campaign's outcome as a report.
+pub fn write_outcome(root: &Path, id: &str, outcome: &Outcome) -> io::Result<PathBuf> {
+    let discrepancies: Vec<Value> =
+        outcome.discrepancies.iter().filter_map(|d| serde_json::to_value(d).ok()).collect();
+    let files = render_files(&outcome.summary, &discrepancies);
+    write_report(root, id, &files)
+}
+
+/// A report read back for merging.
+#[derive(Debug)]
+pub struct ReadReport {
+    /// Its summary.
+    pub summary: Summary,
+    /// Its discrepancies, as written.
+    pub discrepancies: Vec<Value>,
+}
+
+/// Reads `summary.json` and `discrepancies.json` of a report folder. The error
+/// names the file.
+pub fn read_report(dir: &Path) -> Result<ReadReport, String> {
+    let read = |name: &str| {
+        let p = dir.join(name);
+        std::fs::read_to_string(&p).map_err(|e| format!("{}: cannot read: {e}", p.display())).map(|t| (p, t))
+    };
+    let (p, text) = read("summary.json")?;
+    let summary: Summary = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", p.display()))?;
+    let (p, text) = read("discrepancies.json")?;
+    let discrepancies: Vec<Value> = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", p.display()))?;
+    Ok(ReadReport { summary, discrepancies })
+}
+
+fn merge_stats(into: &mut EngineQueryStats, s: &EngineQueryStats) {
+    into.cases += s.cases;
+    into.agree += s.agree;
+    into.disagree += s.disagree;
+    into.borderline += s.borderline;
+    into.known += s.known;
+    into.unsupported += s.unsupported;
+    into.failed += s.failed;
+    into.false_positives += s.false_positives;
+    into.false_negatives += s.false_negatives;
+    into.flag_mismatches += s.flag_mismatches;
+    for (a, b) in [
+        (&mut into.point_abs, &s.point_abs),
+        (&mut into.point_rel, &s.point_rel),
+        (&mut into.depth_abs, &s.depth_abs),
+        (&mut into.depth_rel, &s.depth_rel),
+        (&mut into.normal_rad, &s.normal_rad),
+        (&mut into.t, &s.t),
+        (&mut into.barycentric, &s.barycentric),
+        (&mut into.headline, &s.headline),
+    ] {
+        a.merge(b);
+    }
+    // Timings are not additive: keep the one measured over more queries (the
+    // shards ran on their own machines; their medians are each a fair figure).
+    match (&into.timing, &s.timing) {
+        (None, Some(t)) => into.timing = Some(*t),
+        (Some(a), Some(b)) if b.queries > a.queries => into.timing = Some(*b),
+        _ => {}
+    }
+}
+
+/// Joins shard reports into one: counts and histograms add, maxima take the
+/// larger, provenance lists every shard; discrepancies are kept up to the same
+/// cap per engine and query kind as a single run.
+pub fn merge(reports: &[ReadReport]) -> Result<(Summary, Vec<Value>), String> {
+    let first = reports.first().ok_or("nothing to merge")?;
+    let mut out = first.summary.clone();
+    out.stats.clear();
+    out.provenance.shards.clear();
+    out.provenance.fixture_cases = 0;
+    out.provenance.random_cases = 0;
+    out.provenance.wall_seconds = 0.0;
+    out.discrepancies = 0;
+    let mut order: Vec<(String, Option<crate::case::Query>)> = Vec::new();
+    let mut stats: BTreeMap<(String, Option<crate::case::Query>), EngineQueryStats> = BTreeMap::new();
+    for r in reports {
+        let s = &r.summary;
+        if s.provenance.seed != first.summary.provenance.seed
+            || s.provenance.cases_per_query != first.summary.provenance.cases_per_query
+        {
+            return Err(format!(
+                "shards of different campaigns: seed {} / {} cases vs seed {} / {} cases",
+                s.provenance.seed,
+                s.provenance.cases_per_query,
+                first.summary.provenance.seed,
+                first.summary.provenance.cases_per_query
+            ));
+        }
+        out.provenance.shards.extend(s.provenance.shards.iter().copied());
+        out.provenance.fixture_cases += s.provenance.fixture_cases;
+        out.provenance.random_cases += s.provenance.random_cases;
+        out.provenance.wall_seconds += s.provenance.wall_seconds;
+        out.discrepancies += s.discrepancies;
+        for st in &s.stats {
+            let key = (st.engine.clone(), st.query);
+            if !stats.contains_key(&key) {
+                order.push(key.clone());
+            }
+            merge_stats(
+                stats.entry(key).or_insert_with(|| EngineQueryStats {
+                    engine: st.engine.clone(),
+                    query: st.query,
+                    ..Default::default()
+                }),
+                st,
+            );
+        }
+    }
+    out.provenance.shards.sort_unstable();
+    let dup = out.provenance.shards.windows(2).find(|w| w[0] == w[1]);
+    if let Some(w) = dup {
+        return Err(format!("shard {}/{} given twice", w[0].0, w[0].1));
+    }
+    out.stats = order.into_iter().filter_map(|k| stats.remove(&k)).collect();
+    let mut per_group: BTreeMap<(String, String), usize> = BTreeMap::new();
+    let mut disc = Vec::new();
+    for d in reports.iter().flat_map(|r| &r.discrepancies) {
+        let key = (d["engine"].to_string(), d["query"].to_string());
+        let n = per_group.entry(key).or_default();
+        if *n < MAX_DISCREPANCIES_PER_GROUP {
+            *n += 1;
+            disc.push(d.clone());
+        }
+    }
+    Ok((out, disc))
+}

@@ -1,0 +1,102 @@
+//! The report: determinism, reproducible discrepancies, atomic writes.
+
+use harness::check::check_case;
+use harness::engines::{judged, referee};
+use harness::load::{LoadedCase, load_str_into, Loaded};
+use harness::report::campaign::{Config, run};
+use harness::report::summary::Summary;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A campaign small enough for a test: 150 random cases per query kind, no timing.
+fn small(seed: u64) -> Config {
+    Config { seed, cases_per_query: 150, timing: false, progress: false, ..Config::default() }
+}
+
+/// The summary with its timing and provenance fields blanked: what must not
+/// depend on the run.
+fn comparable(mut s: Summary) -> Summary {
+    s.provenance = Default::default();
+    s.throughput.clear();
+    for st in &mut s.stats {
+        st.timing = None;
+    }
+    s
+}
+
+#[test]
+fn the_same_seed_gives_the_same_summary() {
+    let a = run(&small(7), Default::default());
+    let b = run(&small(7), Default::default());
+    let (ja, jb) = (
+        serde_json::to_string(&comparable(a.summary)).unwrap(),
+        serde_json::to_string(&comparable(b.summary)).unwrap(),
+    );
+    assert!(ja == jb, "two runs with seed 7 differ");
+    let c = run(&small(8), Default::default());
+    assert!(serde_json::to_string(&comparable(c.summary)).unwrap() != ja, "seed 8 gave seed 7's summary");
+}
+
+#[test]
+fn every_discrepancy_reproduces_from_its_fixture() {
+    let outcome = run(&small(11), Default::default());
+    assert!(!outcome.discrepancies.is_empty(), "a campaign with lecture and f32 engines finds some discrepancies");
+    let (engines, referee) = (judged(), referee());
+    for d in &outcome.discrepancies {
+        let text = serde_json::to_string(&d.fixture).unwrap();
+        let mut loaded = Loaded::default();
+        load_str_into(Path::new("discrepancy.json"), &text, &mut loaded);
+        assert!(loaded.errors.is_empty(), "{:?}", loaded.errors);
+        let lc: &LoadedCase = &loaded.cases[0];
+        let again = check_case(lc, &engines, &referee);
+        let r = again.engines.iter().find(|r| r.engine == d.engine).expect("same engines");
+        assert_eq!(r.verdict.label(), d.verdict.label(), "{} on {}: {:?}", d.engine, d.origin, r.verdict);
+    }
+}
+
+fn report_dir(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[test]
+fn a_report_folder_has_every_file_and_latest_names_it() {
+    let out = report_dir("report-files");
+    let status = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .args(["report", "--cases", "40", "--no-timing", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let latest = out.join("latest");
+    for f in ["index.html", "summary.md", "summary.json", "discrepancies.json"] {
+        assert!(latest.join(f).is_file(), "{f} missing");
+    }
+    let charts = std::fs::read_dir(latest.join("charts")).map(|d| d.count()).unwrap_or(0);
+    assert!(charts > 0, "no charts");
+}
+
+#[test]
+fn killing_a_run_leaves_the_previous_report_intact() {
+    let out = report_dir("report-killed");
+    let first = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .args(["report", "--cases", "20", "--no-timing", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(first.success());
+    let before = std::fs::read_link(out.join("latest")).expect("latest is a link");
+    let index = std::fs::read_to_string(out.join("latest/index.html")).unwrap();
+    // A run large enough to be killed mid-way (it judges 500,000 cases).
+    let mut child = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .args(["report", "--cases", "100000", "--out"])
+        .arg(&out)
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    child.kill().unwrap();
+    let _ = child.wait();
+    assert_eq!(std::fs::read_link(out.join("latest")).unwrap(), before, "latest moved");
+    assert_eq!(std::fs::read_to_string(out.join("latest/index.html")).unwrap(), index, "previous report changed");
+}
