@@ -23,12 +23,16 @@
 #![deny(missing_docs)]
 
 pub mod barycentric;
+pub mod batch;
 pub mod bounds;
 pub mod contact;
 pub mod exact;
 pub mod intersect;
+pub mod mesh;
 pub mod real;
+pub mod response;
 pub mod shapes;
+pub mod toi;
 
 pub use real::{Real, Vec3};
 pub use shapes::{Aabb, Plane, Segment, Sphere, Triangle};

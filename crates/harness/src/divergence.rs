@@ -98,6 +98,43 @@ const RULES: &[Rule] = &[
         explains: |lc, _, _, reasons| lc.case.query == Query::Bounds && only_radius(reasons),
     },
     Rule {
+        engines: PARRY,
+        parry_what: Some("segment–mesh: a hit exactly at the segment's end"),
+        reason: "",
+        explains: |lc, a, t, _| {
+            matches!((a, t), (Answer::Intersect(a), Answer::Intersect(t))
+                if shapes(lc).1 == Some("mesh") && a.hit.is_none() && t.hit.is_some_and(|h| h.t >= 1.0))
+        },
+    },
+    Rule {
+        engines: PARRY,
+        parry_what: Some("segment–mesh: a segment through an edge or vertex shared"),
+        reason: "",
+        explains: |lc, a, t, reasons| {
+            let other_face = match (a, t) {
+                (Answer::Intersect(a), Answer::Intersect(t)) => {
+                    matches!((a.hit, t.hit), (Some(x), Some(y)) if x.triangle != y.triangle)
+                }
+                _ => false,
+            };
+            // Same t and point: only the face's own values (normal,
+            // barycentrics) differ.
+            shapes(lc).1 == Some("mesh")
+                && other_face
+                && !reasons.is_empty()
+                && reasons.iter().all(|r| r.starts_with("normal off") || r.starts_with("barycentric off"))
+        },
+    },
+    Rule {
+        engines: PARRY,
+        parry_what: Some("segment–mesh: a segment parallel to every face"),
+        reason: "",
+        explains: |lc, a, t, _| {
+            matches!((a, t), (Answer::Intersect(a), Answer::Intersect(t))
+                if shapes(lc).1 == Some("mesh") && t.parallel && !a.parallel && a.hit.is_none())
+        },
+    },
+    Rule {
         engines: LECTURE,
         parry_what: None,
         reason: "the lecture's bounding sphere (centroid and largest distance) encloses the points \

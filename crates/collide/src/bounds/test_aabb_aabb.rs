@@ -20,10 +20,20 @@ use crate::shapes::Aabb;
 ///
 /// Exact: only comparisons of the inputs, no arithmetic. Symmetric in `a`, `b`.
 ///
+/// Cost: the six comparisons are all made and combined with `&` rather than
+/// `&&`: no branch, so a random mix of overlapping and separated pairs costs
+/// no mispredictions (measured by `cargo bench --bench queries`).
+///
 /// Degenerate input: boxes of zero extent (points, flat boxes) are answered by
 /// the same rule. A box with `min > max` on some axis is malformed (empty); it
 /// overlaps nothing on that axis unless the other box spans the gap, so the
 /// answer for it is not meaningful.
+#[inline]
 pub fn test_aabb_aabb<T: Real>(a: &Aabb<T>, b: &Aabb<T>) -> bool {
-    (0..3).all(|i| a.min[i] <= b.max[i] && b.min[i] <= a.max[i])
+    (a.min.x <= b.max.x)
+        & (b.min.x <= a.max.x)
+        & (a.min.y <= b.max.y)
+        & (b.min.y <= a.max.y)
+        & (a.min.z <= b.max.z)
+        & (b.min.z <= a.max.z)
 }

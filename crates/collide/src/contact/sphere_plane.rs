@@ -60,7 +60,12 @@ pub fn contact_sphere_plane<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<Cont
             let depth = a.radius - s;
             let point = a.center - n * s;
             if depth.finite() && crate::real::finite3(&point) {
-                return Some(Contact { point, normal: n, depth, degenerate: false });
+                return Some(Contact {
+                    point,
+                    normal: n,
+                    depth,
+                    degenerate: false,
+                });
             }
         }
     }
@@ -104,7 +109,11 @@ fn contact_sphere_plane_scaled<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<C
     Some(Contact {
         point: if finite { point } else { saturate(&point) },
         normal: n,
-        depth: if depth.finite() { depth } else { T::max_value().unwrap_or(depth) },
+        depth: if depth.finite() {
+            depth
+        } else {
+            T::max_value().unwrap_or(depth)
+        },
         degenerate: !finite,
     })
 }
@@ -119,7 +128,13 @@ pub fn contact_plane_sphere<T: Real>(a: &Plane<T>, b: &Sphere<T>) -> Option<Cont
 /// Clamps each component of `v` to the finite range (NaN becomes 0).
 fn saturate<T: Real>(v: &Vec3<T>) -> Vec3<T> {
     let big = T::max_value().unwrap_or_else(|| c(f64::MAX));
-    v.map(|x| if x.is_nan() { T::zero() } else { x.max(-big).min(big) })
+    v.map(|x| {
+        if x.is_nan() {
+            T::zero()
+        } else {
+            x.max(-big).min(big)
+        }
+    })
 }
 
 #[cfg(test)]
@@ -210,6 +225,9 @@ mod tests {
         )
         .expect("deep below");
         assert!(k.depth.is_finite() && k.point.iter().all(|x| x.is_finite()));
-        assert!(k.degenerate, "the penetration overflows f64 and is saturated");
+        assert!(
+            k.degenerate,
+            "the penetration overflows f64 and is saturated"
+        );
     }
 }

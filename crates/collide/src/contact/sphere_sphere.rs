@@ -1,7 +1,7 @@
 //! Sphere–sphere contact: the lecture's form and the robust form.
 
 use super::Contact;
-use crate::exact::norm::safe_squared_range;
+use crate::exact::norm::{clear_miss_factor, safe_squared_range};
 use crate::real::{Real, Vec3, c, try_normalize_stable};
 use crate::shapes::Sphere;
 
@@ -46,7 +46,12 @@ pub fn contact_sphere_sphere_lecture<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> O
     } else {
         (delta / dist, false)
     };
-    Some(Contact { point: b.center + normal * b.radius, normal, depth: reach - dist, degenerate })
+    Some(Contact {
+        point: b.center + normal * b.radius,
+        normal,
+        depth: reach - dist,
+        degenerate,
+    })
 }
 
 /// Contact between spheres `a` and `b`, **robust form**: the lecture's formulas
@@ -94,20 +99,14 @@ pub fn contact_sphere_sphere<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> Option<Co
     contact_sphere_sphere_scaled(a, b, delta)
 }
 
-/// `1 + 8u` (`u` the unit roundoff of `T`): a computed `‖Δ‖²` above
-/// `fl(fl(reach²) · (1 + 8u))` exceeds `reach² (1 + 5u)` exactly, so
-/// `fl(√‖Δ‖²) > reach (1 + 2u) > reach`: the test `dist > reach` would say
-/// "apart" too, and the square root is skipped. Shared by the contact queries
-/// and the batch API, which make the same decisions.
-#[inline(always)]
-pub(crate) fn clear_miss_factor<T: Real>() -> T {
-    T::one() + c::<T>(4.0) * T::EPSILON
-}
-
 /// The robust form's scaled path: centres whose squared distance would
 /// underflow or overflow (see [`contact_sphere_sphere`]).
 #[inline(never)]
-fn contact_sphere_sphere_scaled<T: Real>(a: &Sphere<T>, b: &Sphere<T>, delta: Vec3<T>) -> Option<Contact<T>> {
+fn contact_sphere_sphere_scaled<T: Real>(
+    a: &Sphere<T>,
+    b: &Sphere<T>,
+    delta: Vec3<T>,
+) -> Option<Contact<T>> {
     let mut delta = delta;
     let mut scale = T::one();
     if !crate::real::finite3(&delta) {
@@ -157,7 +156,10 @@ mod tests {
     type Method<T> = fn(&Sphere<T>, &Sphere<T>) -> Option<Contact<T>>;
 
     fn both<T: Real>() -> [(&'static str, Method<T>); 2] {
-        [("lecture", contact_sphere_sphere_lecture), ("robust", contact_sphere_sphere)]
+        [
+            ("lecture", contact_sphere_sphere_lecture),
+            ("robust", contact_sphere_sphere),
+        ]
     }
 
     fn overlap_three_four_five<T: Real>() {
@@ -166,8 +168,14 @@ mod tests {
         for (name, f) in both::<T>() {
             let k = f(&ball(3.0, 4.0, 0.0, 3.0), &ball(0.0, 0.0, 0.0, 3.0)).expect(name);
             assert!(close(k.depth, 1.0), "{name}: depth {:?}", k.depth);
-            assert!(close(k.normal.x, 0.6) && close(k.normal.y, 0.8), "{name}: normal");
-            assert!(close(k.point.x, 1.8) && close(k.point.y, 2.4), "{name}: point");
+            assert!(
+                close(k.normal.x, 0.6) && close(k.normal.y, 0.8),
+                "{name}: normal"
+            );
+            assert!(
+                close(k.point.x, 1.8) && close(k.point.y, 2.4),
+                "{name}: point"
+            );
             assert!(!k.degenerate, "{name}");
         }
     }
@@ -188,7 +196,13 @@ mod tests {
         for (name, f) in both::<f64>() {
             let k = f(&ball(2.0, 0.0, 0.0, 1.0), &ball(0.0, 0.0, 0.0, 1.0)).expect(name);
             assert!(close(k.depth, 0.0) && close(k.point.x, 1.0), "{name}");
-            assert!(f(&ball(2.0_f64.next_up(), 0.0, 0.0, 1.0), &ball(0.0, 0.0, 0.0, 1.0)).is_none());
+            assert!(
+                f(
+                    &ball(2.0_f64.next_up(), 0.0, 0.0, 1.0),
+                    &ball(0.0, 0.0, 0.0, 1.0)
+                )
+                .is_none()
+            );
         }
     }
 

@@ -10,8 +10,10 @@
 //! - Predicates on `f64` points ([`P3`]): [`orient3d`], [`triple_product`],
 //!   [`plane_side`], [`dot_diff`], [`orient2d`], [`collinear`],
 //!   [`points_equal`], answering a [`Sign`]. Each runs a fast `f64` evaluation
-//!   with a static forward error bound first and falls back to [`BigFloat`]
-//!   only when that cannot decide; only the fallback allocates.
+//!   with a static forward error bound first; when that cannot decide, the
+//!   exact value is computed with floating-point expansions on the stack
+//!   (Shewchuk's arithmetic, no allocation) for inputs within `2^±200`, and
+//!   with [`BigFloat`] (which allocates) beyond that.
 //! - `_estimate` variants (and [`cross_estimate`]) also give the value, as an
 //!   [`Estimate`] (`mant · 2^exp`, so it never overflows or underflows) with a
 //!   stated relative error, refined on the exact path only as far as the
@@ -19,11 +21,19 @@
 //!   parameters, barycentric coordinates and face normals from them, to
 //!   [`ESTIMATE_REL_ERR`].
 //!
+//! The queries themselves first run an inline filter (`filter`, crate-private):
+//! the same volumes in plain `f64`, sharing differences and cross products,
+//! each with its error bound, deciding nearly every random query without
+//! calling a predicate at all.
+//!
 //! `f32` inputs are exactly `f64` values ([`Real::wide`](crate::Real::wide)), so
 //! the same predicates serve both precisions.
 
 mod bigfloat;
 mod estimate;
+mod expansion;
+pub(crate) mod filter;
+pub(crate) mod norm;
 mod predicates;
 mod sign;
 

@@ -39,6 +39,8 @@
 
 use super::bigfloat::BigFloat;
 use super::estimate::{Estimate, frexp, ldexp};
+use super::expansion::{self, Expansion, in_expansion_range};
+use super::filter;
 use super::sign::Sign;
 
 /// A point (or vector) in the predicates' coordinates.
@@ -109,21 +111,21 @@ fn note_exact() {
 }
 
 #[inline(always)]
-fn decide_sign(fast: Option<Fast>, exact: impl FnOnce() -> BigFloat) -> Sign {
+fn decide_sign(fast: Option<Fast>, exact: impl FnOnce() -> Estimate) -> Sign {
     if let Some(f) = fast
         && (f.value.abs() > f.bound || f.bound == 0.0)
     {
         return Sign::of(f.value);
     }
     note_exact();
-    exact().sign()
+    exact().sign
 }
 
 #[inline(always)]
 fn decide_estimate(
     fast: Option<Fast>,
     max_rel_err: f64,
-    exact: impl FnOnce() -> BigFloat,
+    exact: impl FnOnce() -> Estimate,
 ) -> Estimate {
     if let Some(f) = fast {
         let magnitude = f.value.abs();
@@ -140,7 +142,7 @@ fn decide_estimate(
         }
     }
     note_exact();
-    exact().estimate()
+    exact()
 }
 
 /// The power-of-two exponent that brings a largest magnitude `m > 0` into
@@ -322,13 +324,17 @@ fn det3_fast_scaled(p: &[P3; 6]) -> Option<Fast> {
 }
 
 #[cold]
-fn det3_exact(p: &[P3; 6]) -> BigFloat {
+fn det3_exact(p: &[P3; 6]) -> Estimate {
+    if in_expansion_range(p.iter().flatten()) {
+        let d = |i: usize| [0, 1, 2].map(|k| Expansion::diff(p[i + 1][k], p[i][k]));
+        return expansion::det3(d(0), d(2), d(4)).estimate();
+    }
     let (Some(a), Some(b), Some(c)) = (
         diff3(&p[0], &p[1]),
         diff3(&p[2], &p[3]),
         diff3(&p[4], &p[5]),
     ) else {
-        return BigFloat::ZERO;
+        return Estimate::ZERO;
     };
     // a · (b × c)
     let bxc = [
@@ -336,7 +342,7 @@ fn det3_exact(p: &[P3; 6]) -> BigFloat {
         &(&b[2] * &c[0]) - &(&b[0] * &c[2]),
         &(&b[0] * &c[1]) - &(&b[1] * &c[0]),
     ];
-    dot_big(&a, &bxc)
+    dot_big(&a, &bxc).estimate()
 }
 
 /// Sign of `det[a − d, b − d, c − d] = (a − d) · ((b − d) × (c − d))`, exactly.
@@ -417,11 +423,16 @@ fn plane_fast(n: P3, d: f64, p: P3) -> Option<Fast> {
 }
 
 #[cold]
-fn plane_exact(n: P3, d: f64, p: P3) -> BigFloat {
+fn plane_exact(n: P3, d: f64, p: P3) -> Estimate {
+    if in_expansion_range(n.iter().chain(&p).chain([&d])) {
+        let dot = expansion::dot3(n.map(Expansion::single), p.map(Expansion::single));
+        let value: Expansion<32> = dot.sub(&Expansion::single(d));
+        return value.estimate();
+    }
     let (Some(n), Some(p), Some(d)) = (big3(&n), big3(&p), BigFloat::try_from_f64(d)) else {
-        return BigFloat::ZERO;
+        return Estimate::ZERO;
     };
-    &dot_big(&n, &p) - &d
+    (&dot_big(&n, &p) - &d).estimate()
 }
 
 /// Sign of `n · p − d`, exactly: which side of the plane `n · x = d` the point
@@ -467,11 +478,15 @@ fn dot_diff_fast(n: P3, p0: P3, p1: P3) -> Option<Fast> {
 }
 
 #[cold]
-fn dot_diff_exact(n: P3, p0: P3, p1: P3) -> BigFloat {
+fn dot_diff_exact(n: P3, p0: P3, p1: P3) -> Estimate {
+    if in_expansion_range(n.iter().chain(&p0).chain(&p1)) {
+        let d = [0, 1, 2].map(|k| Expansion::diff(p1[k], p0[k]));
+        return expansion::dot3(n.map(Expansion::single), d).estimate();
+    }
     let (Some(n), Some(d)) = (big3(&n), diff3(&p0, &p1)) else {
-        return BigFloat::ZERO;
+        return Estimate::ZERO;
     };
-    dot_big(&n, &d)
+    dot_big(&n, &d).estimate()
 }
 
 /// Sign of `n · (p1 − p0)`, exactly: whether a segment runs along a plane's
@@ -544,7 +559,11 @@ fn orient2d_fast_scaled(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<Fast> {
 }
 
 #[cold]
-fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> BigFloat {
+fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Estimate {
+    if in_expansion_range(a.iter().chain(&b).chain(&c)) {
+        let d = |p: [f64; 2]| [0, 1].map(|k| Expansion::diff(p[k], c[k]));
+        return expansion::det2(d(a), d(b)).estimate();
+    }
     let big = |x: f64| BigFloat::try_from_f64(x);
     let (Some(ax), Some(ay), Some(bx), Some(by), Some(cx), Some(cy)) = (
         big(a[0]),
@@ -554,9 +573,9 @@ fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> BigFloat {
         big(c[0]),
         big(c[1]),
     ) else {
-        return BigFloat::ZERO;
+        return Estimate::ZERO;
     };
-    &(&(&ax - &cx) * &(&by - &cy)) - &(&(&ay - &cy) * &(&bx - &cx))
+    (&(&(&ax - &cx) * &(&by - &cy)) - &(&(&ay - &cy) * &(&bx - &cx))).estimate()
 }
 
 /// Sign of `(a − c) × (b − c) = (b − a) × (c − a)` (2D), exactly: positive when
@@ -589,15 +608,49 @@ fn projections(p: P3) -> [[f64; 2]; 3] {
 /// each has an exact sign and a relative error at most `max_rel_err` (or
 /// `2^−52`), for every finite input — overflow (`1e300` scenes) and underflow
 /// (`1e-300` ones) included.
+///
+/// The three components are first computed together in plain `f64` from the
+/// shared differences `b − a`, `c − a`, each with its static error bound
+/// (`filter::cross`); a component is taken from there when its bound makes it
+/// accurate to `max_rel_err`, and evaluated alone by [`orient2d_estimate`]
+/// (its own filter, then the exact path) otherwise.
 pub fn cross_estimate(a: P3, b: P3, c: P3, max_rel_err: f64) -> [Estimate; 3] {
     let (pa, pb, pc) = (projections(a), projections(b), projections(c));
-    [0, 1, 2].map(|i| orient2d_estimate(pa[i], pb[i], pc[i], max_rel_err))
+    let slow = |i: usize| orient2d_estimate(pa[i], pb[i], pc[i], max_rel_err);
+    if !filter::in_fast_range([a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2]]) {
+        return [0, 1, 2].map(slow);
+    }
+    let (n, perm) = filter::cross(filter::sub(b, a), filter::sub(c, a));
+    let bounds = filter::cross_bounds(perm);
+    [0, 1, 2].map(|i| {
+        let magnitude = n[i].abs();
+        if magnitude > bounds[i] {
+            // As `decide_estimate`: relative error bound / (|value| − bound),
+            // with 4 ulps for this quotient's rounding.
+            let rel_err = bounds[i] / (magnitude - bounds[i]) * (1.0 + 4.0 * f64::EPSILON);
+            if rel_err <= max_rel_err {
+                return Estimate::from_scaled(n[i], 0, rel_err);
+            }
+        }
+        slow(i)
+    })
 }
 
 /// Whether `a`, `b`, `c` are collinear (coincident points included), exactly:
 /// whether `(b − a) × (c − a)` is exactly the zero vector, i.e. the triangle
 /// `a b c` has zero area.
+///
+/// A component of the cross product that its filter (`filter::cross`, on the
+/// shared differences) shows to be non-zero answers `false` at once; only
+/// otherwise are the three components decided one by one by [`orient2d`].
 pub fn collinear(a: P3, b: P3, c: P3) -> bool {
+    if filter::in_fast_range([a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2]]) {
+        let (n, perm) = filter::cross(filter::sub(b, a), filter::sub(c, a));
+        let bounds = filter::cross_bounds(perm);
+        if (n[0].abs() > bounds[0]) | (n[1].abs() > bounds[1]) | (n[2].abs() > bounds[2]) {
+            return false;
+        }
+    }
     let (pa, pb, pc) = (projections(a), projections(b), projections(c));
     (0..3).all(|i| orient2d(pa[i], pb[i], pc[i]) == Sign::Zero)
 }

@@ -397,3 +397,37 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1000))]
+
+    /// `cross_estimate` (shared-difference filter first) agrees with each
+    /// component's own `orient2d_estimate` at full accuracy: same exact sign,
+    /// magnitude within the requested accuracy; and `collinear` agrees with the
+    /// three signs. Near-collinear triples (a third point close to the line
+    /// through two) make the filter's bounds matter.
+    #[test]
+    fn cross_estimate_and_collinear_agree_with_orient2d(a in moderate_point(), b in moderate_point(), s in -2.0..2.0f64, off in proptest::array::uniform3(-1e-12..1e-12f64)) {
+        /// The accuracy asked of `cross_estimate` (2^−40, the queries' own).
+        const ASKED: f64 = ESTIMATE_REL_ERR;
+        let c = [0, 1, 2].map(|i| a[i] + s * (b[i] - a[i]) + off[i]);
+        let (pa, pb, pc) = (
+            [[a[1], a[2]], [a[2], a[0]], [a[0], a[1]]],
+            [[b[1], b[2]], [b[2], b[0]], [b[0], b[1]]],
+            [[c[1], c[2]], [c[2], c[0]], [c[0], c[1]]],
+        );
+        let got = cross_estimate(a, b, c, ASKED);
+        for i in 0..3 {
+            let want = orient2d_estimate(pa[i], pb[i], pc[i], 0.0);
+            prop_assert_eq!(got[i].sign, want.sign, "component {}", i);
+            prop_assert!(got[i].rel_err <= ASKED || got[i].rel_err <= 2.0 * f64::EPSILON, "rel_err {}", got[i].rel_err);
+            if want.sign != Sign::Zero {
+                // The estimate within ASKED of the exact value, seen through
+                // `want` (itself within 2^−52).
+                prop_assert!(rel_diff(got[i], want) <= ASKED + 4.0 * f64::EPSILON, "component {}: {:?} vs {:?}", i, got[i], want);
+            }
+        }
+        let zero = got.iter().all(|e| e.sign == Sign::Zero);
+        prop_assert_eq!(collinear(a, b, c), zero);
+    }
+}

@@ -16,7 +16,8 @@ use super::backend::query::{
     self, PointQuery, PointQueryWithLocation, Ray, RayCast, RayIntersection, Unsupported,
 };
 use super::backend::shape::{
-    Ball as EngineBall, HalfSpace, Triangle as EngineTriangle, TrianglePointLocation,
+    Ball as EngineBall, HalfSpace, TriMesh as EngineTriMesh, Triangle as EngineTriangle,
+    TrianglePointLocation,
 };
 use super::{Engine, Real, narrow, widen};
 use crate::geom::{
@@ -216,7 +217,56 @@ fn triangle_contact_fallback(tri: &EngineTriangle, center: Vector) -> bool {
     (proj.point - center).length() < DEFAULT_EPSILON
 }
 
+/// A mesh prepared for this engine: parry's `TriMesh` (built once, with its BVH)
+/// or none for a mesh without faces, and whether some face has no normal in the
+/// engine's scalar (parry's `Triangle::normal()` is `None`: zero area), which
+/// flags every answer `degenerate` (the fixture format's mesh rule).
+#[derive(Clone)]
+pub struct PreparedMesh {
+    trimesh: Option<EngineTriMesh>,
+    degenerate: bool,
+}
+
+impl PreparedMesh {
+    /// Number of faces.
+    pub fn len(&self) -> usize {
+        self.trimesh.as_ref().map_or(0, |t| t.num_triangles())
+    }
+
+    /// Whether the mesh has no face.
+    pub fn is_empty(&self) -> bool {
+        self.trimesh.is_none()
+    }
+
+    /// Whether some face has zero area in the engine's scalar.
+    pub fn has_degenerate_face(&self) -> bool {
+        self.degenerate
+    }
+}
+
+impl core::fmt::Debug for PreparedMesh {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("PreparedMesh")
+            .field("faces", &self.len())
+            .field("degenerate", &self.degenerate)
+            .finish()
+    }
+}
+
+/// The segment–triangle hit of a ray on `tri` in crashtest's convention, with the
+/// barycentrics of the hit point (parry's location of its projection). `None`
+/// when the triangle has no normal or parry returned a non-finite number.
+fn triangle_hit(ray: &Ray, hit: &RayIntersection, tri: &EngineTriangle) -> Option<SegmentHit> {
+    let mut answer = translate_hit(ray, hit, tri.normal()?)?;
+    let (_, location) =
+        tri.project_local_point_and_get_location(ray.point_at(hit.time_of_impact), false);
+    answer.barycentric = Some(translate_location(&location)?);
+    Some(answer)
+}
+
 impl ParryEngine for Engine {
+    type Mesh = PreparedMesh;
+
     fn name(&self) -> &'static str {
         Engine::NAME
     }
@@ -349,6 +399,60 @@ impl ParryEngine for Engine {
     fn overlap_aabb_aabb(&self, a: Aabb, b: Aabb) -> bool {
         engine_aabb(&a).intersects(&engine_aabb(&b))
     }
+
+    fn mesh(&self, vertices: &[P3], triangles: &[[usize; 3]]) -> Option<PreparedMesh> {
+        let vs: Vec<Vector> = vertices.iter().map(|&p| vector(p)).collect::<Option<_>>()?;
+        let index = |i: usize| u32::try_from(i).ok().filter(|_| i < vs.len());
+        let faces: Vec<[u32; 3]> = triangles
+            .iter()
+            .map(|t| Some([index(t[0])?, index(t[1])?, index(t[2])?]))
+            .collect::<Option<_>>()?;
+        if faces.is_empty() {
+            return Some(PreparedMesh {
+                trimesh: None,
+                degenerate: false,
+            });
+        }
+        // Only an empty index buffer is refused by `TriMesh::new`.
+        let trimesh = EngineTriMesh::new(vs, faces).ok()?;
+        let degenerate =
+            (0..trimesh.num_triangles() as u32).any(|i| trimesh.triangle(i).normal().is_none());
+        Some(PreparedMesh {
+            trimesh: Some(trimesh),
+            degenerate,
+        })
+    }
+
+    fn intersect_segment_prepared_mesh(&self, s: Segment, mesh: &PreparedMesh) -> IntersectAnswer {
+        let Some(ray) = ray(&s) else {
+            return NO_HIT_DEGENERATE;
+        };
+        let miss = IntersectAnswer {
+            hit: None,
+            // parry gives no parallel verdict (MESH_NO_PARALLEL).
+            parallel: false,
+            degenerate: mesh.degenerate,
+        };
+        let Some(trimesh) = &mesh.trimesh else {
+            return miss;
+        };
+        let Some(hit) = trimesh.cast_local_ray_and_get_normal(&ray, MAX_TIME_OF_IMPACT, false)
+        else {
+            return miss;
+        };
+        let face = hit.subshape;
+        match triangle_hit(&ray, &hit, &trimesh.triangle(face)) {
+            Some(mut h) => {
+                h.triangle = Some(face as usize);
+                IntersectAnswer {
+                    hit: Some(h),
+                    parallel: false,
+                    degenerate: mesh.degenerate,
+                }
+            }
+            None => NO_HIT_DEGENERATE,
+        }
+    }
 }
 
 #[cfg(test)]
@@ -361,8 +465,8 @@ mod tests {
     use super::*;
     use crate::parry::{
         CENTRE_NEAR_TRIANGLE, CENTROID_SPHERE, CLAMPED_BARYCENTRICS, CONCENTRIC_SPHERES,
-        DIVERGENCES, Divergence, NO_TRIANGLE_PARALLEL, PLANE_PARALLEL_EPSILON, TOUCHING_SPHERES,
-        known_divergences,
+        DIVERGENCES, Divergence, MESH_END_HIT, MESH_NO_PARALLEL, MESH_TIE_FACE,
+        NO_TRIANGLE_PARALLEL, PLANE_PARALLEL_EPSILON, TOUCHING_SPHERES, known_divergences,
     };
     use proptest::prelude::*;
 
@@ -960,6 +1064,206 @@ mod tests {
         );
     }
 
+    // --- meshes ------------------------------------------------------------------
+
+    /// The corner tetrahedron, faces oriented outward: 0 = z = 0 (normal −z),
+    /// 1 = y = 0, 2 = x = 0, 3 = x + y + z = 1 (normal (1,1,1)/√3).
+    const TETRA_V: [P3; 4] = [[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    const TETRA_F: [[usize; 3]; 4] = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+
+    /// An open unit square in z = 0 as two faces sharing the diagonal v0 v2.
+    const QUAD_V: [P3; 4] = [[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    const QUAD_F: [[usize; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
+
+    #[test]
+    fn parry_mesh_first_hit_with_face_index_and_own_normal() {
+        let e = engine();
+        let m = e.mesh(&TETRA_V, &TETRA_F).expect("prepared");
+        assert_eq!(m.len(), 4);
+        // Down x = y = 0.25 from z = 2 to z = −1: the slanted face at t = 1/2
+        // first (z = 0.5), then the base.
+        let a =
+            e.intersect_segment_prepared_mesh(segment([0.25, 0.25, 2.0], [0.25, 0.25, -1.0]), &m);
+        let h = a.hit.expect("hit");
+        assert_eq!(
+            h.triangle,
+            Some(3),
+            "{}: face index from subshape",
+            Engine::NAME
+        );
+        assert_close("t", h.t, 0.5);
+        assert_p3("point", h.point, [0.25, 0.25, 0.5]);
+        let r3 = 1.0 / 3f64.sqrt();
+        assert!(
+            (0..3).all(|i| (h.normal[i] - r3).abs() <= 4.0 * SMOKE_TOL),
+            "normal {:?}",
+            h.normal
+        );
+        assert_p3(
+            "barycentric",
+            h.barycentric.expect("coords"),
+            [0.25, 0.25, 0.5],
+        );
+        assert!(!a.parallel && !a.degenerate);
+        // Upward: the base first, its own normal −z although the ray comes from
+        // below (parry's normal faces the ray's origin).
+        let h = e
+            .intersect_segment_mesh(
+                segment([0.25, 0.25, -1.0], [0.25, 0.25, 2.0]),
+                &TETRA_V,
+                &TETRA_F,
+            )
+            .hit
+            .expect("hit");
+        assert_eq!(h.triangle, Some(0));
+        assert_close("t", h.t, 1.0 / 3.0);
+        assert_p3("normal", h.normal, [0.0, 0.0, -1.0]);
+        // Through the box but outside the tetrahedron: a miss.
+        let a = e.intersect_segment_prepared_mesh(segment([0.9, 0.9, -1.0], [0.9, 0.9, 2.0]), &m);
+        assert_eq!(a, IntersectAnswer::default());
+    }
+
+    #[test]
+    fn parry_mesh_degenerate_input_is_flagged() {
+        let e = engine();
+        // A zero-area face (collinear (0,0,0), (1,1,0), (2,2,0)) beside the quad.
+        let mut verts = QUAD_V.to_vec();
+        verts.push([2.0, 2.0, 0.0]);
+        let faces = [[0, 2, 4], QUAD_F[0], QUAD_F[1]];
+        let m = e.mesh(&verts, &faces).expect("prepared");
+        assert!(m.has_degenerate_face());
+        let a =
+            e.intersect_segment_prepared_mesh(segment([0.75, 0.25, 1.0], [0.75, 0.25, -1.0]), &m);
+        assert!(
+            a.degenerate && a.hit.expect("hit").triangle == Some(1),
+            "{a:?}"
+        );
+        // Zero-length segment; an index out of range; a vertex beyond the scalar.
+        let p = [0.5, 0.25, 0.0];
+        assert_eq!(
+            e.intersect_segment_prepared_mesh(segment(p, p), &m),
+            NO_HIT_DEGENERATE
+        );
+        assert!(
+            e.mesh(&QUAD_V, &[[0, 1, 4]]).is_none(),
+            "index out of range"
+        );
+        // 1e39 overflows f32 only.
+        let far = [[1e39, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let s = segment([0.0, 0.0, 0.0], [1.0, 1.0, 1.0]);
+        let finite = narrow(1e39).is_finite();
+        assert_eq!(
+            e.intersect_segment_mesh(s, &far, &[[0, 1, 2]]).degenerate,
+            !finite,
+            "refused only where the scalar overflows"
+        );
+        // No faces: a plain miss.
+        let empty = e.mesh(&QUAD_V, &[]).expect("prepared");
+        assert!(empty.is_empty());
+        assert_eq!(
+            e.intersect_segment_prepared_mesh(segment([0.5, 0.5, 1.0], [0.5, 0.5, -1.0]), &empty),
+            IntersectAnswer::default()
+        );
+    }
+
+    #[test]
+    fn parry_divergence_mesh_misses_a_hit_at_the_segment_end() {
+        assert_listed(&MESH_END_HIT);
+        // Ending exactly on the tetrahedron's base (t = 1): the face alone is
+        // hit, the mesh is not.
+        let e = engine();
+        let s = segment([0.25, 0.25, -1.0], [0.25, 0.25, 0.0]);
+        let alone = e.intersect_segment_triangle(s, tri(TETRA_V[0], TETRA_V[2], TETRA_V[1]));
+        assert_close("t", alone.hit.expect("the face alone is hit").t, 1.0);
+        let a = e.intersect_segment_mesh(s, &TETRA_V, &TETRA_F);
+        assert!(
+            a.hit.is_none(),
+            "{}: t = 1 missed on the mesh: {a:?}",
+            Engine::NAME
+        );
+        // A hair further and it is found.
+        let s = segment([0.25, 0.25, -1.0], [0.25, 0.25, 0.5]);
+        assert!(
+            e.intersect_segment_mesh(s, &TETRA_V, &TETRA_F)
+                .hit
+                .is_some()
+        );
+    }
+
+    /// A flat `n × n` grid of unit squares in z = 0, two faces each, listed in a
+    /// scrambled (but fixed) order so that index order and spatial order differ.
+    fn grid(n: usize) -> (Vec<P3>, Vec<[usize; 3]>) {
+        let mut verts = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                verts.push([i as f64, j as f64, 0.0]);
+            }
+        }
+        let mut faces = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                let (a, b) = (j * (n + 1) + i, j * (n + 1) + i + 1);
+                let (c, d) = (a + n + 1, b + n + 1);
+                faces.push([a, b, d]);
+                faces.push([a, d, c]);
+            }
+        }
+        // A fixed permutation: stride 7 through the faces (coprime with 2n²).
+        let m = faces.len();
+        let scrambled = (0..m).map(|k| faces[(k * 7) % m]).collect();
+        (verts, scrambled)
+    }
+
+    #[test]
+    fn parry_divergence_mesh_tie_is_not_the_lowest_index() {
+        assert_listed(&MESH_TIE_FACE);
+        // Straight down through every interior grid vertex: each is shared by
+        // several faces, all hit at t = 1/2. The lowest index among them is
+        // crashtest's answer (the referee's); parry answers another one for some
+        // of these vertices.
+        let e = engine();
+        let (verts, faces) = grid(4);
+        let m = e.mesh(&verts, &faces).expect("prepared");
+        let mut differs = 0;
+        for j in 1..4 {
+            for i in 1..4 {
+                let p = [i as f64, j as f64];
+                let s = segment([p[0], p[1], 1.0], [p[0], p[1], -1.0]);
+                let h = e.intersect_segment_prepared_mesh(s, &m).hit.expect("hit");
+                assert_close("t", h.t, 0.5);
+                let lowest = crate::referee::intersect_segment_mesh(&s, &verts, &faces)
+                    .expect("referee")
+                    .hit
+                    .and_then(|h| h.triangle)
+                    .expect("referee hit");
+                if h.triangle != Some(lowest) {
+                    differs += 1;
+                }
+            }
+        }
+        assert!(
+            differs > 0,
+            "{}: every vertex tie went to the lowest index",
+            Engine::NAME
+        );
+    }
+
+    #[test]
+    fn parry_divergence_mesh_gives_no_parallel_verdict() {
+        assert_listed(&MESH_NO_PARALLEL);
+        // The flat quad and a segment in its plane, and one parallel above it.
+        let e = engine();
+        for z in [0.0, 1.0] {
+            let a =
+                e.intersect_segment_mesh(segment([-1.0, 0.5, z], [2.0, 0.5, z]), &QUAD_V, &QUAD_F);
+            assert_eq!(
+                a,
+                IntersectAnswer::default(),
+                "z = {z}: a plain miss, parallel unset"
+            );
+        }
+    }
+
     #[test]
     fn parry_every_divergence_is_pinned() {
         // The divergences the tests above pin; a new entry needs a pin here.
@@ -971,6 +1275,9 @@ mod tests {
             PLANE_PARALLEL_EPSILON,
             CLAMPED_BARYCENTRICS,
             CENTROID_SPHERE,
+            MESH_END_HIT,
+            MESH_TIE_FACE,
+            MESH_NO_PARALLEL,
         ];
         for d in DIVERGENCES {
             assert!(

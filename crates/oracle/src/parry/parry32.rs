@@ -36,3 +36,5 @@ const SMOKE_TOL: f64 = 1e-6;
 )]
 #[path = "engine.rs"]
 mod engine;
+
+pub use engine::PreparedMesh;

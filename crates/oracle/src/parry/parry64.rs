@@ -33,3 +33,5 @@ const SMOKE_TOL: f64 = 1e-14;
 )]
 #[path = "engine.rs"]
 mod engine;
+
+pub use engine::PreparedMesh;

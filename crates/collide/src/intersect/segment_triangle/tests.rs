@@ -804,3 +804,101 @@ proptest! {
         }
     }
 }
+
+// ---------------------------------------------------------------------------
+// The inline filter against the general path
+// ---------------------------------------------------------------------------
+
+/// The filter's answer, where it gives one, is the general path's: the same
+/// classification, and values within both answers' accuracy.
+fn filter_agrees_with_general(t: [P3; 3], q: [P3; 2]) -> Result<(), TestCaseError> {
+    /// Absolute, on t, barycentrics and normal components (all in [−1, 1]):
+    /// each answer within about 2·2^−40 + a few roundings of the exact value.
+    const VALUE_TOL: f64 = 8.0 * ESTIMATE_REL_ERR + 8.0 * f64::EPSILON;
+    let g = general::<f64>(&seg(q[0], q[1]), &tri(t[0], t[1], t[2]));
+    match filtered(t[0], t[1], t[2], q[0], q[1]) {
+        Filtered::Undecided => {}
+        Filtered::Miss => prop_assert_eq!(kind(&g), Kind::Miss, "filter says miss: {:?}", g),
+        Filtered::Hit(h) => {
+            let gh = g
+                .hit
+                .ok_or_else(|| TestCaseError::fail(format!("filter says hit: {g:?}")))?;
+            prop_assert!((h.t - gh.t).abs() <= VALUE_TOL, "t {} vs {}", h.t, gh.t);
+            prop_assert!((h.one_minus_t - (1.0 - gh.t)).abs() <= VALUE_TOL, "1 − t");
+            let gb = gh.barycentric.expect("barycentrics");
+            for i in 0..3 {
+                prop_assert!(
+                    (h.barycentric[i] - gb[i]).abs() <= VALUE_TOL,
+                    "{:?} vs {gb:?}",
+                    h.barycentric
+                );
+                prop_assert!(
+                    (h.normal[i] - gh.normal[i]).abs() <= VALUE_TOL,
+                    "{:?} vs {}",
+                    h.normal,
+                    gh.normal
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    #[test]
+    fn filter_agrees_with_general_aimed((t, q) in aimed()) {
+        filter_agrees_with_general(t, q)?;
+    }
+
+    #[test]
+    fn filter_agrees_with_general_on_a_grid(a in grid(), b in grid(), c in grid(), q0 in grid(), q1 in grid()) {
+        filter_agrees_with_general([a, b, c], [q0, q1])?;
+    }
+
+    #[test]
+    fn filter_agrees_with_general_at_any_scale(p in proptest::array::uniform15(any_finite())) {
+        let pt = |i: usize| [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
+        filter_agrees_with_general([pt(0), pt(1), pt(2)], [pt(3), pt(4)])?;
+    }
+}
+
+#[test]
+fn filter_decides_random_queries_itself() {
+    // The same random queries as `filter_decides_random_queries_without_the_exact_path`,
+    // asked of the inline filter alone.
+    const QUERIES: u64 = 5000;
+    /// At most 0.2% may be left to the general path (none were when this was
+    /// written).
+    const MAX_UNDECIDED: u64 = QUERIES / 500;
+    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let (mut hits, mut undecided) = (0u64, 0u64);
+    for i in 0..QUERIES {
+        let mut p = || [next(), next(), next()];
+        let (a, b, c) = (p(), p(), p());
+        let (q0, mut q1) = (p(), p());
+        if i % 3 == 0 {
+            q1 = [0, 1, 2].map(|k| 2.0 * (a[k] + b[k] + c[k]) / 3.0 - q0[k]);
+        }
+        match filtered(a, b, c, q0, q1) {
+            Filtered::Hit(_) => hits += 1,
+            Filtered::Undecided => undecided += 1,
+            Filtered::Miss => {}
+        }
+    }
+    assert!(
+        hits >= QUERIES / 4,
+        "only {hits} hits: the value path is not exercised"
+    );
+    assert!(
+        undecided <= MAX_UNDECIDED,
+        "{undecided} of {QUERIES} left to the general path"
+    );
+}

@@ -1,0 +1,260 @@
+//! The table printed at the end of a run (and written to
+//! `target/criterion/crashtest-table.md`): criterion's estimates of this run,
+//! per query and engine, as nanoseconds per query, with the ratios the speed
+//! targets are stated in and the lower bound from the hand-counted arithmetic.
+
+use super::cost::Cost;
+use super::peak::Peak;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::SystemTime;
+
+/// The engines of the main table: criterion's benchmark id and the column's
+/// heading.
+pub const ENGINES: [(&str, &str); 8] = [
+    ("collide_lecture_f64", "collide lecture f64"),
+    ("collide_robust_f64", "collide robust f64"),
+    ("collide_lecture_f32", "collide lecture f32"),
+    ("collide_robust_f32", "collide robust f32"),
+    ("parry64", "parry3d-f64"),
+    ("parry32", "parry3d"),
+    ("parry64_adapter", "parry3d-f64 via adapter"),
+    ("parry32_adapter", "parry3d via adapter"),
+];
+
+/// One query of the main table.
+pub struct Row {
+    /// criterion's group name (the benchmark ids are [`ENGINES`]'s).
+    pub group: &'static str,
+    /// The row's heading.
+    pub label: &'static str,
+    /// Queries per benchmark iteration (the cases).
+    pub per_iter: usize,
+    /// Mean arithmetic per query over the cases (`None`: not counted).
+    pub cost: Option<Cost>,
+    /// Fraction of the cases that hit (contact, intersect, overlap), for the
+    /// reader.
+    pub hits: Option<f64>,
+    /// The lecture column's engine when it is not `collide_lecture_*` (the
+    /// query has one method: the robust one is the lecture's).
+    pub one_method: bool,
+}
+
+/// One comparison of the batch table.
+pub struct BatchRow {
+    /// criterion's group name.
+    pub group: &'static str,
+    /// The row's heading.
+    pub label: &'static str,
+    /// Pairs per benchmark iteration.
+    pub per_iter: usize,
+    /// Benchmark ids: the one-at-a-time loop, then the batch call.
+    pub ids: (&'static str, &'static str),
+    /// Arithmetic per pair.
+    pub cost: Option<Cost>,
+}
+
+/// Where criterion writes: `$CARGO_TARGET_DIR/criterion`, else the
+/// workspace's `target/criterion`.
+pub fn criterion_dir() -> PathBuf {
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("target"));
+    target.join("criterion")
+}
+
+/// Nanoseconds per query of benchmark `group/id`, from criterion's estimate
+/// written during this run (`since`): its slope (time per iteration, by
+/// regression over the samples) or, failing that, its mean, divided by the
+/// queries per iteration. `None` when the benchmark did not run this time.
+fn ns_per_query(
+    dir: &Path,
+    group: &str,
+    id: &str,
+    per_iter: usize,
+    since: SystemTime,
+) -> Option<f64> {
+    let path = dir.join(group).join(id).join("new").join("estimates.json");
+    let written = std::fs::metadata(&path).and_then(|m| m.modified()).ok()?;
+    if written < since {
+        return None;
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).ok()?).ok()?;
+    let pick = |k: &str| json.get(k)?.get("point_estimate")?.as_f64();
+    let ns = pick("slope").or_else(|| pick("mean"))?;
+    Some(ns / per_iter as f64)
+}
+
+fn cell(x: Option<f64>) -> String {
+    match x {
+        Some(v) if v >= 100.0 => format!("{v:.0}"),
+        Some(v) if v >= 10.0 => format!("{v:.1}"),
+        Some(v) => format!("{v:.2}"),
+        None => "—".into(),
+    }
+}
+
+fn ratio(x: Option<f64>, y: Option<f64>) -> Option<f64> {
+    Some(x? / y?)
+}
+
+/// The verdict on a ratio against its target.
+fn verdict(r: Option<f64>, target: f64) -> &'static str {
+    match r {
+        Some(r) if r <= target => "met",
+        Some(_) => "**missed**",
+        None => "not measured",
+    }
+}
+
+/// One speed target: `numerator / denominator ≤ target`, over one group.
+pub struct Target {
+    /// Group.
+    pub group: &'static str,
+    /// What is compared, for the reader.
+    pub what: &'static str,
+    /// Benchmark ids of the numerator and the denominator.
+    pub ids: (&'static str, &'static str),
+    /// The largest ratio that meets it.
+    pub target: f64,
+}
+
+/// Renders the whole report as Markdown.
+pub fn render(
+    rows: &[Row],
+    batches: &[BatchRow],
+    targets: &[Target],
+    peak: &Peak,
+    since: SystemTime,
+) -> String {
+    let dir = criterion_dir();
+    let mut s = String::new();
+    let _ = writeln!(s, "# crashtest speed: collide against parry, one run\n");
+    let _ = writeln!(
+        s,
+        "Nanoseconds per query (criterion's slope estimate over the run's samples, divided by \
+         the cases per iteration; `—`: not run). Same pre-generated cases for every engine \
+         (seed {:#x}, the campaign's generators and mix). parry3d-f64 / parry3d: parry called \
+         directly on pre-converted inputs; \"via adapter\": through `oracle::parry::ParryEngine`, \
+         which converts and translates inside each call.\n",
+        super::cases::SEED
+    );
+    let _ = writeln!(
+        s,
+        "Peak of this build on this machine (packed SIMD, measured): {:.2} f64 ops/ns, {:.2} f32 \
+         ops/ns, {:.3} f64 sqrt/ns, {:.3} f64 div/ns. Bound = the query's hand-counted arithmetic \
+         (mean over the cases) at that peak: FP pipes and divider in parallel, the larger time.\n",
+        peak.ops_f64, peak.ops_f32, peak.sqrt_f64, peak.div_f64
+    );
+
+    let _ = write!(s, "| query | hits |");
+    for (_, h) in ENGINES {
+        let _ = write!(s, " {h} |");
+    }
+    let _ = writeln!(
+        s,
+        " robust f64 / parry3d-f64 | lecture f64 / parry3d-f64 | bound f64 (ns) | robust f64 / bound |"
+    );
+    let _ = write!(s, "| --- | ---: |");
+    for _ in ENGINES {
+        let _ = write!(s, " ---: |");
+    }
+    let _ = writeln!(s, " ---: | ---: | ---: | ---: |");
+    for r in rows {
+        let get = |id: &str| ns_per_query(&dir, r.group, id, r.per_iter, since);
+        let hits = r.hits.map_or("—".into(), |h| format!("{:.0}%", 100.0 * h));
+        let _ = write!(s, "| {} | {hits} |", r.label);
+        for (id, _) in ENGINES {
+            let v = if r.one_method && id.starts_with("collide_lecture") {
+                None
+            } else {
+                get(id)
+            };
+            let shown = if r.one_method && id.starts_with("collide_lecture") {
+                "= robust".to_string()
+            } else {
+                cell(v)
+            };
+            let _ = write!(s, " {shown} |");
+        }
+        let robust = get("collide_robust_f64");
+        let lecture = if r.one_method {
+            robust
+        } else {
+            get("collide_lecture_f64")
+        };
+        let parry = get("parry64");
+        let bound = r.cost.map(|c| peak.bound_ns(c));
+        let _ = writeln!(
+            s,
+            " {} | {} | {} | {} |",
+            cell(ratio(robust, parry)),
+            cell(ratio(lecture, parry)),
+            cell(bound),
+            cell(ratio(robust, bound)),
+        );
+    }
+
+    if !batches.is_empty() {
+        let _ = writeln!(
+            s,
+            "\n## Batch against one at a time\n\n| comparison | one at a time (ns/pair) | batch \
+             (ns/pair) | speed-up | bound f64 (ns/pair) |\n| --- | ---: | ---: | ---: | ---: |"
+        );
+        for b in batches {
+            let one = ns_per_query(&dir, b.group, b.ids.0, b.per_iter, since);
+            let batch = ns_per_query(&dir, b.group, b.ids.1, b.per_iter, since);
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} |",
+                b.label,
+                cell(one),
+                cell(batch),
+                ratio(one, batch).map_or("—".into(), |x| format!("{x:.2}×")),
+                cell(b.cost.map(|c| peak.bound_ns(c))),
+            );
+        }
+    }
+
+    let _ = writeln!(
+        s,
+        "\n## Targets\n\n| target | measured | verdict |\n| --- | ---: | --- |"
+    );
+    for t in targets {
+        let per = rows
+            .iter()
+            .find(|r| r.group == t.group)
+            .map(|r| r.per_iter)
+            .or_else(|| {
+                batches
+                    .iter()
+                    .find(|b| b.group == t.group)
+                    .map(|b| b.per_iter)
+            })
+            .unwrap_or(1);
+        let r = ratio(
+            ns_per_query(&dir, t.group, t.ids.0, per, since),
+            ns_per_query(&dir, t.group, t.ids.1, per, since),
+        );
+        let _ = writeln!(
+            s,
+            "| {} ≤ {} | {} | {} |",
+            t.what,
+            t.target,
+            r.map_or("—".into(), |x| format!("{x:.2}")),
+            verdict(r, t.target)
+        );
+    }
+    s
+}
+
+/// Prints the report and writes it beside criterion's files.
+pub fn publish(report: &str) {
+    println!("\n{report}");
+    let path = criterion_dir().join("crashtest-table.md");
+    match std::fs::create_dir_all(criterion_dir()).and_then(|()| std::fs::write(&path, report)) {
+        Ok(()) => println!("(written to {})", path.display()),
+        Err(e) => eprintln!("could not write {}: {e}", path.display()),
+    }
+}

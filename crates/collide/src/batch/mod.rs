@@ -1,0 +1,23 @@
+//! Batch queries over contiguous arrays: many pairs at once, laid out as a
+//! structure of arrays so that the compiler can vectorize the loop.
+//!
+//! One query at a time, a sphere–sphere contact is a dozen dependent
+//! operations and a square root; a loop over many pairs is then bound by
+//! latency and by the branch on each pair's outcome. Here the pairs come as
+//! separate arrays of `x`, `y`, `z` and radius ([`Spheres`]), every lane is
+//! computed the same way without branches (the outcome is a mask, the answers
+//! of non-contacts are zeroed by selection), and the results go to arrays of
+//! the same shape ([`SphereContacts`]): the loop body is straight-line
+//! arithmetic on slices, which the compiler turns into packed SIMD.
+//!
+//! Each lane computes exactly what the one-pair function computes, in the same
+//! order, so the answers are the same to the bit ([`contact_spheres_spheres`]
+//! against [`crate::contact::contact_sphere_sphere`]); the rare lane the fast
+//! arithmetic cannot answer (a squared distance that would underflow or
+//! overflow) is answered afterwards by the one-pair function itself.
+//! `cargo bench --bench queries` measures the batch against the one-at-a-time
+//! loop.
+
+mod sphere_sphere;
+
+pub use sphere_sphere::{SphereContacts, Spheres, contact_spheres_spheres, test_spheres_spheres};

@@ -1,0 +1,494 @@
+//! Spheres against spheres, pairwise, over arrays.
+
+use crate::contact::{Contact, contact_sphere_sphere};
+use crate::exact::norm::{clear_miss_factor, safe_squared_range};
+use crate::real::{Real, Vec3};
+use crate::shapes::Sphere;
+
+/// Spheres as a structure of arrays: sphere `i` is centred at
+/// `(x[i], y[i], z[i])` with radius `radius[i]`. The four arrays have the same
+/// length (every constructor keeps them so; a caller filling the fields by
+/// hand must too — the batch functions use the shortest).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Spheres<T: Real> {
+    /// Centres' `x`.
+    pub x: Vec<T>,
+    /// Centres' `y`.
+    pub y: Vec<T>,
+    /// Centres' `z`.
+    pub z: Vec<T>,
+    /// Radii.
+    pub radius: Vec<T>,
+}
+
+impl<T: Real> Spheres<T> {
+    /// No spheres.
+    pub fn new() -> Self {
+        Self {
+            x: Vec::new(),
+            y: Vec::new(),
+            z: Vec::new(),
+            radius: Vec::new(),
+        }
+    }
+
+    /// No spheres, room for `n`.
+    pub fn with_capacity(n: usize) -> Self {
+        Self {
+            x: Vec::with_capacity(n),
+            y: Vec::with_capacity(n),
+            z: Vec::with_capacity(n),
+            radius: Vec::with_capacity(n),
+        }
+    }
+
+    /// Appends a sphere.
+    pub fn push(&mut self, s: &Sphere<T>) {
+        self.x.push(s.center.x);
+        self.y.push(s.center.y);
+        self.z.push(s.center.z);
+        self.radius.push(s.radius);
+    }
+
+    /// The number of spheres (the shortest array's length).
+    pub fn len(&self) -> usize {
+        self.x
+            .len()
+            .min(self.y.len())
+            .min(self.z.len())
+            .min(self.radius.len())
+    }
+
+    /// Whether there are no spheres.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Sphere `i`, or `None` past the end.
+    pub fn get(&self, i: usize) -> Option<Sphere<T>> {
+        Some(Sphere::new(
+            Vec3::new(*self.x.get(i)?, *self.y.get(i)?, *self.z.get(i)?),
+            *self.radius.get(i)?,
+        ))
+    }
+}
+
+impl<'a, T: Real> FromIterator<&'a Sphere<T>> for Spheres<T> {
+    fn from_iter<I: IntoIterator<Item = &'a Sphere<T>>>(iter: I) -> Self {
+        let mut s = Spheres::new();
+        for x in iter {
+            s.push(x);
+        }
+        s
+    }
+}
+
+/// The answers of [`contact_spheres_spheres`], as a structure of arrays: pair
+/// `i` is in contact when `hit[i]`, and then its [`Contact`] is
+/// `{point: (point_x[i], point_y[i], point_z[i]), normal: (normal_x[i], …),
+/// depth: depth[i], degenerate: degenerate[i]}`; for a pair not in contact
+/// every number is 0 and `degenerate` false.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SphereContacts<T: Real> {
+    /// Whether pair `i` touches or overlaps.
+    pub hit: Vec<bool>,
+    /// Contact points' `x` (on sphere `b[i]`).
+    pub point_x: Vec<T>,
+    /// Contact points' `y`.
+    pub point_y: Vec<T>,
+    /// Contact points' `z`.
+    pub point_z: Vec<T>,
+    /// Normals' `x` (unit, from `b[i]` toward `a[i]`).
+    pub normal_x: Vec<T>,
+    /// Normals' `y`.
+    pub normal_y: Vec<T>,
+    /// Normals' `z`.
+    pub normal_z: Vec<T>,
+    /// Penetration depths.
+    pub depth: Vec<T>,
+    /// The normal is a fallback (see [`contact_sphere_sphere`]).
+    pub degenerate: Vec<bool>,
+}
+
+impl<T: Real> SphereContacts<T> {
+    /// No answers yet; [`contact_spheres_spheres`] sizes the arrays.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The number of pairs answered.
+    pub fn len(&self) -> usize {
+        self.hit.len()
+    }
+
+    /// Whether no pair was answered.
+    pub fn is_empty(&self) -> bool {
+        self.hit.is_empty()
+    }
+
+    /// Pair `i`'s answer as [`contact_sphere_sphere`] gives it (`None` for no
+    /// contact or past the end).
+    pub fn get(&self, i: usize) -> Option<Contact<T>> {
+        if !*self.hit.get(i)? {
+            return None;
+        }
+        Some(Contact {
+            point: Vec3::new(self.point_x[i], self.point_y[i], self.point_z[i]),
+            normal: Vec3::new(self.normal_x[i], self.normal_y[i], self.normal_z[i]),
+            depth: self.depth[i],
+            degenerate: self.degenerate[i],
+        })
+    }
+
+    fn resize(&mut self, n: usize) {
+        self.hit.resize(n, false);
+        self.degenerate.resize(n, false);
+        for v in [
+            &mut self.point_x,
+            &mut self.point_y,
+            &mut self.point_z,
+            &mut self.normal_x,
+            &mut self.normal_y,
+            &mut self.normal_z,
+            &mut self.depth,
+        ] {
+            v.resize(n, T::zero());
+        }
+    }
+
+    fn set(&mut self, i: usize, k: Option<Contact<T>>) {
+        let k = k.map_or((false, [T::zero(); 7], false), |k| {
+            (
+                true,
+                [
+                    k.point.x, k.point.y, k.point.z, k.normal.x, k.normal.y, k.normal.z, k.depth,
+                ],
+                k.degenerate,
+            )
+        });
+        self.hit[i] = k.0;
+        self.point_x[i] = k.1[0];
+        self.point_y[i] = k.1[1];
+        self.point_z[i] = k.1[2];
+        self.normal_x[i] = k.1[3];
+        self.normal_y[i] = k.1[4];
+        self.normal_z[i] = k.1[5];
+        self.depth[i] = k.1[6];
+        self.degenerate[i] = k.2;
+    }
+}
+
+/// `x` where `keep`, else 0 — a selection, not a branch.
+#[inline(always)]
+fn select<T: Real>(keep: bool, x: T) -> T {
+    if keep { x } else { T::zero() }
+}
+
+/// Contact between spheres `a[i]` and `b[i]` for every `i` below the shorter
+/// length `n`, written to `out` (resized to `n`; it allocates only when it
+/// grows): the answers of [`contact_sphere_sphere`]`(a[i], b[i])`, bit for bit,
+/// in the convention of [`Contact`] (normal from `b[i]` toward `a[i]`, point on
+/// `b[i]`, touching counts).
+///
+/// **Formula** (the lecture's, as in [`contact_sphere_sphere`]): with
+/// `Δ = M_a − M_b`, `reach = r_a + r_b`: apart when `‖Δ‖² > reach² (1 + 8u)`
+/// (no root needed) or `√‖Δ‖² > reach`; otherwise `n = Δ · (1/‖Δ‖)`,
+/// `p = M_b + r_b n`, `depth = reach − ‖Δ‖`.
+///
+/// **How it vectorizes.** The first pass computes every lane with the same
+/// straight-line arithmetic (all of them take the root and the division — on
+/// packed registers that costs less than a branch per pair), and keeps or
+/// zeroes the answers by the contact mask. Lanes whose `‖Δ‖²` lies outside the
+/// range where the plain root is exact enough (`[2^−918, 2^920]` in `f64`:
+/// concentric centres, distances that underflow or overflow) are answered in
+/// a second pass by [`contact_sphere_sphere`] itself, which scales them.
+///
+/// **Degenerate input**: as [`contact_sphere_sphere`] (concentric: fallback
+/// normal, flagged). Never NaN for finite input.
+pub fn contact_spheres_spheres<T: Real>(
+    a: &Spheres<T>,
+    b: &Spheres<T>,
+    out: &mut SphereContacts<T>,
+) {
+    let n = a.len().min(b.len());
+    out.resize(n);
+    let (lo, hi) = safe_squared_range::<T>();
+    let (ax, ay, az, ar) = (&a.x[..n], &a.y[..n], &a.z[..n], &a.radius[..n]);
+    let (bx, by, bz, br) = (&b.x[..n], &b.y[..n], &b.z[..n], &b.radius[..n]);
+    let slow = contact_lanes(
+        ax,
+        ay,
+        az,
+        ar,
+        bx,
+        by,
+        bz,
+        br,
+        &mut out.hit[..n],
+        &mut out.degenerate[..n],
+        &mut out.point_x[..n],
+        &mut out.point_y[..n],
+        &mut out.point_z[..n],
+        &mut out.normal_x[..n],
+        &mut out.normal_y[..n],
+        &mut out.normal_z[..n],
+        &mut out.depth[..n],
+    );
+    // Second pass, if needed: the lanes outside the fast range, one at a time.
+    if !slow {
+        return;
+    }
+    for i in 0..n {
+        let (dx, dy, dz) = (ax[i] - bx[i], ay[i] - by[i], az[i] - bz[i]);
+        let dd = T::zero() + ((dx * dx + dy * dy) + dz * dz);
+        if !(dd >= lo && dd <= hi) {
+            let one =
+                |x: &[T], y: &[T], z: &[T], r: &[T]| Sphere::new(Vec3::new(x[i], y[i], z[i]), r[i]);
+            out.set(
+                i,
+                contact_sphere_sphere(&one(ax, ay, az, ar), &one(bx, by, bz, br)),
+            );
+        }
+    }
+}
+
+/// The first pass of [`contact_spheres_spheres`]: every lane computed alike;
+/// returns whether any lane lies outside the fast range.
+/// A function of its own so that each array is a separate reference
+/// parameter: the compiler then knows that no output aliases another or an
+/// input (references inside an array, a tuple or a struct carry no such
+/// guarantee), and vectorizes the loop without run-time overlap checks.
+#[inline(never)]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one parameter per array: see above"
+)]
+fn contact_lanes<T: Real>(
+    ax: &[T],
+    ay: &[T],
+    az: &[T],
+    ar: &[T],
+    bx: &[T],
+    by: &[T],
+    bz: &[T],
+    br: &[T],
+    hit: &mut [bool],
+    degenerate: &mut [bool],
+    px: &mut [T],
+    py: &mut [T],
+    pz: &mut [T],
+    nx: &mut [T],
+    ny: &mut [T],
+    nz: &mut [T],
+    depth: &mut [T],
+) -> bool {
+    let n = hit.len();
+    // Every array cut to `n` here, one by one, so that the loop's indexing
+    // needs no bounds checks (which would stop the vectorizer).
+    let (ax, ay, az, ar) = (&ax[..n], &ay[..n], &az[..n], &ar[..n]);
+    let (bx, by, bz, br) = (&bx[..n], &by[..n], &bz[..n], &br[..n]);
+    let (degenerate, px, py, pz) = (
+        &mut degenerate[..n],
+        &mut px[..n],
+        &mut py[..n],
+        &mut pz[..n],
+    );
+    let (nx, ny, nz, depth) = (&mut nx[..n], &mut ny[..n], &mut nz[..n], &mut depth[..n]);
+    let (lo, hi) = safe_squared_range::<T>();
+    let factor = clear_miss_factor::<T>();
+    // `|d| ≤ largest finite` is `d.is_finite()` written as a comparison, which
+    // the vectorizer costs as one packed compare (the bit test it is otherwise
+    // lowered to made it judge the loop not worth vectorizing).
+    let largest = T::max_value().unwrap_or_else(|| T::of(f64::MAX));
+    let mut slow = false;
+    for i in 0..n {
+        let (dx, dy, dz) = (ax[i] - bx[i], ay[i] - by[i], az[i] - bz[i]);
+        let dd = T::zero() + ((dx * dx + dy * dy) + dz * dz);
+        let reach = ar[i] + br[i];
+        let dist = dd.sqrt();
+        let inv = T::one() / dist;
+        let fast = (dd >= lo) & (dd <= hi);
+        let apart = (dd > reach * reach * factor) | (dist > reach);
+        let keep = fast & !apart;
+        let (ux, uy, uz) = (dx * inv, dy * inv, dz * inv);
+        let d = reach - dist;
+        hit[i] = keep;
+        nx[i] = select(keep, ux);
+        ny[i] = select(keep, uy);
+        nz[i] = select(keep, uz);
+        px[i] = select(keep, bx[i] + ux * br[i]);
+        py[i] = select(keep, by[i] + uy * br[i]);
+        pz[i] = select(keep, bz[i] + uz * br[i]);
+        depth[i] = select(keep, d);
+        let finite = d.abs() <= largest; // false for NaN and ±∞
+        degenerate[i] = keep & !finite;
+        slow |= !fast;
+    }
+    slow
+}
+
+/// The first pass of [`test_spheres_spheres`]; returns whether any lane is
+/// outside the fast range. Separate parameters, as [`contact_lanes`].
+#[inline(never)]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one parameter per array: see contact_lanes"
+)]
+fn test_lanes<T: Real>(
+    ax: &[T],
+    ay: &[T],
+    az: &[T],
+    ar: &[T],
+    bx: &[T],
+    by: &[T],
+    bz: &[T],
+    br: &[T],
+    hit: &mut [bool],
+) -> bool {
+    let n = hit.len();
+    let (ax, ay, az, ar) = (&ax[..n], &ay[..n], &az[..n], &ar[..n]);
+    let (bx, by, bz, br) = (&bx[..n], &by[..n], &bz[..n], &br[..n]);
+    let (lo, hi) = safe_squared_range::<T>();
+    let factor = clear_miss_factor::<T>();
+    let mut slow = false;
+    for i in 0..n {
+        let (dx, dy, dz) = (ax[i] - bx[i], ay[i] - by[i], az[i] - bz[i]);
+        let dd = T::zero() + ((dx * dx + dy * dy) + dz * dz);
+        let reach = ar[i] + br[i];
+        let fast = (dd >= lo) & (dd <= hi);
+        let apart = (dd > reach * reach * factor) | (dd.sqrt() > reach);
+        hit[i] = fast & !apart;
+        slow |= !fast;
+    }
+    slow
+}
+
+/// Whether spheres `a[i]` and `b[i]` touch or overlap, for every `i` below
+/// the shorter length `n`, written to `out` (resized to `n`): exactly
+/// [`contact_sphere_sphere`]`(a[i], b[i]).is_some()`, decided the same way
+/// (see [`contact_spheres_spheres`]) without computing the contact. Lanes
+/// outside the fast range are answered by [`contact_sphere_sphere`].
+pub fn test_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mut Vec<bool>) {
+    let n = a.len().min(b.len());
+    out.resize(n, false);
+    let (lo, hi) = safe_squared_range::<T>();
+    let (ax, ay, az, ar) = (&a.x[..n], &a.y[..n], &a.z[..n], &a.radius[..n]);
+    let (bx, by, bz, br) = (&b.x[..n], &b.y[..n], &b.z[..n], &b.radius[..n]);
+    let hit = &mut out[..n];
+    let slow = test_lanes(ax, ay, az, ar, bx, by, bz, br, hit);
+    if slow {
+        for i in 0..n {
+            let (dx, dy, dz) = (ax[i] - bx[i], ay[i] - by[i], az[i] - bz[i]);
+            let dd = T::zero() + ((dx * dx + dy * dy) + dz * dz);
+            if !(dd >= lo && dd <= hi) {
+                let one = |x: &[T], y: &[T], z: &[T], r: &[T]| {
+                    Sphere::new(Vec3::new(x[i], y[i], z[i]), r[i])
+                };
+                hit[i] =
+                    contact_sphere_sphere(&one(ax, ay, az, ar), &one(bx, by, bz, br)).is_some();
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::real::c;
+    use proptest::prelude::*;
+
+    fn same<T: Real>(x: Option<Contact<T>>, y: Option<Contact<T>>) -> bool {
+        // Bit for bit (NaN cannot occur for finite input).
+        match (x, y) {
+            (None, None) => true,
+            (Some(x), Some(y)) => {
+                x.degenerate == y.degenerate
+                    && x.depth.wide().to_bits() == y.depth.wide().to_bits()
+                    && (0..3).all(|k| {
+                        x.point[k].wide().to_bits() == y.point[k].wide().to_bits()
+                            && x.normal[k].wide().to_bits() == y.normal[k].wide().to_bits()
+                    })
+            }
+            _ => false,
+        }
+    }
+
+    fn check<T: Real>(pairs: &[(Sphere<T>, Sphere<T>)]) -> Result<(), TestCaseError> {
+        let a: Spheres<T> = pairs.iter().map(|p| &p.0).collect();
+        let b: Spheres<T> = pairs.iter().map(|p| &p.1).collect();
+        let mut out = SphereContacts::new();
+        contact_spheres_spheres(&a, &b, &mut out);
+        let mut tests = Vec::new();
+        test_spheres_spheres(&a, &b, &mut tests);
+        prop_assert_eq!(out.len(), pairs.len());
+        for (i, (x, y)) in pairs.iter().enumerate() {
+            let one = contact_sphere_sphere(x, y);
+            prop_assert!(
+                same(out.get(i), one),
+                "pair {i}: batch {:?}, one {:?}",
+                out.get(i),
+                one
+            );
+            prop_assert_eq!(tests[i], one.is_some(), "test of pair {}", i);
+            if one.is_none() {
+                prop_assert!(
+                    out.depth[i].wide().to_bits() == 0 && out.normal_x[i].wide().to_bits() == 0,
+                    "zeroed"
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// Spheres near each other (about half touch), some far apart, some
+    /// concentric, some at extreme scales: the batch must match the one-pair
+    /// function on every lane, fast or not.
+    fn pair() -> impl Strategy<Value = ([f64; 4], [f64; 4])> {
+        let coord = prop_oneof![
+            4 => -4.0..4.0f64,
+            1 => (-1.0..1.0f64, -300i32..300).prop_map(|(m, e)| m * 2f64.powi(e)),
+            1 => Just(1.0),
+        ];
+        let radius = prop_oneof![4 => 0.1..3.0f64, 1 => (0.1..1.0f64, -300i32..300).prop_map(|(m, e)| m * 2f64.powi(e))];
+        let sphere = ([coord.clone(), coord.clone(), coord], radius)
+            .prop_map(|(c, r)| [c[0], c[1], c[2], r]);
+        (sphere.clone(), sphere)
+    }
+
+    fn spheres<T: Real>(p: &[([f64; 4], [f64; 4])]) -> Vec<(Sphere<T>, Sphere<T>)> {
+        let s = |v: [f64; 4]| Sphere::new(Vec3::new(c(v[0]), c(v[1]), c(v[2])), c(v[3]));
+        p.iter().map(|(x, y)| (s(*x), s(*y))).collect()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        #[test]
+        fn batch_matches_one_pair_at_a_time_f64(p in proptest::collection::vec(pair(), 0..40)) {
+            check::<f64>(&spheres(&p))?;
+        }
+
+        #[test]
+        fn batch_matches_one_pair_at_a_time_f32(p in proptest::collection::vec(pair(), 0..40)) {
+            check::<f32>(&spheres(&p))?;
+        }
+    }
+
+    #[test]
+    fn touching_concentric_and_far_pairs() {
+        let s = |x: f64, r: f64| Sphere::new(Vec3::new(x, 0.0, 0.0), r);
+        let pairs = [
+            (s(2.0, 1.0), s(0.0, 1.0)),              // touching: contact, depth 0
+            (s(1.0, 1.0), s(1.0, 2.0)),              // concentric: fallback, flagged
+            (s(1.5e308, 1.0), s(-1.5e308, 1.0)),     // Δ overflows: apart
+            (s(2.0f64.next_up(), 1.0), s(0.0, 1.0)), // a hair apart
+        ];
+        check(&pairs).expect("batch agrees");
+        let a: Spheres<f64> = pairs.iter().map(|p| &p.0).collect();
+        let b: Spheres<f64> = pairs.iter().map(|p| &p.1).collect();
+        let mut out = SphereContacts::new();
+        contact_spheres_spheres(&a, &b, &mut out);
+        assert_eq!(out.hit, vec![true, true, false, false]);
+        assert!(out.degenerate[1] && !out.degenerate[0]);
+    }
+}
