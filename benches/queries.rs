@@ -81,32 +81,16 @@ fn sphere_sphere(c: &mut Criterion, cases: &[(geom::Sphere, geom::Sphere)]) {
     let mut g = group(c, "sphere_sphere", cases.len());
     let c64 = conv(cases, to_collide::sphere::<f64>, to_collide::sphere::<f64>);
     let c32 = conv(cases, to_collide::sphere::<f32>, to_collide::sphere::<f32>);
-    run(&mut g, "collide_lecture_f64", &c64, |(a, b)| {
-        contact_sphere_sphere_lecture(a, b)
-    });
-    run(&mut g, "collide_robust_f64", &c64, |(a, b)| {
-        contact_sphere_sphere(a, b)
-    });
-    run(&mut g, "collide_lecture_f32", &c32, |(a, b)| {
-        contact_sphere_sphere_lecture(a, b)
-    });
-    run(&mut g, "collide_robust_f32", &c32, |(a, b)| {
-        contact_sphere_sphere(a, b)
-    });
+    run(&mut g, "collide_lecture_f64", &c64, |(a, b)| contact_sphere_sphere_lecture(a, b));
+    run(&mut g, "collide_robust_f64", &c64, |(a, b)| contact_sphere_sphere(a, b));
+    run(&mut g, "collide_lecture_f32", &c32, |(a, b)| contact_sphere_sphere_lecture(a, b));
+    run(&mut g, "collide_robust_f32", &c32, |(a, b)| contact_sphere_sphere(a, b));
     let d64 = conv(cases, p64::ball, p64::ball);
     let d32 = conv(cases, p32::ball, p32::ball);
-    run(&mut g, "parry64", &d64, |(a, b)| {
-        p64::contact_sphere_sphere(a, b)
-    });
-    run(&mut g, "parry32", &d32, |(a, b)| {
-        p32::contact_sphere_sphere(a, b)
-    });
-    run(&mut g, "parry64_adapter", cases, |(a, b)| {
-        Parry64.contact_sphere_sphere(*a, *b)
-    });
-    run(&mut g, "parry32_adapter", cases, |(a, b)| {
-        Parry32.contact_sphere_sphere(*a, *b)
-    });
+    run(&mut g, "parry64", &d64, |(a, b)| p64::contact_sphere_sphere(a, b));
+    run(&mut g, "parry32", &d32, |(a, b)| p32::contact_sphere_sphere(a, b));
+    run(&mut g, "parry64_adapter", cases, |(a, b)| Parry64.contact_sphere_sphere(*a, *b));
+    run(&mut g, "parry32_adapter", cases, |(a, b)| Parry32.contact_sphere_sphere(*a, *b));
     g.finish();
 }
 
@@ -115,62 +99,30 @@ fn sphere_plane(c: &mut Criterion, cases: &[(geom::Sphere, geom::Plane)]) {
     let mut g = group(c, "sphere_plane", cases.len());
     let c64 = conv(cases, to_collide::sphere::<f64>, to_collide::plane::<f64>);
     let c32 = conv(cases, to_collide::sphere::<f32>, to_collide::plane::<f32>);
-    run(&mut g, "collide_robust_f64", &c64, |(a, b)| {
-        contact_sphere_plane(a, b)
-    });
-    run(&mut g, "collide_robust_f32", &c32, |(a, b)| {
-        contact_sphere_plane(a, b)
-    });
+    run(&mut g, "collide_robust_f64", &c64, |(a, b)| contact_sphere_plane(a, b));
+    run(&mut g, "collide_robust_f32", &c32, |(a, b)| contact_sphere_plane(a, b));
     let d64 = conv(cases, p64::ball, p64::half_space);
     let d32 = conv(cases, p32::ball, p32::half_space);
-    run(&mut g, "parry64", &d64, |(a, b)| {
-        p64::contact_sphere_plane(a, b)
-    });
-    run(&mut g, "parry32", &d32, |(a, b)| {
-        p32::contact_sphere_plane(a, b)
-    });
-    run(&mut g, "parry64_adapter", cases, |(a, b)| {
-        Parry64.contact_sphere_plane(*a, *b)
-    });
-    run(&mut g, "parry32_adapter", cases, |(a, b)| {
-        Parry32.contact_sphere_plane(*a, *b)
-    });
+    run(&mut g, "parry64", &d64, |(a, b)| p64::contact_sphere_plane(a, b));
+    run(&mut g, "parry32", &d32, |(a, b)| p32::contact_sphere_plane(a, b));
+    run(&mut g, "parry64_adapter", cases, |(a, b)| Parry64.contact_sphere_plane(*a, *b));
+    run(&mut g, "parry32_adapter", cases, |(a, b)| Parry32.contact_sphere_plane(*a, *b));
     g.finish();
 }
 
 fn sphere_triangle(c: &mut Criterion, cases: &[(geom::Sphere, geom::Triangle)]) {
     use collide::contact::contact_sphere_triangle;
     let mut g = group(c, "sphere_triangle", cases.len());
-    let c64 = conv(
-        cases,
-        to_collide::sphere::<f64>,
-        to_collide::triangle::<f64>,
-    );
-    let c32 = conv(
-        cases,
-        to_collide::sphere::<f32>,
-        to_collide::triangle::<f32>,
-    );
-    run(&mut g, "collide_robust_f64", &c64, |(a, b)| {
-        contact_sphere_triangle(a, b)
-    });
-    run(&mut g, "collide_robust_f32", &c32, |(a, b)| {
-        contact_sphere_triangle(a, b)
-    });
+    let c64 = conv(cases, to_collide::sphere::<f64>, to_collide::triangle::<f64>);
+    let c32 = conv(cases, to_collide::sphere::<f32>, to_collide::triangle::<f32>);
+    run(&mut g, "collide_robust_f64", &c64, |(a, b)| contact_sphere_triangle(a, b));
+    run(&mut g, "collide_robust_f32", &c32, |(a, b)| contact_sphere_triangle(a, b));
     let d64 = conv(cases, p64::ball, p64::triangle);
     let d32 = conv(cases, p32::ball, p32::triangle);
-    run(&mut g, "parry64", &d64, |(a, b)| {
-        p64::contact_sphere_triangle(a, b)
-    });
-    run(&mut g, "parry32", &d32, |(a, b)| {
-        p32::contact_sphere_triangle(a, b)
-    });
-    run(&mut g, "parry64_adapter", cases, |(a, b)| {
-        Parry64.contact_sphere_triangle(*a, *b)
-    });
-    run(&mut g, "parry32_adapter", cases, |(a, b)| {
-        Parry32.contact_sphere_triangle(*a, *b)
-    });
+    run(&mut g, "parry64", &d64, |(a, b)| p64::contact_sphere_triangle(a, b));
+    run(&mut g, "parry32", &d32, |(a, b)| p32::contact_sphere_triangle(a, b));
+    run(&mut g, "parry64_adapter", cases, |(a, b)| Parry64.contact_sphere_triangle(*a, *b));
+    run(&mut g, "parry32_adapter", cases, |(a, b)| Parry32.contact_sphere_triangle(*a, *b));
     g.finish();
 }
 
@@ -179,80 +131,35 @@ fn segment_plane(c: &mut Criterion, cases: &[(geom::Segment, geom::Plane)]) {
     let mut g = group(c, "segment_plane", cases.len());
     let c64 = conv(cases, to_collide::segment::<f64>, to_collide::plane::<f64>);
     let c32 = conv(cases, to_collide::segment::<f32>, to_collide::plane::<f32>);
-    run(&mut g, "collide_lecture_f64", &c64, |(s, p)| {
-        intersect_segment_plane_lecture(s, p)
-    });
-    run(&mut g, "collide_robust_f64", &c64, |(s, p)| {
-        intersect_segment_plane(s, p)
-    });
-    run(&mut g, "collide_lecture_f32", &c32, |(s, p)| {
-        intersect_segment_plane_lecture(s, p)
-    });
-    run(&mut g, "collide_robust_f32", &c32, |(s, p)| {
-        intersect_segment_plane(s, p)
-    });
+    run(&mut g, "collide_lecture_f64", &c64, |(s, p)| intersect_segment_plane_lecture(s, p));
+    run(&mut g, "collide_robust_f64", &c64, |(s, p)| intersect_segment_plane(s, p));
+    run(&mut g, "collide_lecture_f32", &c32, |(s, p)| intersect_segment_plane_lecture(s, p));
+    run(&mut g, "collide_robust_f32", &c32, |(s, p)| intersect_segment_plane(s, p));
     let d64 = conv(cases, p64::ray, p64::half_space);
     let d32 = conv(cases, p32::ray, p32::half_space);
-    run(&mut g, "parry64", &d64, |(r, p)| {
-        p64::intersect_segment_plane(r, p)
-    });
-    run(&mut g, "parry32", &d32, |(r, p)| {
-        p32::intersect_segment_plane(r, p)
-    });
-    run(&mut g, "parry64_adapter", cases, |(s, p)| {
-        Parry64.intersect_segment_plane(*s, *p)
-    });
-    run(&mut g, "parry32_adapter", cases, |(s, p)| {
-        Parry32.intersect_segment_plane(*s, *p)
-    });
+    run(&mut g, "parry64", &d64, |(r, p)| p64::intersect_segment_plane(r, p));
+    run(&mut g, "parry32", &d32, |(r, p)| p32::intersect_segment_plane(r, p));
+    run(&mut g, "parry64_adapter", cases, |(s, p)| Parry64.intersect_segment_plane(*s, *p));
+    run(&mut g, "parry32_adapter", cases, |(s, p)| Parry32.intersect_segment_plane(*s, *p));
     g.finish();
 }
 
-fn segment_triangle(
-    c: &mut Criterion,
-    name: &str,
-    cases: &[(geom::Segment, geom::Triangle)],
-    adapters: bool,
-) {
+fn segment_triangle(c: &mut Criterion, name: &str, cases: &[(geom::Segment, geom::Triangle)], adapters: bool) {
     use collide::intersect::{intersect_segment_triangle, intersect_segment_triangle_lecture};
     let mut g = group(c, name, cases.len());
-    let c64 = conv(
-        cases,
-        to_collide::segment::<f64>,
-        to_collide::triangle::<f64>,
-    );
-    let c32 = conv(
-        cases,
-        to_collide::segment::<f32>,
-        to_collide::triangle::<f32>,
-    );
-    run(&mut g, "collide_lecture_f64", &c64, |(s, t)| {
-        intersect_segment_triangle_lecture(s, t)
-    });
-    run(&mut g, "collide_robust_f64", &c64, |(s, t)| {
-        intersect_segment_triangle(s, t)
-    });
-    run(&mut g, "collide_lecture_f32", &c32, |(s, t)| {
-        intersect_segment_triangle_lecture(s, t)
-    });
-    run(&mut g, "collide_robust_f32", &c32, |(s, t)| {
-        intersect_segment_triangle(s, t)
-    });
+    let c64 = conv(cases, to_collide::segment::<f64>, to_collide::triangle::<f64>);
+    let c32 = conv(cases, to_collide::segment::<f32>, to_collide::triangle::<f32>);
+    run(&mut g, "collide_lecture_f64", &c64, |(s, t)| intersect_segment_triangle_lecture(s, t));
+    run(&mut g, "collide_robust_f64", &c64, |(s, t)| intersect_segment_triangle(s, t));
+    run(&mut g, "collide_lecture_f32", &c32, |(s, t)| intersect_segment_triangle_lecture(s, t));
+    run(&mut g, "collide_robust_f32", &c32, |(s, t)| intersect_segment_triangle(s, t));
     let d64 = conv(cases, p64::ray, p64::triangle);
     let d32 = conv(cases, p32::ray, p32::triangle);
-    run(&mut g, "parry64", &d64, |(r, t)| {
-        p64::intersect_segment_triangle(r, t)
-    });
-    run(&mut g, "parry32", &d32, |(r, t)| {
-        p32::intersect_segment_triangle(r, t)
-    });
+    run(&mut g, "parry64", &d64, |(r, t)| p64::intersect_segment_triangle(r, t));
+    run(&mut g, "parry32", &d32, |(r, t)| p32::intersect_segment_triangle(r, t));
     if adapters {
-        run(&mut g, "parry64_adapter", cases, |(s, t)| {
-            Parry64.intersect_segment_triangle(*s, *t)
-        });
-        run(&mut g, "parry32_adapter", cases, |(s, t)| {
-            Parry32.intersect_segment_triangle(*s, *t)
-        });
+        run(&mut g, "parry64_adapter", cases, |(s, t)| Parry64.intersect_segment_triangle(*s, *t));
+        run(&mut g, "parry32_adapter", cases, |(s, t)| Parry32.intersect_segment_triangle(*s, *t));
     }
     g.finish();
 }
@@ -260,38 +167,18 @@ fn segment_triangle(
 fn barycentric(c: &mut Criterion, cases: &[(geom::P3, geom::Triangle)]) {
     use collide::barycentric::{barycentric_triangle, barycentric_triangle_lecture};
     let mut g = group(c, "barycentric", cases.len());
-    let c64 = conv(
-        cases,
-        |p| to_collide::v::<f64>(*p),
-        to_collide::triangle::<f64>,
-    );
-    let c32 = conv(
-        cases,
-        |p| to_collide::v::<f32>(*p),
-        to_collide::triangle::<f32>,
-    );
-    run(&mut g, "collide_lecture_f64", &c64, |(p, t)| {
-        barycentric_triangle_lecture(p, t)
-    });
-    run(&mut g, "collide_robust_f64", &c64, |(p, t)| {
-        barycentric_triangle(p, t)
-    });
-    run(&mut g, "collide_lecture_f32", &c32, |(p, t)| {
-        barycentric_triangle_lecture(p, t)
-    });
-    run(&mut g, "collide_robust_f32", &c32, |(p, t)| {
-        barycentric_triangle(p, t)
-    });
+    let c64 = conv(cases, |p| to_collide::v::<f64>(*p), to_collide::triangle::<f64>);
+    let c32 = conv(cases, |p| to_collide::v::<f32>(*p), to_collide::triangle::<f32>);
+    run(&mut g, "collide_lecture_f64", &c64, |(p, t)| barycentric_triangle_lecture(p, t));
+    run(&mut g, "collide_robust_f64", &c64, |(p, t)| barycentric_triangle(p, t));
+    run(&mut g, "collide_lecture_f32", &c32, |(p, t)| barycentric_triangle_lecture(p, t));
+    run(&mut g, "collide_robust_f32", &c32, |(p, t)| barycentric_triangle(p, t));
     let d64 = conv(cases, |p| p64::v(*p), p64::triangle);
     let d32 = conv(cases, |p| p32::v(*p), p32::triangle);
     run(&mut g, "parry64", &d64, |(p, t)| p64::barycentric(p, t));
     run(&mut g, "parry32", &d32, |(p, t)| p32::barycentric(p, t));
-    run(&mut g, "parry64_adapter", cases, |(p, t)| {
-        Parry64.barycentric_triangle(*p, *t)
-    });
-    run(&mut g, "parry32_adapter", cases, |(p, t)| {
-        Parry32.barycentric_triangle(*p, *t)
-    });
+    run(&mut g, "parry64_adapter", cases, |(p, t)| Parry64.barycentric_triangle(*p, *t));
+    run(&mut g, "parry32_adapter", cases, |(p, t)| Parry32.barycentric_triangle(*p, *t));
     g.finish();
 }
 
@@ -300,61 +187,35 @@ fn overlap(c: &mut Criterion, cases: &[(geom::Aabb, geom::Aabb)]) {
     let mut g = group(c, "overlap", cases.len());
     let c64 = conv(cases, to_collide::aabb::<f64>, to_collide::aabb::<f64>);
     let c32 = conv(cases, to_collide::aabb::<f32>, to_collide::aabb::<f32>);
-    run(&mut g, "collide_robust_f64", &c64, |(a, b)| {
-        test_aabb_aabb(a, b)
-    });
-    run(&mut g, "collide_robust_f32", &c32, |(a, b)| {
-        test_aabb_aabb(a, b)
-    });
+    run(&mut g, "collide_robust_f64", &c64, |(a, b)| test_aabb_aabb(a, b));
+    run(&mut g, "collide_robust_f32", &c32, |(a, b)| test_aabb_aabb(a, b));
     let d64 = conv(cases, p64::aabb, p64::aabb);
     let d32 = conv(cases, p32::aabb, p32::aabb);
     run(&mut g, "parry64", &d64, |(a, b)| p64::overlap(a, b));
     run(&mut g, "parry32", &d32, |(a, b)| p32::overlap(a, b));
-    run(&mut g, "parry64_adapter", cases, |(a, b)| {
-        Parry64.overlap_aabb_aabb(*a, *b)
-    });
-    run(&mut g, "parry32_adapter", cases, |(a, b)| {
-        Parry32.overlap_aabb_aabb(*a, *b)
-    });
+    run(&mut g, "parry64_adapter", cases, |(a, b)| Parry64.overlap_aabb_aabb(*a, *b));
+    run(&mut g, "parry32_adapter", cases, |(a, b)| Parry32.overlap_aabb_aabb(*a, *b));
     g.finish();
 }
 
 fn bounding_sphere(c: &mut Criterion, clouds: &[Vec<geom::P3>]) {
-    use collide::bounds::{
-        bounding_sphere_centroid, bounding_sphere_minimal, bounding_sphere_ritter,
-    };
+    use collide::bounds::{bounding_sphere_centroid, bounding_sphere_minimal, bounding_sphere_ritter};
     let mut g = group(c, "bounding_sphere", clouds.len());
-    let cloud =
-        |ps: &Vec<geom::P3>| -> Vec<Vec3<f64>> { ps.iter().map(|&p| to_collide::v(p)).collect() };
-    let cloud32 =
-        |ps: &Vec<geom::P3>| -> Vec<Vec3<f32>> { ps.iter().map(|&p| to_collide::v(p)).collect() };
+    let cloud = |ps: &Vec<geom::P3>| -> Vec<Vec3<f64>> { ps.iter().map(|&p| to_collide::v(p)).collect() };
+    let cloud32 = |ps: &Vec<geom::P3>| -> Vec<Vec3<f32>> { ps.iter().map(|&p| to_collide::v(p)).collect() };
     let c64: Vec<_> = clouds.iter().map(cloud).collect();
     let c32: Vec<_> = clouds.iter().map(cloud32).collect();
-    run(&mut g, "collide_lecture_f64", &c64, |p| {
-        bounding_sphere_centroid(p)
-    });
-    run(&mut g, "collide_robust_f64", &c64, |p| {
-        bounding_sphere_minimal(p)
-    });
-    run(&mut g, "collide_ritter_f64", &c64, |p| {
-        bounding_sphere_ritter(p)
-    });
-    run(&mut g, "collide_lecture_f32", &c32, |p| {
-        bounding_sphere_centroid(p)
-    });
-    run(&mut g, "collide_robust_f32", &c32, |p| {
-        bounding_sphere_minimal(p)
-    });
+    run(&mut g, "collide_lecture_f64", &c64, |p| bounding_sphere_centroid(p));
+    run(&mut g, "collide_robust_f64", &c64, |p| bounding_sphere_minimal(p));
+    run(&mut g, "collide_ritter_f64", &c64, |p| bounding_sphere_ritter(p));
+    run(&mut g, "collide_lecture_f32", &c32, |p| bounding_sphere_centroid(p));
+    run(&mut g, "collide_robust_f32", &c32, |p| bounding_sphere_minimal(p));
     let d64: Vec<_> = clouds.iter().map(|p| p64::cloud(p)).collect();
     let d32: Vec<_> = clouds.iter().map(|p| p32::cloud(p)).collect();
     run(&mut g, "parry64", &d64, |p| p64::bounding_sphere(p));
     run(&mut g, "parry32", &d32, |p| p32::bounding_sphere(p));
-    run(&mut g, "parry64_adapter", clouds, |p| {
-        Parry64.bounding_sphere_of_points(p)
-    });
-    run(&mut g, "parry32_adapter", clouds, |p| {
-        Parry32.bounding_sphere_of_points(p)
-    });
+    run(&mut g, "parry64_adapter", clouds, |p| Parry64.bounding_sphere_of_points(p));
+    run(&mut g, "parry32_adapter", clouds, |p| Parry32.bounding_sphere_of_points(p));
     g.finish();
 }
 
@@ -370,11 +231,7 @@ fn sphere_sphere_batch(c: &mut Criterion, cases: &[(geom::Sphere, geom::Sphere)]
     g.finish();
 }
 
-fn batch_of<T: collide::Real>(
-    g: &mut BenchmarkGroup<'_, WallTime>,
-    cases: &[(geom::Sphere, geom::Sphere)],
-    p: &str,
-) {
+fn batch_of<T: collide::Real>(g: &mut BenchmarkGroup<'_, WallTime>, cases: &[(geom::Sphere, geom::Sphere)], p: &str) {
     use collide::batch::{SphereContacts, Spheres, contact_spheres_spheres, test_spheres_spheres};
     use collide::contact::{Contact, contact_sphere_sphere};
     let pairs = conv(cases, to_collide::sphere::<T>, to_collide::sphere::<T>);
@@ -418,40 +275,14 @@ fn batches(cases: &Cases) -> Vec<BatchRow> {
     use cost::{Cost, SPHERE_SPHERE_HIT, SPHERE_SPHERE_MISS};
     let c = |x: &geom::Sphere| to_collide::sphere::<f64>(x);
     let cost = Cost::mean(cases.sphere_sphere.iter().map(|(a, b)| {
-        if contact_sphere_sphere(&c(a), &c(b)).is_some() {
-            SPHERE_SPHERE_HIT
-        } else {
-            SPHERE_SPHERE_MISS
-        }
+        if contact_sphere_sphere(&c(a), &c(b)).is_some() { SPHERE_SPHERE_HIT } else { SPHERE_SPHERE_MISS }
     }));
-    let row = |label, ids, cost| BatchRow {
-        group: "sphere_sphere_batch",
-        label,
-        per_iter: PER_QUERY,
-        ids,
-        cost,
-    };
+    let row = |label, ids, cost| BatchRow { group: "sphere_sphere_batch", label, per_iter: PER_QUERY, ids, cost };
     vec![
-        row(
-            "sphere–sphere contact, f64",
-            ("loop_contact_f64", "batch_contact_f64"),
-            Some(cost),
-        ),
-        row(
-            "sphere–sphere contact, f32",
-            ("loop_contact_f32", "batch_contact_f32"),
-            None,
-        ),
-        row(
-            "sphere–sphere overlap test, f64",
-            ("loop_test_f64", "batch_test_f64"),
-            None,
-        ),
-        row(
-            "sphere–sphere overlap test, f32",
-            ("loop_test_f32", "batch_test_f32"),
-            None,
-        ),
+        row("sphere–sphere contact, f64", ("loop_contact_f64", "batch_contact_f64"), Some(cost)),
+        row("sphere–sphere contact, f32", ("loop_contact_f32", "batch_contact_f32"), None),
+        row("sphere–sphere overlap test, f64", ("loop_test_f64", "batch_test_f64"), None),
+        row("sphere–sphere overlap test, f32", ("loop_test_f32", "batch_test_f32"), None),
     ]
 }
 
@@ -468,20 +299,14 @@ fn rows(cases: &Cases) -> Vec<Row> {
     use collide::intersect::{intersect_segment_plane, intersect_segment_triangle};
     use cost::*;
     let c = |x: &geom::Sphere| to_collide::sphere::<f64>(x);
-    let ss_hit =
-        |(a, b): &(geom::Sphere, geom::Sphere)| contact_sphere_sphere(&c(a), &c(b)).is_some();
-    let sp_hit = |(a, b): &(geom::Sphere, geom::Plane)| {
-        contact_sphere_plane(&c(a), &to_collide::plane(b)).is_some()
-    };
+    let ss_hit = |(a, b): &(geom::Sphere, geom::Sphere)| contact_sphere_sphere(&c(a), &c(b)).is_some();
+    let sp_hit = |(a, b): &(geom::Sphere, geom::Plane)| contact_sphere_plane(&c(a), &to_collide::plane(b)).is_some();
     let st_hit = |(a, b): &(geom::Sphere, geom::Triangle)| sphere_triangle(a, b).sqrt > 0.0;
     let sgp_hit = |(s, p): &(geom::Segment, geom::Plane)| {
-        intersect_segment_plane(&to_collide::segment::<f64>(s), &to_collide::plane(p))
-            .hit
-            .is_some()
+        intersect_segment_plane(&to_collide::segment::<f64>(s), &to_collide::plane(p)).hit.is_some()
     };
     let seg_tri_cost = |(s, t): &(geom::Segment, geom::Triangle)| {
-        let r =
-            intersect_segment_triangle(&to_collide::segment::<f64>(s), &to_collide::triangle(t));
+        let r = intersect_segment_triangle(&to_collide::segment::<f64>(s), &to_collide::triangle(t));
         if r.hit.is_some() {
             SEGMENT_TRIANGLE_HIT
         } else if plane_miss(s, t) {
@@ -508,48 +333,28 @@ fn rows(cases: &Cases) -> Vec<Row> {
             "sphere_sphere",
             "sphere–sphere contact",
             Some(fraction(&cases.sphere_sphere, ss_hit)),
-            Cost::mean(
-                cases
-                    .sphere_sphere
-                    .iter()
-                    .map(|x| pick(ss_hit(x), SPHERE_SPHERE_HIT, SPHERE_SPHERE_MISS)),
-            ),
+            Cost::mean(cases.sphere_sphere.iter().map(|x| pick(ss_hit(x), SPHERE_SPHERE_HIT, SPHERE_SPHERE_MISS))),
             false,
         ),
         row(
             "sphere_plane",
             "sphere–plane contact",
             Some(fraction(&cases.sphere_plane, sp_hit)),
-            Cost::mean(
-                cases
-                    .sphere_plane
-                    .iter()
-                    .map(|x| pick(sp_hit(x), SPHERE_PLANE_HIT, SPHERE_PLANE_MISS)),
-            ),
+            Cost::mean(cases.sphere_plane.iter().map(|x| pick(sp_hit(x), SPHERE_PLANE_HIT, SPHERE_PLANE_MISS))),
             true,
         ),
         row(
             "sphere_triangle",
             "sphere–triangle contact",
             Some(fraction(&cases.sphere_triangle, st_hit)),
-            Cost::mean(
-                cases
-                    .sphere_triangle
-                    .iter()
-                    .map(|(a, b)| sphere_triangle(a, b)),
-            ),
+            Cost::mean(cases.sphere_triangle.iter().map(|(a, b)| sphere_triangle(a, b))),
             true,
         ),
         row(
             "segment_plane",
             "segment–plane",
             Some(fraction(&cases.segment_plane, sgp_hit)),
-            Cost::mean(
-                cases
-                    .segment_plane
-                    .iter()
-                    .map(|x| pick(sgp_hit(x), SEGMENT_PLANE_HIT, SEGMENT_PLANE_MISS)),
-            ),
+            Cost::mean(cases.segment_plane.iter().map(|x| pick(sgp_hit(x), SEGMENT_PLANE_HIT, SEGMENT_PLANE_MISS))),
             false,
         ),
         row(
@@ -567,23 +372,14 @@ fn rows(cases: &Cases) -> Vec<Row> {
             false,
         ),
         row("barycentric", "barycentric", None, BARYCENTRIC, false),
-        row(
-            "overlap",
-            "AABB overlap",
-            Some(fraction(&cases.overlap, ov_hit)),
-            AABB_OVERLAP,
-            true,
-        ),
+        row("overlap", "AABB overlap", Some(fraction(&cases.overlap, ov_hit)), AABB_OVERLAP, true),
         row(
             "bounding_sphere",
             "bounding sphere (lecture: centroid; robust: minimal)",
             None,
             Cost::mean(cases.clouds.iter().map(|ps| {
                 let n = ps.len() as f64;
-                Cost {
-                    ops: BOUNDING_SPHERE_PER_POINT.ops * n,
-                    ..BOUNDING_SPHERE_ONCE
-                }
+                Cost { ops: BOUNDING_SPHERE_PER_POINT.ops * n, ..BOUNDING_SPHERE_ONCE }
             })),
             false,
         ),
@@ -600,19 +396,11 @@ fn plane_miss(s: &geom::Segment, t: &geom::Triangle) -> bool {
 }
 
 fn targets() -> Vec<Target> {
-    let half = |group, what| Target {
-        group,
-        what,
-        ids: ("collide_robust_f64", "parry64"),
-        target: 0.5,
-    };
+    let half = |group, what| Target { group, what, ids: ("collide_robust_f64", "parry64"), target: 0.5 };
     vec![
         half("sphere_sphere", "sphere–sphere: robust f64 / parry3d-f64"),
         half("sphere_plane", "sphere–plane: robust f64 / parry3d-f64"),
-        half(
-            "sphere_triangle",
-            "sphere–triangle: robust f64 / parry3d-f64",
-        ),
+        half("sphere_triangle", "sphere–triangle: robust f64 / parry3d-f64"),
         half("segment_plane", "segment–plane: robust f64 / parry3d-f64"),
         half("barycentric", "barycentric: robust f64 / parry3d-f64"),
         half("overlap", "AABB overlap: robust f64 / parry3d-f64"),
@@ -662,24 +450,13 @@ fn main() {
     sphere_triangle(&mut c, &cases.sphere_triangle);
     segment_plane(&mut c, &cases.segment_plane);
     segment_triangle(&mut c, "segment_triangle", &cases.segment_triangle, true);
-    segment_triangle(
-        &mut c,
-        "segment_triangle_uniform",
-        &cases.segment_triangle_uniform,
-        false,
-    );
+    segment_triangle(&mut c, "segment_triangle_uniform", &cases.segment_triangle_uniform, false);
     barycentric(&mut c, &cases.barycentric);
     overlap(&mut c, &cases.overlap);
     bounding_sphere(&mut c, &cases.clouds);
     sphere_sphere_batch(&mut c, &cases.sphere_sphere);
     c.final_summary();
     if let Some(peak) = peak {
-        table::publish(&table::render(
-            &rows(&cases),
-            &batches(&cases),
-            &targets(),
-            &peak,
-            since,
-        ));
+        table::publish(&table::render(&rows(&cases), &batches(&cases), &targets(), &peak, since));
     }
 }

@@ -5,7 +5,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "crashtest", version, about = "Is your collision code right, how right, how fast, and where does it break?")]
+#[command(
+    name = "crashtest",
+    version,
+    about = "Is your collision code right, how right, how fast, and where does it break?"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -164,7 +168,7 @@ fn main() -> ExitCode {
                 harness::report::provenance::stamp(std::time::SystemTime::now()),
                 summary.provenance.seed
             );
-            let files = harness::report::write::render_files(&summary, &discrepancies);
+            let files = harness::report::write::render_files(&summary, &discrepancies, None);
             match harness::report::write::write_report(&out, &id, &files) {
                 Ok(dir) => {
                     println!("merged {} shards: {}", reports.len(), dir.join("index.html").display());

@@ -141,12 +141,18 @@ fn bad_input_is_named_and_the_rest_of_the_run_still_happens() {
     let (code, out) = crashtest(&["check", dir.to_str().unwrap(), missing.to_str().unwrap()]);
     assert_eq!(code, 2, "{out}");
     for (name, _, needles) in files {
-        let line = out.lines().find(|l| l.starts_with("error:") && l.contains(name)).unwrap_or_else(|| panic!("no error line for {name}:\n{out}"));
+        let line = out
+            .lines()
+            .find(|l| l.starts_with("error:") && l.contains(name))
+            .unwrap_or_else(|| panic!("no error line for {name}:\n{out}"));
         for n in *needles {
             assert!(line.contains(n), "error line for {name} lacks {n:?}: {line}");
         }
     }
-    assert!(out.lines().any(|l| l.starts_with("error:") && l.contains("no_such_file.json") && l.contains("cannot read")), "{out}");
+    assert!(
+        out.lines().any(|l| l.starts_with("error:") && l.contains("no_such_file.json") && l.contains("cannot read")),
+        "{out}"
+    );
     assert!(out.contains("PASS") && out.contains("ball sunk half a unit"), "the good file was still checked:\n{out}");
     assert_eq!(last_line(&out), "1 passed, 0 failed");
 }

@@ -44,38 +44,26 @@ const LISTED: usize = 8;
 
 /// The engines these tests run: collide's default and parry in f64.
 fn engines() -> Vec<Engine> {
-    judged()
-        .into_iter()
-        .filter(|e| e.name == DEFAULT_ENGINE || e.name == Parry64::NAME)
-        .collect()
+    judged().into_iter().filter(|e| e.name == DEFAULT_ENGINE || e.name == Parry64::NAME).collect()
 }
 
 /// The case count: [`CASES`], or proptest's own `PROPTEST_CASES` when set (for a
 /// longer campaign from the command line).
 fn cases() -> u32 {
-    std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|n| n.parse().ok())
-        .unwrap_or(CASES)
+    std::env::var("PROPTEST_CASES").ok().and_then(|n| n.parse().ok()).unwrap_or(CASES)
 }
 
 fn config() -> Config {
     Config {
         cases: cases(),
         source_file: Some(file!()),
-        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource(
-            "proptest-regressions",
-        ))),
+        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource("proptest-regressions"))),
         ..Config::default()
     }
 }
 
 fn loaded(case: Case) -> LoadedCase {
-    LoadedCase {
-        file: PathBuf::from("generated"),
-        case,
-        meshes: [None, None],
-    }
+    LoadedCase { file: PathBuf::from("generated"), case, meshes: [None, None] }
 }
 
 /// The case as a one-case fixture file expecting the referee's answer. The
@@ -90,19 +78,13 @@ fn as_fixture(case: &Case, result: &CaseResult) -> String {
         case.tol = Some(F64_REL * scale);
     }
     case.source = format!("{} (shrunk by tests/differential.rs)", case.source);
-    let file = FixtureFile {
-        schema: SCHEMA.into(),
-        cases: vec![case],
-    };
+    let file = FixtureFile { schema: SCHEMA.into(), cases: vec![case] };
     serde_json::to_string_pretty(&file).unwrap_or_default()
 }
 
 /// Whether `collide/robust`'s verdict passes.
 fn acceptable(v: &Verdict) -> bool {
-    matches!(
-        v,
-        Verdict::Agree | Verdict::Borderline { .. } | Verdict::KnownDivergence { .. }
-    )
+    matches!(v, Verdict::Agree | Verdict::Borderline { .. } | Verdict::KnownDivergence { .. })
 }
 
 /// What parry did over a run.
@@ -117,9 +99,9 @@ struct ParryTally {
 fn verdict_detail(v: &Verdict) -> String {
     match v {
         Verdict::Disagree { reasons } | Verdict::Borderline { reasons } => reasons.join("; "),
-        Verdict::KnownDivergence { reason }
-        | Verdict::Unsupported { reason }
-        | Verdict::Failed { reason } => reason.clone(),
+        Verdict::KnownDivergence { reason } | Verdict::Unsupported { reason } | Verdict::Failed { reason } => {
+            reason.clone()
+        }
         Verdict::Agree => String::new(),
     }
 }
@@ -146,23 +128,15 @@ fn differential(query: Query) {
             } else if let Ok(mut t) = tally.lock() {
                 t.cases += 1;
                 *t.verdicts.entry(r.verdict.label()).or_default() += 1;
-                if matches!(r.verdict, Verdict::Disagree { .. } | Verdict::Failed { .. })
-                    && t.listed.len() < LISTED
-                {
-                    t.listed
-                        .push(format!("{}: {}", lc.case.name, verdict_detail(&r.verdict)));
+                if matches!(r.verdict, Verdict::Disagree { .. } | Verdict::Failed { .. }) && t.listed.len() < LISTED {
+                    t.listed.push(format!("{}: {}", lc.case.name, verdict_detail(&r.verdict)));
                 }
             }
         }
         Ok(())
     });
     if let Ok(t) = tally.lock() {
-        println!(
-            "{query}: {} against the referee over {} cases: {:?}",
-            Parry64::NAME,
-            t.cases,
-            t.verdicts
-        );
+        println!("{query}: {} against the referee over {} cases: {:?}", Parry64::NAME, t.cases, t.verdicts);
         for line in &t.listed {
             println!("  {line}");
         }
@@ -174,15 +148,11 @@ fn differential(query: Query) {
             let fixture = as_fixture(&case, &result);
             let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("differential");
             let path = dir.join(format!("{query}.json"));
-            let written =
-                std::fs::create_dir_all(&dir).and_then(|_| std::fs::write(&path, &fixture));
+            let written = std::fs::create_dir_all(&dir).and_then(|_| std::fs::write(&path, &fixture));
             panic!(
                 "{query}: {why}\nreplay with `crashtest check {}`{}:\n{fixture}",
                 path.display(),
-                written
-                    .err()
-                    .map(|e| format!(" (not written: {e})"))
-                    .unwrap_or_default()
+                written.err().map(|e| format!(" (not written: {e})")).unwrap_or_default()
             );
         }
         Err(TestError::Abort(why)) => panic!("{query}: proptest aborted: {why}"),
@@ -220,17 +190,9 @@ fn generated_cases_are_reproducible_from_seed_and_index() {
         for i in 0..100 {
             let (x, y) = (generate(q, 2024, i), generate(q, 2024, i));
             let text = |lc: &LoadedCase| serde_json::to_string(&lc.case).unwrap_or_default();
-            assert_eq!(
-                text(&x),
-                text(&y),
-                "{q} #{i}: the same seed and index gave different cases"
-            );
+            assert_eq!(text(&x), text(&y), "{q} #{i}: the same seed and index gave different cases");
             let z = generate(q, 2025, i);
-            assert_ne!(
-                text(&x),
-                text(&z),
-                "{q} #{i}: seeds 2024 and 2025 gave the same case"
-            );
+            assert_ne!(text(&x), text(&z), "{q} #{i}: seeds 2024 and 2025 gave the same case");
         }
     }
 }

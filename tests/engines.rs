@@ -1,7 +1,7 @@
 //! One smoke test per engine on a hand-computed case: the seam works and each
 //! adapter's conventions are translated the right way round.
 
-use harness::case::{Case, Expect, Query, Shape, SphereSpec, TriangleSpec, PointSpec, SegmentSpec};
+use harness::case::{Case, Expect, PointSpec, Query, SegmentSpec, Shape, SphereSpec, TriangleSpec};
 use harness::check::run_caught;
 use harness::engine::Answer;
 use harness::engines::{judged, referee};

@@ -26,8 +26,8 @@
 
 use collide::Vec3;
 use collide::mesh::{
-    MeshBvh, SplitRule, TriMesh, contact_sphere_mesh_brute, contact_sphere_mesh_bvh,
-    intersect_segment_mesh_brute, intersect_segment_mesh_bvh,
+    MeshBvh, SplitRule, TriMesh, contact_sphere_mesh_brute, contact_sphere_mesh_bvh, intersect_segment_mesh_brute,
+    intersect_segment_mesh_bvh,
 };
 use oracle::geom::{P3, Segment, Triangle};
 use oracle::parry::{Parry64, ParryEngine};
@@ -97,27 +97,12 @@ fn pose(rng: &mut Rng, vertices: &[P3]) -> Vec<P3> {
     };
     let [w, x, y, z] = q;
     let r = [
-        [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y - w * z),
-            2.0 * (x * z + w * y),
-        ],
-        [
-            2.0 * (x * y + w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z - w * x),
-        ],
-        [
-            2.0 * (x * z - w * y),
-            2.0 * (y * z + w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
+        [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
+        [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
+        [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
     ];
     let t = [0; 3].map(|_| rng.range(-100.0, 100.0));
-    vertices
-        .iter()
-        .map(|p| [0, 1, 2].map(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + t[i]))
-        .collect()
+    vertices.iter().map(|p| [0, 1, 2].map(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + t[i])).collect()
 }
 
 fn bounds(vertices: &[P3]) -> (P3, P3) {
@@ -163,9 +148,7 @@ fn collide_segment(s: &Segment) -> collide::Segment<f64> {
 }
 
 fn triangle(vertices: &[P3], f: [usize; 3]) -> Triangle {
-    Triangle {
-        vertices: f.map(|i| vertices[i]),
-    }
+    Triangle { vertices: f.map(|i| vertices[i]) }
 }
 
 /// Every face's box (exact: componentwise minimum and maximum).
@@ -174,10 +157,7 @@ fn face_boxes(vertices: &[P3], faces: &[[usize; 3]]) -> Vec<(P3, P3)> {
         .iter()
         .map(|f| {
             let t = f.map(|j| vertices[j]);
-            (
-                [0, 1, 2].map(|k| t[0][k].min(t[1][k]).min(t[2][k])),
-                [0, 1, 2].map(|k| t[0][k].max(t[1][k]).max(t[2][k])),
-            )
+            ([0, 1, 2].map(|k| t[0][k].min(t[1][k]).min(t[2][k])), [0, 1, 2].map(|k| t[0][k].max(t[1][k]).max(t[2][k])))
         })
         .collect()
 }
@@ -190,12 +170,7 @@ fn box_candidates(s: &Segment, boxes: &[(P3, P3)]) -> Vec<usize> {
     (0..boxes.len())
         .filter(|&i| {
             let (fl, fh) = &boxes[i];
-            fl[0] <= hi[0]
-                && lo[0] <= fh[0]
-                && fl[1] <= hi[1]
-                && lo[1] <= fh[1]
-                && fl[2] <= hi[2]
-                && lo[2] <= fh[2]
+            fl[0] <= hi[0] && lo[0] <= fh[0] && fl[1] <= hi[1] && lo[1] <= fh[1] && fl[2] <= hi[2] && lo[2] <= fh[2]
         })
         .collect()
 }
@@ -203,21 +178,11 @@ fn box_candidates(s: &Segment, boxes: &[(P3, P3)]) -> Vec<usize> {
 /// The referee's first hit on a subset of the faces, with the face index mapped
 /// back to the whole mesh (the subset keeps the mesh's order, so the referee's
 /// tie rule — lowest index — is the whole mesh's).
-fn referee_on(
-    s: &Segment,
-    vertices: &[P3],
-    faces: &[[usize; 3]],
-    subset: &[usize],
-) -> Option<(usize, f64)> {
+fn referee_on(s: &Segment, vertices: &[P3], faces: &[[usize; 3]], subset: &[usize]) -> Option<(usize, f64)> {
     // Only the subset's vertices go to the referee (it converts every vertex it
     // is given to a rational), each face as three fresh corners.
-    let sub_vertices: Vec<P3> = subset
-        .iter()
-        .flat_map(|&i| faces[i].map(|j| vertices[j]))
-        .collect();
-    let sub: Vec<[usize; 3]> = (0..subset.len())
-        .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
-        .collect();
+    let sub_vertices: Vec<P3> = subset.iter().flat_map(|&i| faces[i].map(|j| vertices[j])).collect();
+    let sub: Vec<[usize; 3]> = (0..subset.len()).map(|k| [3 * k, 3 * k + 1, 3 * k + 2]).collect();
     let a = oracle::referee::intersect_segment_mesh(s, &sub_vertices, &sub).expect("referee");
     a.hit.map(|h| (subset[h.triangle.expect("face")], h.t))
 }
@@ -258,20 +223,14 @@ fn check_pose(bunny: &harness::mesh::Mesh, pose_index: usize) -> PoseStats {
     let (lo, hi) = bounds(&vertices);
     let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
     let mesh = TriMesh::new(vertices.iter().map(vec3).collect(), faces.clone()).expect("mesh");
-    let rule = if pose_index.is_multiple_of(2) {
-        SplitRule::SahBinned
-    } else {
-        SplitRule::MedianCentroid
-    };
+    let rule = if pose_index.is_multiple_of(2) { SplitRule::SahBinned } else { SplitRule::MedianCentroid };
     let bvh = MeshBvh::with_split(mesh, rule);
     let parry_mesh = Parry64.mesh(&vertices, faces).expect("parry mesh");
     let boxes = face_boxes(&vertices, faces);
-    let triangles: Vec<collide::Triangle<f64>> =
-        (0..faces.len()).map(|i| bvh.mesh().triangle(i)).collect();
+    let triangles: Vec<collide::Triangle<f64>> = (0..faces.len()).map(|i| bvh.mesh().triangle(i)).collect();
     let mut stats = PoseStats::default();
     for k in 0..SEGMENTS_PER_POSE {
-        let point =
-            |rng: &mut Rng| [0, 1, 2].map(|i| rng.range(lo[i] - 0.25 * size, hi[i] + 0.25 * size));
+        let point = |rng: &mut Rng| [0, 1, 2].map(|i| rng.range(lo[i] - 0.25 * size, hi[i] + 0.25 * size));
         let through = if k % 10 == 0 {
             let v = vertices[rng.index(vertices.len())];
             through_vertex(&mut rng, v, size)
@@ -280,19 +239,13 @@ fn check_pose(bunny: &harness::mesh::Mesh, pose_index: usize) -> PoseStats {
         };
         let s = match through {
             Some(s) => s,
-            None if k % 10 < 3 => Segment {
-                start: point(&mut rng),
-                end: point(&mut rng),
-            },
+            None if k % 10 < 3 => Segment { start: point(&mut rng), end: point(&mut rng) },
             None => {
                 let start = point(&mut rng);
                 let len = rng.range(0.0, 0.4 * size);
                 let d = [0; 3].map(|_| rng.range(-1.0, 1.0));
                 let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-3);
-                Segment {
-                    start,
-                    end: [0, 1, 2].map(|i| start[i] + d[i] / n * len),
-                }
+                Segment { start, end: [0, 1, 2].map(|i| start[i] + d[i] / n * len) }
             }
         };
         let cs = collide_segment(&s);
@@ -303,23 +256,14 @@ fn check_pose(bunny: &harness::mesh::Mesh, pose_index: usize) -> PoseStats {
         // single-triangle test; the referee orders the faces hit.
         let hit_faces: Vec<usize> = box_candidates(&s, &boxes)
             .into_iter()
-            .filter(|&i| {
-                collide::intersect::intersect_segment_triangle(&cs, &triangles[i])
-                    .hit
-                    .is_some()
-            })
+            .filter(|&i| collide::intersect::intersect_segment_triangle(&cs, &triangles[i]).hit.is_some())
             .collect();
         let want = referee_on(&s, &vertices, faces, &hit_faces);
         match (got.hit, want) {
             (None, None) => {}
             (Some(h), Some((face, t))) => {
                 assert_eq!(h.triangle, face, "same face as the referee; {}", case());
-                assert!(
-                    (h.t - t).abs() <= T_TOL,
-                    "t {} vs the referee's {t}; {}",
-                    h.t,
-                    case()
-                );
+                assert!((h.t - t).abs() <= T_TOL, "t {} vs the referee's {t}; {}", h.t, case());
                 stats.hits += 1;
             }
             (g, w) => panic!("collide {g:?}, referee {w:?}; {}", case()),
@@ -341,9 +285,7 @@ fn bvh_equals_the_referee_on_100k_segments_against_the_posed_bunny() {
     // Poses are independent (each seeded from SEED and its index): spread them
     // over the cores.
     let next = std::sync::atomic::AtomicUsize::new(0);
-    let threads = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(4);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(4);
     let all: Vec<PoseStats> = std::thread::scope(|scope| {
         let workers: Vec<_> = (0..threads)
             .map(|_| {
@@ -359,10 +301,7 @@ fn bvh_equals_the_referee_on_100k_segments_against_the_posed_bunny() {
                 })
             })
             .collect();
-        workers
-            .into_iter()
-            .flat_map(|w| w.join().expect("a pose failed"))
-            .collect()
+        workers.into_iter().flat_map(|w| w.join().expect("a pose failed")).collect()
     });
     let mut total = PoseStats::default();
     for p in all {
@@ -386,11 +325,7 @@ fn bvh_equals_the_referee_on_100k_segments_against_the_posed_bunny() {
         started.elapsed().as_secs_f64()
     );
     println!("parry3d-f64 against the referee: {:?}", total.parry);
-    assert!(
-        total.checked >= 100_000,
-        "at least 100,000 segments: {}",
-        total.checked
-    );
+    assert!(total.checked >= 100_000, "at least 100,000 segments: {}", total.checked);
     assert!(
         total.hits >= total.checked / 10 && total.ties >= 1_000,
         "the segments exercise hits ({}) and ties ({})",
@@ -413,15 +348,12 @@ fn tally_parry(
     match (got.hit, want) {
         (None, None) => tally.agree += 1,
         (None, Some(_)) => tally.missed += 1,
-        (Some(h), Some((wf, wt))) if h.triangle == Some(wf) && (h.t - wt).abs() <= PARRY_T_TOL => {
-            tally.agree += 1
-        }
+        (Some(h), Some((wf, wt))) if h.triangle == Some(wf) && (h.t - wt).abs() <= PARRY_T_TOL => tally.agree += 1,
         (Some(h), w) => {
             let face = h.triangle.expect("parry names the face");
             // The referee on parry's face alone: is it hit, and where?
             let alone =
-                oracle::referee::intersect_segment_triangle(s, &triangle(vertices, faces[face]))
-                    .expect("referee");
+                oracle::referee::intersect_segment_triangle(s, &triangle(vertices, faces[face])).expect("referee");
             match alone.hit {
                 None => {
                     assert!(
@@ -466,46 +398,30 @@ fn bvh_equals_the_referee_on_every_candidate_face_for_short_segments() {
     let faces = bunny.triangles.clone();
     let mut rng = Rng(SEED ^ 0x5407);
     let vertices = pose(&mut rng, &bunny.vertices);
-    let bvh = MeshBvh::new(
-        TriMesh::new(vertices.iter().map(vec3).collect(), faces.clone()).expect("mesh"),
-    );
+    let bvh = MeshBvh::new(TriMesh::new(vertices.iter().map(vec3).collect(), faces.clone()).expect("mesh"));
     let boxes = face_boxes(&vertices, &faces);
     let mut hits = 0;
     for k in 0..SHORT_SEGMENTS {
         // Around a random point of a random face, half a unit each way.
         let f = triangle(&vertices, faces[rng.index(faces.len())]).vertices;
         let (u, v) = (rng.unit(), rng.unit());
-        let (u, v) = if u + v > 1.0 {
-            (1.0 - u, 1.0 - v)
-        } else {
-            (u, v)
-        };
+        let (u, v) = if u + v > 1.0 { (1.0 - u, 1.0 - v) } else { (u, v) };
         let c = [0, 1, 2].map(|i| f[0][i] + u * (f[1][i] - f[0][i]) + v * (f[2][i] - f[0][i]));
         let d = [0; 3].map(|_| rng.range(-0.5, 0.5));
-        let s = Segment {
-            start: [0, 1, 2].map(|i| c[i] - d[i]),
-            end: [0, 1, 2].map(|i| c[i] + d[i]),
-        };
+        let s = Segment { start: [0, 1, 2].map(|i| c[i] - d[i]), end: [0, 1, 2].map(|i| c[i] + d[i]) };
         let want = referee_on(&s, &vertices, &faces, &box_candidates(&s, &boxes));
         let got = intersect_segment_mesh_bvh(&collide_segment(&s), &bvh).hit;
         match (got, want) {
             (None, None) => {}
             (Some(h), Some((face, t))) => {
                 assert_eq!(h.triangle, face, "short segment {k}: {s:?}");
-                assert!(
-                    (h.t - t).abs() <= T_TOL,
-                    "short segment {k}: t {} vs {t}",
-                    h.t
-                );
+                assert!((h.t - t).abs() <= T_TOL, "short segment {k}: t {} vs {t}", h.t);
                 hits += 1;
             }
             (g, w) => panic!("short segment {k}: collide {g:?}, referee {w:?}: {s:?}"),
         }
     }
-    assert!(
-        hits > SHORT_SEGMENTS / 4,
-        "most short segments cross the surface: {hits}"
-    );
+    assert!(hits > SHORT_SEGMENTS / 4, "most short segments cross the surface: {hits}");
 }
 
 #[test]
@@ -514,30 +430,15 @@ fn bvh_equals_brute_force_bit_for_bit_on_the_bunny() {
     let mut rng = Rng(SEED ^ 0xb0);
     let vertices = pose(&mut rng, &bunny.vertices);
     let (lo, hi) = bounds(&vertices);
-    let mesh =
-        TriMesh::new(vertices.iter().map(vec3).collect(), bunny.triangles.clone()).expect("mesh");
+    let mesh = TriMesh::new(vertices.iter().map(vec3).collect(), bunny.triangles.clone()).expect("mesh");
     let bvh = MeshBvh::new(mesh.clone());
     // Bit for bit is the claim, so the answers are compared with `==`.
     for k in 0..BRUTE_SUBSET {
-        let p = |rng: &mut Rng| {
-            Vec3::new(
-                rng.range(lo[0], hi[0]),
-                rng.range(lo[1], hi[1]),
-                rng.range(lo[2], hi[2]),
-            )
-        };
+        let p = |rng: &mut Rng| Vec3::new(rng.range(lo[0], hi[0]), rng.range(lo[1], hi[1]), rng.range(lo[2], hi[2]));
         let s = collide::Segment::new(p(&mut rng), p(&mut rng));
-        assert_eq!(
-            intersect_segment_mesh_bvh(&s, &bvh),
-            intersect_segment_mesh_brute(&s, &mesh),
-            "segment {k}"
-        );
+        assert_eq!(intersect_segment_mesh_bvh(&s, &bvh), intersect_segment_mesh_brute(&s, &mesh), "segment {k}");
         let sphere = collide::Sphere::new(s.start, rng.range(0.0, 1.5));
-        assert_eq!(
-            contact_sphere_mesh_bvh(&sphere, &bvh),
-            contact_sphere_mesh_brute(&sphere, &mesh),
-            "sphere {k}"
-        );
+        assert_eq!(contact_sphere_mesh_bvh(&sphere, &bvh), contact_sphere_mesh_brute(&sphere, &mesh), "sphere {k}");
     }
 }
 
@@ -545,15 +446,8 @@ fn bvh_equals_brute_force_bit_for_bit_on_the_bunny() {
 fn the_bunny_fixture_is_the_package_mesh() {
     // fixtures/meshes/README.md: counts, no zero-area face, the box.
     let bunny = bunny();
-    assert_eq!(
-        (bunny.vertices.len(), bunny.triangles.len()),
-        (1_839, 3_674)
-    );
-    let mesh = TriMesh::new(
-        bunny.vertices.iter().map(vec3).collect(),
-        bunny.triangles.clone(),
-    )
-    .expect("mesh");
+    assert_eq!((bunny.vertices.len(), bunny.triangles.len()), (1_839, 3_674));
+    let mesh = TriMesh::new(bunny.vertices.iter().map(vec3).collect(), bunny.triangles.clone()).expect("mesh");
     assert_eq!(mesh.degenerate_face_count(), 0);
     // Exact: a box selects input coordinates, no arithmetic.
     let bb = mesh.aabb().expect("box");
@@ -565,30 +459,16 @@ fn the_bunny_fixture_is_the_package_mesh() {
 
 /// A scratch folder of this test binary, emptied first.
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("mesh")
-        .join(name);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("mesh").join(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("scratch folder");
     dir
 }
 
 const BAD_MESHES: [(&str, &str, &str); 4] = [
-    (
-        "quad.obj",
-        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n",
-        "only triangles",
-    ),
-    (
-        "out_of_range.obj",
-        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
-        "index out of bounds",
-    ),
-    (
-        "empty.obj",
-        "# no faces\nv 0 0 0\nv 1 0 0\nv 0 1 0\n",
-        "empty mesh",
-    ),
+    ("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "only triangles"),
+    ("out_of_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "index out of bounds"),
+    ("empty.obj", "# no faces\nv 0 0 0\nv 1 0 0\nv 0 1 0\n", "empty mesh"),
     ("missing.obj", "", "cannot read mesh"),
 ];
 
@@ -601,14 +481,8 @@ fn malformed_mesh_files_are_refused_naming_the_file() {
             std::fs::write(&path, text).expect("write");
         }
         let err = harness::mesh::load_mesh_file(&path).expect_err(name);
-        assert!(
-            err.contains(&path.display().to_string()),
-            "{name}: the message names the file: {err}"
-        );
-        assert!(
-            err.contains(what),
-            "{name}: the message says `{what}`: {err}"
-        );
+        assert!(err.contains(&path.display().to_string()), "{name}: the message names the file: {err}");
+        assert!(err.contains(what), "{name}: the message says `{what}`: {err}");
     }
 }
 
@@ -636,43 +510,23 @@ fn crashtest_check_reports_a_malformed_mesh_file_with_exit_2() {
             .to_string(),
     );
     let fixture = dir.join("bad_meshes.json");
-    std::fs::write(
-        &fixture,
-        format!(
-            r#"{{"schema": "crashtest-fixture/1", "cases": [{}]}}"#,
-            cases.join(",\n")
-        ),
-    )
-    .expect("write");
+    std::fs::write(&fixture, format!(r#"{{"schema": "crashtest-fixture/1", "cases": [{}]}}"#, cases.join(",\n")))
+        .expect("write");
     let out = Command::new(env!("CARGO_BIN_EXE_crashtest"))
         .args(["check", fixture.to_str().expect("utf-8 path")])
         .output()
         .expect("crashtest runs");
-    let text =
-        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    let text = String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "bad input exits 2:\n{text}");
     for (name, _, what) in BAD_MESHES {
         let line = text
             .lines()
             .find(|l| l.contains(&format!("segment against {name}")))
             .unwrap_or_else(|| panic!("an error for {name}:\n{text}"));
-        assert!(
-            line.contains("b.mesh.file"),
-            "{name}: the field is named: {line}"
-        );
-        assert!(
-            line.contains(&dir.join(name).display().to_string()),
-            "{name}: the mesh file is named: {line}"
-        );
+        assert!(line.contains("b.mesh.file"), "{name}: the field is named: {line}");
+        assert!(line.contains(&dir.join(name).display().to_string()), "{name}: the mesh file is named: {line}");
         assert!(line.contains(what), "{name}: says `{what}`: {line}");
-        assert!(
-            line.contains("bad_meshes.json"),
-            "{name}: the fixture file is named: {line}"
-        );
+        assert!(line.contains("bad_meshes.json"), "{name}: the fixture file is named: {line}");
     }
-    assert!(
-        text.lines()
-            .any(|l| l.contains("segment against the tetrahedron") && l.starts_with("PASS")),
-        "{text}"
-    );
+    assert!(text.lines().any(|l| l.contains("segment against the tetrahedron") && l.starts_with("PASS")), "{text}");
 }

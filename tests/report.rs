@@ -2,7 +2,7 @@
 
 use harness::check::check_case;
 use harness::engines::{judged, referee};
-use harness::load::{LoadedCase, load_str_into, Loaded};
+use harness::load::{Loaded, LoadedCase, load_str_into};
 use harness::report::campaign::{Config, run};
 use harness::report::summary::Summary;
 use std::path::{Path, PathBuf};

@@ -48,49 +48,35 @@ pub struct Cases {
 
 fn sphere(s: &Shape) -> Option<geom::Sphere> {
     match s {
-        Shape::Sphere(s) => Some(geom::Sphere {
-            center: s.center,
-            radius: s.radius,
-        }),
+        Shape::Sphere(s) => Some(geom::Sphere { center: s.center, radius: s.radius }),
         _ => None,
     }
 }
 
 fn plane(s: &Shape) -> Option<geom::Plane> {
     match s {
-        Shape::Plane(p) => Some(geom::Plane {
-            normal: p.normal,
-            offset: p.offset,
-        }),
+        Shape::Plane(p) => Some(geom::Plane { normal: p.normal, offset: p.offset }),
         _ => None,
     }
 }
 
 fn triangle(s: &Shape) -> Option<geom::Triangle> {
     match s {
-        Shape::Triangle(t) => Some(geom::Triangle {
-            vertices: t.vertices,
-        }),
+        Shape::Triangle(t) => Some(geom::Triangle { vertices: t.vertices }),
         _ => None,
     }
 }
 
 fn segment(s: &Shape) -> Option<geom::Segment> {
     match s {
-        Shape::Segment(s) => Some(geom::Segment {
-            start: s.start,
-            end: s.end,
-        }),
+        Shape::Segment(s) => Some(geom::Segment { start: s.start, end: s.end }),
         _ => None,
     }
 }
 
 fn aabb(s: &Shape) -> Option<geom::Aabb> {
     match s {
-        Shape::Aabb(b) => Some(geom::Aabb {
-            min: b.min,
-            max: b.max,
-        }),
+        Shape::Aabb(b) => Some(geom::Aabb { min: b.min, max: b.max }),
         _ => None,
     }
 }
@@ -108,11 +94,7 @@ fn draw<T>(query: Query, mut keep: impl FnMut(u64, &Shape, Option<&Shape>) -> Op
             out.push(x);
         }
     }
-    assert!(
-        out.len() == PER_QUERY,
-        "only {} {query} cases in {MAX_INDICES} indices",
-        out.len()
-    );
+    assert!(out.len() == PER_QUERY, "only {} {query} cases in {MAX_INDICES} indices", out.len());
     out
 }
 
@@ -141,9 +123,7 @@ impl Cases {
             segment_plane: draw(Query::Intersect, |_, a, b| either(a, b, segment, plane)),
             segment_triangle: draw(Query::Intersect, seg_tri),
             segment_triangle_uniform: draw(Query::Intersect, |i, a, b| {
-                (family_for(Query::Intersect, i) == Some(UNIFORM_SEGMENT_TRIANGLE))
-                    .then(|| seg_tri(i, a, b))
-                    .flatten()
+                (family_for(Query::Intersect, i) == Some(UNIFORM_SEGMENT_TRIANGLE)).then(|| seg_tri(i, a, b)).flatten()
             }),
             barycentric: draw(Query::Barycentric, |_, a, b| {
                 let point = |s: &Shape| match s {

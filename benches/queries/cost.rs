@@ -26,20 +26,12 @@ pub struct Cost {
 
 impl Cost {
     const fn new(ops: u32, sqrt: u32, div: u32) -> Self {
-        Self {
-            ops: ops as f64,
-            sqrt: sqrt as f64,
-            div: div as f64,
-        }
+        Self { ops: ops as f64, sqrt: sqrt as f64, div: div as f64 }
     }
 
     /// The sum of two costs.
     pub fn plus(self, o: Cost) -> Cost {
-        Cost {
-            ops: self.ops + o.ops,
-            sqrt: self.sqrt + o.sqrt,
-            div: self.div + o.div,
-        }
+        Cost { ops: self.ops + o.ops, sqrt: self.sqrt + o.sqrt, div: self.div + o.div }
     }
 
     /// The mean of several costs.
@@ -49,11 +41,7 @@ impl Cost {
             sum = sum.plus(c);
             n += 1.0;
         }
-        Cost {
-            ops: sum.ops / n,
-            sqrt: sum.sqrt / n,
-            div: sum.div / n,
-        }
+        Cost { ops: sum.ops / n, sqrt: sum.sqrt / n, div: sum.div / n }
     }
 }
 
@@ -158,11 +146,7 @@ pub fn sphere_triangle(s: &Sphere, t: &Triangle) -> Cost {
         let vc = d1 * d4 - d3 * d2;
         if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
             let v = d1 / (d1 - d3);
-            break 'region (
-                49,
-                1,
-                [a[0] + v * ab[0], a[1] + v * ab[1], a[2] + v * ab[2]],
-            );
+            break 'region (49, 1, [a[0] + v * ab[0], a[1] + v * ab[1], a[2] + v * ab[2]]);
         }
         let cp = sub(p, c);
         let (d5, d6) = (dot(ab, cp), dot(ac, cp));
@@ -172,21 +156,13 @@ pub fn sphere_triangle(s: &Sphere, t: &Triangle) -> Cost {
         let vb = d5 * d2 - d1 * d6;
         if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
             let w = d2 / (d2 - d6);
-            break 'region (
-                70,
-                1,
-                [a[0] + w * ac[0], a[1] + w * ac[1], a[2] + w * ac[2]],
-            );
+            break 'region (70, 1, [a[0] + w * ac[0], a[1] + w * ac[1], a[2] + w * ac[2]]);
         }
         let va = d3 * d6 - d5 * d4;
         if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
             let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
             let bc = sub(c, b);
-            break 'region (
-                81,
-                1,
-                [b[0] + w * bc[0], b[1] + w * bc[1], b[2] + w * bc[2]],
-            );
+            break 'region (81, 1, [b[0] + w * bc[0], b[1] + w * bc[1], b[2] + w * bc[2]]);
         }
         let inv = 1.0 / (va + vb + vc);
         let (v, w) = (vb * inv, vc * inv);
@@ -195,10 +171,6 @@ pub fn sphere_triangle(s: &Sphere, t: &Triangle) -> Cost {
     };
     let d = sub(p, q);
     let hit = dot(d, d) <= s.radius * s.radius;
-    let tail = if hit {
-        Cost::new(14, 1, 1)
-    } else {
-        Cost::new(10, 0, 0)
-    };
+    let tail = if hit { Cost::new(14, 1, 1) } else { Cost::new(10, 0, 0) };
     Cost::new(region_ops, 0, region_div).plus(tail)
 }

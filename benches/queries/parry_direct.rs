@@ -37,10 +37,7 @@ macro_rules! parry_direct {
             }
             /// A sphere as the adapter places it.
             pub fn ball(s: &geom::Sphere) -> (Pose, Ball) {
-                (
-                    Pose::from_translation(v(s.center)),
-                    Ball::new(s.radius as Real),
-                )
+                (Pose::from_translation(v(s.center)), Ball::new(s.radius as Real))
             }
             /// A plane as the adapter places it (unit normal, anchored at
             /// `(d/‖n‖) n̂`).
@@ -76,34 +73,24 @@ macro_rules! parry_direct {
             }
             /// Contact of a ball and a half-space.
             #[inline]
-            pub fn contact_sphere_plane(
-                a: &(Pose, Ball),
-                b: &(Pose, HalfSpace),
-            ) -> Option<Contact> {
+            pub fn contact_sphere_plane(a: &(Pose, Ball), b: &(Pose, HalfSpace)) -> Option<Contact> {
                 query::contact(&a.0, &a.1, &b.0, &b.1, 0.0).ok().flatten()
             }
             /// Contact of a ball and a triangle.
             #[inline]
             pub fn contact_sphere_triangle(a: &(Pose, Ball), b: &Triangle) -> Option<Contact> {
-                query::contact(&a.0, &a.1, &Pose::IDENTITY, b, 0.0)
-                    .ok()
-                    .flatten()
+                query::contact(&a.0, &a.1, &Pose::IDENTITY, b, 0.0).ok().flatten()
             }
             /// A segment's ray against a half-space's surface.
             #[inline]
             pub fn intersect_segment_plane(r: &Ray, b: &(Pose, HalfSpace)) -> Option<Real> {
-                b.1.cast_ray_and_get_normal(&b.0, r, 1.0, false)
-                    .map(|h| h.time_of_impact)
+                b.1.cast_ray_and_get_normal(&b.0, r, 1.0, false).map(|h| h.time_of_impact)
             }
             /// A segment's ray against a triangle, with the hit's barycentrics.
             #[inline]
-            pub fn intersect_segment_triangle(
-                r: &Ray,
-                t: &Triangle,
-            ) -> Option<(Real, TrianglePointLocation)> {
+            pub fn intersect_segment_triangle(r: &Ray, t: &Triangle) -> Option<(Real, TrianglePointLocation)> {
                 let hit = t.cast_local_ray_and_get_normal(r, 1.0, false)?;
-                let (_, loc) =
-                    t.project_local_point_and_get_location(r.point_at(hit.time_of_impact), false);
+                let (_, loc) = t.project_local_point_and_get_location(r.point_at(hit.time_of_impact), false);
                 Some((hit.time_of_impact, loc))
             }
             /// The location (barycentrics) of a point's projection on a triangle.

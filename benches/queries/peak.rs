@@ -75,25 +75,15 @@ macro_rules! mul_add_rate {
 }
 
 fn ops_f64() -> f64 {
-    [
-        mul_add_rate!(f64, 8),
-        mul_add_rate!(f64, 12),
-        mul_add_rate!(f64, 16),
-        mul_add_rate!(f64, 24),
-    ]
-    .into_iter()
-    .fold(0.0, f64::max)
+    [mul_add_rate!(f64, 8), mul_add_rate!(f64, 12), mul_add_rate!(f64, 16), mul_add_rate!(f64, 24)]
+        .into_iter()
+        .fold(0.0, f64::max)
 }
 
 fn ops_f32() -> f64 {
-    [
-        mul_add_rate!(f32, 16),
-        mul_add_rate!(f32, 24),
-        mul_add_rate!(f32, 32),
-        mul_add_rate!(f32, 48),
-    ]
-    .into_iter()
-    .fold(0.0, f64::max)
+    [mul_add_rate!(f32, 16), mul_add_rate!(f32, 24), mul_add_rate!(f32, 32), mul_add_rate!(f32, 48)]
+        .into_iter()
+        .fold(0.0, f64::max)
 }
 
 fn elementwise(op: impl Fn(f64, f64) -> f64) -> f64 {

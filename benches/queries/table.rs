@@ -67,20 +67,13 @@ pub fn criterion_dir() -> PathBuf {
 /// written during this run (`since`): its slope (time per iteration, by
 /// regression over the samples) or, failing that, its mean, divided by the
 /// queries per iteration. `None` when the benchmark did not run this time.
-fn ns_per_query(
-    dir: &Path,
-    group: &str,
-    id: &str,
-    per_iter: usize,
-    since: SystemTime,
-) -> Option<f64> {
+fn ns_per_query(dir: &Path, group: &str, id: &str, per_iter: usize, since: SystemTime) -> Option<f64> {
     let path = dir.join(group).join(id).join("new").join("estimates.json");
     let written = std::fs::metadata(&path).and_then(|m| m.modified()).ok()?;
     if written < since {
         return None;
     }
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&path).ok()?).ok()?;
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).ok()?).ok()?;
     let pick = |k: &str| json.get(k)?.get("point_estimate")?.as_f64();
     let ns = pick("slope").or_else(|| pick("mean"))?;
     Some(ns / per_iter as f64)
@@ -121,13 +114,7 @@ pub struct Target {
 }
 
 /// Renders the whole report as Markdown.
-pub fn render(
-    rows: &[Row],
-    batches: &[BatchRow],
-    targets: &[Target],
-    peak: &Peak,
-    since: SystemTime,
-) -> String {
+pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Peak, since: SystemTime) -> String {
     let dir = criterion_dir();
     let mut s = String::new();
     let _ = writeln!(s, "# crashtest speed: collide against parry, one run\n");
@@ -152,10 +139,8 @@ pub fn render(
     for (_, h) in ENGINES {
         let _ = write!(s, " {h} |");
     }
-    let _ = writeln!(
-        s,
-        " robust f64 / parry3d-f64 | lecture f64 / parry3d-f64 | bound f64 (ns) | robust f64 / bound |"
-    );
+    let _ =
+        writeln!(s, " robust f64 / parry3d-f64 | lecture f64 / parry3d-f64 | bound f64 (ns) | robust f64 / bound |");
     let _ = write!(s, "| --- | ---: |");
     for _ in ENGINES {
         let _ = write!(s, " ---: |");
@@ -166,24 +151,13 @@ pub fn render(
         let hits = r.hits.map_or("—".into(), |h| format!("{:.0}%", 100.0 * h));
         let _ = write!(s, "| {} | {hits} |", r.label);
         for (id, _) in ENGINES {
-            let v = if r.one_method && id.starts_with("collide_lecture") {
-                None
-            } else {
-                get(id)
-            };
-            let shown = if r.one_method && id.starts_with("collide_lecture") {
-                "= robust".to_string()
-            } else {
-                cell(v)
-            };
+            let v = if r.one_method && id.starts_with("collide_lecture") { None } else { get(id) };
+            let shown =
+                if r.one_method && id.starts_with("collide_lecture") { "= robust".to_string() } else { cell(v) };
             let _ = write!(s, " {shown} |");
         }
         let robust = get("collide_robust_f64");
-        let lecture = if r.one_method {
-            robust
-        } else {
-            get("collide_lecture_f64")
-        };
+        let lecture = if r.one_method { robust } else { get("collide_lecture_f64") };
         let parry = get("parry64");
         let bound = r.cost.map(|c| peak.bound_ns(c));
         let _ = writeln!(
@@ -217,26 +191,16 @@ pub fn render(
         }
     }
 
-    let _ = writeln!(
-        s,
-        "\n## Targets\n\n| target | measured | verdict |\n| --- | ---: | --- |"
-    );
+    let _ = writeln!(s, "\n## Targets\n\n| target | measured | verdict |\n| --- | ---: | --- |");
     for t in targets {
         let per = rows
             .iter()
             .find(|r| r.group == t.group)
             .map(|r| r.per_iter)
-            .or_else(|| {
-                batches
-                    .iter()
-                    .find(|b| b.group == t.group)
-                    .map(|b| b.per_iter)
-            })
+            .or_else(|| batches.iter().find(|b| b.group == t.group).map(|b| b.per_iter))
             .unwrap_or(1);
-        let r = ratio(
-            ns_per_query(&dir, t.group, t.ids.0, per, since),
-            ns_per_query(&dir, t.group, t.ids.1, per, since),
-        );
+        let r =
+            ratio(ns_per_query(&dir, t.group, t.ids.0, per, since), ns_per_query(&dir, t.group, t.ids.1, per, since));
         let _ = writeln!(
             s,
             "| {} ≤ {} | {} | {} |",

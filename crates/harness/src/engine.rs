@@ -210,7 +210,9 @@ impl Engine {
                 Some(m) => q.bounds(&m.vertices).map(Answer::Bounds),
                 None => Err(Unsupported("mesh not loaded".into())),
             },
-            (Query::Overlap, S::Aabb(a), Some(S::Aabb(b))) => q.overlap(&a.to_geom(), &b.to_geom()).map(Answer::Overlap),
+            (Query::Overlap, S::Aabb(a), Some(S::Aabb(b))) => {
+                q.overlap(&a.to_geom(), &b.to_geom()).map(Answer::Overlap)
+            }
             (Query::Toi, S::Sphere(a), Some(bs)) => {
                 let (va, vb, t_max) = (case.a.velocity(), bs.velocity(), case.t_max());
                 let a = a.to_geom();

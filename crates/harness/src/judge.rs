@@ -138,7 +138,11 @@ pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
                         cmp1(&mut out, "min_radius", r, s.radius, tol);
                         let pts = bounded_points(lc);
                         if let Some((i, d)) = farthest_outside(&s.center, s.radius, pts, tol) {
-                            out.push(mm("min_radius (encloses every point)", format!("point {i} inside"), format!("{d:e} outside")));
+                            out.push(mm(
+                                "min_radius (encloses every point)",
+                                format!("point {i} inside"),
+                                format!("{d:e} outside"),
+                            ));
                         }
                     }
                     None => out.push(mm("min_radius", r, "no sphere")),
@@ -323,9 +327,9 @@ fn all_finite(answer: &Answer) -> bool {
     let f3 = |p: &P3| p.iter().all(|x| x.is_finite());
     match answer {
         Answer::Contact(a) => a.contact.is_none_or(|c| f3(&c.point) && f3(&c.normal) && c.depth.is_finite()),
-        Answer::Intersect(a) => a.hit.is_none_or(|h| {
-            h.t.is_finite() && f3(&h.point) && f3(&h.normal) && h.barycentric.is_none_or(|b| f3(&b))
-        }),
+        Answer::Intersect(a) => a
+            .hit
+            .is_none_or(|h| h.t.is_finite() && f3(&h.point) && f3(&h.normal) && h.barycentric.is_none_or(|b| f3(&b))),
         Answer::Barycentric(a) => f3(&a.coords),
         Answer::Bounds(a) => {
             a.aabb.is_none_or(|b| f3(&b.min) && f3(&b.max))
@@ -342,7 +346,13 @@ fn all_finite(answer: &Answer) -> bool {
 /// its nearest decision boundary (relative to the scene's scale); a
 /// classification difference within the tolerance band of the boundary is
 /// borderline.
-pub fn judge(lc: &LoadedCase, answer: &Answer, truth: &Answer, tol: &Tolerance, margin: Option<f64>) -> (Verdict, Errors) {
+pub fn judge(
+    lc: &LoadedCase,
+    answer: &Answer,
+    truth: &Answer,
+    tol: &Tolerance,
+    margin: Option<f64>,
+) -> (Verdict, Errors) {
     let scale = scene_scale(lc);
     let mut e = Errors::default();
     if !all_finite(answer) {

@@ -16,6 +16,7 @@
 pub mod case;
 pub mod check;
 pub mod divergence;
+pub mod dynamics;
 pub mod engine;
 pub mod engines;
 pub mod generate;

@@ -149,12 +149,8 @@ pub fn load_str_into(path: &Path, text: &str, out: &mut Loaded) {
                 case: None,
                 field: None,
                 position: Some((e.line(), e.column())),
-                message: if syntax {
-                    format!("JSON syntax: {e}")
-                } else {
-                    format!("not a fixture file: {e}")
-                }
-                .replace(&format!(" at line {} column {}", e.line(), e.column()), ""),
+                message: if syntax { format!("JSON syntax: {e}") } else { format!("not a fixture file: {e}") }
+                    .replace(&format!(" at line {} column {}", e.line(), e.column()), ""),
             });
             return;
         }
@@ -177,10 +173,7 @@ pub fn load_str_into(path: &Path, text: &str, out: &mut Loaded) {
         }
     }
     let Some(cases) = raw.cases else {
-        out.errors.push(InputError {
-            field: Some("cases".into()),
-            ..file_error(path, "missing field".into())
-        });
+        out.errors.push(InputError { field: Some("cases".into()), ..file_error(path, "missing field".into()) });
         return;
     };
     let base = path.parent().unwrap_or(Path::new("."));

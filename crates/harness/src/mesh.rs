@@ -58,8 +58,7 @@ pub fn load_mesh_file(path: &Path) -> Result<Mesh, String> {
         return Err(format!("{}: unsupported mesh format (expected .obj)", path.display()));
     }
     let opts = tobj::LoadOptions { single_index: true, triangulate: false, ..Default::default() };
-    let (models, _) =
-        tobj::load_obj(path, &opts).map_err(|e| format!("{}: cannot read mesh: {e}", path.display()))?;
+    let (models, _) = tobj::load_obj(path, &opts).map_err(|e| format!("{}: cannot read mesh: {e}", path.display()))?;
     let mut vertices = Vec::new();
     let mut triangles = Vec::new();
     for m in &models {

@@ -6,7 +6,10 @@
 //!   floats of at least 200 bits where a square root is unavoidable, rounding
 //!   only the final answer to `f64`.
 //! - [`parry`]: parry3d-f64 and parry3d (f32), with their conventions translated
-//!   to crashtest's in one place per engine.
+//!   to crashtest's in one place per engine; their shape casts too.
+//! - [`rapier`]: rapier3d-f64 worlds stepped at a fixed `dt`, every setting set
+//!   in one constructor and echoed, for the dynamics experiments (bounces,
+//!   tunnelling, two-ball impacts).
 //!
 //! The oracle never calls `collide`: a reference that borrowed from the code it
 //! judges would judge nothing. Everything here speaks the plain `f64` vocabulary
@@ -15,4 +18,5 @@
 
 pub mod geom;
 pub mod parry;
+pub mod rapier;
 pub mod referee;

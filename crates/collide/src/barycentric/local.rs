@@ -61,10 +61,7 @@ pub(crate) fn scaled_differences<T: Real, const N: usize>(
         let half = c::<T>(0.5);
         d = pairs.map(|(x, y)| x * half - y * half);
     }
-    let m = d[..lead]
-        .iter()
-        .map(max_abs)
-        .fold(T::zero(), |a, b| a.max(b));
+    let m = d[..lead].iter().map(max_abs).fold(T::zero(), |a, b| a.max(b));
     if m == T::zero() {
         return None;
     }
@@ -77,10 +74,7 @@ pub(crate) fn scaled_differences<T: Real, const N: usize>(
 /// by the scale-relative test of [`FLAT_TRIANGLE_EPS`].
 pub(crate) fn is_flat_triangle<T: Real>(e0: &Vec3<T>, e1: &Vec3<T>, n: &Vec3<T>) -> bool {
     let e2 = e1 - e0;
-    let l2 = e0
-        .norm_squared()
-        .max(e1.norm_squared())
-        .max(e2.norm_squared());
+    let l2 = e0.norm_squared().max(e1.norm_squared()).max(e2.norm_squared());
     let tol = c::<T>(FLAT_TRIANGLE_EPS) * T::EPSILON * l2;
     n.norm_squared() <= tol * tol
 }
@@ -98,8 +92,7 @@ pub(crate) fn is_flat_triangle<T: Real>(e0: &Vec3<T>, e1: &Vec3<T>, n: &Vec3<T>)
 pub(crate) fn longest_edge_fallback<T: Real>(p: &Vec3<T>, v: &[Vec3<T>; 3]) -> [T; 3] {
     // Edge k joins vertex k to vertex (k + 1) % 3; all three in one scaled frame.
     let mut out = [T::zero(); 3];
-    let Some(edges) = scaled_differences([(&v[1], &v[0]), (&v[2], &v[1]), (&v[0], &v[2])], 3)
-    else {
+    let Some(edges) = scaled_differences([(&v[1], &v[0]), (&v[2], &v[1]), (&v[0], &v[2])], 3) else {
         out[0] = T::one();
         return out;
     };
@@ -116,11 +109,7 @@ pub(crate) fn longest_edge_fallback<T: Real>(p: &Vec3<T>, v: &[Vec3<T>; 3]) -> [
         return out;
     };
     let t = q.dot(&d) / d.norm_squared();
-    let t = if t > T::zero() {
-        t.min(T::one())
-    } else {
-        T::zero()
-    };
+    let t = if t > T::zero() { t.min(T::one()) } else { T::zero() };
     out[i] = T::one() - t;
     out[j] = t;
     out

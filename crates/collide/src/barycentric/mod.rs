@@ -2,6 +2,7 @@
 //! unsigned length and area ratios, and signed coordinates of the projected point
 //! beside them.
 
+mod area_ratios;
 mod coords;
 pub(crate) mod local;
 mod segment;

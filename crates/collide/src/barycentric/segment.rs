@@ -34,23 +34,13 @@ use crate::shapes::Segment;
 /// `t = +∞`, `[1, 0]` otherwise. Never NaN for finite input.
 pub fn barycentric_segment<T: Real>(p: &Vec3<T>, seg: &Segment<T>) -> Barycentric<T, 2> {
     let (a, b) = (&seg.start, &seg.end);
-    let fallback = |coords| Barycentric {
-        coords,
-        degenerate: true,
-    };
+    let fallback = |coords| Barycentric { coords, degenerate: true };
     let Some([d, q]) = scaled_differences([(b, a), (p, a)], 1) else {
         return fallback([T::one(), T::zero()]);
     };
     let t = q.dot(&d) / d.norm_squared();
     if !t.finite() {
-        return if t > T::zero() {
-            fallback([T::zero(), T::one()])
-        } else {
-            fallback([T::one(), T::zero()])
-        };
+        return if t > T::zero() { fallback([T::zero(), T::one()]) } else { fallback([T::one(), T::zero()]) };
     }
-    Barycentric {
-        coords: [T::one() - t, t],
-        degenerate: false,
-    }
+    Barycentric { coords: [T::one() - t, t], degenerate: false }
 }

@@ -38,28 +38,15 @@ use crate::shapes::Segment;
 pub fn barycentric_segment_lecture<T: Real>(p: &Vec3<T>, seg: &Segment<T>) -> Barycentric<T, 2> {
     let (a, b) = (&seg.start, &seg.end);
     let Some([d, pa, pb]) = scaled_differences([(b, a), (p, a), (p, b)], 1) else {
-        return Barycentric {
-            coords: [T::one(), T::zero()],
-            degenerate: true,
-        };
+        return Barycentric { coords: [T::one(), T::zero()], degenerate: true };
     };
     let len = stable_norm(&d);
     let (to_a, to_b) = (stable_norm(&pa), stable_norm(&pb));
     let coords = [to_b / len, to_a / len];
     if !(coords[0].finite() && coords[1].finite()) {
         let near_a = to_a <= to_b;
-        let coords = if near_a {
-            [T::one(), T::zero()]
-        } else {
-            [T::zero(), T::one()]
-        };
-        return Barycentric {
-            coords,
-            degenerate: true,
-        };
+        let coords = if near_a { [T::one(), T::zero()] } else { [T::zero(), T::one()] };
+        return Barycentric { coords, degenerate: true };
     }
-    Barycentric {
-        coords,
-        degenerate: false,
-    }
+    Barycentric { coords, degenerate: false }
 }

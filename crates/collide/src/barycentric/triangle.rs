@@ -1,9 +1,10 @@
 //! Signed barycentric coordinates on a triangle, of the point's projection onto
 //! the triangle's plane.
 
+use super::area_ratios::signed_area_ratios;
 use super::coords::Barycentric;
-use super::local::{is_flat_triangle, longest_edge_fallback, scaled_differences};
-use crate::real::{Real, Vec3};
+use super::local::longest_edge_fallback;
+use crate::real::{Real, Vec3, finite3, to_f64_3};
 use crate::shapes::Triangle;
 
 /// Signed barycentric coordinates `[α, β, γ]` of the orthogonal projection `p'` of
@@ -30,79 +31,95 @@ use crate::shapes::Triangle;
 /// is `‖n‖` times twice the signed area of the sub-triangle opposite the vertex
 /// (positive when it turns the same way as the triangle): the lecture's
 /// `α = t1/S` with signs, of the projected point. The same steps from `v1` and
-/// `v2` give `α` and `β`. Source: the lecture's area ratios; signed form as in
-/// Ericson, *Real-Time Collision Detection*, §3.4 (there with a 2-D projection).
+/// `v2` give `α` and `β`; the three numerators sum to `n·n` identically. Source:
+/// the lecture's area ratios; signed form as in Ericson, *Real-Time Collision
+/// Detection*, §3.4 (there with a 2-D projection and the normal equations
+/// `d00 d11 − d01²`, equal to `‖n‖²` by Lagrange's identity).
 ///
-/// Why this form: each numerator crosses one *edge* (short) with one offset
-/// `p − vertex` (long when `p` is far), so its rounding error is about
-/// `ε ‖p − v‖ L ‖n‖`, against `ε ‖p − v‖² ‖n‖` for the `p`-centred form
-/// `n·((v1 − p) × (v2 − p))`. And the denominator `‖n‖²` is a sum of squares, never
-/// cancelling, unlike Ericson's `d00 d11 − d01²`. Measured in `f32` against an
-/// `f64` evaluation of the same inputs (200 000 random cases per row, mean of
-/// the largest coordinate error):
+/// **Why exact arithmetic.** Numerators and denominator are polynomials of degree
+/// 4 in the input coordinates. Evaluated in floating point, `n` carries an
+/// absolute error of a few `ε L²` (`L` the longest edge) in its length *and its
+/// direction*; on a sliver of width `w` that tilts the computed plane by about
+/// `ε L / w`, and the height `h` of `p` above the plane turns the tilt into an
+/// in-plane error of `ε L h / w`, i.e. a coordinate error of `ε L h / w²` —
+/// quadratic in the aspect ratio, far beyond the conditioning of the problem
+/// (crashtest's sliver family met `[0.069, 1.145, −0.215]` for the exact
+/// `[0.0228, 1.0907, −0.1135]`, and `O(1)` answers where the exact coordinates
+/// are `~1e6`). Deciding "zero area" by a threshold on the computed `‖n‖` also
+/// flagged genuine triangles thinner than `16 ε`. So the coordinates are the
+/// ratios of exactly known values, and zero area is decided exactly.
 ///
-/// | scene | Ericson `d00/d01/d11` | `p`-centred, ÷ sum | this |
-/// | --- | --- | --- | --- |
-/// | unit triangles, `p` in plane | 1.6e-6 | 6.5e-8 | 7.6e-8 |
-/// | thin (height 1e-2) | ∞ (zero denominators) | 1.9e-6 | 2.9e-6 |
-/// | 1e3 from the origin | 1.8e-6 | 5.7e-8 | 5.9e-8 |
-/// | `p` off the plane | 2.2e-4 | 6.9e-7 | 2.5e-7 |
-/// | thin, `p` 1e4 edge lengths away | ∞ | ∞ (the sum cancels to 0) | 4.0e-1 |
+/// **Method** (details in the private `area_ratios` module):
 ///
-/// The sum is enforced by recomputing the largest-magnitude coordinate as
-/// `1 − (the other two)`: its error becomes the sum of theirs (the same size),
-/// and `α + β + γ` is 1 to within one rounding of the largest coordinate.
-/// Dividing by the computed sum of the numerators instead would also give a sum
-/// of 1, but that sum cancels catastrophically when `p` is far (last row).
+/// 1. *Filter.* The `f64` evaluation of the formula above, in a frame where the
+///    edges and the offsets `p − v_i` are each scaled by an exact power of two
+///    (no overflow or underflow), with a forward error bound on every numerator
+///    and the denominator (Shewchuk's orient2d bound for each cross-product
+///    component, first-order propagation through the dot products). When the
+///    bounds of the two kept coordinates sum to at most `FILTER_TOL` (12 ε) of
+///    the coordinates' size, the floating-point answer stands: about half of
+///    random well-shaped cases (the bound is pessimistic), at about the cost of
+///    the plain formula.
+/// 2. *Exact.* Otherwise `‖n‖²` and two numerators are evaluated exactly (the
+///    third is `‖n‖²` minus them), each rounded to an
+///    [`Estimate`](crate::exact::Estimate), and the coordinates are their
+///    quotients. The inputs are integers on a common binary grid; when their
+///    significant bits span at most 61 binades (any scene of sensible
+///    proportions) the evaluation runs on `i128` and 256-bit integers without
+///    allocation, at about 1.6 times the filter's cost; up to 124 binades on
+///    512-bit integers; beyond that in [`BigFloat`](crate::exact::BigFloat)
+///    (microseconds). Slivers and degenerate triangles always take this path.
 ///
-/// Numerics: all differences are formed in one frame scaled by an exact power of
-/// two (halved first if one overflows), so the cross and dot products cannot
-/// overflow or underflow; the coordinates are those of exact scaling.
+/// **Accuracy.** For every finite input whose triangle does not have exactly zero
+/// area, each returned `f64` coordinate is within `16 ε · max(1, max_i |coord_i|)`
+/// of the exact coordinate of the projection, whatever the triangle's shape:
+/// `FILTER_TOL + 3.5 ε` on the fast path; on the exact path each kept quotient
+/// is within `2.5 ε` of itself and the recomputed one within the sum of their
+/// errors plus two roundings, `6.5 ε`. (Typical errors are an ulp or two.) The
+/// sum `α + β + γ` is 1 to within `1.5 ε · max(1, max_i |coord_i|)`.
 ///
-/// Degenerate input: a zero-area triangle (collinear or coincident vertices),
-/// decided by the scale-relative flatness test of
-/// `FLAT_TRIANGLE_EPS` (`‖n‖ ≤ 16 ε L²`, `L` the
-/// longest edge: every exactly flat triangle, and ones so thin that the computed
-/// normal is mostly rounding), has no plane. `degenerate` is set and the fallback
-/// is the closest point to `p` on the longest edge, as coordinates `1 − t`, `t` on
-/// that edge's endpoints and 0 on the third vertex (`[1, 0, 0]` when all vertices
-/// coincide): non-negative, summing to 1, and reconstructing that closest point.
-/// Coordinates beyond the type's range (`p` more than about the largest finite
-/// value times the triangle's size away) get the same fallback and flag. Never
-/// NaN for finite input.
+/// **Precision.** The computation runs on the inputs' `f64` values (exact for
+/// `f32`); the `f32` answer rounds the two kept `f64` coordinates to `f32`
+/// (half an ulp each) and recomputes the third in `f32` as `1 −` them (their
+/// errors plus two roundings), so every `f32` coordinate is within
+/// `2.5 ε_f32` of the size of the exact answer *for the `f32` inputs*, and the
+/// sum is 1 as in `f64`.
+///
+/// Degenerate input: a triangle of exactly zero area (collinear or coincident
+/// vertices, `n = 0` exactly, the decision of
+/// [`exact::collinear`](crate::exact::collinear)) has no plane. `degenerate` is
+/// set and the fallback is the closest point to `p` on the longest edge, as
+/// coordinates `1 − t`, `t` on that edge's endpoints and 0 on the third vertex
+/// (`[1, 0, 0]` when all vertices coincide): non-negative, summing to 1, and
+/// reconstructing that closest point. Any triangle of non-zero area, however
+/// thin, is answered. Coordinates beyond the type's range (`p` more than about
+/// the largest finite value times the triangle's width away) and non-finite input
+/// get the same fallback and flag. Never NaN, never a panic.
+///
+/// **Deviation from the book**: Ericson evaluates the ratios in floating point
+/// and calls the triangle degenerate when the computed denominator is (near)
+/// zero; here the numerators and denominator are exact (or certified to the
+/// target), and zero area is decided exactly — a triangle is degenerate only
+/// when its area is exactly zero, as crashtest's referee decides it.
+/// [`barycentric_triangle_lecture`](super::barycentric_triangle_lecture) keeps
+/// the floating-point threshold `‖n‖ ≤ 16 ε L²`.
 pub fn barycentric_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Barycentric<T, 3> {
-    let [v0, v1, v2] = &tri.vertices;
-    let fallback = || Barycentric {
-        coords: longest_edge_fallback(p, &tri.vertices),
-        degenerate: true,
-    };
-    let Some([e0, e1, e12, q0, q1, q2]) =
-        scaled_differences([(v1, v0), (v2, v0), (v2, v1), (p, v0), (p, v1), (p, v2)], 3)
-    else {
-        return fallback();
-    };
-    let n = e0.cross(&e1);
-    if is_flat_triangle(&e0, &e1, &n) {
+    let fallback = || Barycentric { coords: longest_edge_fallback(p, &tri.vertices), degenerate: true };
+    if !(finite3(p) && tri.vertices.iter().all(finite3)) {
         return fallback();
     }
-    let nn = n.norm_squared();
-    let mut coords = [
-        n.dot(&e12.cross(&q1)) / nn,
-        n.dot(&(-e1).cross(&q2)) / nn,
-        n.dot(&e0.cross(&q0)) / nn,
-    ];
-    let mut k = 0;
-    for j in 1..3 {
-        if coords[j].abs() > coords[k].abs() {
-            k = j;
-        }
-    }
-    coords[k] = T::one() - coords[(k + 1) % 3] - coords[(k + 2) % 3];
+    let v = tri.vertices.map(|x| to_f64_3(&x));
+    let Some(r) = signed_area_ratios(&to_f64_3(p), &v) else {
+        return fallback();
+    };
+    let k = r.free;
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    let mut coords = [T::zero(); 3];
+    coords[i] = T::of(r.coords[i]);
+    coords[j] = T::of(r.coords[j]);
+    coords[k] = T::one() - coords[i] - coords[j];
     if !coords.iter().all(|x| x.finite()) {
         return fallback();
     }
-    Barycentric {
-        coords,
-        degenerate: false,
-    }
+    Barycentric { coords, degenerate: false }
 }

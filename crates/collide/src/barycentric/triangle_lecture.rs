@@ -35,24 +35,21 @@ use crate::shapes::Triangle;
 /// two (halved first if one overflows) and the norms use [`stable_norm`], so no
 /// intermediate overflows or underflows.
 ///
-/// Degenerate input: a zero-area triangle, by the same scale-relative flatness
-/// test as [`barycentric_triangle`](super::barycentric_triangle) (`‖n‖ ≤ 16 ε L²`,
-/// `L` the longest edge: below it the computed area is rounding noise and the
-/// division by `S` meaningless), sets `degenerate` with the same fallback: the
-/// closest point to `p` on the longest edge as coordinates (`[1, 0, 0]` when the
-/// vertices coincide), non-negative and summing to 1. When an area overflows the
-/// type (the cross product of two offsets from `p` squares their length: `p` more
-/// than about `√(largest finite)` triangle sizes away, 1e19 in `f32`, 1e154 in
-/// `f64`), the answer gets the same fallback and flag. Never NaN for finite input.
+/// Degenerate input: a zero-area triangle, by a scale-relative flatness test
+/// on the computed normal (`‖n‖ ≤ 16 ε L²`, `L` the longest edge: below it the
+/// computed area is rounding noise and the division by `S` meaningless; the
+/// signed [`barycentric_triangle`](super::barycentric_triangle) decides zero
+/// area exactly instead), sets `degenerate` with the fallback of the signed
+/// coordinates: the closest point to `p` on the longest edge as coordinates
+/// (`[1, 0, 0]` when the vertices coincide), non-negative and summing to 1.
+/// When an area overflows the type (the cross product of two offsets from `p`
+/// squares their length: `p` more than about `√(largest finite)` triangle sizes
+/// away, 1e19 in `f32`, 1e154 in `f64`), the answer gets the same fallback and
+/// flag. Never NaN for finite input.
 pub fn barycentric_triangle_lecture<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Barycentric<T, 3> {
     let [v0, v1, v2] = &tri.vertices;
-    let fallback = || Barycentric {
-        coords: longest_edge_fallback(p, &tri.vertices),
-        degenerate: true,
-    };
-    let Some([e0, e1, w0, w1, w2]) =
-        scaled_differences([(v1, v0), (v2, v0), (v0, p), (v1, p), (v2, p)], 2)
-    else {
+    let fallback = || Barycentric { coords: longest_edge_fallback(p, &tri.vertices), degenerate: true };
+    let Some([e0, e1, w0, w1, w2]) = scaled_differences([(v1, v0), (v2, v0), (v0, p), (v1, p), (v2, p)], 2) else {
         return fallback();
     };
     let n = e0.cross(&e1);
@@ -60,16 +57,9 @@ pub fn barycentric_triangle_lecture<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> 
         return fallback();
     }
     let s = stable_norm(&n);
-    let coords = [
-        stable_norm(&w1.cross(&w2)) / s,
-        stable_norm(&w2.cross(&w0)) / s,
-        stable_norm(&w0.cross(&w1)) / s,
-    ];
+    let coords = [stable_norm(&w1.cross(&w2)) / s, stable_norm(&w2.cross(&w0)) / s, stable_norm(&w0.cross(&w1)) / s];
     if !coords.iter().all(|x| x.finite()) {
         return fallback();
     }
-    Barycentric {
-        coords,
-        degenerate: false,
-    }
+    Barycentric { coords, degenerate: false }
 }

@@ -24,12 +24,7 @@ pub struct Spheres<T: Real> {
 impl<T: Real> Spheres<T> {
     /// No spheres.
     pub fn new() -> Self {
-        Self {
-            x: Vec::new(),
-            y: Vec::new(),
-            z: Vec::new(),
-            radius: Vec::new(),
-        }
+        Self { x: Vec::new(), y: Vec::new(), z: Vec::new(), radius: Vec::new() }
     }
 
     /// No spheres, room for `n`.
@@ -52,11 +47,7 @@ impl<T: Real> Spheres<T> {
 
     /// The number of spheres (the shortest array's length).
     pub fn len(&self) -> usize {
-        self.x
-            .len()
-            .min(self.y.len())
-            .min(self.z.len())
-            .min(self.radius.len())
+        self.x.len().min(self.y.len()).min(self.z.len()).min(self.radius.len())
     }
 
     /// Whether there are no spheres.
@@ -66,10 +57,7 @@ impl<T: Real> Spheres<T> {
 
     /// Sphere `i`, or `None` past the end.
     pub fn get(&self, i: usize) -> Option<Sphere<T>> {
-        Some(Sphere::new(
-            Vec3::new(*self.x.get(i)?, *self.y.get(i)?, *self.z.get(i)?),
-            *self.radius.get(i)?,
-        ))
+        Some(Sphere::new(Vec3::new(*self.x.get(i)?, *self.y.get(i)?, *self.z.get(i)?), *self.radius.get(i)?))
     }
 }
 
@@ -158,13 +146,7 @@ impl<T: Real> SphereContacts<T> {
 
     fn set(&mut self, i: usize, k: Option<Contact<T>>) {
         let k = k.map_or((false, [T::zero(); 7], false), |k| {
-            (
-                true,
-                [
-                    k.point.x, k.point.y, k.point.z, k.normal.x, k.normal.y, k.normal.z, k.depth,
-                ],
-                k.degenerate,
-            )
+            (true, [k.point.x, k.point.y, k.point.z, k.normal.x, k.normal.y, k.normal.z, k.depth], k.degenerate)
         });
         self.hit[i] = k.0;
         self.point_x[i] = k.1[0];
@@ -205,11 +187,7 @@ fn select<T: Real>(keep: bool, x: T) -> T {
 ///
 /// **Degenerate input**: as [`contact_sphere_sphere`] (concentric: fallback
 /// normal, flagged). Never NaN for finite input.
-pub fn contact_spheres_spheres<T: Real>(
-    a: &Spheres<T>,
-    b: &Spheres<T>,
-    out: &mut SphereContacts<T>,
-) {
+pub fn contact_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mut SphereContacts<T>) {
     let n = a.len().min(b.len());
     out.resize(n);
     let (lo, hi) = safe_squared_range::<T>();
@@ -242,12 +220,8 @@ pub fn contact_spheres_spheres<T: Real>(
         let (dx, dy, dz) = (ax[i] - bx[i], ay[i] - by[i], az[i] - bz[i]);
         let dd = T::zero() + ((dx * dx + dy * dy) + dz * dz);
         if !(dd >= lo && dd <= hi) {
-            let one =
-                |x: &[T], y: &[T], z: &[T], r: &[T]| Sphere::new(Vec3::new(x[i], y[i], z[i]), r[i]);
-            out.set(
-                i,
-                contact_sphere_sphere(&one(ax, ay, az, ar), &one(bx, by, bz, br)),
-            );
+            let one = |x: &[T], y: &[T], z: &[T], r: &[T]| Sphere::new(Vec3::new(x[i], y[i], z[i]), r[i]);
+            out.set(i, contact_sphere_sphere(&one(ax, ay, az, ar), &one(bx, by, bz, br)));
         }
     }
 }
@@ -259,10 +233,7 @@ pub fn contact_spheres_spheres<T: Real>(
 /// input (references inside an array, a tuple or a struct carry no such
 /// guarantee), and vectorizes the loop without run-time overlap checks.
 #[inline(never)]
-#[allow(
-    clippy::too_many_arguments,
-    reason = "one parameter per array: see above"
-)]
+#[allow(clippy::too_many_arguments, reason = "one parameter per array: see above")]
 fn contact_lanes<T: Real>(
     ax: &[T],
     ay: &[T],
@@ -287,12 +258,7 @@ fn contact_lanes<T: Real>(
     // needs no bounds checks (which would stop the vectorizer).
     let (ax, ay, az, ar) = (&ax[..n], &ay[..n], &az[..n], &ar[..n]);
     let (bx, by, bz, br) = (&bx[..n], &by[..n], &bz[..n], &br[..n]);
-    let (degenerate, px, py, pz) = (
-        &mut degenerate[..n],
-        &mut px[..n],
-        &mut py[..n],
-        &mut pz[..n],
-    );
+    let (degenerate, px, py, pz) = (&mut degenerate[..n], &mut px[..n], &mut py[..n], &mut pz[..n]);
     let (nx, ny, nz, depth) = (&mut nx[..n], &mut ny[..n], &mut nz[..n], &mut depth[..n]);
     let (lo, hi) = safe_squared_range::<T>();
     let factor = clear_miss_factor::<T>();
@@ -330,10 +296,7 @@ fn contact_lanes<T: Real>(
 /// The first pass of [`test_spheres_spheres`]; returns whether any lane is
 /// outside the fast range. Separate parameters, as [`contact_lanes`].
 #[inline(never)]
-#[allow(
-    clippy::too_many_arguments,
-    reason = "one parameter per array: see contact_lanes"
-)]
+#[allow(clippy::too_many_arguments, reason = "one parameter per array: see contact_lanes")]
 fn test_lanes<T: Real>(
     ax: &[T],
     ay: &[T],
@@ -381,11 +344,8 @@ pub fn test_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mut V
             let (dx, dy, dz) = (ax[i] - bx[i], ay[i] - by[i], az[i] - bz[i]);
             let dd = T::zero() + ((dx * dx + dy * dy) + dz * dz);
             if !(dd >= lo && dd <= hi) {
-                let one = |x: &[T], y: &[T], z: &[T], r: &[T]| {
-                    Sphere::new(Vec3::new(x[i], y[i], z[i]), r[i])
-                };
-                hit[i] =
-                    contact_sphere_sphere(&one(ax, ay, az, ar), &one(bx, by, bz, br)).is_some();
+                let one = |x: &[T], y: &[T], z: &[T], r: &[T]| Sphere::new(Vec3::new(x[i], y[i], z[i]), r[i]);
+                hit[i] = contact_sphere_sphere(&one(ax, ay, az, ar), &one(bx, by, bz, br)).is_some();
             }
         }
     }
@@ -423,18 +383,10 @@ mod tests {
         prop_assert_eq!(out.len(), pairs.len());
         for (i, (x, y)) in pairs.iter().enumerate() {
             let one = contact_sphere_sphere(x, y);
-            prop_assert!(
-                same(out.get(i), one),
-                "pair {i}: batch {:?}, one {:?}",
-                out.get(i),
-                one
-            );
+            prop_assert!(same(out.get(i), one), "pair {i}: batch {:?}, one {:?}", out.get(i), one);
             prop_assert_eq!(tests[i], one.is_some(), "test of pair {}", i);
             if one.is_none() {
-                prop_assert!(
-                    out.depth[i].wide().to_bits() == 0 && out.normal_x[i].wide().to_bits() == 0,
-                    "zeroed"
-                );
+                prop_assert!(out.depth[i].wide().to_bits() == 0 && out.normal_x[i].wide().to_bits() == 0, "zeroed");
             }
         }
         Ok(())
@@ -449,9 +401,9 @@ mod tests {
             1 => (-1.0..1.0f64, -300i32..300).prop_map(|(m, e)| m * 2f64.powi(e)),
             1 => Just(1.0),
         ];
-        let radius = prop_oneof![4 => 0.1..3.0f64, 1 => (0.1..1.0f64, -300i32..300).prop_map(|(m, e)| m * 2f64.powi(e))];
-        let sphere = ([coord.clone(), coord.clone(), coord], radius)
-            .prop_map(|(c, r)| [c[0], c[1], c[2], r]);
+        let radius =
+            prop_oneof![4 => 0.1..3.0f64, 1 => (0.1..1.0f64, -300i32..300).prop_map(|(m, e)| m * 2f64.powi(e))];
+        let sphere = ([coord.clone(), coord.clone(), coord], radius).prop_map(|(c, r)| [c[0], c[1], c[2], r]);
         (sphere.clone(), sphere)
     }
 

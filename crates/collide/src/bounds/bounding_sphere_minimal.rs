@@ -100,18 +100,12 @@ pub fn bounding_sphere_minimal<T: Real>(points: &[Vec3<T>]) -> Option<BoundingSp
     let mut pts = std::mem::take(&mut cloud.points);
     shuffle(&mut pts);
     let slack = c::<T>(WELZL_SLACK_EPS) * T::EPSILON;
-    let mut s = Ball {
-        center: pts[0],
-        radius: T::zero(),
-    };
+    let mut s = Ball { center: pts[0], radius: T::zero() };
     for i in 1..pts.len() {
         if s.contains(&pts[i], slack) {
             continue;
         }
-        s = Ball {
-            center: pts[i],
-            radius: T::zero(),
-        };
+        s = Ball { center: pts[i], radius: T::zero() };
         for j in 0..i {
             if s.contains(&pts[j], slack) {
                 continue;
@@ -148,10 +142,7 @@ impl<T: Real> Ball<T> {
 
     /// The sphere about `center` reaching the farthest of `support`.
     fn about(center: Vec3<T>, support: &[&Vec3<T>]) -> Self {
-        let radius = support
-            .iter()
-            .map(|p| (*p - center).norm())
-            .fold(T::zero(), |a, b| a.max(b));
+        let radius = support.iter().map(|p| (*p - center).norm()).fold(T::zero(), |a, b| a.max(b));
         Self { center, radius }
     }
 }
@@ -169,8 +160,7 @@ fn ball3<T: Real>(a: &Vec3<T>, b: &Vec3<T>, p: &Vec3<T>) -> Ball<T> {
     if is_flat_triangle(&u, &v, &n) {
         return farthest_pair_ball(&[a, b, p]);
     }
-    let x =
-        (v * u.norm_squared() - u * v.norm_squared()).cross(&n) / (n.norm_squared() * c::<T>(2.0));
+    let x = (v * u.norm_squared() - u * v.norm_squared()).cross(&n) / (n.norm_squared() * c::<T>(2.0));
     Ball::about(a + x, &[a, b, p])
 }
 
@@ -179,18 +169,13 @@ fn ball3<T: Real>(a: &Vec3<T>, b: &Vec3<T>, p: &Vec3<T>) -> Ball<T> {
 /// spheres on pairs and triples.
 fn ball4<T: Real>(a: &Vec3<T>, b: &Vec3<T>, p: &Vec3<T>, q: &Vec3<T>) -> Ball<T> {
     let (u, v, w) = (b - a, p - a, q - a);
-    let l2 = [u, v, w, p - b, q - b, q - p]
-        .iter()
-        .map(|e| e.norm_squared())
-        .fold(T::zero(), |x, y| x.max(y));
+    let l2 = [u, v, w, p - b, q - b, q - p].iter().map(|e| e.norm_squared()).fold(T::zero(), |x, y| x.max(y));
     let det = u.dot(&v.cross(&w));
     let tol = c::<T>(FLAT_TETRA_EPS) * T::EPSILON * l2 * l2.sqrt();
     if det.abs() <= tol {
         return smallest_ball_of_four([a, b, p, q]);
     }
-    let x = (v.cross(&w) * u.norm_squared()
-        + w.cross(&u) * v.norm_squared()
-        + u.cross(&v) * w.norm_squared())
+    let x = (v.cross(&w) * u.norm_squared() + w.cross(&u) * v.norm_squared() + u.cross(&v) * w.norm_squared())
         / (det * c::<T>(2.0));
     Ball::about(a + x, &[a, b, p, q])
 }
@@ -218,10 +203,8 @@ fn farthest_pair_ball<T: Real>(pts: &[&Vec3<T>]) -> Ball<T> {
 fn smallest_ball_of_four<T: Real>(q: [&Vec3<T>; 4]) -> Ball<T> {
     const PAIRS: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
     const TRIPLES: [(usize, usize, usize); 4] = [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)];
-    let candidates = PAIRS
-        .iter()
-        .map(|&(i, j)| ball2(q[i], q[j]))
-        .chain(TRIPLES.iter().map(|&(i, j, k)| ball3(q[i], q[j], q[k])));
+    let candidates =
+        PAIRS.iter().map(|&(i, j)| ball2(q[i], q[j])).chain(TRIPLES.iter().map(|&(i, j, k)| ball3(q[i], q[j], q[k])));
     let mut best = Ball::about(*q[0], &q);
     for cand in candidates {
         let grown = Ball::about(cand.center, &q);

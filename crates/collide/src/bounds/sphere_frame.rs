@@ -29,27 +29,15 @@ pub(super) fn local_cloud<T: Real>(points: &[Vec3<T>]) -> Option<LocalCloud<T>> 
     let halved = !points.iter().all(|p| finite3(&(p - origin)));
     let half = c::<T>(0.5);
     let offset = |p: &Vec3<T>| {
-        if halved {
-            p * half - origin * half
-        } else {
-            p - origin
-        }
+        if halved { p * half - origin * half } else { p - origin }
     };
-    let m = points
-        .iter()
-        .map(|p| max_abs(&offset(p)))
-        .fold(T::zero(), |a, b| a.max(b));
+    let m = points.iter().map(|p| max_abs(&offset(p))).fold(T::zero(), |a, b| a.max(b));
     if m == T::zero() {
         return None;
     }
     let k = unit_exponent(m);
     let points = points.iter().map(|p| mul_pow2(&offset(p), k)).collect();
-    Some(LocalCloud {
-        origin,
-        halved,
-        k,
-        points,
-    })
+    Some(LocalCloud { origin, halved, k, points })
 }
 
 impl<T: Real> LocalCloud<T> {
@@ -96,11 +84,7 @@ pub(super) fn distance<T: Real>(p: &Vec3<T>, q: &Vec3<T>) -> T {
 /// 3. `degenerate` is set when that radius overflowed to `+∞`.
 pub(super) fn enclose<T: Real>(points: &[Vec3<T>], center: Vec3<T>) -> BoundingSphere<T> {
     let Some(bb) = aabb_from_points(points) else {
-        return BoundingSphere {
-            center,
-            radius: T::zero(),
-            degenerate: false,
-        };
+        return BoundingSphere { center, radius: T::zero(), degenerate: false };
     };
     let mut center = center;
     for i in 0..3 {
@@ -113,13 +97,6 @@ pub(super) fn enclose<T: Real>(points: &[Vec3<T>], center: Vec3<T>) -> BoundingS
             bb.min[i]
         };
     }
-    let radius = points
-        .iter()
-        .map(|p| distance(p, &center))
-        .fold(T::zero(), |a, b| a.max(b));
-    BoundingSphere {
-        center,
-        radius,
-        degenerate: !radius.finite(),
-    }
+    let radius = points.iter().map(|p| distance(p, &center)).fold(T::zero(), |a, b| a.max(b));
+    BoundingSphere { center, radius, degenerate: !radius.finite() }
 }

@@ -47,17 +47,9 @@ fn wide3<T: Real>(p: &Vec3<T>) -> Vec3<f64> {
 /// when it overflows) is divided by its largest component before squaring.
 fn dist_f64<T: Real>(p: &Vec3<T>, q: &Vec3<T>) -> f64 {
     let (p, q) = (wide3(p), wide3(q));
-    let (d, k) = if (p - q).iter().all(|x| x.is_finite()) {
-        (p - q, 1.0)
-    } else {
-        (p * 0.5 - q * 0.5, 2.0)
-    };
+    let (d, k) = if (p - q).iter().all(|x| x.is_finite()) { (p - q, 1.0) } else { (p * 0.5 - q * 0.5, 2.0) };
     let m = d.amax();
-    if m == 0.0 {
-        0.0
-    } else {
-        (d / m).norm() * m * k
-    }
+    if m == 0.0 { 0.0 } else { (d / m).norm() * m * k }
 }
 
 type Method<T> = fn(&[Vec3<T>]) -> Option<BoundingSphere<T>>;
@@ -73,15 +65,9 @@ fn methods<T: Real>() -> [(&'static str, Method<T>); 3] {
 fn assert_sphere<T: Real>(got: &BoundingSphere<T>, center: [f64; 3], radius: f64, what: &str) {
     let tol = HAND_TOL_EPS * eps::<T>();
     let c = wide3(&got.center);
-    assert!(
-        (c - Vec3::from(center)).amax() <= tol,
-        "{what}: centre {c:?}, want {center:?}"
-    );
+    assert!((c - Vec3::from(center)).amax() <= tol, "{what}: centre {c:?}, want {center:?}");
     let r = got.radius.wide();
-    assert!(
-        (r - radius).abs() <= tol * radius.max(1.0),
-        "{what}: radius {r}, want {radius}"
-    );
+    assert!((r - radius).abs() <= tol * radius.max(1.0), "{what}: radius {r}, want {radius}");
     assert!(!got.degenerate, "{what}: flagged degenerate");
 }
 
@@ -104,32 +90,18 @@ macro_rules! both {
 // ------------------------------------------------------------------- AABB
 
 fn aabb_hand<T: Real>() {
-    assert!(
-        aabb_from_points::<T>(&[]).is_none(),
-        "empty input has no box"
-    );
+    assert!(aabb_from_points::<T>(&[]).is_none(), "empty input has no box");
     // Expansion over (1, −2, 3), (−4, 5, 0), (2, 0, −1): per-axis min and max.
     let pts = [v::<T>(1.0, -2.0, 3.0), v(-4.0, 5.0, 0.0), v(2.0, 0.0, -1.0)];
     let bb = aabb_from_points(&pts).expect("non-empty");
-    assert!(
-        wide3(&(bb.min - v(-4.0, -2.0, -1.0))).amax() <= 0.0,
-        "min {:?}",
-        bb.min
-    );
-    assert!(
-        wide3(&(bb.max - v(2.0, 5.0, 3.0))).amax() <= 0.0,
-        "max {:?}",
-        bb.max
-    );
+    assert!(wide3(&(bb.min - v(-4.0, -2.0, -1.0))).amax() <= 0.0, "min {:?}", bb.min);
+    assert!(wide3(&(bb.max - v(2.0, 5.0, 3.0))).amax() <= 0.0, "max {:?}", bb.max);
     // The triangle of the same three points has the same box.
     let tb = aabb_of_triangle(&Triangle::new(pts[0], pts[1], pts[2]));
     assert!(tb == bb, "triangle box {tb:?} vs {bb:?}");
     // Segment (1, −2, 3) → (−4, 5, 0): min (−4, −2, 0), max (1, 5, 3).
     let sb = aabb_of_segment(&Segment::new(pts[0], pts[1]));
-    assert!(
-        sb == Aabb::new(v(-4.0, -2.0, 0.0), v(1.0, 5.0, 3.0)),
-        "segment box {sb:?}"
-    );
+    assert!(sb == Aabb::new(v(-4.0, -2.0, 0.0), v(1.0, 5.0, 3.0)), "segment box {sb:?}");
     // Sphere at (1, 2, 3) of radius 0.5: [0.5, 1.5] × [1.5, 2.5] × [2.5, 3.5]
     // (exact: dyadic). A negative radius is read as its magnitude.
     let want = Aabb::new(v(0.5, 1.5, 2.5), v(1.5, 2.5, 3.5));
@@ -139,10 +111,7 @@ fn aabb_hand<T: Real>() {
     }
     // A single point: the point box.
     let one = aabb_from_points(&pts[..1]).expect("non-empty");
-    assert!(
-        one.min == pts[0] && one.max == pts[0],
-        "single point box {one:?}"
-    );
+    assert!(one.min == pts[0] && one.max == pts[0], "single point box {one:?}");
 }
 both!(aabb_hand_derived, aabb_hand);
 
@@ -151,30 +120,10 @@ fn overlap_hand<T: Real>() {
     let cases: [(&str, [f64; 3], [f64; 3], bool); 6] = [
         ("overlapping", [0.5, 0.5, 0.5], [2.0, 2.0, 2.0], true),
         ("contained", [0.25, 0.25, 0.25], [0.75, 0.75, 0.75], true),
-        (
-            "touching face x = 1",
-            [1.0, 0.0, 0.0],
-            [2.0, 1.0, 1.0],
-            true,
-        ),
-        (
-            "touching corner (1,1,1)",
-            [1.0, 1.0, 1.0],
-            [2.0, 2.0, 2.0],
-            true,
-        ),
-        (
-            "separated on z only",
-            [0.0, 0.0, 1.5],
-            [1.0, 1.0, 2.0],
-            false,
-        ),
-        (
-            "overlapping x and y, gap on y below",
-            [0.5, -2.0, 0.5],
-            [0.6, -0.5, 0.6],
-            false,
-        ),
+        ("touching face x = 1", [1.0, 0.0, 0.0], [2.0, 1.0, 1.0], true),
+        ("touching corner (1,1,1)", [1.0, 1.0, 1.0], [2.0, 2.0, 2.0], true),
+        ("separated on z only", [0.0, 0.0, 1.5], [1.0, 1.0, 2.0], false),
+        ("overlapping x and y, gap on y below", [0.5, -2.0, 0.5], [0.6, -0.5, 0.6], false),
     ];
     for (what, lo, hi, want) in cases {
         let b = Aabb::new(v(lo[0], lo[1], lo[2]), v(hi[0], hi[1], hi[2]));
@@ -182,10 +131,7 @@ fn overlap_hand<T: Real>() {
         assert_eq!(test_aabb_aabb(&b, &unit), want, "{what}, swapped");
     }
     // One ulp apart on x: 1 + ε is the next value above 1.
-    let gap = Aabb::new(
-        Vec3::new(T::one() + T::EPSILON, T::zero(), T::zero()),
-        v(2.0, 1.0, 1.0),
-    );
+    let gap = Aabb::new(Vec3::new(T::one() + T::EPSILON, T::zero(), T::zero()), v(2.0, 1.0, 1.0));
     assert!(!test_aabb_aabb(&unit, &gap), "one ulp gap separates");
 }
 both!(overlap_hand_derived, overlap_hand);
@@ -197,122 +143,45 @@ fn spheres_hand<T: Real>() {
         assert!(f(&[]).is_none(), "{name}: empty input");
         // One point, and three copies of it: that point, radius 0.
         let p = v::<T>(3.0, -1.0, 2.0);
-        assert_sphere(
-            &f(&[p]).expect("non-empty"),
-            [3.0, -1.0, 2.0],
-            0.0,
-            &format!("{name}: single point"),
-        );
-        assert_sphere(
-            &f(&[p, p, p]).expect("non-empty"),
-            [3.0, -1.0, 2.0],
-            0.0,
-            &format!("{name}: duplicates"),
-        );
+        assert_sphere(&f(&[p]).expect("non-empty"), [3.0, -1.0, 2.0], 0.0, &format!("{name}: single point"));
+        assert_sphere(&f(&[p, p, p]).expect("non-empty"), [3.0, -1.0, 2.0], 0.0, &format!("{name}: duplicates"));
         // Two points 4 apart: every method gives the midpoint and radius 2
         // (centroid = midpoint; Ritter's pair is the two; minimal by definition).
         let two = [v::<T>(1.0, 1.0, 1.0), v(1.0, 5.0, 1.0)];
-        assert_sphere(
-            &f(&two).expect("non-empty"),
-            [1.0, 3.0, 1.0],
-            2.0,
-            &format!("{name}: two points"),
-        );
+        assert_sphere(&f(&two).expect("non-empty"), [1.0, 3.0, 1.0], 2.0, &format!("{name}: two points"));
     }
     // Collinear 0, 1, 5 on x: minimal and Ritter (x = 0, farthest 5, farthest
     // from 5 is 0) are centred at 2.5 with radius 2.5; the centroid is 2, radius 3.
     let col = [v::<T>(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), v(5.0, 0.0, 0.0)];
-    assert_sphere(
-        &bounding_sphere_minimal(&col).unwrap(),
-        [2.5, 0.0, 0.0],
-        2.5,
-        "minimal, collinear",
-    );
-    assert_sphere(
-        &bounding_sphere_ritter(&col).unwrap(),
-        [2.5, 0.0, 0.0],
-        2.5,
-        "ritter, collinear",
-    );
-    assert_sphere(
-        &bounding_sphere_centroid(&col).unwrap(),
-        [2.0, 0.0, 0.0],
-        3.0,
-        "centroid, collinear",
-    );
+    assert_sphere(&bounding_sphere_minimal(&col).unwrap(), [2.5, 0.0, 0.0], 2.5, "minimal, collinear");
+    assert_sphere(&bounding_sphere_ritter(&col).unwrap(), [2.5, 0.0, 0.0], 2.5, "ritter, collinear");
+    assert_sphere(&bounding_sphere_centroid(&col).unwrap(), [2.0, 0.0, 0.0], 3.0, "centroid, collinear");
     // Coplanar square (±1, ±1, 0) with its centre: all three give 0, √2.
-    let sq = [
-        v::<T>(1.0, 1.0, 0.0),
-        v(-1.0, 1.0, 0.0),
-        v(-1.0, -1.0, 0.0),
-        v(1.0, -1.0, 0.0),
-        v(0.0, 0.0, 0.0),
-    ];
+    let sq = [v::<T>(1.0, 1.0, 0.0), v(-1.0, 1.0, 0.0), v(-1.0, -1.0, 0.0), v(1.0, -1.0, 0.0), v(0.0, 0.0, 0.0)];
     for (name, f) in methods::<T>() {
-        assert_sphere(
-            &f(&sq).unwrap(),
-            [0.0, 0.0, 0.0],
-            2f64.sqrt(),
-            &format!("{name}: square"),
-        );
+        assert_sphere(&f(&sq).unwrap(), [0.0, 0.0, 0.0], 2f64.sqrt(), &format!("{name}: square"));
     }
     // Equilateral triangle of side 2, (0,0,0), (2,0,0), (1,√3,0): the minimal
     // sphere is its circumcircle, centre (1, 1/√3, 0), radius 2/√3 (three
     // support points).
     let s3 = 3f64.sqrt();
     let eq = [v::<T>(0.0, 0.0, 0.0), v(2.0, 0.0, 0.0), v(1.0, s3, 0.0)];
-    assert_sphere(
-        &bounding_sphere_minimal(&eq).unwrap(),
-        [1.0, 1.0 / s3, 0.0],
-        2.0 / s3,
-        "minimal, equilateral",
-    );
+    assert_sphere(&bounding_sphere_minimal(&eq).unwrap(), [1.0, 1.0 / s3, 0.0], 2.0 / s3, "minimal, equilateral");
     // Obtuse triangle (0,0,0), (4,0,0), (2,1,0): the third point is within the
     // sphere on the long side, so the minimal sphere is that: (2,0,0), radius 2.
     let obt = [v::<T>(0.0, 0.0, 0.0), v(4.0, 0.0, 0.0), v(2.0, 1.0, 0.0)];
-    assert_sphere(
-        &bounding_sphere_minimal(&obt).unwrap(),
-        [2.0, 0.0, 0.0],
-        2.0,
-        "minimal, obtuse",
-    );
+    assert_sphere(&bounding_sphere_minimal(&obt).unwrap(), [2.0, 0.0, 0.0], 2.0, "minimal, obtuse");
     // Regular tetrahedron (1,1,1), (1,−1,−1), (−1,1,−1), (−1,−1,1) plus its
     // centre: circumsphere at the origin, radius √3 (four support points).
-    let tet = [
-        v::<T>(1.0, 1.0, 1.0),
-        v(1.0, -1.0, -1.0),
-        v(-1.0, 1.0, -1.0),
-        v(-1.0, -1.0, 1.0),
-        v(0.0, 0.0, 0.0),
-    ];
-    assert_sphere(
-        &bounding_sphere_minimal(&tet).unwrap(),
-        [0.0, 0.0, 0.0],
-        s3,
-        "minimal, tetrahedron",
-    );
+    let tet = [v::<T>(1.0, 1.0, 1.0), v(1.0, -1.0, -1.0), v(-1.0, 1.0, -1.0), v(-1.0, -1.0, 1.0), v(0.0, 0.0, 0.0)];
+    assert_sphere(&bounding_sphere_minimal(&tet).unwrap(), [0.0, 0.0, 0.0], s3, "minimal, tetrahedron");
     // Nine points at (1,0,0) and one at (−1,0,0): the lecture's centroid is
     // pulled to x = 0.8 and needs radius 1.8; the minimal sphere is 0, radius 1.
     let mut lop = vec![v::<T>(1.0, 0.0, 0.0); 9];
     lop.push(v(-1.0, 0.0, 0.0));
-    assert_sphere(
-        &bounding_sphere_centroid(&lop).unwrap(),
-        [0.8, 0.0, 0.0],
-        1.8,
-        "centroid, lopsided",
-    );
-    assert_sphere(
-        &bounding_sphere_minimal(&lop).unwrap(),
-        [0.0, 0.0, 0.0],
-        1.0,
-        "minimal, lopsided",
-    );
-    assert_sphere(
-        &bounding_sphere_ritter(&lop).unwrap(),
-        [0.0, 0.0, 0.0],
-        1.0,
-        "ritter, lopsided",
-    );
+    assert_sphere(&bounding_sphere_centroid(&lop).unwrap(), [0.8, 0.0, 0.0], 1.8, "centroid, lopsided");
+    assert_sphere(&bounding_sphere_minimal(&lop).unwrap(), [0.0, 0.0, 0.0], 1.0, "minimal, lopsided");
+    assert_sphere(&bounding_sphere_ritter(&lop).unwrap(), [0.0, 0.0, 0.0], 1.0, "ritter, lopsided");
 }
 both!(bounding_spheres_hand_derived, spheres_hand);
 
@@ -322,39 +191,20 @@ fn spheres_extreme<T: Real>() {
     // Four points on the axes at ±0.75 max: differences overflow (halved frame);
     // all methods: centre 0, radius 0.75 max, finite.
     let m = max * T::of(0.75);
-    let pts = [
-        Vec3::new(m, z, z),
-        Vec3::new(-m, z, z),
-        Vec3::new(z, m, z),
-        Vec3::new(z, -m, z),
-    ];
+    let pts = [Vec3::new(m, z, z), Vec3::new(-m, z, z), Vec3::new(z, m, z), Vec3::new(z, -m, z)];
     for (name, f) in methods::<T>() {
         let s = f(&pts).unwrap();
         assert!(!s.degenerate, "{name}: 0.75 max is representable");
-        assert!(
-            wide3(&s.center).amax() <= HAND_TOL_EPS * eps::<T>() * m.wide(),
-            "{name}: centre {:?}",
-            s.center
-        );
-        assert!(
-            (s.radius.wide() / m.wide() - 1.0).abs() <= HAND_TOL_EPS * eps::<T>(),
-            "{name}: radius {:?}",
-            s.radius
-        );
+        assert!(wide3(&s.center).amax() <= HAND_TOL_EPS * eps::<T>() * m.wide(), "{name}: centre {:?}", s.center);
+        assert!((s.radius.wide() / m.wide() - 1.0).abs() <= HAND_TOL_EPS * eps::<T>(), "{name}: radius {:?}", s.radius);
     }
     // Opposite corners at ±max: the radius max·√3 overflows: degenerate, radius
     // +∞, centre finite.
     let corners = [Vec3::new(max, max, max), Vec3::new(-max, -max, -max)];
     for (name, f) in methods::<T>() {
         let s = f(&corners).unwrap();
-        assert!(
-            s.degenerate && s.radius > max,
-            "{name}: overflowing radius: {s:?}"
-        );
-        assert!(
-            s.center.iter().all(|x| x.finite()),
-            "{name}: centre finite: {s:?}"
-        );
+        assert!(s.degenerate && s.radius > max, "{name}: overflowing radius: {s:?}");
+        assert!(s.center.iter().all(|x| x.finite()), "{name}: centre finite: {s:?}");
     }
     // A subnormal-scale scene (1/max ≈ 2.9e-39 in f32, 5.6e-309 in f64): two
     // points 2/max apart, radius 1/max.
@@ -362,10 +212,7 @@ fn spheres_extreme<T: Real>() {
     let tiny = [Vec3::new(t, z, z), Vec3::new(-t, z, z)];
     for (name, f) in methods::<T>() {
         let s = f(&tiny).unwrap();
-        assert!(
-            (s.radius.wide() - t.wide()).abs() <= eps::<T>() * t.wide() * 4.0,
-            "{name}: tiny radius {s:?}"
-        );
+        assert!((s.radius.wide() - t.wide()).abs() <= eps::<T>() * t.wide() * 4.0, "{name}: tiny radius {s:?}");
     }
 }
 both!(bounding_spheres_extreme_scales, spheres_extreme);
@@ -382,27 +229,15 @@ fn spheres_many_points<T: Real>() {
             let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
             let r = (1.0 - y * y).sqrt();
             let th = golden * i as f64;
-            v(
-                10.0 + 3.0 * r * th.cos(),
-                -20.0 + 3.0 * y,
-                5.0 + 3.0 * r * th.sin(),
-            )
+            v(10.0 + 3.0 * r * th.cos(), -20.0 + 3.0 * y, 5.0 + 3.0 * r * th.sin())
         })
         .collect();
     let s = bounding_sphere_minimal(&pts).unwrap();
     // Lattice gaps: the nearest lattice point to any direction is within about
     // 3·√(4π/n) ≈ 0.075, so the minimal sphere of the lattice has radius within
     // 3 (1 − cos 0.025) ≈ 1e-3 of 3.
-    assert!(
-        (s.radius.wide() - 3.0).abs() <= 1e-3,
-        "radius {:?}",
-        s.radius
-    );
-    assert!(
-        (wide3(&s.center) - Vec3::new(10.0, -20.0, 5.0)).amax() <= 1e-3,
-        "centre {:?}",
-        s.center
-    );
+    assert!((s.radius.wide() - 3.0).abs() <= 1e-3, "radius {:?}", s.radius);
+    assert!((wide3(&s.center) - Vec3::new(10.0, -20.0, 5.0)).amax() <= 1e-3, "centre {:?}", s.center);
 }
 both!(minimal_sphere_of_many_points, spheres_many_points);
 
@@ -421,20 +256,12 @@ struct Cloud {
 
 fn cloud(max_points: usize) -> impl Strategy<Value = Cloud> {
     (
-        prop::collection::vec(
-            [-1024i32..=1024, -1024i32..=1024, -1024i32..=1024],
-            1..max_points,
-        ),
+        prop::collection::vec([-1024i32..=1024, -1024i32..=1024, -1024i32..=1024], 1..max_points),
         -40i32..=40,
         [-4096i32..=4096, -4096i32..=4096, -4096i32..=4096],
         0u8..3,
     )
-        .prop_map(|(pts, scale, shift, flat)| Cloud {
-            pts,
-            scale,
-            shift,
-            flat,
-        })
+        .prop_map(|(pts, scale, shift, flat)| Cloud { pts, scale, shift, flat })
 }
 
 impl Cloud {
@@ -450,11 +277,7 @@ impl Cloud {
                     2 => [k[0], 2 * k[0] / 3, -k[0]],
                     _ => *k,
                 };
-                v(
-                    f64::from(k[0]) * s,
-                    f64::from(k[1]) * s,
-                    f64::from(k[2]) * s,
-                )
+                v(f64::from(k[0]) * s, f64::from(k[1]) * s, f64::from(k[2]) * s)
             })
             .collect()
     }
@@ -462,11 +285,7 @@ impl Cloud {
     /// The translation, multiples of `2^(scale + 6)`: sums need ≤ 17 bits.
     fn shift<T: Real>(&self) -> Vec3<T> {
         let s = 2f64.powi(self.scale + 6);
-        v(
-            f64::from(self.shift[0]) * s,
-            f64::from(self.shift[1]) * s,
-            f64::from(self.shift[2]) * s,
-        )
+        v(f64::from(self.shift[0]) * s, f64::from(self.shift[1]) * s, f64::from(self.shift[2]) * s)
     }
 }
 
@@ -474,9 +293,7 @@ impl Cloud {
 /// smallest grid step, so tolerances never vanish).
 fn size<T: Real>(pts: &[Vec3<T>]) -> f64 {
     let p0 = wide3(&pts[0]);
-    pts.iter()
-        .map(|p| (wide3(p) - p0).amax())
-        .fold(0.0, f64::max)
+    pts.iter().map(|p| (wide3(p) - p0).amax()).fold(0.0, f64::max)
 }
 
 fn check_aabb<T: Real>(c: &Cloud) -> Result<(), TestCaseError> {
@@ -484,22 +301,13 @@ fn check_aabb<T: Real>(c: &Cloud) -> Result<(), TestCaseError> {
     let bb = aabb_from_points(&pts).expect("non-empty");
     for p in &pts {
         for i in 0..3 {
-            prop_assert!(
-                bb.min[i] <= p[i] && p[i] <= bb.max[i],
-                "point {p:?} outside {bb:?}"
-            );
+            prop_assert!(bb.min[i] <= p[i] && p[i] <= bb.max[i], "point {p:?} outside {bb:?}");
         }
     }
     // Tight: each face is touched (with containment above, `≤` means equality).
     for i in 0..3 {
-        prop_assert!(
-            pts.iter().any(|p| p[i] <= bb.min[i]),
-            "min face {i} untouched"
-        );
-        prop_assert!(
-            pts.iter().any(|p| p[i] >= bb.max[i]),
-            "max face {i} untouched"
-        );
+        prop_assert!(pts.iter().any(|p| p[i] <= bb.min[i]), "min face {i} untouched");
+        prop_assert!(pts.iter().any(|p| p[i] >= bb.max[i]), "max face {i} untouched");
     }
     Ok(())
 }
@@ -527,33 +335,17 @@ fn check_spheres<T: Real>(c: &Cloud) -> Result<(), TestCaseError> {
     for (k, (name, f)) in methods::<T>().into_iter().enumerate() {
         let s = f(&pts).expect("non-empty");
         prop_assert!(s.center.iter().all(|x| x.finite()), "{name}: centre {s:?}");
-        prop_assert!(
-            s.radius >= T::zero() && s.radius.finite() && !s.degenerate,
-            "{name}: radius {s:?}"
-        );
+        prop_assert!(s.radius >= T::zero() && s.radius.finite() && !s.degenerate, "{name}: radius {s:?}");
         let r = s.radius.wide();
         for p in &pts {
             let d = dist_f64(p, &s.center);
-            prop_assert!(
-                d <= r * (1.0 + ENCLOSE_REL_EPS * eps::<T>()),
-                "{name}: {p:?} at {d} outside radius {r}"
-            );
+            prop_assert!(d <= r * (1.0 + ENCLOSE_REL_EPS * eps::<T>()), "{name}: {p:?} at {d} outside radius {r}");
         }
         radii[k] = r;
     }
     let tol = MINIMAL_TOL_EPS * eps::<T>() * scale;
-    prop_assert!(
-        radii[2] <= radii[0] + tol,
-        "minimal {} > centroid {}",
-        radii[2],
-        radii[0]
-    );
-    prop_assert!(
-        radii[2] <= radii[1] + tol,
-        "minimal {} > ritter {}",
-        radii[2],
-        radii[1]
-    );
+    prop_assert!(radii[2] <= radii[0] + tol, "minimal {} > centroid {}", radii[2], radii[0]);
+    prop_assert!(radii[2] <= radii[1] + tol, "minimal {} > ritter {}", radii[2], radii[1]);
     Ok(())
 }
 
@@ -561,15 +353,11 @@ fn check_translation<T: Real>(c: &Cloud) -> Result<(), TestCaseError> {
     let pts = c.points::<T>();
     let t = c.shift::<T>();
     let moved: Vec<Vec3<T>> = pts.iter().map(|p| p + t).collect();
-    let tol =
-        TRANSLATION_TOL_EPS * eps::<T>() * (wide3(&t).amax() + size(&pts) + 2f64.powi(c.scale));
+    let tol = TRANSLATION_TOL_EPS * eps::<T>() * (wide3(&t).amax() + size(&pts) + 2f64.powi(c.scale));
     for (name, f) in methods::<T>() {
         let (here, there) = (f(&pts).unwrap(), f(&moved).unwrap());
         let dc = (wide3(&there.center) - wide3(&here.center) - wide3(&t)).amax();
-        prop_assert!(
-            dc <= tol,
-            "{name}: centre moved by {dc:e} more than the shift (tol {tol:e})"
-        );
+        prop_assert!(dc <= tol, "{name}: centre moved by {dc:e} more than the shift (tol {tol:e})");
         let dr = (there.radius.wide() - here.radius.wide()).abs();
         prop_assert!(dr <= tol, "{name}: radius changed by {dr:e} (tol {tol:e})");
     }
@@ -595,11 +383,7 @@ fn check_two_points<T: Real>(c: &Cloud) -> Result<(), TestCaseError> {
 /// on its Gram system); `O(n⁵)`, for small clouds only.
 fn brute_force_radius(pts: &[Vec3<f64>]) -> f64 {
     let n = pts.len();
-    let scale = pts
-        .iter()
-        .map(|p| (p - pts[0]).amax())
-        .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE);
+    let scale = pts.iter().map(|p| (p - pts[0]).amax()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
     let mut best = f64::INFINITY;
     let mut consider = |support: &[usize]| {
         let a = pts[support[0]];
@@ -609,9 +393,7 @@ fn brute_force_radius(pts: &[Vec3<f64>]) -> f64 {
         } else {
             let e = nalgebra::DMatrix::from_fn(3, k, |r, c| pts[support[c + 1]][r] - a[r]);
             let g = e.transpose() * &e;
-            let rhs = nalgebra::DVector::from_fn(k, |r, _| {
-                0.5 * (pts[support[r + 1]] - a).norm_squared()
-            });
+            let rhs = nalgebra::DVector::from_fn(k, |r, _| 0.5 * (pts[support[r + 1]] - a).norm_squared());
             let Some(lambda) = g.lu().solve(&rhs) else {
                 return;
             };
@@ -622,10 +404,7 @@ fn brute_force_radius(pts: &[Vec3<f64>]) -> f64 {
             return;
         }
         let r = pts.iter().map(|p| (p - center).norm()).fold(0.0, f64::max);
-        let on = support
-            .iter()
-            .map(|&i| (pts[i] - center).norm())
-            .fold(0.0, f64::max);
+        let on = support.iter().map(|&i| (pts[i] - center).norm()).fold(0.0, f64::max);
         // Only balls that have their support on the boundary (a least-squares
         // centre of an inconsistent system does not) and enclose everything.
         if (r - on).abs() <= 1e-9 * scale && r < best {
@@ -654,10 +433,7 @@ fn check_brute_force<T: Real>(c: &Cloud) -> Result<(), TestCaseError> {
     let got = bounding_sphere_minimal(&pts).unwrap().radius.wide();
     let scale = size(&pts).max(2f64.powi(c.scale));
     let tol = MINIMAL_TOL_EPS * eps::<T>() * scale;
-    prop_assert!(
-        (got - want).abs() <= tol,
-        "minimal radius {got}, brute force {want} (tol {tol:e})"
-    );
+    prop_assert!((got - want).abs() <= tol, "minimal radius {got}, brute force {want} (tol {tol:e})");
     Ok(())
 }
 
@@ -669,42 +445,24 @@ fn finite_of<T: Real>(m: f64, frac: f64) -> T {
     let bottom = -top - T::EPSILON.wide().log2().abs();
     let e = bottom + frac * (top - bottom);
     let x = T::of((m * e.exp2()).clamp(-max, max));
-    if x.finite() {
-        x
-    } else {
-        T::of(max.copysign(m))
-    }
+    if x.finite() { x } else { T::of(max.copysign(m)) }
 }
 
 fn check_any_finite<T: Real>(raw: &[[(f64, f64); 3]]) -> Result<(), TestCaseError> {
     let pts: Vec<Vec3<T>> = raw
         .iter()
-        .map(|c| {
-            Vec3::new(
-                finite_of(c[0].0, c[0].1),
-                finite_of(c[1].0, c[1].1),
-                finite_of(c[2].0, c[2].1),
-            )
-        })
+        .map(|c| Vec3::new(finite_of(c[0].0, c[0].1), finite_of(c[1].0, c[1].1), finite_of(c[2].0, c[2].1)))
         .collect();
     for (name, f) in methods::<T>() {
         let s = f(&pts).expect("non-empty");
         prop_assert!(s.center.iter().all(|x| x.finite()), "{name}: centre {s:?}");
         prop_assert!(s.radius >= T::zero(), "{name}: radius {s:?}");
-        prop_assert_eq!(
-            s.degenerate,
-            !s.radius.finite(),
-            "{}: flag means overflow",
-            name
-        );
+        prop_assert_eq!(s.degenerate, !s.radius.finite(), "{}: flag means overflow", name);
         if !s.degenerate {
             let r = s.radius.wide();
             for p in &pts {
                 let d = dist_f64(p, &s.center);
-                prop_assert!(
-                    d <= r * (1.0 + ENCLOSE_REL_EPS * eps::<T>()),
-                    "{name}: {p:?} at {d} outside {r}"
-                );
+                prop_assert!(d <= r * (1.0 + ENCLOSE_REL_EPS * eps::<T>()), "{name}: {p:?} at {d} outside {r}");
             }
         }
     }
@@ -732,45 +490,10 @@ macro_rules! prop_both {
     };
 }
 
-prop_both!(
-    1000,
-    aabb_contains_every_point_and_is_tight,
-    cloud(40),
-    check_aabb
-);
-prop_both!(
-    1000,
-    overlap_is_symmetric_and_has_a_witness,
-    (cloud(6), cloud(6)),
-    check_overlap
-);
-prop_both!(
-    500,
-    spheres_enclose_and_minimal_is_smallest,
-    cloud(40),
-    check_spheres
-);
-prop_both!(
-    300,
-    spheres_translation_invariant,
-    cloud(30),
-    check_translation
-);
-prop_both!(
-    500,
-    minimal_sphere_of_two_points_is_half_their_distance,
-    cloud(2),
-    check_two_points
-);
-prop_both!(
-    200,
-    minimal_sphere_matches_brute_force,
-    cloud(8),
-    check_brute_force
-);
-prop_both!(
-    1000,
-    spheres_of_any_finite_input,
-    any_cloud(),
-    check_any_finite
-);
+prop_both!(1000, aabb_contains_every_point_and_is_tight, cloud(40), check_aabb);
+prop_both!(1000, overlap_is_symmetric_and_has_a_witness, (cloud(6), cloud(6)), check_overlap);
+prop_both!(500, spheres_enclose_and_minimal_is_smallest, cloud(40), check_spheres);
+prop_both!(300, spheres_translation_invariant, cloud(30), check_translation);
+prop_both!(500, minimal_sphere_of_two_points_is_half_their_distance, cloud(2), check_two_points);
+prop_both!(200, minimal_sphere_matches_brute_force, cloud(8), check_brute_force);
+prop_both!(1000, spheres_of_any_finite_input, any_cloud(), check_any_finite);

@@ -111,11 +111,8 @@ pub fn closest_pt_point_segment<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) 
 
 pub(crate) fn nearest_on_edges<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Vec3<T> {
     let [a, b, c] = tri.vertices;
-    let candidates = [
-        closest_pt_point_segment(p, &a, &b),
-        closest_pt_point_segment(p, &b, &c),
-        closest_pt_point_segment(p, &c, &a),
-    ];
+    let candidates =
+        [closest_pt_point_segment(p, &a, &b), closest_pt_point_segment(p, &b, &c), closest_pt_point_segment(p, &c, &a)];
     let mut best = candidates[0];
     let mut best_d = crate::real::stable_norm(&(p - best));
     for q in &candidates[1..] {

@@ -60,12 +60,7 @@ pub fn contact_sphere_plane<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<Cont
             let depth = a.radius - s;
             let point = a.center - n * s;
             if depth.finite() && crate::real::finite3(&point) {
-                return Some(Contact {
-                    point,
-                    normal: n,
-                    depth,
-                    degenerate: false,
-                });
+                return Some(Contact { point, normal: n, depth, degenerate: false });
             }
         }
     }
@@ -109,11 +104,7 @@ fn contact_sphere_plane_scaled<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<C
     Some(Contact {
         point: if finite { point } else { saturate(&point) },
         normal: n,
-        depth: if depth.finite() {
-            depth
-        } else {
-            T::max_value().unwrap_or(depth)
-        },
+        depth: if depth.finite() { depth } else { T::max_value().unwrap_or(depth) },
         degenerate: !finite,
     })
 }
@@ -128,13 +119,7 @@ pub fn contact_plane_sphere<T: Real>(a: &Plane<T>, b: &Sphere<T>) -> Option<Cont
 /// Clamps each component of `v` to the finite range (NaN becomes 0).
 fn saturate<T: Real>(v: &Vec3<T>) -> Vec3<T> {
     let big = T::max_value().unwrap_or_else(|| c(f64::MAX));
-    v.map(|x| {
-        if x.is_nan() {
-            T::zero()
-        } else {
-            x.max(-big).min(big)
-        }
-    })
+    v.map(|x| if x.is_nan() { T::zero() } else { x.max(-big).min(big) })
 }
 
 #[cfg(test)]
@@ -157,20 +142,16 @@ mod tests {
     fn ball_half_sunk<T: Real>() {
         // Centre (0,0,0.5), r = 1, ground z = 0 (n = (0,0,1), d = 0):
         // s = 0.5, depth = r − s = 0.5, p = M − s n̂ = (0,0,0), normal (0,0,1).
-        let k = contact_sphere_plane(
-            &Sphere::new(v::<T>(0.0, 0.0, 0.5), c(1.0)),
-            &Plane::new(v(0.0, 0.0, 1.0), c(0.0)),
-        )
-        .expect("sunk ball touches");
+        let k =
+            contact_sphere_plane(&Sphere::new(v::<T>(0.0, 0.0, 0.5), c(1.0)), &Plane::new(v(0.0, 0.0, 1.0), c(0.0)))
+                .expect("sunk ball touches");
         assert!(close(k.depth, 0.5), "depth {:?}", k.depth);
         assert!(close(k.point.z, 0.0) && close(k.normal.z, 1.0));
         assert!(!k.degenerate);
         // Reverse order: normal (0,0,−1), point on the sphere: M − r n̂ = (0,0,−0.5).
-        let r = contact_plane_sphere(
-            &Plane::new(v(0.0, 0.0, 1.0), c(0.0)),
-            &Sphere::new(v::<T>(0.0, 0.0, 0.5), c(1.0)),
-        )
-        .expect("same contact");
+        let r =
+            contact_plane_sphere(&Plane::new(v(0.0, 0.0, 1.0), c(0.0)), &Sphere::new(v::<T>(0.0, 0.0, 0.5), c(1.0)))
+                .expect("same contact");
         assert!(close(r.normal.z, -1.0) && close(r.point.z, -0.5) && close(r.depth, 0.5));
     }
 
@@ -188,8 +169,7 @@ mod tests {
     fn touching_counts_and_a_hair_above_does_not() {
         // Plane 2z = 4 is z = 2 (‖n‖ = 2, d/‖n‖ = 2); centre z = 3, r = 1: s = 1 = r.
         let p = Plane::new(Vec3::new(0.0, 0.0, 2.0), 4.0);
-        let k = contact_sphere_plane(&Sphere::new(Vec3::new(5.0, -1.0, 3.0), 1.0), &p)
-            .expect("touching is contact");
+        let k = contact_sphere_plane(&Sphere::new(Vec3::new(5.0, -1.0, 3.0), 1.0), &p).expect("touching is contact");
         assert!(close(k.depth, 0.0) && close(k.point.z, 2.0) && close(k.point.x, 5.0));
         let above = Sphere::new(Vec3::new(0.0, 0.0, 3.0_f64.next_up()), 1.0);
         assert!(contact_sphere_plane(&above, &p).is_none());
@@ -208,10 +188,7 @@ mod tests {
 
     #[test]
     fn zero_normal_is_no_plane() {
-        let k = contact_sphere_plane(
-            &Sphere::new(Vec3::new(0.0, 0.0, 0.0), 1.0),
-            &Plane::new(Vec3::zeros(), 0.0),
-        );
+        let k = contact_sphere_plane(&Sphere::new(Vec3::new(0.0, 0.0, 0.0), 1.0), &Plane::new(Vec3::zeros(), 0.0));
         assert!(k.is_none());
     }
 
@@ -225,9 +202,6 @@ mod tests {
         )
         .expect("deep below");
         assert!(k.depth.is_finite() && k.point.iter().all(|x| x.is_finite()));
-        assert!(
-            k.degenerate,
-            "the penetration overflows f64 and is saturated"
-        );
+        assert!(k.degenerate, "the penetration overflows f64 and is saturated");
     }
 }

@@ -41,17 +41,9 @@ pub fn contact_sphere_sphere_lecture<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> O
     if dist.is_nan() || dist > reach {
         return None;
     }
-    let (normal, degenerate) = if dist == T::zero() || !dist.finite() {
-        (fallback_normal(), true)
-    } else {
-        (delta / dist, false)
-    };
-    Some(Contact {
-        point: b.center + normal * b.radius,
-        normal,
-        depth: reach - dist,
-        degenerate,
-    })
+    let (normal, degenerate) =
+        if dist == T::zero() || !dist.finite() { (fallback_normal(), true) } else { (delta / dist, false) };
+    Some(Contact { point: b.center + normal * b.radius, normal, depth: reach - dist, degenerate })
 }
 
 /// Contact between spheres `a` and `b`, **robust form**: the lecture's formulas
@@ -89,12 +81,7 @@ pub fn contact_sphere_sphere<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> Option<Co
         }
         let normal = delta * (T::one() / dist);
         let depth = reach - dist;
-        return Some(Contact {
-            point: b.center + normal * b.radius,
-            normal,
-            depth,
-            degenerate: !depth.finite(),
-        });
+        return Some(Contact { point: b.center + normal * b.radius, normal, depth, degenerate: !depth.finite() });
     }
     contact_sphere_sphere_scaled(a, b, delta)
 }
@@ -102,11 +89,7 @@ pub fn contact_sphere_sphere<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> Option<Co
 /// The robust form's scaled path: centres whose squared distance would
 /// underflow or overflow (see [`contact_sphere_sphere`]).
 #[inline(never)]
-fn contact_sphere_sphere_scaled<T: Real>(
-    a: &Sphere<T>,
-    b: &Sphere<T>,
-    delta: Vec3<T>,
-) -> Option<Contact<T>> {
+fn contact_sphere_sphere_scaled<T: Real>(a: &Sphere<T>, b: &Sphere<T>, delta: Vec3<T>) -> Option<Contact<T>> {
     let mut delta = delta;
     let mut scale = T::one();
     if !crate::real::finite3(&delta) {
@@ -129,12 +112,7 @@ fn contact_sphere_sphere_scaled<T: Real>(
         return None;
     }
     let depth = reach - dist;
-    Some(Contact {
-        point: b.center + normal * b.radius,
-        normal,
-        depth,
-        degenerate: !depth.finite(),
-    })
+    Some(Contact { point: b.center + normal * b.radius, normal, depth, degenerate: !depth.finite() })
 }
 
 #[cfg(test)]
@@ -156,10 +134,7 @@ mod tests {
     type Method<T> = fn(&Sphere<T>, &Sphere<T>) -> Option<Contact<T>>;
 
     fn both<T: Real>() -> [(&'static str, Method<T>); 2] {
-        [
-            ("lecture", contact_sphere_sphere_lecture),
-            ("robust", contact_sphere_sphere),
-        ]
+        [("lecture", contact_sphere_sphere_lecture), ("robust", contact_sphere_sphere)]
     }
 
     fn overlap_three_four_five<T: Real>() {
@@ -168,14 +143,8 @@ mod tests {
         for (name, f) in both::<T>() {
             let k = f(&ball(3.0, 4.0, 0.0, 3.0), &ball(0.0, 0.0, 0.0, 3.0)).expect(name);
             assert!(close(k.depth, 1.0), "{name}: depth {:?}", k.depth);
-            assert!(
-                close(k.normal.x, 0.6) && close(k.normal.y, 0.8),
-                "{name}: normal"
-            );
-            assert!(
-                close(k.point.x, 1.8) && close(k.point.y, 2.4),
-                "{name}: point"
-            );
+            assert!(close(k.normal.x, 0.6) && close(k.normal.y, 0.8), "{name}: normal");
+            assert!(close(k.point.x, 1.8) && close(k.point.y, 2.4), "{name}: point");
             assert!(!k.degenerate, "{name}");
         }
     }
@@ -196,13 +165,7 @@ mod tests {
         for (name, f) in both::<f64>() {
             let k = f(&ball(2.0, 0.0, 0.0, 1.0), &ball(0.0, 0.0, 0.0, 1.0)).expect(name);
             assert!(close(k.depth, 0.0) && close(k.point.x, 1.0), "{name}");
-            assert!(
-                f(
-                    &ball(2.0_f64.next_up(), 0.0, 0.0, 1.0),
-                    &ball(0.0, 0.0, 0.0, 1.0)
-                )
-                .is_none()
-            );
+            assert!(f(&ball(2.0_f64.next_up(), 0.0, 0.0, 1.0), &ball(0.0, 0.0, 0.0, 1.0)).is_none());
         }
     }
 

@@ -1,7 +1,7 @@
 //! Sphere–triangle contact.
 
 use super::Contact;
-use super::closest_pt_triangle::{Region, closest_pt_point_triangle, closest_pt_point_triangle_region, nearest_on_edges};
+use super::closest_pt_triangle::{Region, closest_pt_point_triangle_region, nearest_on_edges};
 use super::sphere_sphere::CONCENTRIC_FALLBACK_NORMAL;
 use crate::real::{Real, Vec3, c, stable_norm, try_normalize_stable};
 use crate::shapes::{Sphere, Triangle};
@@ -60,7 +60,12 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
             if !(dist <= a.radius) {
                 return None;
             }
-            return Some(Contact { point: a.center - normal * dist, normal, depth: a.radius - dist, degenerate: false });
+            return Some(Contact {
+                point: a.center - normal * dist,
+                normal,
+                depth: a.radius - dist,
+                degenerate: false,
+            });
         }
     }
     let dist = stable_norm(&delta);
@@ -177,9 +182,10 @@ fn centre_on_triangle<T: Real>(p: &Vec3<T>, t: &Triangle<T>) -> OnTriangle {
         if area == Sign::Zero {
             continue;
         }
-        let inside = [(a, b), (b, cc), (cc, a)]
-            .iter()
-            .all(|&(u, v)| { let s = orient2d(pr(u), pr(v), pr(q)); s == area || s == Sign::Zero });
+        let inside = [(a, b), (b, cc), (cc, a)].iter().all(|&(u, v)| {
+            let s = orient2d(pr(u), pr(v), pr(q));
+            s == area || s == Sign::Zero
+        });
         return if inside { OnTriangle::Exactly } else { OnTriangle::Side(0.0) };
     }
     OnTriangle::Side(0.0)
@@ -216,12 +222,10 @@ mod tests {
     fn face_region<T: Real>() {
         // Centre (0.5, 0.5, 0.75), r = 1: q = (0.5, 0.5, 0) (above the face),
         // ‖M − q‖ = 0.75, depth 0.25, normal +z.
-        let k = contact_sphere_triangle(&Sphere::new(v::<T>(0.5, 0.5, 0.75), c(1.0)), &tri())
-            .expect("overlap");
+        let k = contact_sphere_triangle(&Sphere::new(v::<T>(0.5, 0.5, 0.75), c(1.0)), &tri()).expect("overlap");
         assert!(close(k.depth, 0.25) && close(k.normal.z, 1.0) && close(k.point.x, 0.5));
         // Below the face: normal −z, same depth (two-sided).
-        let k = contact_sphere_triangle(&Sphere::new(v::<T>(0.5, 0.5, -0.75), c(1.0)), &tri())
-            .expect("overlap");
+        let k = contact_sphere_triangle(&Sphere::new(v::<T>(0.5, 0.5, -0.75), c(1.0)), &tri()).expect("overlap");
         assert!(close(k.depth, 0.25) && close(k.normal.z, -1.0));
     }
 
@@ -239,13 +243,11 @@ mod tests {
     fn vertex_and_edge_regions() {
         // Beyond vertex v1 = (2,0,0): centre (3,0,0), r = 1.5: q = v1, depth 0.5,
         // normal (1,0,0).
-        let k = contact_sphere_triangle(&Sphere::new(v(3.0, 0.0, 0.0), 1.5), &tri::<f64>())
-            .expect("vertex");
+        let k = contact_sphere_triangle(&Sphere::new(v(3.0, 0.0, 0.0), 1.5), &tri::<f64>()).expect("vertex");
         assert!(close(k.point.x, 2.0) && close(k.depth, 0.5) && close(k.normal.x, 1.0));
         // Beyond the hypotenuse x + y = 2: centre (2,2,0), q = (1,1,0),
         // ‖M − q‖ = √2, r = 2: depth 2 − √2, normal (1,1,0)/√2.
-        let k = contact_sphere_triangle(&Sphere::new(v(2.0, 2.0, 0.0), 2.0), &tri::<f64>())
-            .expect("edge");
+        let k = contact_sphere_triangle(&Sphere::new(v(2.0, 2.0, 0.0), 2.0), &tri::<f64>()).expect("edge");
         assert!(close(k.point.x, 1.0) && close(k.point.y, 1.0));
         assert!(close(k.depth, 2.0 - 2f64.sqrt()) && close(k.normal.x, 0.5f64.sqrt()));
     }
@@ -261,8 +263,8 @@ mod tests {
 
     #[test]
     fn centre_on_the_face_falls_back_to_the_face_normal() {
-        let k = contact_sphere_triangle(&Sphere::new(v(0.5, 0.5, 0.0), 1.0), &tri::<f64>())
-            .expect("centre on the face");
+        let k =
+            contact_sphere_triangle(&Sphere::new(v(0.5, 0.5, 0.0), 1.0), &tri::<f64>()).expect("centre on the face");
         assert!(k.degenerate && close(k.normal.z, 1.0) && close(k.depth, 1.0));
     }
 
@@ -280,8 +282,7 @@ mod tests {
     fn reverse_order_flips_the_normal_and_moves_the_point() {
         // From face_region: normal +z, q = (0.5,0.5,0), depth 0.25. Reversed:
         // normal −z, point M − r·(+z) = (0.5, 0.5, −0.25).
-        let k = contact_triangle_sphere(&tri::<f64>(), &Sphere::new(v(0.5, 0.5, 0.75), 1.0))
-            .expect("overlap");
+        let k = contact_triangle_sphere(&tri::<f64>(), &Sphere::new(v(0.5, 0.5, 0.75), 1.0)).expect("overlap");
         assert!(close(k.normal.z, -1.0) && close(k.point.z, -0.25) && close(k.depth, 0.25));
     }
 
@@ -302,8 +303,7 @@ mod tests {
         // Centre 1e-300 below the face z = 0 (inside it in x, y): the closest point
         // rounds onto the centre, but the exact side test says below, so the
         // normal is −z and the contact is not degenerate.
-        let k = contact_sphere_triangle(&Sphere::new(v(0.5, 0.5, -1e-300), 1.0), &tri::<f64>())
-            .expect("overlap");
+        let k = contact_sphere_triangle(&Sphere::new(v(0.5, 0.5, -1e-300), 1.0), &tri::<f64>()).expect("overlap");
         assert!(!k.degenerate && close(k.normal.z, -1.0), "{k:?}");
     }
 

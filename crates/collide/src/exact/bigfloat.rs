@@ -32,11 +32,7 @@ pub struct BigFloat {
 
 impl BigFloat {
     /// Zero (does not allocate).
-    pub const ZERO: Self = Self {
-        negative: false,
-        mag: Vec::new(),
-        exp: 0,
-    };
+    pub const ZERO: Self = Self { negative: false, mag: Vec::new(), exp: 0 };
 
     /// The exact value of a finite `f64` (subnormals and `−0.0` included; `−0.0`
     /// becomes zero). `None` for an infinity or a NaN.
@@ -59,11 +55,7 @@ impl BigFloat {
         let tz = m.trailing_zeros();
         m >>= tz;
         e += i64::from(tz);
-        Some(Self {
-            negative: x.is_sign_negative(),
-            mag: vec![m],
-            exp: e,
-        })
+        Some(Self { negative: x.is_sign_negative(), mag: vec![m], exp: e })
     }
 
     /// The exact value of a finite `f64`; a non-finite `x` gives zero (callers
@@ -108,10 +100,7 @@ impl BigFloat {
         // Top two limbs as one u128, the rest dropped (truncation, ≤ 2^−64
         // relative since the top limb is non-zero).
         let (top, low_limbs) = if n >= 2 {
-            (
-                (u128::from(self.mag[n - 1]) << 64) | u128::from(self.mag[n - 2]),
-                n - 2,
-            )
+            ((u128::from(self.mag[n - 1]) << 64) | u128::from(self.mag[n - 2]), n - 2)
         } else {
             (u128::from(self.mag[0]), 0)
         };
@@ -153,11 +142,7 @@ impl BigFloat {
             return self.clone();
         }
         if self.is_zero() {
-            return Self {
-                negative: other_negative,
-                mag: other.mag.clone(),
-                exp: other.exp,
-            };
+            return Self { negative: other_negative, mag: other.mag.clone(), exp: other.exp };
         }
         // Align on the smaller exponent: the operand with the larger one is
         // shifted into a fresh buffer (the only allocation), the other is added
@@ -391,17 +376,7 @@ mod tests {
     fn integers_add_sub_mul_like_i128() {
         // Small integers are exact in f64 and their sums/products exact in i128,
         // so the expected values are computed independently of BigFloat.
-        let values: [i64; 9] = [
-            0,
-            1,
-            -1,
-            3,
-            -7,
-            1 << 40,
-            -(1 << 52),
-            123_456_789,
-            -987_654_321,
-        ];
+        let values: [i64; 9] = [0, 1, -1, 3, -7, 1 << 40, -(1 << 52), 123_456_789, -987_654_321];
         for &a in &values {
             for &b in &values {
                 let (x, y) = (bf(a as f64), bf(b as f64));
@@ -417,10 +392,7 @@ mod tests {
                     let hi = (want >> 52) as f64 * 4_503_599_627_370_496.0; // · 2^52
                     let lo = (want & ((1 << 52) - 1)) as f64;
                     let residual = &(&got - &bf(hi)) - &bf(lo);
-                    assert!(
-                        residual.is_zero(),
-                        "{what} of {a} and {b}: residual {residual:?}"
-                    );
+                    assert!(residual.is_zero(), "{what} of {a} and {b}: residual {residual:?}");
                 }
             }
         }
@@ -428,28 +400,14 @@ mod tests {
 
     #[test]
     fn subnormal_and_extreme_values_round_trip() {
-        for x in [
-            f64::MIN_POSITIVE,
-            f64::MIN_POSITIVE / 4096.0,
-            5e-324,
-            -5e-324,
-            f64::MAX,
-            f64::MIN,
-            1e300,
-            -1e-300,
-            0.1,
-        ] {
+        for x in
+            [f64::MIN_POSITIVE, f64::MIN_POSITIVE / 4096.0, 5e-324, -5e-324, f64::MAX, f64::MIN, 1e300, -1e-300, 0.1]
+        {
             let e = bf(x).estimate();
             assert!(e.to_f64().to_bits() == x.to_bits(), "{x:e} became {e:?}");
         }
-        assert!(
-            BigFloat::try_from_f64(f64::NAN).is_none(),
-            "NaN has no exact value"
-        );
-        assert!(
-            BigFloat::try_from_f64(f64::INFINITY).is_none(),
-            "∞ has no exact value"
-        );
+        assert!(BigFloat::try_from_f64(f64::NAN).is_none(), "NaN has no exact value");
+        assert!(BigFloat::try_from_f64(f64::INFINITY).is_none(), "∞ has no exact value");
         assert!(bf(-0.0).sign() == Sign::Zero, "−0 is zero");
     }
 

@@ -41,12 +41,7 @@ pub struct Estimate {
 
 impl Estimate {
     /// Zero, exactly.
-    pub const ZERO: Self = Self {
-        sign: Sign::Zero,
-        mant: 0.0,
-        exp: 0,
-        rel_err: 0.0,
-    };
+    pub const ZERO: Self = Self { sign: Sign::Zero, mant: 0.0, exp: 0, rel_err: 0.0 };
 
     /// `x · 2^exp` for a finite `x` (no rounding: the mantissa is `x`'s), with
     /// the given relative error bound.
@@ -56,12 +51,7 @@ impl Estimate {
             return Self::ZERO;
         }
         let (mant, e) = frexp(x.abs());
-        Self {
-            sign: Sign::of(x),
-            mant,
-            exp: e + exp,
-            rel_err,
-        }
+        Self { sign: Sign::of(x), mant, exp: e + exp, rel_err }
     }
 
     /// The value as an `f64`: `±∞` above `f64::MAX`, rounded into the subnormals
@@ -79,13 +69,7 @@ impl Estimate {
     /// `None` when all are zero.
     fn common_scale<const N: usize>(xs: &[Estimate; N]) -> Option<[f64; N]> {
         let emax = xs.iter().filter(|x| x.mant != 0.0).map(|x| x.exp).max()?;
-        Some(xs.map(|x| {
-            if x.mant == 0.0 {
-                0.0
-            } else {
-                ldexp(x.mant, x.exp - emax)
-            }
-        }))
+        Some(xs.map(|x| if x.mant == 0.0 { 0.0 } else { ldexp(x.mant, x.exp - emax) }))
     }
 
     /// `Σ_j |x_j| · rel_err_j / Σ_j |x_j|`: the error of the estimates relative
@@ -193,11 +177,7 @@ pub(crate) fn frexp(x: f64) -> (f64, i64) {
     if x == 0.0 {
         return (0.0, 0);
     }
-    let (x, shift) = if x < f64::MIN_POSITIVE {
-        (x * pow2(64), -64)
-    } else {
-        (x, 0)
-    };
+    let (x, shift) = if x < f64::MIN_POSITIVE { (x * pow2(64), -64) } else { (x, 0) };
     let bits = x.to_bits();
     let biased = ((bits >> 52) & 0x7ff) as i64;
     let mant = f64::from_bits((bits & FRACTION) | (1022u64 << 52));
@@ -213,22 +193,10 @@ mod tests {
 
     #[test]
     fn frexp_and_ldexp_invert_each_other() {
-        for x in [
-            1.0,
-            0.75,
-            3.0,
-            1e300,
-            f64::MAX,
-            f64::MIN_POSITIVE,
-            5e-324,
-            1.5e-310,
-        ] {
+        for x in [1.0, 0.75, 3.0, 1e300, f64::MAX, f64::MIN_POSITIVE, 5e-324, 1.5e-310] {
             let (m, e) = frexp(x);
             assert!((0.5..1.0).contains(&m), "mantissa of {x:e} is {m}");
-            assert!(
-                (ldexp(m, e) - x).abs() <= EXACT,
-                "{x:e} ↦ ({m}, {e}) does not invert"
-            );
+            assert!((ldexp(m, e) - x).abs() <= EXACT, "{x:e} ↦ ({m}, {e}) does not invert");
         }
     }
 
@@ -237,24 +205,9 @@ mod tests {
         // 1·2^5000 and 3·2^5000 are 1/4 and 3/4 of their sum; a third value
         // 2^−5000 smaller is negligible.
         const TOL: f64 = 4.0 * f64::EPSILON; // a few roundings, absolute on [0, 1]
-        let a = Estimate {
-            sign: Sign::Positive,
-            mant: 0.5,
-            exp: 5001,
-            rel_err: 0.0,
-        };
-        let b = Estimate {
-            sign: Sign::Negative,
-            mant: 0.75,
-            exp: 5002,
-            rel_err: 0.0,
-        };
-        let c = Estimate {
-            sign: Sign::Positive,
-            mant: 0.5,
-            exp: 1,
-            rel_err: 0.5,
-        };
+        let a = Estimate { sign: Sign::Positive, mant: 0.5, exp: 5001, rel_err: 0.0 };
+        let b = Estimate { sign: Sign::Negative, mant: 0.75, exp: 5002, rel_err: 0.0 };
+        let c = Estimate { sign: Sign::Positive, mant: 0.5, exp: 1, rel_err: 0.5 };
         let f = Estimate::abs_fractions([a, b, c]).expect("non-zero");
         assert!((f[0] - 0.25).abs() <= TOL, "{f:?}");
         assert!((f[1] - 0.75).abs() <= TOL, "{f:?}");
@@ -264,12 +217,7 @@ mod tests {
         let refined = Estimate::refine_jointly([a, b, c], TOL, |_| panic!("nothing to refine"));
         assert!(refined[2].rel_err > TOL, "c kept as it was");
         // Alone with an equal partner, it counts: half its error.
-        let d = Estimate {
-            sign: Sign::Positive,
-            mant: 0.5,
-            exp: 1,
-            rel_err: 0.0,
-        };
+        let d = Estimate { sign: Sign::Positive, mant: 0.5, exp: 1, rel_err: 0.0 };
         let je = Estimate::joint_error(&[c, d]);
         assert!((je - 0.25).abs() <= TOL, "joint error {je}");
         let refined = Estimate::refine_jointly([c, d], TOL, |i| {
@@ -277,10 +225,7 @@ mod tests {
             Estimate { rel_err: 0.0, ..c }
         });
         assert!(Estimate::joint_error(&refined) <= TOL, "refined");
-        assert!(
-            Estimate::abs_fractions([Estimate::ZERO; 2]).is_none(),
-            "all zero"
-        );
+        assert!(Estimate::abs_fractions([Estimate::ZERO; 2]).is_none(), "all zero");
         let u = Estimate::unit_vector([a, Estimate::ZERO, b]).expect("non-zero");
         let want = [1.0 / 10f64.sqrt(), 0.0, -3.0 / 10f64.sqrt()];
         for i in 0..3 {

@@ -40,9 +40,7 @@ const RANGE_MAX: f64 = 1.6069380442589903e60;
 /// infinities and NaN): the inputs for which the expansion arithmetic of this
 /// module is exact (see the module documentation).
 pub(crate) fn in_expansion_range<'a>(values: impl IntoIterator<Item = &'a f64>) -> bool {
-    values
-        .into_iter()
-        .all(|&x| x == 0.0 || (RANGE_MIN..=RANGE_MAX).contains(&x.abs()))
+    values.into_iter().all(|&x| x == 0.0 || (RANGE_MIN..=RANGE_MAX).contains(&x.abs()))
 }
 
 #[inline(always)]
@@ -104,35 +102,19 @@ impl Expansion<2> {
     /// A single value.
     #[inline]
     pub(crate) fn single(a: f64) -> Self {
-        Self {
-            c: [a, 0.0],
-            len: 1,
-        }
+        Self { c: [a, 0.0], len: 1 }
     }
 
     /// `hi + lo` for a pair from `two_diff` or `two_product` (`lo` is the
     /// smaller, nonoverlapping), zero eliminated.
     #[inline]
     fn from_pair(hi: f64, lo: f64) -> Self {
-        if lo == 0.0 {
-            Self {
-                c: [hi, 0.0],
-                len: 1,
-            }
-        } else {
-            Self {
-                c: [lo, hi],
-                len: 2,
-            }
-        }
+        if lo == 0.0 { Self { c: [hi, 0.0], len: 1 } } else { Self { c: [lo, hi], len: 2 } }
     }
 }
 
 impl<const N: usize> Expansion<N> {
-    const ZERO: Self = Self {
-        c: [0.0; N],
-        len: 1,
-    };
+    const ZERO: Self = Self { c: [0.0; N], len: 1 };
 
     fn components(&self) -> &[f64] {
         &self.c[..self.len]
@@ -155,10 +137,7 @@ impl<const N: usize> Expansion<N> {
     /// capacity `K` must be at least `N + M`.
     pub(crate) fn add<const M: usize, const K: usize>(&self, other: &Expansion<M>) -> Expansion<K> {
         let (e, f) = (self.components(), other.components());
-        let mut h = Expansion::<K> {
-            c: [0.0; K],
-            len: 0,
-        };
+        let mut h = Expansion::<K> { c: [0.0; K], len: 0 };
         let (mut ei, mut fi) = (0, 0);
         // Take the smaller-magnitude head first.
         let take_e = |ei: usize, fi: usize| (f[fi] > e[ei]) == (f[fi] > -e[ei]);
@@ -217,10 +196,7 @@ impl<const N: usize> Expansion<N> {
     /// `self · b` (Shewchuk's `scale_expansion_zeroelim`); capacity `K ≥ 2N`.
     pub(crate) fn scale<const K: usize>(&self, b: f64) -> Expansion<K> {
         let e = self.components();
-        let mut h = Expansion::<K> {
-            c: [0.0; K],
-            len: 0,
-        };
+        let mut h = Expansion::<K> { c: [0.0; K], len: 0 };
         let (bhi, blo) = split(b);
         let (mut q, hh) = two_product_presplit(e[0], b, bhi, blo);
         if hh != 0.0 {
@@ -269,11 +245,7 @@ impl<const N: usize> Expansion<N> {
     pub(crate) fn estimate(&self) -> Estimate {
         let h = self.compress();
         let n = h.len;
-        let top = if n >= 2 {
-            h.c[n - 1] + h.c[n - 2]
-        } else {
-            h.c[0]
-        };
+        let top = if n >= 2 { h.c[n - 1] + h.c[n - 2] } else { h.c[0] };
         Estimate::from_scaled(top, 0, EXACT_REL_ERR)
     }
 
@@ -295,10 +267,7 @@ impl<const N: usize> Expansion<N> {
             }
         }
         g[bottom] = q;
-        let mut h = Self {
-            c: [0.0; N],
-            len: 0,
-        };
+        let mut h = Self { c: [0.0; N], len: 0 };
         for &gnow in &g[bottom + 1..m] {
             let (qn, qq) = fast_two_sum(gnow, q);
             if qq != 0.0 {
@@ -313,11 +282,7 @@ impl<const N: usize> Expansion<N> {
 
 /// `det[a, b, c] = a · (b × c)` of three rows of exact differences
 /// (192 components at most).
-pub(crate) fn det3(
-    a: [Expansion<2>; 3],
-    b: [Expansion<2>; 3],
-    c: [Expansion<2>; 3],
-) -> Expansion<192> {
+pub(crate) fn det3(a: [Expansion<2>; 3], b: [Expansion<2>; 3], c: [Expansion<2>; 3]) -> Expansion<192> {
     let minor = |i: usize, j: usize| -> Expansion<16> {
         let l: Expansion<8> = b[i].mul(&c[j]);
         let r: Expansion<8> = b[j].mul(&c[i]);
@@ -353,8 +318,7 @@ mod tests {
     use proptest::prelude::*;
 
     fn big(e: &[f64]) -> BigFloat {
-        e.iter()
-            .fold(BigFloat::ZERO, |acc, &x| &acc + &BigFloat::from_f64(x))
+        e.iter().fold(BigFloat::ZERO, |acc, &x| &acc + &BigFloat::from_f64(x))
     }
 
     fn bf(x: f64) -> BigFloat {
@@ -434,10 +398,7 @@ mod tests {
     #[test]
     fn an_exact_zero_is_zero() {
         // (1,2,3)·(4,5,6) − 32 = 0, and 0.1 − 0.1 = 0.
-        let d = dot3(
-            [1.0, 2.0, 3.0].map(Expansion::single),
-            [4.0, 5.0, 6.0].map(Expansion::single),
-        );
+        let d = dot3([1.0, 2.0, 3.0].map(Expansion::single), [4.0, 5.0, 6.0].map(Expansion::single));
         let z: Expansion<32> = d.sub(&Expansion::single(32.0));
         assert_eq!(z.sign(), Sign::Zero);
         assert_eq!(Expansion::diff(0.1, 0.1).sign(), Sign::Zero);

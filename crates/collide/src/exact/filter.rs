@@ -111,14 +111,7 @@ pub(crate) fn cross(p: P3, q: P3) -> (P3, P3) {
     let (yz, zy) = (p[1] * q[2], p[2] * q[1]);
     let (zx, xz) = (p[2] * q[0], p[0] * q[2]);
     let (xy, yx) = (p[0] * q[1], p[1] * q[0]);
-    (
-        [yz - zy, zx - xz, xy - yx],
-        [
-            yz.abs() + zy.abs(),
-            zx.abs() + xz.abs(),
-            xy.abs() + yx.abs(),
-        ],
-    )
+    ([yz - zy, zx - xz, xy - yx], [yz.abs() + zy.abs(), zx.abs() + xz.abs(), xy.abs() + yx.abs()])
 }
 
 /// The triple product `c · w` of a cross product `c` (with its permanents
@@ -128,10 +121,7 @@ pub(crate) fn cross(p: P3, q: P3) -> (P3, P3) {
 pub(crate) fn triple(c: P3, perm: P3, w: P3) -> Filtered {
     let value = (c[0] * w[0] + c[1] * w[1]) + c[2] * w[2];
     let permanent = (perm[0] * w[0].abs() + perm[1] * w[1].abs()) + perm[2] * w[2].abs();
-    Filtered {
-        value,
-        bound: TRIPLE_BOUND * permanent + UNDERFLOW_SLACK,
-    }
+    Filtered { value, bound: TRIPLE_BOUND * permanent + UNDERFLOW_SLACK }
 }
 
 /// `n · p − d` on exact inputs, with its [`PLANE_BOUND`].
@@ -140,10 +130,7 @@ pub(crate) fn plane(n: P3, d: f64, p: P3) -> Filtered {
     let (x, y, z) = (n[0] * p[0], n[1] * p[1], n[2] * p[2]);
     let value = ((x + y) + z) - d;
     let permanent = ((x.abs() + y.abs()) + z.abs()) + d.abs();
-    Filtered {
-        value,
-        bound: PLANE_BOUND * permanent + UNDERFLOW_SLACK,
-    }
+    Filtered { value, bound: PLANE_BOUND * permanent + UNDERFLOW_SLACK }
 }
 
 /// The error bound of each component of a [`cross`] product, from its
@@ -168,11 +155,7 @@ mod tests {
     }
 
     fn exact_cross(p: &[BigFloat; 3], q: &[BigFloat; 3]) -> [BigFloat; 3] {
-        [
-            &(&p[1] * &q[2]) - &(&p[2] * &q[1]),
-            &(&p[2] * &q[0]) - &(&p[0] * &q[2]),
-            &(&p[0] * &q[1]) - &(&p[1] * &q[0]),
-        ]
+        [&(&p[1] * &q[2]) - &(&p[2] * &q[1]), &(&p[2] * &q[0]) - &(&p[0] * &q[2]), &(&p[0] * &q[1]) - &(&p[1] * &q[0])]
     }
 
     /// Whether `|exact − value| ≤ bound`, decided exactly.

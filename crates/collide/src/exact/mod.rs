@@ -45,7 +45,7 @@ pub use estimate::{ESTIMATE_REL_ERR, Estimate};
 #[cfg(test)]
 pub(crate) use predicates::exact_evaluations;
 pub use predicates::{
-    P3, collinear, cross_estimate, dot_diff, orient2d, orient2d_estimate, orient3d,
-    orient3d_estimate, plane_side, plane_side_estimate, points_equal, triple_product,
+    P3, collinear, cross_estimate, dot_diff, orient2d, orient2d_estimate, orient3d, orient3d_estimate, plane_side,
+    plane_side_estimate, points_equal, triple_product,
 };
 pub use sign::Sign;

@@ -12,11 +12,7 @@ use crate::real::{Real, Vec3, try_normalize_stable};
 pub(crate) fn normalize<T: Real>(n: &Vec3<T>) -> Option<Vec3<T>> {
     let nn = n.norm_squared();
     let (lo, hi) = safe_squared_range::<T>();
-    if nn >= lo && nn <= hi {
-        Some(n * (T::one() / nn.sqrt()))
-    } else {
-        try_normalize_stable(n)
-    }
+    if nn >= lo && nn <= hi { Some(n * (T::one() / nn.sqrt())) } else { try_normalize_stable(n) }
 }
 
 /// The range of a sum of three squares `s` in which `√s` is as accurate as the
@@ -26,16 +22,9 @@ pub(crate) fn normalize<T: Real>(n: &Vec3<T>) -> Option<Vec3<T>> {
 #[inline(always)]
 pub(crate) fn safe_squared_range<T: Real>() -> (T, T) {
     if T::EPSILON.wide() < 1e-10 {
-        (
-            T::of(f64::MIN_POSITIVE / (f64::EPSILON * f64::EPSILON)),
-            T::of(f64::MAX * (f64::EPSILON * f64::EPSILON)),
-        )
+        (T::of(f64::MIN_POSITIVE / (f64::EPSILON * f64::EPSILON)), T::of(f64::MAX * (f64::EPSILON * f64::EPSILON)))
     } else {
-        let (e, m, big) = (
-            f64::from(f32::EPSILON),
-            f64::from(f32::MIN_POSITIVE),
-            f64::from(f32::MAX),
-        );
+        let (e, m, big) = (f64::from(f32::EPSILON), f64::from(f32::MIN_POSITIVE), f64::from(f32::MAX));
         (T::of(m / (e * e)), T::of(big * (e * e)))
     }
 }

@@ -85,11 +85,7 @@ struct Fast {
 }
 
 impl Fast {
-    const ZERO: Self = Self {
-        value: 0.0,
-        bound: 0.0,
-        exp: 0,
-    };
+    const ZERO: Self = Self { value: 0.0, bound: 0.0, exp: 0 };
 }
 
 #[cfg(test)]
@@ -122,11 +118,7 @@ fn decide_sign(fast: Option<Fast>, exact: impl FnOnce() -> Estimate) -> Sign {
 }
 
 #[inline(always)]
-fn decide_estimate(
-    fast: Option<Fast>,
-    max_rel_err: f64,
-    exact: impl FnOnce() -> Estimate,
-) -> Estimate {
+fn decide_estimate(fast: Option<Fast>, max_rel_err: f64, exact: impl FnOnce() -> Estimate) -> Estimate {
     if let Some(f) = fast {
         let magnitude = f.value.abs();
         if f.bound == 0.0 {
@@ -149,11 +141,7 @@ fn decide_estimate(
 /// `[0.5, 1)`, or 0 when `m` is already in the safe range.
 #[inline]
 fn scale_exponent(m: f64) -> i64 {
-    if (SAFE_MIN..=SAFE_MAX).contains(&m) {
-        0
-    } else {
-        -frexp(m).1
-    }
+    if (SAFE_MIN..=SAFE_MAX).contains(&m) { 0 } else { -frexp(m).1 }
 }
 
 /// `x · 2^k` when that is exact and finite.
@@ -175,11 +163,7 @@ fn scale_exact(x: f64, k: i64) -> Option<f64> {
 
 #[inline]
 fn scale3(p: P3, k: i64) -> Option<P3> {
-    Some([
-        scale_exact(p[0], k)?,
-        scale_exact(p[1], k)?,
-        scale_exact(p[2], k)?,
-    ])
+    Some([scale_exact(p[0], k)?, scale_exact(p[1], k)?, scale_exact(p[2], k)?])
 }
 
 /// Largest magnitude, or `None` if any value is not finite.
@@ -201,11 +185,7 @@ fn either_zero(u: f64, v: f64) -> bool {
 }
 
 fn big3(p: &P3) -> Option<[BigFloat; 3]> {
-    Some([
-        BigFloat::try_from_f64(p[0])?,
-        BigFloat::try_from_f64(p[1])?,
-        BigFloat::try_from_f64(p[2])?,
-    ])
+    Some([BigFloat::try_from_f64(p[0])?, BigFloat::try_from_f64(p[1])?, BigFloat::try_from_f64(p[2])?])
 }
 
 fn diff3(p0: &P3, p1: &P3) -> Option<[BigFloat; 3]> {
@@ -271,11 +251,7 @@ fn det3_rows(a: P3, b: P3, c: P3, exp: i64) -> Fast {
     {
         return Fast::ZERO;
     }
-    Fast {
-        value: det,
-        bound,
-        exp,
-    }
+    Fast { value: det, bound, exp }
 }
 
 /// Fast path of `det[p1 − p0; p3 − p2; p5 − p4]`: the differences as they
@@ -311,14 +287,8 @@ fn det3_fast(p: &[P3; 6]) -> Option<Fast> {
 fn det3_fast_scaled(p: &[P3; 6]) -> Option<Fast> {
     let m = max_abs(p.iter().flatten())?;
     let k = -frexp(m).1;
-    let q = [
-        scale3(p[0], k)?,
-        scale3(p[1], k)?,
-        scale3(p[2], k)?,
-        scale3(p[3], k)?,
-        scale3(p[4], k)?,
-        scale3(p[5], k)?,
-    ];
+    let q =
+        [scale3(p[0], k)?, scale3(p[1], k)?, scale3(p[2], k)?, scale3(p[3], k)?, scale3(p[4], k)?, scale3(p[5], k)?];
     let (a, b, c) = (sub3(q[1], q[0]), sub3(q[3], q[2]), sub3(q[5], q[4]));
     Some(det3_rows(a, b, c, -3 * k))
 }
@@ -329,19 +299,12 @@ fn det3_exact(p: &[P3; 6]) -> Estimate {
         let d = |i: usize| [0, 1, 2].map(|k| Expansion::diff(p[i + 1][k], p[i][k]));
         return expansion::det3(d(0), d(2), d(4)).estimate();
     }
-    let (Some(a), Some(b), Some(c)) = (
-        diff3(&p[0], &p[1]),
-        diff3(&p[2], &p[3]),
-        diff3(&p[4], &p[5]),
-    ) else {
+    let (Some(a), Some(b), Some(c)) = (diff3(&p[0], &p[1]), diff3(&p[2], &p[3]), diff3(&p[4], &p[5])) else {
         return Estimate::ZERO;
     };
     // a · (b × c)
-    let bxc = [
-        &(&b[1] * &c[2]) - &(&b[2] * &c[1]),
-        &(&b[2] * &c[0]) - &(&b[0] * &c[2]),
-        &(&b[0] * &c[1]) - &(&b[1] * &c[0]),
-    ];
+    let bxc =
+        [&(&b[1] * &c[2]) - &(&b[2] * &c[1]), &(&b[2] * &c[0]) - &(&b[0] * &c[2]), &(&b[0] * &c[1]) - &(&b[1] * &c[0])];
     dot_big(&a, &bxc).estimate()
 }
 
@@ -392,34 +355,19 @@ fn plane_fast(n: P3, d: f64, p: P3) -> Option<Fast> {
         return None;
     }
     if mn == 0.0 || mp == 0.0 {
-        return Some(Fast {
-            value: -d,
-            bound: 0.0,
-            exp: 0,
-        });
+        return Some(Fast { value: -d, bound: 0.0, exp: 0 });
     }
     let (kn, kp) = (scale_exponent(mn), scale_exponent(mp));
-    let (n, p, d) = if kn == 0 && kp == 0 {
-        (n, p, d)
-    } else {
-        (scale3(n, kn)?, scale3(p, kp)?, scale_exact(d, kn + kp)?)
-    };
+    let (n, p, d) =
+        if kn == 0 && kp == 0 { (n, p, d) } else { (scale3(n, kn)?, scale3(p, kp)?, scale_exact(d, kn + kp)?) };
     let (x, y, z) = (n[0] * p[0], n[1] * p[1], n[2] * p[2]);
     let exp = -(kn + kp);
     if either_zero(n[0], p[0]) && either_zero(n[1], p[1]) && either_zero(n[2], p[2]) {
-        return Some(Fast {
-            value: -d,
-            bound: 0.0,
-            exp,
-        });
+        return Some(Fast { value: -d, bound: 0.0, exp });
     }
     let value = ((x + y) + z) - d;
     let permanent = ((x.abs() + y.abs()) + z.abs()) + d.abs();
-    Some(Fast {
-        value,
-        bound: DOT_BOUND * permanent + UNDERFLOW_SLACK,
-        exp,
-    })
+    Some(Fast { value, bound: DOT_BOUND * permanent + UNDERFLOW_SLACK, exp })
 }
 
 #[cold]
@@ -458,11 +406,7 @@ fn dot_diff_fast(n: P3, p0: P3, p1: P3) -> Option<Fast> {
         return Some(Fast::ZERO);
     }
     let (kn, kp) = (scale_exponent(mn), scale_exponent(mp));
-    let (n, p0, p1) = if kn == 0 && kp == 0 {
-        (n, p0, p1)
-    } else {
-        (scale3(n, kn)?, scale3(p0, kp)?, scale3(p1, kp)?)
-    };
+    let (n, p0, p1) = if kn == 0 && kp == 0 { (n, p0, p1) } else { (scale3(n, kn)?, scale3(p0, kp)?, scale3(p1, kp)?) };
     let (dx, dy, dz) = (p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]);
     if either_zero(n[0], dx) && either_zero(n[1], dy) && either_zero(n[2], dz) {
         return Some(Fast::ZERO);
@@ -470,11 +414,7 @@ fn dot_diff_fast(n: P3, p0: P3, p1: P3) -> Option<Fast> {
     let (x, y, z) = (n[0] * dx, n[1] * dy, n[2] * dz);
     let value = (x + y) + z;
     let permanent = (x.abs() + y.abs()) + z.abs();
-    Some(Fast {
-        value,
-        bound: DOT_BOUND * permanent + UNDERFLOW_SLACK,
-        exp: -(kn + kp),
-    })
+    Some(Fast { value, bound: DOT_BOUND * permanent + UNDERFLOW_SLACK, exp: -(kn + kp) })
 }
 
 #[cold]
@@ -512,11 +452,7 @@ fn orient2d_rows(ac: [f64; 2], bc: [f64; 2], exp: i64) -> Fast {
     if !decided && either_zero(ac[0], bc[1]) && either_zero(ac[1], bc[0]) {
         return Fast::ZERO;
     }
-    Fast {
-        value: det,
-        bound,
-        exp,
-    }
+    Fast { value: det, bound, exp }
 }
 
 /// Fast path of Shewchuk's orient2d `(a − c) × (b − c)`, arranged as
@@ -534,9 +470,7 @@ fn orient2d_fast(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<Fast> {
     }
     if m.is_finite() {
         let k = -frexp(m).1;
-        let s = |p: [f64; 2]| -> Option<[f64; 2]> {
-            Some([scale_exact(p[0], k)?, scale_exact(p[1], k)?])
-        };
+        let s = |p: [f64; 2]| -> Option<[f64; 2]> { Some([scale_exact(p[0], k)?, scale_exact(p[1], k)?]) };
         if let (Some(ac), Some(bc)) = (s(ac), s(bc)) {
             return Some(orient2d_rows(ac, bc, -2 * k));
         }
@@ -548,14 +482,9 @@ fn orient2d_fast(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<Fast> {
 fn orient2d_fast_scaled(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<Fast> {
     let m = max_abs(a.iter().chain(&b).chain(&c))?;
     let k = -frexp(m).1;
-    let s =
-        |p: [f64; 2]| -> Option<[f64; 2]> { Some([scale_exact(p[0], k)?, scale_exact(p[1], k)?]) };
+    let s = |p: [f64; 2]| -> Option<[f64; 2]> { Some([scale_exact(p[0], k)?, scale_exact(p[1], k)?]) };
     let (a, b, c) = (s(a)?, s(b)?, s(c)?);
-    Some(orient2d_rows(
-        [a[0] - c[0], a[1] - c[1]],
-        [b[0] - c[0], b[1] - c[1]],
-        -2 * k,
-    ))
+    Some(orient2d_rows([a[0] - c[0], a[1] - c[1]], [b[0] - c[0], b[1] - c[1]], -2 * k))
 }
 
 #[cold]
@@ -565,14 +494,9 @@ fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Estimate {
         return expansion::det2(d(a), d(b)).estimate();
     }
     let big = |x: f64| BigFloat::try_from_f64(x);
-    let (Some(ax), Some(ay), Some(bx), Some(by), Some(cx), Some(cy)) = (
-        big(a[0]),
-        big(a[1]),
-        big(b[0]),
-        big(b[1]),
-        big(c[0]),
-        big(c[1]),
-    ) else {
+    let (Some(ax), Some(ay), Some(bx), Some(by), Some(cx), Some(cy)) =
+        (big(a[0]), big(a[1]), big(b[0]), big(b[1]), big(c[0]), big(c[1]))
+    else {
         return Estimate::ZERO;
     };
     (&(&(&ax - &cx) * &(&by - &cy)) - &(&(&ay - &cy) * &(&bx - &cx))).estimate()
@@ -590,9 +514,7 @@ pub fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Sign {
 /// `max_rel_err` or `2^−52`).
 #[inline]
 pub fn orient2d_estimate(a: [f64; 2], b: [f64; 2], c: [f64; 2], max_rel_err: f64) -> Estimate {
-    decide_estimate(orient2d_fast(a, b, c), max_rel_err, || {
-        orient2d_exact(a, b, c)
-    })
+    decide_estimate(orient2d_fast(a, b, c), max_rel_err, || orient2d_exact(a, b, c))
 }
 
 /// The three coordinate-plane projections of a triangle, in the order of the
@@ -659,10 +581,7 @@ pub fn collinear(a: P3, b: P3, c: P3) -> bool {
 /// nothing).
 #[inline]
 pub fn points_equal(a: P3, b: P3) -> bool {
-    #[expect(
-        clippy::float_cmp,
-        reason = "exact equality is this predicate's meaning"
-    )]
+    #[expect(clippy::float_cmp, reason = "exact equality is this predicate's meaning")]
     let eq = a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
     eq
 }

@@ -13,17 +13,9 @@ fn bf(x: f64) -> BigFloat {
 /// Reference: `det[a − d, b − d, c − d]` written out in BigFloat, independently
 /// of the predicates' code (cofactor expansion along the first column).
 fn det_reference(a: P3, b: P3, c: P3, d: P3) -> BigFloat {
-    let r = |p: P3| {
-        [
-            &bf(p[0]) - &bf(d[0]),
-            &bf(p[1]) - &bf(d[1]),
-            &bf(p[2]) - &bf(d[2]),
-        ]
-    };
+    let r = |p: P3| [&bf(p[0]) - &bf(d[0]), &bf(p[1]) - &bf(d[1]), &bf(p[2]) - &bf(d[2])];
     let (a, b, c) = (r(a), r(b), r(c));
-    let minor = |u: &[BigFloat; 3], v: &[BigFloat; 3], i: usize, j: usize| {
-        &(&u[i] * &v[j]) - &(&u[j] * &v[i])
-    };
+    let minor = |u: &[BigFloat; 3], v: &[BigFloat; 3], i: usize, j: usize| &(&u[i] * &v[j]) - &(&u[j] * &v[i]);
     // det = a0 (b1 c2 − c1 b2) − b0 (a1 c2 − c1 a2) + c0 (a1 b2 − b1 a2)
     let t0 = &a[0] * &minor(&b, &c, 1, 2);
     let t1 = &b[0] * &minor(&a, &c, 1, 2);
@@ -32,20 +24,11 @@ fn det_reference(a: P3, b: P3, c: P3, d: P3) -> BigFloat {
 }
 
 fn robust3(p: P3) -> robust::Coord3D<f64> {
-    robust::Coord3D {
-        x: p[0],
-        y: p[1],
-        z: p[2],
-    }
+    robust::Coord3D { x: p[0], y: p[1], z: p[2] }
 }
 
 fn robust_orient3d(a: P3, b: P3, c: P3, d: P3) -> Sign {
-    Sign::of(robust::orient3d(
-        robust3(a),
-        robust3(b),
-        robust3(c),
-        robust3(d),
-    ))
+    Sign::of(robust::orient3d(robust3(a), robust3(b), robust3(c), robust3(d)))
 }
 
 /// Relative difference of two estimates of the same non-zero value.
@@ -91,38 +74,18 @@ fn orient3d_unit_tetrahedron() {
     // det[a − d, b − d, c − d] with d = (0,0,1): rows (0,0,−1), (1,0,−1),
     // (0,1,−1); expanding along the first row, det = −1·(1·1 − 0·0) = −1.
     // d is above the counterclockwise triangle a b c: negative, as Shewchuk.
-    let (a, b, c, d) = (
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, 0.0, 1.0],
-    );
+    let (a, b, c, d) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]);
     assert!(orient3d(a, b, c, d) == Sign::Negative, "d above: negative");
-    assert!(
-        orient3d(a, b, c, [0.0, 0.0, -1.0]) == Sign::Positive,
-        "d below: positive"
-    );
-    assert!(
-        orient3d(a, b, c, [5.0, -7.0, 0.0]) == Sign::Zero,
-        "d in the plane: zero"
-    );
-    assert!(
-        orient3d(b, a, c, d) == Sign::Positive,
-        "swapping a and b flips the sign"
-    );
+    assert!(orient3d(a, b, c, [0.0, 0.0, -1.0]) == Sign::Positive, "d below: positive");
+    assert!(orient3d(a, b, c, [5.0, -7.0, 0.0]) == Sign::Zero, "d in the plane: zero");
+    assert!(orient3d(b, a, c, d) == Sign::Positive, "swapping a and b flips the sign");
     // Scaled by 2^−1074·2^k: every coordinate a subnormal or zero, and by 2^1000.
     for s in [5e-324, 2.0f64.powi(-1060), 2.0f64.powi(1000), 1e300, 1e-300] {
         let m = |p: P3| p.map(|x| x * s);
-        assert!(
-            orient3d(m(a), m(b), m(c), m(d)) == Sign::Negative,
-            "scale {s:e}"
-        );
+        assert!(orient3d(m(a), m(b), m(c), m(d)) == Sign::Negative, "scale {s:e}");
         let e = orient3d_estimate(m(a), m(b), m(c), m(d), ESTIMATE_REL_ERR);
         let want = det_reference(m(a), m(b), m(c), m(d)).estimate();
-        assert!(
-            e.sign == Sign::Negative && rel_diff(e, want) <= ESTIMATE_CHECK,
-            "scale {s:e}: {e:?}"
-        );
+        assert!(e.sign == Sign::Negative && rel_diff(e, want) <= ESTIMATE_CHECK, "scale {s:e}: {e:?}");
     }
 }
 
@@ -132,18 +95,9 @@ fn orient3d_decides_1e_300_off_the_plane() {
     // z − x = 1e-300 > 0: the side n = (b − a) × (c − a) = (−6, 0, 6) points to,
     // so orient3d = −n·(d − a) < 0. Mirrored d = (1e-300, 0, 0): positive.
     let (a, b, c) = ([-1.0, -1.0, -1.0], [1.0, -1.0, 1.0], [0.0, 2.0, 0.0]);
-    assert!(
-        orient3d(a, b, c, [-1e-300, 0.0, 0.0]) == Sign::Negative,
-        "1e-300 above"
-    );
-    assert!(
-        orient3d(a, b, c, [1e-300, 0.0, 0.0]) == Sign::Positive,
-        "1e-300 below"
-    );
-    assert!(
-        orient3d(a, b, c, [0.0, 0.0, 0.0]) == Sign::Zero,
-        "on the plane"
-    );
+    assert!(orient3d(a, b, c, [-1e-300, 0.0, 0.0]) == Sign::Negative, "1e-300 above");
+    assert!(orient3d(a, b, c, [1e-300, 0.0, 0.0]) == Sign::Positive, "1e-300 below");
+    assert!(orient3d(a, b, c, [0.0, 0.0, 0.0]) == Sign::Zero, "on the plane");
 }
 
 #[test]
@@ -153,35 +107,17 @@ fn plane_side_and_dot_diff_hand_cases() {
     // (1e-300) and d = 0.5: n·p − d = 1 − 0.5 > 0 only exactly (the products
     // are fine, but n·p in f64 is a rounding of 1e300·1e-300).
     let n = [0.0, 0.0, 2.0];
-    assert!(
-        plane_side(n, 2.0, [3.0, 4.0, 1.0 + f64::EPSILON]) == Sign::Positive,
-        "just above"
-    );
+    assert!(plane_side(n, 2.0, [3.0, 4.0, 1.0 + f64::EPSILON]) == Sign::Positive, "just above");
     assert!(plane_side(n, 2.0, [3.0, 4.0, 1.0]) == Sign::Zero, "on");
-    assert!(
-        plane_side(n, 2.0, [3.0, 4.0, 1.0 - f64::EPSILON]) == Sign::Negative,
-        "just below"
-    );
+    assert!(plane_side(n, 2.0, [3.0, 4.0, 1.0 - f64::EPSILON]) == Sign::Negative, "just below");
     let big = [1e300, 0.0, 0.0];
     let small = [1e-300, 0.0, 0.0];
     let exact = &(&bf(1e300) * &bf(1e-300)) - &bf(0.5);
-    assert!(
-        plane_side(big, 0.5, small) == exact.sign(),
-        "1e300·1e-300 − 0.5"
-    );
-    assert!(
-        plane_side([0.0; 3], -3.0, [1.0, 2.0, 3.0]) == Sign::Positive,
-        "zero normal: sign of −d"
-    );
+    assert!(plane_side(big, 0.5, small) == exact.sign(), "1e300·1e-300 − 0.5");
+    assert!(plane_side([0.0; 3], -3.0, [1.0, 2.0, 3.0]) == Sign::Positive, "zero normal: sign of −d");
     // n·(p1 − p0) with p1 − p0 = (1, 1, 0) and n = (1, −1, 5): 1 − 1 = 0.
-    assert!(
-        dot_diff([1.0, -1.0, 5.0], [2.0, 3.0, 7.0], [3.0, 4.0, 7.0]) == Sign::Zero,
-        "parallel"
-    );
-    assert!(
-        dot_diff([1.0, -1.0, 5.0], [2.0, 3.0, 7.0], [3.0, 4.0, 7.0 + 1e-15]) == Sign::Positive,
-        "up"
-    );
+    assert!(dot_diff([1.0, -1.0, 5.0], [2.0, 3.0, 7.0], [3.0, 4.0, 7.0]) == Sign::Zero, "parallel");
+    assert!(dot_diff([1.0, -1.0, 5.0], [2.0, 3.0, 7.0], [3.0, 4.0, 7.0 + 1e-15]) == Sign::Positive, "up");
     let e = plane_side_estimate(big, 0.5, small, ESTIMATE_REL_ERR);
     assert!(rel_diff(e, exact.estimate()) <= ESTIMATE_CHECK, "{e:?}");
 }
@@ -192,24 +128,12 @@ fn collinear_and_equal_points() {
     // parallel; moving the last point by one ulp in z breaks that.
     let (a, b) = ([1.0, 2.0, 3.0], [4.0, 5.0, 6.0]);
     assert!(collinear(a, b, [7.0, 8.0, 9.0]), "on a line");
-    assert!(
-        !collinear(a, b, [7.0, 8.0, 9.0 + 8.0 * f64::EPSILON]),
-        "one ulp off"
-    );
+    assert!(!collinear(a, b, [7.0, 8.0, 9.0 + 8.0 * f64::EPSILON]), "one ulp off");
     assert!(collinear(a, a, [7.0, -1.0, 0.5]), "two coincident points");
     let (t, u) = ([1e-300, 2e-300, 3e-300], [1e300, 2e300, 3e300]);
-    assert!(
-        collinear(t, [0.0; 3], u.map(|x| -x)) == (orient_all_zero(t, [0.0; 3], u.map(|x| -x))),
-        "extreme"
-    );
-    assert!(
-        points_equal([0.0, -0.0, 1.0], [-0.0, 0.0, 1.0]),
-        "±0 are equal"
-    );
-    assert!(
-        !points_equal([0.0, 0.0, 1.0], [0.0, 0.0, 1.0 + f64::EPSILON]),
-        "one ulp apart"
-    );
+    assert!(collinear(t, [0.0; 3], u.map(|x| -x)) == (orient_all_zero(t, [0.0; 3], u.map(|x| -x))), "extreme");
+    assert!(points_equal([0.0, -0.0, 1.0], [-0.0, 0.0, 1.0]), "±0 are equal");
+    assert!(!points_equal([0.0, 0.0, 1.0], [0.0, 0.0, 1.0 + f64::EPSILON]), "one ulp apart");
 }
 
 /// Reference collinearity: every component of (b − a) × (c − a) is exactly 0.
@@ -233,9 +157,7 @@ fn filter_decides_random_cases_without_the_exact_path() {
     const MAX_VALUE_FALLBACK: u64 = CASES / 50;
     let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
     let mut next = || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
+        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
         (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
     };
     let mut points = Vec::new();
@@ -252,19 +174,13 @@ fn filter_decides_random_cases_without_the_exact_path() {
         let _ = orient3d(p[0], p[1], p[2], p[3]);
     }
     let signs = exact_evaluations() - before;
-    assert!(
-        signs <= MAX_SIGN_FALLBACK,
-        "{signs} of {CASES} signs took the exact path"
-    );
+    assert!(signs <= MAX_SIGN_FALLBACK, "{signs} of {CASES} signs took the exact path");
     let before = exact_evaluations();
     for p in &points {
         let _ = orient3d_estimate(p[0], p[1], p[2], p[3], ESTIMATE_REL_ERR);
     }
     let values = exact_evaluations() - before;
-    assert!(
-        values <= MAX_VALUE_FALLBACK,
-        "{values} of {CASES} values took the exact path"
-    );
+    assert!(values <= MAX_VALUE_FALLBACK, "{values} of {CASES} values took the exact path");
 }
 
 proptest! {

@@ -36,10 +36,7 @@ use crate::shapes::{Plane, Segment};
 ///
 /// **Deviation from the book**: none in the arithmetic; the degenerate checks
 /// are added (the lecture's formula divides by zero for them).
-pub fn intersect_segment_plane_lecture<T: Real>(
-    seg: &Segment<T>,
-    plane: &Plane<T>,
-) -> Intersection<T> {
+pub fn intersect_segment_plane_lecture<T: Real>(seg: &Segment<T>, plane: &Plane<T>) -> Intersection<T> {
     let (p0, p1, n, d) = (seg.start, seg.end, plane.normal, plane.offset);
     if !(finite3(&p0) && finite3(&p1) && finite3(&n) && d.finite()) {
         return Intersection::DEGENERATE;
@@ -65,12 +62,7 @@ pub fn intersect_segment_plane_lecture<T: Real>(
     }
     let point = p0 + dir * r;
     match try_normalize_stable(&n) {
-        Some(normal) if finite3(&point) => Intersection::hit(SegmentHit {
-            t: r,
-            point,
-            normal,
-            barycentric: None,
-        }),
+        Some(normal) if finite3(&point) => Intersection::hit(SegmentHit { t: r, point, normal, barycentric: None }),
         _ => Intersection::DEGENERATE,
     }
 }
@@ -174,9 +166,7 @@ fn filtered(n: P3, d: f64, p0: P3, p1: P3) -> Filtered {
     use crate::exact::filter::{in_fast_range, jointly_accurate, plane};
     /// Unit roundoff (2^−53): margin for the roundings of the checks below.
     const U: f64 = f64::EPSILON / 2.0;
-    let inputs = [
-        n[0], n[1], n[2], d, p0[0], p0[1], p0[2], p1[0], p1[1], p1[2],
-    ];
+    let inputs = [n[0], n[1], n[2], d, p0[0], p0[1], p0[2], p1[0], p1[1], p1[2]];
     if !in_fast_range(inputs) {
         return Filtered::Undecided;
     }
@@ -187,21 +177,14 @@ fn filtered(n: P3, d: f64, p0: P3, p1: P3) -> Filtered {
     if (s0.value > 0.0) == (s1.value > 0.0) {
         // One side: a miss unless n · (p1 − p0) = s1 − s0 is exactly 0.
         let gap = (s1.value - s0.value).abs();
-        return if gap * (1.0 - 4.0 * U) > s0.bound + s1.bound {
-            Filtered::Miss
-        } else {
-            Filtered::Undecided
-        };
+        return if gap * (1.0 - 4.0 * U) > s0.bound + s1.bound { Filtered::Miss } else { Filtered::Undecided };
     }
     let (a0, a1) = (s0.value.abs(), s1.value.abs());
     let sum = a0 + a1;
     if !jointly_accurate(s0.bound + s1.bound, sum, ESTIMATE_REL_ERR) {
         return Filtered::Undecided;
     }
-    Filtered::Hit {
-        t: a0 / sum,
-        one_minus_t: a1 / sum,
-    }
+    Filtered::Hit { t: a0 / sum, one_minus_t: a1 / sum }
 }
 
 /// The general path of [`intersect_segment_plane`]: the predicates of
@@ -209,19 +192,10 @@ fn filtered(n: P3, d: f64, p0: P3, p1: P3) -> Filtered {
 /// [`Estimate::refine_jointly`].
 #[inline(never)]
 fn general<T: Real>(seg: &Segment<T>, plane: &Plane<T>) -> Intersection<T> {
-    if !(finite3(&seg.start)
-        && finite3(&seg.end)
-        && finite3(&plane.normal)
-        && plane.offset.finite())
-    {
+    if !(finite3(&seg.start) && finite3(&seg.end) && finite3(&plane.normal) && plane.offset.finite()) {
         return Intersection::DEGENERATE;
     }
-    let (p0, p1, n, d) = (
-        to_f64_3(&seg.start),
-        to_f64_3(&seg.end),
-        to_f64_3(&plane.normal),
-        plane.offset.wide(),
-    );
+    let (p0, p1, n, d) = (to_f64_3(&seg.start), to_f64_3(&seg.end), to_f64_3(&plane.normal), plane.offset.wide());
     if n.iter().all(|&x| x == 0.0) || exact::points_equal(p0, p1) {
         return Intersection::DEGENERATE;
     }
@@ -232,19 +206,13 @@ fn general<T: Real>(seg: &Segment<T>, plane: &Plane<T>) -> Intersection<T> {
     let (t, one_minus_t) = match (e0.sign, e1.sign) {
         (Sign::Zero, Sign::Zero) => return Intersection::PARALLEL,
         (a, b) if a == b => {
-            return if exact::dot_diff(n, p0, p1) == Sign::Zero {
-                Intersection::PARALLEL
-            } else {
-                Intersection::MISS
-            };
+            return if exact::dot_diff(n, p0, p1) == Sign::Zero { Intersection::PARALLEL } else { Intersection::MISS };
         }
         (Sign::Zero, _) => (0.0, 1.0),
         (_, Sign::Zero) => (1.0, 0.0),
         _ => {
             let ends = [p0, p1];
-            let e = Estimate::refine_jointly([e0, e1], ESTIMATE_REL_ERR, |i| {
-                est(ends[i], ESTIMATE_REL_ERR)
-            });
+            let e = Estimate::refine_jointly([e0, e1], ESTIMATE_REL_ERR, |i| est(ends[i], ESTIMATE_REL_ERR));
             match Estimate::abs_fractions(e) {
                 Some([t, u]) => (t, u),
                 // Unreachable: both signs are non-zero here.
@@ -271,11 +239,7 @@ fn general<T: Real>(seg: &Segment<T>, plane: &Plane<T>) -> Intersection<T> {
 pub(super) fn point_on_segment(p0: P3, p1: P3, t: f64, u: f64) -> P3 {
     let dir = [p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]];
     if dir.iter().all(|x| x.is_finite()) {
-        if t <= u {
-            [0, 1, 2].map(|i| p0[i] + t * dir[i])
-        } else {
-            [0, 1, 2].map(|i| p1[i] - u * dir[i])
-        }
+        if t <= u { [0, 1, 2].map(|i| p0[i] + t * dir[i]) } else { [0, 1, 2].map(|i| p1[i] - u * dir[i]) }
     } else {
         [0, 1, 2].map(|i| u * p0[i] + t * p1[i])
     }
@@ -306,11 +270,7 @@ mod tests {
 
     fn close<T: Real>(got: T, want: f64, scale: f64, what: &str) {
         let err = (got.wide() - want).abs();
-        assert!(
-            err <= tol::<T>() * scale,
-            "{what}: got {:e}, want {want:e} (error {err:e})",
-            got.wide()
-        );
+        assert!(err <= tol::<T>() * scale, "{what}: got {:e}, want {want:e} (error {err:e})", got.wide());
     }
 
     fn close3<T: Real>(got: &Vec3<T>, want: [f64; 3], scale: f64, what: &str) {
@@ -322,10 +282,7 @@ mod tests {
     type Query<T> = fn(&Segment<T>, &Plane<T>) -> Intersection<T>;
 
     fn both<T: Real>() -> [(Query<T>, &'static str); 2] {
-        [
-            (intersect_segment_plane_lecture::<T>, "lecture"),
-            (intersect_segment_plane::<T>, "robust"),
-        ]
+        [(intersect_segment_plane_lecture::<T>, "lecture"), (intersect_segment_plane::<T>, "robust")]
     }
 
     /// Hand cases, both methods, one body for f32 and f64.
@@ -337,65 +294,42 @@ mod tests {
         let pl = plane::<T>([0.0, 0.0, 2.0], 2.0);
         for (f, name) in both::<T>() {
             let r = f(&seg([1.0, 2.0, 0.0], [1.0, 2.0, 4.0]), &pl);
-            let h = r
-                .hit
-                .unwrap_or_else(|| panic!("{name}: crossing segment must hit"));
+            let h = r.hit.unwrap_or_else(|| panic!("{name}: crossing segment must hit"));
             assert!(!r.parallel && !r.degenerate, "{name}: flags {r:?}");
             close(h.t, 0.25, 1.0, name);
             close3(&h.point, [1.0, 2.0, 1.0], 4.0, name);
             close3(&h.normal, [0.0, 0.0, 1.0], 1.0, name);
-            assert!(
-                h.barycentric.is_none(),
-                "{name}: planes have no barycentrics"
-            );
+            assert!(h.barycentric.is_none(), "{name}: planes have no barycentrics");
 
             // Reversed: t → 1 − t = 0.75, same point.
-            let h = f(&seg([1.0, 2.0, 4.0], [1.0, 2.0, 0.0]), &pl)
-                .hit
-                .expect("reversed segment hits");
+            let h = f(&seg([1.0, 2.0, 4.0], [1.0, 2.0, 0.0]), &pl).hit.expect("reversed segment hits");
             close(h.t, 0.75, 1.0, name);
             close3(&h.point, [1.0, 2.0, 1.0], 4.0, name);
 
             // Parallel above the plane: n·(p1 − p0) = 2·(3 − 3) = 0.
             let r = f(&seg([0.0, 0.0, 3.0], [5.0, 1.0, 3.0]), &pl);
-            assert!(
-                r.hit.is_none() && r.parallel && !r.degenerate,
-                "{name}: parallel {r:?}"
-            );
+            assert!(r.hit.is_none() && r.parallel && !r.degenerate, "{name}: parallel {r:?}");
             // Lying in the plane: parallel, no hit (FIXTURES.md).
             let r = f(&seg([0.0, 0.0, 1.0], [5.0, 1.0, 1.0]), &pl);
             assert!(r.hit.is_none() && r.parallel, "{name}: coplanar {r:?}");
             // Both ends above (z = 2, 5): a miss, not parallel.
             let r = f(&seg([0.0, 0.0, 2.0], [0.0, 1.0, 5.0]), &pl);
-            assert!(
-                r.hit.is_none() && !r.parallel && !r.degenerate,
-                "{name}: miss {r:?}"
-            );
+            assert!(r.hit.is_none() && !r.parallel && !r.degenerate, "{name}: miss {r:?}");
 
             // Touching: p0 = (0,0,1) on the plane, s0 = 0 → t = 0, point p0;
             // the lecture's r = (2 − 2)/8 = 0 as well. p1 on it: t = 1.
-            let h = f(&seg([0.0, 0.0, 1.0], [0.0, 0.0, 5.0]), &pl)
-                .hit
-                .expect("touching p0 hits");
+            let h = f(&seg([0.0, 0.0, 1.0], [0.0, 0.0, 5.0]), &pl).hit.expect("touching p0 hits");
             close(h.t, 0.0, 1.0, name);
             close3(&h.point, [0.0, 0.0, 1.0], 1.0, name);
-            let h = f(&seg([0.0, 3.0, 5.0], [0.0, 3.0, 1.0]), &pl)
-                .hit
-                .expect("touching p1 hits");
+            let h = f(&seg([0.0, 3.0, 5.0], [0.0, 3.0, 1.0]), &pl).hit.expect("touching p1 hits");
             close(h.t, 1.0, 1.0, name);
             close3(&h.point, [0.0, 3.0, 1.0], 3.0, name);
 
             // Degenerate: zero normal, zero-length segment.
-            let r = f(
-                &seg([0.0, 0.0, 0.0], [0.0, 0.0, 2.0]),
-                &plane([0.0; 3], 1.0),
-            );
+            let r = f(&seg([0.0, 0.0, 0.0], [0.0, 0.0, 2.0]), &plane([0.0; 3], 1.0));
             assert!(r.degenerate && r.hit.is_none(), "{name}: zero normal {r:?}");
             let r = f(&seg([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]), &pl);
-            assert!(
-                r.degenerate && r.hit.is_none(),
-                "{name}: zero-length segment {r:?}"
-            );
+            assert!(r.degenerate && r.hit.is_none(), "{name}: zero-length segment {r:?}");
         }
     }
 
@@ -416,27 +350,17 @@ mod tests {
         let pl = plane::<T>([1.0, 1.0, 0.0], 0.0);
         let p0 = [-1.0, -1.0, 3.0];
         let short = intersect_segment_plane(&seg::<T>(p0, [-tiny, 0.0, 0.0]), &pl);
-        assert!(
-            short.hit.is_none() && !short.parallel && !short.degenerate,
-            "short by {tiny:e}: {short:?}"
-        );
-        let touch = intersect_segment_plane(&seg::<T>(p0, [0.0, 0.0, 0.0]), &pl)
-            .hit
-            .expect("touching hits");
+        assert!(short.hit.is_none() && !short.parallel && !short.degenerate, "short by {tiny:e}: {short:?}");
+        let touch = intersect_segment_plane(&seg::<T>(p0, [0.0, 0.0, 0.0]), &pl).hit.expect("touching hits");
         close(touch.t, 1.0, 1.0, "touch");
-        let through = intersect_segment_plane(&seg::<T>(p0, [tiny, 0.0, 0.0]), &pl)
-            .hit
-            .expect("through hits");
+        let through = intersect_segment_plane(&seg::<T>(p0, [tiny, 0.0, 0.0]), &pl).hit.expect("through hits");
         close(through.t, 1.0, 1.0, "through");
 
         // The lecture, as it is: r = (0 − (−2)) / (n·(p1 − p0)) with
         // n·(p1 − p0) = 2 − tiny rounding to 2, so r = 1: it reports a hit for
         // the segment that stops short. Known limitation, asserted as is.
         let lecture = intersect_segment_plane_lecture(&seg::<T>(p0, [-tiny, 0.0, 0.0]), &pl);
-        assert!(
-            lecture.hit.is_some(),
-            "the lecture's rounded r = 1 counts as a hit: {lecture:?}"
-        );
+        assert!(lecture.hit.is_some(), "the lecture's rounded r = 1 counts as a hit: {lecture:?}");
     }
 
     #[test]
@@ -454,17 +378,12 @@ mod tests {
         let pl = plane::<T>([0.0, 0.0, 2.0 * k], 2.0 * k * s);
         let sg = seg::<T>([s, 2.0 * s, 0.0], [s, 2.0 * s, 4.0 * s]);
         let r = intersect_segment_plane(&sg, &pl);
-        let h = r
-            .hit
-            .unwrap_or_else(|| panic!("scale {s:e}, normal {k:e}: must hit: {r:?}"));
+        let h = r.hit.unwrap_or_else(|| panic!("scale {s:e}, normal {k:e}: must hit: {r:?}"));
         close(h.t, 0.25, 1.0, "t");
         close3(&h.point, [s, 2.0 * s, s], 4.0 * s, "point");
         close3(&h.normal, [0.0, 0.0, 1.0], 1.0, "normal");
         let l = intersect_segment_plane_lecture(&sg, &pl);
-        assert!(
-            l.hit.is_some() || l.degenerate,
-            "lecture: a hit or a flagged degenerate answer: {l:?}"
-        );
+        assert!(l.hit.is_some() || l.degenerate, "lecture: a hit or a flagged degenerate answer: {l:?}");
     }
 
     #[test]
@@ -488,9 +407,7 @@ mod tests {
         // so it answers degenerate.
         let sg = seg::<f64>([-1e300, -1e300, 0.0], [1e300, 1e300, 0.0]);
         let pl = plane([1e300, 1e300, 0.0], 0.0);
-        let h = intersect_segment_plane(&sg, &pl)
-            .hit
-            .expect("robust: a hit at the origin");
+        let h = intersect_segment_plane(&sg, &pl).hit.expect("robust: a hit at the origin");
         close(h.t, 0.5, 1.0, "t");
         close3(&h.point, [0.0; 3], 1e300, "point");
         let l = intersect_segment_plane_lecture(&sg, &pl);
@@ -509,17 +426,10 @@ mod tests {
 
     fn sane<T: Real>(r: &Intersection<T>) -> Result<(), TestCaseError> {
         if let Some(h) = r.hit {
-            prop_assert!(
-                h.t.finite() && h.t >= T::zero() && h.t <= T::one(),
-                "t = {:?}",
-                h.t
-            );
+            prop_assert!(h.t.finite() && h.t >= T::zero() && h.t <= T::one(), "t = {:?}", h.t);
             prop_assert!(finite3(&h.point), "point {:?}", h.point);
             prop_assert!(finite3(&h.normal), "normal {:?}", h.normal);
-            prop_assert!(
-                !r.parallel && !r.degenerate,
-                "a hit is neither parallel nor degenerate"
-            );
+            prop_assert!(!r.parallel && !r.degenerate, "a hit is neither parallel nor degenerate");
         }
         Ok(())
     }
@@ -613,14 +523,11 @@ mod tests {
         let g = general::<f64>(&seg(p0, p1), &plane(n, d));
         match filtered(n, d, p0, p1) {
             Filtered::Undecided => {}
-            Filtered::Miss => prop_assert!(
-                g.hit.is_none() && !g.parallel && !g.degenerate,
-                "filter: miss; general: {g:?}"
-            ),
+            Filtered::Miss => {
+                prop_assert!(g.hit.is_none() && !g.parallel && !g.degenerate, "filter: miss; general: {g:?}")
+            }
             Filtered::Hit { t, one_minus_t } => {
-                let h = g
-                    .hit
-                    .ok_or_else(|| TestCaseError::fail(format!("filter: hit; general: {g:?}")))?;
+                let h = g.hit.ok_or_else(|| TestCaseError::fail(format!("filter: hit; general: {g:?}")))?;
                 prop_assert!(
                     (t - h.t).abs() <= T_TOL && (one_minus_t - (1.0 - h.t)).abs() <= T_TOL,
                     "t {t} vs {}",

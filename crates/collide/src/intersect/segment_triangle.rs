@@ -47,10 +47,7 @@ use crate::shapes::{Segment, Triangle};
 ///
 /// **Deviation from the book**: none in the arithmetic; the degenerate checks
 /// are added.
-pub fn intersect_segment_triangle_lecture<T: Real>(
-    seg: &Segment<T>,
-    tri: &Triangle<T>,
-) -> Intersection<T> {
+pub fn intersect_segment_triangle_lecture<T: Real>(seg: &Segment<T>, tri: &Triangle<T>) -> Intersection<T> {
     let [v0, v1, v2] = tri.vertices;
     let (q0, q1) = (seg.start, seg.end);
     if !(finite3(&v0) && finite3(&v1) && finite3(&v2) && finite3(&q0) && finite3(&q1)) {
@@ -99,12 +96,7 @@ pub fn intersect_segment_triangle_lecture<T: Real>(
     let Some(normal) = try_normalize_stable(&n) else {
         return Intersection::DEGENERATE;
     };
-    Intersection::hit(SegmentHit {
-        t: r,
-        point: p,
-        normal,
-        barycentric: Some([T::one() - s - t, s, t]),
-    })
+    Intersection::hit(SegmentHit { t: r, point: p, normal, barycentric: Some([T::one() - s - t, s, t]) })
 }
 
 /// Robust segment–triangle intersection: hit, miss and parallel decided exactly
@@ -255,11 +247,7 @@ fn filtered(a: P3, b: P3, c: P3, q0: P3, q1: P3) -> Filtered {
         // d1 − d0 is exactly 0 (parallel), impossible when the computed
         // difference exceeds both bounds (1 rounding each way: 4u of margin).
         let gap = (d1.value - d0.value).abs();
-        return if gap * (1.0 - 4.0 * U) > d0.bound + d1.bound {
-            Filtered::Miss
-        } else {
-            Filtered::Undecided
-        };
+        return if gap * (1.0 - 4.0 * U) > d0.bound + d1.bound { Filtered::Miss } else { Filtered::Undecided };
     }
     // 2. The edges. σ = sign(s1) = −sign(d1); a weight of sign −σ = sign(d1)
     // is a miss. pa = v0 − q0 = −w0 exactly (rounding is symmetric).
@@ -332,11 +320,7 @@ fn general<T: Real>(seg: &Segment<T>, tri: &Triangle<T>) -> Intersection<T> {
     let (e0, e1) = (est(plane[0], LOOSE), est(plane[1], LOOSE));
     let sigma = match (e0.sign, e1.sign) {
         (Sign::Zero, Sign::Zero) => {
-            return if exact::collinear(a, b, c) {
-                Intersection::DEGENERATE
-            } else {
-                Intersection::PARALLEL
-            };
+            return if exact::collinear(a, b, c) { Intersection::DEGENERATE } else { Intersection::PARALLEL };
         }
         (x, y) if x == y => {
             return if exact::triple_product(a, b, a, c, q0, q1) == Sign::Zero {
@@ -365,9 +349,7 @@ fn general<T: Real>(seg: &Segment<T>, tri: &Triangle<T>) -> Intersection<T> {
         (Sign::Zero, _) => (0.0, 1.0),
         (_, Sign::Zero) => (1.0, 0.0),
         _ => {
-            let e = Estimate::refine_jointly([e0, e1], ESTIMATE_REL_ERR, |i| {
-                est(plane[i], ESTIMATE_REL_ERR)
-            });
+            let e = Estimate::refine_jointly([e0, e1], ESTIMATE_REL_ERR, |i| est(plane[i], ESTIMATE_REL_ERR));
             match Estimate::abs_fractions(e) {
                 Some([t, u]) => (t, u),
                 // Unreachable: s0 and s1 are non-zero here.
@@ -375,20 +357,13 @@ fn general<T: Real>(seg: &Segment<T>, tri: &Triangle<T>) -> Intersection<T> {
             }
         }
     };
-    let weights = Estimate::refine_jointly(weights, ESTIMATE_REL_ERR, |i| {
-        est(edges[i], ESTIMATE_REL_ERR)
+    let weights = Estimate::refine_jointly(weights, ESTIMATE_REL_ERR, |i| est(edges[i], ESTIMATE_REL_ERR));
+    let cross = Estimate::refine_jointly(exact::cross_estimate(a, b, c, LOOSE), ESTIMATE_REL_ERR, |i| {
+        exact::cross_estimate(a, b, c, ESTIMATE_REL_ERR)[i]
     });
-    let cross = Estimate::refine_jointly(
-        exact::cross_estimate(a, b, c, LOOSE),
-        ESTIMATE_REL_ERR,
-        |i| exact::cross_estimate(a, b, c, ESTIMATE_REL_ERR)[i],
-    );
     // Both unreachable as `None`: α' + β' + γ' = s1 − s0 ≠ 0, and a triangle
     // with a point off its plane has a non-zero normal.
-    let (Some(bary), Some(normal)) = (
-        Estimate::abs_fractions(weights),
-        Estimate::unit_vector(cross),
-    ) else {
+    let (Some(bary), Some(normal)) = (Estimate::abs_fractions(weights), Estimate::unit_vector(cross)) else {
         return Intersection::DEGENERATE;
     };
     let point = point_on_segment(q0, q1, t, one_minus_t);

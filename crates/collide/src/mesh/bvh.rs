@@ -171,12 +171,7 @@ impl<T: Real> MeshBvh<T> {
                 // The centroid only orders faces (its rounding does not matter);
                 // each term is divided first so that no sum overflows.
                 let centroid = [0, 1, 2].map(|k| v[0][k] / 3.0 + v[1][k] / 3.0 + v[2][k] / 3.0);
-                Item {
-                    lo,
-                    hi,
-                    centroid,
-                    id: i as u32,
-                }
+                Item { lo, hi, centroid, id: i as u32 }
             })
             .collect();
         let mut bvh = Self {
@@ -184,9 +179,7 @@ impl<T: Real> MeshBvh<T> {
             tris: Vec::with_capacity(items.len()),
             ids: Vec::with_capacity(items.len()),
             filters: Vec::with_capacity(items.len()),
-            filter_ok: items
-                .iter()
-                .all(|it| (0..3).all(|k| it.lo[k].abs().max(it.hi[k].abs()) <= FILTER_MAX_COORD)),
+            filter_ok: items.iter().all(|it| (0..3).all(|k| it.lo[k].abs().max(it.hi[k].abs()) <= FILTER_MAX_COORD)),
             mesh,
             split,
             depth: 0,
@@ -200,15 +193,8 @@ impl<T: Real> MeshBvh<T> {
     fn build(&mut self, items: &mut [Item], depth: usize) -> u32 {
         self.depth = self.depth.max(depth);
         let index = self.nodes.len();
-        let bounds = items
-            .iter()
-            .fold(EMPTY_BOX, |b, it| union(b, &it.lo, &it.hi));
-        self.nodes.push(Node {
-            min: bounds.0.map(T::of),
-            max: bounds.1.map(T::of),
-            start: 0,
-            count: 0,
-        });
+        let bounds = items.iter().fold(EMPTY_BOX, |b, it| union(b, &it.lo, &it.hi));
+        self.nodes.push(Node { min: bounds.0.map(T::of), max: bounds.1.map(T::of), start: 0, count: 0 });
         let mid = if depth >= BVH_MAX_DEPTH {
             None
         } else {
@@ -229,9 +215,7 @@ impl<T: Real> MeshBvh<T> {
                 self.nodes[index].count = items.len() as u32;
                 for it in items.iter() {
                     let tri = self.mesh.triangle(it.id as usize);
-                    self.filters.push(FaceFilter::new(
-                        tri.vertices.map(|p| [p.x.wide(), p.y.wide(), p.z.wide()]),
-                    ));
+                    self.filters.push(FaceFilter::new(tri.vertices.map(|p| [p.x.wide(), p.y.wide(), p.z.wide()])));
                     self.tris.push(tri);
                     self.ids.push(it.id);
                 }
@@ -277,11 +261,7 @@ impl<T: Real> MeshBvh<T> {
     /// Leaf face `k`'s filter data, if the filter may be used on this mesh.
     #[inline(always)]
     pub(crate) fn leaf_filter(&self, k: usize) -> Option<&FaceFilter> {
-        if self.filter_ok {
-            Some(&self.filters[k])
-        } else {
-            None
-        }
+        if self.filter_ok { Some(&self.filters[k]) } else { None }
     }
 
     /// Leaf face `k` (in leaf order) and its index in the mesh.
@@ -297,22 +277,14 @@ fn split_median(items: &mut [Item]) -> Option<usize> {
         return None;
     }
     let mid = items.len() / 2;
-    let cb = items
-        .iter()
-        .fold(EMPTY_BOX, |b, it| union(b, &it.centroid, &it.centroid));
+    let cb = items.iter().fold(EMPTY_BOX, |b, it| union(b, &it.centroid, &it.centroid));
     let ext = [0, 1, 2].map(|k| cb.1[k] - cb.0[k]);
-    let axis = (0..3)
-        .max_by(|&a, &b| ext[a].total_cmp(&ext[b]))
-        .unwrap_or(0);
+    let axis = (0..3).max_by(|&a, &b| ext[a].total_cmp(&ext[b])).unwrap_or(0);
     if !(ext[axis] > 0.0) {
         // Coincident centroids: any halving is as good as another.
         return Some(mid);
     }
-    items.select_nth_unstable_by(mid, |a, b| {
-        a.centroid[axis]
-            .total_cmp(&b.centroid[axis])
-            .then(a.id.cmp(&b.id))
-    });
+    items.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]).then(a.id.cmp(&b.id)));
     Some(mid)
 }
 
@@ -322,9 +294,7 @@ fn split_sah(items: &mut [Item], bounds: &([f64; 3], [f64; 3])) -> Option<usize>
     if n <= 1 {
         return None;
     }
-    let cb = items
-        .iter()
-        .fold(EMPTY_BOX, |b, it| union(b, &it.centroid, &it.centroid));
+    let cb = items.iter().fold(EMPTY_BOX, |b, it| union(b, &it.centroid, &it.centroid));
     let node_area = area(bounds);
     let leaf_cost = n as f64 * node_area;
     // (cost, axis, boundary): faces in bins < boundary go left.
@@ -506,11 +476,7 @@ impl<T: Real> SegmentProbe<T> {
         let mut exit = T::one();
         if self.all_slab {
             for k in 0..3 {
-                let (near, far) = if self.negative[k] {
-                    (max[k], min[k])
-                } else {
-                    (min[k], max[k])
-                };
+                let (near, far) = if self.negative[k] { (max[k], min[k]) } else { (min[k], max[k]) };
                 // No NaN can arise here (finite non-zero reciprocals), so
                 // `max`/`min` are plain selections, compiled without branches.
                 enter = enter.max((near - self.o[k]) * self.inv[k]);
@@ -535,11 +501,7 @@ impl<T: Real> SegmentProbe<T> {
                 }
             }
         }
-        if enter <= exit + self.slack {
-            Some(enter - self.slack)
-        } else {
-            None
-        }
+        if enter <= exit + self.slack { Some(enter - self.slack) } else { None }
     }
 }
 

@@ -82,11 +82,7 @@ impl SegmentFilter {
     /// not used).
     pub(crate) fn new(q0: P3, q1: P3) -> Option<Self> {
         let ok = q0.iter().chain(&q1).all(|x| x.abs() <= FILTER_MAX_COORD);
-        ok.then(|| Self {
-            q0,
-            q1,
-            r: sub(q1, q0),
-        })
+        ok.then(|| Self { q0, q1, r: sub(q1, q0) })
     }
 }
 
@@ -117,11 +113,9 @@ impl FaceFilter {
         let (w0, w1) = (sub(s.q0, self.v[0]), sub(s.q1, self.v[0]));
         let s0 = self.n[0] * w0[0] + self.n[1] * w0[1] + self.n[2] * w0[2];
         let s1 = self.n[0] * w1[0] + self.n[1] * w1[1] + self.n[2] * w1[2];
-        let b0 = PLANE_BOUND
-            * (self.p[0] * w0[0].abs() + self.p[1] * w0[1].abs() + self.p[2] * w0[2].abs())
+        let b0 = PLANE_BOUND * (self.p[0] * w0[0].abs() + self.p[1] * w0[1].abs() + self.p[2] * w0[2].abs())
             + UNDERFLOW_SLACK;
-        let b1 = PLANE_BOUND
-            * (self.p[0] * w1[0].abs() + self.p[1] * w1[1].abs() + self.p[2] * w1[2].abs())
+        let b1 = PLANE_BOUND * (self.p[0] * w1[0].abs() + self.p[1] * w1[1].abs() + self.p[2] * w1[2].abs())
             + UNDERFLOW_SLACK;
         if (s0 > b0 && s1 > b1) || (s0 < -b0 && s1 < -b1) {
             return true;
@@ -129,11 +123,7 @@ impl FaceFilter {
         // 2. The edges: α' = orient3d(q1, v2, v1, q0), β' = orient3d(q1, v0, v2, q0),
         //    γ' = orient3d(q1, v1, v0, q0), each by Shewchuk's expression on the
         //    rounded differences with his bound.
-        let d = [
-            sub(self.v[0], s.q0),
-            sub(self.v[1], s.q0),
-            sub(self.v[2], s.q0),
-        ];
+        let d = [sub(self.v[0], s.q0), sub(self.v[1], s.q0), sub(self.v[2], s.q0)];
         let alpha = volume(s.r, d[2], d[1]);
         let beta = volume(s.r, d[0], d[2]);
         if opposite(alpha, beta) {

@@ -40,11 +40,7 @@ pub struct MeshIntersection<T: Real> {
 
 impl<T: Real> MeshIntersection<T> {
     /// Degenerate segment: no hit, not parallel, flagged.
-    pub const DEGENERATE: Self = Self {
-        hit: None,
-        parallel: false,
-        degenerate: true,
-    };
+    pub const DEGENERATE: Self = Self { hit: None, parallel: false, degenerate: true };
 }
 
 /// The deepest contact between a sphere and a mesh: the contact with the face

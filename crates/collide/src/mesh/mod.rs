@@ -54,7 +54,5 @@ pub use segment_mesh::{
     intersect_segment_mesh_brute, intersect_segment_mesh_bvh, intersect_segment_mesh_culled,
     intersect_segment_mesh_lecture,
 };
-pub use sphere_mesh::{
-    contact_sphere_mesh_brute, contact_sphere_mesh_bvh, contact_sphere_mesh_culled,
-};
+pub use sphere_mesh::{contact_sphere_mesh_brute, contact_sphere_mesh_bvh, contact_sphere_mesh_culled};
 pub use trimesh::{MeshError, TriMesh};

@@ -6,9 +6,7 @@ use super::hit::{MeshHit, MeshIntersection};
 use super::trimesh::TriMesh;
 use crate::bounds::{aabb_of_segment, test_aabb_aabb};
 use crate::exact::{self, BigFloat, Estimate, P3, Sign};
-use crate::intersect::{
-    SegmentHit, intersect_segment_triangle, intersect_segment_triangle_lecture,
-};
+use crate::intersect::{SegmentHit, intersect_segment_triangle, intersect_segment_triangle_lecture};
 use crate::real::{Real, finite3, to_f64_3};
 use crate::shapes::{Segment, Triangle};
 use core::cmp::Ordering;
@@ -103,10 +101,7 @@ fn compare_products(p: (f64, i64, f64), q: (f64, i64, f64)) -> Option<Ordering> 
 /// always needs, and answers `Equal`.
 fn compare_t<T: Real>(x: &Candidate<T>, y: &Candidate<T>, q: [P3; 2]) -> Ordering {
     let zero = |e: &Estimate| e.sign == Sign::Zero;
-    let (p_zero, q_zero) = (
-        zero(&x.volumes[0]) || zero(&y.volumes[1]),
-        zero(&y.volumes[0]) || zero(&x.volumes[1]),
-    );
+    let (p_zero, q_zero) = (zero(&x.volumes[0]) || zero(&y.volumes[1]), zero(&y.volumes[0]) || zero(&x.volumes[1]));
     match (p_zero, q_zero) {
         (true, true) => return Ordering::Equal,
         (true, false) => return Ordering::Less,
@@ -159,10 +154,7 @@ pub(super) fn classify(v: [P3; 3], q: [P3; 2]) -> Option<[Estimate; 2]> {
 #[inline]
 fn volumes(v: [P3; 3], q: [P3; 2]) -> [Estimate; 2] {
     let [a, b, c] = v;
-    [
-        exact::orient3d_estimate(a, b, c, q[0], f64::INFINITY),
-        exact::orient3d_estimate(a, b, c, q[1], f64::INFINITY),
-    ]
+    [exact::orient3d_estimate(a, b, c, q[0], f64::INFINITY), exact::orient3d_estimate(a, b, c, q[1], f64::INFINITY)]
 }
 
 /// Keeps a face the segment hits if it beats the best so far: smaller exact
@@ -180,13 +172,7 @@ fn consider<T: Real>(
     // the estimate of t.
     let t_est = Estimate::abs_fractions(volumes).map_or(1.0, |f| f[0]);
     let t_err = 2.0 * Estimate::joint_error(&volumes) + T_ROUNDING;
-    let cand = Candidate {
-        face,
-        tri: *tri,
-        vertices,
-        volumes,
-        t_upper: t_est + t_err,
-    };
+    let cand = Candidate { face, tri: *tri, vertices, volumes, t_upper: t_est + t_err };
     let better = match best {
         None => true,
         Some(b) => match compare_t(&cand, b, q) {
@@ -203,29 +189,16 @@ fn consider<T: Real>(
 /// The answer from the winning face (if any), with the mesh-wide flags. The
 /// winner's values are [`intersect_segment_triangle`]'s on that face (computed
 /// once per query, whichever variant found it).
-fn finish<T: Real>(
-    best: Option<Candidate<T>>,
-    seg: &Segment<T>,
-    mesh: &TriMesh<T>,
-    q: [P3; 2],
-) -> MeshIntersection<T> {
+fn finish<T: Real>(best: Option<Candidate<T>>, seg: &Segment<T>, mesh: &TriMesh<T>, q: [P3; 2]) -> MeshIntersection<T> {
     let degenerate = mesh.degenerate_face_count() > 0;
     match best {
         Some(b) => match intersect_segment_triangle(seg, &b.tri).hit {
-            Some(h) => MeshIntersection {
-                hit: Some(mesh_hit(h, b.face)),
-                parallel: false,
-                degenerate,
-            },
+            Some(h) => MeshIntersection { hit: Some(mesh_hit(h, b.face)), parallel: false, degenerate },
             // Unreachable: `classify` decides exactly as the triangle query
             // does (a test checks they agree); answered as degenerate.
             None => MeshIntersection::DEGENERATE,
         },
-        None => MeshIntersection {
-            hit: None,
-            parallel: mesh.parallel_to_every_face(q[0], q[1]),
-            degenerate,
-        },
+        None => MeshIntersection { hit: None, parallel: mesh.parallel_to_every_face(q[0], q[1]), degenerate },
     }
 }
 
@@ -274,10 +247,7 @@ fn mesh_hit<T: Real>(h: SegmentHit<T>, triangle: usize) -> MeshHit<T> {
 /// Source: the lecture's "test every triangle, keep the smallest `t`", with the
 /// exact predicates of [`crate::exact`]. **Deviation from the lecture**: the
 /// comparison of `t` is exact and the tie rule is stated.
-pub fn intersect_segment_mesh_brute<T: Real>(
-    seg: &Segment<T>,
-    mesh: &TriMesh<T>,
-) -> MeshIntersection<T> {
+pub fn intersect_segment_mesh_brute<T: Real>(seg: &Segment<T>, mesh: &TriMesh<T>) -> MeshIntersection<T> {
     let Some((q0, q1)) = prepare(seg) else {
         return MeshIntersection::DEGENERATE;
     };
@@ -313,10 +283,7 @@ fn brute<T: Real>(seg: &Segment<T>, mesh: &TriMesh<T>, q: [P3; 2]) -> MeshInters
 /// for a bunny) pays for every face.
 ///
 /// **Degenerate input:** as [`intersect_segment_mesh_brute`].
-pub fn intersect_segment_mesh_culled<T: Real>(
-    seg: &Segment<T>,
-    mesh: &TriMesh<T>,
-) -> MeshIntersection<T> {
+pub fn intersect_segment_mesh_culled<T: Real>(seg: &Segment<T>, mesh: &TriMesh<T>) -> MeshIntersection<T> {
     let Some((q0, q1)) = prepare(seg) else {
         return MeshIntersection::DEGENERATE;
     };
@@ -352,10 +319,7 @@ pub fn intersect_segment_mesh_culled<T: Real>(
 /// from its faces, witnesses first).
 ///
 /// **Cost** on the bunny: see [`SplitRule`](super::SplitRule).
-pub fn intersect_segment_mesh_bvh<T: Real>(
-    seg: &Segment<T>,
-    bvh: &MeshBvh<T>,
-) -> MeshIntersection<T> {
+pub fn intersect_segment_mesh_bvh<T: Real>(seg: &Segment<T>, bvh: &MeshBvh<T>) -> MeshIntersection<T> {
     let mesh = bvh.mesh();
     let Some((q0, q1)) = prepare(seg) else {
         return MeshIntersection::DEGENERATE;
@@ -374,9 +338,7 @@ pub fn intersect_segment_mesh_bvh<T: Real>(
         stack[0] = (0, e);
         sp = 1;
     }
-    let pruned = |best: &Option<Candidate<T>>, entry: T| {
-        best.as_ref().is_some_and(|b| entry.wide() > b.t_upper)
-    };
+    let pruned = |best: &Option<Candidate<T>>, entry: T| best.as_ref().is_some_and(|b| entry.wide() > b.t_upper);
     while sp > 0 {
         sp -= 1;
         let (i, entry) = stack[sp];
@@ -442,10 +404,7 @@ pub fn intersect_segment_mesh_bvh<T: Real>(
 /// point, so two faces within rounding of each other may be ordered either way
 /// and a hit near a shared edge may be missed by both faces (the lecture's
 /// inside test is not watertight).
-pub fn intersect_segment_mesh_lecture<T: Real>(
-    seg: &Segment<T>,
-    mesh: &TriMesh<T>,
-) -> MeshIntersection<T> {
+pub fn intersect_segment_mesh_lecture<T: Real>(seg: &Segment<T>, mesh: &TriMesh<T>) -> MeshIntersection<T> {
     let mut best: Option<MeshHit<T>> = None;
     let mut all_parallel = true;
     let mut any_area = false;
@@ -464,9 +423,5 @@ pub fn intersect_segment_mesh_lecture<T: Real>(
             best = Some(mesh_hit(h, face));
         }
     }
-    MeshIntersection {
-        hit: best,
-        parallel: best.is_none() && any_area && all_parallel,
-        degenerate,
-    }
+    MeshIntersection { hit: best, parallel: best.is_none() && any_area && all_parallel, degenerate }
 }

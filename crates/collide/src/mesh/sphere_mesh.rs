@@ -38,15 +38,7 @@ fn face_contact<T: Real>(sphere: &Sphere<T>, tri: &Triangle<T>) -> Option<(T, Co
             (face, true)
         }
     };
-    Some((
-        dist,
-        Contact {
-            point: q,
-            normal,
-            depth: sphere.radius - dist,
-            degenerate,
-        },
-    ))
+    Some((dist, Contact { point: q, normal, depth: sphere.radius - dist, degenerate }))
 }
 
 /// Whether the sphere can be answered at all.
@@ -62,30 +54,16 @@ struct Best<T: Real> {
 }
 
 #[inline]
-fn consider<T: Real>(
-    best: &mut Option<Best<T>>,
-    face: usize,
-    tri: &Triangle<T>,
-    sphere: &Sphere<T>,
-) {
+fn consider<T: Real>(best: &mut Option<Best<T>>, face: usize, tri: &Triangle<T>, sphere: &Sphere<T>) {
     if let Some((dist, contact)) = face_contact(sphere, tri)
-        && best
-            .as_ref()
-            .is_none_or(|b| dist < b.dist || (dist == b.dist && face < b.face))
+        && best.as_ref().is_none_or(|b| dist < b.dist || (dist == b.dist && face < b.face))
     {
-        *best = Some(Best {
-            dist,
-            face,
-            contact,
-        });
+        *best = Some(Best { dist, face, contact });
     }
 }
 
 fn answer<T: Real>(best: Option<Best<T>>) -> Option<MeshContact<T>> {
-    best.map(|b| MeshContact {
-        contact: b.contact,
-        triangle: b.face,
-    })
+    best.map(|b| MeshContact { contact: b.contact, triangle: b.face })
 }
 
 /// Deepest contact between sphere `a` and a mesh `b`, testing every face.
@@ -137,18 +115,12 @@ fn brute<T: Real>(a: &Sphere<T>, b: &TriMesh<T>) -> Option<MeshContact<T>> {
 /// never drops a contact: the answer equals [`contact_sphere_mesh_brute`]'s.
 ///
 /// **Degenerate input:** as [`contact_sphere_mesh_brute`].
-pub fn contact_sphere_mesh_culled<T: Real>(
-    a: &Sphere<T>,
-    b: &TriMesh<T>,
-) -> Option<MeshContact<T>> {
+pub fn contact_sphere_mesh_culled<T: Real>(a: &Sphere<T>, b: &TriMesh<T>) -> Option<MeshContact<T>> {
     if !well_posed(a) {
         return None;
     }
     let bb = b.aabb()?;
-    let (min, max) = (
-        [bb.min.x, bb.min.y, bb.min.z],
-        [bb.max.x, bb.max.y, bb.max.z],
-    );
+    let (min, max) = ([bb.min.x, bb.min.y, bb.min.z], [bb.max.x, bb.max.y, bb.max.z]);
     if box_distance_lower_bound(&a.center, &min, &max) > a.radius {
         return None;
     }
@@ -177,8 +149,7 @@ pub fn contact_sphere_mesh_bvh<T: Real>(a: &Sphere<T>, b: &MeshBvh<T>) -> Option
     let nodes = b.nodes();
     let root = nodes.first()?;
     let mut best: Option<Best<T>> = None;
-    let pruned =
-        |best: &Option<Best<T>>, lb: T| lb > a.radius || best.as_ref().is_some_and(|b| lb > b.dist);
+    let pruned = |best: &Option<Best<T>>, lb: T| lb > a.radius || best.as_ref().is_some_and(|b| lb > b.dist);
     let mut stack = [(0u32, T::zero()); STACK];
     let mut sp = 0usize;
     let lb = box_distance_lower_bound(&a.center, &root.min, &root.max);
@@ -204,11 +175,7 @@ pub fn contact_sphere_mesh_bvh<T: Real>(a: &Sphere<T>, b: &MeshBvh<T>) -> Option
         let (nl, nr) = (&nodes[l as usize], &nodes[r as usize]);
         let dl = box_distance_lower_bound(&a.center, &nl.min, &nl.max);
         let dr = box_distance_lower_bound(&a.center, &nr.min, &nr.max);
-        let (near, far) = if dl <= dr {
-            ((l, dl), (r, dr))
-        } else {
-            ((r, dr), (l, dl))
-        };
+        let (near, far) = if dl <= dr { ((l, dl), (r, dr)) } else { ((r, dr), (l, dl)) };
         for item in [far, near] {
             if !pruned(&best, item.1) {
                 debug_assert!(sp < STACK, "traversal stack overflow");

@@ -29,11 +29,7 @@ fn tol<T: Real>() -> f64 {
 }
 
 fn close<T: Real>(got: T, want: f64, what: &str) {
-    assert!(
-        (got.wide() - want).abs() <= tol::<T>(),
-        "{what}: got {:e}, want {want:e}",
-        got.wide()
-    );
+    assert!((got.wide() - want).abs() <= tol::<T>(), "{what}: got {:e}, want {want:e}", got.wide());
 }
 
 fn close3<T: Real>(got: &Vec3<T>, want: P3, what: &str) {
@@ -45,22 +41,12 @@ fn close3<T: Real>(got: &Vec3<T>, want: P3, what: &str) {
 /// The corner tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1), faces oriented
 /// outward: 0 = z=0 (normal −z), 1 = y=0 (−y), 2 = x=0 (−x), 3 = the slanted
 /// face x+y+z=1 (normal (1,1,1)/√3).
-const TETRA_V: [P3; 4] = [
-    [0.0, 0.0, 0.0],
-    [1.0, 0.0, 0.0],
-    [0.0, 1.0, 0.0],
-    [0.0, 0.0, 1.0],
-];
+const TETRA_V: [P3; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 const TETRA_F: [[usize; 3]; 4] = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
 
 /// An open unit quad in z = 0 as two faces sharing the diagonal v0 v2 (both
 /// normals +z).
-const QUAD_V: [P3; 4] = [
-    [0.0, 0.0, 0.0],
-    [1.0, 0.0, 0.0],
-    [1.0, 1.0, 0.0],
-    [0.0, 1.0, 0.0],
-];
+const QUAD_V: [P3; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
 const QUAD_F: [[usize; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
 
 /// Every segment variant of one query, answered for the same inputs.
@@ -102,16 +88,12 @@ fn tetra_hits<T: Real>() {
     }
     assert!(!a.parallel && !a.degenerate);
     // Reversed: the base first (t = 1/3), its normal −z, not flipped.
-    let h = robust(&seg::<T>([0.25, 0.25, -1.0], [0.25, 0.25, 2.0]), &m)
-        .hit
-        .expect("hit");
+    let h = robust(&seg::<T>([0.25, 0.25, -1.0], [0.25, 0.25, 2.0]), &m).hit.expect("hit");
     assert_eq!(h.triangle, 0);
     close(h.t, 1.0 / 3.0, "t");
     close3(&h.normal, [0.0, 0.0, -1.0], "normal");
     // Starting inside: the first hit is where it leaves.
-    let h = robust(&seg::<T>([0.1, 0.1, 0.1], [0.1, 0.1, -0.9]), &m)
-        .hit
-        .expect("hit");
+    let h = robust(&seg::<T>([0.1, 0.1, 0.1], [0.1, 0.1, -0.9]), &m).hit.expect("hit");
     assert_eq!(h.triangle, 0);
     close(h.t, 0.1, "t");
 }
@@ -130,25 +112,19 @@ fn ties<T: Real>() {
     let quad = mesh::<T>(&QUAD_V, &QUAD_F);
     // Through the shared diagonal at (0.5, 0.5): both faces at t = 1/2; the
     // lower index wins, whichever the tree reaches first.
-    let h = robust(&seg::<T>([0.5, 0.5, 1.0], [0.5, 0.5, -1.0]), &quad)
-        .hit
-        .expect("hit");
+    let h = robust(&seg::<T>([0.5, 0.5, 1.0], [0.5, 0.5, -1.0]), &quad).hit.expect("hit");
     assert_eq!(h.triangle, 0, "tie to the lowest face index");
     close(h.t, 0.5, "t");
     // The same faces listed the other way round: still the lower index.
     let swapped = mesh::<T>(&QUAD_V, &[QUAD_F[1], QUAD_F[0]]);
-    let h = robust(&seg::<T>([0.5, 0.5, 1.0], [0.5, 0.5, -1.0]), &swapped)
-        .hit
-        .expect("hit");
+    let h = robust(&seg::<T>([0.5, 0.5, 1.0], [0.5, 0.5, -1.0]), &swapped).hit.expect("hit");
     assert_eq!(h.triangle, 0);
     // Through the tetrahedron's apex (0,0,1), shared by faces 1, 2 and 3, along
     // d = (1, 2, −4) (in none of their planes: d·n ≠ 0 for y = 0, x = 0 and
     // x+y+z = 1): from apex − d/2 to apex + d/2 all three are met at t = 1/2,
     // then the base at t = 3/4. The tie goes to face 1.
     let tetra = mesh::<T>(&TETRA_V, &TETRA_F);
-    let h = robust(&seg::<T>([-0.5, -1.0, 3.0], [0.5, 1.0, -1.0]), &tetra)
-        .hit
-        .expect("hit");
+    let h = robust(&seg::<T>([-0.5, -1.0, 3.0], [0.5, 1.0, -1.0]), &tetra).hit.expect("hit");
     assert_eq!(h.triangle, 1, "vertex tie");
     close(h.t, 0.5, "t");
     close3(&h.point, [0.0, 0.0, 1.0], "the apex");
@@ -171,19 +147,10 @@ fn mesh_first_hit_is_decided_exactly_below_rounding() {
     // is listed second, so only an exact comparison picks it.
     let e = 2f64.powi(-60);
     let m = mesh::<f64>(
-        &[
-            [-1.0, -1.0, 0.0],
-            [3.0, -1.0, 0.0],
-            [-1.0, 3.0, 0.0],
-            [-1.0, -1.0, e],
-            [3.0, -1.0, e],
-            [-1.0, 3.0, e],
-        ],
+        &[[-1.0, -1.0, 0.0], [3.0, -1.0, 0.0], [-1.0, 3.0, 0.0], [-1.0, -1.0, e], [3.0, -1.0, e], [-1.0, 3.0, e]],
         &[[0, 1, 2], [3, 4, 5]],
     );
-    let h = robust(&seg([0.0, 0.0, 1.0], [0.0, 0.0, -1.0]), &m)
-        .hit
-        .expect("hit");
+    let h = robust(&seg([0.0, 0.0, 1.0], [0.0, 0.0, -1.0]), &m).hit.expect("hit");
     assert_eq!(h.triangle, 1, "the upper face is first, by 2^-61");
 }
 
@@ -192,39 +159,21 @@ fn misses_and_flags<T: Real>() {
     // Through the box [0,1]³ but outside the tetrahedron: from (0.9, 0.9, −1)
     // up to (0.9, 0.9, 2) crosses the box; x + y = 1.8 > 1, so no face.
     let a = robust(&seg::<T>([0.9, 0.9, -1.0], [0.9, 0.9, 2.0]), &tetra);
-    assert_eq!(
-        a,
-        MeshIntersection {
-            hit: None,
-            parallel: false,
-            degenerate: false
-        }
-    );
+    assert_eq!(a, MeshIntersection { hit: None, parallel: false, degenerate: false });
     // Stopping short of the base (z from −1 to −2^-20): a plain miss.
-    let a = robust(
-        &seg::<T>([0.25, 0.25, -1.0], [0.25, 0.25, -(2f64.powi(-20))]),
-        &tetra,
-    );
+    let a = robust(&seg::<T>([0.25, 0.25, -1.0], [0.25, 0.25, -(2f64.powi(-20))]), &tetra);
     assert!(a.hit.is_none() && !a.parallel);
     // Ending exactly on the base: a hit at t = 1.
-    let h = robust(&seg::<T>([0.25, 0.25, -1.0], [0.25, 0.25, 0.0]), &tetra)
-        .hit
-        .expect("touching counts");
+    let h = robust(&seg::<T>([0.25, 0.25, -1.0], [0.25, 0.25, 0.0]), &tetra).hit.expect("touching counts");
     close(h.t, 1.0, "t");
     // The open quad is flat: a segment in its plane (or parallel to it) is
     // parallel to every face.
     let quad = mesh::<T>(&QUAD_V, &QUAD_F);
-    for s in [
-        seg::<T>([-1.0, 0.5, 0.0], [2.0, 0.5, 0.0]),
-        seg::<T>([-1.0, 0.5, 1.0], [2.0, 0.5, 1.0]),
-    ] {
+    for s in [seg::<T>([-1.0, 0.5, 0.0], [2.0, 0.5, 0.0]), seg::<T>([-1.0, 0.5, 1.0], [2.0, 0.5, 1.0])] {
         let a = robust(&s, &quad);
         assert!(a.hit.is_none() && a.parallel && !a.degenerate, "{a:?}");
         let l = intersect_segment_mesh_lecture(&s, &quad);
-        assert!(
-            l.hit.is_none() && l.parallel && !l.degenerate,
-            "lecture: {l:?}"
-        );
+        assert!(l.hit.is_none() && l.parallel && !l.degenerate, "lecture: {l:?}");
     }
     // The tetrahedron has faces in every direction: never parallel.
     let a = robust(&seg::<T>([5.0, 0.5, 0.0], [6.0, 0.5, 0.0]), &tetra);
@@ -257,10 +206,7 @@ fn degenerate_input<T: Real>() {
     // A zero-length segment: degenerate, nothing else.
     let p = [0.5, 0.25, 0.0];
     assert_eq!(robust(&seg::<T>(p, p), &m), MeshIntersection::DEGENERATE);
-    assert_eq!(
-        intersect_segment_mesh_lecture(&seg::<T>(p, p), &m),
-        MeshIntersection::DEGENERATE
-    );
+    assert_eq!(intersect_segment_mesh_lecture(&seg::<T>(p, p), &m), MeshIntersection::DEGENERATE);
     // Only degenerate faces: flagged, never parallel.
     let flat = mesh::<T>(&verts, &[[0, 2, 4]]);
     let a = robust(&seg::<T>([-1.0, 0.5, 0.0], [2.0, 0.5, 0.0]), &flat);
@@ -269,11 +215,7 @@ fn degenerate_input<T: Real>() {
     let empty = mesh::<T>(&verts, &[]);
     assert_eq!(
         robust(&seg::<T>([0.0, 0.0, 1.0], [0.0, 0.0, -1.0]), &empty),
-        MeshIntersection {
-            hit: None,
-            parallel: false,
-            degenerate: false
-        }
+        MeshIntersection { hit: None, parallel: false, degenerate: false }
     );
 }
 
@@ -291,12 +233,7 @@ fn mesh_degenerate_faces_and_segments_f32() {
 fn mesh_non_finite_vertices_are_degenerate_faces_not_errors() {
     // 1e39 is finite in f64 and infinite in f32: the face using it is skipped
     // and flagged in f32 only; the other face still answers.
-    let verts = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [1e39, 0.0, 5.0],
-    ];
+    let verts = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1e39, 0.0, 5.0]];
     let faces = [[0, 1, 3], [0, 1, 2]];
     let s = [[0.25, 0.25, 1.0], [0.25, 0.25, -1.0]];
     let m32 = mesh::<f32>(&verts, &faces);
@@ -307,48 +244,24 @@ fn mesh_non_finite_vertices_are_degenerate_faces_not_errors() {
     let c = contact_sphere_mesh_brute(&Sphere::new(v::<f32>([0.25, 0.25, 0.5]), 1.0), &m32)
         .expect("contact with the finite face");
     assert_eq!(c.triangle, 1);
-    assert_eq!(
-        MeshBvh::new(m32).node_count(),
-        1,
-        "one finite face, one leaf"
-    );
+    assert_eq!(MeshBvh::new(m32).node_count(), 1, "one finite face, one leaf");
 }
 
 #[test]
 fn mesh_index_out_of_range_is_refused() {
     let e = TriMesh::<f64>::new(vec![Vec3::zeros(); 3], vec![[0, 1, 2], [0, 3, 1]]);
-    assert_eq!(
-        e,
-        Err(MeshError::IndexOutOfRange {
-            face: 1,
-            corner: 1,
-            index: 3,
-            vertices: 3
-        })
-    );
+    assert_eq!(e, Err(MeshError::IndexOutOfRange { face: 1, corner: 1, index: 3, vertices: 3 }));
     let msg = e.expect_err("refused").to_string();
     assert!(msg.contains("face 1") && msg.contains("index 3"), "{msg}");
 }
 
 #[test]
 fn mesh_aabb_covers_the_finite_faces_only() {
-    let m = mesh::<f64>(
-        &[
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 2.0, -3.0],
-            [9.0, 9.0, 9.0],
-        ],
-        &[[0, 1, 2]],
-    );
+    let m = mesh::<f64>(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 2.0, -3.0], [9.0, 9.0, 9.0]], &[[0, 1, 2]]);
     // Exact: a box selects input coordinates, no arithmetic.
     let bb = m.aabb().expect("box");
     assert_eq!(bb.min, Vec3::new(0.0, 0.0, -3.0));
-    assert_eq!(
-        bb.max,
-        Vec3::new(1.0, 2.0, 0.0),
-        "the unused vertex is not in it"
-    );
+    assert_eq!(bb.max, Vec3::new(1.0, 2.0, 0.0), "the unused vertex is not in it");
     assert!(mesh::<f64>(&TETRA_V, &[]).aabb().is_none());
 }
 
@@ -358,10 +271,7 @@ fn sphere_cases<T: Real>() {
         let a = [
             contact_sphere_mesh_brute(s, &m),
             contact_sphere_mesh_culled(s, &m),
-            contact_sphere_mesh_bvh(
-                s,
-                &MeshBvh::with_split(m.clone(), SplitRule::MedianCentroid),
-            ),
+            contact_sphere_mesh_bvh(s, &MeshBvh::with_split(m.clone(), SplitRule::MedianCentroid)),
             contact_sphere_mesh_bvh(s, &MeshBvh::new(m.clone())),
         ];
         for (k, x) in a.iter().enumerate() {
@@ -443,16 +353,9 @@ fn check_tree<T: Real>(bvh: &MeshBvh<T>) {
         } else {
             let l = walk(bvh, nodes, i + 1, depth + 1, seen);
             let r = walk(bvh, nodes, n.start as usize, depth + 1, seen);
-            (
-                [0, 1, 2].map(|a| l.0[a].min(r.0[a])),
-                [0, 1, 2].map(|a| l.1[a].max(r.1[a])),
-            )
+            ([0, 1, 2].map(|a| l.0[a].min(r.0[a])), [0, 1, 2].map(|a| l.1[a].max(r.1[a])))
         };
-        assert_eq!(
-            (n.min, n.max),
-            (lo, hi),
-            "node {i}: exact box of its contents"
-        );
+        assert_eq!((n.min, n.max), (lo, hi), "node {i}: exact box of its contents");
         (lo, hi)
     }
     if !nodes.is_empty() {
@@ -507,10 +410,7 @@ fn mesh_bvh_trees_are_exact_and_within_the_depth_cap() {
     for rule in [SplitRule::MedianCentroid, SplitRule::SahBinned] {
         let bvh = MeshBvh::with_split(mesh::<f64>(&vs, &fs), rule);
         check_tree(&bvh);
-        assert!(
-            bvh.leaf_count() >= fs.len() / 8,
-            "{rule:?}: leaves hold ≤ 8 faces"
-        );
+        assert!(bvh.leaf_count() >= fs.len() / 8, "{rule:?}: leaves hold ≤ 8 faces");
         check_tree(&MeshBvh::with_split(mesh::<f32>(&vs, &fs), rule));
     }
     // Every face the same (coincident centroids): still split, still exact.
@@ -538,9 +438,7 @@ fn mesh_bvh_agrees_with_brute_force_on_a_closed_sphere() {
         let s = seg::<f64>(far, [0.0, 0.0, 0.0]);
         let b = intersect_segment_mesh_brute(&s, &m);
         assert_eq!(intersect_segment_mesh_bvh(&s, &bvh), b, "segment {i}");
-        let h = b
-            .hit
-            .unwrap_or_else(|| panic!("segment {i} {far:?} misses: {b:?}"));
+        let h = b.hit.unwrap_or_else(|| panic!("segment {i} {far:?} misses: {b:?}"));
         assert!(h.t.wide() > 0.45 && h.t.wide() < 0.55, "t {} near 1/2", h.t);
         hits += 1;
     }

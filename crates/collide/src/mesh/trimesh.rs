@@ -32,15 +32,9 @@ pub enum MeshError {
 impl fmt::Display for MeshError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            MeshError::IndexOutOfRange {
-                face,
-                corner,
-                index,
-                vertices,
-            } => write!(
-                f,
-                "face {face} corner {corner}: vertex index {index} out of range ({vertices} vertices)"
-            ),
+            MeshError::IndexOutOfRange { face, corner, index, vertices } => {
+                write!(f, "face {face} corner {corner}: vertex index {index} out of range ({vertices} vertices)")
+            }
             MeshError::TooManyFaces { faces } => {
                 write!(f, "{faces} faces: at most {} are supported", u32::MAX)
             }
@@ -92,12 +86,7 @@ impl<T: Real> TriMesh<T> {
         for (face, f) in faces.iter().enumerate() {
             for (corner, &index) in f.iter().enumerate() {
                 if index >= vertices.len() {
-                    return Err(MeshError::IndexOutOfRange {
-                        face,
-                        corner,
-                        index,
-                        vertices: vertices.len(),
-                    });
+                    return Err(MeshError::IndexOutOfRange { face, corner, index, vertices: vertices.len() });
                 }
             }
         }
@@ -136,18 +125,10 @@ impl<T: Real> TriMesh<T> {
             }
             let u = [pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]];
             let v = [pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2]];
-            let n = [
-                u[1] * v[2] - u[2] * v[1],
-                u[2] * v[0] - u[0] * v[2],
-                u[0] * v[1] - u[1] * v[0],
-            ];
+            let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
             let l1 = n[0].abs() + n[1].abs() + n[2].abs();
             for axis in 0..3 {
-                let al = if l1 > 0.0 && l1.is_finite() {
-                    n[axis].abs() / l1
-                } else {
-                    0.0
-                };
+                let al = if l1 > 0.0 && l1.is_finite() { n[axis].abs() / l1 } else { 0.0 };
                 if al > alignment[axis] {
                     alignment[axis] = al;
                     witnesses[axis] = Some(i);
@@ -155,15 +136,7 @@ impl<T: Real> TriMesh<T> {
             }
         }
         let degenerate_count = degenerate.iter().filter(|d| **d).count();
-        Ok(Self {
-            vertices,
-            faces,
-            degenerate,
-            nonfinite,
-            degenerate_count,
-            aabb,
-            witnesses,
-        })
+        Ok(Self { vertices, faces, degenerate, nonfinite, degenerate_count, aabb, witnesses })
     }
 
     /// The vertex positions.

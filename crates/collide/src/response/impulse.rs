@@ -26,11 +26,6 @@ pub struct Response<T: Real> {
 impl<T: Real> Response<T> {
     /// Velocities unchanged, no impulse.
     pub(crate) fn unchanged(va: &Vec3<T>, vb: &Vec3<T>, degenerate: bool) -> Self {
-        Self {
-            velocity_a: *va,
-            velocity_b: *vb,
-            impulse: T::zero(),
-            degenerate,
-        }
+        Self { velocity_a: *va, velocity_b: *vb, impulse: T::zero(), degenerate }
     }
 }

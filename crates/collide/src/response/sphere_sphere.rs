@@ -34,14 +34,7 @@ use crate::real::{Real, Vec3, try_normalize_stable};
 /// positive (or NaN), both masses infinite (`1/ma + 1/mb = 0`), or a non-finite
 /// `e`: no impulse can be defined; velocities unchanged, `degenerate: true`.
 /// `e` outside `[0, 1]` is applied as given (`e > 1` adds energy).
-pub fn respond_sphere_sphere<T: Real>(
-    va: &Vec3<T>,
-    ma: T,
-    vb: &Vec3<T>,
-    mb: T,
-    normal: &Vec3<T>,
-    e: T,
-) -> Response<T> {
+pub fn respond_sphere_sphere<T: Real>(va: &Vec3<T>, ma: T, vb: &Vec3<T>, mb: T, normal: &Vec3<T>, e: T) -> Response<T> {
     let Some(n) = try_normalize_stable(normal) else {
         return Response::unchanged(va, vb, true);
     };
@@ -58,10 +51,5 @@ pub fn respond_sphere_sphere<T: Real>(
         return Response::unchanged(va, vb, !vn.finite());
     }
     let j = -(T::one() + e) * vn / w;
-    Response {
-        velocity_a: va + n * (j * wa),
-        velocity_b: vb - n * (j * wb),
-        impulse: j,
-        degenerate: false,
-    }
+    Response { velocity_a: va + n * (j * wa), velocity_b: vb - n * (j * wb), impulse: j, degenerate: false }
 }

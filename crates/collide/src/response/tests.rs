@@ -29,19 +29,14 @@ fn eps<T: Real>() -> f64 {
 fn close_v<T: Real>(got: &Vec3<T>, want: [f64; 3], what: &str) {
     for (k, w) in want.iter().enumerate() {
         let g = got[k].wide();
-        assert!(
-            (g - w).abs() <= HAND_TOL_EPS * eps::<T>(),
-            "{what}[{k}]: got {got:?}, want {want:?}"
-        );
+        assert!((g - w).abs() <= HAND_TOL_EPS * eps::<T>(), "{what}[{k}]: got {got:?}, want {want:?}");
     }
 }
 
 /// The claim is that the velocity was passed through untouched, not computed:
 /// bit for bit.
 fn same_bits<T: Real>(got: &Vec3<T>, want: &Vec3<T>) -> bool {
-    got.iter()
-        .zip(want.iter())
-        .all(|(g, w)| g.wide().to_bits() == w.wide().to_bits())
+    got.iter().zip(want.iter()).all(|(g, w)| g.wide().to_bits() == w.wide().to_bits())
 }
 
 macro_rules! both {
@@ -93,14 +88,8 @@ fn unequal_masses<T: Real>() {
     close_v(&r.velocity_b, [2.0, 0.0, 0.0], "b");
     // An infinite mass is a static body: a bounces back with −e·4 (e = 1/2).
     let inf = T::one() / T::zero();
-    let r = respond_sphere_sphere(
-        &v::<T>(4.0, 0.0, 0.0),
-        T::one(),
-        &Vec3::zeros(),
-        inf,
-        &v(-1.0, 0.0, 0.0),
-        T::of(0.5),
-    );
+    let r =
+        respond_sphere_sphere(&v::<T>(4.0, 0.0, 0.0), T::one(), &Vec3::zeros(), inf, &v(-1.0, 0.0, 0.0), T::of(0.5));
     close_v(&r.velocity_a, [-2.0, 0.0, 0.0], "static b, a");
     close_v(&r.velocity_b, [0.0; 3], "static b, b");
 }
@@ -113,15 +102,7 @@ fn glancing<T: Real>() {
     // Momentum (1,0,0) and energy 1/2 are kept.
     let a = Sphere::new(v::<T>(-3.0, 4.0, 0.0), T::of(2.5));
     let b = Sphere::new(Vec3::zeros(), T::of(2.5));
-    let r = respond_sphere_sphere_contact(
-        &a,
-        &v(1.0, 0.0, 0.0),
-        T::one(),
-        &b,
-        &Vec3::zeros(),
-        T::one(),
-        T::one(),
-    );
+    let r = respond_sphere_sphere_contact(&a, &v(1.0, 0.0, 0.0), T::one(), &b, &Vec3::zeros(), T::one(), T::one());
     close_v(&r.velocity_a, [0.64, 0.48, 0.0], "a");
     close_v(&r.velocity_b, [0.36, -0.48, 0.0], "b");
 }
@@ -132,22 +113,13 @@ fn separating_keep_their_velocities<T: Real>() {
     // Sliding (v_rel ⟂ n) is not approaching either.
     let a = Sphere::new(v::<T>(-1.0, 0.0, 0.0), T::one());
     let b = Sphere::new(v::<T>(1.0, 0.0, 0.0), T::one());
-    for (va, vb) in [
-        (v::<T>(-1.0, 0.0, 0.0), Vec3::zeros()),
-        (v(0.0, 3.0, 0.0), v(0.0, -1.0, 2.0)),
-    ] {
+    for (va, vb) in [(v::<T>(-1.0, 0.0, 0.0), Vec3::zeros()), (v(0.0, 3.0, 0.0), v(0.0, -1.0, 2.0))] {
         let r = respond_sphere_sphere_contact(&a, &va, T::one(), &b, &vb, T::of(2.0), T::one());
-        assert!(
-            same_bits(&r.velocity_a, &va) && same_bits(&r.velocity_b, &vb),
-            "{r:?}"
-        );
+        assert!(same_bits(&r.velocity_a, &va) && same_bits(&r.velocity_b, &vb), "{r:?}");
         assert!(r.impulse <= T::zero() && !r.degenerate);
     }
 }
-both!(
-    separating_keep_their_velocities_case,
-    separating_keep_their_velocities
-);
+both!(separating_keep_their_velocities_case, separating_keep_their_velocities);
 
 fn plane_reflection<T: Real>() {
     // Ground normal (0,0,2) (any length), velocity (1,0,−2), e = 1/2: the normal
@@ -162,10 +134,7 @@ fn plane_reflection<T: Real>() {
     close_v(&r.velocity_a, [1.0, 0.0, 0.0], "e = 0");
     // Leaving the plane: unchanged.
     let va = v::<T>(1.0, 0.0, 2.0);
-    assert!(same_bits(
-        &respond_sphere_plane(&va, &v(0.0, 0.0, 1.0), T::one()).velocity_a,
-        &va
-    ));
+    assert!(same_bits(&respond_sphere_plane(&va, &v(0.0, 0.0, 1.0), T::one()).velocity_a, &va));
 }
 both!(plane_reflection_case, plane_reflection);
 
@@ -178,15 +147,7 @@ fn degenerate_input<T: Real>() {
     let r = respond_sphere_sphere_contact(&s, &va, T::one(), &s, &vb, T::one(), T::one());
     assert!(r.degenerate && same_bits(&r.velocity_a, &va));
     // Along the fallback normal they are approaching: the impulse acts along +z.
-    let r = respond_sphere_sphere_contact(
-        &s,
-        &v(0.0, 0.0, -1.0),
-        T::one(),
-        &s,
-        &Vec3::zeros(),
-        T::one(),
-        T::one(),
-    );
+    let r = respond_sphere_sphere_contact(&s, &v(0.0, 0.0, -1.0), T::one(), &s, &Vec3::zeros(), T::one(), T::one());
     assert!(r.degenerate);
     close_v(&r.velocity_a, [0.0; 3], "fallback normal, a");
     close_v(&r.velocity_b, [0.0, 0.0, -1.0], "fallback normal, b");
@@ -199,19 +160,10 @@ fn degenerate_input<T: Real>() {
         (T::zero(), T::one(), n, T::one(), "zero mass"),
         (T::one(), -T::one(), n, T::one(), "negative mass"),
         (inf, inf, n, T::one(), "two static bodies"),
-        (
-            T::one(),
-            T::one(),
-            n,
-            T::zero() / T::zero(),
-            "NaN restitution",
-        ),
+        (T::one(), T::one(), n, T::zero() / T::zero(), "NaN restitution"),
     ] {
         let r = respond_sphere_sphere(&va, ma, &vb, mb, &normal, e);
-        assert!(
-            r.degenerate && same_bits(&r.velocity_a, &va) && same_bits(&r.velocity_b, &vb),
-            "{what}"
-        );
+        assert!(r.degenerate && same_bits(&r.velocity_a, &va) && same_bits(&r.velocity_b, &vb), "{what}");
     }
 }
 both!(degenerate_input_case, degenerate_input);
@@ -230,15 +182,13 @@ struct Bodies {
 
 fn bodies() -> impl Strategy<Value = Bodies> {
     let p = || [-5.0..5.0f64, -5.0..5.0f64, -5.0..5.0f64];
-    (p(), 0.1..10.0f64, p(), 0.1..10.0f64, p(), 0.0..=1.0f64).prop_map(|(va, ma, vb, mb, n, e)| {
-        Bodies {
-            va,
-            ma,
-            vb,
-            mb,
-            n,
-            e,
-        }
+    (p(), 0.1..10.0f64, p(), 0.1..10.0f64, p(), 0.0..=1.0f64).prop_map(|(va, ma, vb, mb, n, e)| Bodies {
+        va,
+        ma,
+        vb,
+        mb,
+        n,
+        e,
     })
 }
 
@@ -268,29 +218,16 @@ fn check_conservation<T: Real>(s: &Bodies) -> Result<(), TestCaseError> {
     // Momentum.
     let p0 = va * ma + vb * mb;
     let p1 = va2 * ma + vb2 * mb;
-    let size = (va * ma)
-        .amax()
-        .max((vb * mb).amax())
-        .max((va2 * ma).amax())
-        .max((vb2 * mb).amax());
-    prop_assert!(
-        (p1 - p0).amax() <= CONSERVE_TOL_EPS * eps * size,
-        "momentum {p0:?} → {p1:?}"
-    );
+    let size = (va * ma).amax().max((vb * mb).amax()).max((va2 * ma).amax()).max((vb2 * mb).amax());
+    prop_assert!((p1 - p0).amax() <= CONSERVE_TOL_EPS * eps * size, "momentum {p0:?} → {p1:?}");
     // Restitution law along the normal, tangential part kept.
     let (u0, u1) = (va - vb, va2 - vb2);
     let speed = u0.amax().max(u1.amax());
     let (n0, n1) = (u0.dot(&n), u1.dot(&n));
     let want = if n0 < 0.0 { -e * n0 } else { n0 };
-    prop_assert!(
-        (n1 - want).abs() <= CONSERVE_TOL_EPS * eps * speed,
-        "normal {n0} → {n1}, want {want}"
-    );
+    prop_assert!((n1 - want).abs() <= CONSERVE_TOL_EPS * eps * speed, "normal {n0} → {n1}, want {want}");
     let (t0, t1) = (u0 - n * n0, u1 - n * n1);
-    prop_assert!(
-        (t1 - t0).amax() <= CONSERVE_TOL_EPS * eps * speed,
-        "tangential {t0:?} → {t1:?}"
-    );
+    prop_assert!((t1 - t0).amax() <= CONSERVE_TOL_EPS * eps * speed, "tangential {t0:?} → {t1:?}");
     // Energy: kept at e = 1, never gained.
     let ke = |a: &Vec3<f64>, b: &Vec3<f64>| 0.5 * (ma * a.norm_squared() + mb * b.norm_squared());
     let (k0, k1) = (ke(&va, &vb), ke(&va2, &vb2));
@@ -325,10 +262,7 @@ fn check_plane<T: Real>(s: &Bodies) -> Result<(), TestCaseError> {
     let (n0, n1) = (va.dot(&n), va2.dot(&n));
     let want = if n0 < 0.0 { -e * n0 } else { n0 };
     prop_assert!((n1 - want).abs() <= tol, "normal {n0} → {n1}, want {want}");
-    prop_assert!(
-        ((va2 - n * n1) - (va - n * n0)).amax() <= tol,
-        "tangential changed"
-    );
+    prop_assert!(((va2 - n * n1) - (va - n * n0)).amax() <= tol, "tangential changed");
     prop_assert!(wide3(&r.velocity_b).amax() <= 0.0, "the plane is static");
     Ok(())
 }
@@ -348,21 +282,6 @@ macro_rules! prop_both {
     };
 }
 
-prop_both!(
-    1000,
-    response_conserves_momentum_and_obeys_restitution,
-    bodies(),
-    check_conservation
-);
-prop_both!(
-    1000,
-    response_elastic_keeps_energy_and_plastic_stops_normal_motion,
-    bodies(),
-    check_extremes
-);
-prop_both!(
-    1000,
-    response_plane_reflects_with_restitution,
-    bodies(),
-    check_plane
-);
+prop_both!(1000, response_conserves_momentum_and_obeys_restitution, bodies(), check_conservation);
+prop_both!(1000, response_elastic_keeps_energy_and_plastic_stops_normal_motion, bodies(), check_extremes);
+prop_both!(1000, response_plane_reflects_with_restitution, bodies(), check_plane);

@@ -33,13 +33,7 @@ use crate::shapes::{Plane, Sphere};
 /// as for [`contact_sphere_plane`] (the fixture format refuses such planes). A
 /// scene whose intermediate values overflow is answered `None`, never NaN. A
 /// negative or NaN `t_max` is read as 0.
-pub fn toi_sphere_plane<T: Real>(
-    a: &Sphere<T>,
-    va: &Vec3<T>,
-    b: &Plane<T>,
-    vb: &Vec3<T>,
-    t_max: T,
-) -> Option<Toi<T>> {
+pub fn toi_sphere_plane<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>, t_max: T) -> Option<Toi<T>> {
     let t_max = clamp_t_max(t_max);
     let len = stable_norm(&b.normal);
     if !(len > T::zero() && len.finite()) {

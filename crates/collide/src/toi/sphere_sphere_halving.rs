@@ -31,12 +31,7 @@ pub fn toi_sphere_sphere_halving<T: Real>(
     stop: Halving<T>,
 ) -> Option<Toi<T>> {
     toi_halving(
-        |t| {
-            contact_sphere_sphere(
-                &Sphere::new(a.center + va * t, a.radius),
-                &Sphere::new(b.center + vb * t, b.radius),
-            )
-        },
+        |t| contact_sphere_sphere(&Sphere::new(a.center + va * t, a.radius), &Sphere::new(b.center + vb * t, b.radius)),
         t_max,
         stop,
     )

@@ -37,10 +37,7 @@ pub struct Advancement {
 impl Default for Advancement {
     /// [`ADVANCE_TOL_EPS`] and [`MAX_ADVANCE_STEPS`].
     fn default() -> Self {
-        Self {
-            tol_eps: ADVANCE_TOL_EPS,
-            max_steps: MAX_ADVANCE_STEPS,
-        }
+        Self { tol_eps: ADVANCE_TOL_EPS, max_steps: MAX_ADVANCE_STEPS }
     }
 }
 
@@ -124,14 +121,7 @@ pub fn toi_sphere_triangle<T: Real>(
                 Some(n) if a.radius > T::zero() => (n, false),
                 _ => (approach_fallback(&v), true),
             };
-            Some(Toi {
-                t,
-                point: q + vb * t,
-                normal,
-                status,
-                iterations: steps,
-                degenerate,
-            })
+            Some(Toi { t, point: q + vb * t, normal, status, iterations: steps, degenerate })
         };
         if gap <= tol {
             return answer(ToiStatus::Converged);

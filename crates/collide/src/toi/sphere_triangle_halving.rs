@@ -35,10 +35,7 @@ pub fn toi_sphere_triangle_halving<T: Real>(
         |t| {
             let d = vb * t;
             let [v0, v1, v2] = b.vertices;
-            contact_sphere_triangle(
-                &Sphere::new(a.center + va * t, a.radius),
-                &Triangle::new(v0 + d, v1 + d, v2 + d),
-            )
+            contact_sphere_triangle(&Sphere::new(a.center + va * t, a.radius), &Triangle::new(v0 + d, v1 + d, v2 + d))
         },
         t_max,
         stop,

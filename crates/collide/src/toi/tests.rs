@@ -50,19 +50,13 @@ fn hand_tol<T: Real>() -> f64 {
 
 fn close<T: Real>(got: T, want: f64, what: &str) {
     let g = got.wide();
-    assert!(
-        (g - want).abs() <= hand_tol::<T>(),
-        "{what}: got {g}, want {want}"
-    );
+    assert!((g - want).abs() <= hand_tol::<T>(), "{what}: got {g}, want {want}");
 }
 
 fn close_v<T: Real>(got: &Vec3<T>, want: [f64; 3], what: &str) {
     for (k, w) in want.iter().enumerate() {
         let g = got[k].wide();
-        assert!(
-            (g - w).abs() <= hand_tol::<T>(),
-            "{what}[{k}]: got {got:?}, want {want:?}"
-        );
+        assert!((g - w).abs() <= hand_tol::<T>(), "{what}[{k}]: got {got:?}, want {want:?}");
     }
 }
 
@@ -119,16 +113,8 @@ fn sphere_sphere_head_on<T: Real>() {
         let h = toi_sphere_sphere_halving(&a, &va, &b, &vb, T::of(3.0), Halving::Steps(steps))
             .expect("halving: the end of the interval overlaps");
         let bound = 3.0 / f64::from(2u32.pow(steps));
-        assert!(
-            h.t.wide() >= 2.0 - hand_tol::<T>(),
-            "halving {steps}: {:?} before",
-            h.t
-        );
-        assert!(
-            h.t.wide() - 2.0 <= bound + hand_tol::<T>(),
-            "halving {steps}: {:?}",
-            h.t
-        );
+        assert!(h.t.wide() >= 2.0 - hand_tol::<T>(), "halving {steps}: {:?} before", h.t);
+        assert!(h.t.wide() - 2.0 <= bound + hand_tol::<T>(), "halving {steps}: {:?}", h.t);
         assert_eq!(h.iterations, steps);
         if steps >= 5 {
             close_v(&h.normal, [-1.0, 0.0, 0.0], "halving normal");
@@ -137,11 +123,7 @@ fn sphere_sphere_head_on<T: Real>() {
             // (1,0,0) and (−1,0,0) have passed each other: the static contact
             // there points the other way. Halving's contact is the one at the
             // overshoot, asserted as it is.
-            close_v(
-                &h.normal,
-                [1.0, 0.0, 0.0],
-                "halving normal at the overshoot",
-            );
+            close_v(&h.normal, [1.0, 0.0, 0.0], "halving normal at the overshoot");
         }
     }
 }
@@ -169,11 +151,7 @@ both!(sphere_sphere_glancing_case, sphere_sphere_glancing);
 fn sphere_sphere_grazing<T: Real>() {
     // a at (−5,2,0) → +x past b at 0, radii 1: the closest approach is h = 2 = R,
     // touching exactly once, at t = 5, point (0,1,0), normal +y.
-    let (a, va, b) = (
-        ball::<T>(-5.0, 2.0, 0.0, 1.0),
-        v::<T>(1.0, 0.0, 0.0),
-        ball(0.0, 0.0, 0.0, 1.0),
-    );
+    let (a, va, b) = (ball::<T>(-5.0, 2.0, 0.0, 1.0), v::<T>(1.0, 0.0, 0.0), ball(0.0, 0.0, 0.0, 1.0));
     let k = toi_sphere_sphere(&a, &va, &b, &still(), T::of(10.0)).expect("grazing counts");
     close(k.t, 5.0, "t");
     close_v(&k.normal, [0.0, 1.0, 0.0], "normal");
@@ -184,9 +162,7 @@ fn sphere_sphere_grazing<T: Real>() {
     assert!(toi_sphere_sphere(&wide, &va, &b, &still(), T::of(10.0)).is_none());
     // The lecture's halving misses the grazing touch: at t_max = 10 the spheres
     // are apart again. Asserted as it is (tunneling, see `toi_halving`).
-    assert!(
-        toi_sphere_sphere_halving(&a, &va, &b, &still(), T::of(10.0), Halving::Steps(30)).is_none()
-    );
+    assert!(toi_sphere_sphere_halving(&a, &va, &b, &still(), T::of(10.0), Halving::Steps(30)).is_none());
 }
 both!(sphere_sphere_grazing_case, sphere_sphere_grazing);
 
@@ -196,17 +172,11 @@ fn sphere_sphere_tunneling<T: Real>() {
     // x = 90, far past. The closed form finds the impact; halving, which only
     // tests the end of the step, reports none — the lecture's known miss,
     // asserted as it is.
-    let (a, va, b) = (
-        ball::<T>(-10.0, 0.0, 0.0, 0.1),
-        v::<T>(100.0, 0.0, 0.0),
-        ball(0.0, 0.0, 0.0, 1.0),
-    );
+    let (a, va, b) = (ball::<T>(-10.0, 0.0, 0.0, 0.1), v::<T>(100.0, 0.0, 0.0), ball(0.0, 0.0, 0.0, 1.0));
     let k = toi_sphere_sphere(&a, &va, &b, &still(), T::one()).expect("closed form sees it");
     close(k.t, 0.089, "t");
     close_v(&k.point, [-1.0, 0.0, 0.0], "point");
-    assert!(
-        toi_sphere_sphere_halving(&a, &va, &b, &still(), T::one(), Halving::Steps(40)).is_none()
-    );
+    assert!(toi_sphere_sphere_halving(&a, &va, &b, &still(), T::one(), Halving::Steps(40)).is_none());
 }
 both!(sphere_sphere_tunneling_case, sphere_sphere_tunneling);
 
@@ -220,10 +190,7 @@ fn sphere_sphere_t_max_boundary<T: Real>() {
     let below = T::of(2.0) * (T::one() - T::EPSILON / T::of(2.0));
     assert!(toi_sphere_sphere(&a, &va, &b, &vb, below).is_none());
 }
-both!(
-    sphere_sphere_t_max_boundary_case,
-    sphere_sphere_t_max_boundary
-);
+both!(sphere_sphere_t_max_boundary_case, sphere_sphere_t_max_boundary);
 
 fn sphere_sphere_no_impact<T: Real>() {
     let b = ball::<T>(0.0, 0.0, 0.0, 1.0);
@@ -232,16 +199,7 @@ fn sphere_sphere_no_impact<T: Real>() {
     // arriving after t_max (gap 3 at speed 1: t = 3 > 2).
     assert!(toi_sphere_sphere(&a, &v(-1.0, 0.0, 0.0), &b, &still(), T::of(10.0)).is_none());
     assert!(toi_sphere_sphere(&a, &v(1.0, 1.0, 0.0), &b, &v(1.0, 1.0, 0.0), T::of(10.0)).is_none());
-    assert!(
-        toi_sphere_sphere(
-            &ball(-5.0, 3.0, 0.0, 1.0),
-            &v(1.0, 0.0, 0.0),
-            &b,
-            &still(),
-            T::of(10.0)
-        )
-        .is_none()
-    );
+    assert!(toi_sphere_sphere(&ball(-5.0, 3.0, 0.0, 1.0), &v(1.0, 0.0, 0.0), &b, &still(), T::of(10.0)).is_none());
     assert!(toi_sphere_sphere(&a, &v(1.0, 0.0, 0.0), &b, &still(), T::of(2.0)).is_none());
     // A negative t_max is the interval [0, 0].
     assert!(toi_sphere_sphere(&a, &v(1.0, 0.0, 0.0), &b, &still(), T::of(-1.0)).is_none());
@@ -259,35 +217,20 @@ fn sphere_sphere_already_overlapping<T: Real>() {
         close(k.t, 0.0, "t");
         close_v(&k.normal, [1.0, 0.0, 0.0], "normal");
         close_v(&k.point, [1.0, 0.0, 0.0], "point");
-        let h = toi_sphere_sphere_halving(&a, &va, &b, &still(), T::one(), Halving::Steps(8))
-            .expect("halving: overlap");
+        let h =
+            toi_sphere_sphere_halving(&a, &va, &b, &still(), T::one(), Halving::Steps(8)).expect("halving: overlap");
         assert_eq!(h.status, ToiStatus::Penetrating);
         assert_eq!(h.iterations, 0);
     }
     // Touching at t = 0 counts; concentric is flagged with the fallback normal.
-    let touching = toi_sphere_sphere(
-        &ball::<T>(2.0, 0.0, 0.0, 1.0),
-        &still(),
-        &b,
-        &still(),
-        T::one(),
-    );
+    let touching = toi_sphere_sphere(&ball::<T>(2.0, 0.0, 0.0, 1.0), &still(), &b, &still(), T::one());
     assert!(touching.is_some_and(|k| k.status == ToiStatus::Penetrating));
-    let k = toi_sphere_sphere(
-        &ball::<T>(0.0, 0.0, 0.0, 0.5),
-        &v(1.0, 0.0, 0.0),
-        &b,
-        &still(),
-        T::one(),
-    )
-    .expect("concentric");
+    let k = toi_sphere_sphere(&ball::<T>(0.0, 0.0, 0.0, 0.5), &v(1.0, 0.0, 0.0), &b, &still(), T::one())
+        .expect("concentric");
     assert!(k.degenerate && k.status == ToiStatus::Penetrating);
     close_v(&k.normal, [0.0, 0.0, 1.0], "fallback normal");
 }
-both!(
-    sphere_sphere_already_overlapping_case,
-    sphere_sphere_already_overlapping
-);
+both!(sphere_sphere_already_overlapping_case, sphere_sphere_already_overlapping);
 
 fn sphere_sphere_zero_radii<T: Real>() {
     // Two points meeting head-on at the origin at t = 1 (c = 4, q = 4): no
@@ -325,28 +268,14 @@ fn sphere_plane_falling_ball<T: Real>() {
     close_v(&k.point, [1.0, 2.0, 2.0], "point");
     // Halving after k steps: within 3/2^k, never before.
     for steps in [3u32, 12, 20] {
-        let h = toi_sphere_plane_halving(
-            &a,
-            &va,
-            &ground(),
-            &still(),
-            T::of(3.0),
-            Halving::Steps(steps),
-        )
-        .expect("halving");
+        let h =
+            toi_sphere_plane_halving(&a, &va, &ground(), &still(), T::of(3.0), Halving::Steps(steps)).expect("halving");
         let bound = 3.0 / f64::from(2u32.pow(steps));
         assert!(h.t.wide() >= 2.0 - hand_tol::<T>() && h.t.wide() - 2.0 <= bound + hand_tol::<T>());
     }
     // By tolerance: the bracket ends no wider than 1e-3.
-    let h = toi_sphere_plane_halving(
-        &a,
-        &va,
-        &ground(),
-        &still(),
-        T::of(3.0),
-        Halving::Tolerance(T::of(1e-3)),
-    )
-    .expect("halving");
+    let h = toi_sphere_plane_halving(&a, &va, &ground(), &still(), T::of(3.0), Halving::Tolerance(T::of(1e-3)))
+        .expect("halving");
     assert!(h.t.wide() - 2.0 <= 1e-3 + hand_tol::<T>(), "{:?}", h.t);
     assert_eq!(h.iterations, 12, "3/2^12 < 1e-3 ≤ 3/2^11");
 }
@@ -378,35 +307,17 @@ fn sphere_plane_no_impact_and_overlap<T: Real>() {
     assert!(toi_sphere_plane(&a, &v(0.0, 0.0, 1.0), &ground(), &still(), T::of(10.0)).is_none());
     assert!(toi_sphere_plane(&a, &v(0.0, 0.0, -1.0), &ground(), &still(), T::of(3.0)).is_none());
     // Deep in the solid half-space, or touching: t = 0, the static contact.
-    let k = toi_sphere_plane(
-        &ball::<T>(0.0, 0.0, -3.0, 1.0),
-        &v(0.0, 0.0, 1.0),
-        &ground(),
-        &still(),
-        T::one(),
-    )
-    .expect("inside");
+    let k = toi_sphere_plane(&ball::<T>(0.0, 0.0, -3.0, 1.0), &v(0.0, 0.0, 1.0), &ground(), &still(), T::one())
+        .expect("inside");
     assert_eq!(k.status, ToiStatus::Penetrating);
     close_v(&k.point, [0.0; 3], "point");
-    let k = toi_sphere_plane(
-        &ball::<T>(0.0, 0.0, 1.0, 1.0),
-        &still(),
-        &ground(),
-        &still(),
-        T::one(),
-    );
-    assert!(
-        k.is_some_and(|k| k.status == ToiStatus::Penetrating),
-        "touching counts"
-    );
+    let k = toi_sphere_plane(&ball::<T>(0.0, 0.0, 1.0, 1.0), &still(), &ground(), &still(), T::one());
+    assert!(k.is_some_and(|k| k.status == ToiStatus::Penetrating), "touching counts");
     // A zero normal is no plane.
     let none = Plane::new(still::<T>(), T::zero());
     assert!(toi_sphere_plane(&a, &v(0.0, 0.0, -1.0), &none, &still(), T::one()).is_none());
 }
-both!(
-    sphere_plane_no_impact_and_overlap_case,
-    sphere_plane_no_impact_and_overlap
-);
+both!(sphere_plane_no_impact_and_overlap_case, sphere_plane_no_impact_and_overlap);
 
 // ---------------------------------------------------------- sphere–triangle
 
@@ -417,53 +328,24 @@ fn sphere_triangle_regions<T: Real>() {
     // edge v0v1 (y = 0): from y = −3 up at 1, in the plane: t = 2 at (1,0,0);
     // vertex v1 = (2,0,0): from x = 5 toward −x: t = 2.
     let cases = [
-        (
-            [0.5, 0.5, 3.0],
-            [0.0, 0.0, -1.0],
-            [0.5, 0.5, 0.0],
-            [0.0, 0.0, 1.0],
-            "face",
-        ),
-        (
-            [1.0, -3.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, -1.0, 0.0],
-            "edge",
-        ),
-        (
-            [5.0, 0.0, 0.0],
-            [-1.0, 0.0, 0.0],
-            [2.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            "vertex",
-        ),
+        ([0.5, 0.5, 3.0], [0.0, 0.0, -1.0], [0.5, 0.5, 0.0], [0.0, 0.0, 1.0], "face"),
+        ([1.0, -3.0, 0.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0], "edge"),
+        ([5.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 0.0, 0.0], "vertex"),
     ];
     for (c, vel, point, normal, what) in cases {
         let a = ball::<T>(c[0], c[1], c[2], 1.0);
         let va = v::<T>(vel[0], vel[1], vel[2]);
         let k = toi_sphere_triangle(&a, &va, &tri(), &still(), T::of(5.0), &rule).expect(what);
         assert_eq!(k.status, ToiStatus::Converged, "{what}");
-        assert!(
-            k.iterations <= 2,
-            "{what}: linear distance, {} steps",
-            k.iterations
-        );
+        assert!(k.iterations <= 2, "{what}: linear distance, {} steps", k.iterations);
         close(k.t, 2.0, what);
         close_v(&k.point, point, what);
         close_v(&k.normal, normal, what);
     }
     // The triangle moving up at 1 toward a still sphere at z = 3: t = 2, and the
     // point is on the moved triangle, (0.5, 0.5, 2).
-    let k = toi_sphere_triangle(
-        &ball::<T>(0.5, 0.5, 3.0, 1.0),
-        &still(),
-        &tri(),
-        &v(0.0, 0.0, 1.0),
-        T::of(5.0),
-        &rule,
-    )
-    .expect("moving triangle");
+    let k = toi_sphere_triangle(&ball::<T>(0.5, 0.5, 3.0, 1.0), &still(), &tri(), &v(0.0, 0.0, 1.0), T::of(5.0), &rule)
+        .expect("moving triangle");
     close(k.t, 2.0, "t");
     close_v(&k.point, [0.5, 0.5, 2.0], "point");
 }
@@ -485,54 +367,25 @@ fn sphere_triangle_grazing_edge<T: Real>() {
     // steps; the scale is 10 (the displacement).
     let a = ball::<T>(-1.0, -5.0, 0.0, 1.0);
     let va = v::<T>(0.0, 1.0, 0.0);
-    let k = toi_sphere_triangle(
-        &a,
-        &va,
-        &tri(),
-        &still(),
-        T::of(10.0),
-        &Advancement::default(),
-    )
-    .expect("grazing");
+    let k = toi_sphere_triangle(&a, &va, &tri(), &still(), T::of(10.0), &Advancement::default()).expect("grazing");
     assert_eq!(k.status, ToiStatus::Converged);
     let tol = grazing_time_tol::<T>(10.0);
-    assert!(
-        k.t.wide() <= 5.0 + hand_tol::<T>(),
-        "conservative: {:?}",
-        k.t
-    );
+    assert!(k.t.wide() <= 5.0 + hand_tol::<T>(), "conservative: {:?}", k.t);
     assert!(5.0 - k.t.wide() <= tol, "t {:?}, within {tol}", k.t);
     close_v(&k.point, [0.0; 3], "point");
-    assert!(
-        (k.normal.x.wide() + 1.0).abs() <= tol && k.normal.y.wide().abs() <= tol,
-        "{:?}",
-        k.normal
-    );
-    assert!(
-        k.iterations > 5,
-        "a grazing approach takes many steps: {}",
-        k.iterations
-    );
+    assert!((k.normal.x.wide() + 1.0).abs() <= tol && k.normal.y.wide().abs() <= tol, "{:?}", k.normal);
+    assert!(k.iterations > 5, "a grazing approach takes many steps: {}", k.iterations);
     // The same pass ends clear of the triangle at t = 10 (centre (−1, 5, 0),
     // √10 from v2): halving misses it, as the lecture's method does.
-    assert!(
-        toi_sphere_triangle_halving(&a, &va, &tri(), &still(), T::of(10.0), Halving::Steps(30))
-            .is_none()
-    );
+    assert!(toi_sphere_triangle_halving(&a, &va, &tri(), &still(), T::of(10.0), Halving::Steps(30)).is_none());
 }
-both!(
-    sphere_triangle_grazing_edge_case,
-    sphere_triangle_grazing_edge
-);
+both!(sphere_triangle_grazing_edge_case, sphere_triangle_grazing_edge);
 
 fn sphere_triangle_iteration_cap<T: Real>() {
     // The grazing pass with a cap of 3 steps: reported as OutOfIterations, with
     // a time before which there is no contact (the remaining time halves per
     // step, so about 5/8 is left, a gap of ~0.18) and the separation then.
-    let rule = Advancement {
-        tol_eps: ADVANCE_TOL_EPS,
-        max_steps: 3,
-    };
+    let rule = Advancement { tol_eps: ADVANCE_TOL_EPS, max_steps: 3 };
     let a = ball::<T>(-1.0, -5.0, 0.0, 1.0);
     let va = v::<T>(0.0, 1.0, 0.0);
     let k = toi_sphere_triangle(&a, &va, &tri(), &still(), T::of(10.0), &rule).expect("capped");
@@ -540,16 +393,10 @@ fn sphere_triangle_iteration_cap<T: Real>() {
     assert_eq!(k.iterations, 3);
     assert!(k.t > T::zero() && k.t.wide() < 5.0, "{:?}", k.t);
     let moved = Sphere::new(a.center + va * k.t, a.radius);
-    assert!(
-        contact_sphere_triangle(&moved, &tri()).is_none(),
-        "t is safe"
-    );
+    assert!(contact_sphere_triangle(&moved, &tri()).is_none(), "t is safe");
     close_v(&k.point, [0.0; 3], "closest point of b");
 }
-both!(
-    sphere_triangle_iteration_cap_case,
-    sphere_triangle_iteration_cap
-);
+both!(sphere_triangle_iteration_cap_case, sphere_triangle_iteration_cap);
 
 fn sphere_triangle_tunneling<T: Real>() {
     // A small fast sphere (r 0.1, speed 10) through the face within one step:
@@ -557,21 +404,13 @@ fn sphere_triangle_tunneling<T: Real>() {
     // it; halving reports none (asserted as it is).
     let a = ball::<T>(0.5, 0.5, 3.0, 0.1);
     let va = v::<T>(0.0, 0.0, -10.0);
-    let k = toi_sphere_triangle(&a, &va, &tri(), &still(), T::one(), &Advancement::default())
-        .expect("seen");
+    let k = toi_sphere_triangle(&a, &va, &tri(), &still(), T::one(), &Advancement::default()).expect("seen");
     close(k.t, 0.29, "t");
     close_v(&k.normal, [0.0, 0.0, 1.0], "normal");
-    assert!(
-        toi_sphere_triangle_halving(&a, &va, &tri(), &still(), T::one(), Halving::Steps(40))
-            .is_none()
-    );
+    assert!(toi_sphere_triangle_halving(&a, &va, &tri(), &still(), T::one(), Halving::Steps(40)).is_none());
     // With the step ending inside the sheet's reach (t_max = 0.3), halving sees it.
-    let h = toi_sphere_triangle_halving(&a, &va, &tri(), &still(), T::of(0.3), Halving::Steps(20))
-        .expect("seen");
-    assert!(
-        h.t.wide() >= 0.29 - hand_tol::<T>()
-            && h.t.wide() - 0.29 <= 0.3 / f64::from(1u32 << 20) + hand_tol::<T>()
-    );
+    let h = toi_sphere_triangle_halving(&a, &va, &tri(), &still(), T::of(0.3), Halving::Steps(20)).expect("seen");
+    assert!(h.t.wide() >= 0.29 - hand_tol::<T>() && h.t.wide() - 0.29 <= 0.3 / f64::from(1u32 << 20) + hand_tol::<T>());
 }
 both!(sphere_triangle_tunneling_case, sphere_triangle_tunneling);
 
@@ -579,45 +418,22 @@ fn sphere_triangle_no_impact_and_overlap<T: Real>() {
     let rule = Advancement::default();
     let a = ball::<T>(0.5, 0.5, 3.0, 1.0);
     // Moving away, sideways past the triangle, arriving after t_max.
-    assert!(
-        toi_sphere_triangle(&a, &v(0.0, 0.0, 1.0), &tri(), &still(), T::of(10.0), &rule).is_none()
-    );
-    assert!(
-        toi_sphere_triangle(&a, &v(1.0, 0.0, 0.0), &tri(), &still(), T::of(10.0), &rule).is_none()
-    );
-    assert!(
-        toi_sphere_triangle(&a, &v(0.0, 0.0, -1.0), &tri(), &still(), T::one(), &rule).is_none()
-    );
+    assert!(toi_sphere_triangle(&a, &v(0.0, 0.0, 1.0), &tri(), &still(), T::of(10.0), &rule).is_none());
+    assert!(toi_sphere_triangle(&a, &v(1.0, 0.0, 0.0), &tri(), &still(), T::of(10.0), &rule).is_none());
+    assert!(toi_sphere_triangle(&a, &v(0.0, 0.0, -1.0), &tri(), &still(), T::one(), &rule).is_none());
     // Overlapping at t = 0 (depth 0.25): Penetrating with the static contact.
-    let k = toi_sphere_triangle(
-        &ball::<T>(0.5, 0.5, 0.75, 1.0),
-        &v(0.0, 0.0, 1.0),
-        &tri(),
-        &still(),
-        T::one(),
-        &rule,
-    )
-    .expect("overlap");
+    let k = toi_sphere_triangle(&ball::<T>(0.5, 0.5, 0.75, 1.0), &v(0.0, 0.0, 1.0), &tri(), &still(), T::one(), &rule)
+        .expect("overlap");
     assert_eq!(k.status, ToiStatus::Penetrating);
     close(k.t, 0.0, "t");
     close_v(&k.point, [0.5, 0.5, 0.0], "point");
     // A centre on the face at t = 0: the static fallback (face normal), flagged.
-    let k = toi_sphere_triangle(
-        &ball::<T>(0.5, 0.5, 0.0, 1.0),
-        &still(),
-        &tri(),
-        &still(),
-        T::one(),
-        &rule,
-    )
-    .expect("on the face");
+    let k = toi_sphere_triangle(&ball::<T>(0.5, 0.5, 0.0, 1.0), &still(), &tri(), &still(), T::one(), &rule)
+        .expect("on the face");
     assert!(k.degenerate);
     close_v(&k.normal, [0.0, 0.0, 1.0], "face normal");
 }
-both!(
-    sphere_triangle_no_impact_and_overlap_case,
-    sphere_triangle_no_impact_and_overlap
-);
+both!(sphere_triangle_no_impact_and_overlap_case, sphere_triangle_no_impact_and_overlap);
 
 fn sphere_triangle_zero_radius<T: Real>() {
     // A point falling onto the face from z = 3 at 1: t = 3 at (0.5, 0.5, 0); no
@@ -637,10 +453,7 @@ fn sphere_triangle_zero_radius<T: Real>() {
     close_v(&k.point, [0.5, 0.5, 0.0], "point");
     close_v(&k.normal, [0.0, 0.0, 1.0], "normal");
 }
-both!(
-    sphere_triangle_zero_radius_case,
-    sphere_triangle_zero_radius
-);
+both!(sphere_triangle_zero_radius_case, sphere_triangle_zero_radius);
 
 fn zero_area_triangle<T: Real>() {
     // A triangle collapsed onto the segment x ∈ [0, 2] (v2 repeats v1): a sphere
@@ -683,23 +496,8 @@ fn vel() -> impl Strategy<Value = [f64; 3]> {
 }
 
 fn random_scene() -> impl Strategy<Value = Scene> {
-    (
-        p3(),
-        0.05..1.2f64,
-        vel(),
-        [p3(), p3(), p3()],
-        0.05..1.2f64,
-        vel(),
-        0.1..2.0f64,
-    )
-        .prop_map(|(ca, ra, va, b, rb, vb, t_max)| Scene {
-            a: (ca, ra),
-            va,
-            b,
-            rb,
-            vb,
-            t_max,
-        })
+    (p3(), 0.05..1.2f64, vel(), [p3(), p3(), p3()], 0.05..1.2f64, vel(), 0.1..2.0f64)
+        .prop_map(|(ca, ra, va, b, rb, vb, t_max)| Scene { a: (ca, ra), va, b, rb, vb, t_max })
 }
 
 fn scene() -> impl Strategy<Value = Scene> {
@@ -714,9 +512,8 @@ fn scene() -> impl Strategy<Value = Scene> {
     )
         .prop_map(|(mut s, w, when, jitter)| {
             let sum = w[0] + w[1] + w[2] + 1e-3;
-            let target: [f64; 3] = std::array::from_fn(|k| {
-                (w[0] * s.b[0][k] + w[1] * s.b[1][k] + w[2] * s.b[2][k]) / sum
-            });
+            let target: [f64; 3] =
+                std::array::from_fn(|k| (w[0] * s.b[0][k] + w[1] * s.b[1][k] + w[2] * s.b[2][k]) / sum);
             let t = when * s.t_max;
             s.va = std::array::from_fn(|k| (target[k] - s.a.0[k]) / t + s.vb[k] + jitter[k]);
             s
@@ -734,10 +531,7 @@ fn amax<T: Real>(p: &Vec3<T>) -> f64 {
 
 /// The scale of a scene: its largest coordinate, radius or displacement.
 fn scale<T: Real>(points: &[Vec3<T>], radii: f64, v: &Vec3<T>, t_max: f64) -> f64 {
-    points
-        .iter()
-        .map(amax)
-        .fold(radii.max(amax(v) * t_max), f64::max)
+    points.iter().map(amax).fold(radii.max(amax(v) * t_max), f64::max)
 }
 
 /// What a pair answers at time `t` (a static test on the moved shapes, with
@@ -785,20 +579,12 @@ struct HalfSpace<T: Real> {
 impl<T: Real> Pair<T> for HalfSpace<T> {
     fn touches_at(&self, t: T, dr: T) -> bool {
         let r = (self.a.radius + dr).max(T::zero());
-        let plane = Plane::new(
-            self.b.normal,
-            self.b.offset + self.b.normal.dot(&self.vb) * t,
-        );
+        let plane = Plane::new(self.b.normal, self.b.offset + self.b.normal.dot(&self.vb) * t);
         contact_sphere_plane(&Sphere::new(self.a.center + self.va * t, r), &plane).is_some()
     }
     fn scale(&self) -> f64 {
         let offset = self.b.offset.wide().abs() / self.b.normal.norm().wide();
-        scale(
-            &[self.a.center],
-            self.a.radius.wide().max(offset),
-            &(self.va - self.vb),
-            self.t_max.wide(),
-        )
+        scale(&[self.a.center], self.a.radius.wide().max(offset), &(self.va - self.vb), self.t_max.wide())
     }
 }
 
@@ -815,20 +601,12 @@ impl<T: Real> Pair<T> for Sheet<T> {
         let r = (self.a.radius + dr).max(T::zero());
         let d = self.vb * t;
         let [v0, v1, v2] = self.b.vertices;
-        contact_sphere_triangle(
-            &Sphere::new(self.a.center + self.va * t, r),
-            &Triangle::new(v0 + d, v1 + d, v2 + d),
-        )
-        .is_some()
+        contact_sphere_triangle(&Sphere::new(self.a.center + self.va * t, r), &Triangle::new(v0 + d, v1 + d, v2 + d))
+            .is_some()
     }
     fn scale(&self) -> f64 {
         let [v0, v1, v2] = self.b.vertices;
-        scale(
-            &[self.a.center, v0, v1, v2],
-            self.a.radius.wide(),
-            &(self.va - self.vb),
-            self.t_max.wide(),
-        )
+        scale(&[self.a.center, v0, v1, v2], self.a.radius.wide(), &(self.va - self.vb), self.t_max.wide())
     }
 }
 
@@ -837,49 +615,24 @@ impl<T: Real> Pair<T> for Sheet<T> {
 /// grown by it: `extra` adds a method's own stopping tolerance); a penetrating
 /// one touches at 0; an out-of-iterations one has no contact before its `t`; no
 /// answer means no contact anywhere on `[0, t_max]` (200 samples, shrunk).
-fn check_answer<T: Real>(
-    pair: &impl Pair<T>,
-    got: Option<Toi<T>>,
-    t_max: T,
-    extra: f64,
-) -> Result<(), TestCaseError> {
+fn check_answer<T: Real>(pair: &impl Pair<T>, got: Option<Toi<T>>, t_max: T, extra: f64) -> Result<(), TestCaseError> {
     let scale = pair.scale();
     let delta = T::of(TOUCH_TOL_EPS * eps::<T>() * scale);
     let samples = |end: T| -> Option<T> {
-        (0..=SAMPLES)
-            .map(|i| end * T::of(f64::from(i) / f64::from(SAMPLES)))
-            .find(|&t| pair.touches_at(t, -delta))
+        (0..=SAMPLES).map(|i| end * T::of(f64::from(i) / f64::from(SAMPLES))).find(|&t| pair.touches_at(t, -delta))
     };
     match got {
         None => {
             let hit = samples(t_max);
-            prop_assert!(
-                hit.is_none(),
-                "no impact reported, but in contact at t = {:?}",
-                hit
-            );
+            prop_assert!(hit.is_none(), "no impact reported, but in contact at t = {:?}", hit);
         }
         Some(k) => {
-            prop_assert!(
-                k.t >= T::zero() && k.t <= t_max,
-                "t {:?} outside [0, {:?}]",
-                k.t,
-                t_max
-            );
-            prop_assert!(
-                k.point.iter().chain(k.normal.iter()).all(|x| x.finite()),
-                "non-finite {k:?}"
-            );
-            prop_assert!(
-                (k.normal.norm().wide() - 1.0).abs() <= TOUCH_TOL_EPS * eps::<T>(),
-                "normal not unit: {k:?}"
-            );
+            prop_assert!(k.t >= T::zero() && k.t <= t_max, "t {:?} outside [0, {:?}]", k.t, t_max);
+            prop_assert!(k.point.iter().chain(k.normal.iter()).all(|x| x.finite()), "non-finite {k:?}");
+            prop_assert!((k.normal.norm().wide() - 1.0).abs() <= TOUCH_TOL_EPS * eps::<T>(), "normal not unit: {k:?}");
             match k.status {
                 ToiStatus::Penetrating => {
-                    prop_assert!(
-                        k.t == T::zero() && pair.touches_at(T::zero(), T::zero()),
-                        "penetrating at 0"
-                    );
+                    prop_assert!(k.t == T::zero() && pair.touches_at(T::zero(), T::zero()), "penetrating at 0");
                 }
                 ToiStatus::Converged | ToiStatus::OutOfIterations => {
                     // Strictly before t: the last sample is t·199/200.
@@ -940,13 +693,9 @@ fn check_sphere_triangle<T: Real>(s: &Scene) -> Result<(), TestCaseError> {
     let tol = ADVANCE_TOL_EPS * eps::<T>() * p.scale() * 2.0;
     check_answer(&p, got, p.t_max, tol)?;
     // Whatever halving sees, advancement sees too (it sees more: tunneling).
-    let halving =
-        toi_sphere_triangle_halving(&p.a, &p.va, &p.b, &p.vb, p.t_max, Halving::Steps(30));
+    let halving = toi_sphere_triangle_halving(&p.a, &p.va, &p.b, &p.vb, p.t_max, Halving::Steps(30));
     if halving.is_some() {
-        prop_assert!(
-            got.is_some(),
-            "halving found {halving:?}, advancement nothing"
-        );
+        prop_assert!(got.is_some(), "halving found {halving:?}, advancement nothing");
     }
     Ok(())
 }
@@ -967,24 +716,9 @@ macro_rules! prop_both {
     };
 }
 
-prop_both!(
-    512,
-    sphere_sphere_no_contact_before_and_touching_at_t,
-    scene(),
-    check_sphere_sphere
-);
-prop_both!(
-    512,
-    sphere_plane_no_contact_before_and_touching_at_t,
-    scene(),
-    check_sphere_plane
-);
-prop_both!(
-    256,
-    sphere_triangle_no_contact_before_and_touching_at_t,
-    scene(),
-    check_sphere_triangle
-);
+prop_both!(512, sphere_sphere_no_contact_before_and_touching_at_t, scene(), check_sphere_sphere);
+prop_both!(512, sphere_plane_no_contact_before_and_touching_at_t, scene(), check_sphere_plane);
+prop_both!(256, sphere_triangle_no_contact_before_and_touching_at_t, scene(), check_sphere_triangle);
 
 /// A sphere–sphere impact built backwards from its answer: contact normal `n`,
 /// relative velocity `v` meeting it at an angle whose cosine is at least 0.2
@@ -1006,31 +740,19 @@ struct Built {
 }
 
 fn built() -> impl Strategy<Value = Built> {
-    (
-        (0.1..2.0f64, 0.1..2.0f64, p3(), vel()),
-        (
-            p3(),
-            p3(),
-            0.5..5.0f64,
-            0.2..1.0f64,
-            0.05..2.0f64,
-            0.1..0.9f64,
-        ),
-    )
-        .prop_map(
-            |((ra, rb, cb, vb), (n, m, speed, cos, t_star, frac))| Built {
-                ra,
-                rb,
-                cb,
-                vb,
-                n,
-                m,
-                speed,
-                cos,
-                t_star,
-                frac,
-            },
-        )
+    ((0.1..2.0f64, 0.1..2.0f64, p3(), vel()), (p3(), p3(), 0.5..5.0f64, 0.2..1.0f64, 0.05..2.0f64, 0.1..0.9f64))
+        .prop_map(|((ra, rb, cb, vb), (n, m, speed, cos, t_star, frac))| Built {
+            ra,
+            rb,
+            cb,
+            vb,
+            n,
+            m,
+            speed,
+            cos,
+            t_star,
+            frac,
+        })
 }
 
 fn unit(p: [f64; 3]) -> Option<Vec3<f64>> {
@@ -1060,27 +782,14 @@ fn check_built<T: Real>(s: &Built) -> Result<(), TestCaseError> {
     let time_tol = TIME_TOL_EPS * eps::<T>() * scale / (s.speed * s.cos);
     let closed = toi_sphere_sphere(&a, &va, &b, &vb, T::of(t_max));
     let closed = closed.ok_or_else(|| TestCaseError::fail("closed form: no impact"))?;
-    prop_assert!(
-        (closed.t.wide() - s.t_star).abs() <= time_tol,
-        "closed form t {:?}, want {}",
-        closed.t,
-        s.t_star
-    );
+    prop_assert!((closed.t.wide() - s.t_star).abs() <= time_tol, "closed form t {:?}, want {}", closed.t, s.t_star);
     for k in [0u32, 1, 4, 12, 24] {
         let h = toi_sphere_sphere_halving(&a, &va, &b, &vb, T::of(t_max), Halving::Steps(k))
             .ok_or_else(|| TestCaseError::fail(format!("halving {k}: no impact")))?;
         let err = h.t.wide() - s.t_star;
         let bound = t_max / 2f64.powi(k as i32);
-        prop_assert!(
-            err >= -time_tol,
-            "halving {k}: {:?} before t* = {}",
-            h.t,
-            s.t_star
-        );
-        prop_assert!(
-            err <= bound + time_tol,
-            "halving {k}: error {err} > t_max/2^k = {bound}"
-        );
+        prop_assert!(err >= -time_tol, "halving {k}: {:?} before t* = {}", h.t, s.t_star);
+        prop_assert!(err <= bound + time_tol, "halving {k}: error {err} > t_max/2^k = {bound}");
         // The same bound measured against the closed form's answer.
         let vs_closed = h.t.wide() - closed.t.wide();
         prop_assert!(
@@ -1093,9 +802,4 @@ fn check_built<T: Real>(s: &Built) -> Result<(), TestCaseError> {
     Ok(())
 }
 
-prop_both!(
-    512,
-    halving_error_within_t_max_over_two_to_the_k,
-    built(),
-    check_built
-);
+prop_both!(512, halving_error_within_t_max_over_two_to_the_k, built(), check_built);

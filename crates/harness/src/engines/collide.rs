@@ -197,9 +197,14 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
     fn toi_sphere_sphere(&self, a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
         let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), sphere::<T>(b), v::<T>(vb), T::of(t_max));
         Ok(toi(match self.method {
-            Method::Lecture => {
-                collide::toi::toi_sphere_sphere_halving(&a, &va, &b, &vb, t_max, collide::toi::Halving::Steps(HALVING_STEPS))
-            }
+            Method::Lecture => collide::toi::toi_sphere_sphere_halving(
+                &a,
+                &va,
+                &b,
+                &vb,
+                t_max,
+                collide::toi::Halving::Steps(HALVING_STEPS),
+            ),
             Method::Robust => collide::toi::toi_sphere_sphere(&a, &va, &b, &vb, t_max),
         }))
     }
@@ -207,9 +212,14 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
     fn toi_sphere_plane(&self, a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
         let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), plane::<T>(b), v::<T>(vb), T::of(t_max));
         Ok(toi(match self.method {
-            Method::Lecture => {
-                collide::toi::toi_sphere_plane_halving(&a, &va, &b, &vb, t_max, collide::toi::Halving::Steps(HALVING_STEPS))
-            }
+            Method::Lecture => collide::toi::toi_sphere_plane_halving(
+                &a,
+                &va,
+                &b,
+                &vb,
+                t_max,
+                collide::toi::Halving::Steps(HALVING_STEPS),
+            ),
             Method::Robust => collide::toi::toi_sphere_plane(&a, &va, &b, &vb, t_max),
         }))
     }

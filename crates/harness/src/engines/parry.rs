@@ -4,8 +4,10 @@
 
 use crate::engine::{Queries, Reply};
 use crate::mesh::Mesh;
-use oracle::geom::{Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, Segment, Sphere, Triangle};
 use oracle::geom::ToiAnswer;
+use oracle::geom::{
+    Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, Segment, Sphere, Triangle,
+};
 use oracle::parry::{ParryCast, ParryEngine};
 
 /// A parry engine behind the seam.

@@ -48,7 +48,10 @@ impl Queries for RefereeQueries {
         r(referee::barycentric_triangle(p, t))
     }
     fn bounds(&self, points: &[P3]) -> Reply<BoundsAnswer> {
-        Ok(BoundsAnswer { aabb: Some(r(referee::aabb_of_points(points))?), sphere: Some(r(referee::min_ball(points))?) })
+        Ok(BoundsAnswer {
+            aabb: Some(r(referee::aabb_of_points(points))?),
+            sphere: Some(r(referee::min_ball(points))?),
+        })
     }
     fn overlap(&self, a: &Aabb, b: &Aabb) -> Reply<bool> {
         r(referee::overlap_aabb_aabb(a, b))
@@ -120,9 +123,9 @@ pub fn margin(lc: &LoadedCase) -> Option<f64> {
                 S::Sphere(b) => referee::toi_margin_sphere_sphere(&a, &va, &b.to_geom(), &vb, t_max).ok(),
                 S::Plane(b) => referee::toi_margin_sphere_plane(&a, &va, &b.to_geom(), &vb, t_max).ok(),
                 S::Triangle(b) => referee::toi_margin_sphere_triangle(&a, &va, &b.to_geom(), &vb, t_max).ok(),
-                S::Mesh(_) => lc.meshes[1].as_ref().and_then(|m| {
-                    referee::toi_margin_sphere_mesh(&a, &va, &m.vertices, &m.triangles, &vb, t_max).ok()
-                }),
+                S::Mesh(_) => lc.meshes[1]
+                    .as_ref()
+                    .and_then(|m| referee::toi_margin_sphere_mesh(&a, &va, &m.vertices, &m.triangles, &vb, t_max).ok()),
                 _ => None,
             }
         }

@@ -12,9 +12,7 @@ use super::build::*;
 use proptest::prelude::*;
 
 fn uniform_point_triangle() -> SBoxedStrategy<Scene> {
-    (vec3(BOX), random_triangle())
-        .prop_map(|(p, v)| (point(p), Some(triangle(v))))
-        .sboxed()
+    (vec3(BOX), random_triangle()).prop_map(|(p, v)| (point(p), Some(triangle(v)))).sboxed()
 }
 
 /// A point on an edge or a vertex of a grid triangle in `z = 0` (exactly: a
@@ -29,27 +27,18 @@ fn near_edge_or_vertex() -> SBoxedStrategy<Scene> {
         (signed_magnitude(-20, 2), any::<bool>()),
         (signed_perm(), grid_point(), rotation(), 0..4u8),
     )
-        .prop_map(
-            |((v, edge, j), (w, delta, exact), (h, lift), (sp, shift, rot, rotate))| {
-                let (a, b) = (v[edge], v[(edge + 1) % 3]);
-                let x = add(a, mul(sub(b, a), j as f64 / 16.0));
-                let x = if exact == 0 {
-                    x
-                } else {
-                    add(
-                        x,
-                        mul(normalize_or([w[0], w[1], 0.0], [1.0, 0.0, 0.0]), delta),
-                    )
-                };
-                let x = if lift { [x[0], x[1], h] } else { x };
-                let scene = (point(x), Some(triangle(v)));
-                if rotate == 0 {
-                    Similarity::rotate_shift(rot, shift).scene(&scene)
-                } else {
-                    Similarity::perm_shift(&sp, shift).scene(&scene)
-                }
-            },
-        )
+        .prop_map(|((v, edge, j), (w, delta, exact), (h, lift), (sp, shift, rot, rotate))| {
+            let (a, b) = (v[edge], v[(edge + 1) % 3]);
+            let x = add(a, mul(sub(b, a), j as f64 / 16.0));
+            let x = if exact == 0 { x } else { add(x, mul(normalize_or([w[0], w[1], 0.0], [1.0, 0.0, 0.0]), delta)) };
+            let x = if lift { [x[0], x[1], h] } else { x };
+            let scene = (point(x), Some(triangle(v)));
+            if rotate == 0 {
+                Similarity::rotate_shift(rot, shift).scene(&scene)
+            } else {
+                Similarity::perm_shift(&sp, shift).scene(&scene)
+            }
+        })
         .sboxed()
 }
 
@@ -59,21 +48,11 @@ fn near_edge_or_vertex() -> SBoxedStrategy<Scene> {
 /// One time in two it is lifted off the plane along the unit normal by `h`
 /// (`|h|` from `2^-40` to 8).
 fn in_and_off_plane() -> SBoxedStrategy<Scene> {
-    (
-        prop::array::uniform3(grid_point()),
-        dyadic(32, 4),
-        dyadic(32, 4),
-        signed_magnitude(-40, 2),
-        any::<bool>(),
-    )
+    (prop::array::uniform3(grid_point()), dyadic(32, 4), dyadic(32, 4), signed_magnitude(-40, 2), any::<bool>())
         .prop_map(|(v, s, t, h, lift)| {
             let (s, t) = (s / 2.0 + 0.5, t / 2.0 + 0.5);
             let x = at_barycentric(&v, s, t);
-            let x = if lift {
-                add(x, mul(unit_normal(&v), h))
-            } else {
-                x
-            };
+            let x = if lift { add(x, mul(unit_normal(&v), h)) } else { x };
             (point(x), Some(triangle(v)))
         })
         .sboxed()
@@ -83,20 +62,10 @@ fn in_and_off_plane() -> SBoxedStrategy<Scene> {
 /// at barycentric `(1 − s − t, s, t)`, `s, t ∈ [−1/4, 5/4)`, in its plane or
 /// lifted off it.
 fn point_and_sliver() -> SBoxedStrategy<Scene> {
-    (
-        sliver_triangle(),
-        -0.25..1.25f64,
-        -0.25..1.25f64,
-        signed_magnitude(-30, 1),
-        any::<bool>(),
-    )
+    (sliver_triangle(), -0.25..1.25f64, -0.25..1.25f64, signed_magnitude(-30, 1), any::<bool>())
         .prop_map(|(v, s, t, h, lift)| {
             let x = at_barycentric(&v, s, t);
-            let x = if lift {
-                add(x, mul(unit_normal(&v), h))
-            } else {
-                x
-            };
+            let x = if lift { add(x, mul(unit_normal(&v), h)) } else { x };
             (point(x), Some(triangle(v)))
         })
         .sboxed()
@@ -105,19 +74,12 @@ fn point_and_sliver() -> SBoxedStrategy<Scene> {
 /// A point and a triangle of exactly zero area (collinear or repeated vertices):
 /// the degenerate case.
 fn zero_area() -> SBoxedStrategy<Scene> {
-    (vec3(BOX), zero_area_triangle())
-        .prop_map(|(p, v)| (point(p), Some(triangle(v))))
-        .sboxed()
+    (vec3(BOX), zero_area_triangle()).prop_map(|(p, v)| (point(p), Some(triangle(v)))).sboxed()
 }
 
 /// What the far and resized families move.
 fn moved_base() -> SBoxedStrategy<Scene> {
-    prop_oneof![
-        uniform_point_triangle(),
-        near_edge_or_vertex(),
-        in_and_off_plane()
-    ]
-    .sboxed()
+    prop_oneof![uniform_point_triangle(), near_edge_or_vertex(), in_and_off_plane()].sboxed()
 }
 
 /// A point exactly on an edge: the canonical edge on the line `y = y0, z = 0`,
@@ -127,11 +89,7 @@ fn moved_base() -> SBoxedStrategy<Scene> {
 /// `k ∈ [-8, 8]` ULPs.
 fn walk_point_on_edge() -> SBoxedStrategy<Scene> {
     (
-        (
-            dyadic(64, 4),
-            dyadic(64, 4),
-            (1..=64i64, 1..=64i64, 1..=15i64),
-        ),
+        (dyadic(64, 4), dyadic(64, 4), (1..=64i64, 1..=64i64, 1..=15i64)),
         (dyadic(64, 4), dyadic(64, 4), any::<bool>()),
         (signed_perm(), grid_point(), ulps()),
     )
@@ -152,22 +110,12 @@ fn walk_point_on_edge() -> SBoxedStrategy<Scene> {
 pub(super) fn families() -> Vec<Family> {
     vec![
         Family::uniform("uniform point and triangle", uniform_point_triangle),
-        Family::biased(
-            "point on or near a triangle's edge or vertex",
-            near_edge_or_vertex,
-        ),
-        Family::biased(
-            "point exactly in and off the triangle's plane",
-            in_and_off_plane,
-        ),
+        Family::biased("point on or near a triangle's edge or vertex", near_edge_or_vertex),
+        Family::biased("point exactly in and off the triangle's plane", in_and_off_plane),
         Family::biased("point and sliver triangle", point_and_sliver),
         Family::biased("point and zero-area triangle", zero_area),
-        Family::biased("barycentric far from the origin", || {
-            far_from_origin(moved_base())
-        }),
-        Family::biased("barycentric at tiny and huge sizes", || {
-            resized(moved_base())
-        }),
+        Family::biased("barycentric far from the origin", || far_from_origin(moved_base())),
+        Family::biased("barycentric at tiny and huge sizes", || resized(moved_base())),
         Family::biased("edge walker: point on an edge ± k ulps", walk_point_on_edge),
     ]
 }

@@ -17,9 +17,7 @@ use std::sync::OnceLock;
 const MAX_POINTS: usize = 64;
 
 fn uniform_cloud() -> SBoxedStrategy<Scene> {
-    prop::collection::vec(vec3(BOX), 1..=MAX_POINTS)
-        .prop_map(|p| (points(p), None))
-        .sboxed()
+    prop::collection::vec(vec3(BOX), 1..=MAX_POINTS).prop_map(|p| (points(p), None)).sboxed()
 }
 
 /// Radii of spheres with many integer points: `x² + y² + z² = R²`.
@@ -62,10 +60,7 @@ fn exactly_cospherical() -> SBoxedStrategy<Scene> {
         .prop_map(|(r, picks, j, shift)| {
             let sphere_pts = &lattice()[r];
             let s = pow2(j);
-            let pts = picks
-                .iter()
-                .map(|i| add(mul(*i.get(sphere_pts), s), shift))
-                .collect();
+            let pts = picks.iter().map(|i| add(mul(*i.get(sphere_pts), s), shift)).collect();
             (points(pts), None)
         })
         .sboxed()
@@ -75,36 +70,15 @@ fn exactly_cospherical() -> SBoxedStrategy<Scene> {
 /// from `2^-55` to `2^-10` (rounded, so on the sphere to within rounding, or a
 /// little off it).
 fn nearly_cospherical() -> SBoxedStrategy<Scene> {
-    (
-        vec3(BOX),
-        0.1..BOX,
-        prop::collection::vec((unit(), signed_magnitude(-55, -10)), 2..=MAX_POINTS),
-    )
-        .prop_map(|(c, r, dirs)| {
-            (
-                points(
-                    dirs.iter()
-                        .map(|&(u, g)| add(c, mul(u, r * (1.0 + g))))
-                        .collect(),
-                ),
-                None,
-            )
-        })
+    (vec3(BOX), 0.1..BOX, prop::collection::vec((unit(), signed_magnitude(-55, -10)), 2..=MAX_POINTS))
+        .prop_map(|(c, r, dirs)| (points(dirs.iter().map(|&(u, g)| add(c, mul(u, r * (1.0 + g)))).collect()), None))
         .sboxed()
 }
 
 /// A few distinct points (1 to 4), each repeated, up to 64 in all.
 fn repeated_points() -> SBoxedStrategy<Scene> {
-    (
-        prop::collection::vec(vec3(BOX), 1..=4),
-        prop::collection::vec(any::<prop::sample::Index>(), 1..=MAX_POINTS),
-    )
-        .prop_map(|(distinct, picks)| {
-            (
-                points(picks.iter().map(|i| *i.get(&distinct)).collect()),
-                None,
-            )
-        })
+    (prop::collection::vec(vec3(BOX), 1..=4), prop::collection::vec(any::<prop::sample::Index>(), 1..=MAX_POINTS))
+        .prop_map(|(distinct, picks)| (points(picks.iter().map(|i| *i.get(&distinct)).collect()), None))
         .sboxed()
 }
 
@@ -115,26 +89,15 @@ fn repeated_points() -> SBoxedStrategy<Scene> {
 fn collinear_or_coplanar() -> SBoxedStrategy<Scene> {
     (
         (grid_point(), pythagorean(), any::<bool>()),
-        prop::collection::vec(
-            (prop::array::uniform3(dyadic(64, 4)), vec3(1.0)),
-            2..=MAX_POINTS,
-        ),
+        prop::collection::vec((prop::array::uniform3(dyadic(64, 4)), vec3(1.0)), 2..=MAX_POINTS),
         (signed_perm(), magnitude(-50, -3), any::<bool>()),
     )
         .prop_map(|((p, (v, _), line), raw, (sp, thick, thicken))| {
             let pts = raw
                 .iter()
                 .map(|&(q, jitter)| {
-                    let exact = if line {
-                        add(p, mul(v, q[0] / 4.0))
-                    } else {
-                        add(p, sp.apply([q[0], q[1], 0.0]))
-                    };
-                    if thicken {
-                        add(exact, mul(jitter, thick))
-                    } else {
-                        exact
-                    }
+                    let exact = if line { add(p, mul(v, q[0] / 4.0)) } else { add(p, sp.apply([q[0], q[1], 0.0])) };
+                    if thicken { add(exact, mul(jitter, thick)) } else { exact }
                 })
                 .collect();
             (points(pts), None)
@@ -144,19 +107,12 @@ fn collinear_or_coplanar() -> SBoxedStrategy<Scene> {
 
 /// One or two points.
 fn one_or_two() -> SBoxedStrategy<Scene> {
-    prop::collection::vec(vec3(BOX), 1..=2)
-        .prop_map(|p| (points(p), None))
-        .sboxed()
+    prop::collection::vec(vec3(BOX), 1..=2).prop_map(|p| (points(p), None)).sboxed()
 }
 
 /// What the far and resized families move.
 fn moved_base() -> SBoxedStrategy<Scene> {
-    prop_oneof![
-        uniform_cloud(),
-        exactly_cospherical(),
-        collinear_or_coplanar()
-    ]
-    .sboxed()
+    prop_oneof![uniform_cloud(), exactly_cospherical(), collinear_or_coplanar()].sboxed()
 }
 
 /// The bounds families: uniform first, then biased.
@@ -166,14 +122,9 @@ pub(super) fn families() -> Vec<Family> {
         Family::biased("points exactly on a sphere", exactly_cospherical),
         Family::biased("points nearly on a sphere", nearly_cospherical),
         Family::biased("repeated points", repeated_points),
-        Family::biased(
-            "collinear or coplanar points, exactly or nearly",
-            collinear_or_coplanar,
-        ),
+        Family::biased("collinear or coplanar points, exactly or nearly", collinear_or_coplanar),
         Family::biased("one or two points", one_or_two),
-        Family::biased("bounds far from the origin", || {
-            far_from_origin(moved_base())
-        }),
+        Family::biased("bounds far from the origin", || far_from_origin(moved_base())),
         Family::biased("bounds at tiny and huge sizes", || resized(moved_base())),
     ]
 }

@@ -8,9 +8,7 @@
 //! log-uniform to within a factor of 2 and reproducible on every platform: a case
 //! is the same everywhere for the same `(seed, index)`.
 
-use crate::case::{
-    AabbSpec, PlaneSpec, PointSpec, PointsSpec, SegmentSpec, Shape, SphereSpec, TriangleSpec,
-};
+use crate::case::{AabbSpec, PlaneSpec, PointSpec, PointsSpec, SegmentSpec, Shape, SphereSpec, TriangleSpec};
 use oracle::geom::P3;
 use proptest::prelude::*;
 
@@ -19,21 +17,12 @@ pub(crate) type Scene = (Shape, Option<Shape>);
 
 /// A solid ball.
 pub(crate) fn sphere(center: P3, radius: f64) -> Shape {
-    Shape::Sphere(SphereSpec {
-        center,
-        radius,
-        velocity: None,
-        mass: None,
-    })
+    Shape::Sphere(SphereSpec { center, radius, velocity: None, mass: None })
 }
 
 /// The plane `normal · x = offset`.
 pub(crate) fn plane(normal: P3, offset: f64) -> Shape {
-    Shape::Plane(PlaneSpec {
-        normal,
-        offset,
-        velocity: None,
-    })
+    Shape::Plane(PlaneSpec { normal, offset, velocity: None })
 }
 
 /// A segment.
@@ -43,10 +32,7 @@ pub(crate) fn segment(start: P3, end: P3) -> Shape {
 
 /// A triangle.
 pub(crate) fn triangle(vertices: [P3; 3]) -> Shape {
-    Shape::Triangle(TriangleSpec {
-        vertices,
-        velocity: None,
-    })
+    Shape::Triangle(TriangleSpec { vertices, velocity: None })
 }
 
 /// A point.
@@ -86,11 +72,7 @@ pub(crate) fn dot(a: P3, b: P3) -> f64 {
 
 /// `a × b`.
 pub(crate) fn cross(a: P3, b: P3) -> P3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 /// `‖a‖`.
@@ -105,11 +87,7 @@ const SHORTEST_DIRECTION: f64 = 1e-3;
 /// `a / ‖a‖`, or `fallback` when `a` is shorter than [`SHORTEST_DIRECTION`].
 pub(crate) fn normalize_or(a: P3, fallback: P3) -> P3 {
     let n = norm(a);
-    if n >= SHORTEST_DIRECTION {
-        mul(a, 1.0 / n)
-    } else {
-        fallback
-    }
+    if n >= SHORTEST_DIRECTION { mul(a, 1.0 / n) } else { fallback }
 }
 
 /// A unit vector perpendicular to the unit vector `u` (the cross product with the
@@ -203,14 +181,7 @@ const PYTHAGOREAN: [([f64; 3], f64); 9] = [
 ];
 
 /// The six permutations of three axes.
-const PERMUTATIONS: [[usize; 3]; 6] = [
-    [0, 1, 2],
-    [0, 2, 1],
-    [1, 0, 2],
-    [1, 2, 0],
-    [2, 0, 1],
-    [2, 1, 0],
-];
+const PERMUTATIONS: [[usize; 3]; 6] = [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]];
 
 /// A signed permutation of the axes: `x'[i] = sign[i] · x[perm[i]]`. Exact, and
 /// it maps boxes to boxes, so it moves a canonical construction to any of 48
@@ -236,10 +207,8 @@ impl SignedPerm {
 
 /// A random [`SignedPerm`].
 pub(crate) fn signed_perm() -> impl Strategy<Value = SignedPerm> + Clone {
-    (0..6usize, prop::array::uniform3(any::<bool>())).prop_map(|(p, s)| SignedPerm {
-        perm: PERMUTATIONS[p],
-        sign: s.map(|neg| if neg { -1.0 } else { 1.0 }),
-    })
+    (0..6usize, prop::array::uniform3(any::<bool>()))
+        .prop_map(|(p, s)| SignedPerm { perm: PERMUTATIONS[p], sign: s.map(|neg| if neg { -1.0 } else { 1.0 }) })
 }
 
 /// An integer vector with integer length (`(v, ‖v‖)`), in any of the 48
@@ -292,11 +261,7 @@ pub(crate) struct Similarity {
 impl Similarity {
     /// The identity rotation with scale `s` and shift `t`.
     pub(crate) fn scale_shift(scale: f64, shift: P3) -> Self {
-        Self {
-            rot: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-            scale,
-            shift,
-        }
+        Self { rot: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], scale, shift }
     }
 
     /// A signed permutation followed by the shift `t` (exact on exact grids).
@@ -304,28 +269,16 @@ impl Similarity {
         let rows = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|e| sp.apply(e));
         // rows above are the images of the axes (columns of R); transpose them.
         let rot = [0, 1, 2].map(|i| [rows[0][i], rows[1][i], rows[2][i]]);
-        Self {
-            rot,
-            scale: 1.0,
-            shift,
-        }
+        Self { rot, scale: 1.0, shift }
     }
 
     /// A rotation followed by the shift `t`.
     pub(crate) fn rotate_shift(rot: [P3; 3], shift: P3) -> Self {
-        Self {
-            rot,
-            scale: 1.0,
-            shift,
-        }
+        Self { rot, scale: 1.0, shift }
     }
 
     fn linear(&self, v: P3) -> P3 {
-        [
-            dot(self.rot[0], v),
-            dot(self.rot[1], v),
-            dot(self.rot[2], v),
-        ]
+        [dot(self.rot[0], v), dot(self.rot[1], v), dot(self.rot[2], v)]
     }
 
     /// The image of a point (`s · R p + t`; a scale of 1 multiplies exactly).
@@ -350,10 +303,7 @@ impl Similarity {
             Shape::Points(p) => points(p.points.iter().map(|&v| self.point(v)).collect()),
             Shape::Aabb(b) => {
                 let (lo, hi) = (self.point(b.min), self.point(b.max));
-                aabb(
-                    [0, 1, 2].map(|i| lo[i].min(hi[i])),
-                    [0, 1, 2].map(|i| lo[i].max(hi[i])),
-                )
+                aabb([0, 1, 2].map(|i| lo[i].min(hi[i])), [0, 1, 2].map(|i| lo[i].max(hi[i])))
             }
             Shape::Mesh(m) => Shape::Mesh(m.clone()),
         }
@@ -379,16 +329,12 @@ pub(crate) fn size_factor() -> impl Strategy<Value = f64> + Clone {
 /// The scene moved far from the origin (every coordinate rounds there, so exact
 /// relations of the base scene hold only to rounding, at the new scale).
 pub(crate) fn far_from_origin(base: SBoxedStrategy<Scene>) -> SBoxedStrategy<Scene> {
-    (base, far_shift())
-        .prop_map(|(s, t)| Similarity::scale_shift(1.0, t).scene(&s))
-        .sboxed()
+    (base, far_shift()).prop_map(|(s, t)| Similarity::scale_shift(1.0, t).scene(&s)).sboxed()
 }
 
 /// The scene scaled to tiny or huge size.
 pub(crate) fn resized(base: SBoxedStrategy<Scene>) -> SBoxedStrategy<Scene> {
-    (base, size_factor())
-        .prop_map(|(s, f)| Similarity::scale_shift(f, [0.0; 3]).scene(&s))
-        .sboxed()
+    (base, size_factor()).prop_map(|(s, f)| Similarity::scale_shift(f, [0.0; 3]).scene(&s)).sboxed()
 }
 
 /// A non-zero normal of length in `[1/4, 4)` and an offset that puts the plane
@@ -405,8 +351,7 @@ pub(crate) fn random_triangle() -> impl Strategy<Value = [P3; 3]> + Clone {
 /// A triangle in the plane `z = 0` with vertices on the grid of multiples of 1/16
 /// in `[-4, 4]²`: its edges and dyadic points on them are exact.
 pub(crate) fn flat_grid_triangle() -> impl Strategy<Value = [P3; 3]> + Clone {
-    prop::array::uniform3(prop::array::uniform2(dyadic(64, 4)))
-        .prop_map(|v| v.map(|[x, y]| [x, y, 0.0]))
+    prop::array::uniform3(prop::array::uniform2(dyadic(64, 4))).prop_map(|v| v.map(|[x, y]| [x, y, 0.0]))
 }
 
 /// A triangle of exactly zero area: `v0`, `v1` on the 1/64 grid and
@@ -424,18 +369,7 @@ pub(crate) fn zero_area_triangle() -> impl Strategy<Value = [P3; 3]> + Clone {
 /// origin; one time in eight a triangle of exactly zero area
 /// ([`zero_area_triangle`]) instead.
 pub(crate) fn sliver_triangle() -> impl Strategy<Value = [P3; 3]> + Clone {
-    (
-        (
-            vec3(BOX / 2.0),
-            unit(),
-            unit(),
-            0.5..4.0f64,
-            0.05..0.95f64,
-            magnitude(-50, -3),
-        ),
-        zero_area_triangle(),
-        0..8u8,
-    )
+    ((vec3(BOX / 2.0), unit(), unit(), 0.5..4.0f64, 0.05..0.95f64, magnitude(-50, -3)), zero_area_triangle(), 0..8u8)
         .prop_map(|((v0, e, w, len, along, aspect), flat, pick)| {
             if pick == 0 {
                 return flat;
@@ -456,11 +390,7 @@ pub(crate) fn at_barycentric(v: &[P3; 3], s: f64, t: f64) -> P3 {
 pub(crate) fn unit_normal(v: &[P3; 3]) -> P3 {
     let n = cross(sub(v[1], v[0]), sub(v[2], v[0]));
     let len = norm(n);
-    if len > 0.0 && len.is_finite() {
-        mul(n, 1.0 / len)
-    } else {
-        [0.0, 0.0, 1.0]
-    }
+    if len > 0.0 && len.is_finite() { mul(n, 1.0 / len) } else { [0.0, 0.0, 1.0] }
 }
 
 #[cfg(test)]
@@ -484,16 +414,9 @@ mod tests {
     #[test]
     fn step_ulps_walks_representable_neighbours() {
         assert_eq!(step_ulps(1.0, 1).to_bits(), 1.0f64.next_up().to_bits());
-        assert_eq!(
-            step_ulps(1.0, -2).to_bits(),
-            1.0f64.next_down().next_down().to_bits()
-        );
+        assert_eq!(step_ulps(1.0, -2).to_bits(), 1.0f64.next_down().next_down().to_bits());
         assert_eq!(step_ulps(1.0, 0).to_bits(), 1.0f64.to_bits());
-        assert_eq!(
-            step_ulps(0.0, 1).to_bits(),
-            f64::from_bits(1).to_bits(),
-            "the smallest subnormal"
-        );
+        assert_eq!(step_ulps(0.0, 1).to_bits(), f64::from_bits(1).to_bits(), "the smallest subnormal");
     }
 
     #[test]
@@ -506,21 +429,11 @@ mod tests {
 
     #[test]
     fn a_signed_permutation_as_a_similarity_maps_points_as_itself() {
-        let sp = SignedPerm {
-            perm: [2, 0, 1],
-            sign: [-1.0, 1.0, -1.0],
-        };
+        let sp = SignedPerm { perm: [2, 0, 1], sign: [-1.0, 1.0, -1.0] };
         let sim = Similarity::perm_shift(&sp, [0.0; 3]);
         let p = [1.0, 2.0, 3.0];
-        assert_eq!(
-            sim.point(p).map(f64::to_bits),
-            sp.apply(p).map(f64::to_bits)
-        );
+        assert_eq!(sim.point(p).map(f64::to_bits), sp.apply(p).map(f64::to_bits));
         let (axis, sign) = sp.image_of_axis(0);
-        assert_eq!(
-            (axis, sign.to_bits()),
-            (1, 1.0f64.to_bits()),
-            "x lands on y, positive"
-        );
+        assert_eq!((axis, sign.to_bits()), (1, 1.0f64.to_bits()), "x lands on y, positive");
     }
 }

@@ -17,15 +17,11 @@ use proptest::prelude::*;
 const RADIUS: std::ops::Range<f64> = 0.05..BOX;
 
 fn uniform_sphere_sphere() -> SBoxedStrategy<Scene> {
-    (vec3(BOX), RADIUS, vec3(BOX), RADIUS)
-        .prop_map(|(ca, ra, cb, rb)| (sphere(ca, ra), Some(sphere(cb, rb))))
-        .sboxed()
+    (vec3(BOX), RADIUS, vec3(BOX), RADIUS).prop_map(|(ca, ra, cb, rb)| (sphere(ca, ra), Some(sphere(cb, rb)))).sboxed()
 }
 
 fn uniform_sphere_plane() -> SBoxedStrategy<Scene> {
-    (vec3(BOX), RADIUS, random_plane())
-        .prop_map(|(c, r, (n, d))| (sphere(c, r), Some(plane(n, d))))
-        .sboxed()
+    (vec3(BOX), RADIUS, random_plane()).prop_map(|(c, r, (n, d))| (sphere(c, r), Some(plane(n, d)))).sboxed()
 }
 
 fn uniform_plane_sphere() -> SBoxedStrategy<Scene> {
@@ -33,9 +29,7 @@ fn uniform_plane_sphere() -> SBoxedStrategy<Scene> {
 }
 
 fn uniform_sphere_triangle() -> SBoxedStrategy<Scene> {
-    (vec3(BOX), RADIUS, random_triangle())
-        .prop_map(|(c, r, v)| (sphere(c, r), Some(triangle(v))))
-        .sboxed()
+    (vec3(BOX), RADIUS, random_triangle()).prop_map(|(c, r, v)| (sphere(c, r), Some(triangle(v)))).sboxed()
 }
 
 fn uniform_triangle_sphere() -> SBoxedStrategy<Scene> {
@@ -86,11 +80,7 @@ fn grazing_spheres() -> SBoxedStrategy<Scene> {
 fn near_concentric_spheres() -> SBoxedStrategy<Scene> {
     (vec3(BOX), unit(), RADIUS, RADIUS, magnitude(-60, 0), 0..8u8)
         .prop_map(|(cb, u, ra, rb, m, pick)| {
-            let ca = if pick == 0 {
-                cb
-            } else {
-                add(cb, mul(u, rb * m))
-            };
+            let ca = if pick == 0 { cb } else { add(cb, mul(u, rb * m)) };
             (sphere(ca, ra), Some(sphere(cb, rb)))
         })
         .sboxed()
@@ -101,21 +91,12 @@ fn near_concentric_spheres() -> SBoxedStrategy<Scene> {
 /// `offset = s v · q` is exact; the centre is `q + k v` and the radius `k ‖v‖`.
 /// Either order.
 fn touching_sphere_plane() -> SBoxedStrategy<Scene> {
-    (
-        grid_point(),
-        pythagorean(),
-        1..=256i64,
-        0..4usize,
-        any::<bool>(),
-    )
+    (grid_point(), pythagorean(), 1..=256i64, 0..4usize, any::<bool>())
         .prop_map(|(q, (v, d), k, s, flip)| {
             let s = [0.5, 1.0, 2.0, 3.0][s];
             let k = k as f64 / 64.0;
             let n = mul(v, s);
-            order(
-                (sphere(add(q, mul(v, k)), k * d), Some(plane(n, dot(n, q)))),
-                flip,
-            )
+            order((sphere(add(q, mul(v, k)), k * d), Some(plane(n, dot(n, q)))), flip)
         })
         .sboxed()
 }
@@ -123,13 +104,7 @@ fn touching_sphere_plane() -> SBoxedStrategy<Scene> {
 /// A sphere whose centre is `r (1 + g)` above a random plane, `|g|` from `2^-60`
 /// to `2^-3`. Either order.
 fn grazing_sphere_plane() -> SBoxedStrategy<Scene> {
-    (
-        random_plane(),
-        vec3(BOX),
-        RADIUS,
-        signed_magnitude(-60, -3),
-        any::<bool>(),
-    )
+    (random_plane(), vec3(BOX), RADIUS, signed_magnitude(-60, -3), any::<bool>())
         .prop_map(|((n, d), w, r, g, flip)| {
             let len = norm(n);
             let u = mul(n, 1.0 / len);
@@ -160,9 +135,7 @@ enum Feature {
 /// - vertex: `v0` at the origin, `v1 = (len, 0, 0)`, `v2` in the open first
 ///   quadrant, `q = v0`; the vertex's region is `{w : w · v1 ≤ 0, w · v2 ≤ 0}`,
 ///   and its border with edge `v0 v1`'s region is the plane `x = 0`.
-fn canonical_feature(
-    features: &'static [Feature],
-) -> impl Strategy<Value = (Feature, [P3; 3], P3)> + Clone {
+fn canonical_feature(features: &'static [Feature]) -> impl Strategy<Value = (Feature, [P3; 3], P3)> + Clone {
     let grid = || dyadic(64, 4);
     let positive = || (1..=64i64).prop_map(|m| m as f64 / 16.0);
     (
@@ -174,25 +147,13 @@ fn canonical_feature(
         .prop_map(move |(f, tri, (x0, len, x2, y2), (i, j))| match f {
             Feature::Face => {
                 let i = i.min(15 - j);
-                (
-                    f,
-                    tri,
-                    at_barycentric(&tri, i as f64 / 16.0, j as f64 / 16.0),
-                )
+                (f, tri, at_barycentric(&tri, i as f64 / 16.0, j as f64 / 16.0))
             }
             Feature::Edge => {
-                let v = [
-                    [x0, 0.0, 0.0],
-                    [x0 + len, 0.0, 0.0],
-                    [x0 + x2 - 2.0, y2, 0.0],
-                ];
+                let v = [[x0, 0.0, 0.0], [x0 + len, 0.0, 0.0], [x0 + x2 - 2.0, y2, 0.0]];
                 (f, v, [x0 + len * i as f64 / 16.0, 0.0, 0.0])
             }
-            Feature::Vertex => (
-                f,
-                [[0.0; 3], [len, 0.0, 0.0], [x2 * i as f64 / 16.0, y2, 0.0]],
-                [0.0; 3],
-            ),
+            Feature::Vertex => (f, [[0.0; 3], [len, 0.0, 0.0], [x2 * i as f64 / 16.0, y2, 0.0]], [0.0; 3]),
         })
 }
 
@@ -214,19 +175,17 @@ fn touching_sphere_triangle() -> SBoxedStrategy<Scene> {
         grid_point(),
         any::<bool>(),
     )
-        .prop_map(
-            |((f, tri, q), ((a, b, c), (v, d)), (k, down), sp, shift, flip)| {
-                let k = k as f64 / 64.0;
-                let z = if down { -1.0 } else { 1.0 };
-                let (w, len) = match f {
-                    Feature::Face => ([0.0, 0.0, z], 1.0),
-                    Feature::Edge => ([0.0, -a, z * b], c),
-                    Feature::Vertex => ([-v[0].abs(), -v[1].abs(), z * v[2].abs()], d),
-                };
-                let scene = (sphere(add(q, mul(w, k)), k * len), Some(triangle(tri)));
-                order(Similarity::perm_shift(&sp, shift).scene(&scene), flip)
-            },
-        )
+        .prop_map(|((f, tri, q), ((a, b, c), (v, d)), (k, down), sp, shift, flip)| {
+            let k = k as f64 / 64.0;
+            let z = if down { -1.0 } else { 1.0 };
+            let (w, len) = match f {
+                Feature::Face => ([0.0, 0.0, z], 1.0),
+                Feature::Edge => ([0.0, -a, z * b], c),
+                Feature::Vertex => ([-v[0].abs(), -v[1].abs(), z * v[2].abs()], d),
+            };
+            let scene = (sphere(add(q, mul(w, k)), k * len), Some(triangle(tri)));
+            order(Similarity::perm_shift(&sp, shift).scene(&scene), flip)
+        })
         .sboxed()
 }
 
@@ -239,11 +198,7 @@ fn touching_sphere_triangle() -> SBoxedStrategy<Scene> {
 fn sphere_near_triangle_border() -> SBoxedStrategy<Scene> {
     (
         canonical_feature(&[Feature::Edge, Feature::Vertex]),
-        (
-            magnitude(-4, 1),
-            signed_magnitude(-57, -3),
-            signed_magnitude(-55, -2),
-        ),
+        (magnitude(-4, 1), signed_magnitude(-57, -3), signed_magnitude(-55, -2)),
         rotation(),
         vec3(BOX),
         any::<bool>(),
@@ -277,32 +232,25 @@ fn centre_on_or_near_plane() -> SBoxedStrategy<Scene> {
             signed_perm(),
             grid_point(),
         ),
-        (
-            random_triangle(),
-            -0.5..1.5f64,
-            -0.5..1.5f64,
-            signed_magnitude(-60, 1),
-        ),
+        (random_triangle(), -0.5..1.5f64, -0.5..1.5f64, signed_magnitude(-60, 1)),
         (RADIUS, 0..4u8, any::<bool>()),
     )
-        .prop_map(
-            |((gt, [x, y], (i, j, inside), sp, shift), (rt, s, t, h), (r, pick, flip))| {
-                let scene = if pick == 0 {
-                    let c = if inside {
-                        let i = i.min(15 - j);
-                        at_barycentric(&gt, i as f64 / 16.0, j as f64 / 16.0)
-                    } else {
-                        [x, y, 0.0]
-                    };
-                    let scene = (sphere(c, r), Some(triangle(gt)));
-                    Similarity::perm_shift(&sp, shift).scene(&scene)
+        .prop_map(|((gt, [x, y], (i, j, inside), sp, shift), (rt, s, t, h), (r, pick, flip))| {
+            let scene = if pick == 0 {
+                let c = if inside {
+                    let i = i.min(15 - j);
+                    at_barycentric(&gt, i as f64 / 16.0, j as f64 / 16.0)
                 } else {
-                    let c = add(at_barycentric(&rt, s, t), mul(unit_normal(&rt), h));
-                    (sphere(c, r), Some(triangle(rt)))
+                    [x, y, 0.0]
                 };
-                order(scene, flip)
-            },
-        )
+                let scene = (sphere(c, r), Some(triangle(gt)));
+                Similarity::perm_shift(&sp, shift).scene(&scene)
+            } else {
+                let c = add(at_barycentric(&rt, s, t), mul(unit_normal(&rt), h));
+                (sphere(c, r), Some(triangle(rt)))
+            };
+            order(scene, flip)
+        })
         .sboxed()
 }
 
@@ -333,13 +281,7 @@ fn moved_base() -> SBoxedStrategy<Scene> {
 /// `ca = cb ± (ra + rb) e_i`, radii multiples of 1/64), then one coordinate of
 /// `ca` along that axis, or one radius, stepped `k ∈ [-8, 8]` ULPs.
 fn walk_touching_spheres() -> SBoxedStrategy<Scene> {
-    (
-        grid_point(),
-        (1..=256i64, 1..=256i64),
-        (0..3usize, any::<bool>()),
-        ulps(),
-        any::<bool>(),
-    )
+    (grid_point(), (1..=256i64, 1..=256i64), (0..3usize, any::<bool>()), ulps(), any::<bool>())
         .prop_map(|(cb, (ra, rb), (axis, neg), k, radius)| {
             let (mut ra, rb) = (ra as f64 / 64.0, rb as f64 / 64.0);
             let mut ca = cb;
@@ -358,13 +300,7 @@ fn walk_touching_spheres() -> SBoxedStrategy<Scene> {
 /// either sign, offset `s z0`, centre `z0 + r` along the axis), then the centre's
 /// coordinate stepped `k ∈ [-8, 8]` ULPs. Either order.
 fn walk_touching_sphere_plane() -> SBoxedStrategy<Scene> {
-    (
-        grid_point(),
-        1..=256i64,
-        (0..3usize, dyadic(12, 2)),
-        ulps(),
-        any::<bool>(),
-    )
+    (grid_point(), 1..=256i64, (0..3usize, dyadic(12, 2)), ulps(), any::<bool>())
         .prop_map(|(q, r, (axis, s), k, flip)| {
             let r = r as f64 / 64.0;
             let s = if s == 0.0 { 1.0 } else { s };
@@ -391,30 +327,13 @@ pub(super) fn families() -> Vec<Family> {
         Family::biased("near-concentric spheres", near_concentric_spheres),
         Family::biased("sphere exactly touching a plane", touching_sphere_plane),
         Family::biased("sphere grazing a plane", grazing_sphere_plane),
-        Family::biased(
-            "sphere exactly touching a triangle's face, edge or vertex",
-            touching_sphere_triangle,
-        ),
-        Family::biased(
-            "sphere near the border of a triangle's edge or vertex region",
-            sphere_near_triangle_border,
-        ),
-        Family::biased(
-            "sphere centre on or near a triangle's plane",
-            centre_on_or_near_plane,
-        ),
+        Family::biased("sphere exactly touching a triangle's face, edge or vertex", touching_sphere_triangle),
+        Family::biased("sphere near the border of a triangle's edge or vertex region", sphere_near_triangle_border),
+        Family::biased("sphere centre on or near a triangle's plane", centre_on_or_near_plane),
         Family::biased("sphere and sliver triangle", sphere_and_sliver),
-        Family::biased("contact far from the origin", || {
-            far_from_origin(moved_base())
-        }),
+        Family::biased("contact far from the origin", || far_from_origin(moved_base())),
         Family::biased("contact at tiny and huge sizes", || resized(moved_base())),
-        Family::biased(
-            "edge walker: touching spheres ± k ulps",
-            walk_touching_spheres,
-        ),
-        Family::biased(
-            "edge walker: sphere touching a plane ± k ulps",
-            walk_touching_sphere_plane,
-        ),
+        Family::biased("edge walker: touching spheres ± k ulps", walk_touching_spheres),
+        Family::biased("edge walker: sphere touching a plane ± k ulps", walk_touching_sphere_plane),
     ]
 }

@@ -14,15 +14,11 @@ use oracle::geom::P3;
 use proptest::prelude::*;
 
 fn uniform_segment_plane() -> SBoxedStrategy<Scene> {
-    (vec3(BOX), vec3(BOX), random_plane())
-        .prop_map(|(p0, p1, (n, d))| (segment(p0, p1), Some(plane(n, d))))
-        .sboxed()
+    (vec3(BOX), vec3(BOX), random_plane()).prop_map(|(p0, p1, (n, d))| (segment(p0, p1), Some(plane(n, d)))).sboxed()
 }
 
 fn uniform_segment_triangle() -> SBoxedStrategy<Scene> {
-    (vec3(BOX), vec3(BOX), random_triangle())
-        .prop_map(|(p0, p1, v)| (segment(p0, p1), Some(triangle(v))))
-        .sboxed()
+    (vec3(BOX), vec3(BOX), random_triangle()).prop_map(|(p0, p1, v)| (segment(p0, p1), Some(triangle(v)))).sboxed()
 }
 
 /// A direction at a small angle `θ` to a surface with unit normal `u`: a unit
@@ -51,13 +47,8 @@ const TAU: std::ops::Range<f64> = -0.25..1.25;
 /// An exactly parallel segment: both endpoints at the same height `z0 + dz` over
 /// the plane `z = z0` (normal `s e_i`), `dz = 0` (coplanar) one time in three.
 fn exactly_parallel_to_plane() -> impl Strategy<Value = Scene> + Clone {
-    (
-        grid_point(),
-        grid_point(),
-        (0..3usize, dyadic(12, 2), dyadic(64, 4)),
-        0..3u8,
-    )
-        .prop_map(|(p0, p1, (axis, s, dz), pick)| {
+    (grid_point(), grid_point(), (0..3usize, dyadic(12, 2), dyadic(64, 4)), 0..3u8).prop_map(
+        |(p0, p1, (axis, s, dz), pick)| {
             let s = if s == 0.0 { 1.0 } else { s };
             let (mut p0, mut p1) = (p0, p1);
             let z0 = p0[axis];
@@ -67,22 +58,14 @@ fn exactly_parallel_to_plane() -> impl Strategy<Value = Scene> + Clone {
             let mut n = [0.0; 3];
             n[axis] = s;
             (segment(p0, p1), Some(plane(n, s * z0)))
-        })
+        },
+    )
 }
 
 /// A segment at a small angle to a random plane, through a point of the plane at
 /// parameter `τ`; one time in eight exactly parallel or coplanar instead.
 fn near_parallel_plane() -> SBoxedStrategy<Scene> {
-    (
-        random_plane(),
-        vec3(BOX),
-        unit(),
-        angle(),
-        0.1..8.0f64,
-        TAU,
-        exactly_parallel_to_plane(),
-        0..8u8,
-    )
+    (random_plane(), vec3(BOX), unit(), angle(), 0.1..8.0f64, TAU, exactly_parallel_to_plane(), 0..8u8)
         .prop_map(|((n, d), w, dir, theta, len, tau, exact, pick)| {
             if pick == 0 {
                 return exact;
@@ -101,47 +84,27 @@ fn near_parallel_plane() -> SBoxedStrategy<Scene> {
 /// `z = 0` (coplanar one time in three), moved by a signed permutation.
 fn near_parallel_triangle() -> SBoxedStrategy<Scene> {
     (
-        (
-            random_triangle(),
-            -0.25..1.25f64,
-            -0.25..1.25f64,
-            unit(),
-            angle(),
-            0.1..8.0f64,
-            TAU,
-        ),
-        (
-            flat_grid_triangle(),
-            prop::array::uniform2(prop::array::uniform2(dyadic(96, 4))),
-            dyadic(64, 4),
-            0..3u8,
-        ),
+        (random_triangle(), -0.25..1.25f64, -0.25..1.25f64, unit(), angle(), 0.1..8.0f64, TAU),
+        (flat_grid_triangle(), prop::array::uniform2(prop::array::uniform2(dyadic(96, 4))), dyadic(64, 4), 0..3u8),
         (signed_perm(), grid_point(), 0..8u8),
     )
-        .prop_map(
-            |((v, s, t, dir, theta, len, tau), (gt, [a, b], dz, cop), (sp, shift, pick))| {
-                if pick == 0 {
-                    let z = if cop == 0 { 0.0 } else { dz };
-                    let scene = (
-                        segment([a[0], a[1], z], [b[0], b[1], z]),
-                        Some(triangle(gt)),
-                    );
-                    return Similarity::perm_shift(&sp, shift).scene(&scene);
-                }
-                let x = at_barycentric(&v, s, t);
-                let (p0, p1) = through(x, tilted(unit_normal(&v), dir, theta), len, tau);
-                (segment(p0, p1), Some(triangle(v)))
-            },
-        )
+        .prop_map(|((v, s, t, dir, theta, len, tau), (gt, [a, b], dz, cop), (sp, shift, pick))| {
+            if pick == 0 {
+                let z = if cop == 0 { 0.0 } else { dz };
+                let scene = (segment([a[0], a[1], z], [b[0], b[1], z]), Some(triangle(gt)));
+                return Similarity::perm_shift(&sp, shift).scene(&scene);
+            }
+            let x = at_barycentric(&v, s, t);
+            let (p0, p1) = through(x, tilted(unit_normal(&v), dir, theta), len, tau);
+            (segment(p0, p1), Some(triangle(v)))
+        })
         .sboxed()
 }
 
 /// An integer vector perpendicular to `v` (its cross product with the axis of
 /// `v`'s smallest component, never zero for a non-zero integer `v`).
 fn integer_perpendicular(v: P3) -> P3 {
-    let i = (0..3)
-        .min_by(|&i, &j| v[i].abs().total_cmp(&v[j].abs()))
-        .unwrap_or(0);
+    let i = (0..3).min_by(|&i, &j| v[i].abs().total_cmp(&v[j].abs())).unwrap_or(0);
     let mut e = [0.0; 3];
     e[i] = 1.0;
     cross(v, e)
@@ -165,11 +128,7 @@ fn endpoint_on_or_near_plane() -> SBoxedStrategy<Scene> {
             let s = [0.5, 1.0, 2.0, 3.0][s];
             let n = mul(v, s);
             let on = add(q, mul(integer_perpendicular(v), k));
-            let end = if pick == 0 {
-                on
-            } else {
-                add(on, mul(v, h / d))
-            };
+            let end = if pick == 0 { on } else { add(on, mul(v, h / d)) };
             let (p0, p1) = if flip { (other, end) } else { (end, other) };
             (segment(p0, p1), Some(plane(n, dot(n, q))))
         })
@@ -186,61 +145,31 @@ fn crossing_near_edge_or_vertex() -> SBoxedStrategy<Scene> {
     (
         (flat_grid_triangle(), 0..3usize, 0..=16i64),
         (unit(), signed_magnitude(-57, -3), 0..4u8),
-        (
-            prop::array::uniform2(dyadic(64, 4)),
-            (1..=64i64).prop_map(|m| m as f64 / 16.0),
-            any::<bool>(),
-        ),
-        (
-            (1..=64i64, 1..=64i64),
-            signed_perm(),
-            grid_point(),
-            (rotation(), 0..4u8),
-        ),
+        (prop::array::uniform2(dyadic(64, 4)), (1..=64i64).prop_map(|m| m as f64 / 16.0), any::<bool>()),
+        ((1..=64i64, 1..=64i64), signed_perm(), grid_point(), (rotation(), 0..4u8)),
     )
-        .prop_map(
-            |(
-                (v, edge, j),
-                (w, delta, exact),
-                ([dx, dy], dz, down),
-                ((s0, s1), sp, shift, (rot, rotate)),
-            )| {
-                // j = 0 or 16 is a vertex, else a point inside the edge.
-                let (a, b) = (v[edge], v[(edge + 1) % 3]);
-                let x = add(a, mul(sub(b, a), j as f64 / 16.0));
-                let x = if exact == 0 {
-                    x
-                } else {
-                    add(
-                        x,
-                        mul(normalize_or([w[0], w[1], 0.0], [1.0, 0.0, 0.0]), delta),
-                    )
-                };
-                let dir = [dx, dy, if down { -dz } else { dz }];
-                let p0 = add(x, mul(dir, s0 as f64 / 16.0));
-                let p1 = sub(x, mul(dir, s1 as f64 / 16.0));
-                let scene = (segment(p0, p1), Some(triangle(v)));
-                if rotate == 0 {
-                    Similarity::rotate_shift(rot, shift).scene(&scene)
-                } else {
-                    Similarity::perm_shift(&sp, shift).scene(&scene)
-                }
-            },
-        )
+        .prop_map(|((v, edge, j), (w, delta, exact), ([dx, dy], dz, down), ((s0, s1), sp, shift, (rot, rotate)))| {
+            // j = 0 or 16 is a vertex, else a point inside the edge.
+            let (a, b) = (v[edge], v[(edge + 1) % 3]);
+            let x = add(a, mul(sub(b, a), j as f64 / 16.0));
+            let x = if exact == 0 { x } else { add(x, mul(normalize_or([w[0], w[1], 0.0], [1.0, 0.0, 0.0]), delta)) };
+            let dir = [dx, dy, if down { -dz } else { dz }];
+            let p0 = add(x, mul(dir, s0 as f64 / 16.0));
+            let p1 = sub(x, mul(dir, s1 as f64 / 16.0));
+            let scene = (segment(p0, p1), Some(triangle(v)));
+            if rotate == 0 {
+                Similarity::rotate_shift(rot, shift).scene(&scene)
+            } else {
+                Similarity::perm_shift(&sp, shift).scene(&scene)
+            }
+        })
         .sboxed()
 }
 
 /// A segment against a sliver (height down to `2^-50` of the length, or zero),
 /// through a point of the sliver's plane near it.
 fn segment_and_sliver() -> SBoxedStrategy<Scene> {
-    (
-        sliver_triangle(),
-        -0.25..1.25f64,
-        -0.25..1.25f64,
-        unit(),
-        0.1..8.0f64,
-        0.0..1.0f64,
-    )
+    (sliver_triangle(), -0.25..1.25f64, -0.25..1.25f64, unit(), 0.1..8.0f64, 0.0..1.0f64)
         .prop_map(|(v, s, t, d, len, tau)| {
             let (p0, p1) = through(at_barycentric(&v, s, t), d, len, tau);
             (segment(p0, p1), Some(triangle(v)))
@@ -266,13 +195,7 @@ fn moved_base() -> SBoxedStrategy<Scene> {
 /// side; then that endpoint's coordinate along the axis stepped `k ∈ [-8, 8]`
 /// ULPs. Either endpoint.
 fn walk_endpoint_on_plane() -> SBoxedStrategy<Scene> {
-    (
-        grid_point(),
-        grid_point(),
-        (0..3usize, dyadic(12, 2)),
-        (dyadic(256, 4), ulps()),
-        any::<bool>(),
-    )
+    (grid_point(), grid_point(), (0..3usize, dyadic(12, 2)), (dyadic(256, 4), ulps()), any::<bool>())
         .prop_map(|(e, f, (axis, s), (dz, k), flip)| {
             let s = if s == 0.0 { 1.0 } else { s };
             let z0 = e[axis];
@@ -294,11 +217,7 @@ fn walk_endpoint_on_plane() -> SBoxedStrategy<Scene> {
 /// `y` axis is stepped `k ∈ [-8, 8]` ULPs: into the triangle, or out of it.
 fn walk_through_edge() -> SBoxedStrategy<Scene> {
     (
-        (
-            dyadic(64, 4),
-            dyadic(64, 4),
-            (1..=64i64, 1..=64i64, 1..=15i64),
-        ),
+        (dyadic(64, 4), dyadic(64, 4), (1..=64i64, 1..=64i64, 1..=15i64)),
         (dyadic(64, 4), (1..=64i64, 1..=64i64)),
         (signed_perm(), grid_point(), ulps()),
     )
@@ -306,10 +225,7 @@ fn walk_through_edge() -> SBoxedStrategy<Scene> {
             let (len, hgt) = (len as f64 / 16.0, hgt as f64 / 16.0);
             let v = [[x0, y0, 0.0], [x0 + len, y0, 0.0], [x2, y0 + hgt, 0.0]];
             let x = x0 + len * i as f64 / 16.0;
-            let scene = (
-                segment([x, y0, a as f64 / 16.0], [x, y0, -(b as f64) / 16.0]),
-                Some(triangle(v)),
-            );
+            let scene = (segment([x, y0, a as f64 / 16.0], [x, y0, -(b as f64) / 16.0]), Some(triangle(v)));
             let (seg, tri) = Similarity::perm_shift(&sp, shift).scene(&scene);
             let (axis, _) = sp.image_of_axis(1);
             let seg = match seg {
@@ -332,26 +248,12 @@ pub(super) fn families() -> Vec<Family> {
         Family::uniform("uniform segment–triangle", uniform_segment_triangle),
         Family::biased("near-parallel segment and plane", near_parallel_plane),
         Family::biased("near-parallel segment and triangle", near_parallel_triangle),
-        Family::biased(
-            "segment endpoint on or near a plane",
-            endpoint_on_or_near_plane,
-        ),
-        Family::biased(
-            "segment crossing near a triangle's edge or vertex",
-            crossing_near_edge_or_vertex,
-        ),
+        Family::biased("segment endpoint on or near a plane", endpoint_on_or_near_plane),
+        Family::biased("segment crossing near a triangle's edge or vertex", crossing_near_edge_or_vertex),
         Family::biased("segment and sliver triangle", segment_and_sliver),
-        Family::biased("intersect far from the origin", || {
-            far_from_origin(moved_base())
-        }),
+        Family::biased("intersect far from the origin", || far_from_origin(moved_base())),
         Family::biased("intersect at tiny and huge sizes", || resized(moved_base())),
-        Family::biased(
-            "edge walker: segment endpoint on a plane ± k ulps",
-            walk_endpoint_on_plane,
-        ),
-        Family::biased(
-            "edge walker: segment through a triangle's edge ± k ulps",
-            walk_through_edge,
-        ),
+        Family::biased("edge walker: segment endpoint on a plane ± k ulps", walk_endpoint_on_plane),
+        Family::biased("edge walker: segment through a triangle's edge ± k ulps", walk_through_edge),
     ]
 }

@@ -43,13 +43,7 @@ use std::sync::OnceLock;
 
 /// The query kinds with generators, in the format's order (`toi` and `response`
 /// have none yet).
-pub const GENERATED: [Query; 5] = [
-    Query::Contact,
-    Query::Intersect,
-    Query::Barycentric,
-    Query::Bounds,
-    Query::Overlap,
-];
+pub const GENERATED: [Query; 5] = [Query::Contact, Query::Intersect, Query::Barycentric, Query::Bounds, Query::Overlap];
 
 /// The `file` of every generated [`LoadedCase`].
 pub const GENERATED_FILE: &str = "generated";
@@ -64,20 +58,12 @@ pub(crate) struct Family {
 impl Family {
     /// A uniform family.
     pub(crate) fn uniform(name: &'static str, build: fn() -> SBoxedStrategy<Scene>) -> Self {
-        Self {
-            name,
-            biased: false,
-            build,
-        }
+        Self { name, biased: false, build }
     }
 
     /// A family biased toward where methods fail.
     pub(crate) fn biased(name: &'static str, build: fn() -> SBoxedStrategy<Scene>) -> Self {
-        Self {
-            name,
-            biased: true,
-            build,
-        }
+        Self { name, biased: true, build }
     }
 }
 
@@ -135,11 +121,7 @@ fn registry() -> &'static Registry {
                                 restitution: None,
                             })
                             .sboxed();
-                        Entry {
-                            name,
-                            biased: f.biased,
-                            strategy,
-                        }
+                        Entry { name, biased: f.biased, strategy }
                     })
                     .collect();
                 (query, entries, names)
@@ -149,30 +131,19 @@ fn registry() -> &'static Registry {
 }
 
 fn entries(query: Query) -> &'static [Entry] {
-    registry()
-        .kinds
-        .iter()
-        .find(|(q, _, _)| *q == query)
-        .map_or(&[], |(_, e, _)| e.as_slice())
+    registry().kinds.iter().find(|(q, _, _)| *q == query).map_or(&[], |(_, e, _)| e.as_slice())
 }
 
 /// The names of `query`'s families: the uniform ones first, then the biased ones.
 /// Empty for a kind without generators (see [`GENERATED`]).
 pub fn families(query: Query) -> &'static [&'static str] {
-    registry()
-        .kinds
-        .iter()
-        .find(|(q, _, _)| *q == query)
-        .map_or(&[], |(_, _, n)| n.as_slice())
+    registry().kinds.iter().find(|(q, _, _)| *q == query).map_or(&[], |(_, _, n)| n.as_slice())
 }
 
 /// Whether the family `name` of `query` is one of the biased ones (`None` for an
 /// unknown name).
 pub fn is_biased(query: Query, name: &str) -> Option<bool> {
-    entries(query)
-        .iter()
-        .find(|e| e.name == name)
-        .map(|e| e.biased)
+    entries(query).iter().find(|e| e.name == name).map(|e| e.biased)
 }
 
 /// The family that case `index` of `query` is drawn from: even indices cycle
@@ -195,10 +166,7 @@ fn entry_for(query: Query, index: u64) -> Option<&'static Entry> {
 
 /// One family's strategy (`None` for an unknown name).
 pub fn family_strategy(query: Query, name: &str) -> Option<BoxedStrategy<Case>> {
-    entries(query)
-        .iter()
-        .find(|e| e.name == name)
-        .map(|e| e.strategy.clone().boxed())
+    entries(query).iter().find(|e| e.name == name).map(|e| e.strategy.clone().boxed())
 }
 
 /// The strategy of a query kind: every family, weighted so that the uniform
@@ -214,10 +182,7 @@ pub fn strategy(query: Query) -> BoxedStrategy<Case> {
     if nu == 0 || nb == 0 {
         panic!("no generator for query `{query}` (generated kinds: {GENERATED:?})");
     }
-    let weighted = all
-        .iter()
-        .map(|e| (if e.biased { nu } else { nb }, e.strategy.clone()))
-        .collect();
+    let weighted = all.iter().map(|e| (if e.biased { nu } else { nb }, e.strategy.clone())).collect();
     Union::new_weighted(weighted).boxed()
 }
 
@@ -254,15 +219,8 @@ pub fn try_generate(query: Query, seed: u64, index: u64) -> Option<LoadedCase> {
     // The generators use no filters, so a value tree is always produced.
     let mut case = entry.strategy.new_tree(&mut runner).ok()?.current();
     case.name = format!("{query} #{index} (seed {seed}, {})", entry.name);
-    case.source = format!(
-        "generated: seed {seed}, index {index}, family {}",
-        entry.name
-    );
-    Some(LoadedCase {
-        file: PathBuf::from(GENERATED_FILE),
-        case,
-        meshes: [None, None],
-    })
+    case.source = format!("generated: seed {seed}, index {index}, family {}", entry.name);
+    Some(LoadedCase { file: PathBuf::from(GENERATED_FILE), case, meshes: [None, None] })
 }
 
 /// [`try_generate`] for a kind that has generators.

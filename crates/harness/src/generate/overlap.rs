@@ -15,22 +15,14 @@ use proptest::prelude::*;
 const EXTENT: std::ops::Range<f64> = 0.0..BOX;
 
 fn uniform_boxes() -> SBoxedStrategy<Scene> {
-    (
-        vec3(BOX),
-        prop::array::uniform3(EXTENT),
-        vec3(BOX),
-        prop::array::uniform3(EXTENT),
-    )
+    (vec3(BOX), prop::array::uniform3(EXTENT), vec3(BOX), prop::array::uniform3(EXTENT))
         .prop_map(|(a, ea, b, eb)| (aabb(a, add(a, ea)), Some(aabb(b, add(b, eb)))))
         .sboxed()
 }
 
 /// A grid box: corner on the 1/64 grid, extents positive multiples of 1/16 up to 4.
 fn grid_box() -> impl Strategy<Value = (P3, P3)> + Clone {
-    (
-        grid_point(),
-        prop::array::uniform3((1..=64i64).prop_map(|m| m as f64 / 16.0)),
-    )
+    (grid_point(), prop::array::uniform3((1..=64i64).prop_map(|m| m as f64 / 16.0)))
         .prop_map(|(lo, e)| (lo, add(lo, e)))
 }
 
@@ -50,13 +42,7 @@ enum Contact {
 /// (one for a face, two for an edge, three for a corner). Every coordinate is a
 /// short dyadic, so the touching coordinates are equal exactly.
 fn touching_boxes() -> impl Strategy<Value = ((P3, P3), (P3, P3), [Contact; 3])> + Clone {
-    let contact = || {
-        prop_oneof![
-            Just(Contact::Above),
-            Just(Contact::Below),
-            Just(Contact::Across)
-        ]
-    };
+    let contact = || prop_oneof![Just(Contact::Above), Just(Contact::Below), Just(Contact::Across)];
     (
         grid_box(),
         prop::array::uniform3((1..=64i64, 0..=64i64)),
@@ -66,11 +52,7 @@ fn touching_boxes() -> impl Strategy<Value = ((P3, P3), (P3, P3), [Contact; 3])>
     )
         .prop_map(|((lo, hi), spans, mut how, forced, above)| {
             if how.iter().all(|h| matches!(h, Contact::Across)) {
-                how[forced] = if above {
-                    Contact::Above
-                } else {
-                    Contact::Below
-                };
+                how[forced] = if above { Contact::Above } else { Contact::Below };
             }
             let (mut blo, mut bhi) = ([0.0; 3], [0.0; 3]);
             for i in 0..3 {
@@ -80,8 +62,7 @@ fn touching_boxes() -> impl Strategy<Value = ((P3, P3), (P3, P3), [Contact; 3])>
                     Contact::Below => (blo[i], bhi[i]) = (lo[i] - len, lo[i]),
                     Contact::Across => {
                         // b's centre anywhere in a's range: the ranges intersect.
-                        let start =
-                            lo[i] + (hi[i] - lo[i]) * (spans[i].1 as f64 / 64.0) - len / 2.0;
+                        let start = lo[i] + (hi[i] - lo[i]) * (spans[i].1 as f64 / 64.0) - len / 2.0;
                         (blo[i], bhi[i]) = (start, start + len);
                     }
                 }
@@ -142,11 +123,7 @@ fn walk_box_faces() -> SBoxedStrategy<Scene> {
 /// Boxes flat on one to three axes (zero extent: a rectangle, a segment or a
 /// point), touching or crossing a grid box or each other.
 fn flat_boxes() -> SBoxedStrategy<Scene> {
-    (
-        touching_boxes(),
-        prop::array::uniform3(any::<bool>()),
-        prop::array::uniform3(any::<bool>()),
-    )
+    (touching_boxes(), prop::array::uniform3(any::<bool>()), prop::array::uniform3(any::<bool>()))
         .prop_map(|(((lo, hi), (blo, bhi), _), flat_a, flat_b)| {
             let (mut hi, mut bhi) = (hi, bhi);
             for i in 0..3 {
@@ -164,11 +141,7 @@ fn flat_boxes() -> SBoxedStrategy<Scene> {
 
 /// `b` inside `a` (sharing faces when an inset is 0).
 fn nested_boxes() -> SBoxedStrategy<Scene> {
-    (
-        grid_box(),
-        prop::array::uniform3((0..=16i64, 0..=16i64)),
-        any::<bool>(),
-    )
+    (grid_box(), prop::array::uniform3((0..=16i64, 0..=16i64)), any::<bool>())
         .prop_map(|((lo, hi), insets, flip)| {
             let mut blo = lo;
             let mut bhi = hi;
@@ -192,16 +165,11 @@ fn moved_base() -> SBoxedStrategy<Scene> {
 pub(super) fn families() -> Vec<Family> {
     vec![
         Family::uniform("uniform boxes", uniform_boxes),
-        Family::biased(
-            "boxes touching exactly on a face, edge or corner",
-            exactly_touching,
-        ),
+        Family::biased("boxes touching exactly on a face, edge or corner", exactly_touching),
         Family::biased("boxes a few ulps apart", few_ulps_apart),
         Family::biased("flat and point boxes", flat_boxes),
         Family::biased("nested boxes", nested_boxes),
-        Family::biased("overlap far from the origin", || {
-            far_from_origin(moved_base())
-        }),
+        Family::biased("overlap far from the origin", || far_from_origin(moved_base())),
         Family::biased("overlap at tiny and huge sizes", || resized(moved_base())),
         Family::biased("edge walker: box faces ± k ulps", walk_box_faces),
     ]

@@ -23,13 +23,7 @@ fn generate_every_case_is_valid_input_of_its_kind() {
         for i in 0..SWEEP {
             let lc = generate(q, 7, i);
             assert_eq!(lc.case.query, q, "{}", lc.case.name);
-            assert!(
-                validate(&lc.case).is_ok(),
-                "{}: {:?}\n{}",
-                lc.case.name,
-                validate(&lc.case),
-                json(&lc)
-            );
+            assert!(validate(&lc.case).is_ok(), "{}: {:?}\n{}", lc.case.name, validate(&lc.case), json(&lc));
         }
     }
 }
@@ -42,11 +36,7 @@ fn generate_is_a_function_of_seed_and_index() {
             assert_eq!(json(&x), json(&y), "{q} #{i}: two calls differ");
             assert_eq!(x.case.name, y.case.name);
             let other = generate(q, 100, i);
-            assert_ne!(
-                json(&x),
-                json(&other),
-                "{q} #{i}: seeds 99 and 100 give the same case"
-            );
+            assert_ne!(json(&x), json(&other), "{q} #{i}: seeds 99 and 100 give the same case");
         }
     }
 }
@@ -56,15 +46,9 @@ fn generate_names_cases_by_seed_index_and_family() {
     let lc = generate(Query::Contact, 42, 7);
     let family = family_for(Query::Contact, 7).unwrap_or_default();
     assert_eq!(lc.case.name, format!("contact #7 (seed 42, {family})"));
-    assert_eq!(
-        lc.case.source,
-        format!("generated: seed 42, index 7, family {family}")
-    );
+    assert_eq!(lc.case.source, format!("generated: seed 42, index 7, family {family}"));
     assert_eq!(lc.file, PathBuf::from(GENERATED_FILE));
-    assert!(
-        lc.case.expect.is_none(),
-        "generated cases are judged against the referee only"
-    );
+    assert!(lc.case.expect.is_none(), "generated cases are judged against the referee only");
 }
 
 #[test]
@@ -81,11 +65,7 @@ fn generate_half_of_the_cases_are_biased_and_every_family_is_reached() {
         }
         assert_eq!(biased, SWEEP / 2, "{q}: biased cases");
         for f in families(q) {
-            assert!(
-                seen.get(f).copied().unwrap_or(0) >= 10,
-                "{q}: family {f:?} reached {:?} times",
-                seen.get(f)
-            );
+            assert!(seen.get(f).copied().unwrap_or(0) >= 10, "{q}: family {f:?} reached {:?} times", seen.get(f));
         }
     }
 }
@@ -108,15 +88,8 @@ fn generate_strategy_mixes_uniform_and_biased_families_evenly() {
         let n = 400;
         let mut biased = 0;
         for _ in 0..n {
-            let case = s
-                .new_tree(&mut runner)
-                .map(|t| t.current())
-                .expect("no filters");
-            let family = families(q)
-                .iter()
-                .find(|f| case.name == proptest_name(q, f))
-                .copied()
-                .unwrap_or_default();
+            let case = s.new_tree(&mut runner).map(|t| t.current()).expect("no filters");
+            let family = families(q).iter().find(|f| case.name == proptest_name(q, f)).copied().unwrap_or_default();
             if is_biased(q, family) == Some(true) {
                 biased += 1;
             }
@@ -130,18 +103,9 @@ fn generate_strategy_mixes_uniform_and_biased_families_evenly() {
 const EXACTLY_TOUCHING: [(Query, &str); 5] = [
     (Query::Contact, "exactly touching spheres"),
     (Query::Contact, "sphere exactly touching a plane"),
-    (
-        Query::Contact,
-        "sphere exactly touching a triangle's face, edge or vertex",
-    ),
-    (
-        Query::Overlap,
-        "boxes touching exactly on a face, edge or corner",
-    ),
-    (
-        Query::Intersect,
-        "edge walker: segment through a triangle's edge ± k ulps",
-    ),
+    (Query::Contact, "sphere exactly touching a triangle's face, edge or vertex"),
+    (Query::Overlap, "boxes touching exactly on a face, edge or corner"),
+    (Query::Intersect, "edge walker: segment through a triangle's edge ± k ulps"),
 ];
 
 #[test]
@@ -151,15 +115,8 @@ fn generate_exact_families_touch_exactly() {
         let s = family_strategy(q, name).unwrap_or_else(|| panic!("no family {name:?}"));
         let mut zero = 0;
         for _ in 0..150 {
-            let case = s
-                .new_tree(&mut runner)
-                .map(|t| t.current())
-                .expect("no filters");
-            let lc = LoadedCase {
-                file: GENERATED_FILE.into(),
-                case,
-                meshes: [None, None],
-            };
+            let case = s.new_tree(&mut runner).map(|t| t.current()).expect("no filters");
+            let lc = LoadedCase { file: GENERATED_FILE.into(), case, meshes: [None, None] };
             let m = margin(&lc);
             // The segment walker is exact only at k = 0 (one step in 17).
             if q == Query::Intersect {
@@ -187,32 +144,18 @@ const WALKER_MARGIN_ULPS: f64 = 32.0;
 fn generate_edge_walkers_stay_within_a_few_ulps_of_touching() {
     let walkers = [
         (Query::Contact, "edge walker: touching spheres ± k ulps"),
-        (
-            Query::Contact,
-            "edge walker: sphere touching a plane ± k ulps",
-        ),
+        (Query::Contact, "edge walker: sphere touching a plane ± k ulps"),
         (Query::Overlap, "edge walker: box faces ± k ulps"),
     ];
     for (q, name) in walkers {
         let mut runner = TestRunner::deterministic();
         let s = family_strategy(q, name).unwrap_or_else(|| panic!("no family {name:?}"));
         for _ in 0..150 {
-            let case = s
-                .new_tree(&mut runner)
-                .map(|t| t.current())
-                .expect("no filters");
-            let lc = LoadedCase {
-                file: GENERATED_FILE.into(),
-                case,
-                meshes: [None, None],
-            };
+            let case = s.new_tree(&mut runner).map(|t| t.current()).expect("no filters");
+            let lc = LoadedCase { file: GENERATED_FILE.into(), case, meshes: [None, None] };
             let bound = WALKER_MARGIN_ULPS * f64::EPSILON * scene_scale(&lc);
             let m = margin(&lc).unwrap_or(f64::INFINITY);
-            assert!(
-                m.abs() <= bound,
-                "{name}: margin {m:e} beyond {bound:e}\n{}",
-                json(&lc)
-            );
+            assert!(m.abs() <= bound, "{name}: margin {m:e} beyond {bound:e}\n{}", json(&lc));
         }
     }
 }

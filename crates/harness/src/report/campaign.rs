@@ -122,6 +122,9 @@ pub struct Outcome {
     pub discrepancies: Vec<Discrepancy>,
     /// Input errors met reading the fixtures (the run went on without them).
     pub input_errors: Vec<String>,
+    /// The dynamics experiments (bounces, tunneling, two balls), run with the
+    /// whole campaign (not with `--only`, and in shard 0 only).
+    pub dynamics: Option<crate::dynamics::DynamicsReport>,
 }
 
 /// The slice `[lo, hi)` of `0..n` that shard `i` of `count` takes.
@@ -189,20 +192,23 @@ fn precision_name(p: Option<u32>) -> &'static str {
 }
 
 fn headline(e: &Errors, scale: f64) -> f64 {
-    [
-        e.point.map(|x| x / scale),
-        e.depth.map(|x| x.abs() / scale),
-        e.normal,
-        e.t,
-        e.barycentric,
-    ]
-    .into_iter()
-    .flatten()
-    .fold(0.0, f64::max)
+    [e.point.map(|x| x / scale), e.depth.map(|x| x.abs() / scale), e.normal, e.t, e.barycentric]
+        .into_iter()
+        .flatten()
+        .fold(0.0, f64::max)
 }
 
-fn stats_for<'a>(map: &'a mut BTreeMap<(usize, Query), EngineQueryStats>, ix: usize, name: &str, q: Query) -> &'a mut EngineQueryStats {
-    map.entry((ix, q)).or_insert_with(|| EngineQueryStats { engine: name.to_string(), query: Some(q), ..Default::default() })
+fn stats_for<'a>(
+    map: &'a mut BTreeMap<(usize, Query), EngineQueryStats>,
+    ix: usize,
+    name: &str,
+    q: Query,
+) -> &'a mut EngineQueryStats {
+    map.entry((ix, q)).or_insert_with(|| EngineQueryStats {
+        engine: name.to_string(),
+        query: Some(q),
+        ..Default::default()
+    })
 }
 
 /// Folds one case's results into the statistics.
@@ -268,13 +274,16 @@ fn discrepancy(c: &CaseResult, lc: &LoadedCase, ix: usize, tol: Tolerance) -> Di
     if let Some(a) = &c.referee {
         answers.insert(engines::REFEREE.into(), a.clone());
     }
-    let case = Case { expect: c.referee.clone().map(|mut e| {
-        // Bounding spheres are checked by their radius; the AABB exactly.
-        if lc.case.query != Query::Bounds {
-            e.min_radius = None;
-        }
-        e
-    }), ..lc.case.clone() };
+    let case = Case {
+        expect: c.referee.clone().map(|mut e| {
+            // Bounding spheres are checked by their radius; the AABB exactly.
+            if lc.case.query != Query::Bounds {
+                e.min_radius = None;
+            }
+            e
+        }),
+        ..lc.case.clone()
+    };
     Discrepancy {
         engine: r.engine.clone(),
         query: c.query,
@@ -404,6 +413,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
         },
         discrepancies,
         input_errors,
+        dynamics: (config.only.is_none() && config.shard.is_none_or(|(i, _)| i == 0)).then(crate::dynamics::run),
     }
 }
 

@@ -78,18 +78,13 @@ pub fn all(summary: &Summary) -> Vec<Chart> {
 /// the front and dominates nothing (callers pass finite values).
 pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
     let valid = |p: &(f64, f64)| !p.0.is_nan() && !p.1.is_nan();
-    let dominates =
-        |a: &(f64, f64), b: &(f64, f64)| a.0 <= b.0 && a.1 <= b.1 && (a.0 < b.0 || a.1 < b.1);
+    let dominates = |a: &(f64, f64), b: &(f64, f64)| a.0 <= b.0 && a.1 <= b.1 && (a.0 < b.0 || a.1 < b.1);
     let mut front: Vec<usize> = (0..points.len())
         .filter(|&i| valid(&points[i]))
         .filter(|&i| !points.iter().any(|q| valid(q) && dominates(q, &points[i])))
         .collect();
     front.sort_by(|&a, &b| {
-        points[a]
-            .0
-            .total_cmp(&points[b].0)
-            .then(points[a].1.total_cmp(&points[b].1))
-            .then(a.cmp(&b))
+        points[a].0.total_cmp(&points[b].0).then(points[a].1.total_cmp(&points[b].1)).then(a.cmp(&b))
     });
     front
 }
@@ -98,16 +93,8 @@ pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
 /// below the smallest positive value when that lies at or under the floor (so a
 /// zero is never drawn above a real error). `positives` holds the non-zero p99s.
 pub fn zero_floor(positives: &[f64]) -> f64 {
-    let smallest = positives
-        .iter()
-        .copied()
-        .filter(|v| *v > 0.0 && v.is_finite())
-        .fold(f64::INFINITY, f64::min);
-    if smallest <= ZERO_FLOOR * 1.5 {
-        10f64.powi(smallest.log10().floor() as i32 - 1)
-    } else {
-        ZERO_FLOOR
-    }
+    let smallest = positives.iter().copied().filter(|v| *v > 0.0 && v.is_finite()).fold(f64::INFINITY, f64::min);
+    if smallest <= ZERO_FLOOR * 1.5 { 10f64.powi(smallest.log10().floor() as i32 - 1) } else { ZERO_FLOOR }
 }
 
 /// Accuracy against speed for one query kind: x is nanoseconds per query (the
@@ -127,10 +114,7 @@ pub fn accuracy_speed(summary: &Summary, query: Query) -> Option<String> {
     let mut untimed = Vec::new();
     let mut unmeasured = Vec::new();
     for s in summary.stats.iter().filter(|s| s.query == Some(query)) {
-        let t = s
-            .timing
-            .map(|t| t.median_ns)
-            .filter(|t| t.is_finite() && *t > 0.0);
+        let t = s.timing.map(|t| t.median_ns).filter(|t| t.is_finite() && *t > 0.0);
         let p99 = s.headline.p99().filter(|v| v.is_finite());
         match (t, p99) {
             (None, _) => untimed.push(s.engine.as_str()),
@@ -146,10 +130,7 @@ pub fn accuracy_speed(summary: &Summary, query: Query) -> Option<String> {
     let positives: Vec<f64> = raw.iter().map(|p| p.1).filter(|v| *v > 0.0).collect();
     let floor = zero_floor(&positives);
     let has_zero = raw.iter().any(|p| p.1 == 0.0);
-    let plotted: Vec<(f64, f64)> = raw
-        .iter()
-        .map(|&(x, y)| (x, if y == 0.0 { floor } else { y }))
-        .collect();
+    let plotted: Vec<(f64, f64)> = raw.iter().map(|&(x, y)| (x, if y == 0.0 { floor } else { y })).collect();
 
     let (w, h) = (760.0, 540.0);
     let (left, right, top, bottom) = (80.0, 730.0, 50.0, 430.0);
@@ -162,12 +143,7 @@ pub fn accuracy_speed(summary: &Summary, query: Query) -> Option<String> {
     let title = format!("{query}: accuracy against speed");
     open_svg(&mut svg, w, h, &title);
     frame(&mut svg, &xa, &ya, left, right, top, bottom);
-    x_axis(
-        &mut svg,
-        &xa,
-        bottom,
-        "time per query, ns (median of repetitions)",
-    );
+    x_axis(&mut svg, &xa, bottom, "time per query, ns (median of repetitions)");
     y_axis(&mut svg, &ya, left, top, bottom, "headline error, p99");
 
     if has_zero {
@@ -241,22 +217,10 @@ pub fn accuracy_speed(summary: &Summary, query: Query) -> Option<String> {
     for &i in &order {
         let name = &points[i].0.engine;
         let (px, py) = anchors[i];
-        let label = place_label(
-            name,
-            px,
-            py,
-            &anchors,
-            &placed,
-            (left, w - 4.0),
-            (top, bottom),
-        );
+        let label = place_label(name, px, py, &anchors, &placed, (left, w - 4.0), (top, bottom));
         placed.push(label.rect);
         if label.dy != 0.0 {
-            let lx = if label.anchor_end {
-                label.x + 2.0
-            } else {
-                label.x - 2.0
-            };
+            let lx = if label.anchor_end { label.x + 2.0 } else { label.x - 2.0 };
             let _ = write!(
                 svg,
                 r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#aaa" stroke-width="0.8"/>"##,
@@ -271,11 +235,7 @@ pub fn accuracy_speed(summary: &Summary, query: Query) -> Option<String> {
             r##"<text x="{}" y="{}"{} fill="#222">{}</text>"##,
             n(label.x),
             n(label.y),
-            if label.anchor_end {
-                r#" text-anchor="end""#
-            } else {
-                ""
-            },
+            if label.anchor_end { r#" text-anchor="end""# } else { "" },
             escape(name)
         );
     }
@@ -289,11 +249,7 @@ pub fn accuracy_speed(summary: &Summary, query: Query) -> Option<String> {
             r##"<text x="{}" y="{}"{} fill="#666">{}</text>"##,
             n(r.x),
             n(r.y),
-            if r.anchor_end {
-                r#" text-anchor="end""#
-            } else {
-                ""
-            },
+            if r.anchor_end { r#" text-anchor="end""# } else { "" },
             escape(&text)
         );
     }
@@ -368,22 +324,10 @@ pub fn error_distribution(summary: &Summary, query: Query) -> Option<String> {
     if curves.is_empty() {
         return None;
     }
-    let max_n = curves
-        .iter()
-        .map(|c| c.0.headline.n)
-        .max()
-        .unwrap_or(1)
-        .max(1);
-    let xs: Vec<f64> = curves
-        .iter()
-        .flat_map(|c| c.1.iter().map(|p| p.0))
-        .collect();
+    let max_n = curves.iter().map(|c| c.0.headline.n).max().unwrap_or(1).max(1);
+    let xs: Vec<f64> = curves.iter().flat_map(|c| c.1.iter().map(|p| p.0)).collect();
 
-    let legend_chars = curves
-        .iter()
-        .map(|c| c.0.engine.chars().count())
-        .max()
-        .unwrap_or(0);
+    let legend_chars = curves.iter().map(|c| c.0.engine.chars().count()).max().unwrap_or(0);
     let legend_w = 44.0 + CHAR_W * legend_chars as f64;
     let (left, right, top, bottom) = (80.0, 600.0, 50.0, 410.0);
     let w = (right + 24.0 + legend_w).max(760.0);
@@ -391,37 +335,21 @@ pub fn error_distribution(summary: &Summary, query: Query) -> Option<String> {
     let xa = LogAxis::covering(&xs, left, right);
     // y: from 1 down to the decade holding 1/n of the largest sample.
     let y_lo = -((max_n as f64).log10().ceil() as i32).max(1);
-    let ya = LogAxis {
-        lo: y_lo,
-        hi: 0,
-        p0: bottom,
-        p1: top,
-    };
+    let ya = LogAxis { lo: y_lo, hi: 0, p0: bottom, p1: top };
 
     let mut svg = String::new();
     let title = format!("{query}: distribution of the headline error");
     open_svg(&mut svg, w, h, &title);
     frame(&mut svg, &xa, &ya, left, right, top, bottom);
     x_axis(&mut svg, &xa, bottom, "headline error x");
-    y_axis(
-        &mut svg,
-        &ya,
-        left,
-        top,
-        bottom,
-        "fraction of cases with error > x",
-    );
+    y_axis(&mut svg, &ya, left, top, bottom, "fraction of cases with error > x");
 
     for (idx, (s, pts)) in curves.iter().enumerate() {
         // Below its smallest non-zero error, the fraction above x is flat: the
         // curve starts at the axis's left edge.
         let mut line = format!("{},{} ", n(left), n(ya.pos(pts[0].1.max(ya.min_value()))));
         for &(x, f) in pts {
-            let py = if f > 0.0 {
-                ya.pos(f.max(ya.min_value()))
-            } else {
-                bottom
-            };
+            let py = if f > 0.0 { ya.pos(f.max(ya.min_value())) } else { bottom };
             let _ = write!(line, "{},{} ", n(xa.pos(x)), n(py));
         }
         let _ = write!(
@@ -456,10 +384,7 @@ pub fn error_distribution(summary: &Summary, query: Query) -> Option<String> {
         n(y),
         BINS_PER_DECADE
     );
-    for (what, names) in [
-        ("every error exactly 0", &exact),
-        ("no error measured", &unmeasured),
-    ] {
+    for (what, names) in [("every error exactly 0", &exact), ("no error measured", &unmeasured)] {
         if !names.is_empty() {
             y += 17.0;
             let _ = write!(
@@ -492,11 +417,7 @@ fn ccdf(d: &Dist) -> Vec<(f64, f64)> {
         out.push((lower, above as f64 / total));
         above = above.saturating_sub(c);
         // The last bin ends at the exact maximum, where nothing is above any more.
-        let upper = if last && d.max.is_finite() {
-            d.max.max(lower)
-        } else {
-            upper
-        };
+        let upper = if last && d.max.is_finite() { d.max.max(lower) } else { upper };
         let frac = if last { 0.0 } else { above as f64 / total };
         out.push((upper, frac));
     }
@@ -516,9 +437,7 @@ struct EngineColors<'a> {
 }
 
 /// Colorblind-aware categorical palette (dark enough to read on white).
-const PALETTE: [&str; 8] = [
-    "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#e08a0b", "#17becf", "#8c564b", "#e377c2",
-];
+const PALETTE: [&str; 8] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#e08a0b", "#17becf", "#8c564b", "#e377c2"];
 /// Dash patterns, changed each time the palette wraps around.
 const DASHES: [&str; 4] = ["", "7 3", "2 2", "9 3 2 3"];
 
@@ -543,11 +462,7 @@ impl<'a> EngineColors<'a> {
 
     fn dash_attr(&self, engine: &str) -> String {
         let dash = DASHES[(self.index(engine) / PALETTE.len() + self.index(engine)) % DASHES.len()];
-        if dash.is_empty() {
-            String::new()
-        } else {
-            format!(r#" stroke-dasharray="{dash}""#)
-        }
+        if dash.is_empty() { String::new() } else { format!(r#" stroke-dasharray="{dash}""#) }
     }
 }
 
@@ -568,27 +483,15 @@ impl LogAxis {
     /// The whole decades covering the positive finite `values` with a margin; one
     /// decade around 1 when there are none.
     fn covering(values: &[f64], p0: f64, p1: f64) -> Self {
-        let logs: Vec<f64> = values
-            .iter()
-            .filter(|v| **v > 0.0 && v.is_finite())
-            .map(|v| v.log10())
-            .collect();
+        let logs: Vec<f64> = values.iter().filter(|v| **v > 0.0 && v.is_finite()).map(|v| v.log10()).collect();
         let min = logs.iter().copied().fold(f64::INFINITY, f64::min);
         let max = logs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let (lo, hi) = if min.is_finite() {
-            (
-                (min - AXIS_PAD_DECADES).floor() as i32,
-                (max + AXIS_PAD_DECADES).ceil() as i32,
-            )
+            ((min - AXIS_PAD_DECADES).floor() as i32, (max + AXIS_PAD_DECADES).ceil() as i32)
         } else {
             (0, 1)
         };
-        LogAxis {
-            lo,
-            hi: hi.max(lo + 1),
-            p0,
-            p1,
-        }
+        LogAxis { lo, hi: hi.max(lo + 1), p0, p1 }
     }
 
     fn pos(&self, v: f64) -> f64 {
@@ -620,11 +523,7 @@ fn decade_label(k: i32) -> String {
 /// A value drawn as its decade label when it is a power of ten, else `1.2e-19`.
 fn decade_or_sci(v: f64) -> String {
     let k = v.log10().round();
-    if (v / 10f64.powi(k as i32) - 1.0).abs() < 1e-9 {
-        decade_label(k as i32)
-    } else {
-        format!("{v:.1e}")
-    }
+    if (v / 10f64.powi(k as i32) - 1.0).abs() < 1e-9 { decade_label(k as i32) } else { format!("{v:.1e}") }
 }
 
 /// A pixel coordinate with one decimal (and no negative zero).
@@ -645,36 +544,16 @@ fn open_svg(svg: &mut String, w: f64, h: f64, title: &str) {
 
 /// The plot area's frame, decade grid lines and minor ticks (minor ticks at 2..9
 /// times each decade when the axis spans at most 8 decades).
-fn frame(
-    svg: &mut String,
-    xa: &LogAxis,
-    ya: &LogAxis,
-    left: f64,
-    right: f64,
-    top: f64,
-    bottom: f64,
-) {
+fn frame(svg: &mut String, xa: &LogAxis, ya: &LogAxis, left: f64, right: f64, top: f64, bottom: f64) {
     for k in xa.lo..=xa.hi {
         let x = xa.pos(10f64.powi(k));
-        let _ = write!(
-            svg,
-            r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e6e6e6"/>"##,
-            n(x),
-            n(top),
-            n(x),
-            n(bottom)
-        );
+        let _ =
+            write!(svg, r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e6e6e6"/>"##, n(x), n(top), n(x), n(bottom));
     }
     for k in ya.lo..=ya.hi {
         let y = ya.pos(10f64.powi(k));
-        let _ = write!(
-            svg,
-            r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e6e6e6"/>"##,
-            n(left),
-            n(y),
-            n(right),
-            n(y)
-        );
+        let _ =
+            write!(svg, r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e6e6e6"/>"##, n(left), n(y), n(right), n(y));
     }
     for (axis, horizontal) in [(xa, true), (ya, false)] {
         if axis.hi - axis.lo > 8 {
@@ -822,23 +701,8 @@ fn place_label(
     let make = |anchor_end: bool, dy: f64| {
         let y = py + 4.0 + dy;
         let x = if anchor_end { px - 9.0 } else { px + 9.0 };
-        let (x0, x1) = if anchor_end {
-            (x - width, x)
-        } else {
-            (x, x + width)
-        };
-        Label {
-            x,
-            y,
-            dy,
-            anchor_end,
-            rect: Rect {
-                x0,
-                y0: y - 10.0,
-                x1,
-                y1: y + 3.0,
-            },
-        }
+        let (x0, x1) = if anchor_end { (x - width, x) } else { (x, x + width) };
+        Label { x, y, dy, anchor_end, rect: Rect { x0, y0: y - 10.0, x1, y1: y + 3.0 } }
     };
     for anchor_end in [false, true] {
         for step in 0u8..8 {
@@ -849,12 +713,9 @@ fn place_label(
             };
             let l = make(anchor_end, dy);
             let r = l.rect;
-            let inside =
-                r.x0 >= xlim.0 && r.x1 <= xlim.1 && r.y0 >= ylim.0 - 12.0 && r.y1 <= ylim.1 + 2.0;
+            let inside = r.x0 >= xlim.0 && r.x1 <= xlim.1 && r.y0 >= ylim.0 - 12.0 && r.y1 <= ylim.1 + 2.0;
             let clear_of_labels = placed.iter().all(|p| !p.overlaps(&r));
-            let clear_of_points = points
-                .iter()
-                .all(|&(qx, qy)| !point_box(qx, qy).overlaps(&r));
+            let clear_of_points = points.iter().all(|&(qx, qy)| !point_box(qx, qy).overlaps(&r));
             if inside && clear_of_labels && clear_of_points {
                 return l;
             }
@@ -866,40 +727,17 @@ fn place_label(
 /// A spot for a note on the horizontal line at height `y` between `xlim.0` and
 /// `xlim.1`: just above or just below the line, at its right end, left end or
 /// middle, whichever first overlaps no placed label and no point.
-fn free_spot(
-    text: &str,
-    y: f64,
-    xlim: (f64, f64),
-    points: &[(f64, f64)],
-    placed: &[Rect],
-) -> Label {
+fn free_spot(text: &str, y: f64, xlim: (f64, f64), points: &[(f64, f64)], placed: &[Rect]) -> Label {
     let width = CHAR_W * text.chars().count() as f64;
     let mid = (xlim.0 + xlim.1 - width) / 2.0;
     let mut first = None;
     for baseline in [y - 4.0, y + 13.0] {
-        for (x0, anchor_end) in [
-            (xlim.1 - 4.0 - width, true),
-            (xlim.0 + 6.0, false),
-            (mid, false),
-        ] {
-            let rect = Rect {
-                x0,
-                y0: baseline - 10.0,
-                x1: x0 + width,
-                y1: baseline + 3.0,
-            };
+        for (x0, anchor_end) in [(xlim.1 - 4.0 - width, true), (xlim.0 + 6.0, false), (mid, false)] {
+            let rect = Rect { x0, y0: baseline - 10.0, x1: x0 + width, y1: baseline + 3.0 };
             let x = if anchor_end { x0 + width } else { x0 };
-            let label = Label {
-                x,
-                y: baseline,
-                dy: 0.0,
-                anchor_end,
-                rect,
-            };
+            let label = Label { x, y: baseline, dy: 0.0, anchor_end, rect };
             let clear = placed.iter().all(|p| !p.overlaps(&rect))
-                && points
-                    .iter()
-                    .all(|&(qx, qy)| !point_box(qx, qy).overlaps(&rect));
+                && points.iter().all(|&(qx, qy)| !point_box(qx, qy).overlaps(&rect));
             if clear {
                 return label;
             }
@@ -911,12 +749,7 @@ fn free_spot(
 
 /// The box a point keeps clear of labels.
 fn point_box(x: f64, y: f64) -> Rect {
-    Rect {
-        x0: x - POINT_CLEARANCE,
-        y0: y - POINT_CLEARANCE,
-        x1: x + POINT_CLEARANCE,
-        y1: y + POINT_CLEARANCE,
-    }
+    Rect { x0: x - POINT_CLEARANCE, y0: y - POINT_CLEARANCE, x1: x + POINT_CLEARANCE, y1: y + POINT_CLEARANCE }
 }
 
 #[cfg(test)]
@@ -936,13 +769,7 @@ pub(crate) mod fixture {
     }
 
     fn timing(median_ns: f64) -> Option<Timing> {
-        Some(Timing {
-            median_ns,
-            min_ns: median_ns * 0.9,
-            max_ns: median_ns * 1.2,
-            reps: 5,
-            queries: 100,
-        })
+        Some(Timing { median_ns, min_ns: median_ns * 0.9, max_ns: median_ns * 1.2, reps: 5, queries: 100 })
     }
 
     /// Engines `fast<f32>` (20 ns, p99 1e-6) and `exact` (900 ns, p99 1e-15) on
@@ -983,14 +810,8 @@ pub(crate) mod fixture {
                 profile: "release".into(),
                 machine: "linux x86_64, 2 cores".into(),
                 engines: vec![
-                    EngineInfo {
-                        name: "fast<f32>".into(),
-                        version: "collide (this commit), f32".into(),
-                    },
-                    EngineInfo {
-                        name: "exact".into(),
-                        version: "referee".into(),
-                    },
+                    EngineInfo { name: "fast<f32>".into(), version: "collide (this commit), f32".into() },
+                    EngineInfo { name: "exact".into(), version: "referee".into() },
                 ],
                 seed: 42,
                 cases_per_query: 100,
@@ -1019,17 +840,10 @@ pub(crate) mod fixture {
             ("parry3d", 49.0, 2e-7, 0.05),
             ("referee", 41000.0, 0.0, 1.0),
         ];
-        let queries = [
-            Query::Contact,
-            Query::Intersect,
-            Query::Barycentric,
-            Query::Overlap,
-        ];
+        let queries = [Query::Contact, Query::Intersect, Query::Barycentric, Query::Overlap];
         let mut state: u64 = 0x2545_F491_4F6C_DD1D;
         let mut uniform = move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
             (state >> 11) as f64 / (1u64 << 53) as f64
         };
         let mut stats = Vec::new();
@@ -1045,11 +859,7 @@ pub(crate) mod fixture {
                     let x = if u < zeros {
                         0.0
                     } else if query == Query::Overlap {
-                        if uniform() < 0.002 * e as f64 {
-                            1.0
-                        } else {
-                            0.0
-                        }
+                        if uniform() < 0.002 * e as f64 { 1.0 } else { 0.0 }
                     } else {
                         // Log-uniform over four decades, with a heavier tail.
                         let v = uniform();
@@ -1075,30 +885,16 @@ pub(crate) mod fixture {
                     point_rel: point,
                     barycentric: bary,
                     headline: head,
-                    timing: Some(Timing {
-                        median_ns: t,
-                        min_ns: t * 0.97,
-                        max_ns: t * 1.08,
-                        reps: 7,
-                        queries: cases,
-                    }),
+                    timing: Some(Timing { median_ns: t, min_ns: t * 0.97, max_ns: t * 1.08, reps: 7, queries: cases }),
                     ..Default::default()
                 });
             }
         }
         let mut s = summary();
-        s.provenance.engines = engines
-            .iter()
-            .map(|e| EngineInfo {
-                name: e.0.into(),
-                version: format!("{} (sample)", e.0),
-            })
-            .collect();
+        s.provenance.engines =
+            engines.iter().map(|e| EngineInfo { name: e.0.into(), version: format!("{} (sample)", e.0) }).collect();
         s.stats = stats;
-        s.throughput = engines
-            .iter()
-            .map(|e| (e.0.to_string(), 1e9 / e.1))
-            .collect();
+        s.throughput = engines.iter().map(|e| (e.0.to_string(), 1e9 / e.1)).collect();
         s
     }
 }
@@ -1121,10 +917,7 @@ mod tests {
             if let Some(name) = tag.strip_prefix('/') {
                 assert_eq!(stack.pop().as_deref(), Some(name), "mismatched </{name}>");
             } else {
-                let name: String = tag
-                    .chars()
-                    .take_while(|c| c.is_ascii_alphanumeric())
-                    .collect();
+                let name: String = tag.chars().take_while(|c| c.is_ascii_alphanumeric()).collect();
                 assert!(!name.is_empty(), "bad tag <{tag}>");
                 names.push(name.clone());
                 if !tag.ends_with('/') {
@@ -1142,14 +935,7 @@ mod tests {
         // Hand-derived: (1,9) fastest; (2,5) better error than it; (3,6) is beaten
         // by (2,5) in both; (4,1) best error; (5,1) beaten by (4,1) on time only;
         // (4,1) duplicated at index 5 stays (equal points do not dominate).
-        let pts = [
-            (1.0, 9.0),
-            (2.0, 5.0),
-            (3.0, 6.0),
-            (4.0, 1.0),
-            (5.0, 1.0),
-            (4.0, 1.0),
-        ];
+        let pts = [(1.0, 9.0), (2.0, 5.0), (3.0, 6.0), (4.0, 1.0), (5.0, 1.0), (4.0, 1.0)];
         assert_eq!(pareto_front(&pts), vec![0, 1, 3, 5]);
     }
 
@@ -1164,18 +950,9 @@ mod tests {
     fn zero_floor_stays_below_every_positive_error() {
         // Relative slack for comparing a returned power of ten with the constant.
         const SAME_REL: f64 = 1e-12;
-        assert!(
-            (zero_floor(&[1e-6, 1e-15]) / ZERO_FLOOR - 1.0).abs() < SAME_REL,
-            "default floor"
-        );
-        assert!(
-            zero_floor(&[3e-19]) < 3e-19,
-            "floor must lie under the smallest error"
-        );
-        assert!(
-            zero_floor(&[1e-18]) < 1e-18,
-            "floor must lie under an error at the floor"
-        );
+        assert!((zero_floor(&[1e-6, 1e-15]) / ZERO_FLOOR - 1.0).abs() < SAME_REL, "default floor");
+        assert!(zero_floor(&[3e-19]) < 3e-19, "floor must lie under the smallest error");
+        assert!(zero_floor(&[1e-18]) < 1e-18, "floor must lie under an error at the floor");
     }
 
     #[test]
@@ -1183,23 +960,10 @@ mod tests {
         let s = fixture::summary();
         let svg = accuracy_speed(&s, Query::Contact).expect("both engines are timed");
         let tags = balanced_tags(&svg);
-        assert_eq!(
-            tags.iter().filter(|t| *t == "circle").count(),
-            2,
-            "one circle per engine"
-        );
-        assert!(
-            svg.contains(">1e-6<") && svg.contains(">1e-15<"),
-            "decade labels of the errors"
-        );
-        assert!(
-            svg.contains(">10<") && svg.contains(">1000<"),
-            "decade labels of the times"
-        );
-        assert!(
-            svg.contains("fast&lt;f32&gt;"),
-            "engine name escaped: {svg}"
-        );
+        assert_eq!(tags.iter().filter(|t| *t == "circle").count(), 2, "one circle per engine");
+        assert!(svg.contains(">1e-6<") && svg.contains(">1e-15<"), "decade labels of the errors");
+        assert!(svg.contains(">10<") && svg.contains(">1000<"), "decade labels of the times");
+        assert!(svg.contains("fast&lt;f32&gt;"), "engine name escaped: {svg}");
         assert!(!svg.contains("fast<f32>"), "raw '<' in a label");
         // Neither engine beats the other in both: both on the front, joined by one
         // step line of three vertices.
@@ -1214,23 +978,12 @@ mod tests {
         let mut slow = s.stats[0].clone();
         slow.engine = "slow".into();
         slow.headline = fixture::dist(&[1e-3; 100]);
-        slow.timing = Some(Timing {
-            median_ns: 50.0,
-            ..Timing::default()
-        });
+        slow.timing = Some(Timing { median_ns: 50.0, ..Timing::default() });
         s.stats.push(slow);
         let svg = accuracy_speed(&s, Query::Contact).expect("timed");
         balanced_tags(&svg);
-        assert_eq!(
-            svg.matches(r##"stroke="#222" stroke-width="1.2""##).count(),
-            2,
-            "two on the front"
-        );
-        assert_eq!(
-            svg.matches(r##"stroke="#fff" stroke-width="1.2""##).count(),
-            1,
-            "one off it"
-        );
+        assert_eq!(svg.matches(r##"stroke="#222" stroke-width="1.2""##).count(), 2, "two on the front");
+        assert_eq!(svg.matches(r##"stroke="#fff" stroke-width="1.2""##).count(), 1, "one off it");
         let line = svg.split("<polyline points=\"").nth(1).expect("front line");
         let vertices = line.split('"').next().expect("points").split(' ').count();
         assert_eq!(vertices, 3, "two front points joined by one step: {line}");
@@ -1243,24 +996,11 @@ mod tests {
             balanced_tags(&c.svg);
         }
         // Re-run the placement the chart does and check the boxes pairwise.
-        let pts: Vec<(f64, f64)> = (0..6)
-            .map(|i| (300.0 + 4.0 * i as f64, 200.0 + 3.0 * i as f64))
-            .collect();
+        let pts: Vec<(f64, f64)> = (0..6).map(|i| (300.0 + 4.0 * i as f64, 200.0 + 3.0 * i as f64)).collect();
         let mut placed: Vec<Rect> = Vec::new();
         for (i, &(x, y)) in pts.iter().enumerate() {
-            let l = place_label(
-                &format!("engine-{i}/name"),
-                x,
-                y,
-                &pts,
-                &placed,
-                (80.0, 756.0),
-                (50.0, 430.0),
-            );
-            assert!(
-                placed.iter().all(|p| !p.overlaps(&l.rect)),
-                "label {i} overlaps"
-            );
+            let l = place_label(&format!("engine-{i}/name"), x, y, &pts, &placed, (80.0, 756.0), (50.0, 430.0));
+            assert!(placed.iter().all(|p| !p.overlaps(&l.rect)), "label {i} overlaps");
             placed.push(l.rect);
         }
     }
@@ -1271,10 +1011,7 @@ mod tests {
         let svg = accuracy_speed(&s, Query::Intersect).expect("timed");
         balanced_tags(&svg);
         assert!(svg.contains("p99 = 0 (exact), drawn at 1e-18"), "{svg}");
-        assert!(
-            svg.contains(r##"fill="#fff" stroke="#d62728""##),
-            "hollow marker for the exact engine"
-        );
+        assert!(svg.contains(r##"fill="#fff" stroke="#d62728""##), "hollow marker for the exact engine");
         assert!(svg.contains(">1e-18<"), "floor decade labelled");
     }
 
@@ -1285,10 +1022,7 @@ mod tests {
             st.timing = None;
         }
         assert!(accuracy_speed(&s, Query::Contact).is_none());
-        assert!(
-            accuracy_speed(&fixture::summary(), Query::Toi).is_none(),
-            "query absent"
-        );
+        assert!(accuracy_speed(&fixture::summary(), Query::Toi).is_none(), "query absent");
     }
 
     #[test]
@@ -1297,10 +1031,7 @@ mod tests {
         let svg = error_distribution(&s, Query::Contact).expect("errors measured");
         balanced_tags(&svg);
         assert_eq!(svg.matches("<polyline").count(), 2, "one curve per engine");
-        assert!(
-            svg.contains("fast&lt;f32&gt;") && svg.contains(">exact<"),
-            "legend"
-        );
+        assert!(svg.contains("fast&lt;f32&gt;") && svg.contains(">exact<"), "legend");
         let svg = error_distribution(&s, Query::Intersect).expect("one engine has errors");
         assert_eq!(svg.matches("<polyline").count(), 1);
         assert!(svg.contains("every error exactly 0): exact"), "{svg}");
@@ -1311,19 +1042,10 @@ mod tests {
         let d = fixture::dist(&[0.0, 0.0, 1e-3, 1e-3, 5e-2]);
         let c = ccdf(&d);
         let first = c.first().expect("vertices");
-        assert!(
-            (first.1 - 0.6).abs() < 1e-12,
-            "3 of 5 samples are non-zero: {c:?}"
-        );
+        assert!((first.1 - 0.6).abs() < 1e-12, "3 of 5 samples are non-zero: {c:?}");
         let last = c.last().expect("vertices");
-        assert!(
-            (last.0 / 5e-2 - 1.0).abs() < 1e-12 && last.1 == 0.0,
-            "ends at max: {c:?}"
-        );
-        assert!(
-            c.windows(2).all(|w| w[1].0 >= w[0].0 && w[1].1 <= w[0].1),
-            "monotone: {c:?}"
-        );
+        assert!((last.0 / 5e-2 - 1.0).abs() < 1e-12 && last.1 == 0.0, "ends at max: {c:?}");
+        assert!(c.windows(2).all(|w| w[1].0 >= w[0].0 && w[1].1 <= w[0].1), "monotone: {c:?}");
     }
 
     #[test]

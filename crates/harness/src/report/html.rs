@@ -9,8 +9,8 @@
 
 use super::charts::Chart;
 use super::markdown::{
-    Table, detail_table, engines_table, provenance_lines, queries, query_table, query_title,
-    reading_notes, throughput_table,
+    Table, detail_table, engines_table, provenance_lines, queries, query_table, query_title, reading_notes,
+    throughput_table,
 };
 use super::summary::Summary;
 use std::fmt::Write;
@@ -67,11 +67,7 @@ code{font:13px ui-monospace,SFMono-Regular,Menlo,Consolas,monospace}
 /// A [`Table`] as an HTML table (wrapped to scroll sideways on narrow screens).
 fn table_html(t: &Table) -> String {
     let class = |i: usize| {
-        if t.numeric.get(i).copied().unwrap_or(false) {
-            r#" class="n""#
-        } else {
-            ""
-        }
+        if t.numeric.get(i).copied().unwrap_or(false) { r#" class="n""# } else { "" }
     };
     let mut out = String::from("<div class=\"scroll\"><table>\n<thead><tr>");
     for (i, h) in t.header.iter().enumerate() {
@@ -91,13 +87,7 @@ fn table_html(t: &Table) -> String {
 
 /// A section anchor for a query kind.
 fn anchor(title: &str) -> String {
-    format!(
-        "q-{}",
-        title
-            .chars()
-            .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
-            .collect::<String>()
-    )
+    format!("q-{}", title.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '-' }).collect::<String>())
 }
 
 /// The whole of `index.html`.
@@ -187,21 +177,10 @@ pub fn index_html(summary: &Summary, charts: &[Chart]) -> String {
     out.push_str("<h2 id=\"files\">Files of this report</h2>\n<ul class=\"files\">\n");
     for (file, what) in [
         ("summary.md", "these tables as Markdown"),
-        (
-            "summary.json",
-            "everything measured, mergeable across shards",
-        ),
-        (
-            "discrepancies.json",
-            "each discrepancy with its case as a fixture for crashtest check",
-        ),
+        ("summary.json", "everything measured, mergeable across shards"),
+        ("discrepancies.json", "each discrepancy with its case as a fixture for crashtest check"),
     ] {
-        let _ = writeln!(
-            out,
-            "<li><a href=\"{f}\"><code>{f}</code></a> — {}</li>",
-            escape(what),
-            f = escape(file)
-        );
+        let _ = writeln!(out, "<li><a href=\"{f}\"><code>{f}</code></a> — {}</li>", escape(what), f = escape(file));
     }
     for c in charts {
         let _ = writeln!(
@@ -222,10 +201,7 @@ mod tests {
 
     #[test]
     fn escape_covers_markup_and_quotes() {
-        assert_eq!(
-            escape(r#"<a href="x">&'</a>"#),
-            "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;"
-        );
+        assert_eq!(escape(r#"<a href="x">&'</a>"#), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;");
     }
 
     #[test]
@@ -236,31 +212,14 @@ mod tests {
         let prov = html.find("id=\"provenance\"").expect("provenance section");
         let contact = html.find("id=\"q-contact\"").expect("contact section");
         assert!(prov < contact, "provenance comes first");
-        for needle in [
-            "abc1234-dirty",
-            "rustc 1.95.0",
-            "release",
-            "linux x86_64, 2 cores",
-            "seed",
-            ">42<",
-        ] {
+        for needle in ["abc1234-dirty", "rustc 1.95.0", "release", "linux x86_64, 2 cores", "seed", ">42<"] {
             assert!(html.contains(needle), "missing {needle:?}");
         }
-        assert!(
-            html.contains("fast&lt;f32&gt;") && html.contains(">exact<"),
-            "engine names"
-        );
-        assert!(
-            !html.contains("fast<f32>"),
-            "an engine name with '<' must be escaped"
-        );
+        assert!(html.contains("fast&lt;f32&gt;") && html.contains(">exact<"), "engine names");
+        assert!(!html.contains("fast<f32>"), "an engine name with '<' must be escaped");
         assert_eq!(html.matches("<svg ").count(), charts.len(), "charts inline");
         for c in &charts {
-            assert!(
-                html.contains(&format!("href=\"charts/{}\"", c.file)),
-                "link to {}",
-                c.file
-            );
+            assert!(html.contains(&format!("href=\"charts/{}\"", c.file)), "link to {}", c.file);
         }
         for f in ["summary.md", "summary.json", "discrepancies.json"] {
             assert!(html.contains(&format!("href=\"{f}\"")), "link to {f}");
@@ -270,10 +229,7 @@ mod tests {
             html.matches("http://www.w3.org/2000/svg").count(),
             "no address but the SVG namespace"
         );
-        assert!(
-            !html.contains("<script") && !html.contains("<link"),
-            "self-contained"
-        );
+        assert!(!html.contains("<script") && !html.contains("<link"), "self-contained");
     }
 
     #[test]

@@ -71,12 +71,7 @@ pub fn sig3(x: f64) -> String {
 pub fn timing(t: Option<&Timing>) -> String {
     match t {
         None => "—".into(),
-        Some(t) => format!(
-            "{} ({}–{})",
-            sig3(t.median_ns),
-            sig3(t.min_ns),
-            sig3(t.max_ns)
-        ),
+        Some(t) => format!("{} ({}–{})", sig3(t.median_ns), sig3(t.min_ns), sig3(t.max_ns)),
     }
 }
 
@@ -88,11 +83,8 @@ fn p99(d: &Dist) -> String {
 /// The query kinds present in a summary, in [`Query::ALL`] order, with `None`
 /// (statistics not tied to a query kind) last when present.
 pub fn queries(summary: &Summary) -> Vec<Option<Query>> {
-    let mut out: Vec<Option<Query>> = Query::ALL
-        .into_iter()
-        .filter(|q| summary.stats.iter().any(|s| s.query == Some(*q)))
-        .map(Some)
-        .collect();
+    let mut out: Vec<Option<Query>> =
+        Query::ALL.into_iter().filter(|q| summary.stats.iter().any(|s| s.query == Some(*q))).map(Some).collect();
     if summary.stats.iter().any(|s| s.query.is_none()) {
         out.push(None);
     }
@@ -114,22 +106,12 @@ fn stats_of(summary: &Summary, query: Option<Query>) -> Vec<&EngineQueryStats> {
 #[allow(clippy::type_complexity)]
 const MEASURES: [(Option<&str>, &str, fn(&EngineQueryStats) -> &Dist); 8] = [
     (None, "point, absolute", |s| &s.point_abs),
-    (Some("point p99 (rel)"), "point, relative to scale", |s| {
-        &s.point_rel
-    }),
+    (Some("point p99 (rel)"), "point, relative to scale", |s| &s.point_rel),
     (None, "depth / radius, absolute", |s| &s.depth_abs),
-    (
-        Some("depth p99 (rel)"),
-        "depth / radius, relative to scale",
-        |s| &s.depth_rel,
-    ),
-    (Some("normal p99 (rad)"), "normal angle, rad", |s| {
-        &s.normal_rad
-    }),
+    (Some("depth p99 (rel)"), "depth / radius, relative to scale", |s| &s.depth_rel),
+    (Some("normal p99 (rad)"), "normal angle, rad", |s| &s.normal_rad),
     (Some("t p99"), "segment parameter t", |s| &s.t),
-    (Some("bary p99"), "barycentric coordinates", |s| {
-        &s.barycentric
-    }),
+    (Some("bary p99"), "barycentric coordinates", |s| &s.barycentric),
     (None, "headline", |s| &s.headline),
 ];
 
@@ -186,11 +168,7 @@ pub fn query_table(summary: &Summary, query: Option<Query>) -> Table {
             row.push(s.flag_mismatches.to_string());
         }
         row.extend(measures.iter().map(|(_, get)| p99(get(s))));
-        row.push(if s.headline.n > 0 {
-            sci(s.headline.max)
-        } else {
-            "—".into()
-        });
+        row.push(if s.headline.n > 0 { sci(s.headline.max) } else { "—".into() });
         row.push(timing(s.timing.as_ref()));
         t.rows.push(row);
     }
@@ -253,35 +231,22 @@ pub fn provenance_lines(summary: &Summary) -> Vec<(String, String)> {
     let shards = if p.shards.is_empty() {
         "none (one run)".to_string()
     } else {
-        p.shards
-            .iter()
-            .map(|(i, n)| format!("{i}/{n}"))
-            .collect::<Vec<_>>()
-            .join(", ")
+        p.shards.iter().map(|(i, n)| format!("{i}/{n}")).collect::<Vec<_>>().join(", ")
     };
     vec![
         ("crashtest".into(), p.crashtest.clone()),
-        (
-            "commit".into(),
-            p.commit.clone().unwrap_or_else(|| "unknown".into()),
-        ),
+        ("commit".into(), p.commit.clone().unwrap_or_else(|| "unknown".into())),
         ("rustc".into(), p.rustc.clone()),
         ("profile".into(), p.profile.clone()),
         ("machine".into(), p.machine.clone()),
         ("started".into(), p.started.clone()),
         ("wall time".into(), format!("{} s", sig3(p.wall_seconds))),
         ("seed".into(), p.seed.to_string()),
-        (
-            "random cases per query".into(),
-            p.cases_per_query.to_string(),
-        ),
+        ("random cases per query".into(), p.cases_per_query.to_string()),
         ("shards".into(), shards),
         ("fixture cases".into(), p.fixture_cases.to_string()),
         ("random cases".into(), p.random_cases.to_string()),
-        (
-            "discrepancies".into(),
-            format!("{} (discrepancies.json)", summary.discrepancies),
-        ),
+        ("discrepancies".into(), format!("{} (discrepancies.json)", summary.discrepancies)),
         ("format".into(), summary.format.clone()),
     ]
 }
@@ -334,11 +299,7 @@ pub fn table_md(t: &Table) -> String {
         format!("| {} |\n", cells.join(" | "))
     };
     out.push_str(&row(&t.header));
-    let rule: Vec<&str> = t
-        .numeric
-        .iter()
-        .map(|&n| if n { "---:" } else { "---" })
-        .collect();
+    let rule: Vec<&str> = t.numeric.iter().map(|&n| if n { "---:" } else { "---" }).collect();
     let _ = writeln!(out, "| {} |", rule.join(" | "));
     for r in &t.rows {
         out.push_str(&row(r));
@@ -424,16 +385,10 @@ mod tests {
         ] {
             assert!(md.contains(needle), "missing {needle:?} in\n{md}");
         }
-        assert!(
-            md.contains("| fast\\<f32\\> | 100 | 97 | 1 | 1 | 1 | 0 | 0 | 1 | 0 |"),
-            "{md}"
-        );
+        assert!(md.contains("| fast\\<f32\\> | 100 | 97 | 1 | 1 | 1 | 0 | 0 | 1 | 0 |"), "{md}");
         assert!(md.contains("1.0e-6"), "p99 of fast on contact: {md}");
         assert!(md.contains("20.0 (18.0–24.0)"), "timing with spread: {md}");
-        assert!(
-            !md.contains("bary p99"),
-            "no barycentric column without samples"
-        );
+        assert!(!md.contains("bary p99"), "no barycentric column without samples");
         assert!(md.find("## Throughput").expect("throughput") > intersect);
     }
 

@@ -44,10 +44,7 @@ impl Dist {
             return;
         }
         let k = (x.log10() * BINS_PER_DECADE as f64).floor();
-        let k = k.clamp(
-            (HIST_MIN_EXP * BINS_PER_DECADE) as f64,
-            (HIST_MAX_EXP * BINS_PER_DECADE) as f64,
-        ) as i32;
+        let k = k.clamp((HIST_MIN_EXP * BINS_PER_DECADE) as f64, (HIST_MAX_EXP * BINS_PER_DECADE) as f64) as i32;
         match self.bins.binary_search_by_key(&k, |b| b.0) {
             Ok(i) => self.bins[i].1 += 1,
             Err(i) => self.bins.insert(i, (k, 1)),

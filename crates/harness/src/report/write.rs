@@ -12,12 +12,47 @@ use std::io;
 use std::path::{Path, PathBuf};
 
 /// The files of a report, as (path relative to the report folder, contents).
-pub fn render_files(summary: &Summary, discrepancies: &[Value]) -> Vec<(PathBuf, String)> {
-    let mut files = vec![
-        ("summary.json".into(), pretty(summary)),
-        ("discrepancies.json".into(), pretty(&discrepancies)),
-    ];
+/// The dynamics section, when given, adds `dynamics.json`, its charts, and its
+/// part of `summary.md` and `index.html`.
+pub fn render_files(
+    summary: &Summary,
+    discrepancies: &[Value],
+    dynamics: Option<&crate::dynamics::DynamicsReport>,
+) -> Vec<(PathBuf, String)> {
+    let mut files =
+        vec![("summary.json".into(), pretty(summary)), ("discrepancies.json".into(), pretty(&discrepancies))];
     files.extend(crate::report::pages(summary));
+    if let Some(d) = dynamics {
+        let md = crate::dynamics::markdown(d);
+        let charts = crate::dynamics::charts(d);
+        let mut section = String::from("<section id=\"dynamics\">\n<h2>Dynamics: bounces, tunneling, two balls</h2>\n");
+        for c in &charts {
+            section.push_str(&format!(
+                "<figure>{}<figcaption>{} — <a href=\"charts/{}\">charts/{}</a></figcaption></figure>\n",
+                c.svg,
+                crate::report::html::escape(&c.title),
+                crate::report::html::escape(&c.file),
+                crate::report::html::escape(&c.file)
+            ));
+        }
+        section.push_str(&format!(
+            "<details><summary>Tables (as in summary.md)</summary><pre>{}</pre></details>\n</section>\n",
+            crate::report::html::escape(&md)
+        ));
+        for (path, contents) in files.iter_mut() {
+            if path.as_os_str() == "summary.md" {
+                contents.push('\n');
+                contents.push_str(&md);
+            } else if path.as_os_str() == "index.html" {
+                if let Some(at) = contents.rfind("<h2") {
+                    // Before the last section (the list of the report's files).
+                    contents.insert_str(at, &section);
+                }
+            }
+        }
+        files.push(("dynamics.json".into(), pretty(d)));
+        files.extend(charts.into_iter().map(|c| (PathBuf::from("charts").join(c.file), c.svg)));
+    }
     files
 }
 
@@ -79,9 +114,8 @@ fn point_latest(root: &Path, id: &str) -> io::Result<()> {
 
 /// Writes a campaign's outcome as a report.
 pub fn write_outcome(root: &Path, id: &str, outcome: &Outcome) -> io::Result<PathBuf> {
-    let discrepancies: Vec<Value> =
-        outcome.discrepancies.iter().filter_map(|d| serde_json::to_value(d).ok()).collect();
-    let files = render_files(&outcome.summary, &discrepancies);
+    let discrepancies: Vec<Value> = outcome.discrepancies.iter().filter_map(|d| serde_json::to_value(d).ok()).collect();
+    let files = render_files(&outcome.summary, &discrepancies, outcome.dynamics.as_ref());
     write_report(root, id, &files)
 }
 

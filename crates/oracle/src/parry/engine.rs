@@ -12,17 +12,14 @@ use super::backend::bounding_volume::details::point_cloud_bounding_sphere;
 use super::backend::bounding_volume::{Aabb as EngineAabb, BoundingVolume};
 use super::backend::math::{DEFAULT_EPSILON, Pose, Vector};
 use super::backend::query::details::line_toi_with_halfspace;
-use super::backend::query::{
-    self, PointQuery, PointQueryWithLocation, Ray, RayCast, RayIntersection, Unsupported,
-};
+use super::backend::query::{self, PointQuery, PointQueryWithLocation, Ray, RayCast, RayIntersection, Unsupported};
 use super::backend::shape::{
-    Ball as EngineBall, HalfSpace, TriMesh as EngineTriMesh, Triangle as EngineTriangle,
-    TrianglePointLocation,
+    Ball as EngineBall, HalfSpace, TriMesh as EngineTriMesh, Triangle as EngineTriangle, TrianglePointLocation,
 };
 use super::{Engine, Real, narrow, widen};
 use crate::geom::{
-    Aabb, Ball, BarycentricAnswer, Contact, ContactAnswer, IntersectAnswer, P3, Plane, Segment,
-    SegmentHit, Sphere, Triangle,
+    Aabb, Ball, BarycentricAnswer, Contact, ContactAnswer, IntersectAnswer, P3, Plane, Segment, SegmentHit, Sphere,
+    Triangle,
 };
 use crate::parry::ParryEngine;
 
@@ -41,17 +38,10 @@ const MAX_TIME_OF_IMPACT: Real = 1.0;
 const CENTROID_WEIGHTS: [f64; 3] = [1.0 / 3.0; 3];
 
 /// No contact, flagged: the fallback of every contact query.
-const NO_CONTACT_DEGENERATE: ContactAnswer = ContactAnswer {
-    contact: None,
-    degenerate: true,
-};
+const NO_CONTACT_DEGENERATE: ContactAnswer = ContactAnswer { contact: None, degenerate: true };
 
 /// No hit, not parallel, flagged: the fallback of every intersect query.
-const NO_HIT_DEGENERATE: IntersectAnswer = IntersectAnswer {
-    hit: None,
-    parallel: false,
-    degenerate: true,
-};
+const NO_HIT_DEGENERATE: IntersectAnswer = IntersectAnswer { hit: None, parallel: false, degenerate: true };
 
 // ---------------------------------------------------------------------------
 // The edge: crashtest's f64 in, the engine's scalar out, and back.
@@ -74,11 +64,7 @@ fn answer_scalar(x: Real) -> Option<f64> {
 
 /// An engine vector as an answer, or `None` when parry returned a NaN or infinity.
 fn answer_point(v: Vector) -> Option<P3> {
-    Some([
-        answer_scalar(v.x)?,
-        answer_scalar(v.y)?,
-        answer_scalar(v.z)?,
-    ])
+    Some([answer_scalar(v.x)?, answer_scalar(v.y)?, answer_scalar(v.z)?])
 }
 
 /// A sphere as parry places it: a ball of radius `r` at the translation of its
@@ -98,9 +84,7 @@ fn half_space(p: &Plane) -> Option<(Pose, HalfSpace)> {
     let d = scalar(p.offset)?;
     let unit = n.try_normalize()?;
     let origin = unit * (d / n.length());
-    origin
-        .is_finite()
-        .then(|| (Pose::from_translation(origin), HalfSpace::new(unit)))
+    origin.is_finite().then(|| (Pose::from_translation(origin), HalfSpace::new(unit)))
 }
 
 /// A triangle as parry's, from its world vertices (placed at the identity pose).
@@ -157,11 +141,7 @@ fn translate_contact(c: &query::Contact) -> Option<Contact> {
 /// re-oriented to the surface's own normal `own` (parry turns it toward the ray's
 /// origin side). `None` when parry returned a non-finite number.
 fn translate_hit(ray: &Ray, hit: &RayIntersection, own: Vector) -> Option<SegmentHit> {
-    let normal = if hit.normal.dot(own) < 0.0 {
-        -hit.normal
-    } else {
-        hit.normal
-    };
+    let normal = if hit.normal.dot(own) < 0.0 { -hit.normal } else { hit.normal };
     Some(SegmentHit {
         t: answer_scalar(hit.time_of_impact)?,
         point: answer_point(ray.point_at(hit.time_of_impact))?,
@@ -183,20 +163,11 @@ fn translate_location(loc: &TrianglePointLocation) -> Option<[f64; 3]> {
 /// A contact answer from parry's result, flagged `degenerate` as the caller found.
 /// A non-finite answer, or parry refusing the pair (it dispatches every pair used
 /// here, so this does not happen), gives no contact, flagged.
-fn contact_answer(
-    result: Result<Option<query::Contact>, Unsupported>,
-    degenerate: bool,
-) -> ContactAnswer {
+fn contact_answer(result: Result<Option<query::Contact>, Unsupported>, degenerate: bool) -> ContactAnswer {
     match result {
-        Ok(None) => ContactAnswer {
-            contact: None,
-            degenerate,
-        },
+        Ok(None) => ContactAnswer { contact: None, degenerate },
         Ok(Some(c)) => match translate_contact(&c) {
-            Some(contact) => ContactAnswer {
-                contact: Some(contact),
-                degenerate,
-            },
+            Some(contact) => ContactAnswer { contact: Some(contact), degenerate },
             None => NO_CONTACT_DEGENERATE,
         },
         Err(Unsupported) => NO_CONTACT_DEGENERATE,
@@ -246,10 +217,7 @@ impl PreparedMesh {
 
 impl core::fmt::Debug for PreparedMesh {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("PreparedMesh")
-            .field("faces", &self.len())
-            .field("degenerate", &self.degenerate)
-            .finish()
+        f.debug_struct("PreparedMesh").field("faces", &self.len()).field("degenerate", &self.degenerate).finish()
     }
 }
 
@@ -258,8 +226,7 @@ impl core::fmt::Debug for PreparedMesh {
 /// when the triangle has no normal or parry returned a non-finite number.
 fn triangle_hit(ray: &Ray, hit: &RayIntersection, tri: &EngineTriangle) -> Option<SegmentHit> {
     let mut answer = translate_hit(ray, hit, tri.normal()?)?;
-    let (_, location) =
-        tri.project_local_point_and_get_location(ray.point_at(hit.time_of_impact), false);
+    let (_, location) = tri.project_local_point_and_get_location(ray.point_at(hit.time_of_impact), false);
     answer.barycentric = Some(translate_location(&location)?);
     Some(answer)
 }
@@ -319,17 +286,12 @@ impl ParryEngine for Engine {
         };
         match hs.cast_ray_and_get_normal(&pose, &ray, MAX_TIME_OF_IMPACT, false) {
             Some(hit) => match translate_hit(&ray, &hit, hs.normal) {
-                Some(hit) => IntersectAnswer {
-                    hit: Some(hit),
-                    parallel: false,
-                    degenerate: false,
-                },
+                Some(hit) => IntersectAnswer { hit: Some(hit), parallel: false, degenerate: false },
                 None => NO_HIT_DEGENERATE,
             },
             None => IntersectAnswer {
                 hit: None,
-                parallel: line_toi_with_halfspace(pose.translation, hs.normal, ray.origin, ray.dir)
-                    .is_none(),
+                parallel: line_toi_with_halfspace(pose.translation, hs.normal, ray.origin, ray.dir).is_none(),
                 degenerate: false,
             },
         }
@@ -349,51 +311,34 @@ impl ParryEngine for Engine {
         let Some(mut answer) = translate_hit(&ray, &hit, face_normal) else {
             return NO_HIT_DEGENERATE;
         };
-        let (_, location) =
-            tri.project_local_point_and_get_location(ray.point_at(hit.time_of_impact), false);
+        let (_, location) = tri.project_local_point_and_get_location(ray.point_at(hit.time_of_impact), false);
         let Some(coords) = translate_location(&location) else {
             return NO_HIT_DEGENERATE;
         };
         answer.barycentric = Some(coords);
-        IntersectAnswer {
-            hit: Some(answer),
-            parallel: false,
-            degenerate: false,
-        }
+        IntersectAnswer { hit: Some(answer), parallel: false, degenerate: false }
     }
 
     fn barycentric_triangle(&self, p: P3, b: Triangle) -> BarycentricAnswer {
-        const FALLBACK: BarycentricAnswer = BarycentricAnswer {
-            coords: CENTROID_WEIGHTS,
-            degenerate: true,
-        };
+        const FALLBACK: BarycentricAnswer = BarycentricAnswer { coords: CENTROID_WEIGHTS, degenerate: true };
         let (Some(p), Some(tri)) = (vector(p), triangle(&b)) else {
             return FALLBACK;
         };
         let (_, location) = tri.project_local_point_and_get_location(p, false);
         match translate_location(&location) {
-            Some(coords) => BarycentricAnswer {
-                coords,
-                degenerate: tri.normal().is_none(),
-            },
+            Some(coords) => BarycentricAnswer { coords, degenerate: tri.normal().is_none() },
             None => FALLBACK,
         }
     }
 
     fn aabb_of_points(&self, ps: &[P3]) -> Option<Aabb> {
         let aabb = EngineAabb::from_points(points(ps)?);
-        Some(Aabb {
-            min: answer_point(aabb.mins)?,
-            max: answer_point(aabb.maxs)?,
-        })
+        Some(Aabb { min: answer_point(aabb.mins)?, max: answer_point(aabb.maxs)? })
     }
 
     fn bounding_sphere_of_points(&self, ps: &[P3]) -> Option<Ball> {
         let sphere = point_cloud_bounding_sphere(&points(ps)?);
-        Some(Ball {
-            center: answer_point(sphere.center())?,
-            radius: answer_scalar(sphere.radius())?,
-        })
+        Some(Ball { center: answer_point(sphere.center())?, radius: answer_scalar(sphere.radius())? })
     }
 
     fn overlap_aabb_aabb(&self, a: Aabb, b: Aabb) -> bool {
@@ -403,24 +348,15 @@ impl ParryEngine for Engine {
     fn mesh(&self, vertices: &[P3], triangles: &[[usize; 3]]) -> Option<PreparedMesh> {
         let vs: Vec<Vector> = vertices.iter().map(|&p| vector(p)).collect::<Option<_>>()?;
         let index = |i: usize| u32::try_from(i).ok().filter(|_| i < vs.len());
-        let faces: Vec<[u32; 3]> = triangles
-            .iter()
-            .map(|t| Some([index(t[0])?, index(t[1])?, index(t[2])?]))
-            .collect::<Option<_>>()?;
+        let faces: Vec<[u32; 3]> =
+            triangles.iter().map(|t| Some([index(t[0])?, index(t[1])?, index(t[2])?])).collect::<Option<_>>()?;
         if faces.is_empty() {
-            return Some(PreparedMesh {
-                trimesh: None,
-                degenerate: false,
-            });
+            return Some(PreparedMesh { trimesh: None, degenerate: false });
         }
         // Only an empty index buffer is refused by `TriMesh::new`.
         let trimesh = EngineTriMesh::new(vs, faces).ok()?;
-        let degenerate =
-            (0..trimesh.num_triangles() as u32).any(|i| trimesh.triangle(i).normal().is_none());
-        Some(PreparedMesh {
-            trimesh: Some(trimesh),
-            degenerate,
-        })
+        let degenerate = (0..trimesh.num_triangles() as u32).any(|i| trimesh.triangle(i).normal().is_none());
+        Some(PreparedMesh { trimesh: Some(trimesh), degenerate })
     }
 
     fn intersect_segment_prepared_mesh(&self, s: Segment, mesh: &PreparedMesh) -> IntersectAnswer {
@@ -436,19 +372,14 @@ impl ParryEngine for Engine {
         let Some(trimesh) = &mesh.trimesh else {
             return miss;
         };
-        let Some(hit) = trimesh.cast_local_ray_and_get_normal(&ray, MAX_TIME_OF_IMPACT, false)
-        else {
+        let Some(hit) = trimesh.cast_local_ray_and_get_normal(&ray, MAX_TIME_OF_IMPACT, false) else {
             return miss;
         };
         let face = hit.subshape;
         match triangle_hit(&ray, &hit, &trimesh.triangle(face)) {
             Some(mut h) => {
                 h.triangle = Some(face as usize);
-                IntersectAnswer {
-                    hit: Some(h),
-                    parallel: false,
-                    degenerate: mesh.degenerate,
-                }
+                IntersectAnswer { hit: Some(h), parallel: false, degenerate: mesh.degenerate }
             }
             None => NO_HIT_DEGENERATE,
         }
@@ -464,9 +395,9 @@ mod tests {
     use super::super::SMOKE_TOL;
     use super::*;
     use crate::parry::{
-        CENTRE_NEAR_TRIANGLE, CENTROID_SPHERE, CLAMPED_BARYCENTRICS, CONCENTRIC_SPHERES,
-        DIVERGENCES, Divergence, MESH_END_HIT, MESH_NO_PARALLEL, MESH_TIE_FACE,
-        NO_TRIANGLE_PARALLEL, PLANE_PARALLEL_EPSILON, TOUCHING_SPHERES, known_divergences,
+        CENTRE_NEAR_TRIANGLE, CENTROID_SPHERE, CLAMPED_BARYCENTRICS, CONCENTRIC_SPHERES, DIVERGENCES, Divergence,
+        MESH_END_HIT, MESH_NO_PARALLEL, MESH_TIE_FACE, NO_TRIANGLE_PARALLEL, PLANE_PARALLEL_EPSILON, TOUCHING_SPHERES,
+        known_divergences,
     };
     use proptest::prelude::*;
 
@@ -487,9 +418,7 @@ mod tests {
     }
 
     fn tri(v0: P3, v1: P3, v2: P3) -> Triangle {
-        Triangle {
-            vertices: [v0, v1, v2],
-        }
+        Triangle { vertices: [v0, v1, v2] }
     }
 
     /// The engine's machine epsilon (parry's `DEFAULT_EPSILON`) as an `f64`.
@@ -502,26 +431,16 @@ mod tests {
     }
 
     fn assert_close(what: &str, got: f64, want: f64) {
-        assert!(
-            close(got, want),
-            "{}: {what} = {got}, want {want}",
-            Engine::NAME
-        );
+        assert!(close(got, want), "{}: {what} = {got}, want {want}", Engine::NAME);
     }
 
     fn assert_p3(what: &str, got: P3, want: P3) {
-        assert!(
-            (0..3).all(|i| close(got[i], want[i])),
-            "{}: {what} = {got:?}, want {want:?}",
-            Engine::NAME
-        );
+        assert!((0..3).all(|i| close(got[i], want[i])), "{}: {what} = {got:?}, want {want:?}", Engine::NAME);
     }
 
     fn assert_contact(answer: ContactAnswer, point: P3, normal: P3, depth: f64) {
         assert!(!answer.degenerate, "{}: not degenerate", Engine::NAME);
-        let c = answer
-            .contact
-            .unwrap_or_else(|| panic!("{}: a contact is expected", Engine::NAME));
+        let c = answer.contact.unwrap_or_else(|| panic!("{}: a contact is expected", Engine::NAME));
         assert_p3("point", c.point, point);
         assert_p3("normal", c.normal, normal);
         assert_close("depth", c.depth, depth);
@@ -529,9 +448,7 @@ mod tests {
 
     fn assert_listed(d: &Divergence) {
         assert!(
-            known_divergences()
-                .iter()
-                .any(|k| k.engine == Engine::NAME && k.query == d.query && k.what == d.what),
+            known_divergences().iter().any(|k| k.engine == Engine::NAME && k.query == d.query && k.what == d.what),
             "{}: `{}` is listed",
             Engine::NAME,
             d.what
@@ -557,10 +474,7 @@ mod tests {
         assert_close("depth", c.depth, 0.5);
         let touching = query::Contact::new(Vector::ZERO, Vector::ZERO, Vector::X, -Vector::X, -0.0);
         let depth = translate_contact(&touching).expect("finite").depth;
-        assert!(
-            depth.is_sign_positive(),
-            "an exact touch has depth +0, got {depth}"
-        );
+        assert!(depth.is_sign_positive(), "an exact touch has depth +0, got {depth}");
     }
 
     #[test]
@@ -568,29 +482,13 @@ mod tests {
         let nan = Real::NAN;
         let raw = query::Contact::new(Vector::ZERO, Vector::ZERO, Vector::X, -Vector::X, nan);
         assert!(translate_contact(&raw).is_none(), "NaN depth caught");
-        let raw = query::Contact::new(
-            Vector::ZERO,
-            Vector::new(nan, 0.0, 0.0),
-            Vector::X,
-            -Vector::X,
-            0.0,
-        );
+        let raw = query::Contact::new(Vector::ZERO, Vector::new(nan, 0.0, 0.0), Vector::X, -Vector::X, 0.0);
         assert!(translate_contact(&raw).is_none(), "NaN point caught");
         let ray = Ray::new(Vector::ZERO, Vector::X);
         let hit = RayIntersection::new(nan, Vector::Z, Default::default());
-        assert!(
-            translate_hit(&ray, &hit, Vector::Z).is_none(),
-            "NaN t caught"
-        );
-        let hit = RayIntersection::new(
-            0.5,
-            Vector::new(0.0, 0.0, Real::INFINITY),
-            Default::default(),
-        );
-        assert!(
-            translate_hit(&ray, &hit, Vector::Z).is_none(),
-            "infinite normal caught"
-        );
+        assert!(translate_hit(&ray, &hit, Vector::Z).is_none(), "NaN t caught");
+        let hit = RayIntersection::new(0.5, Vector::new(0.0, 0.0, Real::INFINITY), Default::default());
+        assert!(translate_hit(&ray, &hit, Vector::Z).is_none(), "infinite normal caught");
         let loc = TrianglePointLocation::OnFace(0, [nan, 0.5, 0.5]);
         assert!(translate_location(&loc).is_none(), "NaN coordinate caught");
     }
@@ -611,11 +509,9 @@ mod tests {
     fn parry_contact_sphere_sphere_smoke() {
         // M_a = 0, r_a = 1; M_b = (1.5, 0, 0), r_b = 1. n = (M_a − M_b)/‖·‖ = −x,
         // p = M_b + r_b n = (0.5, 0, 0), depth = 2 − 1.5 = 0.5.
-        let answer =
-            engine().contact_sphere_sphere(sphere([0.0; 3], 1.0), sphere([1.5, 0.0, 0.0], 1.0));
+        let answer = engine().contact_sphere_sphere(sphere([0.0; 3], 1.0), sphere([1.5, 0.0, 0.0], 1.0));
         assert_contact(answer, [0.5, 0.0, 0.0], [-1.0, 0.0, 0.0], 0.5);
-        let apart =
-            engine().contact_sphere_sphere(sphere([0.0; 3], 1.0), sphere([2.5, 0.0, 0.0], 1.0));
+        let apart = engine().contact_sphere_sphere(sphere([0.0; 3], 1.0), sphere([2.5, 0.0, 0.0], 1.0));
         assert_eq!(apart, ContactAnswer::default(), "apart: no contact");
     }
 
@@ -625,8 +521,7 @@ mod tests {
         // anchor, r = 1: height 0, depth r = 1, point M − (r − x) n̂ = M, normal +z.
         // (The anchor is the one place parry's defect in this order, pinned below,
         // leaves the answer right.)
-        let answer = engine()
-            .contact_sphere_plane(sphere([0.0, 0.0, 1.0], 1.0), plane([0.0, 0.0, 2.0], 2.0));
+        let answer = engine().contact_sphere_plane(sphere([0.0, 0.0, 1.0], 1.0), plane([0.0, 0.0, 2.0], 2.0));
         assert_contact(answer, [0.0, 0.0, 1.0], [0.0, 0.0, 1.0], 1.0);
     }
 
@@ -693,8 +588,7 @@ mod tests {
         // Plane 2z = 2 (z = 1). From (0, 0, 3) to (0, 0, −1): t = (3 − 1)/4 = 0.5,
         // point (0, 0, 1), normal +z.
         let p = plane([0.0, 0.0, 2.0], 2.0);
-        let answer =
-            engine().intersect_segment_plane(segment([0.0, 0.0, 3.0], [0.0, 0.0, -1.0]), p);
+        let answer = engine().intersect_segment_plane(segment([0.0, 0.0, 3.0], [0.0, 0.0, -1.0]), p);
         let h = answer.hit.expect("a hit");
         assert!(!answer.parallel && !answer.degenerate, "plain hit");
         assert_close("t", h.t, 0.5);
@@ -711,15 +605,7 @@ mod tests {
         // Parallel above the plane, and in it: no hit, parallel.
         for z in [0.0, 1.0] {
             let answer = engine().intersect_segment_plane(segment([0.0, 0.0, z], [1.0, 0.0, z]), p);
-            assert_eq!(
-                answer,
-                IntersectAnswer {
-                    hit: None,
-                    parallel: true,
-                    degenerate: false
-                },
-                "parallel at z = {z}"
-            );
+            assert_eq!(answer, IntersectAnswer { hit: None, parallel: true, degenerate: false }, "parallel at z = {z}");
         }
         // Short of the plane: no hit, not parallel.
         let short = engine().intersect_segment_plane(segment([0.0, 0.0, 3.0], [0.0, 0.0, 2.0]), p);
@@ -732,10 +618,7 @@ mod tests {
         // (0.5, 0.25, −1): t = 0.5, point (0.5, 0.25, 0) = α v0 + β v1 + γ v2 with
         // β = x/2 = 0.25, γ = y/2 = 0.125, α = 1 − β − γ = 0.625.
         let t = tri([0.0; 3], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
-        for (start, end) in [
-            ([0.5, 0.25, 1.0], [0.5, 0.25, -1.0]),
-            ([0.5, 0.25, -1.0], [0.5, 0.25, 1.0]),
-        ] {
+        for (start, end) in [([0.5, 0.25, 1.0], [0.5, 0.25, -1.0]), ([0.5, 0.25, -1.0], [0.5, 0.25, 1.0])] {
             // Both directions: the face normal is reported unflipped.
             let answer = engine().intersect_segment_triangle(segment(start, end), t);
             assert!(!answer.parallel && !answer.degenerate, "plain hit");
@@ -743,14 +626,9 @@ mod tests {
             assert_close("t", h.t, 0.5);
             assert_p3("point", h.point, [0.5, 0.25, 0.0]);
             assert_p3("normal", h.normal, [0.0, 0.0, 1.0]);
-            assert_p3(
-                "barycentric",
-                h.barycentric.expect("barycentrics"),
-                [0.625, 0.25, 0.125],
-            );
+            assert_p3("barycentric", h.barycentric.expect("barycentrics"), [0.625, 0.25, 0.125]);
         }
-        let beside =
-            engine().intersect_segment_triangle(segment([3.0, 3.0, 1.0], [3.0, 3.0, -1.0]), t);
+        let beside = engine().intersect_segment_triangle(segment([3.0, 3.0, 1.0], [3.0, 3.0, -1.0]), t);
         assert_eq!(beside, IntersectAnswer::default(), "beside the triangle");
     }
 
@@ -778,12 +656,7 @@ mod tests {
     #[test]
     fn parry_bounding_sphere_of_points_smoke() {
         // (±1, 0, 0), (0, ±1, 0): centroid 0, farthest point at distance 1.
-        let pts = [
-            [1.0, 0.0, 0.0],
-            [-1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, -1.0, 0.0],
-        ];
+        let pts = [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, -1.0, 0.0]];
         let s = engine().bounding_sphere_of_points(&pts).expect("a sphere");
         assert_p3("center", s.center, [0.0; 3]);
         assert_close("radius", s.radius, 1.0);
@@ -795,22 +668,10 @@ mod tests {
     #[test]
     fn parry_overlap_aabb_aabb_smoke() {
         // [0,1]³ against boxes shifted along x: overlapping, touching (x = 1), apart.
-        let unit = Aabb {
-            min: [0.0; 3],
-            max: [1.0; 3],
-        };
-        let shifted = |x: f64| Aabb {
-            min: [x, 0.0, 0.0],
-            max: [x + 1.0, 1.0, 1.0],
-        };
-        assert!(
-            engine().overlap_aabb_aabb(unit, shifted(0.5)),
-            "overlapping"
-        );
-        assert!(
-            engine().overlap_aabb_aabb(unit, shifted(1.0)),
-            "touching faces overlap"
-        );
+        let unit = Aabb { min: [0.0; 3], max: [1.0; 3] };
+        let shifted = |x: f64| Aabb { min: [x, 0.0, 0.0], max: [x + 1.0, 1.0, 1.0] };
+        assert!(engine().overlap_aabb_aabb(unit, shifted(0.5)), "overlapping");
+        assert!(engine().overlap_aabb_aabb(unit, shifted(1.0)), "touching faces overlap");
         assert!(!engine().overlap_aabb_aabb(unit, shifted(1.5)), "apart");
     }
 
@@ -820,8 +681,7 @@ mod tests {
     fn parry_concentric_spheres_are_flagged() {
         // Centres equal: parry's fallback normal1 = +x, so normal −x, point
         // M_b − r_b x̂ = (1 − 2, 2, 3), depth r_a + r_b = 3.
-        let answer = engine()
-            .contact_sphere_sphere(sphere([1.0, 2.0, 3.0], 1.0), sphere([1.0, 2.0, 3.0], 2.0));
+        let answer = engine().contact_sphere_sphere(sphere([1.0, 2.0, 3.0], 1.0), sphere([1.0, 2.0, 3.0], 2.0));
         assert!(answer.degenerate, "flagged");
         let c = answer.contact.expect("a contact");
         assert_p3("normal", c.normal, [-1.0, 0.0, 0.0]);
@@ -833,19 +693,10 @@ mod tests {
     fn parry_zero_plane_normal_is_degenerate() {
         let zero = plane([0.0; 3], 1.0);
         let s = sphere([0.0; 3], 1.0);
-        assert_eq!(
-            engine().contact_sphere_plane(s, zero),
-            NO_CONTACT_DEGENERATE
-        );
-        assert_eq!(
-            engine().contact_plane_sphere(zero, s),
-            NO_CONTACT_DEGENERATE
-        );
+        assert_eq!(engine().contact_sphere_plane(s, zero), NO_CONTACT_DEGENERATE);
+        assert_eq!(engine().contact_plane_sphere(zero, s), NO_CONTACT_DEGENERATE);
         let seg = segment([0.0, 0.0, -1.0], [0.0, 0.0, 1.0]);
-        assert_eq!(
-            engine().intersect_segment_plane(seg, zero),
-            NO_HIT_DEGENERATE
-        );
+        assert_eq!(engine().intersect_segment_plane(seg, zero), NO_HIT_DEGENERATE);
     }
 
     #[test]
@@ -854,10 +705,7 @@ mod tests {
         let p = plane([0.0, 0.0, 1.0], 0.0);
         let t = tri([0.0; 3], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
         assert_eq!(engine().intersect_segment_plane(seg, p), NO_HIT_DEGENERATE);
-        assert_eq!(
-            engine().intersect_segment_triangle(seg, t),
-            NO_HIT_DEGENERATE
-        );
+        assert_eq!(engine().intersect_segment_triangle(seg, t), NO_HIT_DEGENERATE);
     }
 
     #[test]
@@ -865,10 +713,7 @@ mod tests {
         // Collinear vertices on the x axis.
         let t = tri([0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]);
         let seg = segment([0.5, 0.0, 1.0], [0.5, 0.0, -1.0]);
-        assert_eq!(
-            engine().intersect_segment_triangle(seg, t),
-            NO_HIT_DEGENERATE
-        );
+        assert_eq!(engine().intersect_segment_triangle(seg, t), NO_HIT_DEGENERATE);
         // Barycentric: parry projects onto the longest edge v0–v2: (0.5, 0, 0) is a
         // quarter of the way, so [0.75, 0, 0.25]; flagged.
         let b = engine().barycentric_triangle([0.5, 0.0, 0.0], t);
@@ -896,11 +741,7 @@ mod tests {
         assert_close("depth", c.depth, 1.0);
         let reversed = engine().contact_triangle_sphere(t, sphere([0.5, 0.5, 0.0], 1.0));
         assert!(reversed.degenerate, "flagged in either order");
-        assert_p3(
-            "normal",
-            reversed.contact.expect("a contact").normal,
-            [0.0, 0.0, -1.0],
-        );
+        assert_p3("normal", reversed.contact.expect("a contact").normal, [0.0, 0.0, -1.0]);
     }
 
     #[test]
@@ -908,23 +749,11 @@ mod tests {
         let p = plane([0.0, 0.0, 1.0], 0.0);
         for r in [0.0, -1.0] {
             let s = sphere([0.0; 3], r);
-            assert_eq!(
-                engine().contact_sphere_plane(s, p),
-                NO_CONTACT_DEGENERATE,
-                "radius {r}"
-            );
-            assert_eq!(
-                engine().contact_sphere_sphere(s, s),
-                NO_CONTACT_DEGENERATE,
-                "radius {r}"
-            );
+            assert_eq!(engine().contact_sphere_plane(s, p), NO_CONTACT_DEGENERATE, "radius {r}");
+            assert_eq!(engine().contact_sphere_sphere(s, s), NO_CONTACT_DEGENERATE, "radius {r}");
         }
         assert_eq!(engine().aabb_of_points(&[]), None, "empty set: no box");
-        assert_eq!(
-            engine().bounding_sphere_of_points(&[]),
-            None,
-            "empty set: no sphere"
-        );
+        assert_eq!(engine().bounding_sphere_of_points(&[]), None, "empty set: no sphere");
     }
 
     #[test]
@@ -932,27 +761,12 @@ mod tests {
         let t = tri([0.0; 3], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
         for bad in [f64::NAN, f64::INFINITY, -f64::INFINITY] {
             let s = sphere([bad, 0.0, 0.0], 1.0);
-            assert_eq!(
-                engine().contact_sphere_triangle(s, t),
-                NO_CONTACT_DEGENERATE,
-                "{bad}"
-            );
+            assert_eq!(engine().contact_sphere_triangle(s, t), NO_CONTACT_DEGENERATE, "{bad}");
             let seg = segment([0.0, 0.0, bad], [0.0, 0.0, -1.0]);
-            assert_eq!(
-                engine().intersect_segment_triangle(seg, t),
-                NO_HIT_DEGENERATE,
-                "{bad}"
-            );
+            assert_eq!(engine().intersect_segment_triangle(seg, t), NO_HIT_DEGENERATE, "{bad}");
             let b = engine().barycentric_triangle([bad, 0.0, 0.0], t);
-            assert!(
-                b.degenerate && b.coords == CENTROID_WEIGHTS,
-                "{bad}: centroid fallback"
-            );
-            assert_eq!(
-                engine().aabb_of_points(&[[0.0; 3], [bad; 3]]),
-                None,
-                "{bad}"
-            );
+            assert!(b.degenerate && b.coords == CENTROID_WEIGHTS, "{bad}: centroid fallback");
+            assert_eq!(engine().aabb_of_points(&[[0.0; 3], [bad; 3]]), None, "{bad}");
         }
     }
 
@@ -962,13 +776,8 @@ mod tests {
     fn parry_divergence_touching_spheres_give_no_contact() {
         assert_listed(&TOUCHING_SPHERES);
         // ‖M_a − M_b‖ = 2 = r_a + r_b exactly.
-        let answer =
-            engine().contact_sphere_sphere(sphere([0.0; 3], 1.0), sphere([2.0, 0.0, 0.0], 1.0));
-        assert_eq!(
-            answer,
-            ContactAnswer::default(),
-            "parry reports no contact at a touch"
-        );
+        let answer = engine().contact_sphere_sphere(sphere([0.0; 3], 1.0), sphere([2.0, 0.0, 0.0], 1.0));
+        assert_eq!(answer, ContactAnswer::default(), "parry reports no contact at a touch");
     }
 
     #[test]
@@ -989,11 +798,7 @@ mod tests {
         let t = tri([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
         let answer = engine().contact_sphere_triangle(sphere([0.25, 0.25, -eps() / 2.0], 1.0), t);
         assert!(answer.degenerate, "flagged as parry's fallback");
-        assert_p3(
-            "normal",
-            answer.contact.expect("a contact").normal,
-            [0.0, 0.0, 1.0],
-        );
+        assert_p3("normal", answer.contact.expect("a contact").normal, [0.0, 0.0, 1.0]);
     }
 
     #[test]
@@ -1004,11 +809,7 @@ mod tests {
         for z in [0.0, 1.0] {
             let seg = segment([-1.0, 0.5, z], [3.0, 0.5, z]);
             let answer = engine().intersect_segment_triangle(seg, t);
-            assert_eq!(
-                answer,
-                IntersectAnswer::default(),
-                "z = {z}: a plain miss, parallel unset"
-            );
+            assert_eq!(answer, IntersectAnswer::default(), "z = {z}: a plain miss, parallel unset");
         }
     }
 
@@ -1022,11 +823,7 @@ mod tests {
         let tilted = |drop: f64| segment([0.0, 0.0, 1.0], [1.0, 0.0, 1.0 - drop]);
         assert_eq!(
             engine().intersect_segment_plane(tilted(eps() / 2.0), p),
-            IntersectAnswer {
-                hit: None,
-                parallel: true,
-                degenerate: false
-            },
+            IntersectAnswer { hit: None, parallel: true, degenerate: false },
             "slope ε/2 called parallel"
         );
         assert_eq!(
@@ -1058,10 +855,7 @@ mod tests {
         let s = engine().bounding_sphere_of_points(&pts).expect("a sphere");
         assert_p3("center", s.center, [1.0 / 3.0, 0.0, 0.0]);
         assert_close("radius", s.radius, 4.0 / 3.0);
-        assert!(
-            s.radius > 1.0 + SMOKE_TOL,
-            "larger than the minimal radius 1"
-        );
+        assert!(s.radius > 1.0 + SMOKE_TOL, "larger than the minimal radius 1");
     }
 
     // --- meshes ------------------------------------------------------------------
@@ -1082,37 +876,19 @@ mod tests {
         assert_eq!(m.len(), 4);
         // Down x = y = 0.25 from z = 2 to z = −1: the slanted face at t = 1/2
         // first (z = 0.5), then the base.
-        let a =
-            e.intersect_segment_prepared_mesh(segment([0.25, 0.25, 2.0], [0.25, 0.25, -1.0]), &m);
+        let a = e.intersect_segment_prepared_mesh(segment([0.25, 0.25, 2.0], [0.25, 0.25, -1.0]), &m);
         let h = a.hit.expect("hit");
-        assert_eq!(
-            h.triangle,
-            Some(3),
-            "{}: face index from subshape",
-            Engine::NAME
-        );
+        assert_eq!(h.triangle, Some(3), "{}: face index from subshape", Engine::NAME);
         assert_close("t", h.t, 0.5);
         assert_p3("point", h.point, [0.25, 0.25, 0.5]);
         let r3 = 1.0 / 3f64.sqrt();
-        assert!(
-            (0..3).all(|i| (h.normal[i] - r3).abs() <= 4.0 * SMOKE_TOL),
-            "normal {:?}",
-            h.normal
-        );
-        assert_p3(
-            "barycentric",
-            h.barycentric.expect("coords"),
-            [0.25, 0.25, 0.5],
-        );
+        assert!((0..3).all(|i| (h.normal[i] - r3).abs() <= 4.0 * SMOKE_TOL), "normal {:?}", h.normal);
+        assert_p3("barycentric", h.barycentric.expect("coords"), [0.25, 0.25, 0.5]);
         assert!(!a.parallel && !a.degenerate);
         // Upward: the base first, its own normal −z although the ray comes from
         // below (parry's normal faces the ray's origin).
         let h = e
-            .intersect_segment_mesh(
-                segment([0.25, 0.25, -1.0], [0.25, 0.25, 2.0]),
-                &TETRA_V,
-                &TETRA_F,
-            )
+            .intersect_segment_mesh(segment([0.25, 0.25, -1.0], [0.25, 0.25, 2.0]), &TETRA_V, &TETRA_F)
             .hit
             .expect("hit");
         assert_eq!(h.triangle, Some(0));
@@ -1132,22 +908,12 @@ mod tests {
         let faces = [[0, 2, 4], QUAD_F[0], QUAD_F[1]];
         let m = e.mesh(&verts, &faces).expect("prepared");
         assert!(m.has_degenerate_face());
-        let a =
-            e.intersect_segment_prepared_mesh(segment([0.75, 0.25, 1.0], [0.75, 0.25, -1.0]), &m);
-        assert!(
-            a.degenerate && a.hit.expect("hit").triangle == Some(1),
-            "{a:?}"
-        );
+        let a = e.intersect_segment_prepared_mesh(segment([0.75, 0.25, 1.0], [0.75, 0.25, -1.0]), &m);
+        assert!(a.degenerate && a.hit.expect("hit").triangle == Some(1), "{a:?}");
         // Zero-length segment; an index out of range; a vertex beyond the scalar.
         let p = [0.5, 0.25, 0.0];
-        assert_eq!(
-            e.intersect_segment_prepared_mesh(segment(p, p), &m),
-            NO_HIT_DEGENERATE
-        );
-        assert!(
-            e.mesh(&QUAD_V, &[[0, 1, 4]]).is_none(),
-            "index out of range"
-        );
+        assert_eq!(e.intersect_segment_prepared_mesh(segment(p, p), &m), NO_HIT_DEGENERATE);
+        assert!(e.mesh(&QUAD_V, &[[0, 1, 4]]).is_none(), "index out of range");
         // 1e39 overflows f32 only.
         let far = [[1e39, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
         let s = segment([0.0, 0.0, 0.0], [1.0, 1.0, 1.0]);
@@ -1176,18 +942,10 @@ mod tests {
         let alone = e.intersect_segment_triangle(s, tri(TETRA_V[0], TETRA_V[2], TETRA_V[1]));
         assert_close("t", alone.hit.expect("the face alone is hit").t, 1.0);
         let a = e.intersect_segment_mesh(s, &TETRA_V, &TETRA_F);
-        assert!(
-            a.hit.is_none(),
-            "{}: t = 1 missed on the mesh: {a:?}",
-            Engine::NAME
-        );
+        assert!(a.hit.is_none(), "{}: t = 1 missed on the mesh: {a:?}", Engine::NAME);
         // A hair further and it is found.
         let s = segment([0.25, 0.25, -1.0], [0.25, 0.25, 0.5]);
-        assert!(
-            e.intersect_segment_mesh(s, &TETRA_V, &TETRA_F)
-                .hit
-                .is_some()
-        );
+        assert!(e.intersect_segment_mesh(s, &TETRA_V, &TETRA_F).hit.is_some());
     }
 
     /// A flat `n × n` grid of unit squares in z = 0, two faces each, listed in a
@@ -1241,11 +999,7 @@ mod tests {
                 }
             }
         }
-        assert!(
-            differs > 0,
-            "{}: every vertex tie went to the lowest index",
-            Engine::NAME
-        );
+        assert!(differs > 0, "{}: every vertex tie went to the lowest index", Engine::NAME);
     }
 
     #[test]
@@ -1254,13 +1008,8 @@ mod tests {
         // The flat quad and a segment in its plane, and one parallel above it.
         let e = engine();
         for z in [0.0, 1.0] {
-            let a =
-                e.intersect_segment_mesh(segment([-1.0, 0.5, z], [2.0, 0.5, z]), &QUAD_V, &QUAD_F);
-            assert_eq!(
-                a,
-                IntersectAnswer::default(),
-                "z = {z}: a plain miss, parallel unset"
-            );
+            let a = e.intersect_segment_mesh(segment([-1.0, 0.5, z], [2.0, 0.5, z]), &QUAD_V, &QUAD_F);
+            assert_eq!(a, IntersectAnswer::default(), "z = {z}: a plain miss, parallel unset");
         }
     }
 
@@ -1280,11 +1029,7 @@ mod tests {
             MESH_NO_PARALLEL,
         ];
         for d in DIVERGENCES {
-            assert!(
-                pinned.iter().any(|p| p.what == d.what),
-                "`{}` has a pin",
-                d.what
-            );
+            assert!(pinned.iter().any(|p| p.what == d.what), "`{}` has a pin", d.what);
         }
         assert_eq!(pinned.len(), DIVERGENCES.len(), "no pin without an entry");
     }
@@ -1311,10 +1056,7 @@ mod tests {
 
     fn check_contact(what: &str, answer: ContactAnswer) -> Result<(), TestCaseError> {
         if let Some(c) = answer.contact {
-            prop_assert!(
-                finite(&c.point) && finite(&c.normal),
-                "{what}: finite {c:?}"
-            );
+            prop_assert!(finite(&c.point) && finite(&c.normal), "{what}: finite {c:?}");
             prop_assert!(c.depth >= 0.0, "{what}: depth ≥ 0 in {c:?}");
         }
         Ok(())
@@ -1322,10 +1064,7 @@ mod tests {
 
     fn check_intersect(what: &str, answer: IntersectAnswer) -> Result<(), TestCaseError> {
         if let Some(h) = answer.hit {
-            prop_assert!(
-                finite(&h.point) && finite(&h.normal),
-                "{what}: finite {h:?}"
-            );
+            prop_assert!(finite(&h.point) && finite(&h.normal), "{what}: finite {h:?}");
             prop_assert!((0.0..=1.0).contains(&h.t), "{what}: t in [0, 1] in {h:?}");
             prop_assert!(!answer.parallel, "{what}: a hit is not parallel");
             if let Some(b) = h.barycentric {

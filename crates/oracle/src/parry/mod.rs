@@ -59,8 +59,13 @@
 use crate::geom::{Aabb, Ball, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer};
 use crate::geom::{P3, Plane, Segment, Sphere, Triangle};
 
+mod cast;
 mod parry32;
 mod parry64;
+
+pub use cast::{CastAnswer, CastStatus, ParryCast, cast_known_divergences};
+pub use parry32::PreparedMesh as Parry32Mesh;
+pub use parry64::PreparedMesh as Parry64Mesh;
 
 /// The parry release both engines are pinned to (`=0.31.1` in the workspace
 /// manifest); reports print it beside each engine's name.
@@ -254,10 +259,7 @@ pub trait ParryEngine {
 
     /// Both bounding volumes of a point set, as a `bounds` answer.
     fn bounds_of_points(&self, points: &[P3]) -> BoundsAnswer {
-        BoundsAnswer {
-            aabb: self.aabb_of_points(points),
-            sphere: self.bounding_sphere_of_points(points),
-        }
+        BoundsAnswer { aabb: self.aabb_of_points(points), sphere: self.bounding_sphere_of_points(points) }
     }
 
     /// Whether two boxes overlap: parry's `BoundingVolume::intersects`,
@@ -267,6 +269,57 @@ pub trait ParryEngine {
     /// **Degenerate input:** none is refused: bounds rounded to infinity in `f32`
     /// compare as such, and a NaN bound compares false (no overlap).
     fn overlap_aabb_aabb(&self, a: Aabb, b: Aabb) -> bool;
+
+    /// A triangle mesh prepared once for many queries: parry's `TriMesh` (its
+    /// vertices in the engine's scalar, its own BVH built by `TriMesh::new`), and
+    /// what the translation needs ([`Parry64Mesh`] or [`Parry32Mesh`]).
+    type Mesh: Send + Sync;
+
+    /// Prepares a mesh (`vertices`, and `triangles` as 0-based index triples).
+    ///
+    /// `None` — answered by [`ParryEngine::intersect_segment_mesh`] as no hit,
+    /// flagged `degenerate` — when a vertex is not finite in the engine's scalar
+    /// or a face names a vertex that does not exist (or beyond `u32`). A mesh
+    /// without faces is prepared (parry's `TriMesh::new` would refuse it) and
+    /// answers every segment with a plain miss.
+    fn mesh(&self, vertices: &[P3], triangles: &[[usize; 3]]) -> Option<Self::Mesh>;
+
+    /// First hit of a segment on a prepared mesh.
+    ///
+    /// **Formula** (parry's `RayCast for TriMesh`, `query/ray/ray_trimesh.rs` and
+    /// `ray_composite_shape.rs`, `solid = false`, max time of impact 1): a
+    /// best-first traversal of parry's BVH (`Bvh::find_best`), each leaf's
+    /// triangle cast as in [`ParryEngine::intersect_segment_triangle`], the
+    /// smallest time of impact kept. Point `p0 + t (p1 − p0)`, normal the hit
+    /// face's own `(v1 − v0) × (v2 − v0)` normalized (parry's, re-oriented:
+    /// parry turns it toward the ray's origin), barycentrics as for one
+    /// triangle, `triangle` the face index — parry's `RayIntersection::subshape`
+    /// (its `feature` is the triangle's own `Face(0)` or `Face(1)`, front or
+    /// back, not the mesh's face).
+    ///
+    /// **Deviations** (known divergences): a hit exactly at the segment's end
+    /// (`t = 1`) is missed, as `find_best` keeps only costs strictly below the
+    /// maximum; a segment through an edge or vertex shared by faces reports the
+    /// face the traversal reaches first, not the lowest index; a segment
+    /// parallel to every face is a plain miss (`parallel` is always `false`, as
+    /// for one triangle).
+    ///
+    /// **Degenerate input:** a zero-length segment or a non-finite input: no
+    /// hit, flagged. A face parry cannot normalize (zero area in the engine's
+    /// scalar) flags every answer `degenerate`, as the fixture format's mesh
+    /// rule asks (parry itself skips such a face silently).
+    fn intersect_segment_prepared_mesh(&self, s: Segment, mesh: &Self::Mesh) -> IntersectAnswer;
+
+    /// First hit of a segment on a mesh: [`ParryEngine::mesh`], then
+    /// [`ParryEngine::intersect_segment_prepared_mesh`]. Building parry's BVH
+    /// costs about as much as a thousand queries on the bunny; prepare the mesh
+    /// once when querying it often.
+    fn intersect_segment_mesh(&self, s: Segment, vertices: &[P3], triangles: &[[usize; 3]]) -> IntersectAnswer {
+        match self.mesh(vertices, triangles) {
+            Some(m) => self.intersect_segment_prepared_mesh(s, &m),
+            None => IntersectAnswer { hit: None, parallel: false, degenerate: true },
+        }
+    }
 }
 
 /// A difference between an engine and crashtest's definitions that no translation
@@ -352,8 +405,34 @@ const CENTROID_SPHERE: Divergence = Divergence {
              points but does not reach min_radius in general.",
 };
 
+const MESH_END_HIT: Divergence = Divergence {
+    query: "intersect",
+    what: "segment–mesh: a hit exactly at the segment's end (t = 1) is missed",
+    reason: "the TriMesh ray cast runs Bvh::find_best with the maximum time of impact as its \
+             starting cost and keeps a node or a triangle only when its cost is strictly below \
+             the best so far (partitioning/bvh/bvh_traverse.rs), so a time of impact equal to the \
+             maximum never qualifies; a single triangle's cast (toi ≤ max) keeps it.",
+};
+
+const MESH_TIE_FACE: Divergence = Divergence {
+    query: "intersect",
+    what: "segment–mesh: a segment through an edge or vertex shared by faces reports the face \
+           parry's BVH reaches first, not the lowest face index",
+    reason: "Bvh::find_best replaces the best hit only by a strictly smaller time of impact, so \
+             among equal ones the first visited wins, in the order of its traversal; crashtest's \
+             rule (lowest index) is not parry's, and the face's normal and barycentrics follow it.",
+};
+
+const MESH_NO_PARALLEL: Divergence = Divergence {
+    query: "intersect",
+    what: "segment–mesh: a segment parallel to every face (a flat mesh and a segment in its plane) \
+           is a plain miss, parallel = false",
+    reason: "the TriMesh ray cast goes through local_ray_intersection_with_triangle, which returns \
+             None for n · dir = 0 and exposes no parallel verdict; the mesh has none either.",
+};
+
 /// The shared divergences, in the order [`known_divergences`] lists them per engine.
-const DIVERGENCES: [Divergence; 7] = [
+const DIVERGENCES: [Divergence; 10] = [
     TOUCHING_SPHERES,
     CONCENTRIC_SPHERES,
     CENTRE_NEAR_TRIANGLE,
@@ -361,18 +440,16 @@ const DIVERGENCES: [Divergence; 7] = [
     PLANE_PARALLEL_EPSILON,
     CLAMPED_BARYCENTRICS,
     CENTROID_SPHERE,
+    MESH_END_HIT,
+    MESH_TIE_FACE,
+    MESH_NO_PARALLEL,
 ];
 
 static KNOWN: [KnownDivergence; 2 * DIVERGENCES.len()] = stamp_both_engines();
 
 /// [`DIVERGENCES`] stamped with [`Parry64::NAME`], then with [`Parry32::NAME`].
 const fn stamp_both_engines() -> [KnownDivergence; 2 * DIVERGENCES.len()] {
-    const BLANK: KnownDivergence = KnownDivergence {
-        engine: "",
-        query: "",
-        what: "",
-        reason: "",
-    };
+    const BLANK: KnownDivergence = KnownDivergence { engine: "", query: "", what: "", reason: "" };
     let mut out = [BLANK; 2 * DIVERGENCES.len()];
     let engines = [Parry64::NAME, Parry32::NAME];
     let mut e = 0;
@@ -380,12 +457,8 @@ const fn stamp_both_engines() -> [KnownDivergence; 2 * DIVERGENCES.len()] {
         let mut i = 0;
         while i < DIVERGENCES.len() {
             let d = DIVERGENCES[i];
-            out[e * DIVERGENCES.len() + i] = KnownDivergence {
-                engine: engines[e],
-                query: d.query,
-                what: d.what,
-                reason: d.reason,
-            };
+            out[e * DIVERGENCES.len() + i] =
+                KnownDivergence { engine: engines[e], query: d.query, what: d.what, reason: d.reason };
             i += 1;
         }
         e += 1;
@@ -400,10 +473,7 @@ mod tests {
     #[test]
     fn parry_known_divergences_listed_once_per_engine() {
         for engine in [Parry64::NAME, Parry32::NAME] {
-            let listed: Vec<_> = known_divergences()
-                .iter()
-                .filter(|k| k.engine == engine)
-                .collect();
+            let listed: Vec<_> = known_divergences().iter().filter(|k| k.engine == engine).collect();
             assert_eq!(listed.len(), DIVERGENCES.len(), "entries for {engine}");
             for d in DIVERGENCES {
                 assert_eq!(
@@ -421,10 +491,7 @@ mod tests {
         let manifest = include_str!("../../../../Cargo.toml");
         for krate in ["parry3d-f64", "parry3d"] {
             let line = format!("{krate} = \"={PARRY_VERSION}\"");
-            assert!(
-                manifest.lines().any(|l| l.trim() == line),
-                "workspace manifest pins `{line}`"
-            );
+            assert!(manifest.lines().any(|l| l.trim() == line), "workspace manifest pins `{line}`");
         }
     }
 }

@@ -30,10 +30,7 @@ const SMOKE_TOL: f64 = 1e-6;
 
 // The adapter body is shared with the other precision: compiling the same file
 // once per parry crate is the point, not an accident.
-#[allow(
-    clippy::duplicate_mod,
-    reason = "engine.rs is instantiated once per precision"
-)]
+#[allow(clippy::duplicate_mod, reason = "engine.rs is instantiated once per precision")]
 #[path = "engine.rs"]
 mod engine;
 

@@ -85,19 +85,12 @@ fn longest_edge_fallback(p: &V3, v: &[V3; 3]) -> [Q; 3] {
 /// tie), or `[1, 0, 0]` when all three vertices coincide. They still sum to 1.
 pub fn barycentric_triangle(p: &P3, t: &Triangle) -> Result<BarycentricAnswer, RefereeError> {
     let p = v3(p, "a.at")?;
-    let v = [
-        v3(&t.vertices[0], "b.vertices")?,
-        v3(&t.vertices[1], "b.vertices")?,
-        v3(&t.vertices[2], "b.vertices")?,
-    ];
+    let v = [v3(&t.vertices[0], "b.vertices")?, v3(&t.vertices[1], "b.vertices")?, v3(&t.vertices[2], "b.vertices")?];
     let (coords, degenerate) = match barycentric_exact(&p, &v) {
         Some(c) => (c, false),
         None => (longest_edge_fallback(&p, &v), true),
     };
-    Ok(BarycentricAnswer {
-        coords: [round(&coords[0]), round(&coords[1]), round(&coords[2])],
-        degenerate,
-    })
+    Ok(BarycentricAnswer { coords: [round(&coords[0]), round(&coords[1]), round(&coords[2])], degenerate })
 }
 
 #[cfg(test)]
@@ -116,10 +109,7 @@ mod tests {
 
     fn assert_coords(got: [f64; 3], want: [f64; 3], what: &str) {
         for k in 0..3 {
-            assert!(
-                within_ulps(got[k], want[k], EXACT_ULPS),
-                "{what}: coord {k}: {got:?} vs {want:?}"
-            );
+            assert!(within_ulps(got[k], want[k], EXACT_ULPS), "{what}: coord {k}: {got:?} vs {want:?}");
         }
     }
 
@@ -198,10 +188,7 @@ mod tests {
     #[test]
     fn referee_barycentric_refuses_nan() {
         let t = tri([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
-        assert_eq!(
-            barycentric_triangle(&[f64::NAN, 0.0, 0.0], &t),
-            Err(RefereeError::NonFinite { field: "a.at" })
-        );
+        assert_eq!(barycentric_triangle(&[f64::NAN, 0.0, 0.0], &t), Err(RefereeError::NonFinite { field: "a.at" }));
     }
 }
 

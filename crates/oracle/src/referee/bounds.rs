@@ -62,11 +62,7 @@ const SHUFFLE_SEED: u64 = 0x9E37_79B9_7F4A_7C15;
 /// `x · 2^s`, exactly.
 fn shift(x: &Q, s: isize) -> Q {
     let (num, den) = x.clone().into_parts();
-    if s >= 0 {
-        Q::from_parts(num << s as usize, den)
-    } else {
-        Q::from_parts(num, den << (-s) as usize)
-    }
+    if s >= 0 { Q::from_parts(num << s as usize, den) } else { Q::from_parts(num, den << (-s) as usize) }
 }
 
 /// A point of the cloud: exact (a rational, and the same as an integer vector
@@ -108,47 +104,26 @@ fn lcm(a: &UBig, b: &UBig) -> UBig {
 
 impl ExactBall {
     fn new(center: V3, r2: Q, frame: isize, denominator_bits: usize) -> Self {
-        let c = [
-            round(&shift(&center[0], frame)),
-            round(&shift(&center[1], frame)),
-            round(&shift(&center[2], frame)),
-        ];
+        let c = [round(&shift(&center[0], frame)), round(&shift(&center[1], frame)), round(&shift(&center[2], frame))];
         let r2f = round(&shift(&r2, 2 * frame));
         let c_err: f64 = c.iter().map(|x| x.abs() * f64::EPSILON + FILTER_TINY).sum();
-        let usable = c.iter().all(|x| x.is_finite())
-            && r2f.is_finite()
-            && r2f >= f64::MIN_POSITIVE
-            && c_err.is_finite();
+        let usable =
+            c.iter().all(|x| x.is_finite()) && r2f.is_finite() && r2f >= f64::MIN_POSITIVE && c_err.is_finite();
         let approx = usable.then(|| (c, r2f.sqrt(), c_err));
-        let d = lcm(
-            &lcm(center[0].denominator(), center[1].denominator()),
-            center[2].denominator(),
-        );
+        let d = lcm(&lcm(center[0].denominator(), center[1].denominator()), center[2].denominator());
         let scaled = |x: &Q| (x.numerator() * IBig::from(&d / x.denominator())) << denominator_bits;
         let int_c = [scaled(&center[0]), scaled(&center[1]), scaled(&center[2])];
         let d = IBig::from(d);
         let rhs = (r2.numerator() * &d * &d) << (2 * denominator_bits);
-        let int = IntBall {
-            c: int_c,
-            d,
-            e: IBig::from(r2.denominator().clone()),
-            rhs,
-        };
-        Self {
-            center,
-            r2,
-            int,
-            approx,
-        }
+        let int = IntBall { c: int_c, d, e: IBig::from(r2.denominator().clone()), rhs };
+        Self { center, r2, int, approx }
     }
 
     /// Whether `p` lies in the closed ball, decided exactly (the filter only
     /// answers when its error bound leaves no doubt).
     fn contains(&self, p: &Point) -> bool {
         if let Some((c, r, c_err)) = &self.approx {
-            let d = (p.approx[0] - c[0])
-                .hypot(p.approx[1] - c[1])
-                .hypot(p.approx[2] - c[2]);
+            let d = (p.approx[0] - c[0]).hypot(p.approx[1] - c[1]).hypot(p.approx[2] - c[2]);
             if d.is_finite() {
                 let slack = c_err + FILTER_TINY;
                 if (d + slack) * (1.0 + FILTER_SLACK) < r * (1.0 - FILTER_SLACK) {
@@ -177,12 +152,7 @@ impl ExactBall {
 /// `r²' = r² + λ²‖u‖²`. A point already in the hull (`u = 0`) adds nothing —
 /// exact arithmetic makes Welzl's support points affinely independent, so this
 /// only absorbs a repeated constraint.
-fn ball_through(
-    support: &[usize],
-    points: &[Point],
-    frame: isize,
-    denominator_bits: usize,
-) -> Option<ExactBall> {
+fn ball_through(support: &[usize], points: &[Point], frame: isize, denominator_bits: usize) -> Option<ExactBall> {
     let (&first, rest) = support.split_first()?;
     let s0 = &points[first].exact;
     let mut center = s0.clone();
@@ -259,16 +229,8 @@ struct Cloud {
 
 fn cloud(points: &[P3]) -> Result<Cloud, RefereeError> {
     check(points)?;
-    let exact = points
-        .iter()
-        .map(|p| v3(p, "a.points"))
-        .collect::<Result<Vec<_>, _>>()?;
-    let largest = exact
-        .iter()
-        .flatten()
-        .max_by(|a, b| (*a).abs_cmp(*b))
-        .cloned()
-        .unwrap_or(Q::ZERO);
+    let exact = points.iter().map(|p| v3(p, "a.points")).collect::<Result<Vec<_>, _>>()?;
+    let largest = exact.iter().flatten().max_by(|a, b| (*a).abs_cmp(*b)).cloned().unwrap_or(Q::ZERO);
     let frame = if largest.is_zero() {
         0
     } else {
@@ -276,36 +238,19 @@ fn cloud(points: &[P3]) -> Result<Cloud, RefereeError> {
         den.bit_len() as isize - num.unsigned_abs().bit_len() as isize
     };
     // Every coordinate is dyadic: over the common denominator 2^F, an integer.
-    let denominator_bits = exact
-        .iter()
-        .flatten()
-        .map(|x| x.denominator().bit_len() - 1)
-        .max()
-        .unwrap_or(0);
+    let denominator_bits = exact.iter().flatten().map(|x| x.denominator().bit_len() - 1).max().unwrap_or(0);
     let points = exact
         .into_iter()
         .map(|e| {
-            let approx = [
-                round(&shift(&e[0], frame)),
-                round(&shift(&e[1], frame)),
-                round(&shift(&e[2], frame)),
-            ];
+            let approx = [round(&shift(&e[0], frame)), round(&shift(&e[1], frame)), round(&shift(&e[2], frame))];
             let int = std::array::from_fn(|k| {
                 let (num, den) = e[k].clone().into_parts();
                 num << (denominator_bits - (den.bit_len() - 1))
             });
-            Point {
-                exact: e,
-                int,
-                approx,
-            }
+            Point { exact: e, int, approx }
         })
         .collect();
-    Ok(Cloud {
-        points,
-        frame,
-        denominator_bits,
-    })
+    Ok(Cloud { points, frame, denominator_bits })
 }
 
 /// The exact minimal ball: centre and squared radius as rationals.
@@ -318,17 +263,11 @@ fn min_ball_exact(points: &[P3]) -> Result<(V3, Q), RefereeError> {
         let j = (splitmix(&mut state) % (i as u64 + 1)) as usize;
         order.swap(i, j);
     }
-    let mut welzl = Welzl {
-        points: &cloud.points,
-        order,
-        frame: cloud.frame,
-        denominator_bits: cloud.denominator_bits,
-    };
+    let mut welzl =
+        Welzl { points: &cloud.points, order, frame: cloud.frame, denominator_bits: cloud.denominator_bits };
     // A non-empty cloud always yields a ball (its first point is outside the
     // empty support's "ball" and starts one).
-    let ball = welzl
-        .mtf(n, &mut Vec::with_capacity(4))
-        .ok_or(RefereeError::NoPoints { field: "a.points" })?;
+    let ball = welzl.mtf(n, &mut Vec::with_capacity(4)).ok_or(RefereeError::NoPoints { field: "a.points" })?;
     Ok((ball.center, ball.r2))
 }
 
@@ -351,10 +290,7 @@ fn min_ball_exact(points: &[P3]) -> Result<(V3, Q), RefereeError> {
 /// 3 points). An empty cloud or a non-finite coordinate is refused.
 pub fn min_ball(points: &[P3]) -> Result<Ball, RefereeError> {
     let (center, r2) = min_ball_exact(points)?;
-    Ok(Ball {
-        center: [round(&center[0]), round(&center[1]), round(&center[2])],
-        radius: Root::new(r2).round_sqrt(),
-    })
+    Ok(Ball { center: [round(&center[0]), round(&center[1]), round(&center[2])], radius: Root::new(r2).round_sqrt() })
 }
 
 /// How well `ball` encloses `points`: `radius − maxᵢ ‖pᵢ − centre‖`, from the
@@ -387,10 +323,7 @@ mod tests {
     const EXACT_ULPS: u64 = 0;
 
     fn close(got: f64, want: f64, what: &str) {
-        assert!(
-            within_ulps(got, want, EXACT_ULPS),
-            "{what}: got {got:e}, want {want:e}"
-        );
+        assert!(within_ulps(got, want, EXACT_ULPS), "{what}: got {got:e}, want {want:e}");
     }
 
     fn close_ball(got: Ball, center: P3, radius: f64, what: &str) {
@@ -412,40 +345,17 @@ mod tests {
     fn referee_aabb_of_points_is_the_extremes() {
         let pts = [[1.0, -2.0, 3.0], [-4.0, 5.0, 0.5], [2.0, 0.0, -1e300]];
         let b = aabb_of_points(&pts).unwrap();
-        assert_eq!(
-            b,
-            Aabb {
-                min: [-4.0, -2.0, -1e300],
-                max: [2.0, 5.0, 3.0]
-            }
-        );
+        assert_eq!(b, Aabb { min: [-4.0, -2.0, -1e300], max: [2.0, 5.0, 3.0] });
         let one = aabb_of_points(&[[7.0, 8.0, 9.0]]).unwrap();
-        assert_eq!(
-            one,
-            Aabb {
-                min: [7.0, 8.0, 9.0],
-                max: [7.0, 8.0, 9.0]
-            }
-        );
-        assert_eq!(
-            aabb_of_points(&[]),
-            Err(RefereeError::NoPoints { field: "a.points" })
-        );
-        assert_eq!(
-            aabb_of_points(&[[f64::NAN, 0.0, 0.0]]),
-            Err(RefereeError::NonFinite { field: "a.points" })
-        );
+        assert_eq!(one, Aabb { min: [7.0, 8.0, 9.0], max: [7.0, 8.0, 9.0] });
+        assert_eq!(aabb_of_points(&[]), Err(RefereeError::NoPoints { field: "a.points" }));
+        assert_eq!(aabb_of_points(&[[f64::NAN, 0.0, 0.0]]), Err(RefereeError::NonFinite { field: "a.points" }));
     }
 
     #[test]
     fn referee_min_ball_hand_derived() {
         // Two points: the midpoint, half the distance.
-        close_ball(
-            min_ball(&[[0.0; 3], [2.0, 0.0, 0.0]]).unwrap(),
-            [1.0, 0.0, 0.0],
-            1.0,
-            "pair",
-        );
+        close_ball(min_ball(&[[0.0; 3], [2.0, 0.0, 0.0]]).unwrap(), [1.0, 0.0, 0.0], 1.0, "pair");
         // Acute triangle (0,0,0), (2,0,0), (1,2,0): circumcentre (1, y, 0) with
         // 1 + y² = (2 − y)² → y = 3/4, r² = 1 + 9/16 = 25/16, r = 5/4.
         let acute = [[0.0; 3], [2.0, 0.0, 0.0], [1.0, 2.0, 0.0]];
@@ -455,33 +365,13 @@ mod tests {
         close_ball(min_ball(&obtuse).unwrap(), [2.0, 0.0, 0.0], 2.0, "obtuse");
         // Regular tetrahedron on alternate cube corners, plus its centre and a point
         // inside: centre 0, r = √3 (correctly rounded by IEEE sqrt).
-        let tet = [
-            [1.0, 1.0, 1.0],
-            [1.0, -1.0, -1.0],
-            [0.0; 3],
-            [-1.0, 1.0, -1.0],
-            [0.5, 0.5, 0.0],
-            [-1.0, -1.0, 1.0],
-        ];
-        close_ball(
-            min_ball(&tet).unwrap(),
-            [0.0; 3],
-            3f64.sqrt(),
-            "tetrahedron",
-        );
+        let tet = [[1.0, 1.0, 1.0], [1.0, -1.0, -1.0], [0.0; 3], [-1.0, 1.0, -1.0], [0.5, 0.5, 0.0], [-1.0, -1.0, 1.0]];
+        close_ball(min_ball(&tet).unwrap(), [0.0; 3], 3f64.sqrt(), "tetrahedron");
         // Collinear 0..=10 on x, shuffled: centre 5, r 5.
-        let line: Vec<P3> = [3, 10, 0, 7, 5, 1]
-            .iter()
-            .map(|&x| [f64::from(x), 0.0, 0.0])
-            .collect();
+        let line: Vec<P3> = [3, 10, 0, 7, 5, 1].iter().map(|&x| [f64::from(x), 0.0, 0.0]).collect();
         close_ball(min_ball(&line).unwrap(), [5.0, 0.0, 0.0], 5.0, "collinear");
         // Coincident points: radius 0 at the point.
-        close_ball(
-            min_ball(&[[1.5, 2.5, 3.5]; 5]).unwrap(),
-            [1.5, 2.5, 3.5],
-            0.0,
-            "coincident",
-        );
+        close_ball(min_ball(&[[1.5, 2.5, 3.5]; 5]).unwrap(), [1.5, 2.5, 3.5], 0.0, "coincident");
     }
 
     #[test]
@@ -498,12 +388,7 @@ mod tests {
         // is exact — and r = ½‖(1e-300, −1e300, 0)‖ = ½·1e300·√(1 + 1e-1200),
         // which rounds to 5e299 (the correction is far below an ulp).
         let mixed = [[0.0; 3], [1e-300, 0.0, 0.0], [0.0, 1e300, 0.0]];
-        close_ball(
-            min_ball(&mixed).unwrap(),
-            [0.5e-300, 0.5e300, 0.0],
-            0.5e300,
-            "mixed",
-        );
+        close_ball(min_ball(&mixed).unwrap(), [0.5e-300, 0.5e300, 0.0], 0.5e300, "mixed");
     }
 
     #[test]
@@ -536,27 +421,12 @@ mod tests {
 
     #[test]
     fn referee_enclosure_margin() {
-        let ball = Ball {
-            center: [0.0; 3],
-            radius: 1.0,
-        };
+        let ball = Ball { center: [0.0; 3], radius: 1.0 };
         // Worst point on the sphere: 0; one sticking out to (2,0,0): 1 − 2 = −1;
         // all well inside: 1 − ½.
-        close(
-            enclosure_margin(&ball, &[[1.0, 0.0, 0.0], [0.0, 0.5, 0.0]]).unwrap(),
-            0.0,
-            "on",
-        );
-        close(
-            enclosure_margin(&ball, &[[2.0, 0.0, 0.0], [0.0, 0.5, 0.0]]).unwrap(),
-            -1.0,
-            "out",
-        );
-        close(
-            enclosure_margin(&ball, &[[0.0, 0.0, 0.5]]).unwrap(),
-            0.5,
-            "in",
-        );
+        close(enclosure_margin(&ball, &[[1.0, 0.0, 0.0], [0.0, 0.5, 0.0]]).unwrap(), 0.0, "on");
+        close(enclosure_margin(&ball, &[[2.0, 0.0, 0.0], [0.0, 0.5, 0.0]]).unwrap(), -1.0, "out");
+        close(enclosure_margin(&ball, &[[0.0, 0.0, 0.5]]).unwrap(), 0.5, "in");
     }
 
     /// The smallest enclosing circumball over every subset of 1–4 points: an
@@ -571,11 +441,8 @@ mod tests {
                 continue;
             }
             let support: Vec<usize> = (0..n).filter(|i| mask & (1 << i) != 0).collect();
-            let ball =
-                ball_through(&support, &cloud.points, cloud.frame, cloud.denominator_bits).unwrap();
-            if encloses(&ball.center, &ball.r2, points)
-                && best.as_ref().is_none_or(|b| ball.r2 < *b)
-            {
+            let ball = ball_through(&support, &cloud.points, cloud.frame, cloud.denominator_bits).unwrap();
+            if encloses(&ball.center, &ball.r2, points) && best.as_ref().is_none_or(|b| ball.r2 < *b) {
                 best = Some(ball.r2);
             }
         }

@@ -41,11 +41,7 @@ pub(crate) fn closest_on_triangle(p: &V3, v: &[V3; 3]) -> V3 {
     let ab = sub(b, a);
     let ac = sub(c, a);
     if is_zero(&cross(&ab, &ac)) {
-        let candidates = [
-            closest_on_segment(p, a, b),
-            closest_on_segment(p, b, c),
-            closest_on_segment(p, c, a),
-        ];
+        let candidates = [closest_on_segment(p, a, b), closest_on_segment(p, b, c), closest_on_segment(p, c, a)];
         let dist2 = |x: &V3| {
             let d = sub(p, x);
             dot(&d, &d)
@@ -146,18 +142,9 @@ mod tests {
         // Collinear vertices on the x axis spanning [0, 4]: (1, 3, 0) → (1, 0, 0),
         // (7, 1, 0) → (4, 0, 0); all three vertices equal → that vertex.
         let flat = [pt(0.0, 0.0, 0.0), pt(4.0, 0.0, 0.0), pt(2.0, 0.0, 0.0)];
-        assert_eq!(
-            closest_on_triangle(&pt(1.0, 3.0, 0.0), &flat),
-            pt(1.0, 0.0, 0.0)
-        );
-        assert_eq!(
-            closest_on_triangle(&pt(7.0, 1.0, 0.0), &flat),
-            pt(4.0, 0.0, 0.0)
-        );
+        assert_eq!(closest_on_triangle(&pt(1.0, 3.0, 0.0), &flat), pt(1.0, 0.0, 0.0));
+        assert_eq!(closest_on_triangle(&pt(7.0, 1.0, 0.0), &flat), pt(4.0, 0.0, 0.0));
         let dot3 = [pt(1.0, 1.0, 1.0), pt(1.0, 1.0, 1.0), pt(1.0, 1.0, 1.0)];
-        assert_eq!(
-            closest_on_triangle(&pt(0.0, 0.0, 0.0), &dot3),
-            pt(1.0, 1.0, 1.0)
-        );
+        assert_eq!(closest_on_triangle(&pt(0.0, 0.0, 0.0), &dot3), pt(1.0, 1.0, 1.0));
     }
 }

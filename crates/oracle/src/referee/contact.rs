@@ -7,9 +7,7 @@
 
 use super::RefereeError;
 use super::closest::closest_on_triangle;
-use super::exact::{
-    Q, Root, V3, cross, dot, is_zero, q, radius, round, round_unit, round_v, sub, v3,
-};
+use super::exact::{Q, Root, V3, cross, dot, is_zero, q, radius, round, round_unit, round_v, sub, v3};
 use crate::geom::{Contact, ContactAnswer, P3, Plane, Sphere, Triangle};
 
 /// The normal reported when the direction between the shapes is undefined:
@@ -34,12 +32,7 @@ fn spheres(a: &Sphere, b: &Sphere) -> Result<Spheres, RefereeError> {
     let ra = radius(a.radius, "a.radius")?;
     let mb = v3(&b.center, "b.center")?;
     let rb = radius(b.radius, "b.radius")?;
-    Ok(Spheres {
-        delta: sub(&ma, &mb),
-        mb,
-        sum: &ra + &rb,
-        rb,
-    })
+    Ok(Spheres { delta: sub(&ma, &mb), mb, sum: &ra + &rb, rb })
 }
 
 /// Contact between spheres `a` (centre `Ma`, radius `ra`) and `b` (`Mb`, `rb`).
@@ -65,20 +58,13 @@ pub fn contact_sphere_sphere(a: &Sphere, b: &Sphere) -> Result<ContactAnswer, Re
     let s = spheres(a, b)?;
     let dd = dot(&s.delta, &s.delta);
     if dd > &s.sum * &s.sum {
-        return Ok(ContactAnswer {
-            contact: None,
-            degenerate: false,
-        });
+        return Ok(ContactAnswer { contact: None, degenerate: false });
     }
     if dd.is_zero() {
         let n = fallback_normal();
         let point = [s.mb[0].clone(), s.mb[1].clone(), &s.mb[2] + &s.rb];
         return Ok(ContactAnswer {
-            contact: Some(Contact {
-                point: round_v(&point),
-                normal: round_v(&n),
-                depth: round(&s.sum),
-            }),
+            contact: Some(Contact { point: round_v(&point), normal: round_v(&n), depth: round(&s.sum) }),
             degenerate: true,
         });
     }
@@ -169,24 +155,13 @@ impl SpherePlane {
 pub fn contact_sphere_plane(a: &Sphere, b: &Plane) -> Result<ContactAnswer, RefereeError> {
     let sp = sphere_plane(a, b, ["a.center", "a.radius"], ["b.normal", "b.offset"])?;
     if !sp.touches() {
-        return Ok(ContactAnswer {
-            contact: None,
-            degenerate: false,
-        });
+        return Ok(ContactAnswer { contact: None, degenerate: false });
     }
     let nn = sp.root.square();
     let k = &sp.e / nn;
-    let point: V3 = [
-        &sp.c[0] - &k * &sp.n[0],
-        &sp.c[1] - &k * &sp.n[1],
-        &sp.c[2] - &k * &sp.n[2],
-    ];
+    let point: V3 = [&sp.c[0] - &k * &sp.n[0], &sp.c[1] - &k * &sp.n[1], &sp.c[2] - &k * &sp.n[2]];
     Ok(ContactAnswer {
-        contact: Some(Contact {
-            point: round_v(&point),
-            normal: round_unit(&sp.n),
-            depth: sp.depth(),
-        }),
+        contact: Some(Contact { point: round_v(&point), normal: round_unit(&sp.n), depth: sp.depth() }),
         degenerate: false,
     })
 }
@@ -203,10 +178,7 @@ pub fn contact_sphere_plane(a: &Sphere, b: &Plane) -> Result<ContactAnswer, Refe
 pub fn contact_plane_sphere(a: &Plane, b: &Sphere) -> Result<ContactAnswer, RefereeError> {
     let sp = sphere_plane(b, a, ["b.center", "b.radius"], ["a.normal", "a.offset"])?;
     if !sp.touches() {
-        return Ok(ContactAnswer {
-            contact: None,
-            degenerate: false,
-        });
+        return Ok(ContactAnswer { contact: None, degenerate: false });
     }
     let neg: V3 = [-sp.n[0].clone(), -sp.n[1].clone(), -sp.n[2].clone()];
     Ok(ContactAnswer {
@@ -244,22 +216,11 @@ fn sphere_triangle(
 ) -> Result<SphereTriangle, RefereeError> {
     let c = v3(&s.center, sf[0])?;
     let r = radius(s.radius, sf[1])?;
-    let verts = [
-        v3(&t.vertices[0], tf)?,
-        v3(&t.vertices[1], tf)?,
-        v3(&t.vertices[2], tf)?,
-    ];
+    let verts = [v3(&t.vertices[0], tf)?, v3(&t.vertices[1], tf)?, v3(&t.vertices[2], tf)?];
     let q = closest_on_triangle(&c, &verts);
     let w = sub(&c, &q);
     let root = Root::new(dot(&w, &w));
-    Ok(SphereTriangle {
-        c,
-        r,
-        verts,
-        q,
-        w,
-        root,
-    })
+    Ok(SphereTriangle { c, r, verts, q, w, root })
 }
 
 impl SphereTriangle {
@@ -275,11 +236,7 @@ impl SphereTriangle {
         }
         let [v0, v1, v2] = &self.verts;
         let face = cross(&sub(v1, v0), &sub(v2, v0));
-        if is_zero(&face) {
-            (fallback_normal(), true)
-        } else {
-            (face, true)
-        }
+        if is_zero(&face) { (fallback_normal(), true) } else { (face, true) }
     }
 
     fn depth(&self) -> f64 {
@@ -308,18 +265,11 @@ impl SphereTriangle {
 pub fn contact_sphere_triangle(a: &Sphere, b: &Triangle) -> Result<ContactAnswer, RefereeError> {
     let st = sphere_triangle(a, b, ["a.center", "a.radius"], "b.vertices")?;
     if !st.touches() {
-        return Ok(ContactAnswer {
-            contact: None,
-            degenerate: false,
-        });
+        return Ok(ContactAnswer { contact: None, degenerate: false });
     }
     let (dir, degenerate) = st.direction();
     Ok(ContactAnswer {
-        contact: Some(Contact {
-            point: round_v(&st.q),
-            normal: round_unit(&dir),
-            depth: st.depth(),
-        }),
+        contact: Some(Contact { point: round_v(&st.q), normal: round_unit(&dir), depth: st.depth() }),
         degenerate,
     })
 }
@@ -338,10 +288,7 @@ pub fn contact_sphere_triangle(a: &Sphere, b: &Triangle) -> Result<ContactAnswer
 pub fn contact_triangle_sphere(a: &Triangle, b: &Sphere) -> Result<ContactAnswer, RefereeError> {
     let st = sphere_triangle(b, a, ["b.center", "b.radius"], "a.vertices")?;
     if !st.touches() {
-        return Ok(ContactAnswer {
-            contact: None,
-            degenerate: false,
-        });
+        return Ok(ContactAnswer { contact: None, degenerate: false });
     }
     let (dir, degenerate) = st.direction();
     let neg: V3 = [-dir[0].clone(), -dir[1].clone(), -dir[2].clone()];
@@ -406,18 +353,12 @@ mod tests {
     const ONE_MINUS_SQRT2: f64 = -0.41421356237309503;
 
     fn close(got: f64, want: f64, what: &str) {
-        assert!(
-            within_ulps(got, want, EXACT_ULPS),
-            "{what}: got {got:e}, want {want:e}"
-        );
+        assert!(within_ulps(got, want, EXACT_ULPS), "{what}: got {got:e}, want {want:e}");
     }
 
     fn close_v(got: P3, want: P3, what: &str) {
         for k in 0..3 {
-            assert!(
-                within_ulps(got[k], want[k], EXACT_ULPS),
-                "{what}[{k}]: got {got:?}, want {want:?}"
-            );
+            assert!(within_ulps(got[k], want[k], EXACT_ULPS), "{what}[{k}]: got {got:?}, want {want:?}");
         }
     }
 
@@ -427,11 +368,7 @@ mod tests {
 
     fn contact(answer: Result<ContactAnswer, RefereeError>, what: &str) -> (Contact, bool) {
         let a = answer.unwrap_or_else(|e| panic!("{what}: refused: {e}"));
-        (
-            a.contact
-                .unwrap_or_else(|| panic!("{what}: expected contact")),
-            a.degenerate,
-        )
+        (a.contact.unwrap_or_else(|| panic!("{what}: expected contact")), a.degenerate)
     }
 
     #[test]
@@ -440,26 +377,16 @@ mod tests {
             (ONE_HALF_MINUS_SQRT2, minus_sqrt2(1.5), "1.5 − √2"),
             (TWO_MINUS_SQRT2, minus_sqrt2(2.0), "2 − √2"),
             (ONE_MINUS_SQRT2, minus_sqrt2(1.0), "1 − √2"),
-            (
-                INV_SQRT2,
-                sqrt2_dd().0 / 2.0 + sqrt2_dd().1 / 2.0,
-                "1/√2 = √2/2",
-            ),
+            (INV_SQRT2, sqrt2_dd().0 / 2.0 + sqrt2_dd().1 / 2.0, "1/√2 = √2/2"),
         ] {
-            assert!(
-                within_ulps(lit, dd, DOUBLE_DOUBLE_ULPS),
-                "{what}: {lit} vs {dd}"
-            );
+            assert!(within_ulps(lit, dd, DOUBLE_DOUBLE_ULPS), "{what}: {lit} vs {dd}");
         }
     }
 
     #[test]
     fn referee_sphere_sphere_overlap() {
         // D = (0, 0, 1.5), ‖D‖ = 1.5: normal +z, point Mb + 1·z, depth 2 − 1.5.
-        let (k, deg) = contact(
-            contact_sphere_sphere(&sphere([0.0, 0.0, 1.5], 1.0), &sphere([0.0; 3], 1.0)),
-            "overlap",
-        );
+        let (k, deg) = contact(contact_sphere_sphere(&sphere([0.0, 0.0, 1.5], 1.0), &sphere([0.0; 3], 1.0)), "overlap");
         assert!(!deg);
         close_v(k.normal, [0.0, 0.0, 1.0], "normal");
         close_v(k.point, [0.0, 0.0, 1.0], "point");
@@ -471,25 +398,15 @@ mod tests {
         // a at (1, 1, 0), r 1; b at the origin, r 0.5: ‖D‖ = √2, so
         // normal = (1/√2, 1/√2, 0), point = 0.5·normal = (√2/4, √2/4, 0) (an exact
         // halving of 1/√2), depth = 1.5 − √2.
-        let (k, _) = contact(
-            contact_sphere_sphere(&sphere([1.0, 1.0, 0.0], 1.0), &sphere([0.0; 3], 0.5)),
-            "diag",
-        );
+        let (k, _) = contact(contact_sphere_sphere(&sphere([1.0, 1.0, 0.0], 1.0), &sphere([0.0; 3], 0.5)), "diag");
         close_v(k.normal, [INV_SQRT2, INV_SQRT2, 0.0], "normal");
         close_v(k.point, [INV_SQRT2 / 2.0, INV_SQRT2 / 2.0, 0.0], "point");
         close(k.depth, ONE_HALF_MINUS_SQRT2, "depth");
         // Swapping a and b flips the normal and moves the point to a's surface:
         // (1,1,0) − 1·normal = (1 − 1/√2, 1 − 1/√2, 0); 1 − 1/√2 = (2 − √2)/2.
-        let (k, _) = contact(
-            contact_sphere_sphere(&sphere([0.0; 3], 0.5), &sphere([1.0, 1.0, 0.0], 1.0)),
-            "swapped",
-        );
+        let (k, _) = contact(contact_sphere_sphere(&sphere([0.0; 3], 0.5), &sphere([1.0, 1.0, 0.0], 1.0)), "swapped");
         close_v(k.normal, [-INV_SQRT2, -INV_SQRT2, 0.0], "normal");
-        close_v(
-            k.point,
-            [TWO_MINUS_SQRT2 / 2.0, TWO_MINUS_SQRT2 / 2.0, 0.0],
-            "point",
-        );
+        close_v(k.point, [TWO_MINUS_SQRT2 / 2.0, TWO_MINUS_SQRT2 / 2.0, 0.0], "point");
         close(k.depth, ONE_HALF_MINUS_SQRT2, "depth");
     }
 
@@ -497,30 +414,21 @@ mod tests {
     fn referee_sphere_sphere_touching_is_contact_one_ulp_apart_is_not() {
         // Centres 2 apart, radii 1 + 1: depth exactly 0, contact.
         let b = sphere([0.0; 3], 1.0);
-        let (k, _) = contact(
-            contact_sphere_sphere(&sphere([0.0, 0.0, 2.0], 1.0), &b),
-            "touching",
-        );
+        let (k, _) = contact(contact_sphere_sphere(&sphere([0.0, 0.0, 2.0], 1.0), &b), "touching");
         close(k.depth, 0.0, "depth");
         close_v(k.point, [0.0, 0.0, 1.0], "point");
         // One ulp further (2 + 2⁻⁵¹): apart, and the margin is minus that gap.
         let far = f64::from_bits(2f64.to_bits() + 1);
         let a = sphere([0.0, 0.0, far], 1.0);
         assert_eq!(contact_sphere_sphere(&a, &b).unwrap().contact, None);
-        close(
-            contact_margin_sphere_sphere(&a, &b).unwrap(),
-            -(far - 2.0),
-            "margin",
-        );
+        close(contact_margin_sphere_sphere(&a, &b).unwrap(), -(far - 2.0), "margin");
     }
 
     #[test]
     fn referee_sphere_sphere_concentric_is_degenerate() {
         // D = 0: fallback normal +z, point Mb + rb·z = (1, 2, 3 + 0.5), depth 1 + 0.5.
-        let (k, deg) = contact(
-            contact_sphere_sphere(&sphere([1.0, 2.0, 3.0], 1.0), &sphere([1.0, 2.0, 3.0], 0.5)),
-            "concentric",
-        );
+        let (k, deg) =
+            contact(contact_sphere_sphere(&sphere([1.0, 2.0, 3.0], 1.0), &sphere([1.0, 2.0, 3.0], 0.5)), "concentric");
         assert!(deg);
         close_v(k.normal, CONCENTRIC_FALLBACK_NORMAL, "normal");
         close_v(k.point, [1.0, 2.0, 3.5], "point");
@@ -534,10 +442,7 @@ mod tests {
         // expected depth 2·(2s) − 3s is exact in f64 (doubling, then Sterbenz).
         for s in [1e300, 1e-300] {
             let (r, d) = (2.0 * s, 3.0 * s);
-            let (k, _) = contact(
-                contact_sphere_sphere(&sphere([0.0, 0.0, d], r), &sphere([0.0; 3], r)),
-                "scaled",
-            );
+            let (k, _) = contact(contact_sphere_sphere(&sphere([0.0, 0.0, d], r), &sphere([0.0; 3], r)), "scaled");
             close_v(k.normal, [0.0, 0.0, 1.0], "normal");
             close_v(k.point, [0.0, 0.0, r], "point");
             close(k.depth, 2.0 * r - d, "depth");
@@ -550,14 +455,8 @@ mod tests {
         // s = 0.5, point (0,0,0), normal +z, depth 0.5. A normal of length 2 is the
         // same plane (s = (2·0.5 − 0)/2).
         for n in [[0.0, 0.0, 1.0], [0.0, 0.0, 2.0]] {
-            let p = Plane {
-                normal: n,
-                offset: 0.0,
-            };
-            let (k, deg) = contact(
-                contact_sphere_plane(&sphere([0.0, 0.0, 0.5], 1.0), &p),
-                "sunk",
-            );
+            let p = Plane { normal: n, offset: 0.0 };
+            let (k, deg) = contact(contact_sphere_plane(&sphere([0.0, 0.0, 0.5], 1.0), &p), "sunk");
             assert!(!deg);
             close_v(k.point, [0.0; 3], "point");
             close_v(k.normal, [0.0, 0.0, 1.0], "normal");
@@ -567,30 +466,17 @@ mod tests {
 
     #[test]
     fn referee_sphere_plane_touching_apart_and_inside() {
-        let ground = Plane {
-            normal: [0.0, 0.0, 1.0],
-            offset: 0.0,
-        };
+        let ground = Plane { normal: [0.0, 0.0, 1.0], offset: 0.0 };
         // s = r = 1: depth exactly 0 is contact.
-        let (k, _) = contact(
-            contact_sphere_plane(&sphere([0.0, 0.0, 1.0], 1.0), &ground),
-            "touching",
-        );
+        let (k, _) = contact(contact_sphere_plane(&sphere([0.0, 0.0, 1.0], 1.0), &ground), "touching");
         close(k.depth, 0.0, "depth");
         // One ulp higher: apart by 2⁻⁵², which is the margin's magnitude.
         let up = f64::from_bits(1f64.to_bits() + 1);
         let a = sphere([0.0, 0.0, up], 1.0);
         assert_eq!(contact_sphere_plane(&a, &ground).unwrap().contact, None);
-        close(
-            contact_margin_sphere_plane(&a, &ground).unwrap(),
-            -f64::EPSILON,
-            "margin",
-        );
+        close(contact_margin_sphere_plane(&a, &ground).unwrap(), -f64::EPSILON, "margin");
         // Centre 3 deep in the solid: s = −3, depth r − s = 4, point above it.
-        let (k, _) = contact(
-            contact_sphere_plane(&sphere([5.0, 6.0, -3.0], 1.0), &ground),
-            "inside",
-        );
+        let (k, _) = contact(contact_sphere_plane(&sphere([5.0, 6.0, -3.0], 1.0), &ground), "inside");
         close(k.depth, 4.0, "depth");
         close_v(k.point, [5.0, 6.0, 0.0], "point");
     }
@@ -599,10 +485,7 @@ mod tests {
     fn referee_sphere_plane_tilted_both_orders() {
         // Plane x + y = 0 (n = (1,1,0)), centre (1,1,0), r 2: s = 2/√2 = √2,
         // depth 2 − √2, normal (1/√2, 1/√2, 0), point c − (n·c)n/‖n‖² = (0,0,0).
-        let p = Plane {
-            normal: [1.0, 1.0, 0.0],
-            offset: 0.0,
-        };
+        let p = Plane { normal: [1.0, 1.0, 0.0], offset: 0.0 };
         let s = sphere([1.0, 1.0, 0.0], 2.0);
         let (k, _) = contact(contact_sphere_plane(&s, &p), "sphere-plane");
         close_v(k.point, [0.0; 3], "point");
@@ -617,10 +500,7 @@ mod tests {
 
     #[test]
     fn referee_sphere_plane_refuses_zero_normal_and_nan() {
-        let zero = Plane {
-            normal: [0.0; 3],
-            offset: 1.0,
-        };
+        let zero = Plane { normal: [0.0; 3], offset: 1.0 };
         assert_eq!(
             contact_sphere_plane(&sphere([0.0; 3], 1.0), &zero),
             Err(RefereeError::ZeroNormal { field: "b.normal" })
@@ -629,10 +509,7 @@ mod tests {
             contact_plane_sphere(&zero, &sphere([0.0; 3], 1.0)),
             Err(RefereeError::ZeroNormal { field: "a.normal" })
         );
-        let ground = Plane {
-            normal: [0.0, 0.0, 1.0],
-            offset: 0.0,
-        };
+        let ground = Plane { normal: [0.0, 0.0, 1.0], offset: 0.0 };
         assert_eq!(
             contact_sphere_plane(&sphere([0.0, f64::NAN, 0.0], 1.0), &ground),
             Err(RefereeError::NonFinite { field: "a.center" })
@@ -645,56 +522,19 @@ mod tests {
 
     fn tri() -> Triangle {
         // Right triangle in z = 0, legs 2 on x and y; face normal +z.
-        Triangle {
-            vertices: [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]],
-        }
+        Triangle { vertices: [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]] }
     }
 
     #[test]
     fn referee_sphere_triangle_regions() {
         // (centre, r, point q, normal, depth) by hand: face, edge, vertex, below.
         let cases = [
-            (
-                [0.5, 0.5, 0.75],
-                1.0,
-                [0.5, 0.5, 0.0],
-                [0.0, 0.0, 1.0],
-                0.25,
-                "face",
-            ),
-            (
-                [1.0, -1.0, 0.0],
-                2.0,
-                [1.0, 0.0, 0.0],
-                [0.0, -1.0, 0.0],
-                1.0,
-                "edge v0v1",
-            ),
-            (
-                [0.5, 0.5, -0.75],
-                1.0,
-                [0.5, 0.5, 0.0],
-                [0.0, 0.0, -1.0],
-                0.25,
-                "below: two-sided",
-            ),
-            (
-                [3.0, 0.0, 0.0],
-                1.0,
-                [2.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                0.0,
-                "touching vertex v1",
-            ),
+            ([0.5, 0.5, 0.75], 1.0, [0.5, 0.5, 0.0], [0.0, 0.0, 1.0], 0.25, "face"),
+            ([1.0, -1.0, 0.0], 2.0, [1.0, 0.0, 0.0], [0.0, -1.0, 0.0], 1.0, "edge v0v1"),
+            ([0.5, 0.5, -0.75], 1.0, [0.5, 0.5, 0.0], [0.0, 0.0, -1.0], 0.25, "below: two-sided"),
+            ([3.0, 0.0, 0.0], 1.0, [2.0, 0.0, 0.0], [1.0, 0.0, 0.0], 0.0, "touching vertex v1"),
             // Centre (−1,−1,0), q = v0, ‖c − q‖ = √2: depth 2 − √2.
-            (
-                [-1.0, -1.0, 0.0],
-                2.0,
-                [0.0; 3],
-                [-INV_SQRT2, -INV_SQRT2, 0.0],
-                TWO_MINUS_SQRT2,
-                "vertex v0",
-            ),
+            ([-1.0, -1.0, 0.0], 2.0, [0.0; 3], [-INV_SQRT2, -INV_SQRT2, 0.0], TWO_MINUS_SQRT2, "vertex v0"),
         ];
         for (c, r, q, n, depth, what) in cases {
             let (k, deg) = contact(contact_sphere_triangle(&sphere(c, r), &tri()), what);
@@ -707,31 +547,19 @@ mod tests {
         let past = f64::from_bits(3f64.to_bits() + 1);
         let a = sphere([past, 0.0, 0.0], 1.0);
         assert_eq!(contact_sphere_triangle(&a, &tri()).unwrap().contact, None);
-        close(
-            contact_margin_sphere_triangle(&a, &tri()).unwrap(),
-            -(past - 3.0),
-            "margin",
-        );
+        close(contact_margin_sphere_triangle(&a, &tri()).unwrap(), -(past - 3.0), "margin");
     }
 
     #[test]
     fn referee_sphere_triangle_centre_on_face_is_degenerate() {
         // q = c: normal = face normal (+z; −z for the reversed winding), depth r.
-        let (k, deg) = contact(
-            contact_sphere_triangle(&sphere([0.5, 0.5, 0.0], 1.0), &tri()),
-            "on face",
-        );
+        let (k, deg) = contact(contact_sphere_triangle(&sphere([0.5, 0.5, 0.0], 1.0), &tri()), "on face");
         assert!(deg);
         close_v(k.normal, [0.0, 0.0, 1.0], "normal");
         close_v(k.point, [0.5, 0.5, 0.0], "point");
         close(k.depth, 1.0, "depth");
-        let cw = Triangle {
-            vertices: [[0.0, 0.0, 0.0], [0.0, 2.0, 0.0], [2.0, 0.0, 0.0]],
-        };
-        let (k, _) = contact(
-            contact_sphere_triangle(&sphere([0.5, 0.5, 0.0], 1.0), &cw),
-            "on cw face",
-        );
+        let cw = Triangle { vertices: [[0.0, 0.0, 0.0], [0.0, 2.0, 0.0], [2.0, 0.0, 0.0]] };
+        let (k, _) = contact(contact_sphere_triangle(&sphere([0.5, 0.5, 0.0], 1.0), &cw), "on cw face");
         close_v(k.normal, [0.0, 0.0, -1.0], "normal");
     }
 
@@ -739,22 +567,14 @@ mod tests {
     fn referee_sphere_triangle_zero_area() {
         // Collinear vertices spanning x ∈ [0, 4]. Centre (1,3,0), r 5: q = (1,0,0),
         // normal +y, depth 2, fully defined (not degenerate).
-        let flat = Triangle {
-            vertices: [[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [2.0, 0.0, 0.0]],
-        };
-        let (k, deg) = contact(
-            contact_sphere_triangle(&sphere([1.0, 3.0, 0.0], 5.0), &flat),
-            "off",
-        );
+        let flat = Triangle { vertices: [[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [2.0, 0.0, 0.0]] };
+        let (k, deg) = contact(contact_sphere_triangle(&sphere([1.0, 3.0, 0.0], 5.0), &flat), "off");
         assert!(!deg);
         close_v(k.point, [1.0, 0.0, 0.0], "point");
         close_v(k.normal, [0.0, 1.0, 0.0], "normal");
         close(k.depth, 2.0, "depth");
         // Centre on the segment: no face normal either, fallback +z, depth r.
-        let (k, deg) = contact(
-            contact_sphere_triangle(&sphere([1.0, 0.0, 0.0], 1.0), &flat),
-            "on",
-        );
+        let (k, deg) = contact(contact_sphere_triangle(&sphere([1.0, 0.0, 0.0], 1.0), &flat), "on");
         assert!(deg);
         close_v(k.normal, CONCENTRIC_FALLBACK_NORMAL, "normal");
         close(k.depth, 1.0, "depth");
@@ -764,27 +584,18 @@ mod tests {
     fn referee_triangle_sphere_reverse_order() {
         // Face case seen from the triangle: normal −z, point c − r·(+z) =
         // (0.5, 0.5, 0.75 − 1), depth 0.25.
-        let (k, deg) = contact(
-            contact_triangle_sphere(&tri(), &sphere([0.5, 0.5, 0.75], 1.0)),
-            "face",
-        );
+        let (k, deg) = contact(contact_triangle_sphere(&tri(), &sphere([0.5, 0.5, 0.75], 1.0)), "face");
         assert!(!deg);
         close_v(k.normal, [0.0, 0.0, -1.0], "normal");
         close_v(k.point, [0.5, 0.5, -0.25], "point");
         close(k.depth, 0.25, "depth");
         // Vertex case: normal (1/√2, 1/√2, 0), point c + 2·normal = (−1 + √2, …).
-        let (k, _) = contact(
-            contact_triangle_sphere(&tri(), &sphere([-1.0, -1.0, 0.0], 2.0)),
-            "vertex",
-        );
+        let (k, _) = contact(contact_triangle_sphere(&tri(), &sphere([-1.0, -1.0, 0.0], 2.0)), "vertex");
         close_v(k.normal, [INV_SQRT2, INV_SQRT2, 0.0], "normal");
         close_v(k.point, [-ONE_MINUS_SQRT2, -ONE_MINUS_SQRT2, 0.0], "point");
         close(k.depth, TWO_MINUS_SQRT2, "depth");
         // Degenerate: centre on the face, normal −face normal, point c − r·(+z).
-        let (k, deg) = contact(
-            contact_triangle_sphere(&tri(), &sphere([0.5, 0.5, 0.0], 1.0)),
-            "on face",
-        );
+        let (k, deg) = contact(contact_triangle_sphere(&tri(), &sphere([0.5, 0.5, 0.0], 1.0)), "on face");
         assert!(deg);
         close_v(k.normal, [0.0, 0.0, -1.0], "normal");
         close_v(k.point, [0.5, 0.5, -1.0], "point");
@@ -796,13 +607,8 @@ mod tests {
         // The face case scaled by s = 2^±1000 (exact scalings): q = (s/2, s/2, 0),
         // depth s/4, normal +z.
         for s in [2f64.powi(1000), 2f64.powi(-1000)] {
-            let t = Triangle {
-                vertices: [[0.0; 3], [2.0 * s, 0.0, 0.0], [0.0, 2.0 * s, 0.0]],
-            };
-            let (k, _) = contact(
-                contact_sphere_triangle(&sphere([0.5 * s, 0.5 * s, 0.75 * s], s), &t),
-                "scaled",
-            );
+            let t = Triangle { vertices: [[0.0; 3], [2.0 * s, 0.0, 0.0], [0.0, 2.0 * s, 0.0]] };
+            let (k, _) = contact(contact_sphere_triangle(&sphere([0.5 * s, 0.5 * s, 0.75 * s], s), &t), "scaled");
             close_v(k.point, [0.5 * s, 0.5 * s, 0.0], "point");
             close_v(k.normal, [0.0, 0.0, 1.0], "normal");
             close(k.depth, 0.25 * s, "depth");

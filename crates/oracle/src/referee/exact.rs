@@ -59,11 +59,7 @@ pub(crate) fn dot(a: &V3, b: &V3) -> Q {
 }
 
 pub(crate) fn cross(a: &V3, b: &V3) -> V3 {
-    [
-        &a[1] * &b[2] - &a[2] * &b[1],
-        &a[2] * &b[0] - &a[0] * &b[2],
-        &a[0] * &b[1] - &a[1] * &b[0],
-    ]
+    [&a[1] * &b[2] - &a[2] * &b[1], &a[2] * &b[0] - &a[0] * &b[2], &a[0] * &b[1] - &a[1] * &b[0]]
 }
 
 pub(crate) fn is_zero(v: &V3) -> bool {
@@ -110,13 +106,7 @@ impl Root {
         let (sd, rd) = den.sqrt_rem();
         let exact = (rn.is_zero() && rd.is_zero()).then(|| Q::from_parts(IBig::from(sn), sd));
         let num_den = &num * &den;
-        let mut root = Self {
-            q,
-            exact,
-            num_den,
-            den,
-            first: None,
-        };
+        let mut root = Self { q, exact, num_den, den, first: None };
         if root.exact.is_none() {
             root.first = Some(root.bounds(PRECISION_BITS));
         }
@@ -237,12 +227,7 @@ mod tests {
         for x in [2.0, 3.0, 0.5, 1e-300, 1e300, 7.0e-310, 123456.789, f64::MAX] {
             let root = Root::new(q(x, "x").unwrap());
             let got = root.round_sqrt();
-            assert_eq!(
-                got.to_bits(),
-                x.sqrt().to_bits(),
-                "sqrt({x}): {got} vs {}",
-                x.sqrt()
-            );
+            assert_eq!(got.to_bits(), x.sqrt().to_bits(), "sqrt({x}): {got} vs {}", x.sqrt());
         }
     }
 
@@ -276,17 +261,8 @@ mod tests {
 
     #[test]
     fn referee_exact_refuses_non_finite() {
-        assert_eq!(
-            q(f64::NAN, "f"),
-            Err(RefereeError::NonFinite { field: "f" })
-        );
-        assert_eq!(
-            q(f64::INFINITY, "f"),
-            Err(RefereeError::NonFinite { field: "f" })
-        );
-        assert_eq!(
-            radius(-1.0, "r"),
-            Err(RefereeError::NegativeRadius { field: "r" })
-        );
+        assert_eq!(q(f64::NAN, "f"), Err(RefereeError::NonFinite { field: "f" }));
+        assert_eq!(q(f64::INFINITY, "f"), Err(RefereeError::NonFinite { field: "f" }));
+        assert_eq!(radius(-1.0, "r"), Err(RefereeError::NegativeRadius { field: "r" }));
     }
 }

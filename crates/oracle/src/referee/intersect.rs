@@ -6,9 +6,7 @@
 
 use super::RefereeError;
 use super::barycentric::barycentric_exact;
-use super::exact::{
-    Q, V3, add, cross, dot, is_zero, q, round, round_unit, round_v, scale, sub, v3,
-};
+use super::exact::{Q, V3, add, cross, dot, is_zero, q, round, round_unit, round_v, scale, sub, v3};
 use crate::geom::{IntersectAnswer, P3, Plane, Segment, SegmentHit, Triangle};
 
 /// Where the segment's line crosses a plane `N·x = k`, exactly.
@@ -36,27 +34,15 @@ fn segment(s: &Segment, field: [&'static str; 2]) -> Result<(V3, V3), RefereeErr
 }
 
 fn degenerate() -> IntersectAnswer {
-    IntersectAnswer {
-        hit: None,
-        parallel: false,
-        degenerate: true,
-    }
+    IntersectAnswer { hit: None, parallel: false, degenerate: true }
 }
 
 fn parallel() -> IntersectAnswer {
-    IntersectAnswer {
-        hit: None,
-        parallel: true,
-        degenerate: false,
-    }
+    IntersectAnswer { hit: None, parallel: true, degenerate: false }
 }
 
 fn miss() -> IntersectAnswer {
-    IntersectAnswer {
-        hit: None,
-        parallel: false,
-        degenerate: false,
-    }
+    IntersectAnswer { hit: None, parallel: false, degenerate: false }
 }
 
 /// The smaller of two exact rationals.
@@ -189,12 +175,7 @@ fn triangle_case(p0: &V3, dir: &V3, v: &[V3; 3]) -> TriangleCase {
     let point = along(p0, dir, &t);
     // The triangle has area, so its barycentrics exist.
     match barycentric_exact(&point, v) {
-        Some(bary) => TriangleCase::Line(Box::new(Candidate {
-            t,
-            point,
-            bary,
-            normal,
-        })),
+        Some(bary) => TriangleCase::Line(Box::new(Candidate { t, point, bary, normal })),
         None => TriangleCase::Flat,
     }
 }
@@ -210,11 +191,7 @@ fn hit_of(c: &Candidate, face: Option<usize>) -> SegmentHit {
 }
 
 fn triangle(t: &Triangle, field: &'static str) -> Result<[V3; 3], RefereeError> {
-    Ok([
-        v3(&t.vertices[0], field)?,
-        v3(&t.vertices[1], field)?,
-        v3(&t.vertices[2], field)?,
-    ])
+    Ok([v3(&t.vertices[0], field)?, v3(&t.vertices[1], field)?, v3(&t.vertices[2], field)?])
 }
 
 /// Intersection of segment `s` with triangle `t` (a two-sided solid sheet, edges
@@ -243,10 +220,7 @@ fn triangle(t: &Triangle, field: &'static str) -> Result<[V3; 3], RefereeError> 
 /// **Degenerate input.** A zero-length segment or a zero-area triangle
 /// (`N = 0`): `degenerate: true`, no hit, `parallel: false` — the direction or
 /// the plane needed to classify does not exist (the fixture format's rule).
-pub fn intersect_segment_triangle(
-    s: &Segment,
-    t: &Triangle,
-) -> Result<IntersectAnswer, RefereeError> {
+pub fn intersect_segment_triangle(s: &Segment, t: &Triangle) -> Result<IntersectAnswer, RefereeError> {
     let (p0, dir) = segment(s, ["a.start", "a.end"])?;
     let v = triangle(t, "b.vertices")?;
     if is_zero(&dir) {
@@ -255,11 +229,9 @@ pub fn intersect_segment_triangle(
     Ok(match triangle_case(&p0, &dir, &v) {
         TriangleCase::Flat => degenerate(),
         TriangleCase::Parallel => parallel(),
-        TriangleCase::Line(c) if c.hits() => IntersectAnswer {
-            hit: Some(hit_of(&c, None)),
-            parallel: false,
-            degenerate: false,
-        },
+        TriangleCase::Line(c) if c.hits() => {
+            IntersectAnswer { hit: Some(hit_of(&c, None)), parallel: false, degenerate: false }
+        }
         TriangleCase::Line(..) => miss(),
     })
 }
@@ -271,10 +243,7 @@ pub fn intersect_segment_triangle(
 /// decision, as for every referee margin). `None` when there is no candidate
 /// (parallel, zero-length segment, zero-area triangle): no crossing point exists
 /// to measure, and the case is decided by the `parallel` / `degenerate` flags.
-pub fn intersect_margin_segment_triangle(
-    s: &Segment,
-    t: &Triangle,
-) -> Result<Option<f64>, RefereeError> {
+pub fn intersect_margin_segment_triangle(s: &Segment, t: &Triangle) -> Result<Option<f64>, RefereeError> {
     let (p0, dir) = segment(s, ["a.start", "a.end"])?;
     let v = triangle(t, "b.vertices")?;
     if is_zero(&dir) {
@@ -309,16 +278,10 @@ pub fn intersect_segment_mesh(
     triangles: &[[usize; 3]],
 ) -> Result<IntersectAnswer, RefereeError> {
     let (p0, dir) = segment(s, ["a.start", "a.end"])?;
-    let verts = vertices
-        .iter()
-        .map(|p| v3(p, "b.vertices"))
-        .collect::<Result<Vec<_>, _>>()?;
+    let verts = vertices.iter().map(|p| v3(p, "b.vertices")).collect::<Result<Vec<_>, _>>()?;
     for (face, tri) in triangles.iter().enumerate() {
         if tri.iter().any(|&i| i >= verts.len()) {
-            return Err(RefereeError::IndexOutOfRange {
-                field: "b.triangles",
-                face,
-            });
+            return Err(RefereeError::IndexOutOfRange { field: "b.triangles", face });
         }
     }
     if is_zero(&dir) {
@@ -329,11 +292,7 @@ pub fn intersect_segment_mesh(
     let mut all_parallel = true;
     let mut any_area = false;
     for (face, tri) in triangles.iter().enumerate() {
-        let v = [
-            verts[tri[0]].clone(),
-            verts[tri[1]].clone(),
-            verts[tri[2]].clone(),
-        ];
+        let v = [verts[tri[0]].clone(), verts[tri[1]].clone(), verts[tri[2]].clone()];
         match triangle_case(&p0, &dir, &v) {
             TriangleCase::Flat => skipped_flat = true,
             TriangleCase::Parallel => any_area = true,
@@ -349,11 +308,7 @@ pub fn intersect_segment_mesh(
     }
     let hit = best.map(|(c, face)| hit_of(&c, Some(face)));
     let parallel = hit.is_none() && any_area && all_parallel;
-    Ok(IntersectAnswer {
-        hit,
-        parallel,
-        degenerate: skipped_flat,
-    })
+    Ok(IntersectAnswer { hit, parallel, degenerate: skipped_flat })
 }
 
 #[cfg(test)]
@@ -371,18 +326,12 @@ mod tests {
     const INV_SQRT3: f64 = 0.5773502691896257;
 
     fn close(got: f64, want: f64, what: &str) {
-        assert!(
-            within_ulps(got, want, EXACT_ULPS),
-            "{what}: got {got:e}, want {want:e}"
-        );
+        assert!(within_ulps(got, want, EXACT_ULPS), "{what}: got {got:e}, want {want:e}");
     }
 
     fn close_v(got: P3, want: P3, what: &str) {
         for k in 0..3 {
-            assert!(
-                within_ulps(got[k], want[k], EXACT_ULPS),
-                "{what}[{k}]: got {got:?}, want {want:?}"
-            );
+            assert!(within_ulps(got[k], want[k], EXACT_ULPS), "{what}[{k}]: got {got:?}, want {want:?}");
         }
     }
 
@@ -391,16 +340,11 @@ mod tests {
     }
 
     fn ground() -> Plane {
-        Plane {
-            normal: [0.0, 0.0, 1.0],
-            offset: 0.0,
-        }
+        Plane { normal: [0.0, 0.0, 1.0], offset: 0.0 }
     }
 
     fn unit_tri() -> Triangle {
-        Triangle {
-            vertices: [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-        }
+        Triangle { vertices: [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] }
     }
 
     fn hit(a: Result<IntersectAnswer, RefereeError>, what: &str) -> SegmentHit {
@@ -412,39 +356,12 @@ mod tests {
     #[test]
     fn referee_segment_plane_hits() {
         // (segment, plane, t, point) by hand from t = (d − n·p0)/(n·u).
-        let half = Plane {
-            normal: [0.0, 0.0, 4.0],
-            offset: 2.0,
-        }; // z = 0.5
+        let half = Plane { normal: [0.0, 0.0, 4.0], offset: 2.0 }; // z = 0.5
         let cases = [
-            (
-                seg([0.0, 0.0, 1.0], [0.0, 0.0, -1.0]),
-                ground(),
-                0.5,
-                [0.0; 3],
-                "through",
-            ),
-            (
-                seg([0.0, 0.0, 1.0], [0.0, 0.0, 0.0]),
-                ground(),
-                1.0,
-                [0.0; 3],
-                "ends on the plane",
-            ),
-            (
-                seg([3.0, 0.0, 0.0], [3.0, 0.0, 5.0]),
-                ground(),
-                0.0,
-                [3.0, 0.0, 0.0],
-                "starts on it",
-            ),
-            (
-                seg([0.0, 0.0, 0.0], [0.0, 0.0, 2.0]),
-                half,
-                0.25,
-                [0.0, 0.0, 0.5],
-                "unnormalized n",
-            ),
+            (seg([0.0, 0.0, 1.0], [0.0, 0.0, -1.0]), ground(), 0.5, [0.0; 3], "through"),
+            (seg([0.0, 0.0, 1.0], [0.0, 0.0, 0.0]), ground(), 1.0, [0.0; 3], "ends on the plane"),
+            (seg([3.0, 0.0, 0.0], [3.0, 0.0, 5.0]), ground(), 0.0, [3.0, 0.0, 0.0], "starts on it"),
+            (seg([0.0, 0.0, 0.0], [0.0, 0.0, 2.0]), half, 0.25, [0.0, 0.0, 0.5], "unnormalized n"),
         ];
         for (s, p, t, point, what) in cases {
             let h = hit(intersect_segment_plane(&s, &p), what);
@@ -452,10 +369,7 @@ mod tests {
             close_v(h.point, point, what);
             close_v(h.normal, [0.0, 0.0, 1.0], what);
             assert_eq!(h.barycentric, None, "{what}");
-            assert!(
-                intersect_margin_segment_plane(&s, &p).unwrap().unwrap() >= 0.0,
-                "{what}"
-            );
+            assert!(intersect_margin_segment_plane(&s, &p).unwrap().unwrap() >= 0.0, "{what}");
         }
     }
 
@@ -463,14 +377,8 @@ mod tests {
     fn referee_segment_plane_tilted_normal_is_correctly_rounded() {
         // n = (1,1,1), d = 1, segment (0,0,0)→(1,1,1): t = 1/3, point (1/3,1/3,1/3),
         // normal (1,1,1)/√3. 1/3 correctly rounded is 1.0/3.0 (IEEE division).
-        let p = Plane {
-            normal: [1.0; 3],
-            offset: 1.0,
-        };
-        let h = hit(
-            intersect_segment_plane(&seg([0.0; 3], [1.0; 3]), &p),
-            "tilted",
-        );
+        let p = Plane { normal: [1.0; 3], offset: 1.0 };
+        let h = hit(intersect_segment_plane(&seg([0.0; 3], [1.0; 3]), &p), "tilted");
         let third = 1.0 / 3.0;
         close(h.t, third, "t");
         close_v(h.point, [third; 3], "point");
@@ -486,60 +394,25 @@ mod tests {
         let a = intersect_segment_plane(&s, &ground()).unwrap();
         assert_eq!(a.hit, None);
         assert!(!a.parallel && !a.degenerate);
-        close(
-            intersect_margin_segment_plane(&s, &ground())
-                .unwrap()
-                .unwrap(),
-            -1e-300,
-            "margin",
-        );
+        close(intersect_margin_segment_plane(&s, &ground()).unwrap().unwrap(), -1e-300, "margin");
     }
 
     #[test]
     fn referee_segment_plane_parallel_and_degenerate() {
-        for (s, what) in [
-            (seg([0.0, 0.0, 1.0], [1.0, 0.0, 1.0]), "above"),
-            (seg([0.0, 0.0, 0.0], [1.0, 2.0, 0.0]), "coplanar"),
-        ] {
+        for (s, what) in
+            [(seg([0.0, 0.0, 1.0], [1.0, 0.0, 1.0]), "above"), (seg([0.0, 0.0, 0.0], [1.0, 2.0, 0.0]), "coplanar")]
+        {
             let a = intersect_segment_plane(&s, &ground()).unwrap();
-            assert_eq!(
-                a,
-                IntersectAnswer {
-                    hit: None,
-                    parallel: true,
-                    degenerate: false
-                },
-                "{what}"
-            );
-            assert_eq!(
-                intersect_margin_segment_plane(&s, &ground()).unwrap(),
-                None,
-                "{what}"
-            );
+            assert_eq!(a, IntersectAnswer { hit: None, parallel: true, degenerate: false }, "{what}");
+            assert_eq!(intersect_margin_segment_plane(&s, &ground()).unwrap(), None, "{what}");
         }
         let point = seg([0.0; 3], [0.0; 3]);
         let a = intersect_segment_plane(&point, &ground()).unwrap();
-        assert_eq!(
-            a,
-            IntersectAnswer {
-                hit: None,
-                parallel: false,
-                degenerate: true
-            }
-        );
-        let zero = Plane {
-            normal: [0.0; 3],
-            offset: 0.0,
-        };
-        assert_eq!(
-            intersect_segment_plane(&point, &zero),
-            Err(RefereeError::ZeroNormal { field: "b.normal" })
-        );
+        assert_eq!(a, IntersectAnswer { hit: None, parallel: false, degenerate: true });
+        let zero = Plane { normal: [0.0; 3], offset: 0.0 };
+        assert_eq!(intersect_segment_plane(&point, &zero), Err(RefereeError::ZeroNormal { field: "b.normal" }));
         let nan = seg([0.0; 3], [0.0, f64::INFINITY, 0.0]);
-        assert_eq!(
-            intersect_segment_plane(&nan, &ground()),
-            Err(RefereeError::NonFinite { field: "a.end" })
-        );
+        assert_eq!(intersect_segment_plane(&nan, &ground()), Err(RefereeError::NonFinite { field: "a.end" }));
     }
 
     #[test]
@@ -548,10 +421,7 @@ mod tests {
         // point (s, 0, 0). Naive f64 products n·p overflow or underflow in none of
         // the rational steps.
         for s in [2f64.powi(1000), 2f64.powi(-1000), 1e300] {
-            let h = hit(
-                intersect_segment_plane(&seg([s, 0.0, s], [s, 0.0, -3.0 * s]), &ground()),
-                "scaled",
-            );
+            let h = hit(intersect_segment_plane(&seg([s, 0.0, s], [s, 0.0, -3.0 * s]), &ground()), "scaled");
             close(h.t, 0.25, "t");
             close_v(h.point, [s, 0.0, 0.0], "point");
         }
@@ -574,28 +444,14 @@ mod tests {
             close_v(h.point, [x, y, 0.0], what);
             close_v(h.normal, [0.0, 0.0, 1.0], what);
             close_v(h.barycentric.expect("barycentric"), bary, what);
-            close(
-                intersect_margin_segment_triangle(&s, &unit_tri())
-                    .unwrap()
-                    .unwrap(),
-                margin,
-                what,
-            );
+            close(intersect_margin_segment_triangle(&s, &unit_tri()).unwrap().unwrap(), margin, what);
         }
         // From below: same hit, normal not flipped toward the segment.
-        let h = hit(
-            intersect_segment_triangle(&seg([0.25, 0.25, -1.0], [0.25, 0.25, 1.0]), &unit_tri()),
-            "below",
-        );
+        let h = hit(intersect_segment_triangle(&seg([0.25, 0.25, -1.0], [0.25, 0.25, 1.0]), &unit_tri()), "below");
         close_v(h.normal, [0.0, 0.0, 1.0], "below");
         // Clockwise winding: the face normal is −z.
-        let cw = Triangle {
-            vertices: [[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]],
-        };
-        let h = hit(
-            intersect_segment_triangle(&seg([0.25, 0.25, 1.0], [0.25, 0.25, -1.0]), &cw),
-            "cw",
-        );
+        let cw = Triangle { vertices: [[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]] };
+        let h = hit(intersect_segment_triangle(&seg([0.25, 0.25, 1.0], [0.25, 0.25, -1.0]), &cw), "cw");
         close_v(h.normal, [0.0, 0.0, -1.0], "cw");
     }
 
@@ -604,85 +460,35 @@ mod tests {
         // Just outside edge v0v1: y = −2⁻⁶⁰ makes γ = −2⁻⁶⁰ < 0, a miss with that margin.
         let y = -(2f64.powi(-60));
         let s = seg([0.5, y, 1.0], [0.5, y, -1.0]);
-        assert_eq!(
-            intersect_segment_triangle(&s, &unit_tri()).unwrap().hit,
-            None
-        );
-        close(
-            intersect_margin_segment_triangle(&s, &unit_tri())
-                .unwrap()
-                .unwrap(),
-            y,
-            "edge margin",
-        );
+        assert_eq!(intersect_segment_triangle(&s, &unit_tri()).unwrap().hit, None);
+        close(intersect_margin_segment_triangle(&s, &unit_tri()).unwrap().unwrap(), y, "edge margin");
         // Stopping 1e-300 above the face: t = 1/(1 − 1e-300) > 1, a miss; margin
         // min(t, 1 − t, ½, ¼, ¼) = 1 − t, which rounds to −1e-300 (see the plane case).
         let s = seg([0.25, 0.25, 1.0], [0.25, 0.25, 1e-300]);
         let a = intersect_segment_triangle(&s, &unit_tri()).unwrap();
-        assert_eq!(
-            a,
-            IntersectAnswer {
-                hit: None,
-                parallel: false,
-                degenerate: false
-            }
-        );
-        close(
-            intersect_margin_segment_triangle(&s, &unit_tri())
-                .unwrap()
-                .unwrap(),
-            -1e-300,
-            "short margin",
-        );
+        assert_eq!(a, IntersectAnswer { hit: None, parallel: false, degenerate: false });
+        close(intersect_margin_segment_triangle(&s, &unit_tri()).unwrap().unwrap(), -1e-300, "short margin");
         // Ending exactly on the face: t = 1, a hit.
-        let h = hit(
-            intersect_segment_triangle(&seg([0.25, 0.25, 1.0], [0.25, 0.25, 0.0]), &unit_tri()),
-            "ends on",
-        );
+        let h = hit(intersect_segment_triangle(&seg([0.25, 0.25, 1.0], [0.25, 0.25, 0.0]), &unit_tri()), "ends on");
         close(h.t, 1.0, "t");
     }
 
     #[test]
     fn referee_segment_triangle_parallel_and_degenerate() {
         for (s, what) in [
-            (
-                seg([-1.0, 0.25, 0.0], [2.0, 0.25, 0.0]),
-                "coplanar, crossing the triangle",
-            ),
+            (seg([-1.0, 0.25, 0.0], [2.0, 0.25, 0.0]), "coplanar, crossing the triangle"),
             (seg([0.0, 0.0, 1.0], [1.0, 1.0, 1.0]), "parallel above"),
         ] {
             let a = intersect_segment_triangle(&s, &unit_tri()).unwrap();
-            assert_eq!(
-                a,
-                IntersectAnswer {
-                    hit: None,
-                    parallel: true,
-                    degenerate: false
-                },
-                "{what}"
-            );
+            assert_eq!(a, IntersectAnswer { hit: None, parallel: true, degenerate: false }, "{what}");
         }
-        let degenerate = IntersectAnswer {
-            hit: None,
-            parallel: false,
-            degenerate: true,
-        };
-        let flat = Triangle {
-            vertices: [[0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]],
-        };
+        let degenerate = IntersectAnswer { hit: None, parallel: false, degenerate: true };
+        let flat = Triangle { vertices: [[0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]] };
         let s = seg([0.5, 0.0, 1.0], [0.5, 0.0, -1.0]);
-        assert_eq!(
-            intersect_segment_triangle(&s, &flat).unwrap(),
-            degenerate,
-            "zero area"
-        );
+        assert_eq!(intersect_segment_triangle(&s, &flat).unwrap(), degenerate, "zero area");
         assert_eq!(intersect_margin_segment_triangle(&s, &flat).unwrap(), None);
         let point = seg([0.25, 0.25, 0.0], [0.25, 0.25, 0.0]);
-        assert_eq!(
-            intersect_segment_triangle(&point, &unit_tri()).unwrap(),
-            degenerate,
-            "zero length"
-        );
+        assert_eq!(intersect_segment_triangle(&point, &unit_tri()).unwrap(), degenerate, "zero length");
     }
 
     #[test]
@@ -691,16 +497,9 @@ mod tests {
         // exact powers of two of s): t = 1/2, point (s/4, s/4, 0), barycentrics
         // [1/2, 1/4, 1/4] whatever the scale.
         for s in [2f64.powi(1000), 2f64.powi(-1000), 1e300, 1e-300] {
-            let t = Triangle {
-                vertices: [[0.0; 3], [s, 0.0, 0.0], [0.0, s, 0.0]],
-            };
-            let h = hit(
-                intersect_segment_triangle(
-                    &seg([0.25 * s, 0.25 * s, s], [0.25 * s, 0.25 * s, -s]),
-                    &t,
-                ),
-                "scaled",
-            );
+            let t = Triangle { vertices: [[0.0; 3], [s, 0.0, 0.0], [0.0, s, 0.0]] };
+            let h =
+                hit(intersect_segment_triangle(&seg([0.25 * s, 0.25 * s, s], [0.25 * s, 0.25 * s, -s]), &t), "scaled");
             close(h.t, 0.5, "t");
             close_v(h.point, [0.25 * s, 0.25 * s, 0.0], "point");
             close_v(h.barycentric.unwrap(), [0.5, 0.25, 0.25], "barycentric");
@@ -728,17 +527,10 @@ mod tests {
         let h = a.hit.expect("hit");
         assert_eq!(h.triangle, Some(1));
         close(h.t, 0.25, "t");
-        close_v(
-            h.barycentric.unwrap(),
-            [0.5, 0.0, 0.5],
-            "barycentric on v0v2",
-        );
+        close_v(h.barycentric.unwrap(), [0.5, 0.0, 0.5], "barycentric on v0v2");
         // Upward from below: the lower square comes first (t = 1/4 of z −2 → 2).
         let s = seg([0.75, 0.25, -2.0], [0.75, 0.25, 2.0]);
-        let h = intersect_segment_mesh(&s, &vertices, &triangles)
-            .unwrap()
-            .hit
-            .expect("hit");
+        let h = intersect_segment_mesh(&s, &vertices, &triangles).unwrap().hit.expect("hit");
         assert_eq!(h.triangle, Some(0));
         close(h.t, 0.25, "t");
         // In the upper square's plane, stopping short of x = 1: every horizontal
@@ -746,38 +538,17 @@ mod tests {
         // crossed by the line at t = 4/3 > 1) makes it a plain miss.
         let s = seg([-1.0, 0.5, 0.0], [0.5, 0.5, 0.0]);
         let a = intersect_segment_mesh(&s, &vertices, &triangles).unwrap();
-        assert_eq!(
-            a,
-            IntersectAnswer {
-                hit: None,
-                parallel: true,
-                degenerate: false
-            }
-        );
+        assert_eq!(a, IntersectAnswer { hit: None, parallel: true, degenerate: false });
         let a = intersect_segment_mesh(&s, &vertices, &[[0, 1, 2], [1, 2, 5]]).unwrap();
-        assert_eq!(
-            a,
-            IntersectAnswer {
-                hit: None,
-                parallel: false,
-                degenerate: false
-            }
-        );
+        assert_eq!(a, IntersectAnswer { hit: None, parallel: false, degenerate: false });
         // A zero-area face is skipped and flagged; an index out of range refused.
-        let a = intersect_segment_mesh(
-            &seg([0.5, 0.5, 1.0], [0.5, 0.5, -3.0]),
-            &vertices,
-            &[[0, 1, 1], [0, 1, 2]],
-        )
-        .unwrap();
+        let a = intersect_segment_mesh(&seg([0.5, 0.5, 1.0], [0.5, 0.5, -3.0]), &vertices, &[[0, 1, 1], [0, 1, 2]])
+            .unwrap();
         assert!(a.degenerate);
         assert_eq!(a.hit.expect("hit").triangle, Some(1));
         assert_eq!(
             intersect_segment_mesh(&s, &vertices, &[[0, 1, 7]]),
-            Err(RefereeError::IndexOutOfRange {
-                field: "b.triangles",
-                face: 0
-            })
+            Err(RefereeError::IndexOutOfRange { field: "b.triangles", face: 0 })
         );
     }
 }

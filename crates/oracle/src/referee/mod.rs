@@ -48,19 +48,18 @@ pub use barycentric::barycentric_triangle;
 pub use bounds::{aabb_of_points, enclosure_margin, min_ball};
 pub use contact::{
     CONCENTRIC_FALLBACK_NORMAL, contact_margin_sphere_plane, contact_margin_sphere_sphere,
-    contact_margin_sphere_triangle, contact_plane_sphere, contact_sphere_plane,
-    contact_sphere_sphere, contact_sphere_triangle, contact_triangle_sphere,
+    contact_margin_sphere_triangle, contact_plane_sphere, contact_sphere_plane, contact_sphere_sphere,
+    contact_sphere_triangle, contact_triangle_sphere,
 };
 pub use intersect::{
-    intersect_margin_segment_plane, intersect_margin_segment_triangle, intersect_segment_mesh,
-    intersect_segment_plane, intersect_segment_triangle,
+    intersect_margin_segment_plane, intersect_margin_segment_triangle, intersect_segment_mesh, intersect_segment_plane,
+    intersect_segment_triangle,
 };
 pub use overlap::{overlap_aabb_aabb, overlap_margin_aabb_aabb};
 pub use response::{response_sphere_plane, response_sphere_sphere};
 pub use toi::{
-    toi_margin_sphere_mesh, toi_margin_sphere_plane, toi_margin_sphere_sphere,
-    toi_margin_sphere_triangle, toi_sphere_mesh, toi_sphere_plane, toi_sphere_sphere,
-    toi_sphere_triangle,
+    toi_margin_sphere_mesh, toi_margin_sphere_plane, toi_margin_sphere_sphere, toi_margin_sphere_triangle,
+    toi_sphere_mesh, toi_sphere_plane, toi_sphere_sphere, toi_sphere_triangle,
 };
 
 use std::fmt;

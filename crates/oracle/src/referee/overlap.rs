@@ -44,9 +44,7 @@ pub fn overlap_aabb_aabb(a: &Aabb, b: &Aabb) -> Result<bool, RefereeError> {
 pub fn overlap_margin_aabb_aabb(a: &Aabb, b: &Aabb) -> Result<f64, RefereeError> {
     check(a, "a.min", "a.max")?;
     check(b, "b.min", "b.max")?;
-    Ok((0..3)
-        .map(|k| (a.max[k].min(b.max[k]) - a.min[k].max(b.min[k])) + 0.0)
-        .fold(f64::INFINITY, f64::min))
+    Ok((0..3).map(|k| (a.max[k].min(b.max[k]) - a.min[k].max(b.min[k])) + 0.0).fold(f64::INFINITY, f64::min))
 }
 
 #[cfg(test)]
@@ -68,55 +66,18 @@ mod tests {
         // (b, overlaps, margin, why) — margins by hand: the common part's length
         // on the tightest axis.
         let cases = [
-            (
-                aabb([0.5; 3], [2.0; 3]),
-                true,
-                0.5,
-                "corner sunk half a unit",
-            ),
-            (
-                aabb([1.0, 0.0, 0.0], [2.0, 1.0, 1.0]),
-                true,
-                0.0,
-                "touching faces overlap",
-            ),
-            (
-                aabb([1.0; 3], [2.0; 3]),
-                true,
-                0.0,
-                "touching corners overlap",
-            ),
-            (
-                aabb([1.25, 0.0, 0.0], [2.0, 1.0, 1.0]),
-                false,
-                -0.25,
-                "gap of a quarter on x",
-            ),
-            (
-                aabb([0.25; 3], [0.5; 3]),
-                true,
-                0.25,
-                "nested: the inner box's extent",
-            ),
-            (
-                aabb([0.5, 0.5, 0.5], [0.5, 0.5, 0.5]),
-                true,
-                0.0,
-                "a point inside",
-            ),
+            (aabb([0.5; 3], [2.0; 3]), true, 0.5, "corner sunk half a unit"),
+            (aabb([1.0, 0.0, 0.0], [2.0, 1.0, 1.0]), true, 0.0, "touching faces overlap"),
+            (aabb([1.0; 3], [2.0; 3]), true, 0.0, "touching corners overlap"),
+            (aabb([1.25, 0.0, 0.0], [2.0, 1.0, 1.0]), false, -0.25, "gap of a quarter on x"),
+            (aabb([0.25; 3], [0.5; 3]), true, 0.25, "nested: the inner box's extent"),
+            (aabb([0.5, 0.5, 0.5], [0.5, 0.5, 0.5]), true, 0.0, "a point inside"),
         ];
         for (b, want, margin, why) in cases {
             assert_eq!(overlap_aabb_aabb(&unit, &b).unwrap(), want, "{why}");
-            assert_eq!(
-                overlap_aabb_aabb(&b, &unit).unwrap(),
-                want,
-                "{why} (swapped)"
-            );
+            assert_eq!(overlap_aabb_aabb(&b, &unit).unwrap(), want, "{why} (swapped)");
             let m = overlap_margin_aabb_aabb(&unit, &b).unwrap();
-            assert!(
-                within_ulps(m, margin, EXACT_ULPS),
-                "{why}: margin {m} vs {margin}"
-            );
+            assert!(within_ulps(m, margin, EXACT_ULPS), "{why}: margin {m} vs {margin}");
         }
     }
 
@@ -145,14 +106,8 @@ mod tests {
     fn referee_overlap_refuses_bad_boxes() {
         let unit = aabb([0.0; 3], [1.0; 3]);
         let inverted = aabb([1.0, 0.0, 0.0], [0.0, 1.0, 1.0]);
-        assert_eq!(
-            overlap_aabb_aabb(&unit, &inverted),
-            Err(RefereeError::InvertedAabb { field: "b.min" })
-        );
+        assert_eq!(overlap_aabb_aabb(&unit, &inverted), Err(RefereeError::InvertedAabb { field: "b.min" }));
         let nan = aabb([0.0; 3], [f64::NAN, 1.0, 1.0]);
-        assert_eq!(
-            overlap_aabb_aabb(&nan, &unit),
-            Err(RefereeError::NonFinite { field: "a.max" })
-        );
+        assert_eq!(overlap_aabb_aabb(&nan, &unit), Err(RefereeError::NonFinite { field: "a.max" }));
     }
 }

@@ -16,11 +16,7 @@ use super::exact::{Q, V3, add, dot, is_zero, q, radius, round_v, scale, sub, v3}
 use crate::geom::{P3, Plane, ResponseAnswer, Sphere};
 
 fn unchanged(va: &P3, vb: &P3, degenerate: bool) -> ResponseAnswer {
-    ResponseAnswer {
-        velocity_a: *va,
-        velocity_b: *vb,
-        degenerate,
-    }
+    ResponseAnswer { velocity_a: *va, velocity_b: *vb, degenerate }
 }
 
 /// The velocities after the impulse along `n` (any non-zero length, from `b`
@@ -33,10 +29,7 @@ fn impulse(va: &V3, wa: &Q, vb: &V3, wb: &Q, n: &V3, e: &Q) -> Option<(V3, V3)> 
         return None;
     }
     let j = -((Q::ONE + e) * vn) / ((wa + wb) * dot(n, n));
-    Some((
-        add(va, &scale(n, &(&j * wa))),
-        sub(vb, &scale(n, &(&j * wb))),
-    ))
+    Some((add(va, &scale(n, &(&j * wa))), sub(vb, &scale(n, &(&j * wb)))))
 }
 
 /// Velocities of spheres `a` (velocity `va`, mass `ma`) and `b` (`vb`, `mb`) after
@@ -88,11 +81,7 @@ pub fn response_sphere_sphere(
     }
     let (wa, wb) = (Q::ONE / ma, Q::ONE / mb);
     Ok(match impulse(&va_q, &wa, &vb_q, &wb, &n, &e) {
-        Some((a2, b2)) => ResponseAnswer {
-            velocity_a: round_v(&a2),
-            velocity_b: round_v(&b2),
-            degenerate: concentric,
-        },
+        Some((a2, b2)) => ResponseAnswer { velocity_a: round_v(&a2), velocity_b: round_v(&b2), degenerate: concentric },
         None => unchanged(va, vb, concentric),
     })
 }
@@ -122,11 +111,7 @@ pub fn response_sphere_plane(va: &P3, b: &Plane, e: f64) -> Result<ResponseAnswe
     }
     let zero: V3 = [Q::ZERO, Q::ZERO, Q::ZERO];
     Ok(match impulse(&va_q, &Q::ONE, &zero, &Q::ZERO, &n, &e) {
-        Some((a2, _)) => ResponseAnswer {
-            velocity_a: round_v(&a2),
-            velocity_b: [0.0; 3],
-            degenerate: false,
-        },
+        Some((a2, _)) => ResponseAnswer { velocity_a: round_v(&a2), velocity_b: [0.0; 3], degenerate: false },
         None => unchanged(va, &[0.0; 3], false),
     })
 }
@@ -143,18 +128,12 @@ mod tests {
 
     fn close_v(got: P3, want: P3, what: &str) {
         for k in 0..3 {
-            assert!(
-                within_ulps(got[k], want[k], EXACT_ULPS),
-                "{what}[{k}]: got {got:?}, want {want:?}"
-            );
+            assert!(within_ulps(got[k], want[k], EXACT_ULPS), "{what}[{k}]: got {got:?}, want {want:?}");
         }
     }
 
     fn sphere(center: P3) -> Sphere {
-        Sphere {
-            center,
-            radius: 1.0,
-        }
+        Sphere { center, radius: 1.0 }
     }
 
     #[test]
@@ -171,16 +150,8 @@ mod tests {
         close_v(r.velocity_b, [0.0; 3], "e = 0, b");
         // ma = 1 at 4 into mb = 3 at rest, e = 1: −2 and 2 (1-D elastic formulas).
         // The centres 7 apart: n = (−7,0,0) is not unit, which must not matter.
-        let r = response_sphere_sphere(
-            &a,
-            &[4.0, 0.0, 0.0],
-            1.0,
-            &sphere([6.0, 0.0, 0.0]),
-            &[0.0; 3],
-            3.0,
-            1.0,
-        )
-        .unwrap();
+        let r =
+            response_sphere_sphere(&a, &[4.0, 0.0, 0.0], 1.0, &sphere([6.0, 0.0, 0.0]), &[0.0; 3], 3.0, 1.0).unwrap();
         close_v(r.velocity_a, [-2.0, 0.0, 0.0], "a");
         close_v(r.velocity_b, [2.0, 0.0, 0.0], "b");
     }
@@ -209,24 +180,13 @@ mod tests {
     fn referee_response_separating_and_degenerate() {
         // Moving apart or sliding: unchanged (the inputs, bit for bit).
         let (a, b) = (sphere([-1.0, 0.0, 0.0]), sphere([1.0, 0.0, 0.0]));
-        for (va, vb) in [
-            ([-1.0, 0.0, 0.0], [0.0; 3]),
-            ([0.0, 3.0, 0.0], [0.0, -1.0, 2.0]),
-        ] {
+        for (va, vb) in [([-1.0, 0.0, 0.0], [0.0; 3]), ([0.0, 3.0, 0.0], [0.0, -1.0, 2.0])] {
             let r = response_sphere_sphere(&a, &va, 1.0, &b, &vb, 2.0, 1.0).unwrap();
-            assert_eq!(
-                r,
-                ResponseAnswer {
-                    velocity_a: va,
-                    velocity_b: vb,
-                    degenerate: false
-                }
-            );
+            assert_eq!(r, ResponseAnswer { velocity_a: va, velocity_b: vb, degenerate: false });
         }
         // Concentric: the +z fallback, flagged; approaching along it, the impulse
         // acts (equal masses, e = 1: velocities swap along z).
-        let r =
-            response_sphere_sphere(&a, &[0.0, 0.0, -1.0], 1.0, &a, &[0.0; 3], 1.0, 1.0).unwrap();
+        let r = response_sphere_sphere(&a, &[0.0, 0.0, -1.0], 1.0, &a, &[0.0; 3], 1.0, 1.0).unwrap();
         assert!(r.degenerate);
         close_v(r.velocity_a, [0.0; 3], "a");
         close_v(r.velocity_b, [0.0, 0.0, -1.0], "b");
@@ -240,9 +200,7 @@ mod tests {
         );
         assert_eq!(
             response_sphere_sphere(&a, &[1.0, 0.0, 0.0], 1.0, &b, &[0.0; 3], 1.0, f64::INFINITY),
-            Err(RefereeError::NonFinite {
-                field: "restitution"
-            })
+            Err(RefereeError::NonFinite { field: "restitution" })
         );
     }
 
@@ -251,30 +209,18 @@ mod tests {
         // Normal (0,0,2), velocity (1,0,−2), e = 1/2: (1, 0, 1). Tilted normal
         // (1,1,0), velocity (−1,0,0), e = 1: va·n = −1, ‖n‖² = 2,
         // va' = (−1,0,0) + 2·(1/2)(1,1,0) = (0, 1, 0).
-        let ground = Plane {
-            normal: [0.0, 0.0, 2.0],
-            offset: 0.0,
-        };
+        let ground = Plane { normal: [0.0, 0.0, 2.0], offset: 0.0 };
         let r = response_sphere_plane(&[1.0, 0.0, -2.0], &ground, 0.5).unwrap();
         close_v(r.velocity_a, [1.0, 0.0, 1.0], "ground");
         close_v(r.velocity_b, [0.0; 3], "static");
-        let tilted = Plane {
-            normal: [1.0, 1.0, 0.0],
-            offset: 3.0,
-        };
+        let tilted = Plane { normal: [1.0, 1.0, 0.0], offset: 3.0 };
         let r = response_sphere_plane(&[-1.0, 0.0, 0.0], &tilted, 1.0).unwrap();
         close_v(r.velocity_a, [0.0, 1.0, 0.0], "tilted");
         // Leaving: unchanged. Zero normal: refused.
         let r = response_sphere_plane(&[1.0, 0.0, 2.0], &ground, 1.0).unwrap();
         close_v(r.velocity_a, [1.0, 0.0, 2.0], "leaving");
-        let zero = Plane {
-            normal: [0.0; 3],
-            offset: 0.0,
-        };
-        assert_eq!(
-            response_sphere_plane(&[1.0; 3], &zero, 1.0),
-            Err(RefereeError::ZeroNormal { field: "b.normal" })
-        );
+        let zero = Plane { normal: [0.0; 3], offset: 0.0 };
+        assert_eq!(response_sphere_plane(&[1.0; 3], &zero, 1.0), Err(RefereeError::ZeroNormal { field: "b.normal" }));
     }
 }
 

@@ -58,11 +58,7 @@ fn sign(x: &Q) -> Ordering {
 /// signs, the larger magnitude wins, decided on the squares `a²` and `b²d`.
 fn sign_surd(a: &Q, b: &Q, d: &Q) -> Ordering {
     let sa = sign(a);
-    let sb = if d.is_zero() {
-        Ordering::Equal
-    } else {
-        sign(b)
-    };
+    let sb = if d.is_zero() { Ordering::Equal } else { sign(b) };
     if sb == Ordering::Equal || sa == sb {
         return sa;
     }
@@ -78,11 +74,7 @@ fn sign_surd(a: &Q, b: &Q, d: &Q) -> Ordering {
 
 impl Surd {
     fn rational(a: Q) -> Self {
-        Self {
-            a,
-            b: Q::ZERO,
-            d: Q::ZERO,
-        }
+        Self { a, b: Q::ZERO, d: Q::ZERO }
     }
 
     fn sign(&self) -> Ordering {
@@ -91,11 +83,7 @@ impl Surd {
 
     /// `k + m·self`, exactly (same `√d`).
     fn affine(&self, k: &Q, m: &Q) -> Self {
-        Self {
-            a: k + m * &self.a,
-            b: m * &self.b,
-            d: self.d.clone(),
-        }
+        Self { a: k + m * &self.a, b: m * &self.b, d: self.d.clone() }
     }
 
     /// `self` against `o`, exactly, for any two radicands: with
@@ -105,11 +93,7 @@ impl Surd {
     fn cmp(&self, o: &Self) -> Ordering {
         let big_a = &self.a - &o.a;
         let sx = sign_surd(&big_a, &self.b, &self.d);
-        let sy = if o.d.is_zero() {
-            Ordering::Equal
-        } else {
-            sign(&o.b)
-        };
+        let sy = if o.d.is_zero() { Ordering::Equal } else { sign(&o.b) };
         if sx != sy {
             return sx.cmp(&sy);
         }
@@ -119,16 +103,11 @@ impl Surd {
         let rational = &big_a * &big_a + &self.b * &self.b * &self.d - &o.b * &o.b * &o.d;
         let ab = &big_a * &self.b;
         let s = sign_surd(&rational, &(&ab + &ab), &self.d);
-        if sx == Ordering::Greater {
-            s
-        } else {
-            s.reverse()
-        }
+        if sx == Ordering::Greater { s } else { s.reverse() }
     }
 
     fn in_interval(&self, t_max: &Q) -> bool {
-        self.sign() != Ordering::Less
-            && self.cmp(&Surd::rational(t_max.clone())) != Ordering::Greater
+        self.sign() != Ordering::Less && self.cmp(&Surd::rational(t_max.clone())) != Ordering::Greater
     }
 }
 
@@ -143,23 +122,12 @@ struct Hit {
 
 /// Every component of `k + m·t`.
 fn along(t: &Surd, k: &V3, m: &V3) -> [Surd; 3] {
-    [
-        t.affine(&k[0], &m[0]),
-        t.affine(&k[1], &m[1]),
-        t.affine(&k[2], &m[2]),
-    ]
+    [t.affine(&k[0], &m[0]), t.affine(&k[1], &m[1]), t.affine(&k[2], &m[2])]
 }
 
 /// The contact at `t = 0` from the static query.
 fn at_zero(k: ContactAnswer) -> ToiAnswer {
-    ToiAnswer {
-        toi: k.contact.map(|k| Toi {
-            t: 0.0,
-            point: k.point,
-            normal: k.normal,
-        }),
-        degenerate: k.degenerate,
-    }
+    ToiAnswer { toi: k.contact.map(|k| Toi { t: 0.0, point: k.point, normal: k.normal }), degenerate: k.degenerate }
 }
 
 /// The winning hit, every component correctly rounded. A missing normal falls
@@ -169,17 +137,10 @@ fn finish(h: &Hit, v: &V3) -> ToiAnswer {
     let r = |s: &Surd| root.round_affine(&s.a, &s.b);
     let (normal, degenerate) = match &h.normal {
         Some(n) => ([r(&n[0]), r(&n[1]), r(&n[2])], false),
-        None => (
-            round_unit(&[-v[0].clone(), -v[1].clone(), -v[2].clone()]),
-            true,
-        ),
+        None => (round_unit(&[-v[0].clone(), -v[1].clone(), -v[2].clone()]), true),
     };
     ToiAnswer {
-        toi: Some(Toi {
-            t: r(&h.t),
-            point: [r(&h.point[0]), r(&h.point[1]), r(&h.point[2])],
-            normal,
-        }),
+        toi: Some(Toi { t: r(&h.t), point: [r(&h.point[0]), r(&h.point[1]), r(&h.point[2])], normal }),
         degenerate,
     }
 }
@@ -205,11 +166,7 @@ fn point_root(w0: &V3, v: &V3, r: &Q) -> Option<Surd> {
     if d < Q::ZERO {
         return None;
     }
-    Some(Surd {
-        a: -(&b / &a),
-        b: -(Q::ONE / &a),
-        d,
-    })
+    Some(Surd { a: -(&b / &a), b: -(Q::ONE / &a), d })
 }
 
 /// Both times at which the distance of `c + t v` from the line `P0 + σu` is `r`
@@ -232,14 +189,7 @@ fn line_roots(w0: &V3, u: &V3, v: &V3, r: &Q) -> Option<[Surd; 2]> {
     }
     let mid = -(&b / &a);
     let half = Q::ONE / &a;
-    Some([
-        Surd {
-            a: mid.clone(),
-            b: -half.clone(),
-            d: d.clone(),
-        },
-        Surd { a: mid, b: half, d },
-    ])
+    Some([Surd { a: mid.clone(), b: -half.clone(), d: d.clone() }, Surd { a: mid, b: half, d }])
 }
 
 /// The earliest of the valid candidates of one triangle (static, `verts`) for
@@ -256,11 +206,7 @@ fn line_roots(w0: &V3, u: &V3, v: &V3, r: &Q) -> Option<[Surd; 2]> {
 fn first_contact(c: &V3, r: &Q, v: &V3, vb: &V3, verts: &[V3; 3], t_max: &Q) -> Option<Hit> {
     let mut best: Option<Hit> = None;
     let mut consider = |h: Hit| {
-        if h.t.in_interval(t_max)
-            && best
-                .as_ref()
-                .is_none_or(|b| h.t.cmp(&b.t) == Ordering::Less)
-        {
+        if h.t.in_interval(t_max) && best.as_ref().is_none_or(|b| h.t.cmp(&b.t) == Ordering::Less) {
             best = Some(h);
         }
     };
@@ -269,14 +215,8 @@ fn first_contact(c: &V3, r: &Q, v: &V3, vb: &V3, verts: &[V3; 3], t_max: &Q) -> 
     for vx in verts {
         let w0 = sub(c, vx);
         if let Some(t) = point_root(&w0, v, r) {
-            let normal = unit_r
-                .as_ref()
-                .map(|k| along(&t, &scale(&w0, k), &scale(v, k)));
-            consider(Hit {
-                point: along(&t, vx, vb),
-                normal,
-                t,
-            });
+            let normal = unit_r.as_ref().map(|k| along(&t, &scale(&w0, k), &scale(v, k)));
+            consider(Hit { point: along(&t, vx, vb), normal, t });
         }
     }
     // Edges: foot σ(t)‖u‖² = w0·u + t v·u must lie in [0, ‖u‖²].
@@ -290,26 +230,16 @@ fn first_contact(c: &V3, r: &Q, v: &V3, vb: &V3, verts: &[V3; 3], t_max: &Q) -> 
         let (k, m) = (dot(&w0, &u), dot(v, &u));
         for t in line_roots(&w0, &u, v, r).into_iter().flatten() {
             let foot = t.affine(&k, &m);
-            if foot.sign() == Ordering::Less
-                || t.affine(&(&k - &uu), &m).sign() == Ordering::Greater
-            {
+            if foot.sign() == Ordering::Less || t.affine(&(&k - &uu), &m).sign() == Ordering::Greater {
                 continue;
             }
             // foot point P0 + σu = (P0 + u k/uu) + (u m/uu) t; normal (w0 + t v − σu)/r.
             let foot0 = add(p0, &scale(&u, &(&k / &uu)));
             let foot1 = scale(&u, &(&m / &uu));
-            let normal = unit_r.as_ref().map(|kr| {
-                along(
-                    &t,
-                    &scale(&sub(&w0, &scale(&u, &(&k / &uu))), kr),
-                    &scale(&sub(v, &foot1), kr),
-                )
-            });
-            consider(Hit {
-                point: along(&t, &foot0, &add(&foot1, vb)),
-                normal,
-                t,
-            });
+            let normal = unit_r
+                .as_ref()
+                .map(|kr| along(&t, &scale(&sub(&w0, &scale(&u, &(&k / &uu))), kr), &scale(&sub(v, &foot1), kr)));
+            consider(Hit { point: along(&t, &foot0, &add(&foot1, vb)), normal, t });
         }
     }
     // Face: e(t) = N·(p(t) − v0) = e0 + t e1 reaches ±r‖N‖.
@@ -324,43 +254,22 @@ fn first_contact(c: &V3, r: &Q, v: &V3, vb: &V3, verts: &[V3; 3], t_max: &Q) -> 
             .iter()
             .map(|&(i, j)| {
                 let e = sub(&verts[j], &verts[i]);
-                (
-                    dot(&cross(&e, &sub(c, &verts[i])), &n),
-                    dot(&cross(&e, v), &n),
-                )
+                (dot(&cross(&e, &sub(c, &verts[i])), &n), dot(&cross(&e, v), &n))
             })
             .collect();
         let va = add(v, vb);
         for side in [Q::ONE, Q::NEG_ONE] {
-            let t = Surd {
-                a: -(&e0 / &e1),
-                b: &side * r / &e1,
-                d: nn.clone(),
-            };
-            if edges
-                .iter()
-                .any(|(s0, s1)| t.affine(s0, s1).sign() == Ordering::Less)
-            {
+            let t = Surd { a: -(&e0 / &e1), b: &side * r / &e1, d: nn.clone() };
+            if edges.iter().any(|(s0, s1)| t.affine(s0, s1).sign() == Ordering::Less) {
                 continue;
             }
             // normal = side·N/√NN = (side·N/NN)·√NN; point = c + va t − r·normal.
-            let unit: [Surd; 3] = std::array::from_fn(|i| Surd {
-                a: Q::ZERO,
-                b: &side * &n[i] / &nn,
-                d: nn.clone(),
-            });
+            let unit: [Surd; 3] = std::array::from_fn(|i| Surd { a: Q::ZERO, b: &side * &n[i] / &nn, d: nn.clone() });
             let point: [Surd; 3] = std::array::from_fn(|i| {
                 let p = t.affine(&c[i], &va[i]);
-                Surd {
-                    b: &p.b - r * &unit[i].b,
-                    ..p
-                }
+                Surd { b: &p.b - r * &unit[i].b, ..p }
             });
-            consider(Hit {
-                t,
-                point,
-                normal: unit_r.is_some().then_some(unit),
-            });
+            consider(Hit { t, point, normal: unit_r.is_some().then_some(unit) });
         }
     }
     best
@@ -385,11 +294,7 @@ fn moving(a: &Sphere, va: &P3, vb: &P3, t_max: f64) -> Result<Moving, RefereeErr
 }
 
 fn triangle(t: &Triangle, field: &'static str) -> Result<[V3; 3], RefereeError> {
-    Ok([
-        v3(&t.vertices[0], field)?,
-        v3(&t.vertices[1], field)?,
-        v3(&t.vertices[2], field)?,
-    ])
+    Ok([v3(&t.vertices[0], field)?, v3(&t.vertices[1], field)?, v3(&t.vertices[2], field)?])
 }
 
 /// Time of impact of sphere `a` (centre `M1`, radius `r1`, velocity `va`) and
@@ -415,13 +320,7 @@ fn triangle(t: &Triangle, field: &'static str) -> Result<[V3; 3], RefereeError> 
 /// **Degenerate input.** Concentric spheres at `t = 0`: the static fallback
 /// (flagged). Two zero radii meet at a point with no direction between them: the
 /// normal is `−v/‖v‖` (where `a` came from), flagged.
-pub fn toi_sphere_sphere(
-    a: &Sphere,
-    va: &P3,
-    b: &Sphere,
-    vb: &P3,
-    t_max: f64,
-) -> Result<ToiAnswer, RefereeError> {
+pub fn toi_sphere_sphere(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Result<ToiAnswer, RefereeError> {
     let s = moving(a, va, vb, t_max)?;
     let mb = v3(&b.center, "b.center")?;
     let rb = radius(b.radius, "b.radius")?;
@@ -439,11 +338,7 @@ pub fn toi_sphere_sphere(
         return Ok(ToiAnswer::default());
     }
     let hit = if reach.is_zero() {
-        Hit {
-            point: along(&t, &mb, &s.vb),
-            normal: None,
-            t,
-        }
+        Hit { point: along(&t, &mb, &s.vb), normal: None, t }
     } else {
         // normal = (w + t v)/R; point = M2 + t vb + r2 (w + t v)/R.
         let k = Q::ONE / &reach;
@@ -476,13 +371,7 @@ pub fn toi_sphere_sphere(
 /// sphere–plane condition; Ericson §5.5.3 (`IntersectMovingSpherePlane`).
 ///
 /// **Degenerate input.** None for valid input; a zero normal is refused.
-pub fn toi_sphere_plane(
-    a: &Sphere,
-    va: &P3,
-    b: &Plane,
-    vb: &P3,
-    t_max: f64,
-) -> Result<ToiAnswer, RefereeError> {
+pub fn toi_sphere_plane(a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> Result<ToiAnswer, RefereeError> {
     let s = moving(a, va, vb, t_max)?;
     let at0 = contact_sphere_plane(a, b)?;
     if at0.contact.is_some() {
@@ -497,34 +386,16 @@ pub fn toi_sphere_plane(
     }
     let nn = dot(&n, &n);
     let e0 = dot(&n, &s.c) - d;
-    let t = Surd {
-        a: -(&e0 / &k),
-        b: &s.r / &k,
-        d: nn.clone(),
-    };
+    let t = Surd { a: -(&e0 / &k), b: &s.r / &k, d: nn.clone() };
     if !t.in_interval(&s.t_max) {
         return Ok(ToiAnswer::default());
     }
-    let normal: [Surd; 3] = std::array::from_fn(|i| Surd {
-        a: Q::ZERO,
-        b: &n[i] / &nn,
-        d: nn.clone(),
-    });
+    let normal: [Surd; 3] = std::array::from_fn(|i| Surd { a: Q::ZERO, b: &n[i] / &nn, d: nn.clone() });
     let point: [Surd; 3] = std::array::from_fn(|i| {
         let p = t.affine(&s.c[i], &s.va[i]);
-        Surd {
-            b: &p.b - &s.r * &normal[i].b,
-            ..p
-        }
+        Surd { b: &p.b - &s.r * &normal[i].b, ..p }
     });
-    Ok(finish(
-        &Hit {
-            t,
-            point,
-            normal: Some(normal),
-        },
-        &v,
-    ))
+    Ok(finish(&Hit { t, point, normal: Some(normal) }, &v))
 }
 
 /// Time of impact of sphere `a` (centre `c`, radius `r`, velocity `va`) and
@@ -554,13 +425,7 @@ pub fn toi_sphere_plane(
 /// edges and vertices: answered exactly, not flagged. A centre on the triangle
 /// at `t = 0`: the static fallback (flagged). A sphere of zero radius meets the
 /// triangle at a point with no direction: normal `−v/‖v‖`, flagged.
-pub fn toi_sphere_triangle(
-    a: &Sphere,
-    va: &P3,
-    b: &Triangle,
-    vb: &P3,
-    t_max: f64,
-) -> Result<ToiAnswer, RefereeError> {
+pub fn toi_sphere_triangle(a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Result<ToiAnswer, RefereeError> {
     let s = moving(a, va, vb, t_max)?;
     let verts = triangle(b, "b.vertices")?;
     let at0 = contact_sphere_triangle(a, b)?;
@@ -568,34 +433,22 @@ pub fn toi_sphere_triangle(
         return Ok(at_zero(at0));
     }
     let v = sub(&s.va, &s.vb);
-    Ok(
-        match first_contact(&s.c, &s.r, &v, &s.vb, &verts, &s.t_max) {
-            Some(h) => finish(&h, &v),
-            None => ToiAnswer::default(),
-        },
-    )
+    Ok(match first_contact(&s.c, &s.r, &v, &s.vb, &verts, &s.t_max) {
+        Some(h) => finish(&h, &v),
+        None => ToiAnswer::default(),
+    })
 }
 
 fn mesh(vertices: &[P3], triangles: &[[usize; 3]]) -> Result<Vec<[V3; 3]>, RefereeError> {
-    let verts = vertices
-        .iter()
-        .map(|p| v3(p, "b.vertices"))
-        .collect::<Result<Vec<_>, _>>()?;
+    let verts = vertices.iter().map(|p| v3(p, "b.vertices")).collect::<Result<Vec<_>, _>>()?;
     triangles
         .iter()
         .enumerate()
         .map(|(face, tri)| {
             if tri.iter().any(|&i| i >= verts.len()) {
-                return Err(RefereeError::IndexOutOfRange {
-                    field: "b.triangles",
-                    face,
-                });
+                return Err(RefereeError::IndexOutOfRange { field: "b.triangles", face });
             }
-            Ok([
-                verts[tri[0]].clone(),
-                verts[tri[1]].clone(),
-                verts[tri[2]].clone(),
-            ])
+            Ok([verts[tri[0]].clone(), verts[tri[1]].clone(), verts[tri[2]].clone()])
         })
         .collect()
 }
@@ -636,18 +489,14 @@ pub fn toi_sphere_mesh(
         && d2 <= &s.r * &s.r
     {
         let tri = triangles[i];
-        let face = Triangle {
-            vertices: [vertices[tri[0]], vertices[tri[1]], vertices[tri[2]]],
-        };
+        let face = Triangle { vertices: [vertices[tri[0]], vertices[tri[1]], vertices[tri[2]]] };
         return Ok(at_zero(contact_sphere_triangle(a, &face)?));
     }
     let v = sub(&s.va, &s.vb);
     let mut best: Option<Hit> = None;
     for f in &faces {
         if let Some(h) = first_contact(&s.c, &s.r, &v, &s.vb, f, &s.t_max)
-            && best
-                .as_ref()
-                .is_none_or(|b| h.t.cmp(&b.t) == Ordering::Less)
+            && best.as_ref().is_none_or(|b| h.t.cmp(&b.t) == Ordering::Less)
         {
             best = Some(h);
         }
@@ -667,24 +516,14 @@ fn gap_margin(r: &Q, d2: Q) -> f64 {
 /// `r1 + r2 − min_{t∈[0,t_max]} ‖w + t v‖`, correctly rounded: ≥ 0 exactly when
 /// there is an impact. The minimum of the convex quadratic is at
 /// `clamp(−w·v/v·v, 0, t_max)`, a rational.
-pub fn toi_margin_sphere_sphere(
-    a: &Sphere,
-    va: &P3,
-    b: &Sphere,
-    vb: &P3,
-    t_max: f64,
-) -> Result<f64, RefereeError> {
+pub fn toi_margin_sphere_sphere(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Result<f64, RefereeError> {
     let s = moving(a, va, vb, t_max)?;
     let mb = v3(&b.center, "b.center")?;
     let rb = radius(b.radius, "b.radius")?;
     let w = sub(&s.c, &mb);
     let v = sub(&s.va, &s.vb);
     let vv = dot(&v, &v);
-    let tc = if vv.is_zero() {
-        Q::ZERO
-    } else {
-        clamp(-(dot(&w, &v) / vv), &s.t_max)
-    };
+    let tc = if vv.is_zero() { Q::ZERO } else { clamp(-(dot(&w, &v) / vv), &s.t_max) };
     let p = add(&w, &scale(&v, &tc));
     Ok(gap_margin(&(&s.r + &rb), dot(&p, &p)))
 }
@@ -702,13 +541,7 @@ fn clamp(t: Q, hi: &Q) -> Q {
 /// The signed closest-approach gap behind [`toi_sphere_plane`]'s decision,
 /// `r − min(e(0), e(t_max))/‖n‖` (the distance above the plane is linear in
 /// time), correctly rounded: ≥ 0 exactly when there is an impact.
-pub fn toi_margin_sphere_plane(
-    a: &Sphere,
-    va: &P3,
-    b: &Plane,
-    vb: &P3,
-    t_max: f64,
-) -> Result<f64, RefereeError> {
+pub fn toi_margin_sphere_plane(a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> Result<f64, RefereeError> {
     let s = moving(a, va, vb, t_max)?;
     let n = v3(&b.normal, "b.normal")?;
     let d = q(b.offset, "b.offset")?;
@@ -744,11 +577,7 @@ fn dist2_segments(p1: &V3, q1: &V3, p2: &V3, q2: &V3) -> Q {
         } else {
             let b = dot(&d1, &d2);
             let denom = &a * &e - &b * &b;
-            let s = if denom.is_zero() {
-                Q::ZERO
-            } else {
-                clamp((&b * &f - &c * &e) / denom, &one)
-            };
+            let s = if denom.is_zero() { Q::ZERO } else { clamp((&b * &f - &c * &e) / denom, &one) };
             let tn = &b * &s + &f;
             if tn < Q::ZERO {
                 (clamp(-(&c / &a), &one), Q::ZERO)
@@ -780,9 +609,9 @@ fn dist2_segment_triangle(p0: &V3, p1: &V3, verts: &[V3; 3]) -> Q {
         if straddles && !(e0.is_zero() && e1.is_zero()) {
             let s = &e0 / (&e0 - &e1);
             let x = add(p0, &scale(&sub(p1, p0), &s));
-            let inside = [(0, 1), (1, 2), (2, 0)].iter().all(|&(i, j)| {
-                dot(&cross(&sub(&verts[j], &verts[i]), &sub(&x, &verts[i])), &n) >= Q::ZERO
-            });
+            let inside = [(0, 1), (1, 2), (2, 0)]
+                .iter()
+                .all(|&(i, j)| dot(&cross(&sub(&verts[j], &verts[i]), &sub(&x, &verts[i])), &n) >= Q::ZERO);
             if inside {
                 return Q::ZERO;
             }
@@ -809,13 +638,7 @@ fn dist2_segment_triangle(p0: &V3, p1: &V3, verts: &[V3; 3]) -> Q {
 /// The signed closest-approach gap behind [`toi_sphere_triangle`]'s decision,
 /// `r − dist(path, b)` with the path the centre's segment `c → c + t_max v` in
 /// `b`'s frame, correctly rounded: ≥ 0 exactly when there is an impact.
-pub fn toi_margin_sphere_triangle(
-    a: &Sphere,
-    va: &P3,
-    b: &Triangle,
-    vb: &P3,
-    t_max: f64,
-) -> Result<f64, RefereeError> {
+pub fn toi_margin_sphere_triangle(a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Result<f64, RefereeError> {
     let s = moving(a, va, vb, t_max)?;
     let verts = triangle(b, "b.vertices")?;
     let end = add(&s.c, &scale(&sub(&s.va, &s.vb), &s.t_max));
@@ -836,10 +659,7 @@ pub fn toi_margin_sphere_mesh(
     let s = moving(a, va, vb, t_max)?;
     let faces = mesh(vertices, triangles)?;
     let end = add(&s.c, &scale(&sub(&s.va, &s.vb), &s.t_max));
-    let nearest = faces
-        .iter()
-        .map(|f| dist2_segment_triangle(&s.c, &end, f))
-        .min();
+    let nearest = faces.iter().map(|f| dist2_segment_triangle(&s.c, &end, f)).min();
     Ok(match nearest {
         Some(d2) => gap_margin(&s.r, d2),
         None => f64::NEG_INFINITY,
@@ -870,18 +690,12 @@ mod tests {
     const INV_SQRT2: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
     fn close(got: f64, want: f64, what: &str) {
-        assert!(
-            within_ulps(got, want, EXACT_ULPS),
-            "{what}: got {got:e}, want {want:e}"
-        );
+        assert!(within_ulps(got, want, EXACT_ULPS), "{what}: got {got:e}, want {want:e}");
     }
 
     fn close_v(got: P3, want: P3, what: &str) {
         for k in 0..3 {
-            assert!(
-                within_ulps(got[k], want[k], EXACT_ULPS),
-                "{what}[{k}]: got {got:?}, want {want:?}"
-            );
+            assert!(within_ulps(got[k], want[k], EXACT_ULPS), "{what}[{k}]: got {got:?}, want {want:?}");
         }
     }
 
@@ -891,11 +705,7 @@ mod tests {
 
     fn hit(a: Result<ToiAnswer, RefereeError>, what: &str) -> (Toi, bool) {
         let a = a.unwrap_or_else(|e| panic!("{what}: refused: {e}"));
-        (
-            a.toi
-                .unwrap_or_else(|| panic!("{what}: expected an impact")),
-            a.degenerate,
-        )
+        (a.toi.unwrap_or_else(|| panic!("{what}: expected an impact")), a.degenerate)
     }
 
     fn miss(a: Result<ToiAnswer, RefereeError>, what: &str) {
@@ -905,17 +715,12 @@ mod tests {
     const STILL: P3 = [0.0; 3];
 
     fn ground() -> Plane {
-        Plane {
-            normal: [0.0, 0.0, 2.0],
-            offset: 0.0,
-        }
+        Plane { normal: [0.0, 0.0, 2.0], offset: 0.0 }
     }
 
     fn tri() -> Triangle {
         // Right triangle in z = 0, legs 2 on x and y; face normal +z.
-        Triangle {
-            vertices: [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]],
-        }
+        Triangle { vertices: [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]] }
     }
 
     #[test]
@@ -932,20 +737,12 @@ mod tests {
             close_v(k.point, [0.0; 3], "point");
             close_v(k.normal, [-1.0, 0.0, 0.0], "normal");
         }
-        close(
-            toi_margin_sphere_sphere(&a, &va, &b, &vb, 2.0).unwrap(),
-            0.0,
-            "touching at t_max",
-        );
+        close(toi_margin_sphere_sphere(&a, &va, &b, &vb, 2.0).unwrap(), 0.0, "touching at t_max");
         // t_max one ulp below 2: no impact; the closest approach is then
         // ‖−10 + 4(2 − 2⁻⁵²)‖ = 2 + 2⁻⁵⁰, so the margin is −2⁻⁵⁰.
         let below = 2f64.next_down();
         miss(toi_sphere_sphere(&a, &va, &b, &vb, below), "one ulp short");
-        close(
-            toi_margin_sphere_sphere(&a, &va, &b, &vb, below).unwrap(),
-            -(2f64.powi(-50)),
-            "margin",
-        );
+        close(toi_margin_sphere_sphere(&a, &va, &b, &vb, below).unwrap(), -(2f64.powi(-50)), "margin");
     }
 
     #[test]
@@ -953,13 +750,7 @@ mod tests {
         // a at (−5,1,0) → +x past b at 0, radii 1: t = 5 − √3; the centre is then
         // (−√3, 1, 0), the normal and the point on b (−√3/2, 1/2, 0).
         let (k, _) = hit(
-            toi_sphere_sphere(
-                &sphere([-5.0, 1.0, 0.0], 1.0),
-                &[1.0, 0.0, 0.0],
-                &sphere([0.0; 3], 1.0),
-                &STILL,
-                10.0,
-            ),
+            toi_sphere_sphere(&sphere([-5.0, 1.0, 0.0], 1.0), &[1.0, 0.0, 0.0], &sphere([0.0; 3], 1.0), &STILL, 10.0),
             "glancing",
         );
         close(k.t, FIVE_MINUS_SQRT3, "t");
@@ -983,15 +774,8 @@ mod tests {
         assert!(m == 0.0 && m.is_sign_positive(), "margin {m:e}");
         // One ulp wider: a miss by exactly 2.next_up() − 2 = 2⁻⁵¹.
         let wide = sphere([-5.0, 2f64.next_up(), 0.0], 1.0);
-        miss(
-            toi_sphere_sphere(&wide, &va, &b, &STILL, 10.0),
-            "one ulp wide",
-        );
-        close(
-            toi_margin_sphere_sphere(&wide, &va, &b, &STILL, 10.0).unwrap(),
-            -(2f64.powi(-51)),
-            "margin",
-        );
+        miss(toi_sphere_sphere(&wide, &va, &b, &STILL, 10.0), "one ulp wide");
+        close(toi_margin_sphere_sphere(&wide, &va, &b, &STILL, 10.0).unwrap(), -(2f64.powi(-51)), "margin");
     }
 
     #[test]
@@ -1000,19 +784,13 @@ mod tests {
         // contact (normal +x, point (1,0,0)), whatever the motion.
         let b = sphere([0.0; 3], 1.0);
         for va in [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]] {
-            let (k, _) = hit(
-                toi_sphere_sphere(&sphere([1.5, 0.0, 0.0], 1.0), &va, &b, &STILL, 1.0),
-                "overlap",
-            );
+            let (k, _) = hit(toi_sphere_sphere(&sphere([1.5, 0.0, 0.0], 1.0), &va, &b, &STILL, 1.0), "overlap");
             close(k.t, 0.0, "t");
             close_v(k.normal, [1.0, 0.0, 0.0], "normal");
             close_v(k.point, [1.0, 0.0, 0.0], "point");
         }
         // Concentric: the static fallback, flagged.
-        let (k, deg) = hit(
-            toi_sphere_sphere(&sphere([0.0; 3], 0.5), &STILL, &b, &STILL, 1.0),
-            "concentric",
-        );
+        let (k, deg) = hit(toi_sphere_sphere(&sphere([0.0; 3], 0.5), &STILL, &b, &STILL, 1.0), "concentric");
         assert!(deg);
         close_v(k.normal, [0.0, 0.0, 1.0], "fallback");
         // Two points meeting at the origin at t = 1: normal −v/‖v‖ = (−1,0,0), flagged.
@@ -1035,33 +813,17 @@ mod tests {
     #[test]
     fn referee_toi_sphere_sphere_no_impact_and_refusals() {
         let (a, b) = (sphere([-5.0, 0.0, 0.0], 1.0), sphere([0.0; 3], 1.0));
-        miss(
-            toi_sphere_sphere(&a, &[-1.0, 0.0, 0.0], &b, &STILL, 10.0),
-            "apart",
-        );
-        miss(
-            toi_sphere_sphere(&a, &[1.0, 1.0, 0.0], &b, &[1.0, 1.0, 0.0], 10.0),
-            "together",
-        );
-        miss(
-            toi_sphere_sphere(&a, &[1.0, 0.0, 0.0], &b, &STILL, 2.0),
-            "late",
-        );
-        miss(
-            toi_sphere_sphere(&a, &[1.0, 0.0, 0.0], &b, &STILL, -1.0),
-            "negative t_max is [0, 0]",
-        );
+        miss(toi_sphere_sphere(&a, &[-1.0, 0.0, 0.0], &b, &STILL, 10.0), "apart");
+        miss(toi_sphere_sphere(&a, &[1.0, 1.0, 0.0], &b, &[1.0, 1.0, 0.0], 10.0), "together");
+        miss(toi_sphere_sphere(&a, &[1.0, 0.0, 0.0], &b, &STILL, 2.0), "late");
+        miss(toi_sphere_sphere(&a, &[1.0, 0.0, 0.0], &b, &STILL, -1.0), "negative t_max is [0, 0]");
         assert_eq!(
             toi_sphere_sphere(&a, &[f64::NAN, 0.0, 0.0], &b, &STILL, 1.0),
-            Err(RefereeError::NonFinite {
-                field: "a.velocity"
-            })
+            Err(RefereeError::NonFinite { field: "a.velocity" })
         );
         assert_eq!(
             toi_sphere_sphere(&a, &STILL, &b, &[0.0, f64::INFINITY, 0.0], 1.0),
-            Err(RefereeError::NonFinite {
-                field: "b.velocity"
-            })
+            Err(RefereeError::NonFinite { field: "b.velocity" })
         );
         assert_eq!(
             toi_sphere_sphere(&a, &STILL, &b, &STILL, f64::NAN),
@@ -1080,77 +842,34 @@ mod tests {
         close(k.t, 2.0, "t");
         close_v(k.point, [1.0, 2.0, 0.0], "point");
         close_v(k.normal, [0.0, 0.0, 1.0], "normal");
-        let (k, _) = hit(
-            toi_sphere_plane(&a, &va, &ground(), &[0.0, 0.0, 2.0], 3.0),
-            "rising",
-        );
+        let (k, _) = hit(toi_sphere_plane(&a, &va, &ground(), &[0.0, 0.0, 2.0], 3.0), "rising");
         close(k.t, 1.0, "t");
         close_v(k.point, [1.0, 2.0, 2.0], "point");
         // Tilted: plane x + y = 0, centre (3,3,0), r 1, velocity (−1,−1,0):
         // t = 3 − 1/√2, and the lowest point is then exactly the origin.
-        let tilted = Plane {
-            normal: [1.0, 1.0, 0.0],
-            offset: 0.0,
-        };
-        let (k, _) = hit(
-            toi_sphere_plane(
-                &sphere([3.0, 3.0, 0.0], 1.0),
-                &[-1.0, -1.0, 0.0],
-                &tilted,
-                &STILL,
-                5.0,
-            ),
-            "tilted",
-        );
+        let tilted = Plane { normal: [1.0, 1.0, 0.0], offset: 0.0 };
+        let (k, _) =
+            hit(toi_sphere_plane(&sphere([3.0, 3.0, 0.0], 1.0), &[-1.0, -1.0, 0.0], &tilted, &STILL, 5.0), "tilted");
         close(k.t, THREE_MINUS_INV_SQRT2, "t");
         close_v(k.point, [0.0; 3], "point");
         close_v(k.normal, [INV_SQRT2, INV_SQRT2, 0.0], "normal");
         // t exactly t_max, then one ulp short (margin −2·2⁻⁵²·… : the centre is
         // 2·2⁻⁵² above touching, s = 1 + 2⁻⁵¹).
-        assert!(
-            toi_sphere_plane(&a, &va, &ground(), &STILL, 2.0)
-                .unwrap()
-                .toi
-                .is_some()
-        );
-        miss(
-            toi_sphere_plane(&a, &va, &ground(), &STILL, 2f64.next_down()),
-            "one ulp short",
-        );
+        assert!(toi_sphere_plane(&a, &va, &ground(), &STILL, 2.0).unwrap().toi.is_some());
+        miss(toi_sphere_plane(&a, &va, &ground(), &STILL, 2f64.next_down()), "one ulp short");
         close(
             toi_margin_sphere_plane(&a, &va, &ground(), &STILL, 2f64.next_down()).unwrap(),
             -(2f64.powi(-51)),
             "margin",
         );
         // Parallel, receding: none. Inside the solid: t = 0, depth-style contact.
-        miss(
-            toi_sphere_plane(&a, &[1.0, 0.0, 0.0], &ground(), &STILL, 9.0),
-            "parallel",
-        );
-        miss(
-            toi_sphere_plane(&a, &[0.0, 0.0, 1.0], &ground(), &STILL, 9.0),
-            "receding",
-        );
-        let (k, _) = hit(
-            toi_sphere_plane(
-                &sphere([5.0, 6.0, -3.0], 1.0),
-                &STILL,
-                &ground(),
-                &STILL,
-                1.0,
-            ),
-            "inside",
-        );
+        miss(toi_sphere_plane(&a, &[1.0, 0.0, 0.0], &ground(), &STILL, 9.0), "parallel");
+        miss(toi_sphere_plane(&a, &[0.0, 0.0, 1.0], &ground(), &STILL, 9.0), "receding");
+        let (k, _) = hit(toi_sphere_plane(&sphere([5.0, 6.0, -3.0], 1.0), &STILL, &ground(), &STILL, 1.0), "inside");
         close(k.t, 0.0, "t");
         close_v(k.point, [5.0, 6.0, 0.0], "point");
-        let zero = Plane {
-            normal: [0.0; 3],
-            offset: 0.0,
-        };
-        assert_eq!(
-            toi_sphere_plane(&a, &va, &zero, &STILL, 1.0),
-            Err(RefereeError::ZeroNormal { field: "b.normal" })
-        );
+        let zero = Plane { normal: [0.0; 3], offset: 0.0 };
+        assert_eq!(toi_sphere_plane(&a, &va, &zero, &STILL, 1.0), Err(RefereeError::ZeroNormal { field: "b.normal" }));
     }
 
     #[test]
@@ -1158,55 +877,18 @@ mod tests {
         // (centre, velocity, point, normal) by hand, r 1, t = 2 each: face from
         // z = 3 down; edge v0v1 (y = 0) from y = −3; vertex v1 from x = 5.
         let cases = [
-            (
-                [0.5, 0.5, 3.0],
-                [0.0, 0.0, -1.0],
-                [0.5, 0.5, 0.0],
-                [0.0, 0.0, 1.0],
-                "face",
-            ),
-            (
-                [0.5, 0.5, -3.0],
-                [0.0, 0.0, 1.0],
-                [0.5, 0.5, 0.0],
-                [0.0, 0.0, -1.0],
-                "face from below",
-            ),
-            (
-                [1.0, -3.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [0.0, -1.0, 0.0],
-                "edge",
-            ),
-            (
-                [1.0, -3.0, 0.5],
-                [0.0, 1.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [0.0, -HALF_SQRT3, 0.5],
-                "edge, off plane",
-            ),
-            (
-                [5.0, 0.0, 0.0],
-                [-1.0, 0.0, 0.0],
-                [2.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                "vertex",
-            ),
+            ([0.5, 0.5, 3.0], [0.0, 0.0, -1.0], [0.5, 0.5, 0.0], [0.0, 0.0, 1.0], "face"),
+            ([0.5, 0.5, -3.0], [0.0, 0.0, 1.0], [0.5, 0.5, 0.0], [0.0, 0.0, -1.0], "face from below"),
+            ([1.0, -3.0, 0.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0], "edge"),
+            ([1.0, -3.0, 0.5], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, -HALF_SQRT3, 0.5], "edge, off plane"),
+            ([5.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 0.0, 0.0], "vertex"),
         ];
         for (c, va, point, normal, what) in cases {
-            let (k, deg) = hit(
-                toi_sphere_triangle(&sphere(c, 1.0), &va, &tri(), &STILL, 5.0),
-                what,
-            );
+            let (k, deg) = hit(toi_sphere_triangle(&sphere(c, 1.0), &va, &tri(), &STILL, 5.0), what);
             assert!(!deg, "{what}");
             // Off the plane by 0.5: the distance to the edge line y = 0 is
             // √(y² + 0.25) = 1 at y = −√3/2, so t = 3 − √3/2.
-            let t = if what == "edge, off plane" {
-                THREE_MINUS_HALF_SQRT3
-            } else {
-                2.0
-            };
+            let t = if what == "edge, off plane" { THREE_MINUS_HALF_SQRT3 } else { 2.0 };
             close(k.t, t, what);
             close_v(k.point, point, what);
             close_v(k.normal, normal, what);
@@ -1220,16 +902,8 @@ mod tests {
         // triangle. The edge v0v1's line is parallel to the motion. The first
         // contact is vertex v1 = (2,0,0): (3 − t)² + 0.25 = 1, t = 3 − √3/2, with
         // the normal (√3/2, −1/2, 0).
-        let (k, _) = hit(
-            toi_sphere_triangle(
-                &sphere([5.0, -0.5, 0.0], 1.0),
-                &[-1.0, 0.0, 0.0],
-                &tri(),
-                &STILL,
-                5.0,
-            ),
-            "vertex",
-        );
+        let (k, _) =
+            hit(toi_sphere_triangle(&sphere([5.0, -0.5, 0.0], 1.0), &[-1.0, 0.0, 0.0], &tri(), &STILL, 5.0), "vertex");
         close(k.t, THREE_MINUS_HALF_SQRT3, "t (naive f64 is one ulp up)");
         close_v(k.point, [2.0, 0.0, 0.0], "point");
         close_v(k.normal, [HALF_SQRT3, -0.5, 0.0], "normal");
@@ -1241,10 +915,7 @@ mod tests {
         // exactly 1 once, at y = 0 (t = 4, D = 0); the edges' feet are outside.
         let va = [0.0, 1.0, 0.0];
         let a = sphere([3.0, -4.0, 0.0], 1.0);
-        let (k, _) = hit(
-            toi_sphere_triangle(&a, &va, &tri(), &STILL, 10.0),
-            "grazing",
-        );
+        let (k, _) = hit(toi_sphere_triangle(&a, &va, &tri(), &STILL, 10.0), "grazing");
         close(k.t, 4.0, "t");
         close_v(k.point, [2.0, 0.0, 0.0], "point");
         close_v(k.normal, [1.0, 0.0, 0.0], "normal");
@@ -1252,107 +923,46 @@ mod tests {
         assert!(m == 0.0 && m.is_sign_positive(), "margin {m:e}");
         // One ulp farther out (x = 3 + 2⁻⁵¹): a miss by 2⁻⁵¹.
         let out = sphere([3f64.next_up(), -4.0, 0.0], 1.0);
-        miss(
-            toi_sphere_triangle(&out, &va, &tri(), &STILL, 10.0),
-            "one ulp out",
-        );
-        close(
-            toi_margin_sphere_triangle(&out, &va, &tri(), &STILL, 10.0).unwrap(),
-            -(2f64.powi(-51)),
-            "margin",
-        );
+        miss(toi_sphere_triangle(&out, &va, &tri(), &STILL, 10.0), "one ulp out");
+        close(toi_margin_sphere_triangle(&out, &va, &tri(), &STILL, 10.0).unwrap(), -(2f64.powi(-51)), "margin");
     }
 
     #[test]
     fn referee_toi_sphere_triangle_tunneling_moving_and_degenerate() {
         // A small fast sphere through the face: t = (3 − 0.1)/10, whose correct
         // rounding is the literal 0.29 (Decimal); at t_max = 1 it is far below.
-        let (k, _) = hit(
-            toi_sphere_triangle(
-                &sphere([0.5, 0.5, 3.0], 0.1),
-                &[0.0, 0.0, -10.0],
-                &tri(),
-                &STILL,
-                1.0,
-            ),
-            "through",
-        );
+        let (k, _) =
+            hit(toi_sphere_triangle(&sphere([0.5, 0.5, 3.0], 0.1), &[0.0, 0.0, -10.0], &tri(), &STILL, 1.0), "through");
         close(k.t, 0.29, "t");
         close_v(k.point, [0.5, 0.5, 0.0], "point");
         // The triangle rising at 1 toward a still sphere at z = 3: t = 2, point on
         // the moved triangle (0.5, 0.5, 2).
-        let (k, _) = hit(
-            toi_sphere_triangle(
-                &sphere([0.5, 0.5, 3.0], 1.0),
-                &STILL,
-                &tri(),
-                &[0.0, 0.0, 1.0],
-                5.0,
-            ),
-            "moving",
-        );
+        let (k, _) =
+            hit(toi_sphere_triangle(&sphere([0.5, 0.5, 3.0], 1.0), &STILL, &tri(), &[0.0, 0.0, 1.0], 5.0), "moving");
         close(k.t, 2.0, "t");
         close_v(k.point, [0.5, 0.5, 2.0], "point");
         // A zero-area triangle is its segment x ∈ [0, 2]: t = 2 at (1,0,0), defined.
-        let flat = Triangle {
-            vertices: [[0.0; 3], [2.0, 0.0, 0.0], [2.0, 0.0, 0.0]],
-        };
-        let (k, deg) = hit(
-            toi_sphere_triangle(
-                &sphere([1.0, 0.0, 3.0], 1.0),
-                &[0.0, 0.0, -1.0],
-                &flat,
-                &STILL,
-                5.0,
-            ),
-            "flat",
-        );
+        let flat = Triangle { vertices: [[0.0; 3], [2.0, 0.0, 0.0], [2.0, 0.0, 0.0]] };
+        let (k, deg) =
+            hit(toi_sphere_triangle(&sphere([1.0, 0.0, 3.0], 1.0), &[0.0, 0.0, -1.0], &flat, &STILL, 5.0), "flat");
         assert!(!deg);
         close(k.t, 2.0, "t");
         close_v(k.point, [1.0, 0.0, 0.0], "point");
         close_v(k.normal, [0.0, 0.0, 1.0], "normal");
         // A point (r 0) falling on the face: t = 3, normal −v/‖v‖ = +z, flagged.
-        let (k, deg) = hit(
-            toi_sphere_triangle(
-                &sphere([0.5, 0.5, 3.0], 0.0),
-                &[0.0, 0.0, -1.0],
-                &tri(),
-                &STILL,
-                5.0,
-            ),
-            "point",
-        );
+        let (k, deg) =
+            hit(toi_sphere_triangle(&sphere([0.5, 0.5, 3.0], 0.0), &[0.0, 0.0, -1.0], &tri(), &STILL, 5.0), "point");
         assert!(deg);
         close(k.t, 3.0, "t");
         close_v(k.normal, [0.0, 0.0, 1.0], "normal");
         // Already overlapping, and a centre on the face (static fallback, flagged).
-        let (k, _) = hit(
-            toi_sphere_triangle(
-                &sphere([0.5, 0.5, 0.75], 1.0),
-                &[0.0, 0.0, 1.0],
-                &tri(),
-                &STILL,
-                1.0,
-            ),
-            "overlap",
-        );
+        let (k, _) =
+            hit(toi_sphere_triangle(&sphere([0.5, 0.5, 0.75], 1.0), &[0.0, 0.0, 1.0], &tri(), &STILL, 1.0), "overlap");
         close(k.t, 0.0, "t");
         close_v(k.point, [0.5, 0.5, 0.0], "point");
-        let (_, deg) = hit(
-            toi_sphere_triangle(&sphere([0.5, 0.5, 0.0], 1.0), &STILL, &tri(), &STILL, 1.0),
-            "on face",
-        );
+        let (_, deg) = hit(toi_sphere_triangle(&sphere([0.5, 0.5, 0.0], 1.0), &STILL, &tri(), &STILL, 1.0), "on face");
         assert!(deg);
-        miss(
-            toi_sphere_triangle(
-                &sphere([0.5, 0.5, 3.0], 1.0),
-                &[1.0, 0.0, 0.0],
-                &tri(),
-                &STILL,
-                10.0,
-            ),
-            "sideways",
-        );
+        miss(toi_sphere_triangle(&sphere([0.5, 0.5, 3.0], 1.0), &[1.0, 0.0, 0.0], &tri(), &STILL, 10.0), "sideways");
     }
 
     #[test]
@@ -1370,83 +980,34 @@ mod tests {
         let square = [[0, 1, 2], [0, 2, 3]];
         let fall = [0.0, 0.0, -1.0];
         // Onto the shared diagonal at (1,1): both faces at t = 2, the same point.
-        let (k, _) = hit(
-            toi_sphere_mesh(
-                &sphere([1.0, 1.0, 3.0], 1.0),
-                &fall,
-                &vertices,
-                &square,
-                &STILL,
-                5.0,
-            ),
-            "diagonal",
-        );
+        let (k, _) =
+            hit(toi_sphere_mesh(&sphere([1.0, 1.0, 3.0], 1.0), &fall, &vertices, &square, &STILL, 5.0), "diagonal");
         close(k.t, 2.0, "t");
         close_v(k.point, [1.0, 1.0, 0.0], "point");
         // Onto face 1 only.
-        let (k, _) = hit(
-            toi_sphere_mesh(
-                &sphere([0.5, 1.5, 3.0], 1.0),
-                &fall,
-                &vertices,
-                &square,
-                &STILL,
-                5.0,
-            ),
-            "face 1",
-        );
+        let (k, _) =
+            hit(toi_sphere_mesh(&sphere([0.5, 1.5, 3.0], 1.0), &fall, &vertices, &square, &STILL, 5.0), "face 1");
         close(k.t, 2.0, "t");
         // A second face at z = 1 above the first: reached first, t = 5 − 1 − 1 = 3.
         let stacked = [[0, 1, 3], [4, 5, 6]];
-        let (k, _) = hit(
-            toi_sphere_mesh(
-                &sphere([0.5, 0.5, 5.0], 1.0),
-                &fall,
-                &vertices,
-                &stacked,
-                &STILL,
-                9.0,
-            ),
-            "stacked",
-        );
+        let (k, _) =
+            hit(toi_sphere_mesh(&sphere([0.5, 0.5, 5.0], 1.0), &fall, &vertices, &stacked, &STILL, 9.0), "stacked");
         close(k.t, 3.0, "t");
         close_v(k.point, [0.5, 0.5, 1.0], "point");
         // Overlapping at 0: the static contact with the nearest face (z = 1).
-        let (k, _) = hit(
-            toi_sphere_mesh(
-                &sphere([0.5, 0.5, 1.5], 1.0),
-                &fall,
-                &vertices,
-                &stacked,
-                &STILL,
-                9.0,
-            ),
-            "overlap",
-        );
+        let (k, _) =
+            hit(toi_sphere_mesh(&sphere([0.5, 0.5, 1.5], 1.0), &fall, &vertices, &stacked, &STILL, 9.0), "overlap");
         close(k.t, 0.0, "t");
         close_v(k.point, [0.5, 0.5, 1.0], "point");
         // Empty mesh; index out of range.
-        miss(
-            toi_sphere_mesh(&sphere([0.0; 3], 1.0), &fall, &vertices, &[], &STILL, 1.0),
-            "empty",
-        );
+        miss(toi_sphere_mesh(&sphere([0.0; 3], 1.0), &fall, &vertices, &[], &STILL, 1.0), "empty");
         assert_eq!(
             toi_margin_sphere_mesh(&sphere([0.0; 3], 1.0), &fall, &vertices, &[], &STILL, 1.0),
             Ok(f64::NEG_INFINITY)
         );
         assert_eq!(
-            toi_sphere_mesh(
-                &sphere([0.0; 3], 1.0),
-                &fall,
-                &vertices,
-                &[[0, 1, 7]],
-                &STILL,
-                1.0
-            ),
-            Err(RefereeError::IndexOutOfRange {
-                field: "b.triangles",
-                face: 0
-            })
+            toi_sphere_mesh(&sphere([0.0; 3], 1.0), &fall, &vertices, &[[0, 1, 7]], &STILL, 1.0),
+            Err(RefereeError::IndexOutOfRange { field: "b.triangles", face: 0 })
         );
     }
 
@@ -1454,35 +1015,16 @@ mod tests {
     fn referee_toi_surd_comparison() {
         // Exact orderings, including an exact tie written two ways (√8 = 2√2) and
         // a near tie (√2 = 1.41421356237309504… against its f64 rounding).
-        let s = |a: f64, b: f64, d: f64| Surd {
-            a: q(a, "a").unwrap(),
-            b: q(b, "b").unwrap(),
-            d: q(d, "d").unwrap(),
-        };
+        let s = |a: f64, b: f64, d: f64| Surd { a: q(a, "a").unwrap(), b: q(b, "b").unwrap(), d: q(d, "d").unwrap() };
         assert_eq!(s(0.0, 1.0, 8.0).cmp(&s(0.0, 2.0, 2.0)), Ordering::Equal);
         assert_eq!(
             s(0.0, 1.0, 2.0).cmp(&s(std::f64::consts::SQRT_2, 0.0, 0.0)),
             Ordering::Less,
             "f64 √2 = 1.4142135623730951 rounds up"
         );
-        assert_eq!(
-            s(1.0, 1.0, 2.0).cmp(&s(3.0, -1.0, 0.25)),
-            Ordering::Less,
-            "2.414 < 2.5"
-        );
-        assert_eq!(
-            s(-1.0, -1.0, 3.0).cmp(&s(-2.0, -1.0, 2.0)),
-            Ordering::Greater,
-            "−2.732 > −3.414"
-        );
-        assert_eq!(
-            sign_surd(
-                &q(-3.0, "a").unwrap(),
-                &q(1.0, "b").unwrap(),
-                &q(9.0, "d").unwrap()
-            ),
-            Ordering::Equal
-        );
+        assert_eq!(s(1.0, 1.0, 2.0).cmp(&s(3.0, -1.0, 0.25)), Ordering::Less, "2.414 < 2.5");
+        assert_eq!(s(-1.0, -1.0, 3.0).cmp(&s(-2.0, -1.0, 2.0)), Ordering::Greater, "−2.732 > −3.414");
+        assert_eq!(sign_surd(&q(-3.0, "a").unwrap(), &q(1.0, "b").unwrap(), &q(9.0, "d").unwrap()), Ordering::Equal);
     }
 }
 
