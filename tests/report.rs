@@ -100,3 +100,21 @@ fn killing_a_run_leaves_the_previous_report_intact() {
     assert_eq!(std::fs::read_link(out.join("latest")).unwrap(), before, "latest moved");
     assert_eq!(std::fs::read_to_string(out.join("latest/index.html")).unwrap(), index, "previous report changed");
 }
+
+#[test]
+fn shards_merge_into_the_whole_campaign() {
+    use harness::report::write::{ReadReport, merge};
+    let shard = |i| {
+        let o = run(&Config { shard: Some((i, 2)), ..small(5) }, Default::default());
+        ReadReport { summary: o.summary, discrepancies: Vec::new() }
+    };
+    let (merged, _) = merge(&[shard(0), shard(1)]).expect("same campaign");
+    let whole = run(&small(5), Default::default()).summary;
+    assert_eq!(merged.provenance.shards, vec![(0, 2), (1, 2)]);
+    assert_eq!(merged.provenance.random_cases, whole.provenance.random_cases);
+    assert!(
+        serde_json::to_string(&comparable(merged).stats).unwrap()
+            == serde_json::to_string(&comparable(whole).stats).unwrap(),
+        "the merged shards' counts and histograms differ from the whole run's"
+    );
+}
