@@ -32,6 +32,8 @@ pub mod mesh;
 pub mod real;
 pub mod response;
 pub mod shapes;
+#[cfg(test)]
+mod test_support;
 pub mod toi;
 
 pub use real::{Real, Vec3};

@@ -7,6 +7,7 @@ use super::*;
 use crate::exact::{BigFloat, Estimate, Sign};
 use crate::real::{Real, Vec3};
 use crate::shapes::{Segment, Triangle};
+use crate::test_support::{both, eps, v};
 use proptest::prelude::*;
 
 /// Hand-derived cases: small integer or dyadic inputs whose answers are short
@@ -37,14 +38,6 @@ const MIN_THINNESS: f64 = 1e-2;
 /// Units: ε times `max(1, M)`.
 const TRANSLATION_TOL_EPS: f64 = 1.0;
 
-fn v<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
-    Vec3::new(T::of(x), T::of(y), T::of(z))
-}
-
-fn eps<T: Real>() -> f64 {
-    T::EPSILON.wide()
-}
-
 fn wide3<T: Real>(p: &Vec3<T>) -> Vec3<f64> {
     Vec3::new(p.x.wide(), p.y.wide(), p.z.wide())
 }
@@ -67,20 +60,6 @@ fn sum_error<T: Real, const N: usize>(b: &Barycentric<T, N>) -> f64 {
 }
 
 /// Runs a generic test body for both precisions.
-macro_rules! both {
-    ($name:ident, $body:ident) => {
-        mod $name {
-            #[test]
-            fn f32() {
-                super::$body::<f32>();
-            }
-            #[test]
-            fn f64() {
-                super::$body::<f64>();
-            }
-        }
-    };
-}
 
 // ---------------------------------------------------------------- segment
 

@@ -5,6 +5,7 @@
 use super::*;
 use crate::real::{Real, Vec3};
 use crate::shapes::{Aabb, Segment, Sphere, Triangle};
+use crate::test_support::{both, eps, v};
 use proptest::prelude::*;
 
 /// Hand-derived sphere cases on small integer inputs: the centre and radius
@@ -30,14 +31,6 @@ const MINIMAL_TOL_EPS: f64 = 256.0;
 /// coordinates (magnitude ≤ shift + size) and of the distances. Units: ε of the
 /// type times (shift + size).
 const TRANSLATION_TOL_EPS: f64 = 16.0;
-
-fn v<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
-    Vec3::new(T::of(x), T::of(y), T::of(z))
-}
-
-fn eps<T: Real>() -> f64 {
-    T::EPSILON.wide()
-}
 
 fn wide3<T: Real>(p: &Vec3<T>) -> Vec3<f64> {
     Vec3::new(p.x.wide(), p.y.wide(), p.z.wide())
@@ -72,20 +65,6 @@ fn assert_sphere<T: Real>(got: &BoundingSphere<T>, center: [f64; 3], radius: f64
 }
 
 /// Runs a generic test body for both precisions.
-macro_rules! both {
-    ($name:ident, $body:ident) => {
-        mod $name {
-            #[test]
-            fn f32() {
-                super::$body::<f32>();
-            }
-            #[test]
-            fn f64() {
-                super::$body::<f64>();
-            }
-        }
-    };
-}
 
 // ------------------------------------------------------------------- AABB
 

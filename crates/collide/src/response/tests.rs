@@ -6,6 +6,7 @@
 use super::*;
 use crate::real::{Real, Vec3};
 use crate::shapes::Sphere;
+use crate::test_support::{both, eps, v};
 use proptest::prelude::*;
 
 /// Hand-derived answers are short rational expressions of values ≤ 4: a few
@@ -18,14 +19,6 @@ const HAND_TOL_EPS: f64 = 16.0;
 /// Units: ε times the largest term of the conserved quantity.
 const CONSERVE_TOL_EPS: f64 = 64.0;
 
-fn v<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
-    Vec3::new(T::of(x), T::of(y), T::of(z))
-}
-
-fn eps<T: Real>() -> f64 {
-    T::EPSILON.wide()
-}
-
 fn close_v<T: Real>(got: &Vec3<T>, want: [f64; 3], what: &str) {
     for (k, w) in want.iter().enumerate() {
         let g = got[k].wide();
@@ -37,21 +30,6 @@ fn close_v<T: Real>(got: &Vec3<T>, want: [f64; 3], what: &str) {
 /// bit for bit.
 fn same_bits<T: Real>(got: &Vec3<T>, want: &Vec3<T>) -> bool {
     got.iter().zip(want.iter()).all(|(g, w)| g.wide().to_bits() == w.wide().to_bits())
-}
-
-macro_rules! both {
-    ($name:ident, $body:ident) => {
-        mod $name {
-            #[test]
-            fn f32() {
-                super::$body::<f32>();
-            }
-            #[test]
-            fn f64() {
-                super::$body::<f64>();
-            }
-        }
-    };
 }
 
 fn equal_masses_head_on<T: Real>() {

@@ -8,6 +8,7 @@ use super::*;
 use crate::contact::{contact_sphere_plane, contact_sphere_sphere, contact_sphere_triangle};
 use crate::real::{Real, Vec3};
 use crate::shapes::{Plane, Sphere, Triangle};
+use crate::test_support::{both, eps, v};
 use proptest::prelude::*;
 
 /// Hand-derived scenes have coordinates of at most 10 and answers reached by a
@@ -35,14 +36,6 @@ const TIME_TOL_EPS: f64 = 64.0;
 /// Samples per interval in the "no contact before `t`" checks (the brief's
 /// "sampled finely").
 const SAMPLES: u32 = 200;
-
-fn v<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
-    Vec3::new(T::of(x), T::of(y), T::of(z))
-}
-
-fn eps<T: Real>() -> f64 {
-    T::EPSILON.wide()
-}
 
 fn hand_tol<T: Real>() -> f64 {
     HAND_TOL_EPS * eps::<T>() * HAND_SCALE
@@ -79,20 +72,6 @@ fn still<T: Real>() -> Vec3<T> {
 }
 
 /// Runs a generic test body for both precisions.
-macro_rules! both {
-    ($name:ident, $body:ident) => {
-        mod $name {
-            #[test]
-            fn f32() {
-                super::$body::<f32>();
-            }
-            #[test]
-            fn f64() {
-                super::$body::<f64>();
-            }
-        }
-    };
-}
 
 // ------------------------------------------------------------ sphere–sphere
 
