@@ -12,7 +12,7 @@
 use crate::case::{Query, Shape};
 use crate::engine::Answer;
 use crate::load::LoadedCase;
-use oracle::parry::known_divergences;
+use oracle::parry::{KnownDivergence, cast_known_divergences, known_divergences};
 
 /// When a rule explains a disagreement: the case, the engine's answer, the
 /// referee's, and the disagreement's reasons.
@@ -135,6 +135,25 @@ const RULES: &[Rule] = &[
         },
     },
     Rule {
+        engines: PARRY,
+        parry_what: Some("sphere–sphere cast, overlapping at t = 0"),
+        reason: "",
+        explains: |lc, a, t, _| {
+            matches!((a, t), (Answer::Toi(a), Answer::Toi(t))
+                if shapes(lc) == ("sphere", Some("sphere"))
+                    && a.toi.is_some_and(|x| x.t == 0.0) && t.toi.is_some_and(|x| x.t == 0.0))
+        },
+    },
+    Rule {
+        engines: PARRY,
+        parry_what: Some("sphere–triangle cast hitting at 0 < t < 1e-4"),
+        reason: "",
+        explains: |lc, _, t, _| {
+            matches!(t, Answer::Toi(t)
+                if shapes(lc) == ("sphere", Some("triangle")) && t.toi.is_some_and(|x| x.t > 0.0 && x.t < 1e-4))
+        },
+    },
+    Rule {
         engines: LECTURE,
         parry_what: None,
         reason: "the lecture's bounding sphere (centroid and largest distance) encloses the points \
@@ -178,11 +197,15 @@ fn off_plane(p: &[f64; 3], lc: &LoadedCase) -> bool {
 fn reason_of(rule: &Rule, engine: &str) -> Option<String> {
     match rule.parry_what {
         None => Some(rule.reason.to_string()),
-        Some(prefix) => known_divergences()
-            .iter()
+        Some(prefix) => parry_entries()
             .find(|d| d.engine == engine && d.what.starts_with(prefix))
             .map(|d| format!("{} ({})", d.what, d.reason)),
     }
+}
+
+/// Every divergence parry's adapters document: queries and casts.
+fn parry_entries() -> impl Iterator<Item = &'static KnownDivergence> {
+    known_divergences().iter().chain(cast_known_divergences())
 }
 
 /// The known divergence that explains `engine`'s disagreement on this case, if
@@ -210,7 +233,7 @@ mod tests {
 
     #[test]
     fn every_parry_entry_has_a_rule() {
-        for d in known_divergences() {
+        for d in parry_entries() {
             let covered = RULES
                 .iter()
                 .any(|r| r.engines.contains(&d.engine) && r.parry_what.is_some_and(|w| d.what.starts_with(w)));
