@@ -30,3 +30,22 @@ macro_rules! both {
     };
 }
 pub(crate) use both;
+
+/// `prop_both!(cases, name, strategy, check)`: a module `name` with proptests
+/// `f32` and `f64`, each running `check::<T>(&case)` on `cases` cases drawn from
+/// `strategy`. The expansion site must have proptest's prelude in scope.
+macro_rules! prop_both {
+    ($cases:expr, $name:ident, $strat:expr, $check:ident) => {
+        mod $name {
+            use super::*;
+            proptest! {
+                #![proptest_config(ProptestConfig::with_cases($cases))]
+                #[test]
+                fn f32(s in $strat) { $check::<f32>(&s)?; }
+                #[test]
+                fn f64(s in $strat) { $check::<f64>(&s)?; }
+            }
+        }
+    };
+}
+pub(crate) use prop_both;

@@ -7,7 +7,7 @@ use super::*;
 use crate::exact::{BigFloat, Estimate, Sign};
 use crate::real::{Real, Vec3};
 use crate::shapes::{Segment, Triangle};
-use crate::test_support::{both, eps, v};
+use crate::test_support::{both, eps, prop_both, v};
 use proptest::prelude::*;
 
 /// Hand-derived cases: small integer or dyadic inputs whose answers are short
@@ -523,22 +523,6 @@ fn check_any_finite<T: Real>(pts: &[[(f64, f64); 3]; 4]) -> Result<(), TestCaseE
     let signed = barycentric_segment(&p, &seg);
     prop_assert!(sum_error(&signed) <= SUM_TOL_EPS * eps::<T>() * max_abs_coord(&signed), "sum {signed:?}");
     Ok(())
-}
-
-/// Runs a generic property for both precisions.
-macro_rules! prop_both {
-    ($cases:expr, $name:ident, $strat:expr, $check:ident) => {
-        mod $name {
-            use super::*;
-            proptest! {
-                #![proptest_config(ProptestConfig::with_cases($cases))]
-                #[test]
-                fn f32(s in $strat) { $check::<f32>(&s)?; }
-                #[test]
-                fn f64(s in $strat) { $check::<f64>(&s)?; }
-            }
-        }
-    };
 }
 
 prop_both!(1000, segment_sums_to_one_and_reconstructs, seg_scene(), check_segment_identities);

@@ -220,12 +220,12 @@ fn max_magnitude<const N: usize>(values: [f64; N]) -> f64 {
     m
 }
 
-/// Shewchuk's orient3d arithmetic on rows `a`, `b`, `c` that are already
-/// (rounded) differences, with his bound, so that the exact determinant of the
-/// *exact* differences lies within `bound` of `value`. Requires every row
-/// component to be at most `2^65` in magnitude (see [`UNDERFLOW_SLACK`]).
+/// `det[a, b, c]` of rows that are already (rounded) differences, in Shewchuk's
+/// orient3d expression, with his static bound: the exact determinant of the
+/// exact differences lies within `bound` of `det` (rows at most `2^65` in
+/// magnitude, see [`UNDERFLOW_SLACK`]). The fast path of every volume filter.
 #[inline(always)]
-fn det3_rows(a: P3, b: P3, c: P3, exp: i64) -> Fast {
+pub(crate) fn det3_with_bound(a: P3, b: P3, c: P3) -> (f64, f64) {
     let [adx, ady, adz] = a;
     let [bdx, bdy, bdz] = b;
     let [cdx, cdy, cdz] = c;
@@ -239,7 +239,19 @@ fn det3_rows(a: P3, b: P3, c: P3, exp: i64) -> Fast {
     let permanent = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
         + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
         + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
-    let bound = O3D_BOUND * permanent + UNDERFLOW_SLACK;
+    (det, O3D_BOUND * permanent + UNDERFLOW_SLACK)
+}
+
+/// Shewchuk's orient3d arithmetic on rows `a`, `b`, `c` that are already
+/// (rounded) differences, with his bound, so that the exact determinant of the
+/// *exact* differences lies within `bound` of `value`. Requires every row
+/// component to be at most `2^65` in magnitude (see [`UNDERFLOW_SLACK`]).
+#[inline(always)]
+fn det3_rows(a: P3, b: P3, c: P3, exp: i64) -> Fast {
+    let [adx, ady, adz] = a;
+    let [bdx, bdy, bdz] = b;
+    let [cdx, cdy, cdz] = c;
+    let (det, bound) = det3_with_bound(a, b, c);
     // Undecided: each term is provably zero when every product in it has a zero
     // factor (a computed difference is zero exactly when its operands are
     // equal) — the common axis-aligned case, decided without the exact path.

@@ -39,11 +39,6 @@ const U: f64 = 1.1102230246251565e-16;
 /// roundings.
 const PLANE_BOUND: f64 = 16.0 * U;
 
-/// Shewchuk's `o3derrboundA`, `(7 + 56u)u`: bound on the error of his orient3d
-/// expression on rounded differences, relative to its permanent (the same as
-/// [`crate::exact`]'s).
-const O3D_BOUND: f64 = (7.0 + 56.0 * U) * U;
-
 /// Absolute slack for underflow, 2^−1000. Reason: under [`FILTER_MAX_COORD`]
 /// every difference is at most 2^61. In the plane test, an underflowing
 /// product inside `n̂_k` (error ≤ 2^−1075 each, two per component) is scaled by
@@ -155,18 +150,5 @@ fn opposite(a: (f64, f64), b: (f64, f64)) -> bool {
 /// evaluates it (Shewchuk's expression and bound), with the bound.
 #[inline(always)]
 fn volume(a: P3, b: P3, c: P3) -> (f64, f64) {
-    let [adx, ady, adz] = a;
-    let [bdx, bdy, bdz] = b;
-    let [cdx, cdy, cdz] = c;
-    let bdxcdy = bdx * cdy;
-    let cdxbdy = cdx * bdy;
-    let cdxady = cdx * ady;
-    let adxcdy = adx * cdy;
-    let adxbdy = adx * bdy;
-    let bdxady = bdx * ady;
-    let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
-        + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
-        + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
-    (det, O3D_BOUND * permanent + UNDERFLOW_SLACK)
+    crate::exact::det3_with_bound(a, b, c)
 }

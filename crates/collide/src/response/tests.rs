@@ -6,7 +6,7 @@
 use super::*;
 use crate::real::{Real, Vec3};
 use crate::shapes::Sphere;
-use crate::test_support::{both, eps, v};
+use crate::test_support::{both, eps, prop_both, v};
 use proptest::prelude::*;
 
 /// Hand-derived answers are short rational expressions of values ≤ 4: a few
@@ -243,21 +243,6 @@ fn check_plane<T: Real>(s: &Bodies) -> Result<(), TestCaseError> {
     prop_assert!(((va2 - n * n1) - (va - n * n0)).amax() <= tol, "tangential changed");
     prop_assert!(wide3(&r.velocity_b).amax() <= 0.0, "the plane is static");
     Ok(())
-}
-
-macro_rules! prop_both {
-    ($cases:expr, $name:ident, $strat:expr, $check:ident) => {
-        mod $name {
-            use super::*;
-            proptest! {
-                #![proptest_config(ProptestConfig::with_cases($cases))]
-                #[test]
-                fn f32(s in $strat) { $check::<f32>(&s)?; }
-                #[test]
-                fn f64(s in $strat) { $check::<f64>(&s)?; }
-            }
-        }
-    };
 }
 
 prop_both!(1000, response_conserves_momentum_and_obeys_restitution, bodies(), check_conservation);

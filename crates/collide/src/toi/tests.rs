@@ -8,7 +8,7 @@ use super::*;
 use crate::contact::{contact_sphere_plane, contact_sphere_sphere, contact_sphere_triangle};
 use crate::real::{Real, Vec3};
 use crate::shapes::{Plane, Sphere, Triangle};
-use crate::test_support::{both, eps, v};
+use crate::test_support::{both, eps, prop_both, v};
 use proptest::prelude::*;
 
 /// Hand-derived scenes have coordinates of at most 10 and answers reached by a
@@ -677,22 +677,6 @@ fn check_sphere_triangle<T: Real>(s: &Scene) -> Result<(), TestCaseError> {
         prop_assert!(got.is_some(), "halving found {halving:?}, advancement nothing");
     }
     Ok(())
-}
-
-/// Runs a generic property for both precisions.
-macro_rules! prop_both {
-    ($cases:expr, $name:ident, $strat:expr, $check:ident) => {
-        mod $name {
-            use super::*;
-            proptest! {
-                #![proptest_config(ProptestConfig::with_cases($cases))]
-                #[test]
-                fn f32(s in $strat) { $check::<f32>(&s)?; }
-                #[test]
-                fn f64(s in $strat) { $check::<f64>(&s)?; }
-            }
-        }
-    };
 }
 
 prop_both!(512, sphere_sphere_no_contact_before_and_touching_at_t, scene(), check_sphere_sphere);
