@@ -240,12 +240,15 @@ const fn stamp() -> [KnownDivergence; 2 * CAST_DIVERGENCES.len()] {
 /// `widen` (the edge conversions), `SMOKE_TOL` (the smoke tests' tolerance) and
 /// names the engine type.
 macro_rules! cast_adapter {
-    ($engine:path) => {
+    ($engine:path, $edge:path) => {
         use super::{CastAnswer, CastStatus, ParryCast};
+        // The edge conversions and shape placements are the query adapter's, so
+        // a sphere or a plane is placed the same way for every parry query.
         use crate::geom::{P3, Plane, Sphere, Toi, ToiAnswer, Triangle};
         use backend::math::{Pose, Vector};
         use backend::query::{self, ShapeCastHit, ShapeCastOptions, ShapeCastStatus, Unsupported};
-        use backend::shape::{Ball, HalfSpace, Shape, Triangle as EngineTriangle};
+        use backend::shape::{Ball, Shape, Triangle as EngineTriangle};
+        use $edge::{answer_point, ball, half_space, vector};
 
         /// The options of every cast (the table in the module docs): stop at a
         /// touch (target distance 0), at `t_max` inclusive, answer `t = 0` for
@@ -261,41 +264,6 @@ macro_rules! cast_adapter {
 
         /// No impact, flagged: the fallback of every refused input.
         const REFUSED: CastAnswer = CastAnswer { answer: ToiAnswer { toi: None, degenerate: true }, status: None };
-
-        /// An input scalar in the engine's precision, `None` when not finite there.
-        fn scalar(x: f64) -> Option<Real> {
-            let r = narrow(x);
-            r.is_finite().then_some(r)
-        }
-
-        /// An input vector in the engine's precision, `None` when not finite there.
-        fn vector(p: P3) -> Option<Vector> {
-            Some(Vector::new(scalar(p[0])?, scalar(p[1])?, scalar(p[2])?))
-        }
-
-        /// An engine vector as an answer, `None` when parry returned a NaN or infinity.
-        fn answer_point(v: Vector) -> Option<P3> {
-            v.is_finite().then(|| [widen(v.x), widen(v.y), widen(v.z)])
-        }
-
-        /// A sphere placed as parry places it: a ball at the translation of its
-        /// centre. `None` for a radius that is not positive or a non-finite input.
-        fn ball(s: &Sphere) -> Option<(Pose, Ball)> {
-            let center = vector(s.center)?;
-            let radius = scalar(s.radius)?;
-            (radius > 0.0).then(|| (Pose::from_translation(center), Ball::new(radius)))
-        }
-
-        /// The plane `n · x = d` as a half-space: unit normal `n̂` at the
-        /// translation `(d/‖n‖) n̂`. `None` when `n` cannot be normalized or the
-        /// placement overflows.
-        fn half_space(p: &Plane) -> Option<(Pose, HalfSpace)> {
-            let n = vector(p.normal)?;
-            let d = scalar(p.offset)?;
-            let unit = n.try_normalize()?;
-            let origin = unit * (d / n.length());
-            origin.is_finite().then(|| (Pose::from_translation(origin), HalfSpace::new(unit)))
-        }
 
         /// The status by name.
         fn status(s: ShapeCastStatus) -> CastStatus {
@@ -732,7 +700,7 @@ mod cast64 {
     #[cfg(test)]
     const GJK_TOL: f64 = 1e-5;
 
-    cast_adapter!(crate::parry::Parry64);
+    cast_adapter!(crate::parry::Parry64, crate::parry::parry64);
 }
 
 /// parry3d's (f32) casts: inputs rounded to `f32` at the edge, answers widened.
@@ -765,7 +733,7 @@ mod cast32 {
     #[cfg(test)]
     const GJK_TOL: f64 = 1e-2;
 
-    cast_adapter!(crate::parry::Parry32);
+    cast_adapter!(crate::parry::Parry32, crate::parry::parry32);
 }
 
 #[cfg(test)]

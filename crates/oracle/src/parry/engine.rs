@@ -53,7 +53,7 @@ fn scalar(x: f64) -> Option<Real> {
 }
 
 /// An input point in the engine's precision, or `None` when not finite there.
-fn vector(p: P3) -> Option<Vector> {
+pub(crate) fn vector(p: P3) -> Option<Vector> {
     Some(Vector::new(scalar(p[0])?, scalar(p[1])?, scalar(p[2])?))
 }
 
@@ -63,13 +63,13 @@ fn answer_scalar(x: Real) -> Option<f64> {
 }
 
 /// An engine vector as an answer, or `None` when parry returned a NaN or infinity.
-fn answer_point(v: Vector) -> Option<P3> {
+pub(crate) fn answer_point(v: Vector) -> Option<P3> {
     Some([answer_scalar(v.x)?, answer_scalar(v.y)?, answer_scalar(v.z)?])
 }
 
 /// A sphere as parry places it: a ball of radius `r` at the translation of its
 /// centre. `None` for a radius that is not positive or a non-finite input.
-fn ball(s: &Sphere) -> Option<(Pose, EngineBall)> {
+pub(crate) fn ball(s: &Sphere) -> Option<(Pose, EngineBall)> {
     let center = vector(s.center)?;
     let radius = scalar(s.radius)?;
     (radius > 0.0).then(|| (Pose::from_translation(center), EngineBall::new(radius)))
@@ -79,7 +79,7 @@ fn ball(s: &Sphere) -> Option<(Pose, EngineBall)> {
 /// the translation `(d/‖n‖) n̂`, so that its boundary `n̂ · (x − (d/‖n‖) n̂) = 0` is
 /// `n · x = d` and its solid side `n · x ≤ d`. `None` when `n` cannot be normalized
 /// (zero, or non-finite in the engine's scalar) or the placement overflows.
-fn half_space(p: &Plane) -> Option<(Pose, HalfSpace)> {
+pub(crate) fn half_space(p: &Plane) -> Option<(Pose, HalfSpace)> {
     let n = vector(p.normal)?;
     let d = scalar(p.offset)?;
     let unit = n.try_normalize()?;

@@ -35,3 +35,5 @@ const SMOKE_TOL: f64 = 1e-6;
 mod engine;
 
 pub use engine::PreparedMesh;
+/// The edge conversions and shape placements, shared with the casts.
+pub(crate) use engine::{answer_point, ball, half_space, vector};
