@@ -55,6 +55,10 @@ enum Command {
         /// Skip the timing loops.
         #[arg(long)]
         no_timing: bool,
+        /// Skip the extra sections (dynamics, stability sweeps, the scene's
+        /// needs, time of impact): only the per-query campaign.
+        #[arg(long)]
+        no_sections: bool,
     },
     /// Join shard reports (folders written by `report --shard`) into one report.
     Merge {
@@ -103,7 +107,7 @@ fn main() -> ExitCode {
             }
             ExitCode::from(result.exit_code() as u8)
         }
-        Command::Report { cases, seed, out, only, shard, fixtures, no_timing } => {
+        Command::Report { cases, seed, out, only, shard, fixtures, no_timing, no_sections } => {
             let config = harness::report::campaign::Config {
                 seed,
                 cases_per_query: cases,
@@ -112,6 +116,7 @@ fn main() -> ExitCode {
                 fixtures,
                 timing: !no_timing,
                 progress: true,
+                sections: !no_sections,
             };
             let started = std::time::SystemTime::now();
             let outcome = harness::report::campaign::run(&config, harness::report::provenance::here());
@@ -168,7 +173,8 @@ fn main() -> ExitCode {
                 harness::report::provenance::stamp(std::time::SystemTime::now()),
                 summary.provenance.seed
             );
-            let files = harness::report::write::render_files(&summary, &discrepancies, None);
+            let sections = harness::report::write::merge_sections(&read);
+            let files = harness::report::write::render_files(&summary, &discrepancies, &sections);
             match harness::report::write::write_report(&out, &id, &files) {
                 Ok(dir) => {
                     println!("merged {} shards: {}", reports.len(), dir.join("index.html").display());

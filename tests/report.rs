@@ -10,7 +10,7 @@ use std::process::Command;
 
 /// A campaign small enough for a test: 150 random cases per query kind, no timing.
 fn small(seed: u64) -> Config {
-    Config { seed, cases_per_query: 150, timing: false, progress: false, ..Config::default() }
+    Config { seed, cases_per_query: 150, timing: false, progress: false, sections: false, ..Config::default() }
 }
 
 /// The summary with its timing and provenance fields blanked: what must not
@@ -70,9 +70,11 @@ fn a_report_folder_has_every_file_and_latest_names_it() {
         .unwrap();
     assert!(status.success());
     let latest = out.join("latest");
-    for f in ["index.html", "summary.md", "summary.json", "discrepancies.json"] {
+    for f in ["index.html", "summary.md", "summary.json", "discrepancies.json", "sections.json", "dynamics.json"] {
         assert!(latest.join(f).is_file(), "{f} missing");
     }
+    let index = std::fs::read_to_string(latest.join("index.html")).unwrap();
+    assert!(index.contains("<section id=\"dynamics\">"), "the dynamics section is in the page");
     let charts = std::fs::read_dir(latest.join("charts")).map(|d| d.count()).unwrap_or(0);
     assert!(charts > 0, "no charts");
 }
@@ -81,7 +83,7 @@ fn a_report_folder_has_every_file_and_latest_names_it() {
 fn killing_a_run_leaves_the_previous_report_intact() {
     let out = report_dir("report-killed");
     let first = Command::new(env!("CARGO_BIN_EXE_crashtest"))
-        .args(["report", "--cases", "20", "--no-timing", "--out"])
+        .args(["report", "--cases", "20", "--no-timing", "--no-sections", "--out"])
         .arg(&out)
         .status()
         .unwrap();
@@ -90,7 +92,7 @@ fn killing_a_run_leaves_the_previous_report_intact() {
     let index = std::fs::read_to_string(out.join("latest/index.html")).unwrap();
     // A run large enough to be killed mid-way (it judges 500,000 cases).
     let mut child = Command::new(env!("CARGO_BIN_EXE_crashtest"))
-        .args(["report", "--cases", "100000", "--out"])
+        .args(["report", "--cases", "100000", "--no-sections", "--out"])
         .arg(&out)
         .spawn()
         .unwrap();
@@ -106,7 +108,7 @@ fn shards_merge_into_the_whole_campaign() {
     use harness::report::write::{ReadReport, merge};
     let shard = |i| {
         let o = run(&Config { shard: Some((i, 2)), ..small(5) }, Default::default());
-        ReadReport { summary: o.summary, discrepancies: Vec::new() }
+        ReadReport { summary: o.summary, discrepancies: Vec::new(), sections: Vec::new() }
     };
     let (merged, _) = merge(&[shard(0), shard(1)]).expect("same campaign");
     let whole = run(&small(5), Default::default()).summary;
@@ -117,4 +119,29 @@ fn shards_merge_into_the_whole_campaign() {
             == serde_json::to_string(&comparable(whole).stats).unwrap(),
         "the merged shards' counts and histograms differ from the whole run's"
     );
+}
+
+#[test]
+fn merged_shards_keep_the_sections_of_the_shard_that_ran_them() {
+    use harness::report::section::{Section, SectionChart};
+    use harness::report::write::{ReadReport, merge_sections};
+    let section = |id: &str, body: &str| Section {
+        id: id.into(),
+        title: id.into(),
+        html: body.into(),
+        markdown: format!("## {id}\n"),
+        charts: vec![SectionChart { title: id.into(), file: format!("{id}.svg"), svg: "<svg></svg>".into() }],
+        data: serde_json::json!({ "body": body }),
+    };
+    let shard = |sections| ReadReport {
+        summary: run(&Config { cases_per_query: 4, ..small(1) }, Default::default()).summary,
+        discrepancies: Vec::new(),
+        sections,
+    };
+    let merged = merge_sections(&[
+        shard(Vec::new()),
+        shard(vec![section("dynamics", "first"), section("stability", "s")]),
+        shard(vec![section("dynamics", "second")]),
+    ]);
+    assert_eq!(merged, vec![section("dynamics", "first"), section("stability", "s")]);
 }

@@ -61,6 +61,9 @@ pub struct Config {
     pub timing: bool,
     /// Whether to draw a progress bar (only on a terminal).
     pub progress: bool,
+    /// Whether to run the extra sections (dynamics, stability sweeps, the
+    /// scene's needs, time of impact) — with the whole campaign only.
+    pub sections: bool,
 }
 
 impl Default for Config {
@@ -73,6 +76,7 @@ impl Default for Config {
             fixtures: vec![PathBuf::from("fixtures")],
             timing: true,
             progress: true,
+            sections: true,
         }
     }
 }
@@ -122,9 +126,9 @@ pub struct Outcome {
     pub discrepancies: Vec<Discrepancy>,
     /// Input errors met reading the fixtures (the run went on without them).
     pub input_errors: Vec<String>,
-    /// The dynamics experiments (bounces, tunneling, two balls), run with the
-    /// whole campaign (not with `--only`, and in shard 0 only).
-    pub dynamics: Option<crate::dynamics::DynamicsReport>,
+    /// The extra sections (dynamics: bounces, tunneling, two balls; …), run
+    /// with the whole campaign (not with `--only`, and in shard 0 only).
+    pub sections: Vec<crate::report::section::Section>,
 }
 
 /// The slice `[lo, hi)` of `0..n` that shard `i` of `count` takes.
@@ -417,8 +421,17 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
         },
         discrepancies,
         input_errors,
-        dynamics: (config.only.is_none() && config.shard.is_none_or(|(i, _)| i == 0)).then(crate::dynamics::run),
+        sections: if config.sections && config.only.is_none() && config.shard.is_none_or(|(i, _)| i == 0) {
+            sections(config)
+        } else {
+            Vec::new()
+        },
     }
+}
+
+/// The extra sections of a whole campaign, in report order.
+fn sections(_config: &Config) -> Vec<crate::report::section::Section> {
+    vec![crate::dynamics::section(&crate::dynamics::run())]
 }
 
 fn progress_bar(wanted: bool, len: u64) -> indicatif::ProgressBar {

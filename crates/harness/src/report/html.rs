@@ -65,7 +65,7 @@ code{font:13px ui-monospace,SFMono-Regular,Menlo,Consolas,monospace}
 ";
 
 /// A [`Table`] as an HTML table (wrapped to scroll sideways on narrow screens).
-fn table_html(t: &Table) -> String {
+pub fn table_html(t: &Table) -> String {
     let class = |i: usize| {
         if t.numeric.get(i).copied().unwrap_or(false) { r#" class="n""# } else { "" }
     };

@@ -5,7 +5,9 @@ pub mod campaign;
 pub mod charts;
 pub mod html;
 pub mod markdown;
+pub mod plot;
 pub mod provenance;
+pub mod section;
 pub mod summary;
 pub mod write;
 

@@ -5,54 +5,22 @@
 //! leaves the previous report (and `latest`) intact.
 
 use crate::report::campaign::{MAX_DISCREPANCIES_PER_GROUP, Outcome};
+use crate::report::section::Section;
 use crate::report::summary::{EngineQueryStats, Summary};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::io;
 use std::path::{Path, PathBuf};
 
-/// The files of a report, as (path relative to the report folder, contents).
-/// The dynamics section, when given, adds `dynamics.json`, its charts, and its
-/// part of `summary.md` and `index.html`.
-pub fn render_files(
-    summary: &Summary,
-    discrepancies: &[Value],
-    dynamics: Option<&crate::dynamics::DynamicsReport>,
-) -> Vec<(PathBuf, String)> {
+/// The files of a report, as (path relative to the report folder, contents):
+/// the summary, the discrepancies, the pages and charts, and the extra
+/// sections (dynamics, stability, scene, time of impact) with their data files
+/// and `sections.json` ([`crate::report::section::add_sections`]).
+pub fn render_files(summary: &Summary, discrepancies: &[Value], sections: &[Section]) -> Vec<(PathBuf, String)> {
     let mut files =
         vec![("summary.json".into(), pretty(summary)), ("discrepancies.json".into(), pretty(&discrepancies))];
     files.extend(crate::report::pages(summary));
-    if let Some(d) = dynamics {
-        let md = crate::dynamics::markdown(d);
-        let charts = crate::dynamics::charts(d);
-        let mut section = String::from("<section id=\"dynamics\">\n<h2>Dynamics: bounces, tunneling, two balls</h2>\n");
-        for c in &charts {
-            section.push_str(&format!(
-                "<figure>{}<figcaption>{} — <a href=\"charts/{}\">charts/{}</a></figcaption></figure>\n",
-                c.svg,
-                crate::report::html::escape(&c.title),
-                crate::report::html::escape(&c.file),
-                crate::report::html::escape(&c.file)
-            ));
-        }
-        section.push_str(&format!(
-            "<details><summary>Tables (as in summary.md)</summary><pre>{}</pre></details>\n</section>\n",
-            crate::report::html::escape(&md)
-        ));
-        for (path, contents) in files.iter_mut() {
-            if path.as_os_str() == "summary.md" {
-                contents.push('\n');
-                contents.push_str(&md);
-            } else if path.as_os_str() == "index.html" {
-                if let Some(at) = contents.rfind("<h2") {
-                    // Before the last section (the list of the report's files).
-                    contents.insert_str(at, &section);
-                }
-            }
-        }
-        files.push(("dynamics.json".into(), pretty(d)));
-        files.extend(charts.into_iter().map(|c| (PathBuf::from("charts").join(c.file), c.svg)));
-    }
+    crate::report::section::add_sections(&mut files, sections);
     files
 }
 
@@ -115,7 +83,7 @@ fn point_latest(root: &Path, id: &str) -> io::Result<()> {
 /// Writes a campaign's outcome as a report.
 pub fn write_outcome(root: &Path, id: &str, outcome: &Outcome) -> io::Result<PathBuf> {
     let discrepancies: Vec<Value> = outcome.discrepancies.iter().filter_map(|d| serde_json::to_value(d).ok()).collect();
-    let files = render_files(&outcome.summary, &discrepancies, outcome.dynamics.as_ref());
+    let files = render_files(&outcome.summary, &discrepancies, &outcome.sections);
     write_report(root, id, &files)
 }
 
@@ -126,10 +94,13 @@ pub struct ReadReport {
     pub summary: Summary,
     /// Its discrepancies, as written.
     pub discrepancies: Vec<Value>,
+    /// Its extra sections (`sections.json`; none when the file is absent —
+    /// a shard other than 0, or a run with `--only`).
+    pub sections: Vec<Section>,
 }
 
-/// Reads `summary.json` and `discrepancies.json` of a report folder. The error
-/// names the file.
+/// Reads `summary.json`, `discrepancies.json` and (when present)
+/// `sections.json` of a report folder. The error names the file.
 pub fn read_report(dir: &Path) -> Result<ReadReport, String> {
     let read = |name: &str| {
         let p = dir.join(name);
@@ -139,7 +110,24 @@ pub fn read_report(dir: &Path) -> Result<ReadReport, String> {
     let summary: Summary = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", p.display()))?;
     let (p, text) = read("discrepancies.json")?;
     let discrepancies: Vec<Value> = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", p.display()))?;
-    Ok(ReadReport { summary, discrepancies })
+    let sections = match std::fs::read_to_string(dir.join("sections.json")) {
+        Ok(text) => serde_json::from_str(&text).map_err(|e| format!("{}: {e}", dir.join("sections.json").display()))?,
+        Err(e) if e.kind() == io::ErrorKind::NotFound => Vec::new(),
+        Err(e) => return Err(format!("{}: cannot read: {e}", dir.join("sections.json").display())),
+    };
+    Ok(ReadReport { summary, discrepancies, sections })
+}
+
+/// The extra sections of merged shards: each section once, as the first shard
+/// that has it wrote it (they run whole in one shard — shard 0 — not split).
+pub fn merge_sections(reports: &[ReadReport]) -> Vec<Section> {
+    let mut out: Vec<Section> = Vec::new();
+    for s in reports.iter().flat_map(|r| &r.sections) {
+        if !out.iter().any(|o| o.id == s.id) {
+            out.push(s.clone());
+        }
+    }
+    out
 }
 
 fn merge_stats(into: &mut EngineQueryStats, s: &EngineQueryStats) {
