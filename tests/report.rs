@@ -145,3 +145,23 @@ fn merged_shards_keep_the_sections_of_the_shard_that_ran_them() {
     ]);
     assert_eq!(merged, vec![section("dynamics", "first"), section("stability", "s")]);
 }
+
+#[test]
+fn the_peer_section_shows_every_engine_on_every_peer_case_and_collide_meets_them_all() {
+    let loaded = harness::load::load_paths(&[PathBuf::from("fixtures")]);
+    assert!(loaded.errors.is_empty(), "{:?}", loaded.errors);
+    let result = harness::check::check(&loaded.cases, &loaded.errors);
+    let rows = harness::report::peers::rows(&result.cases);
+    for issue in ["issue 17:", "issue 76", "issue 123", "issue 171:", "issue 315", "issue 429", "issue 984"] {
+        assert!(rows.iter().any(|r| r.name.contains(issue)), "no peer regression case for {issue}");
+    }
+    let engines: Vec<String> = judged().iter().map(|e| e.name.clone()).collect();
+    for r in &rows {
+        let names: Vec<String> = r.engines.iter().map(|c| c.engine.clone()).collect();
+        assert_eq!(names, engines, "{}: every engine has a cell", r.name);
+        let robust = &r.engines[0];
+        assert_eq!(robust.meets_expect, Some(true), "collide/robust fails {} › {}", r.file, r.name);
+    }
+    let section = harness::report::peers::section(&result.cases).expect("peer cases exist");
+    assert_eq!(section.html.matches("<tr>").count(), rows.len() + 1, "one table row per case, plus the header");
+}

@@ -422,7 +422,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
         discrepancies,
         input_errors,
         sections: if config.sections && config.only.is_none() && config.shard.is_none_or(|(i, _)| i == 0) {
-            sections(config)
+            sections(config, &results)
         } else {
             Vec::new()
         },
@@ -430,8 +430,11 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
 }
 
 /// The extra sections of a whole campaign, in report order.
-fn sections(_config: &Config) -> Vec<crate::report::section::Section> {
-    vec![crate::dynamics::section(&crate::dynamics::run())]
+fn sections(_config: &Config, results: &[CaseResult]) -> Vec<crate::report::section::Section> {
+    let mut out = Vec::new();
+    out.extend(crate::report::peers::section(results));
+    out.push(crate::dynamics::section(&crate::dynamics::run()));
+    out
 }
 
 fn progress_bar(wanted: bool, len: u64) -> indicatif::ProgressBar {

@@ -5,6 +5,7 @@ pub mod campaign;
 pub mod charts;
 pub mod html;
 pub mod markdown;
+pub mod peers;
 pub mod plot;
 pub mod provenance;
 pub mod section;
