@@ -9,9 +9,11 @@
 //! 1. **100,000 segments** (100 poses × 1,000): the referee's answer is computed
 //!    on the faces collide's exact single-triangle test says are hit (every
 //!    face whose box meets the segment's box is tested, not just those the BVH
-//!    visits), and collide's BVH must name the same face with `t` within
-//!    [`T_TOL`]. This checks the BVH — traversal, culling, the exact ordering of
-//!    hits and the tie rule — against brute force and the referee's ordering;
+//!    visits), and collide's BVH must name the same face, with `t`, the
+//!    barycentrics, the normal and the point within [`T_TOL`] of the referee's
+//!    (`assert_values`). This checks the BVH — traversal, culling, the exact
+//!    ordering of hits, the tie rule and the winner's values — against brute
+//!    force and the referee;
 //!    a tenth of the segments pass exactly through a vertex, where several faces
 //!    tie.
 //! 2. **2,000 short segments** near the surface: the referee on every face
@@ -29,16 +31,17 @@ use collide::mesh::{
     MeshBvh, SplitRule, TriMesh, contact_sphere_mesh_brute, contact_sphere_mesh_bvh, intersect_segment_mesh_brute,
     intersect_segment_mesh_bvh,
 };
-use oracle::geom::{P3, Segment, Triangle};
+use oracle::geom::{P3, Segment, SegmentHit, Triangle};
 use oracle::parry::{Parry64, ParryEngine};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// Segment parameters from collide and the referee may differ by this much
-/// (units: fractions of the segment's length). Reason: the robust
-/// segment–triangle values are accurate to `ESTIMATE_REL_ERR` (2^−40) of their
-/// sums, so `t` is within `2·2^−40 + 3·2^−53`; the referee's is correctly
-/// rounded. Four times `ESTIMATE_REL_ERR` covers both.
+/// Segment parameters (units: fractions of the segment's length), barycentrics
+/// and normal components (unitless) from collide and the referee may differ by
+/// this much. Reason: collide's hit values are accurate to `ESTIMATE_REL_ERR`
+/// (2^−40) of their sums, so `t` and the barycentrics are within
+/// `2·2^−40 + 3·2^−53` and the normal's components within about `3·2^−40`; the
+/// referee's are correctly rounded. Four times `ESTIMATE_REL_ERR` covers them.
 const T_TOL: f64 = 4.0 * collide::exact::ESTIMATE_REL_ERR;
 
 /// The same tolerance for parry3d-f64's `t`, which is computed in plain `f64`
@@ -178,13 +181,46 @@ fn box_candidates(s: &Segment, boxes: &[(P3, P3)]) -> Vec<usize> {
 /// The referee's first hit on a subset of the faces, with the face index mapped
 /// back to the whole mesh (the subset keeps the mesh's order, so the referee's
 /// tie rule — lowest index — is the whole mesh's).
-fn referee_on(s: &Segment, vertices: &[P3], faces: &[[usize; 3]], subset: &[usize]) -> Option<(usize, f64)> {
+fn referee_on(s: &Segment, vertices: &[P3], faces: &[[usize; 3]], subset: &[usize]) -> Option<(usize, SegmentHit)> {
     // Only the subset's vertices go to the referee (it converts every vertex it
     // is given to a rational), each face as three fresh corners.
     let sub_vertices: Vec<P3> = subset.iter().flat_map(|&i| faces[i].map(|j| vertices[j])).collect();
     let sub: Vec<[usize; 3]> = (0..subset.len()).map(|k| [3 * k, 3 * k + 1, 3 * k + 2]).collect();
     let a = oracle::referee::intersect_segment_mesh(s, &sub_vertices, &sub).expect("referee");
-    a.hit.map(|h| (subset[h.triangle.expect("face")], h.t))
+    a.hit.map(|h| (subset[h.triangle.expect("face")], h))
+}
+
+/// collide's hit values against the referee's on the same face: `t` and the
+/// barycentrics within [`T_TOL`], the normal's components within [`T_TOL`],
+/// each point coordinate within [`T_TOL`] of the segment's length plus the
+/// coordinate (a few roundings of the point's own computation).
+fn assert_values(got: &collide::mesh::MeshHit<f64>, want: &SegmentHit, s: &Segment, case: &dyn Fn() -> String) {
+    assert!((got.t - want.t).abs() <= T_TOL, "t {} vs the referee's {}; {}", got.t, want.t, case());
+    let bary = want.barycentric.expect("the referee's barycentrics");
+    let len = (0..3).map(|k| (s.end[k] - s.start[k]).abs()).fold(0.0, f64::max);
+    for k in 0..3 {
+        assert!(
+            (got.barycentric[k] - bary[k]).abs() <= T_TOL,
+            "barycentric {:?} vs {bary:?}; {}",
+            got.barycentric,
+            case()
+        );
+        assert!(
+            (got.normal[k] - want.normal[k]).abs() <= T_TOL,
+            "normal {:?} vs {:?}; {}",
+            got.normal,
+            want.normal,
+            case()
+        );
+        let p = want.point[k];
+        assert!(
+            (got.point[k] - p).abs() <= T_TOL * (len + p.abs()),
+            "point {:?} vs {:?}; {}",
+            got.point,
+            want.point,
+            case()
+        );
+    }
 }
 
 #[derive(Default, Debug)]
@@ -261,13 +297,14 @@ fn check_pose(bunny: &harness::mesh::Mesh, pose_index: usize) -> PoseStats {
         let want = referee_on(&s, &vertices, faces, &hit_faces);
         match (got.hit, want) {
             (None, None) => {}
-            (Some(h), Some((face, t))) => {
+            (Some(h), Some((face, w))) => {
                 assert_eq!(h.triangle, face, "same face as the referee; {}", case());
-                assert!((h.t - t).abs() <= T_TOL, "t {} vs the referee's {t}; {}", h.t, case());
+                assert_values(&h, &w, &s, &case);
                 stats.hits += 1;
             }
             (g, w) => panic!("collide {g:?}, referee {w:?}; {}", case()),
         }
+        let want = want.map(|(face, w)| (face, w.t));
         if through.is_some() {
             stats.ties += usize::from(hit_faces.len() > 1);
         }
@@ -413,9 +450,9 @@ fn bvh_equals_the_referee_on_every_candidate_face_for_short_segments() {
         let got = intersect_segment_mesh_bvh(&collide_segment(&s), &bvh).hit;
         match (got, want) {
             (None, None) => {}
-            (Some(h), Some((face, t))) => {
+            (Some(h), Some((face, w))) => {
                 assert_eq!(h.triangle, face, "short segment {k}: {s:?}");
-                assert!((h.t - t).abs() <= T_TOL, "short segment {k}: t {} vs {t}", h.t);
+                assert_values(&h, &w, &s, &|| format!("short segment {k}: {s:?}"));
                 hits += 1;
             }
             (g, w) => panic!("short segment {k}: collide {g:?}, referee {w:?}: {s:?}"),

@@ -30,35 +30,35 @@ const SAH_BINS: usize = 16;
 const SAH_MAX_LEAF: usize = 8;
 
 /// The SAH's cost of visiting a node, in units of one face test. Reason: a
-/// slab test is a dozen floating-point operations; the exact segment–triangle
-/// test (after the filter of `filter.rs`) a few times that. Measured on the
-/// bunny, costs of 1, 3 and 6 (leaves of 1.7, 4.5 and 5.7 faces on average)
-/// gave query times within the measurement's noise; 1 is kept.
+/// slab test is a dozen floating-point operations (both children's at once,
+/// two lanes), the filter of `filter.rs` a few dozen. Measured on the bunny
+/// (segment queries as in [`SplitRule`]'s table): cost 2 answered within the
+/// noise of cost 1, cost 4 (larger leaves) about 7% slower; 1 is kept.
 const SAH_TRAVERSAL_COST: f64 = 1.0;
 
 /// How a node's faces are divided between its two children.
 ///
 /// Both rules split top down, on face centroids, and stop at a small leaf.
 /// Measured on the Stanford bunny (`fixtures/meshes/bunny.obj`, 3,674 faces),
-/// `f64`, release build, one thread of the 2-core development machine (shared,
-/// so single runs vary by ±30%; the figures are from the quietest of several).
-/// Queries: 100,000 random segments with both endpoints uniform in the
-/// bunny's box grown by a quarter on each side (45% of them hit):
+/// `f64`, release build, one thread of the 2-core development machine (shared
+/// with other work, so single runs vary by ±30%; each figure is the best of
+/// many repetitions, parry timed in the same loop). Queries: the 1,024
+/// segments of `benches/mesh.rs`, both endpoints uniform in the bunny's box
+/// grown by a quarter of its size on each side (42% of them hit):
 ///
 /// | rule | build | nodes | depth | segment query (mean) |
 /// | --- | --- | --- | --- | --- |
-/// | [`SplitRule::MedianCentroid`] | 0.8 ms | 2,047 | 10 | 0.93 µs |
-/// | [`SplitRule::SahBinned`] | 4.4 ms | 4,295 | 14 | 0.81 µs |
-/// | every face (`intersect_segment_mesh_brute`) | — | — | — | 185 µs |
-/// | box-culled (`intersect_segment_mesh_culled`) | — | — | — | 200 µs |
-/// | parry3d-f64 `TriMesh` (for scale) | 1.3 ms | | | 0.71 µs |
+/// | [`SplitRule::MedianCentroid`] | 0.8 ms | 2,047 | 10 | 0.49 µs |
+/// | [`SplitRule::SahBinned`] | 3.5 ms | 4,295 | 14 | 0.40 µs |
+/// | every face (`intersect_segment_mesh_brute`) | — | — | — | 196 µs |
+/// | box-culled (`intersect_segment_mesh_culled`) | — | — | — | 173 µs |
+/// | parry3d-f64 `TriMesh` ray cast (for scale) | 1.3 ms | | | 0.63 µs |
 ///
-/// The binned SAH costs five times as much to build and answers about 13%
-/// faster; queries outnumber builds in every use crashtest makes of a mesh, so
-/// it is the default. (Box culling gains nothing on these segments: nearly all
-/// of them cross the bunny's box.) About a fifth of a query is the hit's
-/// values (the exact segment–triangle test refines them for the winning face
-/// only); the tree itself prunes to about 14 nodes and 2 faces per query.
+/// The binned SAH costs about five times as much to build and answers about
+/// 20% faster; queries outnumber builds in every use crashtest makes of a mesh, so
+/// it is the default. (Box culling gains little on these segments: most of
+/// them cross the bunny's box.) `cargo bench --bench mesh` times both rules,
+/// the build and parry in one run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SplitRule {
     /// Split on the longest axis of the centroids' box, at the median centroid
@@ -87,14 +87,69 @@ pub(crate) struct Node<T: Real> {
     pub count: u32,
 }
 
+/// The segment query's view of an internal node: both children's exact boxes
+/// side by side, in `f64` (exact for both precisions), laid out per axis so
+/// that one two-lane slab test covers both children, and where each child
+/// goes. 128 bytes, aligned to a cache line: both children read together.
+/// (Boxes rounded outward to `f32` would halve the memory, but they inflate by
+/// the `f32` spacing of the coordinates — far from the origin, more than a
+/// small face — and measured 4% slower on the bunny, for the conversions.)
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(64))]
+pub(crate) struct Wide {
+    /// Per axis, per child: the box's lower corner.
+    pub min: [[f64; 2]; 3],
+    /// Per axis, per child: the box's upper corner.
+    pub max: [[f64; 2]; 3],
+    /// Per child: a leaf's first face in the leaf arrays, or an internal
+    /// child's index in [`MeshBvh`]'s wide records.
+    pub start: [u32; 2],
+    /// Per child: a leaf's face count (at least 1), or 0 for an internal child.
+    pub count: [u32; 2],
+}
+
+/// The wide records of a flat tree: one per internal node, in node order (the
+/// root's first).
+fn wide_records<T: Real>(nodes: &[Node<T>]) -> Vec<Wide> {
+    let mut index = vec![u32::MAX; nodes.len()];
+    let mut next = 0u32;
+    for (i, n) in nodes.iter().enumerate() {
+        if n.count == 0 {
+            index[i] = next;
+            next += 1;
+        }
+    }
+    let mut out = Vec::with_capacity(next as usize);
+    for (i, n) in nodes.iter().enumerate() {
+        if n.count > 0 {
+            continue;
+        }
+        let mut w = Wide { min: [[0.0; 2]; 3], max: [[0.0; 2]; 3], start: [0; 2], count: [0; 2] };
+        for (j, c) in [i + 1, n.start as usize].into_iter().enumerate() {
+            let child = &nodes[c];
+            for k in 0..3 {
+                w.min[k][j] = child.min[k].wide();
+                w.max[k][j] = child.max[k].wide();
+            }
+            (w.start[j], w.count[j]) = if child.count > 0 { (child.start, child.count) } else { (index[c], 0) };
+        }
+        out.push(w);
+    }
+    out
+}
+
 /// A mesh with a bounding volume hierarchy over its faces: a binary tree of
 /// axis-aligned boxes, each the exact box of the faces below it.
 ///
 /// **Layout.** Nodes are one flat array in depth-first order (the left child
-/// follows its parent; the right child's index is stored), 56 bytes per node in
-/// `f64`. Leaves point into a second flat array holding their faces' vertices
-/// in leaf order beside the faces' original indices, so a leaf's faces are
-/// contiguous in memory and a query never goes back to the index buffer.
+/// follows its parent; the right child's index is stored), 56 bytes per node
+/// in `f64`; the sphere query walks them. The segment query walks a second
+/// view of the same tree: one 128-byte record per internal node holding both
+/// children's boxes (read together, tested together). Leaves point into flat
+/// arrays holding their faces' vertices in leaf order, each face's
+/// precomputed filter data (its normal and that normal's error bounds) and the
+/// faces' original indices, so a leaf's faces are contiguous in memory and a
+/// query never goes back to the index buffer.
 ///
 /// **Build.** Top down by the chosen [`SplitRule`]; every box is the exact
 /// componentwise minimum and maximum of its faces' vertices (no rounding), which
@@ -116,6 +171,8 @@ pub struct MeshBvh<T: Real> {
     filters: Vec<FaceFilter>,
     /// Every vertex of the tree's faces is within the filter's range.
     filter_ok: bool,
+    /// The segment query's records (see [`Wide`]).
+    wide: Vec<Wide>,
     split: SplitRule,
     depth: usize,
 }
@@ -129,11 +186,15 @@ struct Item {
     id: u32,
 }
 
+/// The box of two boxes. Selections rather than `f64::min`/`max` (whose NaN
+/// handling cost a quarter of the SAH build on the bunny): the tree's faces
+/// have finite vertices, so no NaN reaches here.
+#[inline(always)]
 fn union(a: ([f64; 3], [f64; 3]), lo: &[f64; 3], hi: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
     let (mut l, mut h) = a;
     for k in 0..3 {
-        l[k] = l[k].min(lo[k]);
-        h[k] = h[k].max(hi[k]);
+        l[k] = if lo[k] < l[k] { lo[k] } else { l[k] };
+        h[k] = if hi[k] > h[k] { hi[k] } else { h[k] };
     }
     (l, h)
 }
@@ -180,6 +241,7 @@ impl<T: Real> MeshBvh<T> {
             ids: Vec::with_capacity(items.len()),
             filters: Vec::with_capacity(items.len()),
             filter_ok: items.iter().all(|it| (0..3).all(|k| it.lo[k].abs().max(it.hi[k].abs()) <= FILTER_MAX_COORD)),
+            wide: Vec::new(),
             mesh,
             split,
             depth: 0,
@@ -187,6 +249,7 @@ impl<T: Real> MeshBvh<T> {
         if !items.is_empty() {
             bvh.build(&mut items, 0);
         }
+        bvh.wide = wide_records(&bvh.nodes);
         bvh
     }
 
@@ -254,14 +317,81 @@ impl<T: Real> MeshBvh<T> {
         self.depth
     }
 
+    /// The tree's broad phase for a segment: appends to `out` (cleared first)
+    /// the index of every face in a leaf whose box the segment may meet, in
+    /// leaf order — a superset of the faces it hits, found by the same
+    /// conservative slab tests as
+    /// [`intersect_segment_mesh_bvh`](super::intersect_segment_mesh_bvh) but
+    /// without its first-hit pruning. So `out` is empty only when the segment
+    /// certainly hits no face, and its length is how many faces a query
+    /// without pruning would test exactly. crashtest uses it to measure what
+    /// the tree's cheap test lets through.
+    ///
+    /// **Degenerate input:** a segment with a non-finite coordinate gets no
+    /// face; a zero-length one (a point) the faces of the leaves whose boxes
+    /// contain it.
+    pub fn faces_near_segment(&self, seg: &Segment<T>, out: &mut Vec<usize>) {
+        out.clear();
+        let (q0, q1) = (seg.start.map(|x| x.wide()), seg.end.map(|x| x.wide()));
+        let Some(root) = self.nodes.first() else { return };
+        if !(q0.iter().chain(q1.iter()).all(|x| x.is_finite())) {
+            return;
+        }
+        let probe = SegmentProbe::new(&Segment::new(q0, q1));
+        if probe.entry(&root.min.map(|x| x.wide()), &root.max.map(|x| x.wide())).is_none() {
+            return;
+        }
+        let mut push_leaf =
+            |start: u32, count: u32| out.extend((start..start + count).map(|k| self.ids[k as usize] as usize));
+        if root.count > 0 {
+            push_leaf(root.start, root.count);
+            return;
+        }
+        let mut stack = [0u32; STACK];
+        let mut sp = 1usize;
+        while sp > 0 {
+            sp -= 1;
+            let w = &self.wide[stack[sp] as usize];
+            let e = probe.entries(w);
+            for (j, entry) in e.into_iter().enumerate() {
+                if entry == f64::INFINITY {
+                    continue;
+                }
+                if w.count[j] > 0 {
+                    push_leaf(w.start[j], w.count[j]);
+                } else if sp < STACK {
+                    // Depth first: at most one pending sibling per level plus
+                    // the current path, within STACK for depth ≤ BVH_MAX_DEPTH.
+                    stack[sp] = w.start[j];
+                    sp += 1;
+                }
+            }
+        }
+    }
+
     pub(crate) fn nodes(&self) -> &[Node<T>] {
         &self.nodes
     }
 
-    /// Leaf face `k`'s filter data, if the filter may be used on this mesh.
+    /// Leaf face `k`'s filter data whether or not the filter may be used (its
+    /// vertices in `f64` serve the exact test too).
     #[inline(always)]
-    pub(crate) fn leaf_filter(&self, k: usize) -> Option<&FaceFilter> {
-        if self.filter_ok { Some(&self.filters[k]) } else { None }
+    pub(crate) fn leaf_data(&self, k: usize) -> &FaceFilter {
+        &self.filters[k]
+    }
+
+    /// Whether the filter may be used on this mesh (every vertex within its
+    /// range).
+    #[inline(always)]
+    pub(crate) fn filter_ok(&self) -> bool {
+        self.filter_ok
+    }
+
+    /// The wide records of the segment query: one per internal node, the
+    /// root's at index 0 (none when the root is a leaf).
+    #[inline(always)]
+    pub(crate) fn wide(&self) -> &[Wide] {
+        &self.wide
     }
 
     /// Leaf face `k` (in leaf order) and its index in the mesh.
@@ -280,7 +410,7 @@ fn split_median(items: &mut [Item]) -> Option<usize> {
     let cb = items.iter().fold(EMPTY_BOX, |b, it| union(b, &it.centroid, &it.centroid));
     let ext = [0, 1, 2].map(|k| cb.1[k] - cb.0[k]);
     let axis = (0..3).max_by(|&a, &b| ext[a].total_cmp(&ext[b])).unwrap_or(0);
-    if !(ext[axis] > 0.0) {
+    if ext[axis].is_nan() || ext[axis] <= 0.0 {
         // Coincident centroids: any halving is as good as another.
         return Some(mid);
     }
@@ -502,6 +632,55 @@ impl<T: Real> SegmentProbe<T> {
             }
         }
         if enter <= exit + self.slack { Some(enter - self.slack) } else { None }
+    }
+}
+
+impl SegmentProbe<f64> {
+    /// [`entry`](Self::entry) for both children of a [`Wide`] record at once:
+    /// per child, the lower bound on where the segment enters its box, or `+∞`
+    /// when it certainly misses it. Same method, slack and analysis.
+    #[inline(always)]
+    pub(crate) fn entries(&self, w: &Wide) -> [f64; 2] {
+        let mut enter = [0.0f64; 2];
+        let mut exit = [1.0f64; 2];
+        if self.all_slab {
+            for k in 0..3 {
+                let (near, far) = if self.negative[k] { (&w.max[k], &w.min[k]) } else { (&w.min[k], &w.max[k]) };
+                for j in 0..2 {
+                    // Selections, not `f64::max`: no NaN can arise (finite
+                    // non-zero reciprocals), and these compile without branches.
+                    let tn = (near[j] - self.o[k]) * self.inv[k];
+                    let tf = (far[j] - self.o[k]) * self.inv[k];
+                    enter[j] = if tn > enter[j] { tn } else { enter[j] };
+                    exit[j] = if tf < exit[j] { tf } else { exit[j] };
+                }
+            }
+        } else {
+            for k in 0..3 {
+                for j in 0..2 {
+                    let (lo, hi) = (w.min[k][j], w.max[k][j]);
+                    match self.axis[k] {
+                        Axis::Slab => {
+                            let t0 = (lo - self.o[k]) * self.inv[k];
+                            let t1 = (hi - self.o[k]) * self.inv[k];
+                            let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+                            enter[j] = if near > enter[j] { near } else { enter[j] };
+                            exit[j] = if far < exit[j] { far } else { exit[j] };
+                        }
+                        Axis::Flat => {
+                            if self.o[k] < lo || self.o[k] > hi {
+                                exit[j] = f64::NEG_INFINITY;
+                            }
+                        }
+                        Axis::Free => {}
+                    }
+                }
+            }
+        }
+        // Written out, not `[0, 1].map(..)`, which is not always inlined.
+        let slack = self.slack;
+        let entry = |j: usize| if enter[j] <= exit[j] + slack { enter[j] - slack } else { f64::INFINITY };
+        [entry(0), entry(1)]
     }
 }
 

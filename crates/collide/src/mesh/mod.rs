@@ -20,7 +20,9 @@
 //! exactly as
 //! [`intersect_segment_triangle`](crate::intersect::intersect_segment_triangle)
 //! does, compare the faces' segment parameters exactly, and report the winning
-//! face's values from that query, so their answer is the exact first hit, ties
+//! face's values to that query's accuracy (about `2^−40`; computed once, for
+//! the winner, by a certified path of their own, that query answering when the
+//! path cannot certify them), so their answer is the exact first hit, ties
 //! included.
 //!
 //! Queries:
@@ -44,6 +46,7 @@ mod hit;
 mod segment_mesh;
 mod sphere_mesh;
 mod trimesh;
+mod values;
 
 #[cfg(test)]
 mod tests;

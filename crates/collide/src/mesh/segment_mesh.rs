@@ -1,13 +1,14 @@
 //! Segment against a triangle mesh: the first face the segment meets.
 
 use super::bvh::{MeshBvh, STACK, SegmentProbe};
-use super::filter::SegmentFilter;
+use super::filter::{FaceTest, SegmentFilter};
 use super::hit::{MeshHit, MeshIntersection};
 use super::trimesh::TriMesh;
+use super::values::hit_values;
 use crate::bounds::{aabb_of_segment, test_aabb_aabb};
 use crate::exact::{self, BigFloat, Estimate, P3, Sign};
 use crate::intersect::{SegmentHit, intersect_segment_triangle, intersect_segment_triangle_lecture};
-use crate::real::{Real, finite3, to_f64_3};
+use crate::real::{Real, Vec3, finite3, to_f64_3};
 use crate::shapes::{Segment, Triangle};
 use core::cmp::Ordering;
 
@@ -31,13 +32,35 @@ fn prepare<T: Real>(seg: &Segment<T>) -> Option<(P3, P3)> {
 /// parameter exactly with another's.
 struct Candidate<T: Real> {
     face: usize,
+    /// The face (a copy: the BVH's leaf copy is in cache, the mesh's index
+    /// and vertex arrays may not be).
     tri: Triangle<T>,
-    vertices: [P3; 3],
-    /// `s_i = orient3d(v0, v1, v2, q_i)`, the endpoints' signed volumes over the
-    /// face: `t = |s0| / (|s0| + |s1|)`.
-    volumes: [Estimate; 2],
-    /// An upper bound on the exact `t`.
-    t_upper: f64,
+    /// Bounds on the exact `t`: `lo ≤ t ≤ hi`.
+    lo: f64,
+    hi: f64,
+    /// `s_i = orient3d(v0, v1, v2, q_i)`, the endpoints' signed volumes over
+    /// the face (`t = |s0| / (|s0| + |s1|)`), once computed: by the exact test,
+    /// or on demand when two candidates' bounds overlap.
+    volumes: Option<[Estimate; 2]>,
+}
+
+impl<T: Real> Candidate<T> {
+    /// A face the exact test says is hit, bracketed from its volumes: the
+    /// estimate of `t` is within `2·joint_error + 3·2^−53` of the exact one
+    /// ([`Estimate::abs_fractions`]); [`T_ROUNDING`] covers the rest.
+    fn from_volumes(face: usize, tri: &Triangle<T>, volumes: [Estimate; 2]) -> Self {
+        // Not both zero: a hit is not coplanar.
+        let t_est = Estimate::abs_fractions(volumes).map_or(0.5, |f| f[0]);
+        let t_err = 2.0 * Estimate::joint_error(&volumes) + T_ROUNDING;
+        Self { face, tri: *tri, lo: t_est - t_err, hi: t_est + t_err, volumes: Some(volumes) }
+    }
+
+    /// The face's vertices and volumes, the volumes computed now if they were
+    /// not.
+    fn exact_data(&mut self, q: [P3; 2]) -> ([P3; 3], [Estimate; 2]) {
+        let v = self.tri.vertices.map(|p| to_f64_3(&p));
+        (v, *self.volumes.get_or_insert_with(|| volumes(v, q)))
+    }
 }
 
 /// `orient3d(a, b, c, d) = det[a − d, b − d, c − d]`, exactly.
@@ -69,7 +92,7 @@ fn product(x: &Estimate, y: &Estimate) -> (f64, i64, f64) {
 /// error bounds overlap.
 fn compare_products(p: (f64, i64, f64), q: (f64, i64, f64)) -> Option<Ordering> {
     let (de, bound) = (p.1 - q.1, 2.0 * (p.2 + q.2) + 4.0 * f64::EPSILON);
-    if !(bound < 0.25) {
+    if bound.is_nan() || bound >= 0.25 {
         // Loose estimates (a volume barely certain of its sign): exactly.
         return None;
     }
@@ -91,7 +114,8 @@ fn compare_products(p: (f64, i64, f64), q: (f64, i64, f64)) -> Option<Ordering> 
     }
 }
 
-/// Exact order of the segment parameters of two hits.
+/// Exact order of the segment parameters of two hits, from their vertices and
+/// volumes.
 ///
 /// With `t = |s0| / (|s0| + |s1|)` (positive denominators),
 /// `t_x < t_y ⇔ |s0x|·|s1y| < |s0y|·|s1x|`. The products are compared from the
@@ -99,26 +123,26 @@ fn compare_products(p: (f64, i64, f64), q: (f64, i64, f64)) -> Option<Ordering> 
 /// the two parameters are within about `2^−38` of each other), otherwise from
 /// the exact volumes in [`BigFloat`] — which a tie at a shared edge or vertex
 /// always needs, and answers `Equal`.
-fn compare_t<T: Real>(x: &Candidate<T>, y: &Candidate<T>, q: [P3; 2]) -> Ordering {
+fn compare_t(x: ([P3; 3], [Estimate; 2]), y: ([P3; 3], [Estimate; 2]), q: [P3; 2]) -> Ordering {
     let zero = |e: &Estimate| e.sign == Sign::Zero;
-    let (p_zero, q_zero) = (zero(&x.volumes[0]) || zero(&y.volumes[1]), zero(&y.volumes[0]) || zero(&x.volumes[1]));
+    let (p_zero, q_zero) = (zero(&x.1[0]) || zero(&y.1[1]), zero(&y.1[0]) || zero(&x.1[1]));
     match (p_zero, q_zero) {
         (true, true) => return Ordering::Equal,
         (true, false) => return Ordering::Less,
         (false, true) => return Ordering::Greater,
         (false, false) => {}
     }
-    let p = product(&x.volumes[0], &y.volumes[1]);
-    let r = product(&y.volumes[0], &x.volumes[1]);
+    let p = product(&x.1[0], &y.1[1]);
+    let r = product(&y.1[0], &x.1[1]);
     if let Some(o) = compare_products(p, r) {
         return o;
     }
-    let vol = |c: &Candidate<T>, i: usize| {
-        let [a, b, v] = c.vertices;
-        abs_big(orient3d_exact(a, b, v, q[i]))
+    let vol = |v: [P3; 3], i: usize| {
+        let [a, b, c] = v;
+        abs_big(orient3d_exact(a, b, c, q[i]))
     };
-    let p = &vol(x, 0) * &vol(y, 1);
-    let r = &vol(y, 0) * &vol(x, 1);
+    let p = &vol(x.0, 0) * &vol(y.0, 1);
+    let r = &vol(y.0, 0) * &vol(x.0, 1);
     p.cmp(&r)
 }
 
@@ -158,28 +182,23 @@ fn volumes(v: [P3; 3], q: [P3; 2]) -> [Estimate; 2] {
 }
 
 /// Keeps a face the segment hits if it beats the best so far: smaller exact
-/// `t`, or the same `t` and a lower face index.
+/// `t`, or the same `t` and a lower face index. Disjoint brackets decide at
+/// once (they hold the exact parameters); overlapping ones are compared
+/// exactly ([`compare_t`]).
 #[inline]
-fn consider<T: Real>(
-    best: &mut Option<Candidate<T>>,
-    face: usize,
-    tri: &Triangle<T>,
-    vertices: [P3; 3],
-    volumes: [Estimate; 2],
-    q: [P3; 2],
-) {
-    // Not both zero: a hit is not coplanar. The volumes' stated errors bound
-    // the estimate of t.
-    let t_est = Estimate::abs_fractions(volumes).map_or(1.0, |f| f[0]);
-    let t_err = 2.0 * Estimate::joint_error(&volumes) + T_ROUNDING;
-    let cand = Candidate { face, tri: *tri, vertices, volumes, t_upper: t_est + t_err };
+fn consider<T: Real>(best: &mut Option<Candidate<T>>, mut cand: Candidate<T>, q: [P3; 2]) {
     let better = match best {
         None => true,
-        Some(b) => match compare_t(&cand, b, q) {
-            Ordering::Less => true,
-            Ordering::Equal => face < b.face,
-            Ordering::Greater => false,
-        },
+        Some(b) if cand.hi < b.lo => true,
+        Some(b) if cand.lo > b.hi => false,
+        Some(b) => {
+            let (x, y) = (cand.exact_data(q), b.exact_data(q));
+            match compare_t(x, y, q) {
+                Ordering::Less => true,
+                Ordering::Equal => cand.face < b.face,
+                Ordering::Greater => false,
+            }
+        }
     };
     if better {
         *best = Some(cand);
@@ -187,12 +206,12 @@ fn consider<T: Real>(
 }
 
 /// The answer from the winning face (if any), with the mesh-wide flags. The
-/// winner's values are [`intersect_segment_triangle`]'s on that face (computed
-/// once per query, whichever variant found it).
+/// winner's values are computed once per query, from the face and the segment
+/// alone (so every variant gives the same bits): see `values.rs`.
 fn finish<T: Real>(best: Option<Candidate<T>>, seg: &Segment<T>, mesh: &TriMesh<T>, q: [P3; 2]) -> MeshIntersection<T> {
     let degenerate = mesh.degenerate_face_count() > 0;
     match best {
-        Some(b) => match intersect_segment_triangle(seg, &b.tri).hit {
+        Some(b) => match hit_values(seg, &b.tri, q) {
             Some(h) => MeshIntersection { hit: Some(mesh_hit(h, b.face)), parallel: false, degenerate },
             // Unreachable: `classify` decides exactly as the triangle query
             // does (a test checks they agree); answered as degenerate.
@@ -228,8 +247,12 @@ fn mesh_hit<T: Real>(h: SegmentHit<T>, triangle: usize) -> MeshHit<T> {
 /// `t_x < t_y ⇔ |s0x|·|s1y| < |s0y|·|s1x|`, decided from error-bounded
 /// estimates and, when those cannot tell, in exact arithmetic. Ties (a segment
 /// through an edge or vertex shared by faces) go to the **lowest face index**.
-/// The hit's `t`, point, normal and barycentrics are that face's, as
-/// `intersect_segment_triangle` gives them (accurate to about `2^−40`).
+/// The hit's `t`, point, normal and barycentrics are that face's, accurate to
+/// about `2^−40` as `intersect_segment_triangle` gives them: computed once, for
+/// the winner, with the triangle query's formulas for `t`, the point and the
+/// normal (so the same bits whenever its filter answers) and its edge volumes
+/// for the barycentrics with the apex moved to the hit point (`values.rs`),
+/// the triangle query itself answering when that path cannot certify them.
 ///
 /// **Flags.** With no hit, `parallel` is set when the mesh has a face with area
 /// and the segment is parallel to every face with area (exactly:
@@ -265,7 +288,7 @@ fn brute<T: Real>(seg: &Segment<T>, mesh: &TriMesh<T>, q: [P3; 2]) -> MeshInters
         let tri = mesh.triangle(face);
         if intersect_segment_triangle(seg, &tri).hit.is_some() {
             let v = tri.vertices.map(|p| to_f64_3(&p));
-            consider(&mut best, face, &tri, v, volumes(v, q), q);
+            consider(&mut best, Candidate::from_volumes(face, &tri, volumes(v, q)), q);
         }
     }
     finish(best, seg, mesh, q)
@@ -297,22 +320,31 @@ pub fn intersect_segment_mesh_culled<T: Real>(seg: &Segment<T>, mesh: &TriMesh<T
 /// same answer as [`intersect_segment_mesh_brute`], bit for bit, faster.
 ///
 /// **Traversal.** Depth first, nearer child first, with a fixed-size stack (no
-/// allocation). A node is visited only if the segment may meet its box: the
-/// slab test of `SegmentProbe::entry`, which is conservative (it accepts every
-/// box the segment meets exactly, and reports a lower bound on where it
-/// enters). Once a hit is known, a node whose entry bound exceeds an upper
-/// bound on the best hit's exact `t` is skipped: none of its faces can come
-/// first, nor tie. The faces visited go through the same test and the same
-/// exact comparison and tie rule as in the brute-force query, so the winner is
-/// the same face, with the same values.
+/// allocation), over the tree's two-child records (both children's boxes,
+/// read and tested together). A child is visited only
+/// if the segment may meet its box: the slab test of `SegmentProbe`, which is
+/// conservative (it accepts every box the segment meets exactly, and reports a
+/// lower bound on where it enters). Once a hit is known, a child whose entry
+/// bound exceeds an upper bound on the best hit's exact `t` is skipped: none
+/// of its faces can come first, nor tie.
 ///
-/// **Filter.** Before the exact test, each face goes through a floating-point
-/// filter with certified error bounds (both endpoints strictly on one side of
-/// its plane, or two edge volumes of strictly opposite signs: no hit). It only
-/// ever skips faces the exact test would miss, and on the bunny it skips about
-/// four in five of the faces visited. It is used when every
-/// coordinate is at most 2^60 in magnitude (beyond, its error bounds would not
-/// hold and every face goes to the exact test).
+/// **Faces: a filter first, exactness where it cannot decide.** Each face
+/// visited goes through a floating-point filter with certified error bounds
+/// (`filter.rs`: the exact test's volumes, evaluated as the triangle query's
+/// own filter evaluates them, the face's normal precomputed), which answers
+/// "no hit", "a hit, with `t` between these bounds", or "not certain". Only the
+/// last goes to the exact test (an endpoint within rounding of the face's
+/// plane, the line within rounding of an edge or vertex — every tie at a
+/// shared edge). Two hits whose brackets on `t` are disjoint are ordered at
+/// once; overlapping brackets are ordered exactly, as in the brute-force
+/// query, with the same tie rule; so the winner is the same face. The filter
+/// is used when every coordinate is at most 2^60 in magnitude (beyond, its
+/// error bounds would not hold and every face goes to the exact test).
+///
+/// **Values.** The winner's `t`, point, normal and barycentrics are computed
+/// once, from the face and the segment alone, by a certified path accurate to
+/// about `2^−40` (`values.rs`), the exact segment–triangle query answering
+/// when it cannot certify them: the same values as every other variant's.
 ///
 /// **Flags and degenerate input:** as [`intersect_segment_mesh_brute`] (the
 /// `parallel` flag of a miss is a property of the whole mesh and is answered
@@ -325,64 +357,101 @@ pub fn intersect_segment_mesh_bvh<T: Real>(seg: &Segment<T>, bvh: &MeshBvh<T>) -
         return MeshIntersection::DEGENERATE;
     };
     let q = [q0, q1];
-    let nodes = bvh.nodes();
     let mut best: Option<Candidate<T>> = None;
-    let Some(root) = nodes.first() else {
+    let Some(root) = bvh.nodes().first() else {
         return finish(best, seg, mesh, q);
     };
-    let probe = SegmentProbe::new(seg);
-    let filter = SegmentFilter::new(q0, q1);
-    let mut stack = [(0u32, T::zero()); STACK];
-    let mut sp = 0usize;
-    if let Some(e) = probe.entry(&root.min, &root.max) {
-        stack[0] = (0, e);
-        sp = 1;
+    let v3 = |p: P3| Vec3::new(p[0], p[1], p[2]);
+    let probe = SegmentProbe::new(&Segment::new(v3(q0), v3(q1)));
+    let Some(entry) = probe.entry(&root.min.map(|x| x.wide()), &root.max.map(|x| x.wide())) else {
+        return finish(best, seg, mesh, q);
+    };
+    let filter = SegmentFilter::new(q0, q1).filter(|_| bvh.filter_ok());
+    if root.count > 0 {
+        for k in root.start as usize..(root.start + root.count) as usize {
+            leaf_face(bvh, k, filter.as_ref(), q, &mut best);
+        }
+        return finish(best, seg, mesh, q);
     }
-    let pruned = |best: &Option<Candidate<T>>, entry: T| best.as_ref().is_some_and(|b| entry.wide() > b.t_upper);
+    let wide = bvh.wide();
+    // Pending children as a wide record gives them — (start, count): a leaf's
+    // faces when count > 0, else an internal node's record — with their entry
+    // bound.
+    let mut stack = [(0u32, 0u32, 0.0f64); STACK];
+    stack[0] = (0, 0, entry);
+    let mut sp = 1usize;
     while sp > 0 {
         sp -= 1;
-        let (i, entry) = stack[sp];
-        if pruned(&best, entry) {
+        let (start, count, entry) = stack[sp];
+        // Every entry bound is at most 1 + slack < 2: with no hit yet, nothing
+        // is pruned.
+        let bound = best.as_ref().map_or(NO_HIT_BOUND, |b| b.hi);
+        if entry > bound {
             continue;
         }
-        let node = &nodes[i as usize];
-        if node.count > 0 {
-            for k in node.start..node.start + node.count {
-                let k = k as usize;
-                if let (Some(sf), Some(ff)) = (&filter, bvh.leaf_filter(k))
-                    && ff.certainly_misses(sf)
-                {
-                    continue;
-                }
-                let (tri, face) = bvh.leaf_face(k);
-                let v = tri.vertices.map(|p| to_f64_3(&p));
-                if let Some(vol) = classify(v, q) {
-                    consider(&mut best, face, tri, v, vol, q);
-                }
+        if count > 0 {
+            for k in start as usize..(start + count) as usize {
+                leaf_face(bvh, k, filter.as_ref(), q, &mut best);
             }
             continue;
         }
-        let (l, r) = (i + 1, node.start);
-        let (nl, nr) = (&nodes[l as usize], &nodes[r as usize]);
-        let el = probe.entry(&nl.min, &nl.max).filter(|e| !pruned(&best, *e));
-        let er = probe.entry(&nr.min, &nr.max).filter(|e| !pruned(&best, *e));
+        let w = &wide[start as usize];
+        let e = probe.entries(w);
         // Farther child first, so the nearer is popped next.
-        let order = match (el, er) {
-            (Some(a), Some(b)) if a <= b => [Some((r, b)), Some((l, a))],
-            (Some(a), Some(b)) => [Some((l, a)), Some((r, b))],
-            (a, b) => [a.map(|a| (l, a)), b.map(|b| (r, b))],
-        };
-        for item in order.into_iter().flatten() {
-            // At most one pending sibling per level plus the current path:
-            // depth ≤ BVH_MAX_DEPTH keeps this within STACK.
-            debug_assert!(sp < STACK, "traversal stack overflow");
-            if sp < STACK {
-                stack[sp] = item;
-                sp += 1;
+        let order = if e[0] <= e[1] { [1, 0] } else { [0, 1] };
+        for j in order {
+            if e[j] <= bound {
+                // At most one pending sibling per level plus the current
+                // path: depth ≤ BVH_MAX_DEPTH keeps this within STACK.
+                debug_assert!(sp < STACK, "traversal stack overflow");
+                if sp < STACK {
+                    stack[sp] = (w.start[j], w.count[j], e[j]);
+                    sp += 1;
+                }
             }
         }
     }
     finish(best, seg, mesh, q)
+}
+
+/// Above every entry bound of a box the segment may meet (`1 + slack`), below
+/// the `+∞` of a box it misses: the pruning bound before any hit.
+const NO_HIT_BOUND: f64 = 2.0;
+
+/// One face of a leaf: the filter, then (if it cannot tell) the exact test;
+/// a face hit becomes a candidate.
+#[inline(always)]
+fn leaf_face<T: Real>(
+    bvh: &MeshBvh<T>,
+    k: usize,
+    filter: Option<&SegmentFilter>,
+    q: [P3; 2],
+    best: &mut Option<Candidate<T>>,
+) {
+    let data = bvh.leaf_data(k);
+    let test = match filter {
+        Some(f) => data.test(f),
+        None => FaceTest::Undecided,
+    };
+    let cand = match test {
+        FaceTest::Miss => return,
+        FaceTest::Hit { lo, hi } => {
+            // A face that cannot come first (or tie) is dropped unread.
+            if best.as_ref().is_some_and(|b| lo > b.hi) {
+                return;
+            }
+            let (tri, face) = bvh.leaf_face(k);
+            Candidate { face, tri: *tri, lo, hi, volumes: None }
+        }
+        FaceTest::Undecided => {
+            let Some(vol) = classify(data.v, q) else {
+                return;
+            };
+            let (tri, face) = bvh.leaf_face(k);
+            Candidate::from_volumes(face, tri, vol)
+        }
+    };
+    consider(best, cand, q);
 }
 
 /// The lecture's segment–mesh query: every face through the lecture's

@@ -25,7 +25,7 @@ fn face_contact<T: Real>(sphere: &Sphere<T>, tri: &Triangle<T>) -> Option<(T, Co
     }
     let delta = sphere.center - q;
     let dist = stable_norm(&delta);
-    if !(dist <= sphere.radius) {
+    if dist.is_nan() || dist > sphere.radius {
         return None;
     }
     let (normal, degenerate) = match try_normalize_stable(&delta) {

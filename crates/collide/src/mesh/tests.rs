@@ -2,6 +2,7 @@
 //! query agreeing bit for bit on random meshes, and the tree's invariants.
 
 use super::bvh::{Node, STACK};
+use super::filter::FaceTest;
 use super::*;
 use crate::real::{Real, Vec3};
 use crate::shapes::{Segment, Sphere};
@@ -27,6 +28,12 @@ fn mesh<T: Real>(vertices: &[P3], faces: &[[usize; 3]]) -> TriMesh<T> {
 fn tol<T: Real>() -> f64 {
     16.0 * T::EPSILON.wide() + 4.0 * crate::exact::ESTIMATE_REL_ERR
 }
+
+/// Two computations of one hit's values (the mesh's certified path and the
+/// triangle query), each accurate to about `2·ESTIMATE_REL_ERR` plus a few
+/// roundings (absolute, for values of order 1), may differ by this much:
+/// `4·ESTIMATE_REL_ERR`.
+const VALUE_TOL: f64 = 4.0 * crate::exact::ESTIMATE_REL_ERR;
 
 fn close<T: Real>(got: T, want: f64, what: &str) {
     assert!((got.wide() - want).abs() <= tol::<T>(), "{what}: got {:e}, want {want:e}", got.wide());
@@ -481,11 +488,30 @@ proptest! {
         prop_assume!(!crate::exact::points_equal(q0, q1));
         let s = seg::<f64>(q0, q1);
         let tri = crate::shapes::Triangle::new(v(a), v(b), v(c));
-        let want = crate::intersect::intersect_segment_triangle(&s, &tri).hit.is_some();
-        prop_assert_eq!(super::segment_mesh::classify([a, b, c], [q0, q1]).is_some(), want);
+        let one = crate::intersect::intersect_segment_triangle(&s, &tri).hit;
+        prop_assert_eq!(super::segment_mesh::classify([a, b, c], [q0, q1]).is_some(), one.is_some());
         let sf = super::filter::SegmentFilter::new(q0, q1).expect("small coordinates");
-        if super::filter::FaceFilter::new([a, b, c]).certainly_misses(&sf) {
-            prop_assert!(!want, "the filter dropped a hit");
+        match super::filter::FaceFilter::new([a, b, c]).test(&sf) {
+            FaceTest::Miss => prop_assert!(one.is_none(), "the filter dropped a hit"),
+            FaceTest::Hit { lo, hi } => {
+                let h = one.expect("the filter's hit is a hit");
+                prop_assert!(lo <= hi && lo > 0.0 && hi < 1.0, "bracket [{}, {}]", lo, hi);
+                prop_assert!(lo - VALUE_TOL <= h.t && h.t <= hi + VALUE_TOL, "t {} outside [{}, {}]", h.t, lo, hi);
+            }
+            FaceTest::Undecided => {}
+        }
+        // The winner's values (certified path or the triangle query's) against
+        // the triangle query's.
+        if let Some(want) = one {
+            let got = super::values::hit_values(&s, &tri, [q0, q1]).expect("a hit has values");
+            prop_assert!((got.t - want.t).abs() <= VALUE_TOL, "t {} vs {}", got.t, want.t);
+            let (gb, wb) = (got.barycentric.expect("barycentrics"), want.barycentric.expect("barycentrics"));
+            for k in 0..3 {
+                prop_assert!((gb[k] - wb[k]).abs() <= VALUE_TOL, "barycentric {}: {:?} vs {:?}", k, gb, wb);
+                prop_assert!((got.normal[k] - want.normal[k]).abs() <= VALUE_TOL, "normal {:?} vs {:?}", got.normal, want.normal);
+                let scale = 1.0 + q0[k].abs().max(q1[k].abs());
+                prop_assert!((got.point[k] - want.point[k]).abs() <= VALUE_TOL * scale, "point {:?} vs {:?}", got.point, want.point);
+            }
         }
     }
 }
@@ -527,7 +553,8 @@ proptest! {
         }
         if let Some(h) = got.hit {
             let one = crate::intersect::intersect_segment_triangle(&s, &m.triangle(h.triangle));
-            prop_assert_eq!(one.hit.map(|x| x.t), Some(h.t), "the answer is its face's hit");
+            let t = one.hit.expect("the answer's face is hit").t;
+            prop_assert!((t - h.t).abs() <= VALUE_TOL, "the answer is its face's hit: t {} vs {}", h.t, t);
         }
     }
 
@@ -543,5 +570,82 @@ proptest! {
             prop_assert!(k.contact.depth >= 0.0 && k.contact.depth <= r, "depth {}", k.contact.depth);
             prop_assert!((k.contact.normal.norm() - 1.0).abs() <= 1e-12, "unit normal");
         }
+    }
+}
+
+#[test]
+fn mesh_hit_values_are_certified_for_small_far_faces() {
+    // The bunny's regime: faces a few hundredths of the segment's length,
+    // far from both endpoints, where the triangle query's own barycentrics
+    // need exact arithmetic. The certified path must answer almost always and
+    // agree with the triangle query.
+    let mut state = 0x5eed_0006_u64;
+    let mut unit = move || {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut hits, mut certified) = (0, 0);
+    for _ in 0..8000 {
+        let centre = [0; 3].map(|_| 10.0 * unit() - 5.0);
+        let tri = [0; 3].map(|_| [0, 1, 2].map(|k| centre[k] + 0.2 * unit() - 0.1));
+        let dir = [0; 3].map(|_| 2.0 * unit() - 1.0);
+        let (a, b) = (10.0 * unit(), 10.0 * unit());
+        let q0 = [0, 1, 2].map(|k| centre[k] - a * dir[k]);
+        let q1 = [0, 1, 2].map(|k| centre[k] + b * dir[k]);
+        let s = seg::<f64>(q0, q1);
+        let t = crate::shapes::Triangle::new(v(tri[0]), v(tri[1]), v(tri[2]));
+        let Some(want) = crate::intersect::intersect_segment_triangle(&s, &t).hit else {
+            continue;
+        };
+        hits += 1;
+        let Some(got) = super::values::certified(tri, [q0, q1]) else {
+            continue;
+        };
+        certified += 1;
+        assert!((got.t - want.t).abs() <= VALUE_TOL, "t {} vs {}", got.t, want.t);
+        let wb = want.barycentric.expect("barycentrics");
+        for k in 0..3 {
+            assert!((got.barycentric[k] - wb[k]).abs() <= VALUE_TOL, "{:?} vs {wb:?}", got.barycentric);
+            assert!((got.normal[k] - want.normal[k]).abs() <= VALUE_TOL, "{:?} vs {:?}", got.normal, want.normal);
+            assert!((got.point[k] - want.point[k]).abs() <= 16.0 * VALUE_TOL, "{:?} vs {:?}", got.point, want.point);
+        }
+    }
+    assert!(hits >= 1000, "the cases hit: {hits}");
+    assert!(certified * 100 >= hits * 99, "certified {certified} of {hits}");
+}
+
+#[test]
+fn mesh_faces_near_segment_hold_every_face_hit() {
+    let (vs, fs) = uv_sphere(12, 24);
+    let m = mesh::<f64>(&vs, &fs);
+    for rule in [SplitRule::MedianCentroid, SplitRule::SahBinned] {
+        let bvh = MeshBvh::with_split(m.clone(), rule);
+        let mut near = Vec::new();
+        let mut total = 0;
+        for i in 0..500 {
+            let x = i as f64 * 0.618_033_988_749_895;
+            let a = [2.0 * (x % 1.0) - 1.0, 2.0 * ((x * 1.7) % 1.0) - 1.0, 1.5];
+            let b = [2.0 * ((x * 2.3) % 1.0) - 1.0, 2.0 * ((x * 3.1) % 1.0) - 1.0, -1.5];
+            let s = seg::<f64>(a, b);
+            bvh.faces_near_segment(&s, &mut near);
+            total += near.len();
+            for face in 0..m.len() {
+                if crate::intersect::intersect_segment_triangle(&s, &m.triangle(face)).hit.is_some() {
+                    assert!(near.contains(&face), "{rule:?}, segment {i}: face {face} is hit but not near");
+                }
+            }
+        }
+        assert!(total < 500 * m.len() / 4, "{rule:?}: the tree prunes ({total} faces near in all)");
+        // Beside the sphere's box: nothing; a non-finite segment: nothing.
+        bvh.faces_near_segment(&seg::<f64>([3.0, 3.0, -1.0], [3.0, 3.0, 1.0]), &mut near);
+        assert!(near.is_empty(), "{rule:?}: {near:?}");
+        bvh.faces_near_segment(&seg::<f64>([f64::NAN, 0.0, 0.0], [0.0, 0.0, 0.0]), &mut near);
+        assert!(near.is_empty());
+        // A point on the surface: the faces of the leaves around it.
+        bvh.faces_near_segment(&seg::<f64>([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]), &mut near);
+        assert!(!near.is_empty(), "{rule:?}: the pole");
     }
 }

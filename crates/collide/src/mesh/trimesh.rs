@@ -1,7 +1,9 @@
 //! A triangle mesh: vertices and faces, with what every mesh query needs to know
 //! about them computed once.
 
-use crate::exact;
+use super::filter::FILTER_MAX_COORD;
+use crate::exact::filter::{cross, sub, triple};
+use crate::exact::{self, P3};
 use crate::real::{Real, Vec3, finite3, to_f64_3};
 use crate::shapes::{Aabb, Triangle};
 use core::fmt;
@@ -70,6 +72,10 @@ pub struct TriMesh<T: Real> {
     degenerate_count: usize,
     aabb: Option<Aabb<T>>,
     witnesses: [Option<usize>; 3],
+    /// Per witness within the filter's range (every vertex at most
+    /// [`FILTER_MAX_COORD`]): its rounded normal `fl((v1 − v0) × (v2 − v0))` and
+    /// the normal's permanents, for the filtered parallel test.
+    witness_normals: [Option<(P3, P3)>; 3],
 }
 
 impl<T: Real> TriMesh<T> {
@@ -136,7 +142,12 @@ impl<T: Real> TriMesh<T> {
             }
         }
         let degenerate_count = degenerate.iter().filter(|d| **d).count();
-        Ok(Self { vertices, faces, degenerate, nonfinite, degenerate_count, aabb, witnesses })
+        let witness_normals = witnesses.map(|w| {
+            let [a, b, c] = faces[w?].map(|k| to_f64_3(&vertices[k]));
+            let small = [a, b, c].iter().flatten().all(|x| x.abs() <= FILTER_MAX_COORD);
+            small.then(|| cross(sub(b, a), sub(c, a)))
+        });
+        Ok(Self { vertices, faces, degenerate, nonfinite, degenerate_count, aabb, witnesses, witness_normals })
     }
 
     /// The vertex positions.
@@ -196,10 +207,20 @@ impl<T: Real> TriMesh<T> {
     /// condition; a degenerate face gives 0 too, so only the existence of a face
     /// with area needs separate care. The witnesses go first: for a segment
     /// that is not parallel to the mesh, one of them almost always answers, so
-    /// a miss costs one or two predicates instead of a scan.
+    /// a miss costs one or two predicates instead of a scan — first through a
+    /// floating-point filter (the triple product `n̂ · r̂` of the witness's
+    /// precomputed rounded normal and `r̂ = fl(q1 − q0)`, with
+    /// `crate::exact::filter`'s bound: a value beyond its bound is certainly
+    /// non-zero, so the segment is certainly not parallel to that face).
     pub(crate) fn parallel_to_every_face(&self, q0: [f64; 3], q1: [f64; 3]) -> bool {
         if self.degenerate_count == self.faces.len() {
             return false;
+        }
+        if q0.iter().chain(&q1).all(|x| x.abs() <= FILTER_MAX_COORD) {
+            let r = sub(q1, q0);
+            if self.witness_normals.iter().flatten().any(|(n, n_perm)| triple(*n, *n_perm, r).decided()) {
+                return false;
+            }
         }
         let crosses = |i: usize| {
             let [a, b, c] = self.faces[i].map(|k| to_f64_3(&self.vertices[k]));

@@ -1,0 +1,291 @@
+//! Meshes, collide against parry, one run: `cargo bench --bench mesh`.
+//!
+//! - **Segment–bunny first hit**: collide's BVH query
+//!   ([`intersect_segment_mesh_bvh`], both split rules, `f64` and `f32`)
+//!   against parry's `TriMesh` ray cast (`cast_local_ray_and_get_normal` with
+//!   the segment as a ray of direction `end − start` and `max_time_of_impact`
+//!   1, as `oracle::parry` casts it), parry3d-f64 and parry3d (`f32`), on the
+//!   same [`SEGMENTS`] pre-generated seeded segments ([`SEED`]): both endpoints
+//!   uniform in the bunny's box grown by a quarter of its size on each side, so
+//!   about half of them hit and the rest miss — many after crossing the box.
+//!   collide answers more (the exact first hit's face, `t`, point, normal and
+//!   barycentrics; parry its face, `t` and normal), so the comparison does not
+//!   favour collide.
+//! - **Build**: `TriMesh::new` + `MeshBvh::new` (collide's mesh checks and its
+//!   tree) against parry's `TriMesh::new` (its checks and its BVH), both from
+//!   vertex and index arrays cloned before timing.
+//!
+//! The bunny is `fixtures/meshes/bunny.obj` as loaded (no pose). Inputs are
+//! converted to each engine's types before timing; each segment and answer
+//! passes through `black_box`. At the end, a table of ns per query (ms per
+//! build) with the ratios collide / parry is printed and written to
+//! `target/criterion/crashtest-mesh-table.md`.
+
+#[path = "mesh/table.rs"]
+mod table;
+
+use collide::Vec3;
+use collide::mesh::{MeshBvh, SplitRule, TriMesh, intersect_segment_mesh_bvh};
+use criterion::measurement::WallTime;
+use criterion::{BatchSize, BenchmarkGroup, Criterion, Throughput};
+use oracle::geom::P3;
+use std::hint::black_box;
+use std::path::Path;
+use std::time::{Duration, SystemTime};
+use table::{Column, Row, Target};
+
+/// Seed of the segments (fixed: every run times the same segments).
+const SEED: u64 = 0x0B0B_5E6E;
+/// Segments per iteration: enough to mix hits and misses and to defeat the
+/// branch predictor's memory of a short loop; the bunny's trees (about 200 KiB
+/// each) stay in L2 across them.
+const SEGMENTS: usize = 1024;
+/// Growth of the bunny's box on each side, as a fraction of its largest size,
+/// for the segments' endpoints.
+const GROW: f64 = 0.25;
+
+/// Warm-up per benchmark.
+const WARM_UP: Duration = Duration::from_millis(300);
+/// Measurement per benchmark: with [`SAMPLES`] samples the slope's confidence
+/// interval is within a few percent on a quiet machine.
+const MEASUREMENT: Duration = Duration::from_millis(1500);
+/// Samples per benchmark (criterion's minimum is 10).
+const SAMPLES: usize = 20;
+/// Bootstrap resamples of criterion's analysis (its default, 100 000, costs
+/// more time than the measurement here).
+const RESAMPLES: usize = 10_000;
+
+/// SplitMix64: a small seeded generator.
+struct Rng(u64);
+
+impl Rng {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `[lo, hi)`.
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+}
+
+fn bunny() -> harness::mesh::Mesh {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/meshes/bunny.obj");
+    harness::mesh::load_mesh_file(&path).expect("the bunny loads")
+}
+
+/// [`SEGMENTS`] segments with both endpoints uniform in the bunny's grown box.
+fn segments(vertices: &[P3]) -> Vec<(P3, P3)> {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in vertices {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+    let mut rng = Rng(SEED);
+    let mut point = || [0, 1, 2].map(|k| rng.range(lo[k] - GROW * size, hi[k] + GROW * size));
+    (0..SEGMENTS).map(|_| (point(), point())).collect()
+}
+
+fn v<T: collide::Real>(p: P3) -> Vec3<T> {
+    Vec3::new(T::of(p[0]), T::of(p[1]), T::of(p[2]))
+}
+
+/// collide's mesh and tree in `T`.
+fn collide_bvh<T: collide::Real>(m: &harness::mesh::Mesh, split: SplitRule) -> MeshBvh<T> {
+    let mesh = TriMesh::new(m.vertices.iter().map(|&p| v(p)).collect(), m.triangles.clone()).expect("mesh");
+    MeshBvh::with_split(mesh, split)
+}
+
+/// parry called directly, written once for both precisions.
+macro_rules! parry_mesh {
+    ($name:ident, $krate:ident) => {
+        mod $name {
+            use super::P3;
+            use $krate::math::{Real, Vector};
+            use $krate::query::{Ray, RayCast, RayIntersection};
+            use $krate::shape::TriMesh;
+
+            /// A point in parry's scalar (rounded once for `f32`).
+            pub fn v(p: P3) -> Vector {
+                Vector::new(p[0] as Real, p[1] as Real, p[2] as Real)
+            }
+            /// The mesh's arrays in parry's types.
+            pub fn arrays(m: &harness::mesh::Mesh) -> (Vec<Vector>, Vec<[u32; 3]>) {
+                let vs = m.vertices.iter().map(|&p| v(p)).collect();
+                let fs = m.triangles.iter().map(|t| t.map(|i| i as u32)).collect();
+                (vs, fs)
+            }
+            /// `TriMesh::new` (checks and BVH).
+            pub fn build((vs, fs): (Vec<Vector>, Vec<[u32; 3]>)) -> TriMesh {
+                TriMesh::new(vs, fs).expect("parry mesh")
+            }
+            /// The segment as `oracle::parry` casts it.
+            pub fn ray(s: &(P3, P3)) -> Ray {
+                let start = v(s.0);
+                Ray::new(start, v(s.1) - start)
+            }
+            /// The first hit, `t ≤ 1`.
+            pub fn cast(mesh: &TriMesh, ray: &Ray) -> Option<RayIntersection> {
+                mesh.cast_local_ray_and_get_normal(ray, 1.0, false)
+            }
+        }
+    };
+}
+
+parry_mesh!(p64, parry3d_f64);
+parry_mesh!(p32, parry3d);
+
+/// Times `f` over every input of `inputs` as benchmark `id` of `g`.
+fn run<I, O>(g: &mut BenchmarkGroup<'_, WallTime>, id: &str, inputs: &[I], f: impl Fn(&I) -> O) {
+    g.bench_function(id, |b| {
+        b.iter(|| {
+            for x in inputs {
+                black_box(f(black_box(x)));
+            }
+        })
+    });
+}
+
+fn segment_bunny(c: &mut Criterion, m: &harness::mesh::Mesh, segs: &[(P3, P3)]) {
+    let mut g = c.benchmark_group("mesh_segment_bunny");
+    g.throughput(Throughput::Elements(segs.len() as u64));
+    let sah64 = collide_bvh::<f64>(m, SplitRule::SahBinned);
+    let med64 = collide_bvh::<f64>(m, SplitRule::MedianCentroid);
+    let sah32 = collide_bvh::<f32>(m, SplitRule::SahBinned);
+    let s64: Vec<_> = segs.iter().map(|s| collide::Segment::new(v::<f64>(s.0), v(s.1))).collect();
+    let s32: Vec<_> = segs.iter().map(|s| collide::Segment::new(v::<f32>(s.0), v(s.1))).collect();
+    run(&mut g, "collide_bvh_f64", &s64, |s| intersect_segment_mesh_bvh(s, &sah64));
+    run(&mut g, "collide_bvh_median_f64", &s64, |s| intersect_segment_mesh_bvh(s, &med64));
+    run(&mut g, "collide_bvh_f32", &s32, |s| intersect_segment_mesh_bvh(s, &sah32));
+    let mesh64 = p64::build(p64::arrays(m));
+    let mesh32 = p32::build(p32::arrays(m));
+    let r64: Vec<_> = segs.iter().map(p64::ray).collect();
+    let r32: Vec<_> = segs.iter().map(p32::ray).collect();
+    run(&mut g, "parry64", &r64, |r| p64::cast(&mesh64, r));
+    run(&mut g, "parry32", &r32, |r| p32::cast(&mesh32, r));
+    g.finish();
+}
+
+fn build(c: &mut Criterion, m: &harness::mesh::Mesh) {
+    let mut g = c.benchmark_group("mesh_build_bunny");
+    g.throughput(Throughput::Elements(1));
+    let arrays64 = (m.vertices.iter().map(|&p| v::<f64>(p)).collect::<Vec<_>>(), m.triangles.clone());
+    let arrays32 = (m.vertices.iter().map(|&p| v::<f32>(p)).collect::<Vec<_>>(), m.triangles.clone());
+    g.bench_function("collide_bvh_f64", |b| {
+        b.iter_batched(
+            || arrays64.clone(),
+            |(vs, fs)| MeshBvh::new(TriMesh::new(vs, fs).expect("mesh")),
+            BatchSize::SmallInput,
+        )
+    });
+    g.bench_function("collide_bvh_median_f64", |b| {
+        b.iter_batched(
+            || arrays64.clone(),
+            |(vs, fs)| MeshBvh::with_split(TriMesh::new(vs, fs).expect("mesh"), SplitRule::MedianCentroid),
+            BatchSize::SmallInput,
+        )
+    });
+    g.bench_function("collide_bvh_f32", |b| {
+        b.iter_batched(
+            || arrays32.clone(),
+            |(vs, fs)| MeshBvh::new(TriMesh::new(vs, fs).expect("mesh")),
+            BatchSize::SmallInput,
+        )
+    });
+    let (a64, a32) = (p64::arrays(m), p32::arrays(m));
+    g.bench_function("parry64", |b| b.iter_batched(|| a64.clone(), p64::build, BatchSize::SmallInput));
+    g.bench_function("parry32", |b| b.iter_batched(|| a32.clone(), p32::build, BatchSize::SmallInput));
+    g.finish();
+}
+
+/// Fraction of the segments collide's `f64` BVH query says hit (exact).
+fn hit_fraction(m: &harness::mesh::Mesh, segs: &[(P3, P3)]) -> f64 {
+    let bvh = collide_bvh::<f64>(m, SplitRule::SahBinned);
+    let hits = segs
+        .iter()
+        .filter(|s| intersect_segment_mesh_bvh(&collide::Segment::new(v(s.0), v(s.1)), &bvh).hit.is_some())
+        .count();
+    hits as f64 / segs.len() as f64
+}
+
+fn report(m: &harness::mesh::Mesh, segs: &[(P3, P3)], since: SystemTime) -> String {
+    let columns = [
+        Column { id: "collide_bvh_f64", heading: "collide BVH f64 (SAH)" },
+        Column { id: "collide_bvh_median_f64", heading: "collide BVH f64 (median)" },
+        Column { id: "collide_bvh_f32", heading: "collide BVH f32 (SAH)" },
+        Column { id: "parry64", heading: "parry3d-f64" },
+        Column { id: "parry32", heading: "parry3d" },
+    ];
+    let ratios = [
+        ("collide_bvh_f64", "parry64", "collide f64 / parry3d-f64"),
+        ("collide_bvh_f64", "parry32", "collide f64 / parry3d"),
+        ("collide_bvh_f32", "parry32", "collide f32 / parry3d"),
+    ];
+    let rows = [
+        Row {
+            group: "mesh_segment_bunny",
+            label: format!("segment–bunny first hit ({:.0}% hit)", 100.0 * hit_fraction(m, segs)),
+            per_iter: segs.len(),
+            unit_ns: 1.0,
+            unit: "ns/query",
+        },
+        Row {
+            group: "mesh_build_bunny",
+            label: format!("build ({} faces)", m.triangles.len()),
+            per_iter: 1,
+            unit_ns: 1e6,
+            unit: "ms/build",
+        },
+    ];
+    let intro = format!(
+        "The Stanford bunny ({} vertices, {} faces). Segments: {} drawn once from seed {SEED:#x}, both \
+         endpoints uniform in the bunny's box grown by {GROW} of its size on each side. criterion's slope \
+         estimate of this run, divided by the queries per iteration. parry: `TriMesh::cast_local_ray_and_get_normal` \
+         (face, t, normal); collide: the exact first hit (face, t, point, normal, barycentrics).",
+        m.vertices.len(),
+        m.triangles.len(),
+        segs.len()
+    );
+    let targets = [Target {
+        group: "mesh_segment_bunny",
+        per_iter: segs.len(),
+        what: "segment–bunny: collide BVH f64 / parry3d-f64 TriMesh ray cast",
+        ids: ("collide_bvh_f64", "parry64"),
+        target: 1.0,
+    }];
+    format!(
+        "# crashtest speed: meshes, collide against parry, one run\n\n{}\n{}",
+        table::render("Segment–bunny and build", &intro, &columns, &rows, &ratios, since),
+        table::render_targets(&targets, since)
+    )
+}
+
+fn main() {
+    let since = SystemTime::now();
+    // `cargo bench` passes `--bench`; `cargo test --benches` does not, and then
+    // criterion runs each benchmark once as a test: no table.
+    let benching = std::env::args().any(|a| a == "--bench");
+    let m = bunny();
+    let segs = segments(&m.vertices);
+    let mut c = Criterion::default()
+        .output_directory(&table::criterion_dir())
+        .warm_up_time(WARM_UP)
+        .measurement_time(MEASUREMENT)
+        .sample_size(SAMPLES)
+        .nresamples(RESAMPLES)
+        .configure_from_args();
+    segment_bunny(&mut c, &m, &segs);
+    build(&mut c, &m);
+    c.final_summary();
+    if benching {
+        table::publish(&report(&m, &segs, since));
+    }
+}

@@ -1,0 +1,152 @@
+//! The table printed at the end of a mesh run (and written to
+//! `target/criterion/crashtest-mesh-table.md`): criterion's estimates of this
+//! run as time per query and per build, with the ratios collide / parry.
+//!
+//! Reads criterion's `estimates.json` files as `benches/queries/table.rs` does
+//! (that module's reader is private to the queries bench and tied to its
+//! tables, so the few lines are repeated here rather than shared).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::SystemTime;
+
+/// Where criterion writes: `$CARGO_TARGET_DIR/criterion`, else the
+/// workspace's `target/criterion`.
+pub fn criterion_dir() -> PathBuf {
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("target"));
+    target.join("criterion")
+}
+
+/// Nanoseconds per element of benchmark `group/id`, from criterion's estimate
+/// written during this run (`since`): its slope (time per iteration, by
+/// regression over the samples) or, failing that, its mean, divided by the
+/// elements per iteration. `None` when the benchmark did not run this time.
+pub fn ns_per(group: &str, id: &str, per_iter: usize, since: SystemTime) -> Option<f64> {
+    let path = criterion_dir().join(group).join(id).join("new").join("estimates.json");
+    let written = std::fs::metadata(&path).and_then(|m| m.modified()).ok()?;
+    if written < since {
+        return None;
+    }
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).ok()?).ok()?;
+    let pick = |k: &str| json.get(k)?.get("point_estimate")?.as_f64();
+    let ns = pick("slope").or_else(|| pick("mean"))?;
+    Some(ns / per_iter as f64)
+}
+
+/// A number with three significant digits or so; `—` when missing.
+pub fn cell(x: Option<f64>) -> String {
+    match x {
+        Some(v) if v >= 100.0 => format!("{v:.0}"),
+        Some(v) if v >= 10.0 => format!("{v:.1}"),
+        Some(v) => format!("{v:.2}"),
+        None => "—".into(),
+    }
+}
+
+/// `x / y` when both were measured.
+pub fn ratio(x: Option<f64>, y: Option<f64>) -> Option<f64> {
+    Some(x? / y?)
+}
+
+/// One engine of a table: benchmark id and heading.
+pub struct Column {
+    /// criterion's benchmark id.
+    pub id: &'static str,
+    /// The column's heading.
+    pub heading: &'static str,
+}
+
+/// One row: a criterion group, elements per iteration, a heading, the unit
+/// divisor (1 for ns, 1e6 for ms) and the unit's name.
+pub struct Row {
+    /// criterion's group.
+    pub group: &'static str,
+    /// The row's heading.
+    pub label: String,
+    /// Elements (queries, builds) per iteration.
+    pub per_iter: usize,
+    /// Nanoseconds per displayed unit.
+    pub unit_ns: f64,
+    /// The unit's name.
+    pub unit: &'static str,
+}
+
+/// One speed target: `numerator / denominator ≤ target` in one group.
+pub struct Target {
+    /// The group.
+    pub group: &'static str,
+    /// Elements per iteration.
+    pub per_iter: usize,
+    /// What is compared, for the reader.
+    pub what: &'static str,
+    /// Benchmark ids of the numerator and the denominator.
+    pub ids: (&'static str, &'static str),
+    /// The largest ratio that meets it.
+    pub target: f64,
+}
+
+/// Renders one table: a row per group, a column per engine, then the ratios
+/// of `ratios` (numerator id, denominator id, heading).
+pub fn render(
+    title: &str,
+    intro: &str,
+    columns: &[Column],
+    rows: &[Row],
+    ratios: &[(&str, &str, &str)],
+    since: SystemTime,
+) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "## {title}\n\n{intro}\n");
+    let _ = write!(s, "| | unit |");
+    for c in columns {
+        let _ = write!(s, " {} |", c.heading);
+    }
+    for r in ratios {
+        let _ = write!(s, " {} |", r.2);
+    }
+    let _ = write!(s, "\n| --- | --- |");
+    for _ in columns.iter().map(|_| ()).chain(ratios.iter().map(|_| ())) {
+        let _ = write!(s, " ---: |");
+    }
+    let _ = writeln!(s);
+    for r in rows {
+        let get = |id: &str| ns_per(r.group, id, r.per_iter, since);
+        let _ = write!(s, "| {} | {} |", r.label, r.unit);
+        for c in columns {
+            let _ = write!(s, " {} |", cell(get(c.id).map(|v| v / r.unit_ns)));
+        }
+        for (num, den, _) in ratios {
+            let _ = write!(s, " {} |", cell(ratio(get(num), get(den))));
+        }
+        let _ = writeln!(s);
+    }
+    s
+}
+
+/// Renders the targets with their verdicts.
+pub fn render_targets(targets: &[Target], since: SystemTime) -> String {
+    let mut s = String::from("## Targets\n\n| target | measured | verdict |\n| --- | ---: | --- |\n");
+    for t in targets {
+        let r = ratio(ns_per(t.group, t.ids.0, t.per_iter, since), ns_per(t.group, t.ids.1, t.per_iter, since));
+        let verdict = match r {
+            Some(r) if r <= t.target => "met",
+            Some(_) => "**missed**",
+            None => "not measured",
+        };
+        let _ =
+            writeln!(s, "| {} ≤ {} | {} | {verdict} |", t.what, t.target, r.map_or("—".into(), |x| format!("{x:.2}")));
+    }
+    s
+}
+
+/// Prints the report and writes it beside criterion's files.
+pub fn publish(report: &str) {
+    println!("\n{report}");
+    let path = criterion_dir().join("crashtest-mesh-table.md");
+    match std::fs::create_dir_all(criterion_dir()).and_then(|()| std::fs::write(&path, report)) {
+        Ok(()) => println!("(written to {})", path.display()),
+        Err(e) => eprintln!("could not write {}: {e}", path.display()),
+    }
+}

@@ -1,0 +1,1403 @@
+//! What a scene needs: for mesh scenes, which bounding level — none, one
+//! bounding sphere (the lecture's centroid method, Ritter's, the minimal one),
+//! one AABB, or a BVH — is the cheapest that loses no contact, measured; and
+//! how tight each bounding-sphere method is.
+//!
+//! Two scenes, at opposite ends:
+//!
+//! - **the bunny** (`fixtures/meshes/bunny.obj`, 3,674 faces), queried by
+//!   segments whose endpoints are uniform in its box grown by its largest size
+//!   on each side (so many pass beside it): the exact test is collide's robust
+//!   segment–mesh first hit over every face
+//!   ([`intersect_segment_mesh_brute`]), a few hundred microseconds;
+//! - **scattered spheres** (analytic, radius [`SCATTER_RADIUS`], centres
+//!   uniform in a cube of side `2·`[`SCATTER_HALF_SIDE`]), queried by spheres:
+//!   the exact test is collide's sphere–sphere contact against every sphere
+//!   (all contacts are wanted), a few nanoseconds each.
+//!
+//! For each level, each query first meets the level's **cheap test** (none;
+//! the query against the one bounding sphere or box of the whole scene; the
+//! tree's boxes), and only if it passes goes on to the exact test (every
+//! element; the tree: the elements of the leaves it reached). Measured per
+//! level, over the same seeded queries: how many pass, the **false-positive
+//! rate** (of the queries without contact, the fraction the cheap test still
+//! lets through), the contacts the level **loses** (queries in contact whose
+//! answer at this level says none, against every element tested exactly), the
+//! exact element tests per query, and the time per query (like the
+//! campaign's timing loops: repetitions of a loop over the queries, the
+//! median reported). The **cheapest lossless level** is the fastest one that
+//! loses no contact (by exact tests per query when the run is not timed).
+//!
+//! Bounding-sphere **tightness** (radius over the minimal radius, the
+//! referee's exact one) for the lecture's centroid method, Ritter's, parry's
+//! `point_cloud_bounding_sphere` and collide's minimal sphere, on the bunny
+//! under random rotations and on random clouds of several sizes.
+//!
+//! Decisions: the cheap tests are the ones a reader would write — segment
+//! against sphere by the closest point of the segment, query box against
+//! scene box — evaluated in `f64`, so a lost contact would show a cheap test
+//! that is not conservative; the scattered spheres get a tree of their own
+//! here ([`SphereTree`], median split on boxes), collide's trees being over
+//! triangles; a sphere stays a sphere (DESIGN: model no more than a scene
+//! needs).
+
+use crate::report::campaign::TIMING_REPS;
+use crate::report::html::{escape, table_html};
+use crate::report::markdown::{Table, table_md};
+use crate::report::plot::{Axis, Line, PALETTE, line_chart, px};
+use crate::report::section::{Section, SectionChart};
+use crate::report::summary::Timing;
+use collide::bounds::{
+    BoundingSphere, aabb_of_segment, aabb_of_sphere, bounding_sphere_centroid, bounding_sphere_minimal,
+    bounding_sphere_ritter, test_aabb_aabb,
+};
+use collide::contact::contact_sphere_sphere;
+use collide::mesh::{MeshBvh, TriMesh, intersect_segment_mesh_brute, intersect_segment_mesh_bvh};
+use collide::{Aabb, Segment, Sphere, Vec3};
+use oracle::geom::P3;
+use oracle::parry::{Parry64, ParryEngine};
+use serde::Serialize;
+use std::fmt::Write;
+use std::hint::black_box;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Radius of every scattered sphere (scene units).
+pub const SCATTER_RADIUS: f64 = 0.5;
+
+/// Half the side of the cube the scattered spheres' centres fill: with the
+/// default 256 spheres, about one per 1000 cubic units — a sparse scene, where
+/// the whole scene's bounds hold mostly empty space.
+pub const SCATTER_HALF_SIDE: f64 = 20.0;
+
+/// Query spheres' radii are uniform in `[SCATTER_RADIUS, QUERY_RADIUS_MAX]`.
+pub const QUERY_RADIUS_MAX: f64 = 3.0;
+
+/// The query regions grow the scene's box by this fraction of its largest size
+/// on each side (bunny segments: 1, so that about half the segments miss its
+/// box; sphere queries: 1/4 of the cube).
+const BUNNY_GROW: f64 = 1.0;
+const SCATTER_GROW: f64 = 0.25;
+
+/// Most spheres in a leaf of [`SphereTree`].
+pub const SPHERE_LEAF: usize = 4;
+
+/// How far below 1 a tightness may fall through rounding alone. An enclosing
+/// sphere's exact radius is at least the minimal one; a computed radius (the
+/// largest computed distance to a point) may fall below the exact enclosing
+/// radius by about `3ε` of it (collide's documented guarantee; parry's by as
+/// much), and the referee's minimal radius is correctly rounded (`ε/2`).
+/// `8ε` covers both.
+pub const TIGHTNESS_ROUNDING: f64 = 8.0 * f64::EPSILON;
+
+/// How far collide's minimal sphere may lie from the exact minimal radius,
+/// relative. collide documents an excess of at most `64ε` times the scene's
+/// size (at most `2·r_min`), so `128ε`, plus its support constructions'
+/// rounding (a few tens of `ε` on well-shaped support sets); `1024ε`
+/// (2.3e-13) leaves room for less well-shaped ones. Measured on the report's
+/// default clouds and rotations: at most `4ε`.
+pub const MINIMAL_TIGHTNESS_TOL: f64 = 1024.0 * f64::EPSILON;
+
+/// What the section runs.
+#[derive(Clone, Debug)]
+pub struct SceneSettings {
+    /// Seed of every random draw (queries, sphere positions, rotations, clouds).
+    pub seed: u64,
+    /// Whether to time the levels (off: no times, and the cheapest lossless
+    /// level is chosen by exact tests per query).
+    pub timing: bool,
+    /// The bunny's OBJ file.
+    pub bunny: PathBuf,
+    /// Segment queries against the bunny.
+    pub bunny_queries: usize,
+    /// Of those, how many are timed (the brute-force levels cost a few hundred
+    /// microseconds a query).
+    pub bunny_timed: usize,
+    /// Scattered spheres.
+    pub spheres: usize,
+    /// Sphere queries against them (all timed).
+    pub sphere_queries: usize,
+    /// Random rotations of the bunny for the tightness measure.
+    pub rotations: usize,
+    /// Random clouds per size and family for the tightness measure.
+    pub clouds_per_size: usize,
+}
+
+impl Default for SceneSettings {
+    fn default() -> Self {
+        Self {
+            seed: 0x5ce4_e0ee_d500_0006,
+            timing: true,
+            bunny: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/meshes/bunny.obj"),
+            bunny_queries: 2_000,
+            bunny_timed: 200,
+            spheres: 256,
+            sphere_queries: 2_000,
+            rotations: 24,
+            clouds_per_size: 8,
+        }
+    }
+}
+
+/// A bounding level, cheapest test first.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Level {
+    /// No cheap test: every query tests every element.
+    None,
+    /// The lecture's bounding sphere: centroid, largest distance.
+    SphereCentroid,
+    /// Ritter's bounding sphere.
+    SphereRitter,
+    /// The minimal bounding sphere (Welzl).
+    SphereMinimal,
+    /// The scene's AABB.
+    Aabb,
+    /// A bounding volume hierarchy (AABB tree).
+    Bvh,
+}
+
+impl Level {
+    /// Every level, in the order the tables show them (and ties are broken).
+    pub const ALL: [Level; 6] =
+        [Level::None, Level::SphereCentroid, Level::SphereRitter, Level::SphereMinimal, Level::Aabb, Level::Bvh];
+
+    /// For a bounding-sphere level, its method's index in the scenes' sphere
+    /// triples (centroid 0, Ritter 1, minimal 2); 0 for the other levels.
+    fn sphere_method(self) -> usize {
+        match self {
+            Level::SphereRitter => 1,
+            Level::SphereMinimal => 2,
+            _ => 0,
+        }
+    }
+
+    /// Its name in the tables.
+    pub fn label(self) -> &'static str {
+        match self {
+            Level::None => "none (every element)",
+            Level::SphereCentroid => "bounding sphere: centroid (lecture)",
+            Level::SphereRitter => "bounding sphere: Ritter",
+            Level::SphereMinimal => "bounding sphere: minimal (Welzl)",
+            Level::Aabb => "AABB",
+            Level::Bvh => "BVH",
+        }
+    }
+}
+
+/// What one level did with one query.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Outcome {
+    /// The cheap test let it through.
+    pub passed: bool,
+    /// The level's answer reports a contact.
+    pub contact: bool,
+    /// Elements tested exactly.
+    pub exact_tests: usize,
+}
+
+/// One level on one scene.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LevelStats {
+    /// The level.
+    pub level: Level,
+    /// Queries its cheap test let through.
+    pub passed: usize,
+    /// Queries without contact it let through.
+    pub false_positives: usize,
+    /// `false_positives` over the queries without contact; `None` when every
+    /// query is in contact.
+    pub false_positive_rate: Option<f64>,
+    /// Queries in contact whose answer at this level has none.
+    pub lost: usize,
+    /// Mean elements tested exactly per query.
+    pub exact_tests_per_query: f64,
+    /// Time per query (cheap test and exact tests), when timed.
+    pub timing: Option<Timing>,
+}
+
+/// One scene's measurements.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SceneNeeds {
+    /// The scene, for the reader.
+    pub name: String,
+    /// Its elements and queries, for the reader.
+    pub description: String,
+    /// Elements (faces or spheres).
+    pub elements: usize,
+    /// Queries.
+    pub queries: usize,
+    /// Queries in contact (every element tested exactly).
+    pub contacts: usize,
+    /// Queries timed per repetition (0: not timed).
+    pub timed_queries: usize,
+    /// Per level, in [`Level::ALL`] order.
+    pub levels: Vec<LevelStats>,
+    /// Index in `levels` of the cheapest level that loses no contact.
+    pub cheapest_lossless: Option<usize>,
+    /// What "cheapest" was judged by: `"time"` or `"exact tests"`.
+    pub cheapest_by: String,
+}
+
+/// Tightness of one method over a set of clouds: radius over the minimal
+/// radius.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TightnessStats {
+    /// The method.
+    pub method: String,
+    /// Mean over the clouds.
+    pub mean: f64,
+    /// Smallest.
+    pub min: f64,
+    /// Largest.
+    pub max: f64,
+    /// Every value, in cloud order.
+    pub values: Vec<f64>,
+}
+
+/// Tightness on one family of clouds at one size.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CloudTightness {
+    /// The family.
+    pub family: String,
+    /// Points per cloud.
+    pub points: usize,
+    /// Per method.
+    pub methods: Vec<TightnessStats>,
+}
+
+/// Everything the section measured.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SceneReport {
+    /// The seed of every draw.
+    pub seed: u64,
+    /// The scenes (the bunny when its file loads, then the scattered spheres).
+    pub scenes: Vec<SceneNeeds>,
+    /// Why a scene is missing, if one is.
+    pub problems: Vec<String>,
+    /// Tightness on the bunny under random rotations, per method.
+    pub bunny_tightness: Vec<TightnessStats>,
+    /// Tightness on random clouds.
+    pub cloud_tightness: Vec<CloudTightness>,
+}
+
+/// The tightness methods, in table order.
+pub const METHODS: [&str; 4] = ["centroid (lecture)", "Ritter", "parry", "minimal (Welzl)"];
+
+/// Cloud sizes of the tightness measure.
+pub const CLOUD_SIZES: [usize; 5] = [4, 16, 64, 256, 1024];
+
+/// Cloud families of the tightness measure.
+pub const CLOUD_FAMILIES: [&str; 2] = ["uniform in a cube", "Gaussian"];
+
+// ---------------------------------------------------------------------------
+// Counting
+
+/// The statistics of one level from its outcomes and the truth (per query:
+/// in contact), with its timing.
+pub fn level_stats(level: Level, truth: &[bool], outcomes: &[Outcome], timing: Option<Timing>) -> LevelStats {
+    let misses = truth.iter().filter(|t| !**t).count();
+    let passed = outcomes.iter().filter(|o| o.passed).count();
+    let false_positives = truth.iter().zip(outcomes).filter(|(t, o)| !**t && o.passed).count();
+    let lost = truth.iter().zip(outcomes).filter(|(t, o)| **t && !o.contact).count();
+    let tests: usize = outcomes.iter().map(|o| o.exact_tests).sum();
+    LevelStats {
+        level,
+        passed,
+        false_positives,
+        false_positive_rate: (misses > 0).then(|| false_positives as f64 / misses as f64),
+        lost,
+        exact_tests_per_query: if outcomes.is_empty() { 0.0 } else { tests as f64 / outcomes.len() as f64 },
+        timing,
+    }
+}
+
+/// The cheapest level that loses no contact: the smallest median time when
+/// every lossless level was timed, else the fewest exact tests per query; ties
+/// to the earlier level. With what it was judged by.
+pub fn cheapest_lossless(levels: &[LevelStats]) -> (Option<usize>, &'static str) {
+    let lossless: Vec<usize> = (0..levels.len()).filter(|&i| levels[i].lost == 0).collect();
+    let timed = !lossless.is_empty() && lossless.iter().all(|&i| levels[i].timing.is_some());
+    let cost = |i: usize| {
+        if timed {
+            levels[i].timing.as_ref().map_or(f64::INFINITY, |t| t.median_ns)
+        } else {
+            levels[i].exact_tests_per_query
+        }
+    };
+    let best = lossless.into_iter().fold(None, |b: Option<usize>, i| match b {
+        Some(j) if cost(j) <= cost(i) => Some(j),
+        _ => Some(i),
+    });
+    (best, if timed { "time" } else { "exact tests" })
+}
+
+/// Times `f` over `queries`: [`TIMING_REPS`] repetitions of one loop, each
+/// input and answer through `black_box`; median, fastest and slowest per query.
+fn time_loop<Q, R>(queries: &[Q], f: impl Fn(&Q) -> R) -> Option<Timing> {
+    if queries.is_empty() {
+        return None;
+    }
+    let mut per_query = Vec::with_capacity(TIMING_REPS as usize);
+    for _ in 0..TIMING_REPS {
+        let start = Instant::now();
+        for q in queries {
+            black_box(f(black_box(q)));
+        }
+        per_query.push(start.elapsed().as_nanos() as f64 / queries.len() as f64);
+    }
+    per_query.sort_by(f64::total_cmp);
+    Some(Timing {
+        median_ns: per_query[per_query.len() / 2],
+        min_ns: per_query[0],
+        max_ns: per_query[per_query.len() - 1],
+        reps: TIMING_REPS,
+        queries: queries.len() as u64,
+    })
+}
+
+// ---------------------------------------------------------------------------
+// Random draws
+
+/// SplitMix64: small, seeded, the same on every machine.
+struct Rng(u64);
+
+impl Rng {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `[0, 1)`.
+    fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+
+    /// Standard normal (Box–Muller).
+    fn normal(&mut self) -> f64 {
+        let u = 1.0 - self.unit();
+        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * self.unit()).cos()
+    }
+
+    /// A uniform rotation matrix (from a uniform unit quaternion).
+    fn rotation(&mut self) -> [[f64; 3]; 3] {
+        let q = loop {
+            let q = [0; 4].map(|_| self.range(-1.0, 1.0));
+            let n2: f64 = q.iter().map(|x| x * x).sum();
+            if n2 > 1e-4 && n2 <= 1.0 {
+                let n = n2.sqrt();
+                break q.map(|x| x / n);
+            }
+        };
+        let [w, x, y, z] = q;
+        [
+            [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
+            [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
+            [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
+        ]
+    }
+}
+
+fn v(p: P3) -> Vec3<f64> {
+    Vec3::new(p[0], p[1], p[2])
+}
+
+fn bounds(points: &[P3]) -> (P3, P3) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// A point uniform in the box `(lo, hi)` grown by `grow` times its largest
+/// size on each side.
+fn point_in_grown(rng: &mut Rng, (lo, hi): (P3, P3), grow: f64) -> P3 {
+    let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+    [0, 1, 2].map(|k| rng.range(lo[k] - grow * size, hi[k] + grow * size))
+}
+
+// ---------------------------------------------------------------------------
+// Cheap tests
+
+/// The whole scene's bounding spheres, one per method, in [`Level`] order
+/// (centroid, Ritter, minimal).
+fn scene_spheres(points: &[Vec3<f64>]) -> Option<[BoundingSphere<f64>; 3]> {
+    Some([bounding_sphere_centroid(points)?, bounding_sphere_ritter(points)?, bounding_sphere_minimal(points)?])
+}
+
+/// Whether the segment meets the closed ball: the squared distance from the
+/// centre to the segment's closest point `q0 + t d`,
+/// `t = clamp((c − q0)·d / d·d, 0, 1)` (`t = 0` for a point), against `r²`, in
+/// `f64` — the test a reader would write; not conservative by construction
+/// (rounding), which the "lost" column would show.
+pub fn segment_meets_ball(q0: P3, q1: P3, center: P3, radius: f64) -> bool {
+    let d = [0, 1, 2].map(|k| q1[k] - q0[k]);
+    let w = [0, 1, 2].map(|k| center[k] - q0[k]);
+    let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    let t = if dd > 0.0 { ((w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd).clamp(0.0, 1.0) } else { 0.0 };
+    let e = [0, 1, 2].map(|k| q0[k] + t * d[k] - center[k]);
+    e[0] * e[0] + e[1] * e[1] + e[2] * e[2] <= radius * radius
+}
+
+fn p3(v: &Vec3<f64>) -> P3 {
+    [v.x, v.y, v.z]
+}
+
+// ---------------------------------------------------------------------------
+// Mesh scene: segments against a mesh
+
+/// The levels of a mesh scene queried by segments: the statistics per level
+/// (timed on the first `timed` queries when `timing`), and the queries in
+/// contact. The truth is the brute-force query (every face, exactly).
+pub fn mesh_levels(mesh: &TriMesh<f64>, segments: &[(P3, P3)], timing: bool, timed: usize) -> (Vec<LevelStats>, usize) {
+    let points: Vec<Vec3<f64>> = mesh.vertices().to_vec();
+    let bvh = MeshBvh::new(mesh.clone());
+    let segs: Vec<Segment<f64>> = segments.iter().map(|(a, b)| Segment::new(v(*a), v(*b))).collect();
+    let faces = mesh.len();
+    let truth: Vec<bool> = segs.iter().map(|s| intersect_segment_mesh_brute(s, mesh).hit.is_some()).collect();
+    let contacts = truth.iter().filter(|t| **t).count();
+    let spheres = scene_spheres(&points);
+    let aabb = mesh.aabb();
+    let timed_segs = &segs[..timed.min(segs.len())];
+    let time = |f: &dyn Fn(&Segment<f64>) -> bool| if timing { time_loop(timed_segs, f) } else { None };
+    let brute = |s: &Segment<f64>| intersect_segment_mesh_brute(s, mesh).hit.is_some();
+    let mut out = Vec::new();
+    for level in Level::ALL {
+        let (outcomes, timing): (Vec<Outcome>, Option<Timing>) = match level {
+            Level::None => (
+                truth.iter().map(|&t| Outcome { passed: true, contact: t, exact_tests: faces }).collect(),
+                time(&brute),
+            ),
+            Level::SphereCentroid | Level::SphereRitter | Level::SphereMinimal => {
+                let Some(spheres) = spheres else { continue };
+                let b = spheres[level.sphere_method()];
+                let (c, r) = (p3(&b.center), b.radius);
+                let cheap = |s: &Segment<f64>| segment_meets_ball(p3(&s.start), p3(&s.end), c, r);
+                let outcomes = segs
+                    .iter()
+                    .zip(&truth)
+                    .map(|(s, &t)| {
+                        let passed = cheap(s);
+                        Outcome { passed, contact: passed && t, exact_tests: if passed { faces } else { 0 } }
+                    })
+                    .collect();
+                (outcomes, time(&|s| cheap(s) && brute(s)))
+            }
+            Level::Aabb => {
+                let Some(bb) = aabb else { continue };
+                let cheap = |s: &Segment<f64>| test_aabb_aabb(&aabb_of_segment(s), &bb);
+                let outcomes = segs
+                    .iter()
+                    .zip(&truth)
+                    .map(|(s, &t)| {
+                        let passed = cheap(s);
+                        Outcome { passed, contact: passed && t, exact_tests: if passed { faces } else { 0 } }
+                    })
+                    .collect();
+                (outcomes, time(&|s| cheap(s) && brute(s)))
+            }
+            Level::Bvh => {
+                let mut near = Vec::new();
+                let outcomes = segs
+                    .iter()
+                    .map(|s| {
+                        bvh.faces_near_segment(s, &mut near);
+                        Outcome {
+                            passed: !near.is_empty(),
+                            contact: intersect_segment_mesh_bvh(s, &bvh).hit.is_some(),
+                            exact_tests: near.len(),
+                        }
+                    })
+                    .collect();
+                (outcomes, time(&|s| intersect_segment_mesh_bvh(s, &bvh).hit.is_some()))
+            }
+        };
+        out.push(level_stats(level, &truth, &outcomes, timing));
+    }
+    (out, contacts)
+}
+
+fn bunny_scene(settings: &SceneSettings) -> Result<SceneNeeds, String> {
+    let bunny = crate::mesh::load_mesh_file(&settings.bunny)?;
+    let mesh = TriMesh::new(bunny.vertices.iter().map(|p| v(*p)).collect(), bunny.triangles.clone())
+        .map_err(|e| format!("{}: {e}", settings.bunny.display()))?;
+    let mut rng = Rng(settings.seed ^ 0xb0b0);
+    let b = bounds(&bunny.vertices);
+    let segments: Vec<(P3, P3)> = (0..settings.bunny_queries)
+        .map(|_| (point_in_grown(&mut rng, b, BUNNY_GROW), point_in_grown(&mut rng, b, BUNNY_GROW)))
+        .collect();
+    let timed = if settings.timing { settings.bunny_timed.min(segments.len()) } else { 0 };
+    let (levels, contacts) = mesh_levels(&mesh, &segments, settings.timing, timed);
+    let (cheapest, by) = cheapest_lossless(&levels);
+    Ok(SceneNeeds {
+        name: "The bunny, queried by segments".into(),
+        description: format!(
+            "{} faces; {} segments with both endpoints uniform in the bunny's box grown by {BUNNY_GROW} of its \
+             largest size on each side; exact test: collide's robust segment–mesh first hit over every face",
+            mesh.len(),
+            segments.len()
+        ),
+        elements: mesh.len(),
+        queries: segments.len(),
+        contacts,
+        timed_queries: timed,
+        levels,
+        cheapest_lossless: cheapest,
+        cheapest_by: by.into(),
+    })
+}
+
+// ---------------------------------------------------------------------------
+// Scattered spheres: spheres against spheres
+
+/// A binary AABB tree over spheres: median split on the longest axis of the
+/// centres' box, leaves of at most [`SPHERE_LEAF`] spheres, every node's box
+/// the union of its spheres' boxes (collide's `aabb_of_sphere`), so a query
+/// box that misses a node's box misses all of its spheres.
+pub struct SphereTree {
+    nodes: Vec<TreeNode>,
+    order: Vec<usize>,
+}
+
+struct TreeNode {
+    bb: Aabb<f64>,
+    /// Leaf: `order[start..start + count]`; internal (`count == 0`): children
+    /// at `start` and `start + 1`.
+    start: usize,
+    count: usize,
+}
+
+impl SphereTree {
+    /// Builds the tree (`None` for no spheres).
+    pub fn new(spheres: &[Sphere<f64>]) -> Option<Self> {
+        if spheres.is_empty() {
+            return None;
+        }
+        let mut tree = SphereTree { nodes: Vec::new(), order: (0..spheres.len()).collect() };
+        tree.nodes.push(TreeNode { bb: Aabb::new(Vec3::zeros(), Vec3::zeros()), start: 0, count: 0 });
+        let mut pending = vec![(0usize, 0usize, spheres.len())];
+        while let Some((node, lo, hi)) = pending.pop() {
+            let ids = &mut tree.order[lo..hi];
+            let bb = ids
+                .iter()
+                .map(|&i| aabb_of_sphere(&spheres[i]))
+                .reduce(|a, b| Aabb::new(a.min.zip_map(&b.min, f64::min), a.max.zip_map(&b.max, f64::max)));
+            let Some(bb) = bb else { continue };
+            tree.nodes[node].bb = bb;
+            if ids.len() <= SPHERE_LEAF {
+                tree.nodes[node].start = lo;
+                tree.nodes[node].count = ids.len();
+                continue;
+            }
+            let ext = bb.max - bb.min;
+            let axis = if ext.x >= ext.y && ext.x >= ext.z {
+                0
+            } else if ext.y >= ext.z {
+                1
+            } else {
+                2
+            };
+            let mid = ids.len() / 2;
+            ids.select_nth_unstable_by(mid, |a, b| {
+                spheres[*a].center[axis].total_cmp(&spheres[*b].center[axis]).then(a.cmp(b))
+            });
+            let first = tree.nodes.len();
+            for _ in 0..2 {
+                tree.nodes.push(TreeNode { bb, start: 0, count: 0 });
+            }
+            tree.nodes[node].start = first;
+            pending.push((first, lo, lo + mid));
+            pending.push((first + 1, lo + mid, hi));
+        }
+        Some(tree)
+    }
+
+    /// Calls `f` with every sphere of every leaf whose box the query box
+    /// meets. No allocation: the pending nodes sit in a fixed array (the
+    /// median split halves every node, so the depth is at most
+    /// `log2(n) + 1 < 64`).
+    pub fn for_each_near(&self, query: &Aabb<f64>, mut f: impl FnMut(usize)) {
+        let mut stack = [0usize; 64];
+        let mut sp = 1usize;
+        while sp > 0 {
+            sp -= 1;
+            let n = &self.nodes[stack[sp]];
+            if !test_aabb_aabb(query, &n.bb) {
+                continue;
+            }
+            if n.count > 0 {
+                self.order[n.start..n.start + n.count].iter().for_each(|&i| f(i));
+            } else if sp + 2 <= stack.len() {
+                stack[sp] = n.start;
+                stack[sp + 1] = n.start + 1;
+                sp += 2;
+            }
+        }
+    }
+
+    /// The spheres of every leaf whose box the query box meets, appended to
+    /// `out` (cleared first).
+    pub fn near(&self, query: &Aabb<f64>, out: &mut Vec<usize>) {
+        out.clear();
+        self.for_each_near(query, |i| out.push(i));
+    }
+}
+
+/// Contacts of `q` with the spheres `ids` (collide's robust sphere–sphere
+/// contact; touching counts).
+fn contacts_among(q: &Sphere<f64>, spheres: &[Sphere<f64>], ids: impl Iterator<Item = usize>) -> usize {
+    ids.filter(|&i| contact_sphere_sphere(q, &spheres[i]).is_some()).count()
+}
+
+/// The levels of a scene of spheres queried by spheres (all contacts wanted):
+/// statistics per level (timed when `timing`), and the queries in contact.
+/// The whole scene's bounding spheres enclose the centres with the largest
+/// radius added (the minimal one is then the minimal sphere enclosing spheres
+/// of equal radii).
+pub fn sphere_levels(spheres: &[Sphere<f64>], queries: &[Sphere<f64>], timing: bool) -> (Vec<LevelStats>, usize) {
+    let n = spheres.len();
+    let all = |q: &Sphere<f64>| contacts_among(q, spheres, 0..n);
+    let truth: Vec<bool> = queries.iter().map(|q| all(q) > 0).collect();
+    let contacts = truth.iter().filter(|t| **t).count();
+    let centres: Vec<Vec3<f64>> = spheres.iter().map(|s| s.center).collect();
+    let r_max = spheres.iter().map(|s| s.radius).fold(0.0, f64::max);
+    let bounding = scene_spheres(&centres).map(|b| b.map(|b| Sphere::new(b.center, b.radius + r_max)));
+    let scene_box = spheres
+        .iter()
+        .map(aabb_of_sphere)
+        .reduce(|a, b| Aabb::new(a.min.zip_map(&b.min, f64::min), a.max.zip_map(&b.max, f64::max)));
+    let tree = SphereTree::new(spheres);
+    let time = |f: &dyn Fn(&Sphere<f64>) -> usize| if timing { time_loop(queries, f) } else { None };
+    let mut out = Vec::new();
+    for level in Level::ALL {
+        let gated =
+            |passed: bool, t: bool| Outcome { passed, contact: passed && t, exact_tests: if passed { n } else { 0 } };
+        let (outcomes, timing): (Vec<Outcome>, Option<Timing>) = match level {
+            Level::None => (truth.iter().map(|&t| gated(true, t)).collect(), time(&all)),
+            Level::SphereCentroid | Level::SphereRitter | Level::SphereMinimal => {
+                let Some(b) = bounding else { continue };
+                let b = b[level.sphere_method()];
+                let cheap = |q: &Sphere<f64>| contact_sphere_sphere(q, &b).is_some();
+                let outcomes = queries.iter().zip(&truth).map(|(q, &t)| gated(cheap(q), t)).collect();
+                (outcomes, time(&|q| if cheap(q) { all(q) } else { 0 }))
+            }
+            Level::Aabb => {
+                let Some(bb) = scene_box else { continue };
+                let cheap = |q: &Sphere<f64>| test_aabb_aabb(&aabb_of_sphere(q), &bb);
+                let outcomes = queries.iter().zip(&truth).map(|(q, &t)| gated(cheap(q), t)).collect();
+                (outcomes, time(&|q| if cheap(q) { all(q) } else { 0 }))
+            }
+            Level::Bvh => {
+                let Some(tree) = &tree else { continue };
+                let mut near = Vec::new();
+                let outcomes = queries
+                    .iter()
+                    .map(|q| {
+                        tree.near(&aabb_of_sphere(q), &mut near);
+                        Outcome {
+                            passed: !near.is_empty(),
+                            contact: contacts_among(q, spheres, near.iter().copied()) > 0,
+                            exact_tests: near.len(),
+                        }
+                    })
+                    .collect();
+                let timed = |q: &Sphere<f64>| {
+                    let mut count = 0usize;
+                    tree.for_each_near(&aabb_of_sphere(q), |i| {
+                        count += usize::from(contact_sphere_sphere(q, &spheres[i]).is_some());
+                    });
+                    count
+                };
+                (outcomes, time(&timed))
+            }
+        };
+        out.push(level_stats(level, &truth, &outcomes, timing));
+    }
+    (out, contacts)
+}
+
+fn scatter_scene(settings: &SceneSettings) -> SceneNeeds {
+    let mut rng = Rng(settings.seed ^ 0x5ca7);
+    let h = SCATTER_HALF_SIDE;
+    let spheres: Vec<Sphere<f64>> =
+        (0..settings.spheres).map(|_| Sphere::new(v([0; 3].map(|_| rng.range(-h, h))), SCATTER_RADIUS)).collect();
+    let b = ([-h; 3], [h; 3]);
+    let queries: Vec<Sphere<f64>> = (0..settings.sphere_queries)
+        .map(|_| Sphere::new(v(point_in_grown(&mut rng, b, SCATTER_GROW)), rng.range(SCATTER_RADIUS, QUERY_RADIUS_MAX)))
+        .collect();
+    let (levels, contacts) = sphere_levels(&spheres, &queries, settings.timing);
+    let (cheapest, by) = cheapest_lossless(&levels);
+    SceneNeeds {
+        name: "Scattered spheres, queried by spheres".into(),
+        description: format!(
+            "{} spheres of radius {SCATTER_RADIUS}, centres uniform in [−{h}, {h}]³; {} query spheres, radius \
+             uniform in [{SCATTER_RADIUS}, {QUERY_RADIUS_MAX}], centres uniform in that cube grown by {SCATTER_GROW} \
+             of its side on each side; every contact wanted; exact test: collide's sphere–sphere contact",
+            spheres.len(),
+            queries.len()
+        ),
+        elements: spheres.len(),
+        queries: queries.len(),
+        contacts,
+        timed_queries: if settings.timing { queries.len() } else { 0 },
+        levels,
+        cheapest_lossless: cheapest,
+        cheapest_by: by.into(),
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Tightness
+
+/// Each method's radius over the exact minimal radius (the referee's), in
+/// [`METHODS`] order; `None` when a method or the referee gives no sphere, or
+/// the minimal radius is 0.
+pub fn tightness(points: &[P3]) -> Option<[f64; 4]> {
+    let r_min = oracle::referee::bounds::min_ball(points).ok()?.radius;
+    if r_min.is_nan() || r_min <= 0.0 {
+        return None;
+    }
+    let vs: Vec<Vec3<f64>> = points.iter().map(|p| v(*p)).collect();
+    let radii = [
+        bounding_sphere_centroid(&vs)?.radius,
+        bounding_sphere_ritter(&vs)?.radius,
+        Parry64.bounding_sphere_of_points(points)?.radius,
+        bounding_sphere_minimal(&vs)?.radius,
+    ];
+    Some(radii.map(|r| r / r_min))
+}
+
+fn stats(per_cloud: &[[f64; 4]]) -> Vec<TightnessStats> {
+    METHODS
+        .iter()
+        .enumerate()
+        .map(|(m, name)| {
+            let values: Vec<f64> = per_cloud.iter().map(|t| t[m]).collect();
+            let n = values.len().max(1) as f64;
+            TightnessStats {
+                method: (*name).into(),
+                mean: values.iter().sum::<f64>() / n,
+                min: values.iter().copied().fold(f64::INFINITY, f64::min),
+                max: values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                values,
+            }
+        })
+        .collect()
+}
+
+fn cloud(rng: &mut Rng, family: usize, n: usize) -> Vec<P3> {
+    (0..n)
+        .map(|_| match family {
+            0 => [0; 3].map(|_| rng.range(-1.0, 1.0)),
+            _ => [0; 3].map(|_| rng.normal()),
+        })
+        .collect()
+}
+
+fn rotate(r: &[[f64; 3]; 3], p: &P3) -> P3 {
+    [0, 1, 2].map(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2])
+}
+
+// ---------------------------------------------------------------------------
+// The section
+
+/// Runs everything the section measures.
+pub fn run(settings: &SceneSettings) -> SceneReport {
+    let mut scenes = Vec::new();
+    let mut problems = Vec::new();
+    let bunny = match crate::mesh::load_mesh_file(&settings.bunny) {
+        Ok(b) => Some(b),
+        Err(e) => {
+            problems.push(format!("the bunny scene and its tightness were not measured: {e}"));
+            None
+        }
+    };
+    if bunny.is_some() {
+        match bunny_scene(settings) {
+            Ok(s) => scenes.push(s),
+            Err(e) => problems.push(format!("the bunny scene was not measured: {e}")),
+        }
+    }
+    scenes.push(scatter_scene(settings));
+    let mut rng = Rng(settings.seed ^ 0x7167);
+    let bunny_tightness = match &bunny {
+        Some(b) => {
+            let per: Vec<[f64; 4]> = (0..settings.rotations)
+                .filter_map(|_| {
+                    let r = rng.rotation();
+                    tightness(&b.vertices.iter().map(|p| rotate(&r, p)).collect::<Vec<_>>())
+                })
+                .collect();
+            stats(&per)
+        }
+        None => Vec::new(),
+    };
+    let mut cloud_tightness = Vec::new();
+    for (family, name) in CLOUD_FAMILIES.iter().enumerate() {
+        for &n in &CLOUD_SIZES {
+            let per: Vec<[f64; 4]> =
+                (0..settings.clouds_per_size).filter_map(|_| tightness(&cloud(&mut rng, family, n))).collect();
+            cloud_tightness.push(CloudTightness { family: (*name).into(), points: n, methods: stats(&per) });
+        }
+    }
+    SceneReport { seed: settings.seed, scenes, problems, bunny_tightness, cloud_tightness }
+}
+
+/// A rate as a percentage with one decimal.
+fn percent(x: Option<f64>) -> String {
+    x.map_or("—".into(), |r| format!("{:.1}%", 100.0 * r))
+}
+
+/// A non-negative quantity with about three significant digits, plain
+/// (`0.512`, `4.75`, `18.3`, `187`).
+fn num(x: f64) -> String {
+    if x >= 100.0 {
+        format!("{x:.0}")
+    } else if x >= 10.0 {
+        format!("{x:.1}")
+    } else if x >= 1.0 {
+        format!("{x:.2}")
+    } else {
+        format!("{x:.3}")
+    }
+}
+
+/// Microseconds per query, median (fastest–slowest).
+fn micros(t: Option<&Timing>) -> String {
+    t.map_or("—".into(), |t| format!("{} ({}–{})", num(t.median_ns / 1e3), num(t.min_ns / 1e3), num(t.max_ns / 1e3)))
+}
+
+/// A scene's table: one row per level, the cheapest lossless marked.
+pub fn scene_table(s: &SceneNeeds) -> Table {
+    let header = [
+        ("level", false),
+        ("cheap test passes", true),
+        ("false-positive rate", true),
+        ("contacts lost", true),
+        ("exact tests / query", true),
+        ("time / query (µs)", true),
+        ("needed?", false),
+    ];
+    Table {
+        header: header.iter().map(|h| h.0.to_string()).collect(),
+        numeric: header.iter().map(|h| h.1).collect(),
+        rows: s
+            .levels
+            .iter()
+            .enumerate()
+            .map(|(i, l)| {
+                let mark = if s.cheapest_lossless == Some(i) {
+                    format!("◀ cheapest lossless (by {})", s.cheapest_by)
+                } else if l.lost > 0 {
+                    "loses contacts".into()
+                } else {
+                    String::new()
+                };
+                vec![
+                    l.level.label().into(),
+                    format!("{} of {}", l.passed, s.queries),
+                    percent(l.false_positive_rate),
+                    l.lost.to_string(),
+                    num(l.exact_tests_per_query),
+                    micros(l.timing.as_ref()),
+                    mark,
+                ]
+            })
+            .collect(),
+    }
+}
+
+/// The tightness table: per set of clouds, each method's mean (max).
+pub fn tightness_table(r: &SceneReport) -> Table {
+    let mut header = vec![("clouds".to_string(), false)];
+    header.extend(METHODS.iter().map(|m| (format!("{m}: mean (max)"), true)));
+    let cell = |t: &TightnessStats| format!("{:.4} ({:.4})", t.mean, t.max);
+    let mut rows = Vec::new();
+    if !r.bunny_tightness.is_empty() {
+        let n = r.bunny_tightness[0].values.len();
+        let mut row = vec![format!("the bunny, {n} random rotations")];
+        row.extend(r.bunny_tightness.iter().map(cell));
+        rows.push(row);
+    }
+    for c in &r.cloud_tightness {
+        let n = c.methods.first().map_or(0, |m| m.values.len());
+        let mut row = vec![format!("{}, {} points ({n} clouds)", c.family, c.points)];
+        row.extend(c.methods.iter().map(cell));
+        rows.push(row);
+    }
+    Table { header: header.iter().map(|h| h.0.clone()).collect(), numeric: header.iter().map(|h| h.1).collect(), rows }
+}
+
+/// The section's text before its tables.
+fn intro() -> &'static str {
+    "For each scene and bounding level, every query first meets the level's cheap test (none; the query \
+     against the whole scene's bounding sphere or AABB; the tree's boxes) and goes on to the exact test only \
+     if it passes (every element, or the elements of the leaves reached). False-positive rate: of the queries \
+     without contact, the fraction the cheap test still let through. Contacts lost: queries in contact whose \
+     answer at that level has none (every element tested exactly is the truth). The cheapest lossless level \
+     is the fastest that loses no contact; time per query is the median over repetitions of a loop over the \
+     (timed) queries, fastest–slowest in parentheses."
+}
+
+/// The headline sentence of a scene.
+fn headline(s: &SceneNeeds) -> String {
+    match s.cheapest_lossless.and_then(|i| s.levels.get(i)) {
+        Some(l) => format!(
+            "{}: {} of {} queries in contact; cheapest lossless level: {} (by {}).",
+            s.name,
+            s.contacts,
+            s.queries,
+            l.level.label(),
+            s.cheapest_by
+        ),
+        None => format!("{}: no level is lossless.", s.name),
+    }
+}
+
+/// The section's Markdown (for `summary.md`).
+pub fn markdown(r: &SceneReport) -> String {
+    let mut md = String::from("## What the scene needs\n\n");
+    let _ = writeln!(md, "{}\n", intro());
+    for p in &r.problems {
+        let _ = writeln!(md, "**Not measured:** {p}\n");
+    }
+    for s in &r.scenes {
+        let _ = writeln!(md, "### {}\n\n{}.\n\n{}\n", s.name, s.description, headline(s));
+        md.push_str(&table_md(&scene_table(s)));
+        md.push('\n');
+    }
+    let _ = writeln!(
+        md,
+        "### Bounding-sphere tightness\n\nRadius over the exact minimal radius (the referee's), per method: \
+         mean (max) over the clouds. 1 is the minimal sphere.\n"
+    );
+    for n in tightness_notes(r) {
+        let _ = writeln!(md, "{n}\n");
+    }
+    md.push_str(&table_md(&tightness_table(r)));
+    md
+}
+
+/// Observations read off the tightness numbers: methods that give the same
+/// value under every rotation of the bunny (they do not depend on the axes),
+/// and methods that give the same radius on every cloud (within
+/// [`SAME_RADIUS_REL`]).
+pub fn tightness_notes(r: &SceneReport) -> Vec<String> {
+    let mut notes = Vec::new();
+    let invariant: Vec<&str> = r
+        .bunny_tightness
+        .iter()
+        .filter(|t| t.values.len() > 1 && t.max - t.min <= SAME_RADIUS_REL * t.max)
+        .map(|t| t.method.as_str())
+        .collect();
+    if !invariant.is_empty() {
+        notes.push(format!(
+            "On the bunny, the same radius under every rotation (they do not depend on the axes): {}.",
+            invariant.join(", ")
+        ));
+    }
+    for (a, name_a) in METHODS.iter().enumerate() {
+        for (b, name_b) in METHODS.iter().enumerate().skip(a + 1) {
+            let all_sets = r
+                .cloud_tightness
+                .iter()
+                .map(|c| &c.methods)
+                .chain((!r.bunny_tightness.is_empty()).then_some(&r.bunny_tightness));
+            let mut any = false;
+            let same = all_sets.into_iter().all(|m| match (m.get(a), m.get(b)) {
+                (Some(x), Some(y)) => {
+                    any |= !x.values.is_empty();
+                    x.values.len() == y.values.len()
+                        && x.values.iter().zip(&y.values).all(|(p, q)| (p - q).abs() <= SAME_RADIUS_REL * p.abs())
+                }
+                _ => false,
+            });
+            if any && same {
+                notes.push(format!("{name_a} and {name_b} give the same radius on every cloud."));
+            }
+        }
+    }
+    notes
+}
+
+/// Two radii relative to the minimal one are "the same" within this relative
+/// difference: a few roundings (the methods compute the same quantity in a
+/// different order).
+pub const SAME_RADIUS_REL: f64 = 1e-12;
+
+/// The section's HTML body.
+fn html(r: &SceneReport) -> String {
+    let mut h = String::new();
+    let _ = writeln!(h, "<p>{}</p>", escape(intro()));
+    for p in &r.problems {
+        let _ = writeln!(h, "<p><strong>Not measured:</strong> {}</p>", escape(p));
+    }
+    for s in &r.scenes {
+        let _ = writeln!(
+            h,
+            "<h3>{}</h3>\n<p>{}.</p>\n<p>{}</p>",
+            escape(&s.name),
+            escape(&s.description),
+            escape(&headline(s))
+        );
+        h.push_str(&table_html(&scene_table(s)));
+    }
+    let _ = writeln!(
+        h,
+        "<h3>Bounding-sphere tightness</h3>\n<p>Radius over the exact minimal radius (the referee's), per \
+         method: mean (max) over the clouds. 1 is the minimal sphere.</p>"
+    );
+    for n in tightness_notes(r) {
+        let _ = writeln!(h, "<p>{}</p>", escape(&n));
+    }
+    h.push_str(&table_html(&tightness_table(r)));
+    h
+}
+
+/// Tightness against cloud size for one family: one line per method (means).
+fn cloud_chart(r: &SceneReport, family: &str) -> String {
+    let series: Vec<Line> = METHODS
+        .iter()
+        .enumerate()
+        .map(|(m, name)| Line {
+            name: (*name).into(),
+            style: m,
+            points: r
+                .cloud_tightness
+                .iter()
+                .filter(|c| c.family == family)
+                .filter_map(|c| Some((c.points as f64, c.methods.get(m)?.mean)))
+                .collect(),
+            failures: Vec::new(),
+        })
+        .collect();
+    let top = series.iter().flat_map(|l| l.points.iter().map(|p| p.1)).fold(1.0, f64::max);
+    let step = if top > 1.5 { 0.25 } else { 0.05 };
+    let max = 1.0 + ((top - 1.0) / step).ceil().max(1.0) * step;
+    line_chart(
+        &format!("Bounding-sphere tightness, random clouds ({family})"),
+        "points per cloud",
+        "radius / minimal radius (mean)",
+        Axis::log_covering(CLOUD_SIZES.iter().map(|&n| n as f64)),
+        Axis::Linear { min: 1.0, max, step },
+        &series,
+        LINE_OFFSET_PX,
+    )
+}
+
+/// Vertical offset between the tightness lines, in pixels: parry's sphere is
+/// built as the lecture's is (centroid, largest distance), so their lines
+/// would otherwise coincide.
+const LINE_OFFSET_PX: f64 = 3.0;
+
+/// A strip chart: one row per method, one dot per rotation at its tightness
+/// (x), on a linear axis from 1. Pure: the same values give the same SVG.
+pub fn strip_chart(title: &str, rows: &[TightnessStats]) -> String {
+    const W: f64 = 760.0;
+    let (left, right, top) = (190.0, 720.0, 60.0);
+    let row_h = 44.0;
+    let bottom = top + row_h * rows.len().max(1) as f64;
+    let h = bottom + 60.0;
+    let hi = rows.iter().flat_map(|r| r.values.iter().copied()).filter(|x| x.is_finite()).fold(1.0, f64::max);
+    let step = if hi > 1.5 { 0.25 } else { 0.05 };
+    let max = 1.0 + ((hi - 1.0) / step).ceil().max(1.0) * step;
+    let x = |t: f64| left + ((t - 1.0) / (max - 1.0)).clamp(0.0, 1.0) * (right - left);
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        r##"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {W} {h}" width="{W}" height="{h}" role="img" aria-label="{t}" font-family="system-ui, -apple-system, 'Segoe UI', Roboto, 'Helvetica Neue', Arial, sans-serif" font-size="11"><title>{t}</title><rect x="0" y="0" width="{W}" height="{h}" fill="#fff"/><text x="{left}" y="28" font-size="15" font-weight="600" fill="#111">{t}</text>"##,
+        h = px(h),
+        t = escape(title),
+    );
+    let ticks = ((max - 1.0) / step).round() as usize;
+    for i in 0..=ticks {
+        let t = 1.0 + i as f64 * step;
+        let _ = write!(
+            s,
+            r##"<line x1="{a}" y1="{t0}" x2="{a}" y2="{b}" stroke="#e6e6e6"/><text x="{a}" y="{l}" text-anchor="middle" fill="#333">{t:.2}</text>"##,
+            a = px(x(t)),
+            t0 = px(top),
+            b = px(bottom),
+            l = px(bottom + 18.0),
+        );
+    }
+    for (i, r) in rows.iter().enumerate() {
+        let y = top + row_h * (i as f64 + 0.5);
+        let color = PALETTE[i % PALETTE.len()];
+        let _ = write!(
+            s,
+            r##"<text x="{tx}" y="{ty}" text-anchor="end" fill="#222">{name}</text>"##,
+            tx = px(left - 10.0),
+            ty = px(y + 4.0),
+            name = escape(&r.method),
+        );
+        for (k, t) in r.values.iter().enumerate() {
+            // A fixed small vertical spread by index keeps equal values apart.
+            let dy = ((k % 5) as f64 - 2.0) * 3.0;
+            let _ = write!(
+                s,
+                r##"<circle cx="{}" cy="{}" r="3" fill="{color}" fill-opacity="0.7"/>"##,
+                px(x(*t)),
+                px(y + dy)
+            );
+        }
+        let _ = write!(
+            s,
+            r##"<line x1="{a}" y1="{y0}" x2="{a}" y2="{y1}" stroke="{color}" stroke-width="2" stroke-dasharray="4 3"/>"##,
+            a = px(x(r.mean)),
+            y0 = px(y - 14.0),
+            y1 = px(y + 14.0),
+        );
+    }
+    let _ = write!(
+        s,
+        r##"<rect x="{l}" y="{t}" width="{w}" height="{hh}" fill="none" stroke="#555"/><text x="{mx}" y="{xb}" text-anchor="middle" font-size="12" fill="#222">radius / minimal radius (dots: one per rotation; dashed: mean)</text></svg>"##,
+        l = px(left),
+        t = px(top),
+        w = px(right - left),
+        hh = px(bottom - top),
+        mx = px((left + right) / 2.0),
+        xb = px(bottom + 40.0),
+    );
+    s
+}
+
+/// The section's charts.
+pub fn charts(r: &SceneReport) -> Vec<SectionChart> {
+    let mut out = Vec::new();
+    if !r.bunny_tightness.is_empty() {
+        let n = r.bunny_tightness[0].values.len();
+        let title = format!("Bounding-sphere tightness, the bunny under {n} random rotations");
+        out.push(SectionChart {
+            svg: strip_chart(&title, &r.bunny_tightness),
+            file: "scene-tightness-bunny.svg".into(),
+            title,
+        });
+    }
+    for (i, family) in CLOUD_FAMILIES.iter().enumerate() {
+        out.push(SectionChart {
+            title: format!("Bounding-sphere tightness against cloud size, {family}"),
+            file: format!("scene-tightness-clouds-{}.svg", ["uniform", "gaussian"][i]),
+            svg: cloud_chart(r, family),
+        });
+    }
+    out
+}
+
+/// The section "What the scene needs" (id `scene`), measured now.
+pub fn section(settings: &SceneSettings) -> Section {
+    let r = run(settings);
+    Section {
+        id: "scene".into(),
+        title: "What the scene needs".into(),
+        html: html(&r),
+        markdown: markdown(&r),
+        charts: charts(&r),
+        data: serde_json::to_value(&r).unwrap_or_else(|e| serde_json::Value::String(format!("unserializable: {e}"))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn outcome(passed: bool, contact: bool, exact_tests: usize) -> Outcome {
+        Outcome { passed, contact, exact_tests }
+    }
+
+    fn timing(median_ns: f64) -> Option<Timing> {
+        Some(Timing { median_ns, min_ns: median_ns, max_ns: median_ns, reps: 1, queries: 1 })
+    }
+
+    fn stats_with(level: Level, lost: usize, tests: f64, t: Option<Timing>) -> LevelStats {
+        LevelStats {
+            level,
+            passed: 0,
+            false_positives: 0,
+            false_positive_rate: None,
+            lost,
+            exact_tests_per_query: tests,
+            timing: t,
+        }
+    }
+
+    #[test]
+    fn scene_level_stats_count_false_positives_among_misses_and_lost_contacts() {
+        let truth = [true, false, false, true, false];
+        let outcomes = [
+            outcome(true, true, 4),
+            outcome(true, false, 4),
+            outcome(false, false, 0),
+            outcome(false, false, 0),
+            outcome(false, false, 0),
+        ];
+        let s = level_stats(Level::Aabb, &truth, &outcomes, None);
+        assert_eq!((s.passed, s.false_positives, s.lost), (2, 1, 1));
+        assert_eq!(s.false_positive_rate.map(|r| (r * 3.0).round()), Some(1.0), "1 of 3 misses passed");
+        assert!((s.exact_tests_per_query - 1.6).abs() < 1e-12, "8 tests over 5 queries");
+        // Every query in contact: no rate.
+        let all = level_stats(Level::None, &[true], &[outcome(true, true, 1)], None);
+        assert_eq!(all.false_positive_rate, None);
+    }
+
+    #[test]
+    fn scene_cheapest_lossless_is_the_fastest_level_that_loses_nothing() {
+        let levels = [
+            stats_with(Level::None, 0, 100.0, timing(10_000.0)),
+            stats_with(Level::SphereCentroid, 1, 5.0, timing(1_000.0)),
+            stats_with(Level::Aabb, 0, 60.0, timing(4_000.0)),
+            stats_with(Level::Bvh, 0, 3.0, timing(5_000.0)),
+        ];
+        assert_eq!(cheapest_lossless(&levels), (Some(2), "time"), "AABB: faster than BVH here, lossless");
+        // Untimed: by exact tests.
+        let untimed: Vec<LevelStats> = levels.iter().map(|l| LevelStats { timing: None, ..l.clone() }).collect();
+        assert_eq!(cheapest_lossless(&untimed), (Some(3), "exact tests"));
+        // Ties go to the earlier level; nothing lossless gives none.
+        let tie = [stats_with(Level::None, 0, 1.0, None), stats_with(Level::Aabb, 0, 1.0, None)];
+        assert_eq!(cheapest_lossless(&tie).0, Some(0));
+        assert_eq!(cheapest_lossless(&[stats_with(Level::None, 2, 1.0, None)]).0, None);
+    }
+
+    /// The corner tetrahedron: its box is [0,1]³; its minimal sphere is the
+    /// slanted face's circumsphere (centre (⅓,⅓,⅓), radius √(2/3) ≈ 0.816,
+    /// which holds the origin), its centroid sphere is centred at (¼,¼,¼) with
+    /// radius √0.6875 ≈ 0.829.
+    fn tetra() -> TriMesh<f64> {
+        let vs = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        TriMesh::new(vs.iter().map(|p| v(*p)).collect(), vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+            .expect("mesh")
+    }
+
+    #[test]
+    fn scene_mesh_levels_on_a_hand_made_scene() {
+        let segments = [
+            // A: through the tetrahedron (a hit); every level passes it.
+            ([0.25, 0.25, 2.0], [0.25, 0.25, -1.0]),
+            // B: through the box at x = y = 0.9, beside the slanted face (x + y > 1):
+            // the box and the minimal sphere (0.80 from its centre) pass it, the
+            // centroid sphere (0.92 from its centre) does not.
+            ([0.9, 0.9, -1.0], [0.9, 0.9, 2.0]),
+            // C: far away: nothing passes it.
+            ([3.0, 3.0, 3.0], [4.0, 4.0, 4.0]),
+            // D: beside the box and both spheres.
+            ([1.2, 1.2, -0.5], [1.2, 1.2, 0.5]),
+            // E: above the box (z = 1.1) but inside the minimal sphere (0.77 from
+            // its centre); the centroid sphere's centre is 0.85 away.
+            ([0.3, 0.3, 1.1], [0.4, 0.4, 1.1]),
+        ];
+        let (levels, contacts) = mesh_levels(&tetra(), &segments, false, 0);
+        assert_eq!(contacts, 1);
+        let get = |l: Level| levels.iter().find(|s| s.level == l).expect("level measured");
+        let rate = |l: Level| get(l).false_positive_rate.map(|r| (r * 4.0).round() as usize);
+        assert_eq!(rate(Level::None), Some(4), "no cheap test: every miss goes on");
+        assert_eq!(rate(Level::Aabb), Some(1), "B only");
+        assert_eq!(rate(Level::SphereMinimal), Some(2), "B and E");
+        assert_eq!(rate(Level::SphereCentroid), Some(0), "the centroid sphere misses B and E");
+        assert!(levels.iter().all(|l| l.lost == 0), "every level here is conservative: {levels:?}");
+        assert!((get(Level::None).exact_tests_per_query - 4.0).abs() < 1e-12);
+        assert!((get(Level::SphereCentroid).exact_tests_per_query - 0.8).abs() < 1e-12, "A only, 4 faces");
+        let bvh = get(Level::Bvh);
+        assert!(bvh.false_positive_rate <= get(Level::Aabb).false_positive_rate, "the tree's root is the box");
+        // Untimed, the cheapest lossless level is the one with the fewest exact
+        // tests: the centroid sphere's 0.8 (A's 4 faces over 5 queries), or the
+        // tree's if its leaves hand A fewer faces (A meets the boxes of two of
+        // the four); Ritter's sphere, lossless only if it passes A, can at best
+        // tie the centroid's, and ties go to the earlier level.
+        let (cheapest, by) = cheapest_lossless(&levels);
+        assert_eq!(by, "exact tests");
+        let chosen = &levels[cheapest.expect("a lossless level")];
+        assert!(matches!(chosen.level, Level::SphereCentroid | Level::Bvh), "{chosen:?}");
+        let fewest = levels.iter().map(|l| l.exact_tests_per_query).fold(f64::INFINITY, f64::min);
+        assert!((chosen.exact_tests_per_query - fewest).abs() < 1e-12, "{chosen:?}");
+        assert!(chosen.exact_tests_per_query <= 0.8 + 1e-12);
+    }
+
+    #[test]
+    fn scene_sphere_levels_on_a_hand_made_scene() {
+        // Three unit-diameter spheres at (0,0,0), (4,0,0), (0,4,0): box
+        // [−½, 4½]×[−½, 4½]×[−½, ½]; the centres' minimal sphere has centre
+        // (2,2,0) and radius 2√2, so the scene's minimal bound has radius 2√2 + ½.
+        let spheres: Vec<Sphere<f64>> =
+            [[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [0.0, 4.0, 0.0]].iter().map(|c| Sphere::new(v(*c), 0.5)).collect();
+        let queries: Vec<Sphere<f64>> = [
+            ([0.8, 0.0, 0.0], 0.5),    // touches the first sphere
+            ([2.0, 2.0, 0.0], 0.5),    // in the box and the bounds, touches nothing
+            ([10.0, 10.0, 10.0], 0.5), // far from everything
+            ([2.0, 0.0, 3.0], 0.5),    // above the box (z ≥ 2.5), 3.6 from (2,2,0): inside 2√2 + 1 ≈ 3.83
+        ]
+        .iter()
+        .map(|(c, r)| Sphere::new(v(*c), *r))
+        .collect();
+        let (levels, contacts) = sphere_levels(&spheres, &queries, false);
+        assert_eq!(contacts, 1);
+        let get = |l: Level| levels.iter().find(|s| s.level == l).expect("level measured");
+        let rate = |l: Level| get(l).false_positive_rate.map(|r| (r * 3.0).round() as usize);
+        assert_eq!(rate(Level::None), Some(3));
+        assert_eq!(rate(Level::Aabb), Some(1), "the second query only");
+        assert_eq!(rate(Level::SphereMinimal), Some(2), "the second and the fourth");
+        assert!(levels.iter().all(|l| l.lost == 0), "{levels:?}");
+        assert!(get(Level::Bvh).false_positive_rate <= get(Level::Aabb).false_positive_rate);
+    }
+
+    #[test]
+    fn scene_tightness_is_at_least_one_and_minimal_is_one() {
+        let mut rng = Rng(0x7167_7e57);
+        let mut clouds: Vec<Vec<P3>> = Vec::new();
+        for n in [2, 3, 5, 17, 60] {
+            for family in 0..2 {
+                clouds.push(cloud(&mut rng, family, n));
+            }
+        }
+        // A rotated tetrahedron: its minimal sphere is its circumsphere.
+        let r = rng.rotation();
+        clouds.push(
+            [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+                .iter()
+                .map(|p| rotate(&r, p))
+                .collect(),
+        );
+        for (i, c) in clouds.iter().enumerate() {
+            let t = tightness(c).expect("every method answers");
+            for (m, x) in t.iter().enumerate() {
+                assert!(*x >= 1.0 - TIGHTNESS_ROUNDING, "cloud {i}, {}: {x}", METHODS[m]);
+            }
+            assert!((t[3] - 1.0).abs() <= MINIMAL_TIGHTNESS_TOL, "cloud {i}: minimal {}", t[3]);
+        }
+    }
+
+    #[test]
+    fn scene_section_has_its_parts_without_timing() {
+        let settings = SceneSettings {
+            timing: false,
+            bunny_queries: 24,
+            bunny_timed: 0,
+            spheres: 40,
+            sphere_queries: 60,
+            rotations: 2,
+            clouds_per_size: 1,
+            ..SceneSettings::default()
+        };
+        let s = section(&settings);
+        assert_eq!(s.id, "scene");
+        assert!(s.markdown.starts_with("## What the scene needs\n"), "{}", s.markdown);
+        assert!(s.markdown.contains("The bunny") && s.markdown.contains("Scattered spheres"), "both scenes");
+        assert!(s.markdown.contains("cheapest lossless"), "the cheapest level is marked");
+        assert_eq!(s.charts.len(), 3);
+        assert!(s.charts.iter().all(|c| c.svg.starts_with("<svg") && !c.svg.contains(" id=")), "inline SVG, no ids");
+        assert!(!s.html.contains("<h2"), "the heading is the report's");
+        // Pure apart from timings: the same settings give the same section.
+        assert_eq!(section(&settings), s);
+    }
+}
