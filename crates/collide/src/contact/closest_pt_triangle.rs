@@ -41,6 +41,141 @@ pub(crate) fn closest_pt_point_triangle_region<T: Real>(p: &Vec3<T>, tri: &Trian
     if crate::exact::collinear(w(&a), w(&b), w(&c)) {
         return (nearest_on_edges(p, tri), Region::Boundary);
     }
+    let found = closest_pt_point_triangle_region_with_area(p, tri);
+    (found.point, found.region)
+}
+
+/// What [`closest_pt_point_triangle_region_with_area`] found: the closest
+/// point, its region, and the book's three edge tests with the magnitudes that
+/// bound their rounding.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Closest<T: Real> {
+    /// The closest point.
+    pub point: Vec3<T>,
+    /// The feature it lies on.
+    pub region: Region,
+    /// The book's `[va, vb, vc]` as computed. Exactly (by the Binet–Cauchy
+    /// identity `(ab·ap)(ac·bp) − (ab·bp)(ac·ap) = (ab × ac)·(ap × bp)`),
+    /// `va = n · ((b − p) × (c − p))`, `vb = n · ((c − p) × (a − p))`,
+    /// `vc = n · ((a − p) × (b − p))` with `n = (b − a) × (c − a)`: `‖n‖²`
+    /// times the barycentric coordinates of `p`'s projection onto the plane,
+    /// positive when the projection is strictly inside the edge opposite
+    /// `a`, `b`, `c` respectively.
+    pub edge_tests: [T; 3],
+    /// `E`: the largest component magnitude of the computed edges `b − a`
+    /// and `c − a`; infinite when the branching fallback answered (then
+    /// `edge_tests` are not computed).
+    pub edge_extent: T,
+    /// `Q`: the largest component magnitude of the computed offsets `p − a`,
+    /// `p − b`, `p − c`.
+    pub offset_extent: T,
+}
+
+/// Bound on the rounding of [`Closest::edge_tests`] in units of `u` and of
+/// `(E Q)²` ([`Closest::edge_extent`], [`Closest::offset_extent`]): each
+/// computed test is within `217 u (E Q)²` of its exact value on the given
+/// inputs (`u` the unit roundoff, in `f64` when no product underflows or
+/// overflows). Derivation: the differences round once (`|fl(x) − x| ≤
+/// u |fl(x)|`), so each dot product `d_i` is within `(γ3 + 2u + u²) Σ |e_k|
+/// |o_k| ≤ 15.01 u E Q` of the exact one, and both are at most `3.001 E Q`
+/// in magnitude; a test `d_i d_j − d_k d_l` is then within
+/// `2 · 15.01 · 3.001 · 2 u (E Q)²` (the factors' errors) plus
+/// `γ2 · 2 · 3.001² (E Q)²` (its own two roundings), `216.2 u (E Q)²` in all.
+pub(crate) const EDGE_TEST_ROUNDING: f64 = 217.0;
+
+/// [`closest_pt_point_triangle_region`] for a triangle already known not to
+/// have exactly zero area (the caller decided it): Ericson's region tests,
+/// evaluated without branches, with the edge tests they were decided by
+/// ([`Closest`]).
+///
+/// Every quantity of the book's tests (`d1 … d6`, `va`, `vb`, `vc`) is
+/// computed, the seven regions' conditions are evaluated, and the region is
+/// selected as the book's early returns would select it — the first in the
+/// order vertex A, vertex B, edge AB, vertex C, edge AC, edge BC, face whose
+/// condition holds (an edge region only when its parameter is finite, as in
+/// [`closest_pt_point_triangle`]). The point is then formed once as
+/// `base + s e + t (c − a)` with the region's base vertex, edge `e` and
+/// parameters (`0` for a vertex), which gives the book's expressions
+/// bit for bit (`a + ab v`, `a + ac w`, `b + (c − b) w`, `a + ab v + ac w`,
+/// the vertex itself). For random queries this replaces three or four
+/// unpredictable branches by a few selects and two divisions; answers are
+/// unchanged. A non-finite point (coordinates near the overflow threshold)
+/// falls back to the branching form.
+///
+/// **Rounding.** The region is the book's, decided on rounded values: the
+/// edge tests `va`, `vb`, `vc` are degree-4 polynomials whose rounding
+/// ([`EDGE_TEST_ROUNDING`]) is relative to `(E Q)²`, while their values are
+/// `‖n‖ · ‖edge‖ · (distance of the projection from that edge)`: on a sliver
+/// (`‖n‖` tiny) or for a projection within rounding of an edge the computed
+/// signs, hence the region, can be wrong. The caller that needs the region
+/// certified compares them with that bound.
+///
+/// Always inlined: its caller usually builds the triangle just before (in a
+/// translated frame), and a call would reload those fresh stores through
+/// memory in wider loads than they were written with, which stalls.
+#[inline(always)]
+pub(crate) fn closest_pt_point_triangle_region_with_area<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Closest<T> {
+    let [a, b, c] = tri.vertices;
+    let (zero, one) = (T::zero(), T::one());
+    let (ab, ac, bc) = (b - a, c - a, c - b);
+    let (ap, bp, cp) = (p - a, p - b, p - c);
+    let (d1, d2) = (ab.dot(&ap), ac.dot(&ap));
+    let (d3, d4) = (ab.dot(&bp), ac.dot(&bp));
+    let (d5, d6) = (ab.dot(&cp), ac.dot(&cp));
+    let vc = d1 * d4 - d3 * d2;
+    let vb = d5 * d2 - d1 * d6;
+    let va = d3 * d6 - d5 * d4;
+    // An edge parameter num / den with 0 ≤ num ≤ den is finite exactly when
+    // den > 0 (not NaN) and num is finite.
+    let finite_quotient = |num: T, den: T| den > zero && num.finite();
+    let (bc_num, bc_rest) = (d4 - d3, d5 - d6);
+    let bc_den = bc_num + bc_rest;
+    let denom = va + vb + vc;
+    // (base, edge, s numerator, t numerator, denominator, region), the
+    // book's regions from last to first: each that holds overrides the ones
+    // after it in the book's order.
+    let mut sel = (a, ab, vb, vc, denom, Region::Face);
+    if va <= zero && bc_num >= zero && bc_rest >= zero && finite_quotient(bc_num, bc_den) {
+        sel = (b, bc, bc_num, zero, bc_den, Region::Boundary);
+    }
+    if vb <= zero && d2 >= zero && d6 <= zero && finite_quotient(d2, d2 - d6) {
+        sel = (a, ab, zero, d2, d2 - d6, Region::Boundary);
+    }
+    if d6 >= zero && d5 <= d6 {
+        sel = (c, ab, zero, zero, one, Region::Boundary);
+    }
+    if vc <= zero && d1 >= zero && d3 <= zero && finite_quotient(d1, d1 - d3) {
+        sel = (a, ab, d1, zero, d1 - d3, Region::Boundary);
+    }
+    if d3 >= zero && d4 <= d3 {
+        sel = (b, ab, zero, zero, one, Region::Boundary);
+    }
+    if d1 <= zero && d2 <= zero {
+        sel = (a, ab, zero, zero, one, Region::Boundary);
+    }
+    let (base, edge, s_num, t_num, den, region) = sel;
+    let x = base + edge * (s_num / den) + ac * (t_num / den);
+    let face_ok = region == Region::Boundary || (denom > zero && denom.finite());
+    if face_ok && crate::real::finite3(&x) {
+        return Closest {
+            point: x,
+            region,
+            edge_tests: [va, vb, vc],
+            edge_extent: ab.amax().max(ac.amax()),
+            offset_extent: ap.amax().max(bp.amax()).max(cp.amax()),
+        };
+    }
+    let (point, region) = closest_pt_point_triangle_region_branching(p, tri);
+    let unknown = T::of(f64::INFINITY);
+    Closest { point, region, edge_tests: [unknown; 3], edge_extent: unknown, offset_extent: unknown }
+}
+
+/// Ericson's region tests with the book's early returns (the fallback of
+/// [`closest_pt_point_triangle_region_with_area`] near the overflow
+/// threshold, where its selected point is not finite).
+#[cold]
+fn closest_pt_point_triangle_region_branching<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Vec3<T>, Region) {
+    let [a, b, c] = tri.vertices;
     let q = |x: Vec3<T>| (x, Region::Boundary);
     let ab = b - a;
     let ac = c - a;
@@ -97,30 +232,123 @@ pub(crate) fn closest_pt_point_triangle_region<T: Real>(p: &Vec3<T>, tri: &Trian
 
 /// The closest point of segment `[a, b]` to `p` (a zero-length segment is `a`).
 pub fn closest_pt_point_segment<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) -> Vec3<T> {
+    segment_foot(p, a, b).0
+}
+
+/// [`closest_pt_point_segment`], and whether the foot of `p` on the
+/// segment's line fell strictly inside it (`0 < t < 1` as computed), i.e.
+/// was not clamped to an end.
+fn segment_foot<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) -> (Vec3<T>, bool) {
     let ab = b - a;
     let len2 = ab.norm_squared();
     if len2 <= T::zero() || !len2.finite() {
-        return *a;
+        return (*a, false);
     }
-    let t = ((p - a).dot(&ab) / len2).max(T::zero()).min(T::one());
+    let raw = (p - a).dot(&ab) / len2;
+    let t = raw.max(T::zero()).min(T::one());
     if !t.finite() {
-        return *a;
+        return (*a, false);
     }
-    a + ab * t
+    (a + ab * t, raw > T::zero() && raw < T::one())
 }
 
+/// The point of the triangle's three edges nearest to `p` (each edge's
+/// closest point, the nearest by distance, the first on a tie): the closest
+/// point of a zero-area triangle, and of any triangle when `p`'s projection
+/// is outside it.
 pub(crate) fn nearest_on_edges<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Vec3<T> {
+    nearest_of_edges(p, tri, [true; 3], false)
+}
+
+/// The closest point of the triangle to `p` when `p`'s projection onto its
+/// plane is outside it (or within rounding of an edge): among the edges
+/// `ab`, `bc`, `ca` for which `edges` is set — at least one, and every edge
+/// the projection may be outside of — the closest point of the one whose
+/// foot falls strictly inside it, or if none does, the nearest of their
+/// (clamped) closest points by distance (the first on a tie).
+///
+/// Why not [`nearest_on_edges`]: for `p` off the plane by `d`, two candidates
+/// at in-plane distances `h1 < h2` from the projection are at distances whose
+/// squares differ by `h2² − h1²`, which the rounding of `d² + h²` (a few
+/// `ε (d² + h²)`) hides when the candidates are within `√ε d` of each other:
+/// a first-order point error of `1e-8 d` from a second-order difference. Two
+/// such candidates lie on two nearly parallel edges (the long edges of a
+/// sliver), or are a foot inside one edge and the vertex it shares with
+/// another, on which the foot was clamped. The first case is removed by the
+/// edges passed: the closest point of a triangle is inside an edge only for
+/// points on that edge's outer side, and is a vertex only for points outside
+/// one of the vertex's two edges (inside both, `p − v` is a non-negative
+/// combination of the edges from `v`, whose dot products with `p − v` cannot
+/// both be `≤ 0` unless `p = v`). The second by preferring a foot inside its
+/// edge: for a projection outside that edge, the foot is the closest point
+/// (the edges' Voronoi regions are disjoint). A foot taken for inside by
+/// rounding is within that rounding of its end; a projection within
+/// rounding of an edge's line, on its inner side, is within that rounding
+/// (over the sine of the angle between the edges, times that edge's height
+/// at most) of the answer.
+pub(crate) fn closest_on_outer_edges<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, edges: [bool; 3]) -> Vec3<T> {
+    nearest_of_edges(p, tri, edges, true)
+}
+
+/// The nearest to `p` of the closest points of the edges `ab`, `bc`, `ca`
+/// for which `edges` is set, by distance; with `prefer_inside`, a foot
+/// strictly inside its edge before any clamped one.
+fn nearest_of_edges<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, edges: [bool; 3], prefer_inside: bool) -> Vec3<T> {
     let [a, b, c] = tri.vertices;
-    let candidates =
-        [closest_pt_point_segment(p, &a, &b), closest_pt_point_segment(p, &b, &c), closest_pt_point_segment(p, &c, &a)];
-    let mut best = candidates[0];
-    let mut best_d = crate::real::stable_norm(&(p - best));
-    for q in &candidates[1..] {
+    let ends = [(a, b), (b, c), (c, a)];
+    // (point, distance, foot inside its edge)
+    let mut best: Option<(Vec3<T>, T, bool)> = None;
+    for (&(u, w), _) in ends.iter().zip(edges).filter(|(_, on)| *on) {
+        let (q, inside) = segment_foot(p, &u, &w);
+        let inside = inside && prefer_inside;
         let d = crate::real::stable_norm(&(p - q));
-        if d < best_d {
-            best = *q;
-            best_d = d;
+        let better = match best {
+            None => true,
+            Some((_, best_d, best_inside)) => (inside && !best_inside) || (inside == best_inside && d < best_d),
+        };
+        if better {
+            best = Some((q, d, inside));
         }
     }
-    best
+    best.map_or(a, |(q, _, _)| q)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn v(p: [f64; 3]) -> Vec3<f64> {
+        Vec3::new(p[0], p[1], p[2])
+    }
+
+    /// Coordinates on a coarse grid (so that region borders are hit exactly:
+    /// `d_i = 0`, `va = 0`, …) or anywhere in a box.
+    fn coord() -> impl Strategy<Value = f64> {
+        prop_oneof![(-8i32..=8).prop_map(|k| f64::from(k) / 4.0), -3.0..3.0f64]
+    }
+
+    fn point() -> impl Strategy<Value = [f64; 3]> {
+        [coord(), coord(), coord()]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+
+        /// The branch-free selection gives the book's region and the book's
+        /// point, to the bit (`==` also equates `−0.0` and `0.0`, the one
+        /// difference the final `+ 0` may make).
+        #[test]
+        fn branch_free_regions_are_the_books(p in point(), a in point(), b in point(), c in point()) {
+            let tri = Triangle::new(v(a), v(b), v(c));
+            prop_assume!(!crate::exact::collinear(a, b, c));
+            let found = closest_pt_point_triangle_region_with_area(&v(p), &tri);
+            let (x, rx) = (found.point, found.region);
+            let (y, ry) = closest_pt_point_triangle_region_branching(&v(p), &tri);
+            prop_assert_eq!(rx, ry, "region");
+            #[expect(clippy::float_cmp, reason = "two evaluations of the same expressions: identity is the claim")]
+            let same = x.x == y.x && x.y == y.y && x.z == y.z;
+            prop_assert!(same, "{:?} vs {:?}", x, y);
+        }
+    }
 }
