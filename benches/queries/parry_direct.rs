@@ -10,6 +10,7 @@
 //! | query | parry call |
 //! | --- | --- |
 //! | sphere–sphere, –plane, –triangle contact | `query::contact(pose_a, shape_a, pose_b, shape_b, 0)` |
+//! | the same, by pair function (`*_pair`) | what `query::contact` does without its dynamic dispatch: `pos12 = pose_a⁻¹ pose_b`, the pair's `query::details` function (`contact_ball_ball`, `contact_support_map_halfspace`, `contact_ball_convex_polyhedron`, the ones its dispatcher picks), the contact moved back to world space |
 //! | segment–plane | `HalfSpace::cast_ray_and_get_normal(pose, ray, 1, false)` |
 //! | segment–triangle | `Triangle::cast_local_ray_and_get_normal(ray, 1, false)`, and on a hit `project_local_point_and_get_location` of the hit point, for the barycentrics collide's answer carries |
 //! | barycentric | `Triangle::project_local_point_and_get_location(p, false)` |
@@ -80,6 +81,34 @@ macro_rules! parry_direct {
             #[inline]
             pub fn contact_sphere_triangle(a: &(Pose, Ball), b: &Triangle) -> Option<Contact> {
                 query::contact(&a.0, &a.1, &Pose::IDENTITY, b, 0.0).ok().flatten()
+            }
+            /// [`contact_sphere_sphere`] through the pair function, without
+            /// the dispatch.
+            #[inline]
+            #[allow(dead_code, reason = "timed for parry3d-f64 only")]
+            pub fn contact_sphere_sphere_pair(a: &(Pose, Ball), b: &(Pose, Ball)) -> Option<Contact> {
+                let pos12 = a.0.inv_mul(&b.0);
+                let mut c = query::details::contact_ball_ball(&pos12, &a.1, &b.1, 0.0)?;
+                c.transform_by_mut(&a.0, &b.0);
+                Some(c)
+            }
+            /// [`contact_sphere_plane`] through the pair function.
+            #[inline]
+            #[allow(dead_code, reason = "timed for parry3d-f64 only")]
+            pub fn contact_sphere_plane_pair(a: &(Pose, Ball), b: &(Pose, HalfSpace)) -> Option<Contact> {
+                let pos12 = a.0.inv_mul(&b.0);
+                let mut c = query::details::contact_support_map_halfspace(&pos12, &a.1, &b.1, 0.0)?;
+                c.transform_by_mut(&a.0, &b.0);
+                Some(c)
+            }
+            /// [`contact_sphere_triangle`] through the pair function.
+            #[inline]
+            #[allow(dead_code, reason = "timed for parry3d-f64 only")]
+            pub fn contact_sphere_triangle_pair(a: &(Pose, Ball), b: &Triangle) -> Option<Contact> {
+                let pos12 = a.0.inv_mul(&Pose::IDENTITY);
+                let mut c = query::details::contact_ball_convex_polyhedron(&pos12, &a.1, b, 0.0)?;
+                c.transform_by_mut(&a.0, &Pose::IDENTITY);
+                Some(c)
             }
             /// A segment's ray against a half-space's surface.
             #[inline]

@@ -11,12 +11,13 @@ use std::time::SystemTime;
 
 /// The engines of the main table: criterion's benchmark id and the column's
 /// heading.
-pub const ENGINES: [(&str, &str); 8] = [
+pub const ENGINES: [(&str, &str); 9] = [
     ("collide_lecture_f64", "collide lecture f64"),
     ("collide_robust_f64", "collide robust f64"),
     ("collide_lecture_f32", "collide lecture f32"),
     ("collide_robust_f32", "collide robust f32"),
     ("parry64", "parry3d-f64"),
+    ("parry64_pair", "parry3d-f64 pair fn"),
     ("parry32", "parry3d"),
     ("parry64_adapter", "parry3d-f64 via adapter"),
     ("parry32_adapter", "parry3d via adapter"),
@@ -124,7 +125,8 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
          the cases per iteration; `—`: not run). Same pre-generated cases for every engine \
          (seed {:#x}, the campaign's generators and mix). parry3d-f64 / parry3d: parry called \
          directly on pre-converted inputs; \"via adapter\": through `oracle::parry::ParryEngine`, \
-         which converts and translates inside each call.\n",
+         which converts and translates inside each call; \"pair fn\" (contact queries): parry's \
+         pair function without `query::contact`'s dynamic dispatch, like collide's.\n",
         super::cases::SEED
     );
     let _ = writeln!(
@@ -219,6 +221,50 @@ pub fn publish(report: &str) {
     let path = criterion_dir().join("crashtest-table.md");
     match std::fs::create_dir_all(criterion_dir()).and_then(|()| std::fs::write(&path, report)) {
         Ok(()) => println!("(written to {})", path.display()),
+        Err(e) => eprintln!("could not write {}: {e}", path.display()),
+    }
+}
+
+/// The report's names of the main table's engines (criterion id → engine).
+const REPORT_NAMES: [(&str, &str); 6] = [
+    ("collide_lecture_f64", "collide/lecture"),
+    ("collide_robust_f64", "collide/robust"),
+    ("collide_lecture_f32", "collide-f32/lecture"),
+    ("collide_robust_f32", "collide-f32/robust"),
+    ("parry64", "parry3d-f64"),
+    ("parry32", "parry3d"),
+];
+
+/// Writes this run's figures as `crashtest-bench.json` beside criterion's
+/// files, for `crashtest report` to place the engines on its accuracy–speed
+/// charts (`harness::report::bench`). A query with one method gives its
+/// robust figure to the lecture's engine as well, as the table does.
+pub fn write_figures(rows: &[Row], since: SystemTime) {
+    use harness::report::bench::{BenchFile, BenchRow, FORMAT};
+    let dir = criterion_dir();
+    let mut out = Vec::new();
+    for r in rows {
+        for (id, engine) in REPORT_NAMES {
+            let id = match (r.one_method, id) {
+                (true, "collide_lecture_f64") => "collide_robust_f64",
+                (true, "collide_lecture_f32") => "collide_robust_f32",
+                _ => id,
+            };
+            if let Some(ns) = ns_per_query(&dir, r.group, id, r.per_iter, since) {
+                out.push(BenchRow { group: r.group.to_string(), engine: engine.to_string(), ns });
+            }
+        }
+    }
+    let file = BenchFile {
+        format: FORMAT.into(),
+        written: harness::report::provenance::rfc3339(SystemTime::now()),
+        machine: harness::report::provenance::machine(),
+        rows: out,
+    };
+    let path = dir.join("crashtest-bench.json");
+    let text = serde_json::to_string_pretty(&file).unwrap_or_default();
+    match std::fs::create_dir_all(&dir).and_then(|()| std::fs::write(&path, text)) {
+        Ok(()) => println!("(figures for `crashtest report` written to {})", path.display()),
         Err(e) => eprintln!("could not write {}: {e}", path.display()),
     }
 }

@@ -20,6 +20,8 @@
 //! Everything here works on the `f64` values of the inputs (exact for `f32`).
 
 use crate::exact::{BigFloat, Estimate, Sign};
+use crate::real::{Real, Vec3, to_f64_3};
+use crate::shapes::Triangle;
 
 /// A point in `f64`.
 pub(super) type P3 = [f64; 3];
@@ -134,13 +136,28 @@ pub(super) fn exact_kind(p: &P3, v: &[P3; 3]) -> &'static str {
 ///    value is rounded to an [`Estimate`] (relative error `≤ ε`), so each
 ///    coordinate is within `2.5 ε` of its own magnitude and the recomputed
 ///    one within `6.5 ε` of the size.
-pub(super) fn signed_area_ratios(p: &P3, v: &[P3; 3]) -> Option<Ratios> {
-    if let Some(r) = filtered(p, v) {
+///
+/// Takes the query in its own type and converts to `f64` here: the filter
+/// then works on values in registers, and only the exact path (which takes
+/// its inputs by reference) gives them a home in memory. Building `f64`
+/// arrays in the caller instead made the filter reload them in wider loads
+/// than they were stored with, which stalls.
+#[inline(always)]
+pub(super) fn signed_area_ratios<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Option<Ratios> {
+    let v = [to_f64_3(&tri.vertices[0]), to_f64_3(&tri.vertices[1]), to_f64_3(&tri.vertices[2])];
+    if let Some(r) = filtered(&to_f64_3(p), &v) {
         return Some(r);
     }
+    exact_of(p, tri)
+}
+
+/// The exact path from the query's own type.
+#[inline(never)]
+fn exact_of<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Option<Ratios> {
     #[cfg(test)]
     EXACT_PATH.with(|c| c.set(c.get() + 1));
-    exact(p, v)
+    let v = [to_f64_3(&tri.vertices[0]), to_f64_3(&tri.vertices[1]), to_f64_3(&tri.vertices[2])];
+    exact(&to_f64_3(p), &v)
 }
 
 // ---------------------------------------------------------------- filter
@@ -522,7 +539,7 @@ mod grid {
             q0[k] = ints[9 + k] - ints[k];
         }
         let n = cross_i64(&e0, &e1);
-        if n == [0; 3] {
+        if (n[0] | n[1] | n[2]) == 0 {
             return None;
         }
         let d = dot_i128(&n, &n);

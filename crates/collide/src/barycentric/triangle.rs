@@ -4,7 +4,7 @@
 use super::area_ratios::signed_area_ratios;
 use super::coords::Barycentric;
 use super::local::longest_edge_fallback;
-use crate::real::{Real, Vec3, finite3, to_f64_3};
+use crate::real::{Real, Vec3, finite3};
 use crate::shapes::Triangle;
 
 /// Signed barycentric coordinates `[α, β, γ]` of the orthogonal projection `p'` of
@@ -108,16 +108,17 @@ pub fn barycentric_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Barycent
     if !(finite3(p) && tri.vertices.iter().all(finite3)) {
         return fallback();
     }
-    let v = tri.vertices.map(|x| to_f64_3(&x));
-    let Some(r) = signed_area_ratios(&to_f64_3(p), &v) else {
+    let Some(r) = signed_area_ratios(p, tri) else {
         return fallback();
     };
+    // The free coordinate is 1 minus the other two (`1 − c_i − c_j` with
+    // `i, j = k + 1, k + 2`), chosen by selects rather than written through
+    // an index: an indexed store makes the array a memory object, reread in
+    // wider loads than it was written with, which stalls.
+    let c = r.coords.map(T::of);
     let k = r.free;
-    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-    let mut coords = [T::zero(); 3];
-    coords[i] = T::of(r.coords[i]);
-    coords[j] = T::of(r.coords[j]);
-    coords[k] = T::one() - coords[i] - coords[j];
+    let one_minus = [T::one() - c[1] - c[2], T::one() - c[2] - c[0], T::one() - c[0] - c[1]];
+    let coords = [0, 1, 2].map(|m| if m == k { one_minus[m] } else { c[m] });
     if !coords.iter().all(|x| x.finite()) {
         return fallback();
     }

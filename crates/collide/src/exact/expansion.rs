@@ -44,7 +44,7 @@ pub(crate) fn in_expansion_range<'a>(values: impl IntoIterator<Item = &'a f64>) 
 }
 
 #[inline(always)]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
+pub(super) fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let x = a + b;
     let bvirt = x - a;
     let avirt = x - bvirt;
@@ -58,7 +58,7 @@ fn fast_two_sum(a: f64, b: f64) -> (f64, f64) {
 }
 
 #[inline(always)]
-fn two_diff(a: f64, b: f64) -> (f64, f64) {
+pub(super) fn two_diff(a: f64, b: f64) -> (f64, f64) {
     let x = a - b;
     let bvirt = a - x;
     let avirt = x + bvirt;
@@ -66,14 +66,14 @@ fn two_diff(a: f64, b: f64) -> (f64, f64) {
 }
 
 #[inline(always)]
-fn split(a: f64) -> (f64, f64) {
+pub(super) fn split(a: f64) -> (f64, f64) {
     let c = SPLITTER * a;
     let hi = c - (c - a);
     (hi, a - hi)
 }
 
 #[inline(always)]
-fn two_product_presplit(a: f64, b: f64, bhi: f64, blo: f64) -> (f64, f64) {
+pub(super) fn two_product_presplit(a: f64, b: f64, bhi: f64, blo: f64) -> (f64, f64) {
     let x = a * b;
     let (ahi, alo) = split(a);
     let err1 = x - ahi * bhi;

@@ -79,6 +79,14 @@ pub(crate) fn in_fast_range<const N: usize>(xs: [f64; N]) -> bool {
     xs.iter().fold(true, |ok, x| ok & (x.abs() <= FAST_MAX))
 }
 
+/// [`in_fast_range`] over points: every coordinate within `|x| ≤ FAST_MAX`.
+/// Branch-free, and folded over the points as they are (no flattened copy,
+/// whose reload through memory would stall on the stores just made).
+#[inline(always)]
+pub(crate) fn in_fast_range_points<const N: usize>(ps: [P3; N]) -> bool {
+    ps.iter().fold(true, |ok, p| ok & (p[0].abs() <= FAST_MAX) & (p[1].abs() <= FAST_MAX) & (p[2].abs() <= FAST_MAX))
+}
+
 /// A value of the fast path and its error bound: the exact value lies in
 /// `[value − bound, value + bound]`, and `bound > 0`.
 #[derive(Clone, Copy, Debug)]

@@ -24,12 +24,19 @@
 //! The queries themselves first run an inline filter (`filter`, crate-private):
 //! the same volumes in plain `f64`, sharing differences and cross products,
 //! each with its error bound, deciding nearly every random query without
-//! calling a predicate at all.
+//! calling a predicate at all. Where that stage A cannot decide, a stage B
+//! (`compensated`, crate-private) evaluates the undecided volumes again with
+//! error-free transformations, with a bound of order `u²` times the
+//! permanent that is zero when every operation was exact: near-degenerate
+//! queries (within ulps of an edge or a plane, far from the origin) and exact
+//! zeros on grid-like inputs (an endpoint on a plane, a line through an edge)
+//! are decided there, without the expansions.
 //!
 //! `f32` inputs are exactly `f64` values ([`Real::wide`](crate::Real::wide)), so
 //! the same predicates serve both precisions.
 
 mod bigfloat;
+pub(crate) mod compensated;
 mod estimate;
 mod expansion;
 pub(crate) mod filter;

@@ -166,25 +166,36 @@ pub fn intersect_segment_triangle_lecture<T: Real>(seg: &Segment<T>, tri: &Trian
 /// (`s0, s1`; `α', β', γ'`; the normal's components) accurate to
 /// [`ESTIMATE_REL_ERR`] of its sum, so `t`, the barycentrics and the normal
 /// come straight from them (`t = |s0| / (|s0| + |s1|)`, the normal
-/// `n / ‖n‖`). Only when an input exceeds `2^63` in magnitude, a volume is
-/// too close to zero to call, or a set is not accurate enough, is the query
+/// `n / ‖n‖`). Where a volume is too close to zero to call or a set is not
+/// accurate enough (a segment through or within ulps of an edge or a vertex,
+/// an endpoint on the plane, a near-parallel segment, a sliver, a scene far
+/// from the origin), stage B re-evaluates just those volumes in compensated
+/// arithmetic ([`crate::exact::compensated`]: differences held exactly,
+/// error-free products and sums, a bound of order `u²` times the permanent
+/// that is `0` when every operation was exact) and decides with exact signs,
+/// zeros included: a line through an edge or a vertex, an endpoint on the
+/// plane, a segment exactly parallel or coplanar, a zero-area triangle (its
+/// compensated normal exactly zero). Only when an input exceeds `2^63` in
+/// magnitude or has a non-zero coordinate below `2^−250`, or a value is an
+/// exact zero whose roundings stage B cannot see cancel, is the query
 /// answered by the general path below, unchanged: [`exact::orient3d_estimate`]
 /// (its own scaled filter, then [`exact::BigFloat`], which allocates) with
-/// [`Estimate::refine_jointly`]. For random input that is almost never: about
-/// 36 multiplications and 50 additions for a hit, half that for most misses,
-/// and no allocation.
+/// [`Estimate::refine_jointly`]. For random input stage A decides almost
+/// every query: about 36 multiplications and 50 additions for a hit, half
+/// that for most misses; stage B adds a few hundred operations where it
+/// runs; no allocation.
 ///
 /// Source: Ericson, *Real-Time Collision Detection*, §5.3.4
 /// (`IntersectSegmentTriangle` via scalar triple products), with exact
 /// predicates after Shewchuk. **Deviation from the lecture**: no `s`, `t`
 /// solve; classification is by exact signs, values come from the same volumes.
 pub fn intersect_segment_triangle<T: Real>(seg: &Segment<T>, tri: &Triangle<T>) -> Intersection<T> {
-    let [v0, v1, v2] = tri.vertices.map(|v| to_f64_3(&v));
-    let (q0, q1) = (to_f64_3(&seg.start), to_f64_3(&seg.end));
-    match filtered(v0, v1, v2, q0, q1) {
+    match filtered(seg, tri) {
         Filtered::Miss => Intersection::MISS,
+        Filtered::Parallel => Intersection::PARALLEL,
+        Filtered::Degenerate => Intersection::DEGENERATE,
         Filtered::Hit(h) => {
-            let point = point_on_segment(q0, q1, h.t, h.one_minus_t);
+            let point = point_on_segment(to_f64_3(&seg.start), to_f64_3(&seg.end), h.t, h.one_minus_t);
             let vec = |p: [f64; 3]| Vec3::new(T::of(p[0]), T::of(p[1]), T::of(p[2]));
             Intersection::hit(SegmentHit {
                 t: T::of(h.t),
@@ -201,6 +212,11 @@ pub fn intersect_segment_triangle<T: Real>(seg: &Segment<T>, tri: &Triangle<T>) 
 enum Filtered {
     /// A miss, decided.
     Miss,
+    /// Parallel, decided: `n · (q1 − q0) = 0` exactly (coplanar included,
+    /// for a triangle of non-zero area).
+    Parallel,
+    /// Coplanar with a triangle of exactly zero area, decided.
+    Degenerate,
     /// A hit, decided, with values accurate to [`ESTIMATE_REL_ERR`].
     Hit(FilteredHit),
     /// Not decided (or not accurate enough): the general path answers.
@@ -215,21 +231,30 @@ struct FilteredHit {
     normal: [f64; 3],
 }
 
+/// Unit roundoff (2^−53): margins for the roundings of the checks below.
+const U: f64 = f64::EPSILON / 2.0;
+
+/// Smallest `‖n‖²` normalized by the filter (2^−960): above it the sum of
+/// squares keeps full relative precision (its largest term is normal with 60
+/// bits to spare); below it the general path normalizes by scaling.
+const NORMAL_MIN_SQUARED: f64 = 1.0261342003245941e-289;
+
 /// The filter of [`intersect_segment_triangle`] (see its **Cost** section):
-/// `f64` volumes with their error bounds, deciding the classification when
-/// every sign it needs is certain, and the values when they are accurate to
-/// [`ESTIMATE_REL_ERR`].
+/// stage A, `f64` volumes with their error bounds, deciding the
+/// classification when every sign it needs is certain and the values when
+/// they are accurate to [`ESTIMATE_REL_ERR`]; where it cannot, stage B
+/// ([`stage_b`]) takes over with the volumes it has.
+///
+/// Stage B receives the query itself rather than the `f64` points: passing
+/// fifteen values to a call gives them a home in memory, written and read
+/// back in different widths, which stalls the common path.
 #[inline(always)]
-fn filtered(a: P3, b: P3, c: P3, q0: P3, q1: P3) -> Filtered {
-    use crate::exact::filter::{cross, cross_bounds, in_fast_range, jointly_accurate, sub, triple};
-    /// Unit roundoff (2^−53): margins for the roundings of the checks below.
-    const U: f64 = f64::EPSILON / 2.0;
-    /// Smallest `‖n‖²` normalized here (2^−960): above it the sum of squares
-    /// keeps full relative precision (its largest term is normal with 60 bits
-    /// to spare); below it the general path normalizes by scaling.
-    const NORMAL_MIN_SQUARED: f64 = 1.0261342003245941e-289;
+fn filtered<T: Real>(seg: &Segment<T>, tri: &Triangle<T>) -> Filtered {
+    use crate::exact::filter::{cross, in_fast_range_points, sub, triple};
+    let (a, b, c) = (to_f64_3(&tri.vertices[0]), to_f64_3(&tri.vertices[1]), to_f64_3(&tri.vertices[2]));
+    let (q0, q1) = (to_f64_3(&seg.start), to_f64_3(&seg.end));
     let inputs = [a, b, c, q0, q1];
-    if !in_fast_range(inputs.as_flattened().try_into().unwrap_or([f64::NAN; 15])) {
+    if !in_fast_range_points(inputs) {
         return Filtered::Undecided;
     }
     // 1. The plane: d_i = n · (q_i − v0) = −s_i.
@@ -238,8 +263,9 @@ fn filtered(a: P3, b: P3, c: P3, q0: P3, q1: P3) -> Filtered {
     let w0 = sub(q0, a);
     let d0 = triple(n, n_perm, w0);
     let d1 = triple(n, n_perm, sub(q1, a));
+    let stage_a = |edges| StageA { d: [d0, d1], n, n_perm, edges };
     if !(d0.decided() && d1.decided()) {
-        return Filtered::Undecided;
+        return stage_b(seg, tri, stage_a([None; 3]));
     }
     let d1_positive = d1.value > 0.0;
     if (d0.value > 0.0) == d1_positive {
@@ -247,7 +273,10 @@ fn filtered(a: P3, b: P3, c: P3, q0: P3, q1: P3) -> Filtered {
         // d1 − d0 is exactly 0 (parallel), impossible when the computed
         // difference exceeds both bounds (1 rounding each way: 4u of margin).
         let gap = (d1.value - d0.value).abs();
-        return if gap * (1.0 - 4.0 * U) > d0.bound + d1.bound { Filtered::Miss } else { Filtered::Undecided };
+        if gap * (1.0 - 4.0 * U) > d0.bound + d1.bound {
+            return Filtered::Miss;
+        }
+        return stage_b(seg, tri, stage_a([None; 3]));
     }
     // 2. The edges. σ = sign(s1) = −sign(d1); a weight of sign −σ = sign(d1)
     // is a miss. pa = v0 − q0 = −w0 exactly (rounding is symmetric).
@@ -267,32 +296,229 @@ fn filtered(a: P3, b: P3, c: P3, q0: P3, q1: P3) -> Filtered {
     if gamma_neg.decided() && (gamma_neg.value > 0.0) != d1_positive {
         return Filtered::Miss;
     }
+    let edges = [alpha, beta, gamma_neg];
     if !(alpha.decided() && beta.decided() && gamma_neg.decided()) {
-        return Filtered::Undecided;
+        return stage_b(seg, tri, stage_a(edges.map(Some)));
     }
     // 3. A hit: the values, if the filtered volumes are accurate enough.
-    let (s0, s1) = (d0.value.abs(), d1.value.abs());
+    let normal = stage_a_normal(n, n_perm);
+    match hit_values(&[d0, d1], &edges, &normal) {
+        Some(hit) => Filtered::Hit(hit),
+        None => stage_b(seg, tri, stage_a(edges.map(Some))),
+    }
+}
+
+/// Stage A's volumes as far as it computed them, for stage B to reuse.
+#[derive(Clone, Copy)]
+struct StageA {
+    /// `d0`, `d1`.
+    d: [crate::exact::filter::Filtered; 2],
+    /// The face normal's components and their permanents.
+    n: P3,
+    n_perm: P3,
+    /// `α'`, `β'`, `−γ'`, if stage A reached them.
+    edges: [Option<crate::exact::filter::Filtered>; 3],
+}
+
+/// Stage A's face normal components with their bounds.
+#[inline(always)]
+fn stage_a_normal(n: P3, n_perm: P3) -> [crate::exact::filter::Filtered; 3] {
+    let nb = crate::exact::filter::cross_bounds(n_perm);
+    [0, 1, 2].map(|i| crate::exact::filter::Filtered { value: n[i], bound: nb[i] })
+}
+
+/// The hit's values from volumes known to their bounds, or `None` when a set
+/// is not accurate to [`ESTIMATE_REL_ERR`] of its sum (or the normal is too
+/// small to normalize plainly). An exact zero (bound `0`, from stage B) is
+/// an endpoint on the plane: `t` is then exactly `0` or `1`.
+#[inline(always)]
+fn hit_values(
+    d: &[crate::exact::filter::Filtered; 2],
+    w: &[crate::exact::filter::Filtered; 3],
+    n: &[crate::exact::filter::Filtered; 3],
+) -> Option<FilteredHit> {
+    use crate::exact::filter::jointly_accurate;
+    let (s0, s1) = (d[0].value.abs(), d[1].value.abs());
     let s_sum = s0 + s1;
-    let w = [alpha.value.abs(), beta.value.abs(), gamma_neg.value.abs()];
-    let w_sum = (w[0] + w[1]) + w[2];
-    let w_err = (alpha.bound + beta.bound) + gamma_neg.bound;
-    let nb = cross_bounds(n_perm);
-    let n_sum = (n[0].abs() + n[1].abs()) + n[2].abs();
-    let nn = (n[0] * n[0] + n[1] * n[1]) + n[2] * n[2];
-    if !(jointly_accurate(d0.bound + d1.bound, s_sum, ESTIMATE_REL_ERR)
-        && jointly_accurate(w_err, w_sum, ESTIMATE_REL_ERR)
-        && jointly_accurate((nb[0] + nb[1]) + nb[2], n_sum, ESTIMATE_REL_ERR)
+    let (t, one_minus_t) = if s0 == 0.0 {
+        (0.0, 1.0)
+    } else if s1 == 0.0 {
+        (1.0, 0.0)
+    } else if jointly_accurate(d[0].bound + d[1].bound, s_sum, ESTIMATE_REL_ERR) {
+        // One division: x · fl(1/sum) is within 2 roundings of x / sum
+        // (clamped: it may round past 1 where the quotient cannot).
+        let inv = 1.0 / s_sum;
+        ((s0 * inv).min(1.0), (s1 * inv).min(1.0))
+    } else {
+        return None;
+    };
+    let wa = [w[0].value.abs(), w[1].value.abs(), w[2].value.abs()];
+    let w_sum = (wa[0] + wa[1]) + wa[2];
+    let w_err = (w[0].bound + w[1].bound) + w[2].bound;
+    let na = [n[0].value.abs(), n[1].value.abs(), n[2].value.abs()];
+    let n_sum = (na[0] + na[1]) + na[2];
+    let n_err = (n[0].bound + n[1].bound) + n[2].bound;
+    let nn = (n[0].value * n[0].value + n[1].value * n[1].value) + n[2].value * n[2].value;
+    if !(jointly_accurate(w_err, w_sum, ESTIMATE_REL_ERR)
+        && jointly_accurate(n_err, n_sum, ESTIMATE_REL_ERR)
         && nn >= NORMAL_MIN_SQUARED)
     {
+        return None;
+    }
+    let (inv_len, inv_w) = (1.0 / nn.sqrt(), 1.0 / w_sum);
+    Some(FilteredHit {
+        t,
+        one_minus_t,
+        barycentric: wa.map(|x| (x * inv_w).min(1.0)),
+        normal: n.map(|x| x.value * inv_len),
+    })
+}
+
+/// Stage B of the filter: the volumes stage A could not decide (or not
+/// accurately enough) evaluated again in compensated arithmetic
+/// ([`crate::exact::compensated`]: bounds of order `u²` times the permanent,
+/// and `0` for a volume whose every operation was exact, so exact zeros —
+/// an endpoint on the plane, a line through an edge or a vertex, a segment
+/// exactly parallel — are certified too). The decisions are those of stage A
+/// with exact signs, zeros included:
+///
+/// - `d0`, `d1` both exactly zero (coplanar): left to the general path, which
+///   tells a parallel segment from a zero-area triangle;
+/// - same non-zero sign: a miss if `d1 − d0 = n · (q1 − q0)` is certainly
+///   non-zero, parallel if both are exact and equal;
+/// - otherwise the segment reaches the plane, and with `σ = sign(s1 − s0)`
+///   (`−sign(d1)`, or `sign(d0)` when `d1 = 0`) a weight of sign `−σ` is a
+///   miss; zero weights are edges and vertices (hits).
+///
+/// A hit's values come from stage A's volumes where they are accurate to
+/// [`ESTIMATE_REL_ERR`] and from the compensated ones (accurate to about
+/// `u`) otherwise. Inputs outside stage B's domain (a coordinate non-zero and
+/// below `2^−250`), a zero-length segment, and values still undecided go to
+/// the general path.
+#[inline(never)]
+fn stage_b<T: Real>(seg: &Segment<T>, tri: &Triangle<T>, sa: StageA) -> Filtered {
+    use crate::exact::compensated::{self as cb, Cross, diff, differ, dot, sign_known};
+    use crate::exact::filter::Filtered as F;
+    let (a, b, c) = (to_f64_3(&tri.vertices[0]), to_f64_3(&tri.vertices[1]), to_f64_3(&tri.vertices[2]));
+    let (q0, q1) = (to_f64_3(&seg.start), to_f64_3(&seg.end));
+    let inputs = [a, b, c, q0, q1];
+    if !cb::in_range_points(inputs) || exact::points_equal(q0, q1) {
         return Filtered::Undecided;
     }
-    let inv_len = 1.0 / nn.sqrt();
-    Filtered::Hit(FilteredHit {
-        t: s0 / s_sum,
-        one_minus_t: s1 / s_sum,
-        barycentric: w.map(|x| x / w_sum),
-        normal: n.map(|x| x * inv_len),
-    })
+    let w0 = diff(q0, a);
+    let mut n_dd: Option<Cross> = None;
+    let face = |n_dd: &mut Option<Cross>| *n_dd.get_or_insert_with(|| cb::cross(&diff(b, a), &diff(c, a)));
+    let plane_dd = |n: &Cross| [dot(n, &w0), dot(n, &diff(q1, a))];
+
+    // 1. The plane.
+    let classify = |d: &[F; 2], n: Option<&Cross>| -> Option<Option<Filtered>> {
+        if !(sign_known(&d[0]) && sign_known(&d[1])) {
+            return None;
+        }
+        let (g0, g1) = (Sign::of(d[0].value), Sign::of(d[1].value));
+        if g0 == g1 {
+            return match (g0, differ(&d[0], &d[1])) {
+                // Coplanar (only compensated values are exact zeros, so `n`
+                // is at hand): parallel, or degenerate for a zero-area
+                // triangle (`n = 0` exactly); the general path decides what
+                // the compensated normal cannot.
+                (Sign::Zero, _) => Some(Some(n.map_or(Filtered::Undecided, |n| {
+                    let c = n.components();
+                    if c.iter().all(|x| x.bound == 0.0 && x.value == 0.0) {
+                        Filtered::Degenerate
+                    } else if c.iter().any(|x| x.value.abs() > x.bound) {
+                        Filtered::Parallel
+                    } else {
+                        Filtered::Undecided
+                    }
+                }))),
+                (_, Some(true)) => Some(Some(Filtered::Miss)),
+                (_, Some(false)) => Some(Some(Filtered::Parallel)),
+                // d1 − d0 = n · (q1 − q0) itself, compensated: exact for a
+                // segment exactly parallel to an axis-aligned face.
+                (_, None) => n.map(|n| {
+                    let gap = dot(n, &diff(q1, q0));
+                    Some(match (sign_known(&gap), Sign::of(gap.value)) {
+                        (true, Sign::Zero) => Filtered::Parallel,
+                        (true, _) => Filtered::Miss,
+                        (false, _) => Filtered::Undecided,
+                    })
+                }),
+            };
+        }
+        Some(None)
+    };
+    let (mut d, mut d_compensated) = (sa.d, false);
+    match classify(&d, None) {
+        Some(Some(answer)) => return answer,
+        Some(None) => {}
+        None => {
+            let n = face(&mut n_dd);
+            d = plane_dd(&n);
+            d_compensated = true;
+            match classify(&d, Some(&n)) {
+                Some(Some(answer)) => return answer,
+                Some(None) => {}
+                None => return Filtered::Undecided,
+            }
+        }
+    }
+
+    // 2. The edges: stage A's volume where its sign is certain, else the
+    // compensated one.
+    let bad = match Sign::of(d[1].value) {
+        Sign::Zero => -Sign::of(d[0].value),
+        s => s,
+    };
+    let (r, pb) = (diff(q1, q0), diff(b, q0));
+    let mut m_dd: Option<Cross> = None;
+    let mut compensated_edge = |i: usize| -> F {
+        match i {
+            0 => dot(m_dd.get_or_insert_with(|| cb::cross(&r, &diff(c, q0))), &pb),
+            1 => dot(m_dd.get_or_insert_with(|| cb::cross(&r, &diff(c, q0))), &w0),
+            _ => dot(&cb::cross(&r, &pb), &w0),
+        }
+    };
+    let mut w = [F { value: 0.0, bound: 0.0 }; 3];
+    let mut w_compensated = [false; 3];
+    for i in 0..3 {
+        let x = match sa.edges[i].filter(sign_known) {
+            Some(x) => x,
+            None => {
+                w_compensated[i] = true;
+                compensated_edge(i)
+            }
+        };
+        if !sign_known(&x) {
+            return Filtered::Undecided;
+        }
+        // −γ' is stored negated: its miss sign is −bad.
+        let miss_sign = if i == 2 { -bad } else { bad };
+        if Sign::of(x.value) == miss_sign {
+            return Filtered::Miss;
+        }
+        w[i] = x;
+    }
+
+    // 3. A hit: the values as they are if accurate enough, else every one
+    // compensated.
+    let normal = stage_a_normal(sa.n, sa.n_perm);
+    if let Some(hit) = hit_values(&d, &w, &normal) {
+        return Filtered::Hit(hit);
+    }
+    let n = face(&mut n_dd);
+    if !d_compensated {
+        d = plane_dd(&n);
+    }
+    for i in 0..3 {
+        if !w_compensated[i] {
+            w[i] = compensated_edge(i);
+        }
+    }
+    match hit_values(&d, &w, &n.components()) {
+        Some(hit) => Filtered::Hit(hit),
+        None => Filtered::Undecided,
+    }
 }
 
 /// The general path of [`intersect_segment_triangle`]: the predicates of

@@ -562,9 +562,11 @@ fn filter_agrees_with_general(t: [P3; 3], q: [P3; 2]) -> Result<(), TestCaseErro
     /// each answer within about 2·2^−40 + a few roundings of the exact value.
     const VALUE_TOL: f64 = 8.0 * ESTIMATE_REL_ERR + 8.0 * f64::EPSILON;
     let g = general::<f64>(&seg(q[0], q[1]), &tri(t[0], t[1], t[2]));
-    match filtered(t[0], t[1], t[2], q[0], q[1]) {
+    match filtered(&seg::<f64>(q[0], q[1]), &tri::<f64>(t[0], t[1], t[2])) {
         Filtered::Undecided => {}
         Filtered::Miss => prop_assert_eq!(kind(&g), Kind::Miss, "filter says miss: {:?}", g),
+        Filtered::Parallel => prop_assert_eq!(kind(&g), Kind::Parallel, "filter says parallel: {:?}", g),
+        Filtered::Degenerate => prop_assert_eq!(kind(&g), Kind::Degenerate, "filter says degenerate: {:?}", g),
         Filtered::Hit(h) => {
             let gh = g.hit.ok_or_else(|| TestCaseError::fail(format!("filter says hit: {g:?}")))?;
             prop_assert!((h.t - gh.t).abs() <= VALUE_TOL, "t {} vs {}", h.t, gh.t);
@@ -620,12 +622,95 @@ fn filter_decides_random_queries_itself() {
         if i % 3 == 0 {
             q1 = [0, 1, 2].map(|k| 2.0 * (a[k] + b[k] + c[k]) / 3.0 - q0[k]);
         }
-        match filtered(a, b, c, q0, q1) {
+        match filtered(&seg::<f64>(q0, q1), &tri::<f64>(a, b, c)) {
             Filtered::Hit(_) => hits += 1,
             Filtered::Undecided => undecided += 1,
-            Filtered::Miss => {}
+            Filtered::Miss | Filtered::Parallel | Filtered::Degenerate => {}
         }
     }
     assert!(hits >= QUERIES / 4, "only {hits} hits: the value path is not exercised");
     assert!(undecided <= MAX_UNDECIDED, "{undecided} of {QUERIES} left to the general path");
+}
+
+// ---------------------------------------------------------------------------
+// Stage B: near-degenerate queries, decided without the general path
+// ---------------------------------------------------------------------------
+
+/// A scene built exactly on the grid of sixteenths (a triangle, a segment
+/// through one of its edges or vertices, or lying in its plane, or parallel
+/// to it), then, one way or another, nudged: endpoints moved `k` ulps
+/// (`k ∈ [−4, 4]`, often 0), or the whole scene shifted far from the origin
+/// (so exact relations hold only to rounding). These are the cases stage A
+/// cannot decide and stage B exists for.
+fn nudged() -> impl Strategy<Value = ([P3; 3], [P3; 2])> {
+    let g = || (-32i32..=32).prop_map(|k| f64::from(k) / 16.0);
+    let gp = move || [g(), g(), g()];
+    (gp(), gp(), gp(), 0..4u8, (0..=16i32, 1..=8i32, 1..=8i32), gp(), (-4i32..=4, -4i32..=4), (0..3u8, 30..50i32))
+        .prop_map(|(a, b, c, kind, (j, up, down), dir, (k0, k1), (far, e))| {
+            let lerp = |x: P3, y: P3, f: f64| [0, 1, 2].map(|i| x[i] + (y[i] - x[i]) * f);
+            // A point of edge a b (a vertex when j is 0 or 16).
+            let x = lerp(a, b, f64::from(j) / 16.0);
+            let (q0, q1) = match kind {
+                // Through the edge point, along `dir`.
+                0 => (
+                    [0, 1, 2].map(|i| x[i] + dir[i] * f64::from(up)),
+                    [0, 1, 2].map(|i| x[i] - dir[i] * f64::from(down)),
+                ),
+                // In the plane: from the edge point towards c and beyond.
+                1 => (x, lerp(x, c, f64::from(up) / 4.0)),
+                // Parallel: the in-plane segment lifted by a grid offset.
+                2 => {
+                    let lift = [0, 1, 2].map(|i| dir[i] / 4.0);
+                    let (p, q) = (x, lerp(x, c, f64::from(up) / 4.0));
+                    ([0, 1, 2].map(|i| p[i] + lift[i]), [0, 1, 2].map(|i| q[i] + lift[i]))
+                }
+                // One endpoint exactly on the plane (at the edge point).
+                _ => (x, [0, 1, 2].map(|i| x[i] + dir[i])),
+            };
+            let step = |v: f64, k: i32| {
+                let mut v = v;
+                for _ in 0..k.unsigned_abs() {
+                    v = if k > 0 { v.next_up() } else { v.next_down() };
+                }
+                v
+            };
+            let (q0, q1) = (q0.map(|v| step(v, k0)), q1.map(|v| step(v, k1)));
+            let shift = if far == 0 { 2f64.powi(e) + 0.375 } else { 0.0 };
+            let s = |p: P3| p.map(|v| v + shift);
+            ([s(a), s(b), s(c)], [s(q0), s(q1)])
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// Stage B's answers on near-degenerate scenes are the general path's.
+    #[test]
+    fn stage_b_agrees_with_general_on_nudged_scenes((t, q) in nudged()) {
+        filter_agrees_with_general(t, q)?;
+    }
+}
+
+#[test]
+fn stage_b_decides_nudged_scenes_itself() {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+    /// Cases drawn.
+    const CASES: u32 = 2000;
+    /// At most 5% may be left to the general path (3.4% were when this was
+    /// written): only exact zeros with inexact roundings behind them, such as
+    /// a segment ending exactly on a vertex while its other end is off the
+    /// grid (two edge volumes are exactly zero, but their compensated
+    /// evaluation cannot see its roundings cancel).
+    const MAX_UNDECIDED: u32 = CASES / 20;
+    let mut runner = TestRunner::deterministic();
+    let strategy = nudged();
+    let mut undecided = 0;
+    for _ in 0..CASES {
+        let (t, q) = strategy.new_tree(&mut runner).expect("a case").current();
+        if matches!(filtered(&seg::<f64>(q[0], q[1]), &tri::<f64>(t[0], t[1], t[2])), Filtered::Undecided) {
+            undecided += 1;
+        }
+    }
+    assert!(undecided <= MAX_UNDECIDED, "{undecided} of {CASES} nudged scenes left to the general path");
 }
