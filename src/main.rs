@@ -59,6 +59,10 @@ enum Command {
         /// needs, time of impact): only the per-query campaign.
         #[arg(long)]
         no_sections: bool,
+        /// The criterion benchmark's figures, written by `cargo bench --bench
+        /// queries`; when the file exists, the accuracy–speed charts use them.
+        #[arg(long, default_value = "target/criterion/crashtest-bench.json")]
+        bench_figures: PathBuf,
     },
     /// Join shard reports (folders written by `report --shard`) into one report.
     Merge {
@@ -71,6 +75,30 @@ enum Command {
     },
     /// Print the JSON Schema of the fixture format (crashtest-fixture/1).
     Schema,
+    /// Run one stability sweep (a degeneracy parameter over many decades, every
+    /// engine against the referee), write its charts (SVG) and data (JSON) into
+    /// --out, and print where each engine breaks. Exit 2 for an unknown name.
+    Sweep {
+        /// The sweep (see --list).
+        #[arg(required_unless_present = "list")]
+        name: Option<String>,
+        /// List the sweeps and exit.
+        #[arg(long)]
+        list: bool,
+        /// Folder the charts and data go in.
+        #[arg(long, default_value = "reports/sweeps")]
+        out: PathBuf,
+        /// Random rigid poses per point.
+        #[arg(long, default_value_t = harness::sweep::DEFAULT_POSES as u64, value_parser = clap::value_parser!(u64).range(1..))]
+        poses: u64,
+        /// Seed of the poses.
+        #[arg(long, default_value_t = harness::sweep::DEFAULT_SEED)]
+        seed: u64,
+        /// Also write the cases of the point with this label (`2.5e-9`, or an
+        /// exact point's label) as a fixture file for `crashtest check`.
+        #[arg(long, value_name = "LABEL")]
+        cases_at: Option<String>,
+    },
 }
 
 fn parse_query(s: &str) -> Result<harness::case::Query, String> {
@@ -107,7 +135,7 @@ fn main() -> ExitCode {
             }
             ExitCode::from(result.exit_code() as u8)
         }
-        Command::Report { cases, seed, out, only, shard, fixtures, no_timing, no_sections } => {
+        Command::Report { cases, seed, out, only, shard, fixtures, no_timing, no_sections, bench_figures } => {
             let config = harness::report::campaign::Config {
                 seed,
                 cases_per_query: cases,
@@ -117,6 +145,7 @@ fn main() -> ExitCode {
                 timing: !no_timing,
                 progress: true,
                 sections: !no_sections,
+                bench: Some(bench_figures),
             };
             let started = std::time::SystemTime::now();
             let outcome = harness::report::campaign::run(&config, harness::report::provenance::here());
@@ -182,6 +211,55 @@ fn main() -> ExitCode {
                 }
                 Err(e) => {
                     eprintln!("error: cannot write the report under {}: {e}", out.display());
+                    ExitCode::from(1)
+                }
+            }
+        }
+        Command::Sweep { name, list, out, poses, seed, cases_at } => {
+            if list {
+                print!("{}", harness::sweep::list_text());
+                return ExitCode::SUCCESS;
+            }
+            let name = name.unwrap_or_default();
+            let Some(sweep) = harness::sweep::find(&name) else {
+                eprintln!("error: {}", harness::sweep::unknown_name(&name));
+                return ExitCode::from(2);
+            };
+            let settings = harness::sweep::Settings { poses: poses as usize, seed };
+            let fixture = match cases_at.as_deref().map(|l| (l, harness::sweep::fixture_at(sweep, &settings, l))) {
+                Some((label, None)) => {
+                    eprintln!("error: sweep {} has no point labelled `{label}`", sweep.name);
+                    return ExitCode::from(2);
+                }
+                Some((label, Some(f))) => Some((label.to_string(), f)),
+                None => None,
+            };
+            let started = std::time::Instant::now();
+            let result = harness::sweep::run(sweep, &settings);
+            print!("{}", harness::sweep::table_text(std::slice::from_ref(&result)));
+            match harness::sweep::write(&result, &out) {
+                Ok(mut files) => {
+                    if let Some((label, f)) = fixture {
+                        let path = out.join(format!("{}-cases-{label}.json", sweep.name));
+                        let text = serde_json::to_string_pretty(&f).unwrap_or_default() + "\n";
+                        if let Err(e) = std::fs::write(&path, text) {
+                            eprintln!("error: cannot write {}: {e}", path.display());
+                            return ExitCode::from(1);
+                        }
+                        files.push(path);
+                    }
+                    println!(
+                        "{} in {:.1} s ({poses} poses per point, seed {seed}):",
+                        sweep.name,
+                        started.elapsed().as_secs_f64()
+                    );
+                    for f in files {
+                        println!("  {}", f.display());
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: cannot write under {}: {e}", out.display());
                     ExitCode::from(1)
                 }
             }

@@ -64,17 +64,18 @@ fn report_dir(name: &str) -> PathBuf {
 fn a_report_folder_has_every_file_and_latest_names_it() {
     let out = report_dir("report-files");
     let status = Command::new(env!("CARGO_BIN_EXE_crashtest"))
-        .args(["report", "--cases", "40", "--no-timing", "--out"])
+        .args(["report", "--cases", "40", "--no-timing", "--no-sections", "--out"])
         .arg(&out)
         .status()
         .unwrap();
     assert!(status.success());
     let latest = out.join("latest");
-    for f in ["index.html", "summary.md", "summary.json", "discrepancies.json", "sections.json", "dynamics.json"] {
+    // The sections (sweeps, scene, dynamics, …) take most of a report's time
+    // and have their own tests; `report::section`'s tests check how they land
+    // in a report's files.
+    for f in ["index.html", "summary.md", "summary.json", "discrepancies.json", "sections.json"] {
         assert!(latest.join(f).is_file(), "{f} missing");
     }
-    let index = std::fs::read_to_string(latest.join("index.html")).unwrap();
-    assert!(index.contains("<section id=\"dynamics\">"), "the dynamics section is in the page");
     let charts = std::fs::read_dir(latest.join("charts")).map(|d| d.count()).unwrap_or(0);
     assert!(charts > 0, "no charts");
 }

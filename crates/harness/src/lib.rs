@@ -24,4 +24,7 @@ pub mod judge;
 pub mod load;
 pub mod mesh;
 pub mod report;
+pub mod scene;
+pub mod sweep;
+pub mod toi_report;
 pub mod tolerance;

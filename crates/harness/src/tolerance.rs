@@ -52,6 +52,23 @@ pub const NORMAL_CONDITION_ULPS: f64 = 16.0;
 /// method in the engine's precision. 16 covers the cross and dot products.
 pub const BARY_CONDITION_ULPS: f64 = 16.0;
 
+/// Conditioning allowance for a time of impact, in units of the engine's
+/// epsilon: the first touch is where a distance reaches the radius, and any
+/// method evaluates that distance with an absolute error of a few ulps of the
+/// scene's scale; the touching time moves by that error over the speed at
+/// which the gap closes (`closing`), which a near-parallel approach or a
+/// grazing pass makes small — no method that tests distances in the engine's
+/// precision does better on the same inputs. So a time is allowed `K · ε · scale / closing` (for
+/// curved surfaces at most `√(2 R K ε scale)/‖v‖`, `R` the radius of
+/// curvature) on top of the fixed allowance, and the point and the normal what
+/// that time moves them by (see `judge::toi_allowance`). The distance behind
+/// a time is the moved centre (a multiply-add of coordinates of the scene's
+/// size at the impact), a triangle's closest point (a dozen dot products and a
+/// division) and a norm: on the generated grazing passes the `f64` engines'
+/// distances were off by up to 25 ulps of that scale, so 64 leaves room while
+/// staying far below what a wrong first touch costs (a whole feature's time).
+pub const TIME_CONDITION_ULPS: f64 = 64.0;
+
 /// The tolerances in force for one engine.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tolerance {

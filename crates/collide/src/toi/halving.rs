@@ -2,7 +2,7 @@
 
 use super::time_of_impact::{Halving, Toi, ToiStatus, clamp_t_max};
 use crate::contact::Contact;
-use crate::real::{Real, c};
+use crate::real::{Real, Vec3, c};
 
 /// Time of impact by **interval halving** on a static contact test, the
 /// lecture's method: `contact_at(t)` is the static test (a `collide::contact`
@@ -41,14 +41,51 @@ use crate::real::{Real, c};
 /// negative or NaN `t_max` is read as 0. The contact's `degenerate` flag is
 /// passed on. The status is [`ToiStatus::Converged`]; `iterations` counts the
 /// bisections.
-pub fn toi_halving<T, F>(mut contact_at: F, t_max: T, stop: Halving<T>) -> Option<Toi<T>>
+pub fn toi_halving<T, F>(contact_at: F, t_max: T, stop: Halving<T>) -> Option<Toi<T>>
 where
     T: Real,
     F: FnMut(T) -> Option<Contact<T>>,
 {
+    bisect(contact_at, t_max, stop).map(|b| b.answer(|k| k))
+}
+
+/// Where [`bisect`] ended: the time, the static test's answer there (of any
+/// type: a [`Contact`], or a mesh contact with its face), and how.
+pub(crate) struct Bisected<T: Real, K> {
+    pub t: T,
+    pub at: K,
+    pub steps: u32,
+    pub penetrating: bool,
+}
+
+impl<T: Real, K> Bisected<T, K> {
+    /// The answer, with `contact` reading the [`Contact`] out of the payload.
+    pub(crate) fn answer(self, contact: impl FnOnce(K) -> Contact<T>) -> Toi<T> {
+        let k = contact(self.at);
+        if self.penetrating {
+            return Toi::penetrating(&k);
+        }
+        Toi {
+            t: self.t,
+            point: k.point,
+            normal: k.normal,
+            status: ToiStatus::Converged,
+            iterations: self.steps,
+            degenerate: k.degenerate,
+        }
+    }
+}
+
+/// The bisection of [`toi_halving`] for any static test whose answer (`K`) is a
+/// contact with more attached (a mesh's face index, say).
+pub(crate) fn bisect<T, K, F>(mut contact_at: F, t_max: T, stop: Halving<T>) -> Option<Bisected<T, K>>
+where
+    T: Real,
+    F: FnMut(T) -> Option<K>,
+{
     let t_max = clamp_t_max(t_max);
     if let Some(k) = contact_at(T::zero()) {
-        return Some(Toi::penetrating(&k));
+        return Some(Bisected { t: T::zero(), at: k, steps: 0, penetrating: true });
     }
     // The lecture's test at the end of the interval: clear there means no impact.
     let mut at_hi = contact_at(t_max)?;
@@ -75,12 +112,40 @@ where
             None => lo = mid,
         }
     }
-    Some(Toi {
-        t: hi,
-        point: at_hi.point,
-        normal: at_hi.normal,
-        status: ToiStatus::Converged,
-        iterations: steps,
-        degenerate: at_hi.degenerate,
-    })
+    Some(Bisected { t: hi, at: at_hi, steps, penetrating: false })
+}
+
+/// The fraction of the type's largest finite value that a moved coordinate may
+/// reach in the halving methods: 1/4, so that a coordinate of the scene (at most
+/// about as large, or the static test could not run on it either) plus the
+/// displacement stays finite, and the static tests' own differences of such
+/// coordinates do too.
+const HORIZON_FRACTION: f64 = 0.25;
+
+/// `t_max` as the lecture's halving reads it for shapes moving with
+/// `velocities`: at most the last time at which every displacement
+/// `t · v_k` stays within [`HORIZON_FRACTION`] of the type's largest finite
+/// value. Beyond it the moved shapes are not representable and the static test
+/// has nothing to test (`t_max = f64::MAX`, parry's "no limit", moves a sphere
+/// of speed 10 to infinity); the end of the step is the horizon instead.
+///
+/// This is a deviation from the lecture, which never meets such a step: the
+/// lecture's method then tests the end of the shortened interval, as for any
+/// other step, and misses an impact that is over by then (the tunneling it is
+/// known for).
+pub(crate) fn horizon<T: Real>(t_max: T, velocities: &[&Vec3<T>]) -> T {
+    let reach = T::max_value().unwrap_or_else(|| c(f64::MAX)) * c::<T>(HORIZON_FRACTION);
+    let mut t = clamp_t_max(t_max);
+    for v in velocities {
+        for k in 0..3 {
+            let speed = v[k].abs();
+            if speed > T::zero() {
+                let limit = reach / speed;
+                if limit < t {
+                    t = limit;
+                }
+            }
+        }
+    }
+    t
 }

@@ -10,24 +10,30 @@
 //! - **closed form** for sphere–sphere and sphere–plane: the touching time is a
 //!   root of a quadratic (a linear equation for the plane), taken in a form
 //!   without catastrophic cancellation;
-//! - **conservative advancement** for triangles: step forward by a distance bound
-//!   that can never step past the first contact, until the gap is below a
-//!   tolerance.
+//! - **conservative advancement** for triangles and meshes: step forward by a
+//!   distance bound that can never step past the first contact, until the gap
+//!   is below a tolerance; against a mesh, per face, over the faces its
+//!   bounding volume hierarchy cannot rule out (or every face).
 //!
 //! Every function answers in the fixture format's convention (see [`Toi`]): the
 //! normal points from `b` toward `a`, the point lies on `b`'s surface at time
 //! `t`, and shapes already in contact at `t = 0` give `t = 0`.
 
 mod halving;
+mod sphere_mesh;
+mod sphere_mesh_halving;
 mod sphere_plane;
 mod sphere_plane_halving;
 mod sphere_sphere;
 mod sphere_sphere_halving;
 mod sphere_triangle;
 mod sphere_triangle_halving;
+mod sweep;
 mod time_of_impact;
 
 pub use halving::toi_halving;
+pub use sphere_mesh::{MeshToi, toi_sphere_mesh, toi_sphere_mesh_brute};
+pub use sphere_mesh_halving::toi_sphere_mesh_halving;
 pub use sphere_plane::toi_sphere_plane;
 pub use sphere_plane_halving::toi_sphere_plane_halving;
 pub use sphere_sphere::toi_sphere_sphere;

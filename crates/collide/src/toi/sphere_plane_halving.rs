@@ -1,6 +1,6 @@
 //! Sphere–plane time of impact by the lecture's interval halving.
 
-use super::halving::toi_halving;
+use super::halving::{horizon, toi_halving};
 use super::time_of_impact::{Halving, Toi};
 use crate::contact::contact_sphere_plane;
 use crate::real::{Real, Vec3};
@@ -24,6 +24,9 @@ use crate::shapes::{Plane, Sphere};
 /// **Degenerate input.** A zero or non-finite normal defines no plane: no
 /// contact is ever found and the answer is `None`, as for
 /// [`contact_sphere_plane`]. A negative or NaN `t_max` is read as 0.
+/// A `t_max` so large that the motion leaves the type's range is cut to the
+/// last time it stays representable (`halving::horizon`, a documented
+/// deviation: the lecture never meets such a step).
 pub fn toi_sphere_plane_halving<T: Real>(
     a: &Sphere<T>,
     va: &Vec3<T>,
@@ -39,7 +42,7 @@ pub fn toi_sphere_plane_halving<T: Real>(
                 &Plane::new(b.normal, b.offset + b.normal.dot(vb) * t),
             )
         },
-        t_max,
+        horizon(t_max, &[va, vb]),
         stop,
     )
 }

@@ -2,7 +2,8 @@
 
 use super::time_of_impact::{Toi, ToiStatus, approach_fallback, clamp_t_max};
 use crate::contact::contact_sphere_sphere;
-use crate::real::{Real, Vec3, stable_norm, try_normalize_stable};
+use crate::exact::norm::{normalize, safe_squared_range};
+use crate::real::{Real, Vec3, c, stable_norm, try_normalize_stable};
 use crate::shapes::Sphere;
 
 /// Time of impact of sphere `a` (centre `M1`, radius `r1`, velocity `va`) and
@@ -16,33 +17,41 @@ use crate::shapes::Sphere;
 /// ```
 ///
 /// and the first contact is the smaller root. Written as the textbook
-/// `(−b' − √disc)/a` it cancels catastrophically when `c` is small against `b'²`
-/// (spheres nearly touching at `t = 0`), so it is taken in the stable form
-/// (Numerical Recipes §5.6, Goldberg): with `q = −(b' + sign(b')√disc)` the
-/// roots are `q/a` and `c/q`; for approaching spheres `b' < 0`, so
-/// `q = −b' + √disc` adds two positive numbers and the first contact is
-/// `t = c/q`. The pieces are computed without forming `b'²` or `a·c` either:
+/// `(−b' − √disc)/a`, `disc = b'² − a c`, it cancels twice: the root when `c` is
+/// small against `b'²` (spheres nearly touching at `t = 0`), the discriminant
+/// near grazing. Both are avoided:
 ///
 /// ```text
-/// s = ‖Δv‖,  u = Δv/s,  along = −Δp·u  (distance to the closest approach),
-/// h = ‖Δp × u‖                         (the closest-approach distance),
-/// disc = b'² − a c = s² (R² − h²)      (Lagrange's identity ‖Δp‖² = along² + h²),
-/// √disc = s·w,   w = √((R − h)(R + h)),
-/// q = s (along + w),   c = (‖Δp‖ − R)(‖Δp‖ + R),   t = c / q.
+/// disc = a R² − ‖Δp × Δv‖²        (Lagrange's identity: ‖Δp‖²‖Δv‖² = b'² + ‖Δp × Δv‖²)
+/// t    = c / (−b' + √disc)        (Numerical Recipes §5.6; Goldberg)
 /// ```
 ///
-/// So the hit-or-miss decision is `h ≤ R` (grazing, `h = R`, touches once and
-/// counts), evaluated on well-conditioned quantities. The contact at `t` is the
-/// sphere contact there: `n = (Δp + t Δv)/‖Δp + t Δv‖` (from `b` toward `a`),
-/// point `M2 + t vb + r2 n` on `b`.
+/// For approaching spheres `b' < 0`, so the denominator adds two non-negative
+/// numbers, and `disc` is a difference of two squares of the data's own size,
+/// never of `b'²`. The hit-or-miss decision is `‖Δp × Δv‖² ≤ a R²`: the closest
+/// approach `‖Δp × Δv‖ / ‖Δv‖` is at most `R` (grazing, equality, touches once
+/// and counts). The contact at `t` is the sphere contact there:
+/// `n = (Δp + t Δv)/‖Δp + t Δv‖` (from `b` toward `a`), point `M2 + t vb + r2 n`
+/// on `b`.
+///
+/// **Cost.** Where every square lies in the range in which plain sums of
+/// squares lose nothing (`[2^−918, 2^920]` in `f64`) and their products stay
+/// finite: a few dozen operations, one root and one division for `t` (taken
+/// before the hit-or-miss tests, so that those are one data-dependent branch,
+/// not three), the normal as `(Δp + t Δv)/R` — `1/R` is known from the start —
+/// whenever that is unit to a few ulps (else one more root and division); the
+/// static contact test only for spheres that already overlap (`c ≤ 0`). Outside that range a scaled path computes the same
+/// root from lengths divided by the scene's own scale and the unit direction
+/// of the motion (see `toi_sphere_sphere_scaled`), which never overflows or
+/// underflows spuriously.
 ///
 /// **Cases.** Already in contact at `t = 0` ([`contact_sphere_sphere`], touching
 /// counts): `t = 0`, status [`ToiStatus::Penetrating`], the static contact. No
-/// relative motion (`Δv = 0`), moving apart or sideways (`along ≤ 0`), passing
-/// wide (`h > R`) or touching after `t_max`: `None`. Otherwise the status is
+/// relative motion (`Δv = 0`), moving apart or sideways (`b' ≥ 0`), passing
+/// wide (`disc < 0`) or touching after `t_max`: `None`. Otherwise the status is
 /// [`ToiStatus::Converged`] and `t` is accurate to a few ulps of the inputs'
 /// scale over the closing speed — except near grazing, where `t` depends on the
-/// data like `√(R − h)` and any method loses half the digits.
+/// data like `√disc` and any method loses half the digits.
 ///
 /// **Degenerate input.** Concentric spheres at `t = 0` get the static test's
 /// fallback normal (flagged). Two spheres of zero total radius meet at a point
@@ -57,32 +66,163 @@ pub fn toi_sphere_sphere<T: Real>(
     t_max: T,
 ) -> Option<Toi<T>> {
     let t_max = clamp_t_max(t_max);
-    if let Some(k) = contact_sphere_sphere(a, b) {
-        return Some(Toi::penetrating(&k));
-    }
     let dp = a.center - b.center;
     let dv = va - vb;
     let reach = a.radius + b.radius;
-    let u = try_normalize_stable(&dv)?;
-    let s = stable_norm(&dv);
-    let along = -dp.dot(&u);
-    if along.is_nan() || along <= T::zero() {
+    let (lo, hi) = safe_squared_range::<T>();
+    let (dd, vv, rr) = (dp.norm_squared(), dv.norm_squared(), reach * reach);
+    // The squares whose roots are taken (`disc`, and at the touch ‖Δp + tΔv‖²
+    // ≈ R²) and the products in `disc` stay in the plain range, and `c` is not
+    // a difference of underflowed squares; ‖Δp × Δv‖² ≤ ‖Δp‖²‖Δv‖² is bounded
+    // by the first product. A NaN fails every test: the scaled path.
+    let plain = vv >= lo && dd + rr >= lo && rr <= hi && dd * vv <= hi && vv * rr <= hi;
+    if !plain {
+        if dv.iter().all(|x| *x == T::zero()) {
+            // No relative motion (exactly: a square can underflow): in contact
+            // at 0 and for good, or never.
+            return at_start(a, b);
+        }
+        return toi_sphere_sphere_scaled(a, va, b, vb, t_max);
+    }
+    let c = dd - rr;
+    if c <= T::zero()
+        && let Some(k) = at_start(a, b)
+    {
+        return Some(k);
+    }
+    // The root and the division come before the tests, which are then one
+    // combined decision (approaching, close enough, in time): one
+    // unpredictable branch instead of three.
+    let bp = dp.dot(&dv);
+    let disc = vv * rr - dp.cross(&dv).norm_squared();
+    // Touching at 0 by the squares but not by the static test (a rounding
+    // apart): c ≤ 0 gives t = 0.
+    let t = (c / (disc.max(T::zero()).sqrt() - bp)).max(T::zero());
+    let hit = bp < T::zero() && disc >= T::zero() && t <= t_max;
+    // At the touch ‖Δp + t Δv‖ = R: dividing by R (known from the start)
+    // keeps a second root and division off the path from the data to the
+    // answer. That quotient is the normal when it is unit to within
+    // `unit_slack`; otherwise (a pair small against the distance it comes
+    // from, whose Δp + t Δv carries the rounding of the larger scale) the
+    // vector is normalized by its own norm.
+    if !hit {
         return None;
     }
-    let h = stable_norm(&dp.cross(&u));
-    if h.is_nan() || h > reach {
-        return None;
-    }
-    let w = ((reach - h) * (reach + h)).sqrt();
-    let d = stable_norm(&dp);
-    let c = (d - reach) * (d + reach);
-    let t = c / (s * (along + w));
-    if t.is_nan() || t > t_max {
-        return None;
-    }
-    let t = t.max(T::zero());
     let delta = dp + dv * t;
-    let (normal, degenerate) = match try_normalize_stable(&delta) {
+    let quotient = delta * (T::one() / reach);
+    let normal = if (quotient.norm_squared() - T::one()).abs() <= unit_slack::<T>() {
+        quotient
+    } else {
+        let dl = delta.norm_squared();
+        if !(reach > T::zero() && dl >= lo && dl <= hi) {
+            // No radius between the centres (no normal), or a vector too short
+            // or too long for the plain normalization.
+            return Some(contact_at(b, vb, &dp, &dv, reach, t));
+        }
+        delta * (T::one() / dl.sqrt())
+    };
+    Some(Toi {
+        t,
+        point: b.center + vb * t + normal * b.radius,
+        normal,
+        status: ToiStatus::Converged,
+        iterations: 0,
+        degenerate: false,
+    })
+}
+
+/// How far from 1 the squared length of `(Δp + t Δv)/R` may be for it to be
+/// reported as the normal as it is: `16 u` (`u` the unit roundoff), so its
+/// length is within `8 u` of 1 — unit as a normalized vector is, to a few `u`.
+/// Beyond that the vector is normalized by its own norm (or replaced by the
+/// documented fallback when the radii sum to 0). Units: relative.
+fn unit_slack<T: Real>() -> T {
+    c::<T>(8.0) * T::EPSILON
+}
+
+/// Spheres in contact at `t = 0`: the static contact ([`ToiStatus::Penetrating`]).
+#[cold]
+#[inline(never)]
+fn at_start<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> Option<Toi<T>> {
+    contact_sphere_sphere(a, b).map(|k| Toi::penetrating(&k))
+}
+
+/// The contact of a touch at `t`: the normal from `b` toward `a` (or the
+/// approach direction, flagged, when the radii sum to 0), the point on `b`.
+#[inline(never)]
+fn contact_at<T: Real>(b: &Sphere<T>, vb: &Vec3<T>, dp: &Vec3<T>, dv: &Vec3<T>, reach: T, t: T) -> Toi<T> {
+    let delta = dp + dv * t;
+    let (normal, degenerate) = match normalize(&delta) {
+        Some(n) if reach > T::zero() => (n, false),
+        _ => (approach_fallback(dv), true),
+    };
+    Toi {
+        t,
+        point: b.center + vb * t + normal * b.radius,
+        normal,
+        status: ToiStatus::Converged,
+        iterations: 0,
+        degenerate,
+    }
+}
+
+/// The scaled path of [`toi_sphere_sphere`]: squares out of the plain range.
+///
+/// Lengths are divided by `m = max(‖Δp‖∞, R)` first (so `‖Δp/m‖∞ ≤ 1` and
+/// `R/m ≤ 1`), and the motion is its unit direction `u` and its speed `s`
+/// (scaled norms): with `p = Δp/m`, `r = R/m`, `along = −p·u`,
+/// `h = ‖p × u‖` (the closest approach, in units of `m`),
+/// `τ = (‖p‖² − r²)/(along + √((r − h)(r + h)))` is the distance travelled to
+/// the touch in units of `m`, and `t = τ · (m / s)`; the normal is `p + τ u`
+/// normalized. Nothing here overflows or underflows spuriously whatever the
+/// scale of the scene (a centre difference that overflows is taken at half
+/// scale, exactly); a speed that overflows is no motion the type can
+/// represent: `None`.
+#[inline(never)]
+fn toi_sphere_sphere_scaled<T: Real>(
+    a: &Sphere<T>,
+    va: &Vec3<T>,
+    b: &Sphere<T>,
+    vb: &Vec3<T>,
+    t_max: T,
+) -> Option<Toi<T>> {
+    if let Some(k) = contact_sphere_sphere(a, b) {
+        return Some(Toi::penetrating(&k));
+    }
+    let dv = va - vb;
+    let u = try_normalize_stable(&dv)?;
+    let speed = stable_norm(&dv);
+    let mut dp = a.center - b.center;
+    let mut reach = a.radius + b.radius;
+    let mut unit = T::one();
+    if !crate::real::finite3(&dp) || !reach.finite() {
+        // Half scale, exactly: lengths in units of 2.
+        let h: T = c(0.5);
+        dp = a.center * h - b.center * h;
+        reach = a.radius * h + b.radius * h;
+        unit = c(2.0);
+    }
+    let m = dp.x.abs().max(dp.y.abs()).max(dp.z.abs()).max(reach);
+    if !(m > T::zero() && m.finite()) {
+        return None;
+    }
+    let (p, r) = (dp / m, reach / m);
+    let along = -p.dot(&u);
+    if !(along > T::zero()) {
+        return None;
+    }
+    let h = stable_norm(&p.cross(&u));
+    if !(h <= r) {
+        return None;
+    }
+    let w = ((r - h) * (r + h)).sqrt();
+    let d = stable_norm(&p);
+    let tau = ((d - r) * (d + r) / (along + w)).max(T::zero());
+    let t = tau * (m / speed) * unit;
+    if !(t <= t_max) {
+        return None;
+    }
+    let (normal, degenerate) = match try_normalize_stable(&(p + u * tau)) {
         Some(n) if reach > T::zero() => (n, false),
         _ => (approach_fallback(&dv), true),
     };

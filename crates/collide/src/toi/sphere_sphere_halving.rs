@@ -1,6 +1,6 @@
 //! Sphere–sphere time of impact by the lecture's interval halving.
 
-use super::halving::toi_halving;
+use super::halving::{horizon, toi_halving};
 use super::time_of_impact::{Halving, Toi};
 use crate::contact::contact_sphere_sphere;
 use crate::real::{Real, Vec3};
@@ -22,6 +22,9 @@ use crate::shapes::Sphere;
 ///
 /// **Degenerate input.** Concentric spheres at the reported time get the static
 /// test's fallback normal (flagged); a negative or NaN `t_max` is read as 0.
+/// A `t_max` so large that the motion leaves the type's range is cut to the
+/// last time it stays representable (`halving::horizon`, a documented
+/// deviation: the lecture never meets such a step).
 pub fn toi_sphere_sphere_halving<T: Real>(
     a: &Sphere<T>,
     va: &Vec3<T>,
@@ -32,7 +35,7 @@ pub fn toi_sphere_sphere_halving<T: Real>(
 ) -> Option<Toi<T>> {
     toi_halving(
         |t| contact_sphere_sphere(&Sphere::new(a.center + va * t, a.radius), &Sphere::new(b.center + vb * t, b.radius)),
-        t_max,
+        horizon(t_max, &[va, vb]),
         stop,
     )
 }

@@ -2,13 +2,12 @@
 
 use super::time_of_impact::{Toi, ToiStatus, approach_fallback, clamp_t_max};
 use crate::contact::{closest_pt_point_triangle, contact_sphere_triangle};
-use crate::real::{Real, Vec3, c, stable_norm};
+use crate::real::{Real, Vec3, c, stable_norm, try_normalize_stable};
 use crate::shapes::{Sphere, Triangle};
 
 /// The default gap tolerance of conservative advancement, in units of the
-/// type's ε times the scene's scale (the largest of the radius, the largest
-/// coordinate of the centre and the vertices at `t = 0`, and the largest
-/// component of the relative displacement over `[0, t_max]`).
+/// type's ε times the scene's scale (the largest of the radius and the largest
+/// coordinate of the centre and of the vertices at `t = 0`).
 ///
 /// The gap `‖M(t) − q(t)‖ − r` is computed with an error of a few ulps of that
 /// scale (the closest point is a handful of dot products and one division), so a
@@ -70,11 +69,16 @@ impl Default for Advancement {
 ///
 /// **Stopping rule.** `tol = tol_eps · ε · scale` ([`ADVANCE_TOL_EPS`] by
 /// default, scale as described there): the gap is then below what the distance
-/// computation can resolve, and the reported `t` is at, or by at most
-/// `tol / closing` before, the first contact. Near grazing (an edge or vertex
+/// computation can resolve; a few last steps of the same rule are taken from
+/// there (see `POLISH_STEPS`), which land on a face contact up to rounding and
+/// take the gap at an edge or a vertex down to the distance's rounding, so the
+/// reported `t` is at the first contact up to that rounding over the closing
+/// speed. A last step that would end after `t_max` means the contact is after
+/// it: no impact. Near grazing (an edge or vertex
 /// met tangentially) `D` is flat at the contact, each step halves the time left
-/// and quarters the gap, and `t`'s error is about `√(2 r tol)/‖v‖`, the data's
-/// own conditioning. The loop also stops, converged, when a step no longer
+/// and quarters the gap, and `t`'s error is about `√(2 r tol)/‖v‖` when the gap
+/// first falls below the tolerance (halved by each last step): the
+/// distance's own resolution, seen through a flat minimum. The loop also stops, converged, when a step no longer
 /// changes `t` in the type. After `max_steps` steps without converging the
 /// answer is [`ToiStatus::OutOfIterations`] with `t` the last (safe) time and
 /// the closest points then.
@@ -104,7 +108,53 @@ pub fn toi_sphere_triangle<T: Real>(
         return Some(Toi::penetrating(&k));
     }
     let v = va - vb;
-    let tol = c::<T>(rule.tol_eps) * T::EPSILON * scale(a, b, &v, t_max);
+    let tol = c::<T>(rule.tol_eps) * T::EPSILON * scale(a, &b.vertices);
+    advance(a, &v, b, t_max, tol, rule.max_steps).map(|s| s.answer(a, &v, vb))
+}
+
+/// Where conservative advancement against one triangle stopped.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Advanced<T: Real> {
+    /// The time reached.
+    pub t: T,
+    /// The triangle's closest point to the centre then (in `b`'s frame at time 0).
+    pub q: Vec3<T>,
+    /// The centre then, minus `q`.
+    pub delta: Vec3<T>,
+    /// [`ToiStatus::Converged`] or [`ToiStatus::OutOfIterations`].
+    pub status: ToiStatus,
+    /// Steps taken.
+    pub steps: u32,
+}
+
+impl<T: Real> Advanced<T> {
+    /// The answer in the format's convention: the normal from the triangle toward
+    /// the centre (the approach direction `−v/‖v‖` when there is none, flagged),
+    /// the point `q` moved with `b` to time `t`.
+    pub(crate) fn answer(&self, a: &Sphere<T>, v: &Vec3<T>, vb: &Vec3<T>) -> Toi<T> {
+        let (normal, degenerate) = match try_normalize_stable(&self.delta) {
+            Some(n) if a.radius > T::zero() => (n, false),
+            _ => (approach_fallback(v), true),
+        };
+        Toi { t: self.t, point: self.q + vb * self.t, normal, status: self.status, iterations: self.steps, degenerate }
+    }
+}
+
+/// The advancement loop of [`toi_sphere_triangle`] in `b`'s frame: the centre
+/// moves as `a.center + t v` past the triangle `b` at its time-0 position; the
+/// sphere is known to be clear of it at `t = 0`. `None`: no impact in
+/// `[0, t_max]` (moving away, passing by, arriving late, or a non-finite value).
+/// Its answers do not depend on `t_max` other than through that cut: the steps
+/// are the same whatever the limit, so an answer at `t ≤ t_max` is the same for
+/// every `t_max ≥ t`.
+pub(crate) fn advance<T: Real>(
+    a: &Sphere<T>,
+    v: &Vec3<T>,
+    b: &Triangle<T>,
+    t_max: T,
+    tol: T,
+    max_steps: u32,
+) -> Option<Advanced<T>> {
     let mut t = T::zero();
     let mut steps = 0u32;
     loop {
@@ -116,18 +166,12 @@ pub fn toi_sphere_triangle<T: Real>(
         if !gap.finite() {
             return None;
         }
-        let answer = |status| {
-            let (normal, degenerate) = match crate::real::try_normalize_stable(&delta) {
-                Some(n) if a.radius > T::zero() => (n, false),
-                _ => (approach_fallback(&v), true),
-            };
-            Some(Toi { t, point: q + vb * t, normal, status, iterations: steps, degenerate })
-        };
+        let stop = |status| Some(Advanced { t, q, delta, status, steps });
         if gap <= tol {
-            return answer(ToiStatus::Converged);
+            return polish(a, v, b, t_max, Advanced { t, q, delta, status: ToiStatus::Converged, steps });
         }
-        if steps >= rule.max_steps {
-            return answer(ToiStatus::OutOfIterations);
+        if steps >= max_steps {
+            return stop(ToiStatus::OutOfIterations);
         }
         // gap > tol ≥ 0, so dist > 0 and the direction exists.
         let closing = -v.dot(&(delta / dist));
@@ -140,20 +184,65 @@ pub fn toi_sphere_triangle<T: Real>(
         }
         if next <= t {
             // The time left is below t's resolution: as close as the type gets.
-            return answer(ToiStatus::Converged);
+            return stop(ToiStatus::Converged);
         }
         t = next;
         steps += 1;
     }
 }
 
-/// The scene's length scale for the tolerance: the largest of `r`, the largest
-/// coordinate of the centre and of the vertices, and the largest component of
-/// the relative displacement `v·t_max`.
-fn scale<T: Real>(a: &Sphere<T>, b: &Triangle<T>, v: &Vec3<T>, t_max: T) -> T {
+/// Steps taken after the gap first falls within the tolerance, at most: 6.
+/// Reason: each of them lands on a face contact up to rounding, and at an edge
+/// or a vertex (a flat minimum of the distance) halves the time left and
+/// quarters the gap, so six take a gap of `tol` down to `tol / 4096`, below the
+/// distance's own rounding (a few ε·scale) from the default tolerance — also
+/// far from the origin, where the tolerance may exceed the radius.
+const POLISH_STEPS: u32 = 6;
+
+/// The last steps of a converged advancement: from a gap within the tolerance,
+/// up to [`POLISH_STEPS`] more steps `gap / closing` (safe, as every step), so
+/// that the answer is at the contact up to rounding rather than up to the
+/// tolerance. They stop at a gap of 0 or below (touching, up to rounding), at no
+/// closing speed, or at a step below `t`'s resolution; a step that would end
+/// after `t_max` means the contact is after it: no impact, as for any other
+/// step.
+fn polish<T: Real>(a: &Sphere<T>, v: &Vec3<T>, b: &Triangle<T>, t_max: T, at: Advanced<T>) -> Option<Advanced<T>> {
+    let mut at = at;
+    for _ in 0..POLISH_STEPS {
+        let dist = stable_norm(&at.delta);
+        let gap = dist - a.radius;
+        if !(gap > T::zero()) {
+            break;
+        }
+        let closing = -v.dot(&(at.delta / dist));
+        if !(closing > T::zero()) {
+            break;
+        }
+        let next = at.t + gap / closing;
+        if !next.finite() || next > t_max {
+            return None;
+        }
+        if next <= at.t {
+            break;
+        }
+        let p = a.center + v * next;
+        let q = closest_pt_point_triangle(&p, b);
+        at = Advanced { t: next, q, delta: p - q, steps: at.steps + 1, ..at };
+    }
+    Some(at)
+}
+
+/// The scene's length scale for the tolerance: the largest of `r` and the
+/// largest coordinate of the centre and of the vertices at `t = 0`.
+///
+/// The displacement is left out on purpose: up to the first contact the centre
+/// stays within `‖M‖ + ‖q‖ + r` of the origin, so the rounding of `M + t v`
+/// there is already of this scale, and a huge `t_max` (parry's "no limit",
+/// `f64::MAX`) would otherwise make the tolerance infinite.
+pub(crate) fn scale<T: Real>(a: &Sphere<T>, vertices: &[Vec3<T>]) -> T {
     let amax = |p: &Vec3<T>| p.x.abs().max(p.y.abs()).max(p.z.abs());
-    let mut s = a.radius.abs().max(amax(&a.center)).max(amax(&(v * t_max)));
-    for p in &b.vertices {
+    let mut s = a.radius.abs().max(amax(&a.center));
+    for p in vertices {
         s = s.max(amax(p));
     }
     s

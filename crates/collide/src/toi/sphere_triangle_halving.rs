@@ -1,6 +1,6 @@
 //! Sphere–triangle time of impact by the lecture's interval halving.
 
-use super::halving::toi_halving;
+use super::halving::{horizon, toi_halving};
 use super::time_of_impact::{Halving, Toi};
 use crate::contact::contact_sphere_triangle;
 use crate::real::{Real, Vec3};
@@ -23,6 +23,9 @@ use crate::shapes::{Sphere, Triangle};
 /// **Degenerate input.** A sphere centre on the triangle at the reported time
 /// gets the static test's fallback normal (flagged); a zero-area triangle is the
 /// segment or point it collapsed to; a negative or NaN `t_max` is read as 0.
+/// A `t_max` so large that the motion leaves the type's range is cut to the
+/// last time it stays representable (`halving::horizon`, a documented
+/// deviation: the lecture never meets such a step).
 pub fn toi_sphere_triangle_halving<T: Real>(
     a: &Sphere<T>,
     va: &Vec3<T>,
@@ -37,7 +40,7 @@ pub fn toi_sphere_triangle_halving<T: Real>(
             let [v0, v1, v2] = b.vertices;
             contact_sphere_triangle(&Sphere::new(a.center + va * t, a.radius), &Triangle::new(v0 + d, v1 + d, v2 + d))
         },
-        t_max,
+        horizon(t_max, &[va, vb]),
         stop,
     )
 }

@@ -766,3 +766,365 @@ fn check_built<T: Real>(s: &Built) -> Result<(), TestCaseError> {
 }
 
 prop_both!(512, halving_error_within_t_max_over_two_to_the_k, built(), check_built);
+
+// -------------------------------------------------------------- sphere–mesh
+
+/// The corner tetrahedron of crashtest's fixtures (`meshes/tetrahedron.obj`):
+/// faces 0 (z = 0), 1 (y = 0), 2 (x = 0) and 3 (x + y + z = 1), oriented
+/// outward.
+fn tetrahedron<T: Real>() -> crate::mesh::TriMesh<T> {
+    let vertices = vec![v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), v(0.0, 1.0, 0.0), v(0.0, 0.0, 1.0)];
+    crate::mesh::TriMesh::new(vertices, vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]).expect("valid mesh")
+}
+
+/// The mesh toi by both advancement variants, checked equal, and by halving.
+fn mesh_tois<T: Real>(
+    a: &Sphere<T>,
+    va: &Vec3<T>,
+    mesh: &crate::mesh::TriMesh<T>,
+    vb: &Vec3<T>,
+    t_max: T,
+) -> (Option<MeshToi<T>>, Option<MeshToi<T>>) {
+    let rule = Advancement::default();
+    let bvh = crate::mesh::MeshBvh::new(mesh.clone());
+    let brute = toi_sphere_mesh_brute(a, va, mesh, vb, t_max, &rule);
+    let tree = toi_sphere_mesh(a, va, &bvh, vb, t_max, &rule);
+    assert_eq!(brute, tree, "brute force and BVH differ");
+    let halving = toi_sphere_mesh_halving(a, va, &bvh, vb, t_max, Halving::Steps(40));
+    (tree, halving)
+}
+
+fn sphere_mesh_faces_edges_and_vertices<T: Real>() {
+    let m = tetrahedron::<T>();
+    // Face 0 from below: the gap 3 − 1 closes at t = 2 under (0.25, 0.25).
+    let (k, h) = mesh_tois(&ball::<T>(0.25, 0.25, -3.0, 1.0), &v(0.0, 0.0, 1.0), &m, &still(), T::of(3.0));
+    let k = k.expect("face");
+    assert_eq!((k.triangle, k.toi.status, k.toi.iterations), (0, ToiStatus::Converged, 1), "one step head-on");
+    close(k.toi.t, 2.0, "t");
+    close_v(&k.toi.point, [0.25, 0.25, 0.0], "point");
+    close_v(&k.toi.normal, [0.0, 0.0, -1.0], "normal");
+    let h = h.expect("halving: the end is inside the sheet's reach");
+    assert!(h.toi.t.wide() >= 2.0 - hand_tol::<T>() && h.toi.t.wide() <= 2.0 + 3.0 / 2f64.powi(40) + hand_tol::<T>());
+    // The apex (0,0,1), shared by faces 1, 2, 3: from straight above, 3 − t − 1
+    // = 0.5 at t = 1.5; the tie goes to the lowest index, face 1.
+    let (k, _) = mesh_tois(&ball::<T>(0.0, 0.0, 3.0, 0.5), &v(0.0, 0.0, -1.0), &m, &still(), T::of(3.0));
+    let k = k.expect("apex");
+    assert_eq!(k.triangle, 1, "tie to the lowest face index");
+    close(k.toi.t, 1.5, "t");
+    close_v(&k.toi.point, [0.0, 0.0, 1.0], "point");
+    close_v(&k.toi.normal, [0.0, 0.0, 1.0], "normal");
+    // The edge (0,0,0)–(1,0,0) of faces 0 and 1, approached in its normal
+    // plane along (0,3,4): distance 5 − 5t = 1 at t = 0.8, normal (0,−0.6,−0.8).
+    let (k, _) = mesh_tois(&ball::<T>(0.5, -3.0, -4.0, 1.0), &v(0.0, 3.0, 4.0), &m, &still(), T::one());
+    let k = k.expect("edge");
+    assert_eq!(k.triangle, 0);
+    close(k.toi.t, 0.8, "t");
+    close_v(&k.toi.point, [0.5, 0.0, 0.0], "point");
+    close_v(&k.toi.normal, [0.0, -0.6, -0.8], "normal");
+}
+both!(sphere_mesh_faces_edges_and_vertices_case, sphere_mesh_faces_edges_and_vertices);
+
+fn sphere_mesh_tunneling_and_hollow<T: Real>() {
+    let m = tetrahedron::<T>();
+    // Small and fast through the whole tetrahedron: advancement sees face 0 at
+    // t = (2 − 0.05)/10 = 0.195; halving tests the end (far above) and misses.
+    let (k, h) = mesh_tois(&ball::<T>(0.2, 0.2, -2.0, 0.05), &v(0.0, 0.0, 10.0), &m, &still(), T::one());
+    close(k.expect("advancement sees it").toi.t, 0.195, "t");
+    assert!(h.is_none(), "halving misses what is over by the end of the step");
+    // Inside the hollow surface: apart at 0 (0.25 from faces 0–2, 0.144 from
+    // face 3), reaching face 0 from inside at t = 0.15, normal +z (toward a).
+    let (k, h) = mesh_tois(&ball::<T>(0.25, 0.25, 0.25, 0.1), &v(0.0, 0.0, -1.0), &m, &still(), T::one());
+    let k = k.expect("floor from inside");
+    close(k.toi.t, 0.15, "t");
+    close_v(&k.toi.normal, [0.0, 0.0, 1.0], "normal");
+    assert!(h.is_none(), "at t = 1 the ball is out below the floor and clear");
+    // The mesh moving onto a resting ball: face 0 at z = −2t meets the top of
+    // the ball at z = −2 at t = 1; the point is on the moved face.
+    let (k, h) = mesh_tois(&ball::<T>(0.25, 0.25, -3.0, 1.0), &still(), &m, &v(0.0, 0.0, -2.0), T::of(2.0));
+    let k = k.expect("moving mesh");
+    close(k.toi.t, 1.0, "t");
+    close_v(&k.toi.point, [0.25, 0.25, -2.0], "point on the moved face");
+    let h = h.expect("halving: in contact at the end");
+    close_v(&h.toi.point, [0.25, 0.25, -2.0 * h.toi.t.wide()], "halving's point moves with the mesh");
+}
+both!(sphere_mesh_tunneling_and_hollow_case, sphere_mesh_tunneling_and_hollow);
+
+fn sphere_mesh_no_impact_overlap_and_degenerate<T: Real>() {
+    let m = tetrahedron::<T>();
+    // Parallel to the slanted face at distance 2/√3 > 1: never.
+    let (k, h) = mesh_tois(&ball::<T>(1.0, 1.0, 1.0, 1.0), &v(1.0, -1.0, 0.0), &m, &still(), T::of(5.0));
+    assert!(k.is_none() && h.is_none());
+    // Touching face 0 at t = 0, leaving: Penetrating, the static contact.
+    let (k, h) = mesh_tois(&ball::<T>(0.25, 0.25, -1.0, 1.0), &v(0.0, 0.0, -1.0), &m, &still(), T::one());
+    let k = k.expect("touching");
+    assert_eq!((k.toi.status, k.triangle), (ToiStatus::Penetrating, 0));
+    close_v(&k.toi.point, [0.25, 0.25, 0.0], "point");
+    assert_eq!(h.map(|h| h.toi.status), Some(ToiStatus::Penetrating));
+    // An empty mesh is never hit; a point (r 0) falling onto face 0 from below
+    // gets the direction it came from, flagged.
+    let empty = crate::mesh::TriMesh::<T>::new(vec![v(0.0, 0.0, 0.0)], Vec::new()).expect("empty");
+    let (k, h) = mesh_tois(&ball::<T>(0.0, 0.0, 0.0, 1.0), &v(1.0, 0.0, 0.0), &empty, &still(), T::one());
+    assert!(k.is_none() && h.is_none());
+    let (k, _) = mesh_tois(&ball::<T>(0.25, 0.25, -3.0, 0.0), &v(0.0, 0.0, 1.0), &m, &still(), T::of(5.0));
+    let k = k.expect("a point reaches the face");
+    assert!(k.toi.degenerate);
+    close(k.toi.t, 3.0, "t");
+    close_v(&k.toi.normal, [0.0, 0.0, -1.0], "approach direction");
+}
+both!(sphere_mesh_no_impact_overlap_and_degenerate_case, sphere_mesh_no_impact_overlap_and_degenerate);
+
+fn no_limit_t_max<T: Real>() {
+    // parry's issue 35 scene with parry's "no limit", t_max = the type's largest
+    // value: the closed form and advancement find t = 0.9; the lecture's
+    // halving cuts the step where the motion leaves the type's range, finds the
+    // end clear and reports no impact (the miss it is known for), without a
+    // NaN or an infinite coordinate.
+    let big = T::max_value().expect("finite maximum");
+    let (a, va, b) = (ball::<T>(0.0, 0.0, 0.0, 0.5), v::<T>(0.0, 10.0, 0.0), ball::<T>(0.0, 10.0, 0.0, 0.5));
+    close(toi_sphere_sphere(&a, &va, &b, &still(), big).expect("closed form").t, 0.9, "t");
+    assert!(toi_sphere_sphere_halving(&a, &va, &b, &still(), big, Halving::Steps(40)).is_none());
+    // Into a half-space, which is never left: halving to a tolerance finds it
+    // from the cut step too (the bracket shrinks from about max/40 to 1e-3).
+    let floor = Plane::new(v::<T>(0.0, 1.0, 0.0), T::zero());
+    let fall = v::<T>(0.0, -10.0, 0.0);
+    let h = toi_sphere_plane_halving(
+        &ball::<T>(0.0, 9.5, 0.0, 0.5),
+        &fall,
+        &floor,
+        &still(),
+        big,
+        Halving::Tolerance(T::of(1e-3)),
+    )
+    .expect("halving into a half-space");
+    assert!((h.t.wide() - 0.9).abs() <= 1e-3 + hand_tol::<T>(), "t {:?}", h.t);
+    assert!(h.point.iter().chain(h.normal.iter()).all(|x| x.finite()));
+    // Triangles and meshes with the same limit: advancement is unaffected.
+    let k = toi_sphere_triangle(
+        &ball::<T>(0.5, 0.5, 3.0, 1.0),
+        &v(0.0, 0.0, -1.0),
+        &tri(),
+        &still(),
+        big,
+        &Advancement::default(),
+    );
+    close(k.expect("advancement").t, 2.0, "t");
+    let (k, h) = mesh_tois(&ball::<T>(0.25, 0.25, -3.0, 1.0), &v(0.0, 0.0, 1.0), &tetrahedron(), &still(), big);
+    close(k.expect("mesh").toi.t, 2.0, "t");
+    assert!(h.is_none(), "the cut step ends far beyond the tetrahedron");
+}
+both!(no_limit_t_max_case, no_limit_t_max);
+
+/// An octahedron around `c` with six vertices `c ± s_k e_k` (eight faces, a
+/// closed convex surface when every `s_k > 0`).
+const OCTAHEDRON: [[usize; 3]; 8] =
+    [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]];
+
+#[derive(Clone, Debug)]
+struct MeshScene {
+    a: ([f64; 3], f64),
+    va: [f64; 3],
+    vertices: Vec<[f64; 3]>,
+    faces: Vec<[usize; 3]>,
+    vb: [f64; 3],
+    t_max: f64,
+}
+
+/// Small meshes a sphere is aimed at: a jittered octahedron (closed), or a soup
+/// of four random triangles (open, crossing each other), with the sphere aimed
+/// at a point of the mesh at a time around `t_max`, with jitter (impacts,
+/// near misses, grazes and tunneling all common).
+fn mesh_scene() -> impl Strategy<Value = MeshScene> {
+    let octahedron =
+        (p3(), [0.3..2.0f64, 0.3..2.0f64, 0.3..2.0f64, 0.3..2.0f64, 0.3..2.0f64, 0.3..2.0f64]).prop_map(|(c, s)| {
+            let mut vs = Vec::new();
+            for k in 0..3 {
+                for sign in [1.0, -1.0] {
+                    let mut p = c;
+                    p[k] += sign * s[2 * k + usize::from(sign < 0.0)];
+                    vs.push(p);
+                }
+            }
+            // Order: +x, −x, +y, −y, +z, −z.
+            (vs, OCTAHEDRON.to_vec())
+        });
+    let soup =
+        prop::collection::vec(p3(), 12).prop_map(|vs| (vs, (0..4).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect()));
+    (
+        prop_oneof![octahedron, soup],
+        (p3(), 0.05..1.2f64, vel(), vel(), 0.1..2.0f64),
+        (0..32usize, [0.0..1.0f64, 0.0..1.0f64, 0.0..1.0f64], 0.3..1.5f64, [-0.5..0.5f64, -0.5..0.5f64, -0.5..0.5f64]),
+        0..4u8,
+    )
+        .prop_map(|((vertices, faces), (ca, ra, va, vb, t_max), (f, w, when, jitter), aimed)| {
+            let mut s = MeshScene { a: (ca, ra), va, vertices, faces, vb, t_max };
+            if aimed > 0 {
+                let face = s.faces[f % s.faces.len()].map(|i| s.vertices[i]);
+                let sum = w[0] + w[1] + w[2] + 1e-3;
+                let target: [f64; 3] =
+                    std::array::from_fn(|k| (w[0] * face[0][k] + w[1] * face[1][k] + w[2] * face[2][k]) / sum);
+                let t = when * s.t_max;
+                s.va = std::array::from_fn(|k| (target[k] - s.a.0[k]) / t + s.vb[k] + jitter[k]);
+            }
+            s
+        })
+}
+
+struct MeshPair<T: Real> {
+    a: Sphere<T>,
+    va: Vec3<T>,
+    mesh: crate::mesh::TriMesh<T>,
+    vb: Vec3<T>,
+    t_max: T,
+}
+
+impl<T: Real> Pair<T> for MeshPair<T> {
+    fn touches_at(&self, t: T, dr: T) -> bool {
+        let r = (self.a.radius + dr).max(T::zero());
+        let moved = Sphere::new(self.a.center + (self.va - self.vb) * t, r);
+        crate::mesh::contact_sphere_mesh_brute(&moved, &self.mesh).is_some()
+    }
+    fn scale(&self) -> f64 {
+        scale(self.mesh.vertices(), self.a.radius.wide(), &(self.va - self.vb), self.t_max.wide())
+            .max(amax(&self.a.center))
+    }
+}
+
+fn check_sphere_mesh<T: Real>(s: &MeshScene) -> Result<(), TestCaseError> {
+    let mesh = crate::mesh::TriMesh::new(s.vertices.iter().map(vt).collect(), s.faces.clone())
+        .map_err(|e| TestCaseError::fail(format!("{e}")))?;
+    let p = MeshPair {
+        a: Sphere::new(vt(&s.a.0), T::of(s.a.1)),
+        va: vt(&s.va),
+        mesh,
+        vb: vt(&s.vb),
+        t_max: T::of(s.t_max),
+    };
+    let rule = Advancement::default();
+    let bvh = crate::mesh::MeshBvh::new(p.mesh.clone());
+    let tree = toi_sphere_mesh(&p.a, &p.va, &bvh, &p.vb, p.t_max, &rule);
+    let brute = toi_sphere_mesh_brute(&p.a, &p.va, &p.mesh, &p.vb, p.t_max, &rule);
+    let capped = |x: &Option<MeshToi<T>>| x.is_some_and(|k| k.toi.status == ToiStatus::OutOfIterations);
+    if !capped(&tree) && !capped(&brute) {
+        prop_assert_eq!(tree, brute, "BVH and brute force differ");
+    }
+    // The same advancement tolerance as one triangle, at the mesh's scale.
+    let tol = ADVANCE_TOL_EPS * eps::<T>() * p.scale() * 2.0;
+    check_answer(&p, tree.map(|k| k.toi), p.t_max, tol)?;
+    // Whatever halving sees, advancement sees no later (halving cannot see an
+    // earlier contact: it answers a time at which the static test touches).
+    let halving = toi_sphere_mesh_halving(&p.a, &p.va, &bvh, &p.vb, p.t_max, Halving::Steps(30));
+    if let Some(h) = halving {
+        prop_assert!(
+            p.touches_at(h.toi.t, T::of(TOUCH_TOL_EPS * eps::<T>() * p.scale())),
+            "halving: not touching at t"
+        );
+        let k = tree.ok_or_else(|| TestCaseError::fail(format!("halving found {h:?}, advancement nothing")))?;
+        prop_assert!(k.toi.t.wide() <= h.toi.t.wide() + tol, "advancement {:?} after halving {:?}", k.toi.t, h.toi.t);
+    }
+    Ok(())
+}
+
+prop_both!(256, sphere_mesh_no_contact_before_and_touching_at_t, mesh_scene(), check_sphere_mesh);
+
+/// A face hit built backwards from its answer: a large triangle in a random
+/// plane (normal `n`, vertices 40 from the hit point `q`), the sphere touching
+/// it over `q` at `t*`, its relative velocity meeting the face at an angle
+/// whose cosine is at least 0.2 (the sheet is then crossed in
+/// `2r/(speed·cos)` while the path, at most `2r·tan ≤ 10 r` sideways, stays
+/// over the face), and `t_max` inside that crossing, so the end of the step
+/// intersects and halving applies. As a mesh, two small far-away faces join it.
+fn check_built_face<T: Real>(s: &Built) -> Result<(), TestCaseError> {
+    let (Some(n), Some(m0)) = (unit(s.n), unit(s.m)) else {
+        return Err(TestCaseError::reject("short direction"));
+    };
+    let Some(m) = unit((m0 - n * n.dot(&m0)).into()) else {
+        return Err(TestCaseError::reject("parallel directions"));
+    };
+    let e = n.cross(&m);
+    let q = Vec3::new(s.cb[0], s.cb[1], s.cb[2]);
+    let corner = |a: f64, b: f64| -> [f64; 3] { (q + (m * a + e * b) * 40.0).into() };
+    let tri_f = [corner(1.0, 0.0), corner(-0.5, 0.9), corner(-0.5, -0.9)];
+    let sin = (1.0 - s.cos * s.cos).sqrt();
+    let v = (-n * s.cos + m * sin) * s.speed;
+    let r = s.ra;
+    let ca = q + n * r - v * s.t_star;
+    let t_max = s.t_star + s.frac * 2.0 * r / (s.speed * s.cos);
+    let a = Sphere::new(vt::<T>(&ca.into()), T::of(r));
+    let vb = vt::<T>(&s.vb);
+    let va = vb + vt::<T>(&v.into());
+    let tri = Triangle::new(vt(&tri_f[0]), vt(&tri_f[1]), vt(&tri_f[2]));
+    let scale = scale(&[a.center, tri.vertices[0], tri.vertices[1], tri.vertices[2]], r, &(va - vb), t_max);
+    let time_tol = TIME_TOL_EPS * eps::<T>() * scale / (s.speed * s.cos);
+    let t_max = T::of(t_max);
+    let k = toi_sphere_triangle(&a, &va, &tri, &vb, t_max, &Advancement::default())
+        .ok_or_else(|| TestCaseError::fail("advancement: no impact"))?;
+    prop_assert!((k.t.wide() - s.t_star).abs() <= time_tol, "advancement t {:?}, want {}", k.t, s.t_star);
+    let far = |d: f64| -> Vec3<T> { vt(&(q + n * 100.0 + m * d).into()) };
+    let mut vertices = tri.vertices.to_vec();
+    vertices.extend([far(0.0), far(1.0), far(2.0), far(3.0)]);
+    let mesh = crate::mesh::TriMesh::new(vertices, vec![[3, 4, 5], [0, 1, 2], [4, 5, 6]]).expect("valid");
+    let bvh = crate::mesh::MeshBvh::new(mesh);
+    let km = toi_sphere_mesh(&a, &va, &bvh, &vb, t_max, &Advancement::default())
+        .ok_or_else(|| TestCaseError::fail("mesh advancement: no impact"))?;
+    prop_assert!(km.triangle == 1 && (km.toi.t.wide() - s.t_star).abs() <= time_tol, "mesh advancement {km:?}");
+    for k in [0u32, 1, 4, 12, 24] {
+        let bound = t_max.wide() / 2f64.powi(k as i32);
+        let h = toi_sphere_triangle_halving(&a, &va, &tri, &vb, t_max, Halving::Steps(k))
+            .ok_or_else(|| TestCaseError::fail(format!("halving {k}: no impact")))?;
+        let hm = toi_sphere_mesh_halving(&a, &va, &bvh, &vb, t_max, Halving::Steps(k))
+            .ok_or_else(|| TestCaseError::fail(format!("mesh halving {k}: no impact")))?;
+        for (what, t) in [("triangle", h.t), ("mesh", hm.toi.t)] {
+            let err = t.wide() - s.t_star;
+            prop_assert!(err >= -time_tol, "{what} halving {k}: {t:?} before t* = {}", s.t_star);
+            prop_assert!(err <= bound + time_tol, "{what} halving {k}: error {err} > t_max/2^k = {bound}");
+        }
+    }
+    Ok(())
+}
+
+prop_both!(512, halving_error_within_t_max_over_two_to_the_k_for_faces, built(), check_built_face);
+
+/// A power of two that takes every square of a scene of size 1..10 out of the
+/// plain range of the closed forms (`[2^−918, 2^920]` in `f64`, `[2^−80, 2^82]`
+/// in `f32`) when multiplied or divided by it: `2^600` and `2^60`. Scaling
+/// positions, radii and velocities by a power of two is exact and leaves every
+/// time unchanged.
+fn out_of_range<T: Real>() -> f64 {
+    if eps::<T>() < 1e-10 { 2f64.powi(600) } else { 2f64.powi(60) }
+}
+
+fn closed_forms_out_of_the_plain_range<T: Real>() {
+    // The head-on spheres and the falling ball of the hand cases, scaled up
+    // and down by a power of two: the same times (exact scaling), the same
+    // normals, the points scaled; never a NaN.
+    for s in [out_of_range::<T>(), 1.0 / out_of_range::<T>()] {
+        let (a, va) = (ball::<T>(-5.0 * s, 0.0, 0.0, s), v::<T>(2.0 * s, 0.0, 0.0));
+        let (b, vb) = (ball::<T>(5.0 * s, 0.0, 0.0, s), v::<T>(-2.0 * s, 0.0, 0.0));
+        let k = toi_sphere_sphere(&a, &va, &b, &vb, T::of(3.0)).expect("head-on, scaled");
+        close(k.t, 2.0, "t");
+        close_v(&k.normal, [-1.0, 0.0, 0.0], "normal");
+        assert!(k.point.iter().all(|x| x.wide().abs() <= hand_tol::<T>() * s), "point {:?}", k.point);
+        let falling = ball::<T>(s, 2.0 * s, 5.0 * s, s);
+        let k = toi_sphere_plane(&falling, &v(0.0, 0.0, -2.0 * s), &ground(), &still(), T::of(3.0))
+            .expect("falling, scaled");
+        close(k.t, 2.0, "t");
+        close_v(&k.normal, [0.0, 0.0, 1.0], "normal");
+        // A plane whose normal is out of range (its length scaled), same answer.
+        let tiny_normal = Plane::new(v::<T>(0.0, 0.0, 2.0 / out_of_range::<T>()), T::zero());
+        let k =
+            toi_sphere_plane(&ball::<T>(1.0, 2.0, 5.0, 1.0), &v(0.0, 0.0, -2.0), &tiny_normal, &still(), T::of(3.0))
+                .expect("tiny normal");
+        close(k.t, 2.0, "t");
+    }
+    // No relative motion (a zero Δv is out of the plain range): never, unless
+    // already touching.
+    let (a, b) = (ball::<T>(-5.0, 0.0, 0.0, 1.0), ball::<T>(0.0, 0.0, 0.0, 1.0));
+    assert!(toi_sphere_sphere(&a, &v(1.0, 2.0, 3.0), &b, &v(1.0, 2.0, 3.0), T::of(9.0)).is_none());
+    // A pair small against the distance it comes from: the normal is still
+    // unit (normalized by its own norm when (Δp + tΔv)/R is not unit enough).
+    let (a, va) = (ball::<T>(-9.0, 0.3, 0.0, 1e-3), v::<T>(10.0, 0.0, 0.0));
+    let b = ball::<T>(0.0, 0.3 + 1.5e-3, 0.0, 1e-3);
+    let k = toi_sphere_sphere(&a, &va, &b, &still(), T::one()).expect("small pair");
+    assert!((k.normal.norm().wide() - 1.0).abs() <= TOUCH_TOL_EPS * eps::<T>(), "normal {:?}", k.normal);
+}
+both!(closed_forms_out_of_the_plain_range_case, closed_forms_out_of_the_plain_range);

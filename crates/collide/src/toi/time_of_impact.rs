@@ -15,8 +15,10 @@ pub enum ToiStatus {
     /// - halving: the upper end of the final bracket, within `t_max / 2^k` of the
     ///   first contact after `k` bisections; the contact is the static test's at
     ///   that time (slightly overlapping, depth ≥ 0);
-    /// - conservative advancement: the gap at `t` is at most the tolerance, so
-    ///   `t` is at or just before the impact (the shapes may not quite touch).
+    /// - conservative advancement (triangles, meshes): the gap at `t` fell
+    ///   within the tolerance and a few more safe steps took it to the
+    ///   distance's rounding, so `t` is at the impact or just before it (the
+    ///   shapes may not quite touch, by a rounding).
     Converged,
     /// Conservative advancement hit its iteration cap. `t` is a time before which
     /// the shapes certainly do not touch (a lower bound on the time of impact, if

@@ -91,6 +91,19 @@ fn intersection<T: Real>(i: collide::intersect::Intersection<T>) -> IntersectAns
     }
 }
 
+/// `t_max` in the engine's precision. An `f64` bound beyond the type's range (a
+/// finite `t_max` that rounds to infinity in `f32`, such as parry's "no limit"
+/// `f64::MAX`) is the largest finite value of the type: the interval is then
+/// as long as the type can express, and the lecture's halving still has a
+/// finite end to test (where it cuts the step further, to the last time the
+/// motion stays representable, see `collide::toi`). The closed forms and
+/// advancement answer the same either way: no impact they find lies beyond
+/// the type's largest time.
+fn time<T: Real>(t_max: f64) -> T {
+    let t = T::of(t_max);
+    if t_max.is_finite() && !t.finite() { T::max_value().unwrap_or(t) } else { t }
+}
+
 fn toi<T: Real>(t: Option<collide::toi::Toi<T>>) -> ToiAnswer {
     ToiAnswer {
         toi: t.map(|t| Toi { t: t.t.wide(), point: w(&t.point), normal: w(&t.normal) }),
@@ -195,7 +208,7 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
     }
 
     fn toi_sphere_sphere(&self, a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
-        let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), sphere::<T>(b), v::<T>(vb), T::of(t_max));
+        let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), sphere::<T>(b), v::<T>(vb), time::<T>(t_max));
         Ok(toi(match self.method {
             Method::Lecture => collide::toi::toi_sphere_sphere_halving(
                 &a,
@@ -210,7 +223,7 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
     }
 
     fn toi_sphere_plane(&self, a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
-        let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), plane::<T>(b), v::<T>(vb), T::of(t_max));
+        let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), plane::<T>(b), v::<T>(vb), time::<T>(t_max));
         Ok(toi(match self.method {
             Method::Lecture => collide::toi::toi_sphere_plane_halving(
                 &a,
@@ -225,7 +238,7 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
     }
 
     fn toi_sphere_triangle(&self, a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
-        let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), triangle::<T>(b), v::<T>(vb), T::of(t_max));
+        let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), triangle::<T>(b), v::<T>(vb), time::<T>(t_max));
         Ok(toi(match self.method {
             Method::Lecture => collide::toi::toi_sphere_triangle_halving(
                 &a,
@@ -239,6 +252,33 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
                 collide::toi::toi_sphere_triangle(&a, &va, &b, &vb, t_max, &collide::toi::Advancement::default())
             }
         }))
+    }
+
+    fn toi_sphere_mesh(&self, a: &Sphere, va: &P3, b: &Mesh, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        // The format's mesh rule for toi: the earliest touch over the faces, each
+        // a two-sided triangle; ties to the lowest face index. The robust method
+        // is conservative advancement over the mesh's BVH, the lecture's interval
+        // halving on the static sphere–mesh test (also through the BVH, which
+        // answers exactly as testing every face does).
+        let vertices = b.vertices.iter().map(v::<T>).collect();
+        let mesh = collide::mesh::TriMesh::new(vertices, b.triangles.clone())
+            .map_err(|e| Unsupported(format!("mesh refused by collide: {e}")))?;
+        let bvh = collide::mesh::MeshBvh::new(mesh);
+        let (a, va, vb, t_max) = (sphere::<T>(a), v::<T>(va), v::<T>(vb), time::<T>(t_max));
+        let r = match self.method {
+            Method::Lecture => collide::toi::toi_sphere_mesh_halving(
+                &a,
+                &va,
+                &bvh,
+                &vb,
+                t_max,
+                collide::toi::Halving::Steps(HALVING_STEPS),
+            ),
+            Method::Robust => {
+                collide::toi::toi_sphere_mesh(&a, &va, &bvh, &vb, t_max, &collide::toi::Advancement::default())
+            }
+        };
+        Ok(toi(r.map(|m| m.toi)))
     }
 
     fn response_sphere_sphere(
@@ -264,5 +304,45 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
 
     fn response_sphere_plane(&self, _a: &Sphere, va: &P3, b: &Plane, e: f64) -> Reply<ResponseAnswer> {
         Ok(response(collide::response::respond_sphere_plane(&v::<T>(va), &v(&b.normal), T::of(e))))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// parry's issue 35 scene (`fixtures/toi.json`): radius 0.5 at the origin
+    /// moving (0, 10, 0) toward a resting ball at (0, 10, 0), `t_max = f64::MAX`.
+    fn issue_35<T: Real + Send + Sync>(method: Method) -> ToiAnswer {
+        let a = Sphere { center: [0.0; 3], radius: 0.5 };
+        let b = Sphere { center: [0.0, 10.0, 0.0], radius: 0.5 };
+        CollideQueries::<T>::new(method)
+            .toi_sphere_sphere(&a, &[0.0, 10.0, 0.0], &b, &[0.0; 3], f64::MAX)
+            .unwrap_or_else(|e| panic!("unsupported: {e}"))
+    }
+
+    #[test]
+    fn a_t_max_beyond_f32_is_its_largest_value() {
+        assert_eq!(time::<f32>(f64::MAX).to_bits(), f32::MAX.to_bits());
+        assert_eq!(time::<f32>(1e39).to_bits(), f32::MAX.to_bits());
+        assert_eq!(time::<f32>(0.5).to_bits(), 0.5f32.to_bits());
+        assert_eq!(time::<f64>(f64::MAX).to_bits(), f64::MAX.to_bits());
+    }
+
+    #[test]
+    fn issue_35_is_answered_in_both_precisions_without_a_non_finite_number() {
+        // The closed form finds t = 9/10 in both precisions (f32 rounds it).
+        for (what, answer, tol) in
+            [("f64", issue_35::<f64>(Method::Robust), 1e-15), ("f32", issue_35::<f32>(Method::Robust), 1e-7)]
+        {
+            let k = answer.toi.unwrap_or_else(|| panic!("{what}: no impact"));
+            assert!((k.t - 0.9).abs() <= tol, "{what}: t {}", k.t);
+        }
+        // The lecture's halving tests the end of its step, cut where the motion
+        // leaves the type's range: far past the ball, clear: no impact (the
+        // tunneling it is known for), and no NaN or infinity anywhere.
+        for answer in [issue_35::<f64>(Method::Lecture), issue_35::<f32>(Method::Lecture)] {
+            assert_eq!(answer, ToiAnswer { toi: None, degenerate: false });
+        }
     }
 }

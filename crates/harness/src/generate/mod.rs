@@ -32,6 +32,8 @@ pub(crate) mod build;
 mod contact;
 mod intersect;
 mod overlap;
+mod response;
+mod toi;
 
 use crate::case::{Case, Query};
 use crate::load::LoadedCase;
@@ -41,29 +43,65 @@ use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
-/// The query kinds with generators, in the format's order (`toi` and `response`
-/// have none yet).
-pub const GENERATED: [Query; 5] = [Query::Contact, Query::Intersect, Query::Barycentric, Query::Bounds, Query::Overlap];
+/// The query kinds with generators, in the format's order: every kind.
+pub const GENERATED: [Query; 7] = Query::ALL;
 
 /// The `file` of every generated [`LoadedCase`].
 pub const GENERATED_FILE: &str = "generated";
+
+/// What a generated case carries beside its shapes: `t_max` for `toi` (`None`:
+/// the format's default, 1) and `restitution` for `response`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Params {
+    /// End of the time interval of a `toi` case.
+    pub(crate) t_max: Option<f64>,
+    /// Coefficient of restitution of a `response` case.
+    pub(crate) restitution: Option<f64>,
+}
+
+/// A generated scene with its case parameters.
+pub(crate) type Posed = (Scene, Params);
+
+/// How a family builds its strategy: shapes alone, or shapes with parameters.
+#[derive(Clone, Copy)]
+enum Build {
+    Scene(fn() -> SBoxedStrategy<Scene>),
+    Posed(fn() -> SBoxedStrategy<Posed>),
+}
 
 /// One named family of scenes.
 pub(crate) struct Family {
     name: &'static str,
     biased: bool,
-    build: fn() -> SBoxedStrategy<Scene>,
+    build: Build,
 }
 
 impl Family {
     /// A uniform family.
     pub(crate) fn uniform(name: &'static str, build: fn() -> SBoxedStrategy<Scene>) -> Self {
-        Self { name, biased: false, build }
+        Self { name, biased: false, build: Build::Scene(build) }
     }
 
     /// A family biased toward where methods fail.
     pub(crate) fn biased(name: &'static str, build: fn() -> SBoxedStrategy<Scene>) -> Self {
-        Self { name, biased: true, build }
+        Self { name, biased: true, build: Build::Scene(build) }
+    }
+
+    /// A uniform family whose cases carry parameters (`toi`, `response`).
+    pub(crate) fn uniform_posed(name: &'static str, build: fn() -> SBoxedStrategy<Posed>) -> Self {
+        Self { name, biased: false, build: Build::Posed(build) }
+    }
+
+    /// A biased family whose cases carry parameters (`toi`, `response`).
+    pub(crate) fn biased_posed(name: &'static str, build: fn() -> SBoxedStrategy<Posed>) -> Self {
+        Self { name, biased: true, build: Build::Posed(build) }
+    }
+
+    fn strategy(&self) -> SBoxedStrategy<Posed> {
+        match self.build {
+            Build::Scene(f) => f().prop_map(|s| (s, Params::default())).sboxed(),
+            Build::Posed(f) => f(),
+        }
     }
 }
 
@@ -86,7 +124,8 @@ fn families_of(query: Query) -> Vec<Family> {
         Query::Barycentric => barycentric::families(),
         Query::Bounds => bounds::families(),
         Query::Overlap => overlap::families(),
-        Query::Toi | Query::Response => Vec::new(),
+        Query::Toi => toi::families(),
+        Query::Response => response::families(),
     }
 }
 
@@ -108,8 +147,9 @@ fn registry() -> &'static Registry {
                     .into_iter()
                     .map(|f| {
                         let name = f.name;
-                        let strategy = (f.build)()
-                            .prop_map(move |(a, b)| Case {
+                        let strategy = f
+                            .strategy()
+                            .prop_map(move |((a, b), p)| Case {
                                 name: proptest_name(query, name),
                                 source: format!("generated: proptest, family {name}"),
                                 query,
@@ -117,8 +157,8 @@ fn registry() -> &'static Registry {
                                 b,
                                 expect: None,
                                 tol: None,
-                                t_max: None,
-                                restitution: None,
+                                t_max: p.t_max,
+                                restitution: p.restitution,
                             })
                             .sboxed();
                         Entry { name, biased: f.biased, strategy }
@@ -220,14 +260,30 @@ pub fn try_generate(query: Query, seed: u64, index: u64) -> Option<LoadedCase> {
     let mut case = entry.strategy.new_tree(&mut runner).ok()?.current();
     case.name = format!("{query} #{index} (seed {seed}, {})", entry.name);
     case.source = format!("generated: seed {seed}, index {index}, family {}", entry.name);
-    Some(LoadedCase { file: PathBuf::from(GENERATED_FILE), case, meshes: [None, None] })
+    Some(loaded(case))
+}
+
+/// A generated case ready to run: `file` [`GENERATED_FILE`], and its inline
+/// meshes (the `toi` generators' only kind of mesh) built as the fixture loader
+/// builds them. A mesh the loader would refuse is left unloaded, and engines
+/// then answer the case `Unsupported`; the generators make none.
+pub fn loaded(case: Case) -> LoadedCase {
+    let mesh = |shape: Option<&crate::case::Shape>| match shape {
+        Some(crate::case::Shape::Mesh(m)) => match (&m.vertices, &m.triangles) {
+            (Some(v), Some(t)) => crate::mesh::Mesh::new(v.clone(), t.clone()).ok(),
+            _ => None,
+        },
+        _ => None,
+    };
+    let meshes = [mesh(Some(&case.a)), mesh(case.b.as_ref())];
+    LoadedCase { file: PathBuf::from(GENERATED_FILE), case, meshes }
 }
 
 /// [`try_generate`] for a kind that has generators.
 ///
 /// # Panics
 ///
-/// If `query` is not one of [`GENERATED`] (`toi`, `response`): asking for a
+/// If `query` is not one of [`GENERATED`] (today every kind is): asking for a
 /// case no generator makes is a caller's mistake, not a property of any input.
 pub fn generate(query: Query, seed: u64, index: u64) -> LoadedCase {
     match try_generate(query, seed, index) {

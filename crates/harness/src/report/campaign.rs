@@ -21,8 +21,8 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 /// The query kinds the random campaign generates.
-pub const CAMPAIGN_QUERIES: [Query; 5] =
-    [Query::Contact, Query::Intersect, Query::Barycentric, Query::Bounds, Query::Overlap];
+pub const CAMPAIGN_QUERIES: [Query; 7] =
+    [Query::Contact, Query::Intersect, Query::Barycentric, Query::Bounds, Query::Overlap, Query::Toi, Query::Response];
 
 /// The built-in campaign's random cases per query kind.
 pub const DEFAULT_CASES: u64 = 10_000;
@@ -61,6 +61,9 @@ pub struct Config {
     pub timing: bool,
     /// Whether to draw a progress bar (only on a terminal).
     pub progress: bool,
+    /// The criterion benchmark's figures (`crashtest-bench.json`), read when
+    /// the file exists: the accuracy–speed charts then use them.
+    pub bench: Option<PathBuf>,
     /// Whether to run the extra sections (dynamics, stability sweeps, the
     /// scene's needs, time of impact) — with the whole campaign only.
     pub sections: bool,
@@ -77,6 +80,7 @@ impl Default for Config {
             timing: true,
             progress: true,
             sections: true,
+            bench: None,
         }
     }
 }
@@ -288,6 +292,7 @@ fn discrepancy(c: &CaseResult, lc: &LoadedCase, ix: usize, tol: Tolerance) -> Di
         }),
         ..lc.case.clone()
     };
+    let case = inline_meshes(case, lc);
     Discrepancy {
         engine: r.engine.clone(),
         query: c.query,
@@ -299,6 +304,22 @@ fn discrepancy(c: &CaseResult, lc: &LoadedCase, ix: usize, tol: Tolerance) -> Di
         answers,
         fixture: FixtureFile { schema: SCHEMA.into(), cases: vec![case] },
     }
+}
+
+/// The case with every mesh that names a file written inline instead (from
+/// the mesh as loaded), so that its fixture reproduces wherever it is saved —
+/// the file was named relative to the fixture it came from.
+fn inline_meshes(mut case: Case, lc: &LoadedCase) -> Case {
+    let shapes = [Some(&mut case.a), case.b.as_mut()];
+    for (shape, mesh) in shapes.into_iter().zip(&lc.meshes) {
+        if let (Some(crate::case::Shape::Mesh(spec)), Some(m)) = (shape, mesh) {
+            if spec.file.take().is_some() {
+                spec.vertices = Some(m.vertices.clone());
+                spec.triangles = Some(m.triangles.clone());
+            }
+        }
+    }
+    case
 }
 
 /// Times `engine` on `cases`: [`TIMING_REPS`] repetitions of a loop over them;
@@ -402,6 +423,20 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
         throughput.push(("campaign (referee excluded, estimated)".into(), n / without));
     }
 
+    let mut stats: Vec<EngineQueryStats> = map.into_values().collect();
+    let mut input_errors = input_errors;
+    let mut speed_source = None;
+    if let Some(path) = &config.bench {
+        match crate::report::bench::load(path) {
+            Ok(Some(bench)) => {
+                crate::report::bench::apply(&mut stats, &cases, &bench);
+                speed_source =
+                    Some(format!("criterion benchmark of {} on {} ({})", bench.written, bench.machine, path.display()));
+            }
+            Ok(None) => {}
+            Err(e) => input_errors.push(e),
+        }
+    }
     let fixture_cases = cases.iter().filter(|c| !c.case.source.starts_with("generated")).count() as u64;
     let mut provenance = provenance;
     provenance.engines = engine_infos(&judged);
@@ -411,11 +446,12 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     provenance.fixture_cases = fixture_cases;
     provenance.random_cases = cases.len() as u64 - fixture_cases;
     provenance.wall_seconds = wall.elapsed().as_secs_f64();
+    provenance.speed_source = speed_source;
     Outcome {
         summary: Summary {
             format: "crashtest-summary/1".into(),
             provenance,
-            stats: map.into_values().collect(),
+            stats,
             discrepancies: total_discrepancies,
             throughput,
         },
@@ -430,8 +466,14 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
 }
 
 /// The extra sections of a whole campaign, in report order.
-fn sections(_config: &Config, results: &[CaseResult]) -> Vec<crate::report::section::Section> {
+fn sections(config: &Config, results: &[CaseResult]) -> Vec<crate::report::section::Section> {
     let mut out = Vec::new();
+    out.push(crate::sweep::section(&crate::sweep::Settings { poses: crate::sweep::DEFAULT_POSES, seed: config.seed }));
+    out.push(crate::scene::section(&crate::scene::SceneSettings {
+        seed: config.seed,
+        timing: config.timing,
+        ..Default::default()
+    }));
     out.extend(crate::report::peers::section(results));
     out.push(crate::dynamics::section(&crate::dynamics::run()));
     out

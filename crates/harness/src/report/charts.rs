@@ -98,7 +98,8 @@ pub fn zero_floor(positives: &[f64]) -> f64 {
 }
 
 /// Accuracy against speed for one query kind: x is nanoseconds per query (the
-/// median of the timing repetitions), y the p99 of the headline error, both on
+/// criterion benchmark's figure when the report read one — see
+/// [`super::bench`] — else the median of the campaign's timing repetitions), y the p99 of the headline error, both on
 /// log axes with decade ticks; one circle per engine, labelled with the engine's
 /// name (which carries its method and precision); the Pareto front (engines no
 /// other engine beats in both time and error, [`pareto_front`]) drawn as a step
@@ -114,7 +115,7 @@ pub fn accuracy_speed(summary: &Summary, query: Query) -> Option<String> {
     let mut untimed = Vec::new();
     let mut unmeasured = Vec::new();
     for s in summary.stats.iter().filter(|s| s.query == Some(query)) {
-        let t = s.timing.map(|t| t.median_ns).filter(|t| t.is_finite() && *t > 0.0);
+        let t = s.bench_ns.or(s.timing.map(|t| t.median_ns)).filter(|t| t.is_finite() && *t > 0.0);
         let p99 = s.headline.p99().filter(|v| v.is_finite());
         match (t, p99) {
             (None, _) => untimed.push(s.engine.as_str()),
@@ -143,7 +144,12 @@ pub fn accuracy_speed(summary: &Summary, query: Query) -> Option<String> {
     let title = format!("{query}: accuracy against speed");
     open_svg(&mut svg, w, h, &title);
     frame(&mut svg, &xa, &ya, left, right, top, bottom);
-    x_axis(&mut svg, &xa, bottom, "time per query, ns (median of repetitions)");
+    let x_title = if points.iter().any(|p| p.0.bench_ns.is_some()) {
+        "time per query, ns (criterion benchmark, weighted by this campaign's mix)"
+    } else {
+        "time per query, ns (median of repetitions)"
+    };
+    x_axis(&mut svg, &xa, bottom, x_title);
     y_axis(&mut svg, &ya, left, top, bottom, "headline error, p99");
 
     if has_zero {
@@ -820,6 +826,7 @@ pub(crate) mod fixture {
                 random_cases: 200,
                 wall_seconds: 3.25,
                 started: "2026-01-01T00:00:00Z".into(),
+                speed_source: None,
             },
             stats,
             discrepancies: 3,

@@ -247,6 +247,10 @@ pub fn provenance_lines(summary: &Summary) -> Vec<(String, String)> {
         ("fixture cases".into(), p.fixture_cases.to_string()),
         ("random cases".into(), p.random_cases.to_string()),
         ("discrepancies".into(), format!("{} (discrepancies.json)", summary.discrepancies)),
+        (
+            "speed on the charts".into(),
+            p.speed_source.clone().unwrap_or_else(|| "the campaign's timing loops (no criterion figures read)".into()),
+        ),
         ("format".into(), summary.format.clone()),
     ]
 }

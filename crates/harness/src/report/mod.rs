@@ -1,6 +1,7 @@
 //! Reports: the campaign ([`campaign`]), what it measured ([`summary`]), how it
 //! is shown ([`charts`], [`markdown`], [`html`]) and written ([`write`]).
 
+pub mod bench;
 pub mod campaign;
 pub mod charts;
 pub mod html;

@@ -77,6 +77,13 @@ impl Axis {
             }
             Axis::Log { lo, hi } => (lo..=hi)
                 .map(|k| {
+                    // Every decade gets a grid line; labels thin out to at
+                    // most about ten so that wide sweeps (17 decades and
+                    // more) keep them legible.
+                    let every = ((hi - lo) as f64 / MAX_LOG_LABELS).ceil().max(1.0) as i32;
+                    if (k - lo) % every != 0 {
+                        return (10f64.powi(k), String::new());
+                    }
                     let label = match k {
                         0 => "1".to_string(),
                         1 => "10".into(),
@@ -90,6 +97,10 @@ impl Axis {
         }
     }
 }
+
+/// Most labelled decades on a log axis: the x axis is 420 px wide and a label
+/// such as `1e-16` takes about 35 px at 11 px type.
+const MAX_LOG_LABELS: f64 = 10.0;
 
 /// Colour-blind-aware palette (as the report's other charts use).
 pub const PALETTE: [&str; 8] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#e08a0b", "#17becf", "#8c564b", "#e377c2"];

@@ -62,7 +62,9 @@ impl Section {
 
     /// The files it adds to a report: `<id>.json` and its charts.
     pub fn files(&self) -> Vec<(PathBuf, String)> {
-        let mut data = serde_json::to_string_pretty(&self.data).unwrap_or_else(|e| format!("\"unserializable: {e}\""));
+        // Compact: a section's data can run to megabytes (every sweep point of
+        // every engine); pretty-printing it would multiply that about five-fold.
+        let mut data = serde_json::to_string(&self.data).unwrap_or_else(|e| format!("\"unserializable: {e}\""));
         data.push('\n');
         let mut out = vec![(PathBuf::from(format!("{}.json", self.id)), data)];
         out.extend(self.charts.iter().map(|c| (PathBuf::from("charts").join(&c.file), c.svg.clone())));

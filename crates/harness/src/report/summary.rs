@@ -160,6 +160,11 @@ pub struct EngineQueryStats {
     pub headline: Dist,
     /// Time per query, if timed.
     pub timing: Option<Timing>,
+    /// Nanoseconds per query from the criterion benchmark, weighted by this
+    /// campaign's mix of shape pairs ([`crate::report::bench`]), when a
+    /// benchmark file was read; the accuracy–speed chart prefers it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bench_ns: Option<f64>,
 }
 
 /// An engine's identity in the provenance.
@@ -200,6 +205,11 @@ pub struct Provenance {
     pub wall_seconds: f64,
     /// When the run started, UTC, RFC 3339.
     pub started: String,
+    /// Where the accuracy–speed charts' times come from: the criterion run
+    /// read ([`crate::report::bench`]), or absent for the campaign's own
+    /// timing loops.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speed_source: Option<String>,
 }
 
 /// The whole of `summary.json`.

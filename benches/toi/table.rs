@@ -1,0 +1,151 @@
+//! The table printed at the end of a toi run (and written to
+//! `target/criterion/crashtest-toi-table.md`): criterion's estimates of this
+//! run as nanoseconds per query, with the ratios the speed target is stated in.
+//!
+//! Reads criterion's `estimates.json` files as `benches/queries/table.rs` does
+//! (that reader is private to the queries bench, so the few lines are repeated
+//! here rather than shared).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::SystemTime;
+
+/// Where criterion writes: `$CARGO_TARGET_DIR/criterion`, else the
+/// workspace's `target/criterion`.
+pub fn criterion_dir() -> PathBuf {
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("target"));
+    target.join("criterion")
+}
+
+/// Nanoseconds per query of benchmark `group/id`, from criterion's estimate
+/// written during this run (`since`): its slope (time per iteration, by
+/// regression over the samples) or, failing that, its mean, divided by the
+/// queries per iteration. `None` when the benchmark did not run this time.
+pub fn ns_per(group: &str, id: &str, per_iter: usize, since: SystemTime) -> Option<f64> {
+    let path = criterion_dir().join(group).join(id).join("new").join("estimates.json");
+    let written = std::fs::metadata(&path).and_then(|m| m.modified()).ok()?;
+    if written < since {
+        return None;
+    }
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).ok()?).ok()?;
+    let pick = |k: &str| json.get(k)?.get("point_estimate")?.as_f64();
+    let ns = pick("slope").or_else(|| pick("mean"))?;
+    Some(ns / per_iter as f64)
+}
+
+fn cell(x: Option<f64>) -> String {
+    match x {
+        Some(v) if v >= 100.0 => format!("{v:.0}"),
+        Some(v) if v >= 10.0 => format!("{v:.1}"),
+        Some(v) => format!("{v:.2}"),
+        None => "—".into(),
+    }
+}
+
+fn ratio(x: Option<f64>, y: Option<f64>) -> Option<f64> {
+    Some(x? / y?)
+}
+
+/// The engines of the table: criterion's benchmark id and the column's heading.
+pub const ENGINES: [(&str, &str); 7] = [
+    ("collide_robust_f64", "collide robust f64"),
+    ("collide_robust_f32", "collide robust f32"),
+    ("collide_halving_f64", "collide halving to 1e-12 f64"),
+    ("parry64", "parry3d-f64 cast_shapes"),
+    ("parry32", "parry3d cast_shapes"),
+    ("parry64_adapter", "parry3d-f64 via adapter"),
+    ("parry32_adapter", "parry3d via adapter"),
+];
+
+/// One pair of shapes: criterion's group, its heading, queries per iteration,
+/// the robust method's name and the hit fraction.
+pub struct Row {
+    /// criterion's group name.
+    pub group: &'static str,
+    /// The row's heading.
+    pub label: &'static str,
+    /// collide's robust method on it.
+    pub robust: &'static str,
+    /// Queries per iteration (the cases).
+    pub per_iter: usize,
+    /// Fraction of the cases with an impact (the referee's classification is
+    /// collide's robust answer's, up to borderline cases).
+    pub hits: f64,
+}
+
+/// One target: `numerator / denominator ≤ target` on a group.
+pub struct Target {
+    /// Group.
+    pub group: &'static str,
+    /// What is compared.
+    pub what: &'static str,
+    /// Benchmark ids of the numerator and the denominator.
+    pub ids: (&'static str, &'static str),
+    /// Largest ratio that meets it.
+    pub target: f64,
+}
+
+/// The whole table as Markdown.
+pub fn render(rows: &[Row], targets: &[Target], seed: u64, since: SystemTime) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "# crashtest speed: time of impact, collide against parry, one run\n");
+    let _ = writeln!(
+        s,
+        "Nanoseconds per query (criterion's slope estimate divided by the cases per iteration; `—`: not run). \
+         The same pre-generated cases for every engine (seed {seed:#x}, the campaign's toi generators and mix: \
+         hits, misses, grazing, overlapping, tunneling). collide robust: the closed form (sphere–sphere, \
+         sphere–plane) or conservative advancement (sphere–triangle); halving: the lecture's, to a bracket of \
+         1e-12. parry3d-f64 / parry3d: `query::cast_shapes` called directly on inputs already in parry's types, \
+         with the oracle's options; \"via adapter\": through `oracle::parry::ParryCast`, which converts inside \
+         each call.\n"
+    );
+    let _ = write!(s, "| pair | robust method | hits |");
+    for (_, h) in ENGINES {
+        let _ = write!(s, " {h} |");
+    }
+    let _ = writeln!(s, " robust f64 / parry3d-f64 | halving / robust f64 |");
+    let _ = write!(s, "| --- | --- | ---: |");
+    for _ in ENGINES {
+        let _ = write!(s, " ---: |");
+    }
+    let _ = writeln!(s, " ---: | ---: |");
+    for r in rows {
+        let get = |id: &str| ns_per(r.group, id, r.per_iter, since);
+        let _ = write!(s, "| {} | {} | {:.0}% |", r.label, r.robust, 100.0 * r.hits);
+        for (id, _) in ENGINES {
+            let _ = write!(s, " {} |", cell(get(id)));
+        }
+        let robust = get("collide_robust_f64");
+        let _ = writeln!(
+            s,
+            " {} | {} |",
+            cell(ratio(robust, get("parry64"))),
+            cell(ratio(get("collide_halving_f64"), robust))
+        );
+    }
+    let _ = writeln!(s, "\n## Targets\n\n| target | measured | verdict |\n| --- | ---: | --- |");
+    for t in targets {
+        let per = rows.iter().find(|r| r.group == t.group).map_or(1, |r| r.per_iter);
+        let r = ratio(ns_per(t.group, t.ids.0, per, since), ns_per(t.group, t.ids.1, per, since));
+        let verdict = match r {
+            Some(x) if x <= t.target => "met",
+            Some(_) => "**missed**",
+            None => "not measured",
+        };
+        let _ =
+            writeln!(s, "| {} ≤ {} | {} | {verdict} |", t.what, t.target, r.map_or("—".into(), |x| format!("{x:.3}")));
+    }
+    s
+}
+
+/// Prints the table and writes it beside criterion's files.
+pub fn publish(report: &str) {
+    println!("\n{report}");
+    let path = criterion_dir().join("crashtest-toi-table.md");
+    match std::fs::create_dir_all(criterion_dir()).and_then(|()| std::fs::write(&path, report)) {
+        Ok(()) => println!("(written to {})", path.display()),
+        Err(e) => eprintln!("could not write {}: {e}", path.display()),
+    }
+}

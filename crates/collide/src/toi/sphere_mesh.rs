@@ -1,0 +1,180 @@
+//! Sphere–mesh time of impact by conservative advancement, every face or the
+//! faces a bounding volume hierarchy cannot rule out.
+
+use super::sphere_triangle::{Advanced, Advancement, advance, scale};
+use super::sweep::{Sweep, sweep_faces};
+use super::time_of_impact::{Toi, clamp_t_max};
+use crate::mesh::{MeshBvh, MeshContact, TriMesh, contact_sphere_mesh_brute, contact_sphere_mesh_bvh};
+use crate::real::{Real, Vec3, c};
+use crate::shapes::{Sphere, Triangle};
+
+/// A time of impact against a mesh: the answer (in the convention of [`Toi`])
+/// and the face it was found on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshToi<T: Real> {
+    /// The time of impact and the contact then (the point on that face, the
+    /// normal from the mesh toward the sphere).
+    pub toi: Toi<T>,
+    /// Index of the face (0-based, as in [`TriMesh::faces`]).
+    pub triangle: usize,
+}
+
+impl<T: Real> MeshToi<T> {
+    /// The answer for a sphere already in contact at `t = 0`: the static
+    /// contact with the face nearest its centre.
+    fn penetrating(k: &MeshContact<T>) -> Self {
+        Self { toi: Toi::penetrating(&k.contact), triangle: k.triangle }
+    }
+}
+
+/// The best face so far: the earlier time, ties to the lower face index.
+struct Best<T: Real> {
+    face: usize,
+    advanced: Advanced<T>,
+}
+
+impl<T: Real> Best<T> {
+    fn beaten_by(best: &Option<Self>, t: T, face: usize) -> bool {
+        best.as_ref().is_none_or(|b| t < b.advanced.t || (t == b.advanced.t && face < b.face))
+    }
+}
+
+/// What both variants share: the tolerance, the relative motion, the answer.
+struct Query<'a, T: Real> {
+    a: &'a Sphere<T>,
+    v: Vec3<T>,
+    vb: &'a Vec3<T>,
+    t_max: T,
+    tol: T,
+    max_steps: u32,
+}
+
+impl<'a, T: Real> Query<'a, T> {
+    fn new(a: &'a Sphere<T>, va: &Vec3<T>, mesh: &TriMesh<T>, vb: &'a Vec3<T>, t_max: T, rule: &Advancement) -> Self {
+        let corners: Vec<Vec3<T>> = mesh.aabb().map(|b| vec![b.min, b.max]).unwrap_or_default();
+        let tol = c::<T>(rule.tol_eps) * T::EPSILON * scale(a, &corners);
+        Self { a, v: va - vb, vb, t_max: clamp_t_max(t_max), tol, max_steps: rule.max_steps }
+    }
+
+    /// Advances against one face, within the best time so far; records a better
+    /// answer.
+    fn face(&self, best: &mut Option<Best<T>>, face: usize, tri: &Triangle<T>) {
+        let limit = best.as_ref().map_or(self.t_max, |b| b.advanced.t);
+        if let Some(adv) = advance(self.a, &self.v, tri, limit, self.tol, self.max_steps)
+            && Best::beaten_by(best, adv.t, face)
+        {
+            *best = Some(Best { face, advanced: adv });
+        }
+    }
+
+    fn answer(&self, best: Option<Best<T>>) -> Option<MeshToi<T>> {
+        best.map(|b| MeshToi { toi: b.advanced.answer(self.a, &self.v, self.vb), triangle: b.face })
+    }
+}
+
+/// Time of impact of sphere `a` (velocity `va`) and a mesh `b` (every vertex
+/// moving with `vb`) over `[0, t_max]` by **conservative advancement against
+/// every face** (the lecture's "test every triangle", with the robust method
+/// per face).
+///
+/// **Definition.** Each face is a two-sided triangle (no inside, no thickness),
+/// and the mesh's time of impact is the earliest over its faces: each face's by
+/// the advancement of [`toi_sphere_triangle`](super::toi_sphere_triangle)
+/// (the step `gap / closing` never passes that face's first contact), the
+/// earliest time winning, ties to the lowest face index. Every face uses the
+/// same gap tolerance, `rule.tol_eps · ε · scale` with the scale of the whole
+/// scene (the radius, the centre's largest coordinate and the mesh's box), so
+/// that answers compare alike across faces. A face is advanced only up to the
+/// best time found so far: its steps do not depend on that limit, so the
+/// winner is the same as if every face ran to `t_max`.
+///
+/// **Answer.** Already in contact at `t = 0` (the static
+/// [`contact_sphere_mesh_brute`], touching counts): `t = 0`,
+/// [`ToiStatus::Penetrating`](super::ToiStatus::Penetrating), the contact with
+/// the face nearest the centre. Otherwise the winning face's answer: its time,
+/// its closest point moved to time `t` and the normal from it toward the
+/// centre; `iterations` counts that face's steps. When the winner ran out of
+/// steps ([`ToiStatus::OutOfIterations`](super::ToiStatus::OutOfIterations)),
+/// `t` is still a time before which the sphere touches no face: every other
+/// face's first contact is at or after its own reported time.
+///
+/// **Degenerate input.** A zero-area face is the segment or point it collapsed
+/// to (as for one triangle); a face with a non-finite vertex is skipped; an
+/// empty mesh is never hit. A sphere of zero radius gets the approach direction
+/// `−v/‖v‖` as its normal, flagged; a centre on a face at `t = 0` the static
+/// fallback, flagged. A negative or NaN `t_max` is read as 0. Never NaN, never
+/// a panic.
+pub fn toi_sphere_mesh_brute<T: Real>(
+    a: &Sphere<T>,
+    va: &Vec3<T>,
+    b: &TriMesh<T>,
+    vb: &Vec3<T>,
+    t_max: T,
+    rule: &Advancement,
+) -> Option<MeshToi<T>> {
+    if let Some(k) = contact_sphere_mesh_brute(a, b) {
+        return Some(MeshToi::penetrating(&k));
+    }
+    let q = Query::new(a, va, b, vb, t_max, rule);
+    let mut best = None;
+    for face in 0..b.len() {
+        if !b.has_nonfinite_vertex(face) {
+            q.face(&mut best, face, &b.triangle(face));
+        }
+    }
+    q.answer(best)
+}
+
+/// Time of impact of sphere `a` (velocity `va`) and a mesh `b` (every vertex
+/// moving with `vb`) over `[0, t_max]` by **conservative advancement over the
+/// mesh's bounding volume hierarchy**: the same definition and answer as
+/// [`toi_sphere_mesh_brute`], visiting only the faces the sphere can reach in
+/// time to win.
+///
+/// **Traversal.** In `b`'s frame the centre moves on the ray `M + t v`
+/// (`v = va − vb`). A node's box, grown by the radius, the gap tolerance and a
+/// rounding margin, contains every point within `r + tol` of its faces, so the
+/// time the ray enters that grown box (a slab test) is a lower bound on the
+/// time any of its faces can be reached to within the tolerance — which is
+/// when advancement stops. Nodes are visited nearer entry first with a
+/// fixed-size stack; a node is skipped when the ray never enters its box within
+/// `[0, t_max]` or enters it after the best time found so far (strictly: a tie
+/// could still go to a lower face index). The faces skipped could therefore
+/// neither win nor tie, and the answer equals the brute-force one, bit for bit,
+/// whenever no face runs out of steps (with a capped face both report a time
+/// before which nothing is touched, possibly a different one).
+///
+/// **Cost.** A sphere that passes nothing visits a few boxes; one that hits the
+/// mesh advances against the faces whose boxes its path enters before the hit,
+/// typically a handful (see crashtest's report and `benches/toi.rs`).
+///
+/// **Degenerate input:** as [`toi_sphere_mesh_brute`] (faces with a non-finite
+/// vertex are not in the tree).
+///
+/// Source: Mirtich's conservative advancement per face; the swept-sphere box
+/// test is Ericson §5.5.7 (moving sphere against an AABB, here its conservative
+/// slab form).
+pub fn toi_sphere_mesh<T: Real>(
+    a: &Sphere<T>,
+    va: &Vec3<T>,
+    b: &MeshBvh<T>,
+    vb: &Vec3<T>,
+    t_max: T,
+    rule: &Advancement,
+) -> Option<MeshToi<T>> {
+    if let Some(k) = contact_sphere_mesh_bvh(a, b) {
+        return Some(MeshToi::penetrating(&k));
+    }
+    let q = Query::new(a, va, b.mesh(), vb, t_max, rule);
+    let sweep = Sweep::new(a, &q.v, q.tol, b.mesh().aabb());
+    let mut best: Option<Best<T>> = None;
+    sweep_faces(
+        b,
+        &sweep,
+        q.t_max,
+        |best: &Option<Best<T>>| best.as_ref().map(|b| b.advanced.t),
+        &mut best,
+        |best, face, tri| q.face(best, face, tri),
+    );
+    q.answer(best)
+}
