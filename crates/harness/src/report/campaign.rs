@@ -474,6 +474,7 @@ fn sections(config: &Config, results: &[CaseResult]) -> Vec<crate::report::secti
         timing: config.timing,
         ..Default::default()
     }));
+    out.push(crate::toi_report::section(&crate::toi_report::Settings { seed: config.seed, ..Default::default() }));
     out.extend(crate::report::peers::section(results));
     out.push(crate::dynamics::section(&crate::dynamics::run()));
     out
