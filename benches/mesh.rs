@@ -21,6 +21,8 @@
 //! build) with the ratios collide / parry is printed and written to
 //! `target/criterion/crashtest-mesh-table.md`.
 
+#[path = "shared/criterion.rs"]
+mod criterion_files;
 #[path = "mesh/table.rs"]
 mod table;
 

@@ -29,6 +29,8 @@
 mod cases;
 #[path = "queries/cost.rs"]
 mod cost;
+#[path = "shared/criterion.rs"]
+mod criterion_files;
 #[path = "queries/parry_direct.rs"]
 mod parry_direct;
 #[path = "queries/peak.rs"]

@@ -22,6 +22,8 @@
 //! closed-form sphere–sphere toi at most a quarter of parry3d-f64's
 //! `cast_shapes`.
 
+#[path = "shared/criterion.rs"]
+mod criterion_files;
 #[path = "toi/table.rs"]
 mod table;
 

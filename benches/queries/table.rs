@@ -6,7 +6,7 @@
 use super::cost::Cost;
 use super::peak::Peak;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+
 use std::time::SystemTime;
 
 /// The engines of the main table: criterion's benchmark id and the column's
@@ -55,30 +55,8 @@ pub struct BatchRow {
     pub cost: Option<Cost>,
 }
 
-/// Where criterion writes: `$CARGO_TARGET_DIR/criterion`, else the
-/// workspace's `target/criterion`.
-pub fn criterion_dir() -> PathBuf {
-    let target = std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("target"));
-    target.join("criterion")
-}
-
-/// Nanoseconds per query of benchmark `group/id`, from criterion's estimate
-/// written during this run (`since`): its slope (time per iteration, by
-/// regression over the samples) or, failing that, its mean, divided by the
-/// queries per iteration. `None` when the benchmark did not run this time.
-fn ns_per_query(dir: &Path, group: &str, id: &str, per_iter: usize, since: SystemTime) -> Option<f64> {
-    let path = dir.join(group).join(id).join("new").join("estimates.json");
-    let written = std::fs::metadata(&path).and_then(|m| m.modified()).ok()?;
-    if written < since {
-        return None;
-    }
-    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).ok()?).ok()?;
-    let pick = |k: &str| json.get(k)?.get("point_estimate")?.as_f64();
-    let ns = pick("slope").or_else(|| pick("mean"))?;
-    Some(ns / per_iter as f64)
-}
+pub use super::criterion_files::criterion_dir;
+use super::criterion_files::ns_per;
 
 fn cell(x: Option<f64>) -> String {
     match x {
@@ -116,7 +94,6 @@ pub struct Target {
 
 /// Renders the whole report as Markdown.
 pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Peak, since: SystemTime) -> String {
-    let dir = criterion_dir();
     let mut s = String::new();
     let _ = writeln!(s, "# crashtest speed: collide against parry, one run\n");
     let _ = writeln!(
@@ -149,7 +126,7 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
     }
     let _ = writeln!(s, " ---: | ---: | ---: | ---: |");
     for r in rows {
-        let get = |id: &str| ns_per_query(&dir, r.group, id, r.per_iter, since);
+        let get = |id: &str| ns_per(r.group, id, r.per_iter, since);
         let hits = r.hits.map_or("—".into(), |h| format!("{:.0}%", 100.0 * h));
         let _ = write!(s, "| {} | {hits} |", r.label);
         for (id, _) in ENGINES {
@@ -179,8 +156,8 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
              (ns/pair) | speed-up | bound f64 (ns/pair) |\n| --- | ---: | ---: | ---: | ---: |"
         );
         for b in batches {
-            let one = ns_per_query(&dir, b.group, b.ids.0, b.per_iter, since);
-            let batch = ns_per_query(&dir, b.group, b.ids.1, b.per_iter, since);
+            let one = ns_per(b.group, b.ids.0, b.per_iter, since);
+            let batch = ns_per(b.group, b.ids.1, b.per_iter, since);
             let _ = writeln!(
                 s,
                 "| {} | {} | {} | {} | {} |",
@@ -201,8 +178,7 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
             .map(|r| r.per_iter)
             .or_else(|| batches.iter().find(|b| b.group == t.group).map(|b| b.per_iter))
             .unwrap_or(1);
-        let r =
-            ratio(ns_per_query(&dir, t.group, t.ids.0, per, since), ns_per_query(&dir, t.group, t.ids.1, per, since));
+        let r = ratio(ns_per(t.group, t.ids.0, per, since), ns_per(t.group, t.ids.1, per, since));
         let _ = writeln!(
             s,
             "| {} ≤ {} | {} | {} |",
@@ -250,7 +226,7 @@ pub fn write_figures(rows: &[Row], since: SystemTime) {
                 (true, "collide_lecture_f32") => "collide_robust_f32",
                 _ => id,
             };
-            if let Some(ns) = ns_per_query(&dir, r.group, id, r.per_iter, since) {
+            if let Some(ns) = ns_per(r.group, id, r.per_iter, since) {
                 out.push(BenchRow { group: r.group.to_string(), engine: engine.to_string(), ns });
             }
         }

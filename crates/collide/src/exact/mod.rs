@@ -49,7 +49,7 @@ mod tests;
 
 pub use bigfloat::BigFloat;
 pub use estimate::{ESTIMATE_REL_ERR, Estimate};
-pub(crate) use predicates::det3_with_bound;
+
 #[cfg(test)]
 pub(crate) use predicates::exact_evaluations;
 pub use predicates::{
