@@ -42,7 +42,7 @@ enum Command {
         /// Folder the report folders go in.
         #[arg(long, default_value = "reports")]
         out: PathBuf,
-        /// Only this query kind (contact, intersect, barycentric, bounds, overlap).
+        /// Only this query kind (contact, intersect, barycentric, bounds, overlap, toi, response).
         #[arg(long, value_parser = parse_query)]
         only: Option<harness::case::Query>,
         /// Run one deterministic slice of the cases, `i/n` (0-based): shard i of n.
@@ -105,7 +105,7 @@ fn parse_query(s: &str) -> Result<harness::case::Query, String> {
     harness::case::Query::ALL
         .into_iter()
         .find(|q| q.as_str() == s)
-        .ok_or_else(|| format!("unknown query `{s}` (contact, intersect, barycentric, bounds, overlap)"))
+        .ok_or_else(|| format!("unknown query `{s}` (contact, intersect, barycentric, bounds, overlap, toi, response)"))
 }
 
 fn parse_shard(s: &str) -> Result<(u32, u32), String> {

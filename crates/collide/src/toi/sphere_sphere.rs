@@ -37,13 +37,14 @@ use crate::shapes::Sphere;
 /// **Cost.** Where every square lies in the range in which plain sums of
 /// squares lose nothing (`[2^−918, 2^920]` in `f64`) and their products stay
 /// finite: a few dozen operations, one root and one division for `t` (taken
-/// before the hit-or-miss tests, so that those are one data-dependent branch,
-/// not three), the normal as `(Δp + t Δv)/R` — `1/R` is known from the start —
-/// whenever that is unit to a few ulps (else one more root and division); the
-/// static contact test only for spheres that already overlap (`c ≤ 0`). Outside that range a scaled path computes the same
-/// root from lengths divided by the scene's own scale and the unit direction
-/// of the motion (see `toi_sphere_sphere_scaled`), which never overflows or
-/// underflows spuriously.
+/// before the hit-or-miss tests, which are then decided together), the normal
+/// as `(Δp + t Δv)/R` — `1/R` is known from the start — whenever that is unit
+/// to a few ulps (else one more root and division); the static contact test
+/// only for spheres that already overlap (`c ≤ 0`). Outside that range a
+/// scaled path computes the same root from lengths divided by the scene's own
+/// scale and the unit direction of the motion (see `toi_sphere_sphere_scaled`),
+/// which never overflows or underflows spuriously. Measured against parry's
+/// `cast_shapes` in `benches/toi.rs`.
 ///
 /// **Cases.** Already in contact at `t = 0` ([`contact_sphere_sphere`], touching
 /// counts): `t = 0`, status [`ToiStatus::Penetrating`], the static contact. No
@@ -90,9 +91,8 @@ pub fn toi_sphere_sphere<T: Real>(
     {
         return Some(k);
     }
-    // The root and the division come before the tests, which are then one
-    // combined decision (approaching, close enough, in time): one
-    // unpredictable branch instead of three.
+    // The root and the division come before the tests (approaching, close
+    // enough, in time), which are then decided together.
     let bp = dp.dot(&dv);
     let disc = vv * rr - dp.cross(&dv).norm_squared();
     // Touching at 0 by the squares but not by the static test (a rounding
