@@ -199,7 +199,12 @@ fn precision_name(p: Option<u32>) -> &'static str {
     }
 }
 
-fn headline(e: &Errors, scale: f64) -> f64 {
+/// The campaign's headline error of one answer: the largest of the point and
+/// depth errors relative to the scene's scale, the normal's angle (radians),
+/// and the segment parameter's and barycentrics' errors (unitless) — the
+/// measure of the report's accuracy tables and charts, and of the stability
+/// sweeps.
+pub fn headline(e: &Errors, scale: f64) -> f64 {
     [e.point.map(|x| x / scale), e.depth.map(|x| x.abs() / scale), e.normal, e.t, e.barycentric]
         .into_iter()
         .flatten()

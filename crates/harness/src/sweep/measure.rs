@@ -6,20 +6,11 @@ use super::{BREAK_REL, SWEEPS, Settings, Sweep, SweepPoint, cases};
 use crate::case::Query;
 use crate::check::{CaseResult, check_case};
 use crate::engines;
-use crate::judge::{Errors, Misclass, Verdict};
+use crate::judge::{Misclass, Verdict};
 use rayon::prelude::*;
 use serde::Serialize;
 
-/// The campaign's headline error of one answer: the largest of the point and
-/// depth errors relative to the scene's scale, the normal's angle (radians),
-/// and the segment parameter's and barycentrics' errors (unitless) — the
-/// measure of the report's accuracy tables and charts.
-pub fn headline(e: &Errors, scale: f64) -> f64 {
-    [e.point.map(|x| x / scale), e.depth.map(|x| x.abs() / scale), e.normal, e.t, e.barycentric]
-        .into_iter()
-        .flatten()
-        .fold(0.0, f64::max)
-}
+pub use crate::report::campaign::headline;
 
 /// What one engine did at one point of one query, over the poses.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -417,6 +408,7 @@ pub fn run_all(settings: &Settings) -> Vec<SweepResult> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::judge::Errors;
 
     fn point(value: f64) -> SweepPoint {
         SweepPoint { value, label: format!("{value:e}"), exact: value == 0.0 }
