@@ -56,31 +56,7 @@ const SEGMENTS_PER_POSE: usize = 1_000;
 const SHORT_SEGMENTS: usize = 2_000;
 const BRUTE_SUBSET: usize = 1_000;
 
-/// SplitMix64: a small, seeded generator (the test prints its seed).
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    fn index(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
-}
+use harness::rng::SplitMix64 as Rng;
 
 fn bunny() -> harness::mesh::Mesh {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/meshes/bunny.obj");

@@ -24,6 +24,7 @@ pub mod judge;
 pub mod load;
 pub mod mesh;
 pub mod report;
+pub mod rng;
 pub mod scene;
 pub mod sweep;
 pub mod toi_report;

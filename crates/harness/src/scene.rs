@@ -359,50 +359,24 @@ fn time_loop<Q, R>(queries: &[Q], f: impl Fn(&Q) -> R) -> Option<Timing> {
 // ---------------------------------------------------------------------------
 // Random draws
 
-/// SplitMix64: small, seeded, the same on every machine.
-struct Rng(u64);
+use crate::rng::SplitMix64 as Rng;
 
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[0, 1)`.
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    /// Standard normal (Box–Muller).
-    fn normal(&mut self) -> f64 {
-        let u = 1.0 - self.unit();
-        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * self.unit()).cos()
-    }
-
-    /// A uniform rotation matrix (from a uniform unit quaternion).
-    fn rotation(&mut self) -> [[f64; 3]; 3] {
-        let q = loop {
-            let q = [0; 4].map(|_| self.range(-1.0, 1.0));
-            let n2: f64 = q.iter().map(|x| x * x).sum();
-            if n2 > 1e-4 && n2 <= 1.0 {
-                let n = n2.sqrt();
-                break q.map(|x| x / n);
-            }
-        };
-        let [w, x, y, z] = q;
-        [
-            [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
-            [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
-            [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
-        ]
-    }
+/// A uniform rotation matrix (from a uniform unit quaternion).
+fn rotation(rng: &mut Rng) -> [[f64; 3]; 3] {
+    let q = loop {
+        let q = [0; 4].map(|_| rng.range(-1.0, 1.0));
+        let n2: f64 = q.iter().map(|x| x * x).sum();
+        if n2 > 1e-4 && n2 <= 1.0 {
+            let n = n2.sqrt();
+            break q.map(|x| x / n);
+        }
+    };
+    let [w, x, y, z] = q;
+    [
+        [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
+        [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
+        [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
+    ]
 }
 
 fn v(p: P3) -> Vec3<f64> {
@@ -836,7 +810,7 @@ pub fn run(settings: &SceneSettings) -> SceneReport {
         Some(b) => {
             let per: Vec<[f64; 4]> = (0..settings.rotations)
                 .filter_map(|_| {
-                    let r = rng.rotation();
+                    let r = rotation(&mut rng);
                     tightness(&b.vertices.iter().map(|p| rotate(&r, p)).collect::<Vec<_>>())
                 })
                 .collect();
@@ -1361,7 +1335,7 @@ mod tests {
             }
         }
         // A rotated tetrahedron: its minimal sphere is its circumsphere.
-        let r = rng.rotation();
+        let r = rotation(&mut rng);
         clouds.push(
             [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
                 .iter()
