@@ -36,10 +36,14 @@ use crate::shapes::Sphere;
 ///
 /// **Cost.** Where every square lies in the range in which plain sums of
 /// squares lose nothing (`[2^−918, 2^920]` in `f64`) and their products stay
-/// finite: a few dozen operations, one root and one division for `t` (taken
-/// before the hit-or-miss tests, which are then decided together), the normal
-/// as `(Δp + t Δv)/R` — `1/R` is known from the start — whenever that is unit
-/// to a few ulps (else one more root and division); the static contact test
+/// finite: a few dozen operations to screen the case without a root — most
+/// misses (moving apart, passing wide, touching after `t_max`, the last
+/// decided from the quadratic's value at `t_max` and its vertex, with a slack
+/// that only ever lets more cases through, see `IN_TIME_SLACK`) end there;
+/// the rest take one root and one division for `t`, whose comparison with
+/// `t_max` decides, and the normal as `(Δp + t Δv)/R` — `1/R` is known from
+/// the start — whenever that is unit to a few ulps (else one more root and
+/// division); the static contact test
 /// only for spheres that already overlap (`c ≤ 0`). Outside that range a
 /// scaled path computes the same root from lengths divided by the scene's own
 /// scale and the unit direction of the motion (see `toi_sphere_sphere_scaled`),
@@ -59,6 +63,7 @@ use crate::shapes::Sphere;
 /// where `Δp + t Δv = 0` has no direction: the normal is the direction `a` came
 /// from, `−Δv/‖Δv‖`, flagged. A scene whose intermediate values overflow is
 /// answered `None`, never NaN. A negative or NaN `t_max` is read as 0.
+#[inline]
 pub fn toi_sphere_sphere<T: Real>(
     a: &Sphere<T>,
     va: &Vec3<T>,
@@ -91,36 +96,43 @@ pub fn toi_sphere_sphere<T: Real>(
     {
         return Some(k);
     }
-    // The root and the division come before the tests (approaching, close
-    // enough, in time), which are then decided together.
     let bp = dp.dot(&dv);
     let disc = vv * rr - dp.cross(&dv).norm_squared();
+    // Root-free screen: most misses (moving apart, passing wide, touching
+    // after t_max) leave here without the root and the division. "In time"
+    // is the quadratic at t_max, f(t_max) = (a t_max + 2b') t_max + c ≤ 0,
+    // or its vertex −b'/a ≤ t_max (then the first root is before the
+    // vertex); f(t_max) is allowed `IN_TIME_SLACK` of its terms' size, so the
+    // screen lets through every case whose computed root below could come
+    // out ≤ t_max — the decision itself is that comparison, as before. An
+    // overflow to +∞ lets the case through.
+    let in_time = {
+        let (along, tm) = (bp + bp, t_max);
+        let f_end = (vv * tm + along) * tm + c;
+        let size = (vv * tm + along.abs()) * tm + dd + rr;
+        (f_end <= size * T::of(IN_TIME_SLACK)) | (-bp <= vv * tm)
+    };
+    if !((bp < T::zero()) & (disc >= T::zero()) & in_time) {
+        return None;
+    }
     // Touching at 0 by the squares but not by the static test (a rounding
     // apart): c ≤ 0 gives t = 0.
     let t = (c / (disc.max(T::zero()).sqrt() - bp)).max(T::zero());
-    let hit = bp < T::zero() && disc >= T::zero() && t <= t_max;
+    if !(t <= t_max) {
+        return None;
+    }
     // At the touch ‖Δp + t Δv‖ = R: dividing by R (known from the start)
     // keeps a second root and division off the path from the data to the
     // answer. That quotient is the normal when it is unit to within
     // `unit_slack`; otherwise (a pair small against the distance it comes
-    // from, whose Δp + t Δv carries the rounding of the larger scale) the
-    // vector is normalized by its own norm.
-    if !hit {
-        return None;
-    }
+    // from, whose Δp + t Δv carries the rounding of the larger scale, or no
+    // radius between the centres) `contact_at` normalizes the vector by its
+    // own norm or falls back.
     let delta = dp + dv * t;
-    let quotient = delta * (T::one() / reach);
-    let normal = if (quotient.norm_squared() - T::one()).abs() <= unit_slack::<T>() {
-        quotient
-    } else {
-        let dl = delta.norm_squared();
-        if !(reach > T::zero() && dl >= lo && dl <= hi) {
-            // No radius between the centres (no normal), or a vector too short
-            // or too long for the plain normalization.
-            return Some(contact_at(b, vb, &dp, &dv, reach, t));
-        }
-        delta * (T::one() / dl.sqrt())
-    };
+    let normal = delta * (T::one() / reach);
+    if !((normal.norm_squared() - T::one()).abs() <= unit_slack::<T>()) {
+        return Some(contact_at(b, vb, &dp, &dv, reach, t));
+    }
     Some(Toi {
         t,
         point: b.center + vb * t + normal * b.radius,
@@ -130,6 +142,25 @@ pub fn toi_sphere_sphere<T: Real>(
         degenerate: false,
     })
 }
+
+/// How far above zero the quadratic at `t_max` may be computed for
+/// [`toi_sphere_sphere`]'s root-free screen to still let a case through to
+/// the root, relative to the size of its terms `S = a t_max² + 2|b'| t_max +
+/// ‖Δp‖² + R²`: `2^−20`. Units: relative.
+///
+/// Reason: a case may be screened out only if its computed root `t̂ = t₁(1 + η)`
+/// could not come out `≤ t_max`. The screen's other side already passes every
+/// case whose vertex `−b'/a` is before `t_max`, so take it after: then
+/// `t₁ ≤ t_max` means `f(t_max) ≤ 0`, and a root computed early by `η` with
+/// `t₁ > t_max` leaves `f(t_max) = a (t₁ − t_max)(t₂ − t_max) ≤ |η| t₁ (2√disc
+/// + a |η| t₁) ≲ |η| S` (as `2√disc t₁ ≤ 2√a R t₁ ≤ a t₁² + R²`). The root's
+/// relative error `η` comes from `c` (`u (‖Δp‖² + R²)/c`), from `b'` (at most
+/// `3u √(‖Δp‖²/c)`, since a hit needs `b'² ≥ a c`) and from `√disc` (at most
+/// `√(k u (‖Δp‖² + R²)/c)` at grazing): all below `2^−21` unless `c <
+/// 2^−27 (‖Δp‖² + R²)` — and then, with the vertex after `t_max`, `f(t_max)
+/// < c − a t_max² ≤ c` is itself within the slack. The screen's own roundings
+/// are a few `u S`.
+const IN_TIME_SLACK: f64 = 9.5367431640625e-7;
 
 /// How far from 1 the squared length of `(Δp + t Δv)/R` may be for it to be
 /// reported as the normal as it is: `16 u` (`u` the unit roundoff), so its
