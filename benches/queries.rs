@@ -205,7 +205,39 @@ fn overlap(c: &mut Criterion, cases: &[(geom::Aabb, geom::Aabb)]) {
     run(&mut g, "parry32", &d32, |(a, b)| p32::overlap(a, b));
     run(&mut g, "parry64_adapter", cases, |(a, b)| Parry64.overlap_aabb_aabb(*a, *b));
     run(&mut g, "parry32_adapter", cases, |(a, b)| Parry32.overlap_aabb_aabb(*a, *b));
+    overlap_batch(&mut g, &c64, "f64");
+    overlap_batch(&mut g, &c32, "f32");
     g.finish();
+}
+
+/// The box batch API against the one-at-a-time loop over the same pairs,
+/// both writing their answers to an array (what a broad phase does): the
+/// loop calls `test_aabb_aabb` per pair, the batch is `test_aabbs_aabbs` over
+/// the pairs as arrays.
+fn overlap_batch<T: collide::Real>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    pairs: &[(collide::Aabb<T>, collide::Aabb<T>)],
+    p: &str,
+) {
+    use collide::batch::{Aabbs, test_aabbs_aabbs};
+    use collide::bounds::test_aabb_aabb;
+    let a: Aabbs<T> = pairs.iter().map(|p| &p.0).collect();
+    let b: Aabbs<T> = pairs.iter().map(|p| &p.1).collect();
+    let mut flags = vec![false; pairs.len()];
+    g.bench_function(format!("loop_{p}"), |bn| {
+        bn.iter(|| {
+            for (o, (x, y)) in flags.iter_mut().zip(black_box(pairs)) {
+                *o = test_aabb_aabb(x, y);
+            }
+            black_box(&mut flags);
+        })
+    });
+    g.bench_function(format!("batch_{p}"), |bn| {
+        bn.iter(|| {
+            test_aabbs_aabbs(black_box(&a), black_box(&b), &mut flags);
+            black_box(&mut flags);
+        })
+    });
 }
 
 fn bounding_sphere(c: &mut Criterion, clouds: &[Vec<geom::P3>]) {
@@ -293,6 +325,20 @@ fn batches(cases: &Cases) -> Vec<BatchRow> {
         row("sphere–sphere contact, f32", ("loop_contact_f32", "batch_contact_f32"), None),
         row("sphere–sphere overlap test, f64", ("loop_test_f64", "batch_test_f64"), None),
         row("sphere–sphere overlap test, f32", ("loop_test_f32", "batch_test_f32"), None),
+        BatchRow {
+            group: "overlap",
+            label: "AABB overlap, f64",
+            per_iter: PER_QUERY,
+            ids: ("loop_f64", "batch_f64"),
+            cost: Some(cost::AABB_OVERLAP),
+        },
+        BatchRow {
+            group: "overlap",
+            label: "AABB overlap, f32",
+            per_iter: PER_QUERY,
+            ids: ("loop_f32", "batch_f32"),
+            cost: None,
+        },
     ]
 }
 
@@ -449,6 +495,18 @@ fn targets() -> Vec<Target> {
             what: "segment–triangle (campaign mix): exact (robust) f64 / lecture f64",
             ids: ("collide_robust_f64", "collide_lecture_f64"),
             target: 1.5,
+        },
+        Target {
+            group: "overlap",
+            what: "AABB overlap, many pairs (broad phase): collide batch f64 / parry3d-f64 one at a time",
+            ids: ("batch_f64", "parry64"),
+            target: 0.5,
+        },
+        Target {
+            group: "overlap",
+            what: "AABB overlap f64: batch / one-at-a-time loop",
+            ids: ("batch_f64", "loop_f64"),
+            target: 1.0,
         },
         Target {
             group: "sphere_sphere_batch",

@@ -15,9 +15,15 @@
 //! against [`crate::contact::contact_sphere_sphere`]); the rare lane the fast
 //! arithmetic cannot answer (a squared distance that would underflow or
 //! overflow) is answered afterwards by the one-pair function itself.
-//! `cargo bench --bench queries` measures the batch against the one-at-a-time
-//! loop.
+//!
+//! Boxes ([`Aabbs`]) come the same way: [`test_aabbs_aabbs`] pairwise and
+//! [`test_aabb_aabbs`] one box against many (the broad phase), the same six
+//! comparisons as [`crate::bounds::test_aabb_aabb`] per lane.
+//! `cargo bench --bench queries` measures each batch against the
+//! one-at-a-time loop.
 
+mod aabb;
 mod sphere_sphere;
 
+pub use aabb::{Aabbs, test_aabb_aabbs, test_aabbs_aabbs};
 pub use sphere_sphere::{SphereContacts, Spheres, contact_spheres_spheres, test_spheres_spheres};
