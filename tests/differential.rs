@@ -62,8 +62,10 @@ fn config() -> Config {
     }
 }
 
+/// The case as the campaign loads it (inline meshes, as time-of-impact
+/// cases against meshes carry them, built into meshes).
 fn loaded(case: Case) -> LoadedCase {
-    LoadedCase { file: PathBuf::from("generated"), case, meshes: [None, None] }
+    harness::generate::loaded(case)
 }
 
 /// The case as a one-case fixture file expecting the referee's answer. The
@@ -182,6 +184,16 @@ fn differential_bounds() {
 #[test]
 fn differential_overlap() {
     differential(Query::Overlap);
+}
+
+#[test]
+fn differential_toi() {
+    differential(Query::Toi);
+}
+
+#[test]
+fn differential_response() {
+    differential(Query::Response);
 }
 
 #[test]
