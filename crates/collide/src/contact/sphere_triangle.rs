@@ -26,6 +26,19 @@ use crate::shapes::{Sphere, Triangle};
 /// The triangle is two-sided and has no thickness: a centre behind the face is
 /// pushed out through the face it is behind, as for one in front.
 ///
+/// **Clear misses first.** Before any closest point, two proven tests answer
+/// "apart" for a sphere that certainly does not reach the triangle: its box
+/// (the vertices in the centre's frame all beyond `r` on one side of an
+/// axis; a dozen minima and maxima) and its plane (the centre's filtered
+/// volume `n · (M − v0)` against `r ‖n‖`, squared: a dozen flops on the
+/// filtered normal computed anyway). Each holds only when the exact
+/// distance exceeds `r (1 + 2^−31)`: "apart" is the exact answer, and the
+/// one the full computation gives wherever its distance is accurate to
+/// `2^−38` (see `EARLY_MISS_MARGIN` in the source). On the benchmark's
+/// mix of random and near-degenerate cases they settle over two in five
+/// queries (three in five of the uniform ones), which then cost no closest
+/// point, root or division.
+///
 /// **Deviation from the book: a certified region.** Ericson's region tests
 /// decide on rounded values, and the edge tests among them are degree-4
 /// polynomials: on a sliver, or for a centre whose projection is within
@@ -83,45 +96,76 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
     let [v0, v1, v2] = b.vertices;
     let wide = |v: &Vec3<T>| [v.x.wide(), v.y.wide(), v.z.wide()];
     let (centre, verts) = (wide(&a.center), [wide(&v0), wide(&v1), wide(&v2)]);
+    let local = Triangle::new(v0 - a.center, v1 - a.center, v2 - a.center);
+    // Inputs within `exact::filter`'s fast range (`|x| ≤ 2^63`) translate
+    // without overflow; only others need the check.
+    let fast = crate::exact::filter::in_fast_range_points([centre, verts[0], verts[1], verts[2]]);
+    let in_local = fast || local.vertices.iter().all(crate::real::finite3);
+    // Clear misses first, before any closest point: the triangle's box, in
+    // the centre's frame, beyond the sphere's reach on some axis (see
+    // `box_clear_miss`).
+    let radius = a.radius.wide();
+    if in_local && box_clear_miss(local.vertices.map(|v| wide(&v)), radius) {
+        return None;
+    }
     // The face normal and the centre's volume, filtered once: they show the
     // triangle has area, which side of it the centre is on, and (in the face
     // region) the contact's normal and distance, for nearly every input; the
-    // exact predicates answer the rest.
-    let face_filter = FaceFilter::new(centre, verts);
+    // exact predicates answer the rest. The centre certainly farther from the
+    // plane than the sphere reaches is the second clear miss.
+    let face_filter = FaceFilter::new(centre, verts, fast);
+    if face_filter.as_ref().is_some_and(|f| f.plane_clear_miss(radius)) {
+        return None;
+    }
     let flat = match &face_filter {
         Some(f) if f.has_area() => false,
-        _ => crate::exact::collinear(verts[0], verts[1], verts[2]),
+        _ => collinear_of(b),
     };
-    let local = Triangle::new(v0 - a.center, v1 - a.center, v2 - a.center);
-    let in_local = local.vertices.iter().all(crate::real::finite3);
     // The book's closest point where its region is certain, else the region
     // of the centre's projection decided with certainty, else the nearest
-    // point of the edges (see `certified_region`).
-    let region_of = |p: &Vec3<T>, t: &Triangle<T>| {
-        if flat {
-            return (nearest_on_edges(p, t), Region::Boundary);
-        }
-        let found = closest_pt_point_triangle_region_with_area(p, t);
+    // point of the edges (see `certified_region`), in the centre's frame
+    // when its translation is finite. The book's tests are inlined once, on
+    // the translated vertices just computed; the global frame's call is out
+    // of line.
+    let frame = || if in_local { (Vec3::zeros(), local) } else { (a.center, *b) };
+    let (q_raw, region) = if flat {
+        let (p, t) = frame();
+        (nearest_on_edges(&p, &t), Region::Boundary)
+    } else {
+        let found = if in_local {
+            // The origin built from its components (`Vec3::zeros` goes
+            // through memory, and the book's differences reload it).
+            let origin = Vec3::new(T::zero(), T::zero(), T::zero());
+            closest_pt_point_triangle_region_with_area(&origin, &local)
+        } else {
+            closest_in_global_frame(&a.center, b)
+        };
         match certified_region(&found, in_local, &a.center, b) {
             Certified::Face => (found.point, Region::Face),
             Certified::Book => (found.point, found.region),
-            Certified::Edges(outer) => (closest_on_outer_edges(p, t, outer), Region::Boundary),
+            Certified::Edges(outer) => {
+                let (p, t) = frame();
+                (closest_on_outer_edges(&p, &t, outer), Region::Boundary)
+            }
         }
     };
-    let (q, delta, region) = if in_local {
-        let (q_local, region) = region_of(&Vec3::zeros(), &local);
-        (a.center + q_local, -q_local, region)
-    } else {
-        let (q, region) = region_of(&a.center, b);
-        (q, a.center - q, region)
-    };
+    let (q, delta) = if in_local { (a.center + q_raw, -q_raw) } else { (q_raw, a.center - q_raw) };
     // In the face region the direction is the face normal and the distance the
     // plane distance; both come accurately from exact-filtered volumes, where
     // the closest point's own rounding would tilt the normal of a thin triangle
     // by (its rounding) / (the distance).
     if region == Region::Face {
-        let fast = face_filter.as_ref().and_then(FaceFilter::normal_and_distance);
-        if let Some((n, d)) = fast.or_else(|| face_normal_and_distance(centre, verts)) {
+        // The compensated stage, formed at most once: the face normal and
+        // distance where the plain filter was not accurate enough, and the
+        // exact on-triangle test after it when the centre is in the plane.
+        let (answer, compensated) = match face_filter.as_ref().and_then(FaceFilter::normal_and_distance) {
+            Some(answer) => (Some(answer), None),
+            None => {
+                let (answer, face) = face_normal_and_distance_of(a, b);
+                (answer, Some(face))
+            }
+        };
+        if let Some((n, d)) = answer {
             let (normal, dist) = (Vec3::new(c(n[0]), c(n[1]), c(n[2])), c::<T>(d));
             if !(dist <= a.radius) {
                 return None;
@@ -135,7 +179,8 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
         }
         // No normal: the centre is in the plane, hence on the triangle (its
         // projection is inside), or farther from the plane than `f64` reaches.
-        if centre_on_triangle(&a.center, b) != OnTriangle::Exactly {
+        let face = compensated.unwrap_or_else(|| compensated_of(a, b));
+        if centre_on_triangle(&a.center, b, face.as_ref()) != OnTriangle::Exactly {
             return None;
         }
         let [v0, v1, v2] = b.vertices;
@@ -162,7 +207,7 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
     // exactly on the triangle).
     let on = match face_filter.as_ref().and_then(FaceFilter::side) {
         Some(side) => OnTriangle::Side(side),
-        None => centre_on_triangle(&a.center, b),
+        None => centre_on_triangle(&a.center, b, compensated_of(a, b).as_ref()),
     };
     let face = || {
         let [v0, v1, v2] = b.vertices;
@@ -198,6 +243,57 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
     Some(Contact { point: q, normal, depth: a.radius - dist, degenerate: false })
 }
 
+/// The centre and the vertices widened to `f64`.
+#[inline(always)]
+fn widened<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> ([f64; 3], [[f64; 3]; 3]) {
+    let w = |v: &Vec3<T>| [v.x.wide(), v.y.wide(), v.z.wide()];
+    (w(&a.center), b.vertices.each_ref().map(w))
+}
+
+// The rarely taken paths below form the widened inputs themselves, out of
+// line: passed down from the common path, the arrays would be laid out in
+// memory there on every query, and reloaded across the stores that built
+// them (a stall).
+
+/// Whether the triangle's vertices are exactly collinear (zero area).
+#[cold]
+#[inline(never)]
+fn collinear_of<T: Real>(b: &Triangle<T>) -> bool {
+    let w = |v: &Vec3<T>| [v.x.wide(), v.y.wide(), v.z.wide()];
+    let [v0, v1, v2] = &b.vertices;
+    crate::exact::collinear(w(v0), w(v1), w(v2))
+}
+
+/// [`FaceCompensated::new`] of the query's inputs.
+#[cold]
+#[inline(never)]
+fn compensated_of<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Option<FaceCompensated> {
+    let (p, v) = widened(a, b);
+    FaceCompensated::new(p, v)
+}
+
+/// [`face_normal_and_distance`] of the query's inputs, with the compensated
+/// stage it formed (for [`centre_on_triangle`] after it).
+#[cold]
+#[inline(never)]
+fn face_normal_and_distance_of<T: Real>(
+    a: &Sphere<T>,
+    b: &Triangle<T>,
+) -> (Option<([f64; 3], f64)>, Option<FaceCompensated>) {
+    let (p, v) = widened(a, b);
+    let face = FaceCompensated::new(p, v);
+    (face_normal_and_distance(p, v, face.as_ref()), face)
+}
+
+/// The book's closest point in the global frame, for the rare inputs whose
+/// translation to the centre's frame overflows (kept out of line, so the
+/// common path inlines the book's tests once).
+#[cold]
+#[inline(never)]
+fn closest_in_global_frame<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Closest<T> {
+    closest_pt_point_triangle_region_with_area(p, tri)
+}
+
 /// Margin of the root-free miss test of [`contact_sphere_triangle`], in units
 /// of the type's ε: a computed `‖M − q‖²` above `fl(fl(r²) · (1 + 16ε))`, with
 /// `r²` a normal number and `‖M − q‖²` finite, exceeds `r² (1 + 25u)` exactly
@@ -206,6 +302,44 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
 /// distance computed from `M − q` within `5u` of it (the plain root or the
 /// scaled one) exceeds `r`: the test with the distance would say "apart" too.
 const CLEAR_MISS_EPS: f64 = 16.0;
+
+/// Relative margin of the two early misses of [`contact_sphere_triangle`]
+/// (`box_clear_miss`, [`FaceFilter::plane_clear_miss`]): the sphere's reach
+/// is taken as `r (1 + 2^−30)`. Each early miss is proven — the exact
+/// distance from the centre to the triangle exceeds `r (1 + 2^−31)` — and
+/// the margin keeps it clear of the full path's computed distance wherever
+/// that is accurate to `2^−38` relative (the face region's filtered
+/// distance; the closest point's distance whenever its rounding, relative
+/// to the triangle's size, is small against `r`), so that it answers
+/// "apart" where the full computation would. Elsewhere (a sphere far
+/// smaller than the triangle, within the closest point's rounding of it)
+/// the early answer is the exact one, where the full path's could be
+/// "touching" by its rounding.
+const EARLY_MISS_MARGIN: f64 = 1.0 + 1.0 / (1u64 << 30) as f64;
+
+/// Whether the triangle's vertices `v`, given in the centre's frame
+/// (`fl(v_i − M)`), all lie beyond the sphere's reach `R = fl(max(r, 0) (1 +
+/// 2^−30))` ([`EARLY_MISS_MARGIN`]) on the same side of some axis: then the
+/// whole triangle does, and the exact distance from the centre to it is at
+/// least `min_i (v_i − M)_k > R / (1 + u) > r (1 + 2^−31)` (a rounded
+/// difference above `R ≥ 0` is positive and within `u` of the exact one,
+/// relative): certainly apart. Twelve minima and maxima, six comparisons,
+/// one branch. A negative or NaN radius reaches `0` (the full path answers
+/// "apart" for it too, except for a centre exactly on the triangle, which no
+/// box excludes). The caller passes finite coordinates only.
+#[inline(always)]
+fn box_clear_miss(v: [[f64; 3]; 3], r: f64) -> bool {
+    let min = |x: f64, y: f64| if x < y { x } else { y };
+    let max = |x: f64, y: f64| if x > y { x } else { y };
+    let reach = r.max(0.0) * EARLY_MISS_MARGIN;
+    let mut miss = false;
+    for k in 0..3 {
+        // Plain selects (`minsd`, `maxsd`): the coordinates are finite.
+        let (lo, hi) = (min(min(v[0][k], v[1][k]), v[2][k]), max(max(v[0][k], v[1][k]), v[2][k]));
+        miss |= (lo > reach) | (hi < -reach);
+    }
+    miss
+}
 
 /// How the closest point of [`contact_sphere_triangle`] is taken.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -383,11 +517,13 @@ struct FaceFilter {
 }
 
 impl FaceFilter {
+    /// The filtered normal and volume of the centre `p` and vertices `v`;
+    /// `None` unless `fast`, whether they are in the filter's range
+    /// (`exact::filter::in_fast_range_points`, computed by the caller).
     #[inline]
-    fn new(p: [f64; 3], v: [[f64; 3]; 3]) -> Option<Self> {
-        use crate::exact::filter::{cross, cross_bounds, in_fast_range_points, sub, triple};
-        let inputs = [p, v[0], v[1], v[2]];
-        if !in_fast_range_points(inputs) {
+    fn new(p: [f64; 3], v: [[f64; 3]; 3], fast: bool) -> Option<Self> {
+        use crate::exact::filter::{cross, cross_bounds, sub, triple};
+        if !fast {
             return None;
         }
         let (n, perm) = cross(sub(v[1], v[0]), sub(v[2], v[0]));
@@ -401,6 +537,39 @@ impl FaceFilter {
     #[inline]
     fn has_area(&self) -> bool {
         self.n.iter().any(Filtered::decided)
+    }
+
+    /// Whether the centre is certainly farther from the triangle's plane
+    /// than the sphere reaches: with `m = fl(|vol| − bound)` (a lower bound
+    /// on the exact `|n · (M − v0)|`, within `u`), the reach
+    /// `R = max(fl(r (1 + 2^−30)), 2^−240)` ([`EARLY_MISS_MARGIN`]) and
+    /// `N = Σ max(fl(|n_i| + bound_i), 2^−240)²` (at least `(1 − u)^5`
+    /// times the exact `‖n‖²`), the test `fl(m²) > fl(R² N)`
+    /// with `m > 2^−240` proves `|n · (M − v0)|² > r² (1 + 2^−31)² ‖n‖²`
+    /// (fewer than 12 roundings of `u` against the margin's `2^−30`): the
+    /// plane distance, hence the distance to the triangle, exceeds
+    /// `r (1 + 2^−31)`.
+    ///
+    /// The floors `2^−240` only enlarge the reach and `N` (a weaker test,
+    /// still proven), and keep every square and product normal: no rounding
+    /// is absolute, and none takes the processor's slow path for subnormal
+    /// results (exactly zero normal components — any axis-aligned triangle —
+    /// have `bound_i` near `2^−1000`, whose square would be subnormal). A
+    /// negative or NaN radius reaches `2^−240`; an infinite one (or `R² N`
+    /// beyond the range) never misses early. Eleven flops, no branch.
+    #[inline(always)]
+    fn plane_clear_miss(&self, r: f64) -> bool {
+        /// Floor of the test's factors (2^−240): squares and products of
+        /// two stay at least 2^−960, normal.
+        const FLOOR: f64 = 5.659799424266695e-73;
+        let floor = |x: f64| if x > FLOOR { x } else { FLOOR };
+        let reach = floor(r * EARLY_MISS_MARGIN);
+        let up = |f: &Filtered| floor(f.value.abs() + f.bound);
+        let (x, y, z) = (up(&self.n[0]), up(&self.n[1]), up(&self.n[2]));
+        let far = (reach * reach) * ((x * x + y * y) + z * z);
+        let m = self.vol.value.abs() - self.vol.bound;
+        let m = if m > FLOOR { m } else { 0.0 };
+        m * m > far
     }
 
     /// `+1` when the centre is certainly on the side `n` points to, `−1` on
@@ -457,6 +626,7 @@ struct FaceCompensated {
 
 impl FaceCompensated {
     /// `None` outside the compensated arithmetic's domain.
+    #[inline]
     fn new(p: [f64; 3], v: [[f64; 3]; 3]) -> Option<Self> {
         use crate::exact::compensated::{cross, diff, dot, in_range_points};
         let inputs = [p, v[0], v[1], v[2]];
@@ -511,10 +681,13 @@ const FACE_REL: f64 = 1.0 / (1u64 << 40) as f64;
 /// refined to a relative error of 2^-40 by the exact filters: accurate however
 /// thin the triangle. `None` for `p` in the plane, a zero-area triangle, or a
 /// distance beyond `f64`'s range.
-fn face_normal_and_distance(p: [f64; 3], v: [[f64; 3]; 3]) -> Option<([f64; 3], f64)> {
+///
+/// `face` is [`FaceCompensated::new`]`(p, v)`, formed by the caller (which
+/// may need it again for [`centre_on_triangle`]).
+fn face_normal_and_distance(p: [f64; 3], v: [[f64; 3]; 3], face: Option<&FaceCompensated>) -> Option<([f64; 3], f64)> {
     use crate::exact::{Estimate, Sign, cross_estimate, orient3d_estimate};
     const REL: f64 = FACE_REL;
-    if let Some(face) = FaceCompensated::new(p, v) {
+    if let Some(face) = face {
         if face.vol.bound == 0.0 && face.vol.value == 0.0 {
             // Exactly in the plane.
             return None;
@@ -575,12 +748,16 @@ enum OnTriangle {
 /// which the triangle projects with non-zero area (projection preserves
 /// inside-ness for coplanar points). A zero-area triangle is never "exactly on":
 /// its contacts are those of the segment or point it collapsed to.
-fn centre_on_triangle<T: Real>(p: &Vec3<T>, t: &Triangle<T>) -> OnTriangle {
+///
+/// `face` is [`FaceCompensated::new`] of the widened `p` and vertices,
+/// formed by the caller (which may have needed it already): it decides
+/// nearly every input without the exact predicates.
+fn centre_on_triangle<T: Real>(p: &Vec3<T>, t: &Triangle<T>, face: Option<&FaceCompensated>) -> OnTriangle {
     use crate::exact::{Sign, orient2d, orient3d};
     let w = |v: &Vec3<T>| [v.x.wide(), v.y.wide(), v.z.wide()];
     let [a, b, cc] = t.vertices.map(|v| w(&v));
     let q = w(p);
-    if let Some(on) = FaceCompensated::new(q, [a, b, cc]).and_then(|f| f.centre_on_triangle()) {
+    if let Some(on) = face.and_then(FaceCompensated::centre_on_triangle) {
         return on;
     }
     match orient3d(a, b, cc, q) {
