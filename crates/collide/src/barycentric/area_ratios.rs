@@ -56,26 +56,40 @@ const BOUND_ROUNDING: f64 = 1.0 + 32.0 * U;
 /// triangle thinner than about 2^−500 of its size) goes to the exact path.
 const UNDERFLOW_SLACK: f64 = 9.332636185032189e-302;
 
-/// The filter's target, relative to the coordinates' size
-/// `max(1, max_i |coordinate_i|)`: the `f64` answer is used only when the
-/// error bounds of the two coordinates that are kept (the third becomes
-/// `1 −` them) sum to at most this, so that each of the three is within it
-/// (plus the final roundings, `3.5 ε` at most: see [`signed_area_ratios`]).
-/// `12 ε = 3 · 2^−50 ≈ 2.7e-15`.
+/// The accuracy [`barycentric_triangle`](super::barycentric_triangle)
+/// promises, relative to the coordinates' size `max(1, max_i |coordinate_i|)`:
+/// `2^−40 ≈ 9.1e-13`, for any triangle of non-zero area.
 ///
-/// Reason: every answer is meant to be within `16 ε` of the size of the exact
-/// coordinates whatever the triangle's shape (the unit of crashtest's
-/// barycentric conditioning allowance); `12 ε + 3.5 ε` is. The computed bound
-/// is pessimistic — it adds every rounding at its worst: for random triangles
-/// and points in a box the actual error is a few `u` while the bound's median
-/// is about `15 ε` for the two coordinates together — so the target trades
-/// accuracy against how often the exact path runs. Measured on such inputs:
-/// at `8 ε` 73% of queries need the exact path, at `12 ε` 50%, at `16 ε` 30%,
-/// at `32 ε` 6%; the exact path on fixed-width integers costs about 1.6
-/// times the filter.
-pub(super) const FILTER_TOL: f64 = 2.6645352591003757e-15;
+/// Reason: crashtest's judge allows `1e-9` absolute on a barycentric
+/// coordinate plus a conditioning allowance; `2^−40` of the size is three
+/// orders of magnitude inside that and leaves the plain `f64` formula (whose
+/// error bound is a few hundred `u` over the triangle's squared shape factor)
+/// enough room to answer every triangle that is not a sliver, so that only
+/// slivers, near-degenerate and zero-area triangles pay for exact arithmetic.
+/// The loosest the project accepts is `2^−40`.
+pub(super) const ACCURACY: f64 = 9.094947017729282e-13;
 
-/// Coordinates from [`signed_area_ratios`]: `coords[free]` is only an
+/// The tighter accuracy of [`barycentric_triangle_tight`](super::barycentric_triangle_tight):
+/// `16 ε = 2^−48` of the size, for callers that certify the coordinates'
+/// signs with a margin of a few ulps. (The filters below meet it only for
+/// well-conditioned queries, so more of these queries take the exact path.)
+pub(super) const TIGHT_ACCURACY: f64 = 3.552713678800501e-15;
+
+/// What the filters' certified error bounds must meet, for a promised
+/// accuracy `a` (relative to the size): the bounds of the two coordinates
+/// that are kept (the third becomes `1 −` them) sum to at most `a − 4 ε`.
+/// Each kept coordinate then carries its bound plus one rounding of the
+/// quotient (`ε` of the size) and the recomputed one the sum of the kept
+/// ones' errors plus the two roundings of `1 − a − b` (`1.5 ε`): `3.5 ε`
+/// beyond the bounds; the last `0.5 ε` covers the difference between the
+/// computed size the filters test against and the exact one (a factor
+/// `1 + a`).
+#[inline(always)]
+fn filter_target(accuracy: f64) -> f64 {
+    accuracy - 4.0 * f64::EPSILON
+}
+
+/// Coordinates from [`slow_ratios`]: `coords[free]` is only an
 /// approximation (the filter does not certify it); the caller replaces it
 /// with `1 −` the other two.
 #[derive(Clone, Copy, Debug)]
@@ -93,7 +107,7 @@ thread_local! {
     static EXACT_PATH: core::cell::Cell<u64> = const { core::cell::Cell::new(0) };
 }
 
-/// How many [`signed_area_ratios`] calls on this thread took the exact path.
+/// How many queries on this thread took the exact path.
 #[cfg(test)]
 pub(super) fn exact_path_count() -> u64 {
     EXACT_PATH.with(|c| c.get())
@@ -106,36 +120,60 @@ pub(super) fn exact_kind(p: &P3, v: &[P3; 3]) -> &'static str {
     grid::kind(p, v)
 }
 
-/// The coordinates `N_i / D` of `p`'s projection onto the plane of `v`, or
-/// `None` when the triangle has exactly zero area (`D = 0`: collinear or
-/// coincident vertices, the same decision as
-/// [`exact::collinear`](crate::exact::collinear)). Inputs must be finite.
+/// Step 1 of the signed area ratios: the coordinates `N_i / D` of `p`'s
+/// projection onto the plane of `tri`, each within `accuracy` ([`ACCURACY`]
+/// or [`TIGHT_ACCURACY`]) of the size `max(1, max_i |N_i / D|)` once the
+/// caller has recomputed `α` as `1 − β − γ`, or which step must answer
+/// instead ([`slow_ratios`]: it returns `None` when the triangle has exactly
+/// zero area, `D = 0`: collinear or coincident vertices, the same decision as
+/// [`exact::collinear`](crate::exact::collinear), and needs finite inputs).
 ///
-/// 1. **Filter.** The seven differences (`v1 − v0`, `v2 − v0`, `v2 − v1` and
-///    `p − v_i`) are rounded once; the edges are scaled by one power of two
-///    and the offsets `p − v_i` by another (exactly, up to subnormals) so the
-///    largest component of each group lies in `[1, 2)`, and nothing can
-///    overflow or underflow. Each component of `n` and of the three
-///    `edge × offset` products gets Shewchuk's orient2d bound (`η_k`, `ζ_k`);
-///    each dot product `N̂ = n̂·ĉ` the bound `A = Σ |n̂_k| ζ_k + |ĉ_k| η_k +
-///    η_k ζ_k` plus its own rounding; `D̂ = Σ n̂_k²` the bound
-///    `B = Σ 2 |n̂_k| η_k + η_k²` plus rounding (no cancellation in the sum).
-///    A coordinate `N̂_i / D̂` is then within `(A_i + |N̂_i| B / D̂) / (D̂ − B)`
-///    of the exact one; the filter answers when that, summed over the two kept
-///    coordinates, is at most [`FILTER_TOL`] of the size. Each kept
-///    coordinate is then off by at most its bound plus two roundings
-///    (`N̂ · (1/D̂)`, within `ε` of its magnitude), and the recomputed one by
-///    the sum of their errors plus two roundings of `1 − a − b` (`1.5 ε` of
-///    the size): `FILTER_TOL + 3.5 ε` of the size in all.
-/// 2. **Exact.** Otherwise `D`, `N_β`, `N_γ` are evaluated exactly and
-///    `N_α = D − N_β − N_γ`; `D = 0` is the zero-area case. When the inputs'
-///    significant bits lie within 61 binades of each other (all but contrived
-///    scenes), the inputs are integers on a common grid and the evaluation
-///    runs on fixed-width integers (`i128` and 256-bit), without allocation;
-///    within 124 binades on 512-bit integers; beyond, in [`BigFloat`]. Each
-///    value is rounded to an [`Estimate`] (relative error `≤ ε`), so each
-///    coordinate is within `2.5 ε` of its own magnitude and the recomputed
-///    one within `6.5 ε` of the size.
+/// The steps:
+///
+/// 1. **Fast filter** ([`fast`]). The formula in plain `f64` on the rounded
+///    differences `e0 = v1 − v0`, `e1 = v2 − v0`, `q = p − v0`, in its Gram
+///    form: `D̂ = A B − C²`, `N̂_β = B P − C R`, `N̂_γ = A R − C P` from the
+///    dot products `A = e0·e0`, `B = e1·e1`, `C = e0·e1`, `P = q·e0`,
+///    `R = q·e1`; `β = N̂_β / D̂`, `γ = N̂_γ / D̂` (`α` is recomputed by the
+///    caller). The bound comes from the squared lengths `A`, `B`,
+///    `S = ‖q‖²` only: `|N̂ − N| ≤ 26 u ‖q‖ ‖e0‖ ‖e1‖ max(‖e0‖, ‖e1‖)` and
+///    `|D̂ − D| ≤ 26 u A B` ([`FAST_BOUND`]). It answers when the lengths lie
+///    in a range where nothing overflows or underflows ([`FAST_RANGE`]) and
+///    the bound meets the target ([`filter_target`]); for triangles of
+///    ordinary proportions that is almost always (the bound is about
+///    `26 u (‖q‖/‖e‖ + |c|) / sin²θ0`, `θ0` the angle at `v0`). A bound far
+///    beyond the target (a sliver) or an area not certainly non-zero sends
+///    the query straight to step 3; one within [`RETRY_FACTOR`] of it, or
+///    lengths out of range, to step 2.
+/// 2. **Scaled filter** ([`filtered`]). The seven differences (`v1 − v0`,
+///    `v2 − v0`, `v2 − v1` and `p − v_i`) are rounded once; the edges are
+///    scaled by one power of two and the offsets `p − v_i` by another
+///    (exactly, up to subnormals) so the largest component of each group
+///    lies in `[1, 2)`, and nothing can overflow or underflow. Each
+///    component of `n` and of the three `edge × offset` products gets
+///    Shewchuk's orient2d bound (`η_k`, `ζ_k`); each dot product `N̂ = n̂·ĉ`
+///    the bound `A = Σ |n̂_k| ζ_k + |ĉ_k| η_k + η_k ζ_k` plus its own
+///    rounding; `D̂ = Σ n̂_k²` the bound `B = Σ 2 |n̂_k| η_k + η_k²` plus
+///    rounding (no cancellation in the sum). A coordinate `N̂_i / D̂` is then
+///    within `(A_i + |N̂_i| B / D̂) / (D̂ − B)` of the exact one; the filter
+///    answers when that, summed over the two kept coordinates, meets the
+///    target. Tighter than the fast bound and valid at any scale (tiny and
+///    huge scenes, points far from the triangle), at several times its cost.
+/// 3. **Exact.** Otherwise `n`, `N_β`, `N_γ` are evaluated exactly; `n = 0`
+///    is the zero-area case. When the inputs' significant bits lie within 61
+///    binades of each other (all but contrived scenes), the inputs are
+///    integers on a common grid and the evaluation runs on fixed-width
+///    integers (`i128` and 256-bit), without allocation; within 124 binades
+///    on 512-bit integers; beyond, in [`BigFloat`]. Each value is rounded to
+///    an [`Estimate`] (relative error `≤ ε`), except the narrow grid's
+///    `D = Σ n_k²`, summed in `f64` from the exact `n` (no cancellation,
+///    within `3 ε`). So `β` and `γ` are within `4.5 ε` of their own magnitude
+///    and `α = 1 − β − γ`, recomputed by the caller, within `10.5 ε` of the
+///    size (below either accuracy).
+///
+/// In both filters the answer stands only when `D̂` exceeds its own error
+/// bound, i.e. the area is certainly non-zero: zero area is decided by the
+/// exact path alone.
 ///
 /// Takes the query in its own type and converts to `f64` here: the filter
 /// then works on values in registers, and only the exact path (which takes
@@ -143,10 +181,20 @@ pub(super) fn exact_kind(p: &P3, v: &[P3; 3]) -> &'static str {
 /// arrays in the caller instead made the filter reload them in wider loads
 /// than they were stored with, which stalls.
 #[inline(always)]
-pub(super) fn signed_area_ratios<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Option<Ratios> {
+pub(super) fn fast_ratios<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, accuracy: f64) -> Fast {
     let v = [to_f64_3(&tri.vertices[0]), to_f64_3(&tri.vertices[1]), to_f64_3(&tri.vertices[2])];
-    if let Some(r) = filtered(&to_f64_3(p), &v) {
-        return Some(r);
+    fast(&to_f64_3(p), &v, filter_target(accuracy))
+}
+
+/// Steps 2 and 3 of [`fast_ratios`] after the fast filter's `miss`
+/// ([`Fast::Filter`] or [`Fast::Exact`]): the scaled filter, then the exact
+/// path, or the exact path at once. Inputs must be finite.
+pub(super) fn slow_ratios<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, accuracy: f64, miss: Fast) -> Option<Ratios> {
+    if let Fast::Filter = miss {
+        let v = [to_f64_3(&tri.vertices[0]), to_f64_3(&tri.vertices[1]), to_f64_3(&tri.vertices[2])];
+        if let Some(r) = filtered(&to_f64_3(p), &v, filter_target(accuracy)) {
+            return Some(r);
+        }
     }
     exact_of(p, tri)
 }
@@ -219,6 +267,131 @@ fn scale3(v: &P3, k: i64) -> P3 {
     }
 }
 
+/// The fast filter's error constant: `26 u`. With `A = ‖e0‖²`, `B = ‖e1‖²`,
+/// `S = ‖q‖²` (`e0 = v1 − v0`, `e1 = v2 − v0`, `q = p − v0`, exact), the
+/// numerators and denominator computed by [`fast`] from the rounded
+/// differences satisfy `|N̂_β − N_β| ≤ FAST_BOUND · ‖q‖ ‖e0‖ ‖e1‖²`,
+/// `|N̂_γ − N_γ| ≤ FAST_BOUND · ‖q‖ ‖e0‖² ‖e1‖` and
+/// `|D̂ − D| ≤ FAST_BOUND · A B`.
+///
+/// Derivation (`γ_k = k u / (1 − k u)`): [`fast`] evaluates the Gram form
+/// of the formula (Binet–Cauchy: `(a × b)·(c × d) = (a·c)(b·d) − (a·d)(b·c)`),
+/// `D = A B − C²`, `N_β = B P − C R`, `N_γ = A R − C P` with `C = e0·e1`,
+/// `P = q·e0`, `R = q·e1`. Each dot product of rounded differences (each
+/// component within `u` of the exact difference, relatively) is within
+/// `(1 + u)² (1 + γ3) − 1 ≤ γ5` of `Σ |x_k y_k| ≤ ‖x‖ ‖y‖` of the exact one.
+/// So `Â B̂` is within `(2 γ5 + γ5²) A B` of `A B`, and `Ĉ²` within
+/// `|Ĉ − C| (|Ĉ| + |C|) ≤ (2 γ5 + γ5²) A B` of `C²`; the two products and
+/// the difference (of two non-negative values below `A B (1 + γ5)²`) round
+/// by at most `3 u A B`: `23 u A B` to first order. Likewise
+/// `|B̂ P̂ − B P| ≤ |B̂ − B| |P̂| + B |P̂ − P| ≤ 2 γ5 (1 + γ5) M` and
+/// `|Ĉ R̂ − C R| ≤ 2 γ5 (1 + γ5) M` with `M = ‖q‖ ‖e0‖ ‖e1‖²`, and the
+/// roundings of the two products and of their difference (of terms up to
+/// `M` each, of either sign) add `4 u M`: `24 u M`; the same for `N_γ`
+/// with `M = ‖q‖ ‖e0‖² ‖e1‖`. The bound itself is evaluated from the
+/// computed `Â`, `B̂`, `Ŝ`, within `γ5` of the exact squared norms. The
+/// constant's margin (`2 u`, 8 %) covers those factors, the second-order
+/// terms, the roundings of the bound's own evaluation, and products that
+/// underflow (each off by at most `2^−1075`, while [`FAST_RANGE`] keeps
+/// every bound above `2^−450`).
+const FAST_BOUND: f64 = 26.0 * U;
+
+/// The range of the computed squared lengths `Â`, `B̂` and `Ŝ` (see
+/// [`FAST_BOUND`]) in which [`fast`] answers: `[2^−200, 2^200]`, lengths
+/// within `2^±100` (`Ŝ` may also be exactly zero, `p = v0`). Within it no
+/// product in the formula or its bound overflows (`< 2^810`) and the error
+/// bounds stay far above the underflow threshold (`> 2^−450`); tinier or
+/// huger scenes take the scaled filter, which works at any scale.
+const FAST_RANGE: (f64, f64) = (6.223015277861142e-61, 1.6069380442589903e60);
+
+/// The larger of two values that are not NaN (one `maxsd`, without the
+/// NaN handling of `f64::max`).
+#[inline(always)]
+fn max2(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}
+
+/// `a · b` in plain `f64`, as `(a0 b0 + a1 b1) + a2 b2`.
+#[inline(always)]
+fn dot(a: &P3, b: &P3) -> f64 {
+    (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]
+}
+
+/// How far beyond the target the fast bound may be for the scaled filter to
+/// be worth trying (unitless ratio, 64): the scaled filter's per-component
+/// bound is tighter than the fast norm bound by a small factor for triangles
+/// of ordinary proportions (the fast one bounds every term by products of
+/// whole lengths), so a query the fast bound misses by more is a sliver or a
+/// degenerate one, whose answer the scaled filter would not certify either;
+/// it goes straight to the exact path.
+const RETRY_FACTOR: f64 = 64.0;
+
+/// What the fast filter concluded.
+pub(super) enum Fast {
+    /// The certified answer `β`, `γ` (`α` is `1 −` them).
+    Answer(f64, f64),
+    /// Outside [`FAST_RANGE`], or a bound within [`RETRY_FACTOR`] of the
+    /// target: for the scaled filter.
+    Filter,
+    /// The bound is far beyond the target, or the area is not certainly
+    /// non-zero: for the exact path.
+    Exact,
+}
+
+/// The fast filter (step 1 of [`fast_ratios`]): the formula in its Gram
+/// form (see [`FAST_BOUND`]: five dot products, six products) with the norm
+/// bound of [`FAST_BOUND`].
+///
+/// With `K` = [`FAST_BOUND`], the numerators' bounds sum to
+/// `K ‖q‖ ‖e0‖ ‖e1‖ (‖e0‖ + ‖e1‖) ≤ K √(2 S A B (A + B))` (one square root)
+/// and the denominator's is `errD = K A B`. Each coordinate `N̂/D̂` is within
+/// `(errN + |N̂/D̂| errD)/(D̂ − errD)` of `N/D` (when `D̂ > errD`, which also
+/// certifies `D > 0`); the answer stands when the two coordinates' bounds sum
+/// to at most `target` times the computed size `max(1, |α̂|, |β̂|, |γ̂|)`,
+/// tested multiplied through by `D̂ − errD`, with the left side raised by
+/// [`BOUND_ROUNDING`] for both sides' own roundings (and by `1 + 2u` inside
+/// it for the rounding of `β̂`, `γ̂`). Since `D = A B sin²θ0` (`θ0` the angle
+/// at `v0`), the bound is about `26 u (‖q‖ (1/‖e0‖ + 1/‖e1‖) + |β| + |γ|) /
+/// sin²θ0`: a few hundred `u` for triangles of ordinary proportions.
+///
+/// Non-finite inputs need no test of their own: every input enters one of
+/// the differences, which is then infinite or NaN and fails the range test.
+#[inline(always)]
+fn fast(p: &P3, v: &[P3; 3], target: f64) -> Fast {
+    let [v0, v1, v2] = v;
+    let (e0, e1, q) = (sub(v1, v0), sub(v2, v0), sub(p, v0));
+    let (a, b, s) = (dot(&e0, &e0), dot(&e1, &e1), dot(&q, &q));
+    let (lo, hi) = FAST_RANGE;
+    // Refuses NaN and ∞ (an overflowed difference or a non-finite input);
+    // an edge of zero length has zero area, for the exact path to decide.
+    if !(a >= lo && a <= hi && b >= lo && b <= hi && s <= hi && (s >= lo || s == 0.0)) {
+        return if a == 0.0 || b == 0.0 { Fast::Exact } else { Fast::Filter };
+    }
+    // The Gram form: D = ‖e0 × e1‖², N_β = (e0 × e1)·(q × e1),
+    // N_γ = (e0 × e1)·(e0 × q) by Binet–Cauchy.
+    let (c, pe0, pe1) = (dot(&e0, &e1), dot(&q, &e0), dot(&q, &e1));
+    let d = a * b - c * c;
+    let n_beta = b * pe0 - c * pe1;
+    let n_gamma = a * pe1 - c * pe0;
+    let inv = 1.0 / d;
+    let (beta, gamma) = (n_beta * inv, n_gamma * inv);
+    let alpha = (1.0 - beta) - gamma;
+    let ab = a * b;
+    let err_d = FAST_BOUND * ab;
+    let err_n = FAST_BOUND * (2.0 * s * ab * (a + b)).sqrt();
+    let lhs = (err_n + (beta.abs() + gamma.abs()) * ((1.0 + 2.0 * U) * err_d)) * BOUND_ROUNDING;
+    let size = max2(max2(alpha.abs(), beta.abs()), max2(gamma.abs(), 1.0));
+    let rhs = target * (size * (d - err_d));
+    // `D̂ > errD` certifies `D > 0` (the zero-area decision stays exact).
+    // NaN-safe: `d = 0` makes the quotients NaN or infinite, and `lhs` with
+    // them; coordinates beyond `f64`'s range (an infinite size) are left to
+    // the other steps, which decide them.
+    if d > err_d && lhs <= rhs && size < f64::INFINITY {
+        return Fast::Answer(beta, gamma);
+    }
+    if d > err_d && lhs <= RETRY_FACTOR * rhs { Fast::Filter } else { Fast::Exact }
+}
+
 /// `a × b` from rounded differences, with Shewchuk's bound on each component
 /// (plus [`UNDERFLOW_SLACK`]).
 #[inline(always)]
@@ -244,10 +417,10 @@ fn dot_bounded(n: &P3, eta: &P3, c: &P3, zeta: &P3) -> (f64, f64) {
     (value, err * BOUND_ROUNDING + UNDERFLOW_SLACK)
 }
 
-/// The filter (step 1 of [`signed_area_ratios`]); `None` when it cannot certify
-/// the answer to [`FILTER_TOL`].
+/// The scaled filter (step 2 of [`fast_ratios`]); `None` when it
+/// cannot certify the answer to `target` (see [`filter_target`]).
 #[inline]
-fn filtered(p: &P3, v: &[P3; 3]) -> Option<Ratios> {
+fn filtered(p: &P3, v: &[P3; 3], target: f64) -> Option<Ratios> {
     let [v0, v1, v2] = v;
     let (e0, e1, e12) = (sub(v1, v0), sub(v2, v0), sub(v2, v1));
     let (q0, q1, q2) = (sub(p, v0), sub(p, v1), sub(p, v2));
@@ -278,7 +451,7 @@ fn filtered(p: &P3, v: &[P3; 3]) -> Option<Ratios> {
     // unless both kept coordinates were far below 1, so the numerators are
     // not worth computing. (Leaving early is always safe: the exact path
     // answers.) Every value here is finite: the factors are below 2.
-    if b > FILTER_TOL * d {
+    if b > target * d {
         return None;
     }
 
@@ -297,13 +470,13 @@ fn filtered(p: &P3, v: &[P3; 3]) -> Option<Ratios> {
         }
     }
     let (i, j) = ((free + 1) % 3, (free + 2) % 3);
-    // err_i + err_j ≤ FILTER_TOL · max(1, |c_i|, |c_j|), with
+    // err_i + err_j ≤ target · max(1, |c_i|, |c_j|), with
     // err_k = (A_k + |N̂_k| B/D̂)/(D̂ − B) and c_k = (N̂_k/D̂) 2^s, multiplied
     // through by D̂ (D̂ − B) > 0 (no division).
     let (ni, nj) = (num[i].0.abs(), num[j].0.abs());
     let lhs = ((num[i].1 + num[j].1) * d + (ni + nj) * b) * BOUND_ROUNDING;
     let size = ldexp(d, -s).max(ni).max(nj);
-    let rhs = FILTER_TOL * ((d - b) * size);
+    let rhs = target * ((d - b) * size);
     if lhs > rhs {
         return None;
     }
@@ -313,22 +486,17 @@ fn filtered(p: &P3, v: &[P3; 3]) -> Option<Ratios> {
 
 // ---------------------------------------------------------------- exact
 
-/// The exact path (step 2 of [`signed_area_ratios`]).
+/// The exact path (step 3 of [`fast_ratios`]).
 #[cold]
 fn exact(p: &P3, v: &[P3; 3]) -> Option<Ratios> {
     let values = match grid::exact_values(p, v) {
         Some(values) => values,
         None => big::exact_values(p, v),
     };
-    let [d, n_beta, n_gamma, n_alpha] = values?;
-    let coords = [n_alpha, n_beta, n_gamma].map(|x| quotient(&x, &d));
-    let mut free = 0;
-    for i in 1..3 {
-        if coords[i].abs() > coords[free].abs() {
-            free = i;
-        }
-    }
-    Some(Ratios { coords, free })
+    let [d, n_beta, n_gamma] = values?;
+    let (beta, gamma) = (quotient(&n_beta, &d), quotient(&n_gamma, &d));
+    // `α` is `1 −` the others (by the caller, in its type).
+    Some(Ratios { coords: [(1.0 - beta) - gamma, beta, gamma], free: 0 })
 }
 
 /// `num / den` from their estimates (`den > 0`), saturating to `±∞` and
@@ -363,8 +531,8 @@ mod big {
         &(&(&a[0] * &b[0]) + &(&a[1] * &b[1])) + &(&a[2] * &b[2])
     }
 
-    /// `[D, N_β, N_γ, N_α]` as estimates, or `None` when `D = 0`.
-    pub(super) fn exact_values(p: &P3, v: &[P3; 3]) -> Option<[Estimate; 4]> {
+    /// `[D, N_β, N_γ]` as estimates, or `None` when `D = 0`.
+    pub(super) fn exact_values(p: &P3, v: &[P3; 3]) -> Option<[Estimate; 3]> {
         let big3 = |x: &P3| x.map(BigFloat::from_f64);
         let (v0, v1, v2, p) = (big3(&v[0]), big3(&v[1]), big3(&v[2]), big3(p));
         let (e0, e1, q0) = (sub(&v1, &v0), sub(&v2, &v0), sub(&p, &v0));
@@ -375,16 +543,15 @@ mod big {
         }
         let n_gamma = dot(&n, &cross(&e0, &q0));
         let n_beta = dot(&n, &cross(&q0, &e1));
-        let n_alpha = &(&d - &n_beta) - &n_gamma;
-        Some([d, n_beta, n_gamma, n_alpha].map(|x| x.estimate()))
+        Some([d, n_beta, n_gamma].map(|x| x.estimate()))
     }
 }
 
 /// Exact evaluation on fixed-width integers, without allocation. Every input
-/// is `m · 2^e` with an integer `m` of at most 53 bits; with `lo` the smallest
-/// such `e` among the non-zero inputs, every input is the integer
-/// `m · 2^(e − lo)` times `2^lo`, and the common factor `2^(4 lo)` cancels in
-/// the ratios. When those integers are below `2^61` (the narrow grid: the
+/// is `m · 2^e` with an odd integer `m` of at most 53 bits; with `lo` the
+/// smallest such `e` among the non-zero inputs, every input is the integer
+/// `x · 2^−lo` (an exact scaling) times `2^lo`, and the common factor
+/// `2^(4 lo)` cancels in the ratios. When those integers are below `2^61` (the narrow grid: the
 /// inputs' significant bits span at most 61 binades) the differences fit in
 /// `i64` (`< 2^62`), the cross products in native `i128` (`< 2^125`) and the
 /// numerators and denominator in 256 bits (`< 2^254`); below `2^124` (the
@@ -396,6 +563,11 @@ mod grid {
     /// Bits of magnitude below which the inputs' integers take the narrow
     /// path.
     const NARROW_BITS: i64 = 61;
+    /// Relative error of the narrow grid's `D` (unitless): each `n_k`
+    /// rounded to `f64` (`u`), squared (`2u` more) and summed (`γ2`): at most
+    /// `(1 + u)² (1 + u)(1 + γ2) − 1 < 5.1 u`, so `3 ε`.
+    const D_REL_ERR: f64 = 3.0 * f64::EPSILON;
+
     /// Bits of magnitude below which the inputs' integers take the wide path
     /// (beyond: [`BigFloat`](super::BigFloat)).
     const WIDE_BITS: i64 = 124;
@@ -404,19 +576,19 @@ mod grid {
     type W4 = [u64; 4];
     type W8 = [u64; 8];
 
-    /// `(m, e)` with `x = m · 2^e` exactly, `m` odd (or zero, with `e = 0`).
+    /// `(lo, hi)` for a non-zero finite `x`: its lowest set bit is worth
+    /// `2^lo` and `|x| < 2^hi`; `(i64::MAX, i64::MIN)` for zero, so that it
+    /// drops out of a minimum and a maximum. Branch-free.
     #[inline(always)]
-    fn decompose(x: f64) -> (i64, i64) {
+    fn bit_range(x: f64) -> (i64, i64) {
         let bits = x.to_bits();
         let biased = ((bits >> 52) & 0x7ff) as i64;
         let fraction = bits & ((1u64 << 52) - 1);
-        let (m, e) = if biased == 0 { (fraction, -1074) } else { (fraction | (1u64 << 52), biased - 1075) };
-        if m == 0 {
-            return (0, 0);
-        }
-        let tz = m.trailing_zeros();
-        let m = (m >> tz) as i64;
-        (if x < 0.0 { -m } else { m }, e + i64::from(tz))
+        let m = if biased == 0 { fraction } else { fraction | (1u64 << 52) };
+        let e = biased.max(1) - 1075;
+        let lo = e + i64::from(m.trailing_zeros());
+        let hi = e + 64 - i64::from(m.leading_zeros());
+        if m == 0 { (i64::MAX, i64::MIN) } else { (lo, hi) }
     }
 
     #[inline(always)]
@@ -529,7 +701,7 @@ mod grid {
 
     /// The narrow grid: integers below `2^61`.
     #[inline(always)]
-    fn narrow(ints: &[i64; 12]) -> Option<[Estimate; 4]> {
+    fn narrow(ints: &[i64; 12]) -> Option<[Estimate; 3]> {
         let mut e0 = [0i64; 3];
         let mut e1 = [0i64; 3];
         let mut q0 = [0i64; 3];
@@ -542,15 +714,17 @@ mod grid {
         if (n[0] | n[1] | n[2]) == 0 {
             return None;
         }
-        let d = dot_i128(&n, &n);
+        // D = Σ n_k² has no cancellation: from the rounded n_k, three
+        // roundings more, within D_REL_ERR.
+        let nf = n.map(|x| x as f64);
+        let d = Estimate::from_scaled((nf[0] * nf[0] + nf[1] * nf[1]) + nf[2] * nf[2], 0, D_REL_ERR);
         let n_gamma = dot_i128(&n, &cross_i64(&e0, &q0));
         let n_beta = dot_i128(&n, &cross_i64(&q0, &e1));
-        let n_alpha = sub(&sub(&d, &n_beta), &n_gamma);
-        Some([estimate(&d), estimate(&n_beta), estimate(&n_gamma), estimate(&n_alpha)])
+        Some([d, estimate(&n_beta), estimate(&n_gamma)])
     }
 
     /// The wide grid: integers below `2^124`.
-    fn wide(ints: &[i128; 12]) -> Option<[Estimate; 4]> {
+    fn wide(ints: &[i128; 12]) -> Option<[Estimate; 3]> {
         let d = |i: usize, j: usize| -> [W2; 3] {
             [0, 1, 2].map(|k| {
                 let x = (ints[3 * i + k] - ints[3 * j + k]) as u128;
@@ -577,34 +751,45 @@ mod grid {
         let d = dot(&n, &n);
         let n_gamma = dot(&n, &cross(&e0, &q0));
         let n_beta = dot(&n, &cross(&q0, &e1));
-        let n_alpha = sub(&sub(&d, &n_beta), &n_gamma);
-        Some([d, n_beta, n_gamma, n_alpha].map(|x| estimate(&x)))
+        Some([d, n_beta, n_gamma].map(|x| estimate(&x)))
     }
 
-    /// The inputs `v0, v1, v2, p` decomposed: mantissas, exponents, the
-    /// smallest exponent and the largest top bit among the non-zero ones
-    /// (`i64::MAX`, `i64::MIN` when all are zero).
+    /// The inputs `v0, v1, v2, p` in one array, with the smallest `lo` and
+    /// the largest `hi` of [`bit_range`] among them (`i64::MAX`, `i64::MIN`
+    /// when all are zero) — or, when that already fits the narrow grid, a
+    /// cheaper `lo` from the smallest non-zero magnitude alone: the ulp of a
+    /// normal `f64` is at most its lowest set bit, and grows with the
+    /// magnitude, so every input is a multiple of the smallest magnitude's
+    /// ulp.
     #[inline(always)]
-    fn decomposed(p: &P3, v: &[P3; 3]) -> ([i64; 12], [i64; 12], i64, i64) {
-        let mut m = [0i64; 12];
-        let mut e = [0i64; 12];
-        let (mut lo, mut hi) = (i64::MAX, i64::MIN);
-        for (k, x) in v.iter().chain([p]).flatten().enumerate() {
-            let (mk, ek) = decompose(*x);
-            m[k] = mk;
-            e[k] = ek;
-            if mk != 0 {
-                lo = lo.min(ek);
-                hi = hi.max(ek + 64 - i64::from(mk.unsigned_abs().leading_zeros()));
+    fn decomposed(p: &P3, v: &[P3; 3]) -> ([f64; 12], i64, i64) {
+        let xs = [v[0][0], v[0][1], v[0][2], v[1][0], v[1][1], v[1][2], v[2][0], v[2][1], v[2][2], p[0], p[1], p[2]];
+        let (mut small, mut large) = (f64::INFINITY, 0.0f64);
+        for x in xs {
+            let a = x.abs();
+            small = if a != 0.0 && a < small { a } else { small };
+            large = if a > large { a } else { large };
+        }
+        if small >= f64::MIN_POSITIVE && small < f64::INFINITY {
+            let exponent = |x: f64| ((x.to_bits() >> 52) & 0x7ff) as i64 - 1023;
+            let (lo, hi) = (exponent(small) - 52, exponent(large) + 1);
+            if hi - lo <= NARROW_BITS {
+                return (xs, lo, hi);
             }
         }
-        (m, e, lo, hi)
+        let (mut lo, mut hi) = (i64::MAX, i64::MIN);
+        for x in xs {
+            let (l, h) = bit_range(x);
+            lo = lo.min(l);
+            hi = hi.max(h);
+        }
+        (xs, lo, hi)
     }
 
     /// Which evaluation [`exact_values`] gives these inputs.
     #[cfg(test)]
     pub(super) fn kind(p: &P3, v: &[P3; 3]) -> &'static str {
-        let (_, _, lo, hi) = decomposed(p, v);
+        let (_, lo, hi) = decomposed(p, v);
         match hi.saturating_sub(lo) {
             span if span <= NARROW_BITS => "narrow",
             span if span <= WIDE_BITS => "wide",
@@ -612,31 +797,33 @@ mod grid {
         }
     }
 
-    /// `[D, N_β, N_γ, N_α]` as estimates (`None` inside when `D = 0`), or
+    /// `[D, N_β, N_γ]` as estimates (`None` inside when `D = 0`), or
     /// `None` outside when the inputs do not fit a grid.
-    pub(super) fn exact_values(p: &P3, v: &[P3; 3]) -> Option<Option<[Estimate; 4]>> {
-        let (m, e, lo, hi) = decomposed(p, v);
+    pub(super) fn exact_values(p: &P3, v: &[P3; 3]) -> Option<Option<[Estimate; 3]>> {
+        let (xs, lo, hi) = decomposed(p, v);
         if lo == i64::MAX {
             // Every coordinate is zero: four coincident points.
             return Some(None);
         }
+        // Each input times 2^−lo is an integer below 2^span, and the scaling
+        // by a power of two is exact (the result is an integer of at most 124
+        // bits, far from under- and overflow), as is its conversion.
         let span = hi - lo;
         if span <= NARROW_BITS {
             let mut ints = [0i64; 12];
-            for k in 0..12 {
-                if m[k] != 0 {
-                    ints[k] = m[k] << (e[k] - lo);
+            if (-1022..=1023).contains(&-lo) {
+                let f = super::pow2(-lo);
+                for k in 0..12 {
+                    ints[k] = (xs[k] * f) as i64;
+                }
+            } else {
+                for k in 0..12 {
+                    ints[k] = super::ldexp(xs[k], -lo) as i64;
                 }
             }
             Some(narrow(&ints))
         } else if span <= WIDE_BITS {
-            let mut ints = [0i128; 12];
-            for k in 0..12 {
-                if m[k] != 0 {
-                    ints[k] = i128::from(m[k]) << (e[k] - lo);
-                }
-            }
-            Some(wide(&ints))
+            Some(wide(&xs.map(|x| super::ldexp(x, -lo) as i128)))
         } else {
             None
         }

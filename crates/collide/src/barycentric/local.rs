@@ -18,11 +18,23 @@ use crate::real::{Real, Vec3, c, finite3};
 /// at least a quarter of its length in rounding error.
 pub(crate) const FLAT_TRIANGLE_EPS: f64 = 16.0;
 
-/// The exponent `k` with `m · 2^k ∈ [1, 2)` (to within one binade), for a finite
-/// `m > 0`.
+/// The exponent `k` with `m · 2^k ∈ [1, 2)`, for a finite `m > 0`: read from
+/// the bits of `m`'s `f64` value (exact; a subnormal is first scaled by
+/// `2^64`).
 #[inline]
 pub(crate) fn unit_exponent<T: Real>(m: T) -> i32 {
-    -(m.wide().log2().floor() as i32)
+    let m = m.wide();
+    let biased = |x: f64| ((x.to_bits() >> 52) & 0x7ff) as i32;
+    if m >= f64::MIN_POSITIVE { 1023 - biased(m) } else { 64 + 1023 - biased(m * TWO_TO_64) }
+}
+
+/// `2^64`, exactly.
+const TWO_TO_64: f64 = 18446744073709551616.0;
+
+/// `2^k` for `|k| ≤ 1022`, from its bits.
+#[inline(always)]
+fn pow2(k: i32) -> f64 {
+    f64::from_bits(((k + 1023) as u64) << 52)
 }
 
 /// `v · 2^k`, applied as two power-of-two factors `2^⌊k/2⌋` and `2^(k − ⌊k/2⌋)` so
@@ -32,7 +44,7 @@ pub(crate) fn unit_exponent<T: Real>(m: T) -> i32 {
 pub(crate) fn mul_pow2<T: Real>(v: &Vec3<T>, k: i32) -> Vec3<T> {
     let k1 = k / 2;
     let k2 = k - k1;
-    v * c::<T>(2f64.powi(k1)) * c::<T>(2f64.powi(k2))
+    v * c::<T>(pow2(k1)) * c::<T>(pow2(k2))
 }
 
 /// The largest absolute component of `v`.

@@ -13,7 +13,7 @@ mod triangle_lecture;
 pub use coords::Barycentric;
 pub use segment::barycentric_segment;
 pub use segment_lecture::barycentric_segment_lecture;
-pub use triangle::barycentric_triangle;
+pub use triangle::{barycentric_triangle, barycentric_triangle_tight};
 pub use triangle_lecture::barycentric_triangle_lecture;
 #[cfg(test)]
 mod tests;

@@ -1,7 +1,7 @@
 //! Signed barycentric coordinates on a triangle, of the point's projection onto
 //! the triangle's plane.
 
-use super::area_ratios::signed_area_ratios;
+use super::area_ratios::{ACCURACY, Fast, TIGHT_ACCURACY, fast_ratios, slow_ratios};
 use super::coords::Barycentric;
 use super::local::longest_edge_fallback;
 use crate::real::{Real, Vec3, finite3};
@@ -46,44 +46,65 @@ use crate::shapes::Triangle;
 /// (crashtest's sliver family met `[0.069, 1.145, −0.215]` for the exact
 /// `[0.0228, 1.0907, −0.1135]`, and `O(1)` answers where the exact coordinates
 /// are `~1e6`). Deciding "zero area" by a threshold on the computed `‖n‖` also
-/// flagged genuine triangles thinner than `16 ε`. So the coordinates are the
-/// ratios of exactly known values, and zero area is decided exactly.
+/// flagged genuine triangles thinner than `16 ε`. So the floating-point
+/// answer is used only where a certified error bound shows it within the
+/// promised accuracy, the coordinates are otherwise the ratios of exactly
+/// known values, and zero area is decided exactly.
 ///
 /// **Method** (details in the private `area_ratios` module):
 ///
-/// 1. *Filter.* The `f64` evaluation of the formula above, in a frame where the
-///    edges and the offsets `p − v_i` are each scaled by an exact power of two
-///    (no overflow or underflow), with a forward error bound on every numerator
-///    and the denominator (Shewchuk's orient2d bound for each cross-product
-///    component, first-order propagation through the dot products). When the
-///    bounds of the two kept coordinates sum to at most `FILTER_TOL` (12 ε) of
-///    the coordinates' size, the floating-point answer stands: about half of
-///    random well-shaped cases (the bound is pessimistic), at about the cost of
-///    the plain formula.
-/// 2. *Exact.* Otherwise `‖n‖²` and two numerators are evaluated exactly (the
-///    third is `‖n‖²` minus them), each rounded to an
-///    [`Estimate`](crate::exact::Estimate), and the coordinates are their
-///    quotients. The inputs are integers on a common binary grid; when their
+/// 1. *Fast filter.* The formula above from `v0` in plain `f64`, in its Gram
+///    form (Binet–Cauchy: `‖n‖² = A B − C²`, `β ‖n‖² = B P − C R`,
+///    `γ ‖n‖² = A R − C P` with `A = e0·e0`, `B = e1·e1`, `C = e0·e1`,
+///    `P = q·e0`, `R = q·e1`, `q = p − v0`; `α = 1 − β − γ`), with an error
+///    bound from the squared lengths `A`, `B`, `‖q‖²` alone
+///    (`26 u ‖q‖ ‖e0‖ ‖e1‖ max(‖e0‖, ‖e1‖)` on a numerator, `26 u A B` on
+///    `‖n‖²`, `u = ε/2`; a dozen flops and one square root). When the
+///    lengths are within `2^±100` and the bound meets the accuracy below, the
+///    answer stands: the bound is about
+///    `26 u (‖q‖ (1/‖e0‖ + 1/‖e1‖) + |β| + |γ|) / sin²θ0` (`θ0` the angle at
+///    `v0`), so every triangle of ordinary proportions is answered here, at
+///    about the cost of the plain formula.
+/// 2. *Scaled filter.* For lengths out of that range, or a bound within a
+///    factor 64 of the target, the same formula in a frame scaled by
+///    exact powers of two (no overflow or underflow at any scale), with a
+///    forward error bound on every component (Shewchuk's orient2d bound for
+///    each cross-product component, first-order propagation through the dot
+///    products), at several times the cost.
+/// 3. *Exact.* Otherwise `n` and the numerators of `β` and `γ` are evaluated
+///    exactly, each rounded to an [`Estimate`](crate::exact::Estimate)
+///    (`‖n‖²`, without cancellation, summed in `f64` from the exact `n`), and
+///    the coordinates are their quotients (`α = 1 − β − γ`). The inputs are integers on a common binary grid; when their
 ///    significant bits span at most 61 binades (any scene of sensible
 ///    proportions) the evaluation runs on `i128` and 256-bit integers without
-///    allocation, at about 1.6 times the filter's cost; up to 124 binades on
-///    512-bit integers; beyond that in [`BigFloat`](crate::exact::BigFloat)
-///    (microseconds). Slivers and degenerate triangles always take this path.
+///    allocation; up to 124 binades on 512-bit integers; beyond that in
+///    [`BigFloat`](crate::exact::BigFloat) (microseconds). Slivers (the fast
+///    bound, about `80 u / sin²θ0`, beyond `2^−40` times 64: an angle at `v0`
+///    below about 0.7° or above 179.3°), near-degenerate and
+///    zero-area triangles go straight to this path.
 ///
 /// **Accuracy.** For every finite input whose triangle does not have exactly zero
-/// area, each returned `f64` coordinate is within `16 ε · max(1, max_i |coord_i|)`
-/// of the exact coordinate of the projection, whatever the triangle's shape:
-/// `FILTER_TOL + 3.5 ε` on the fast path; on the exact path each kept quotient
-/// is within `2.5 ε` of itself and the recomputed one within the sum of their
-/// errors plus two roundings, `6.5 ε`. (Typical errors are an ulp or two.) The
-/// sum `α + β + γ` is 1 to within `1.5 ε · max(1, max_i |coord_i|)`.
+/// area, each returned `f64` coordinate is within `2^−40 · max(1, max_i |coord_i|)`
+/// (about `9.1e-13` of the size, the private constant `ACCURACY`) of the exact
+/// coordinate of the projection, whatever the triangle's shape: each filter
+/// answers only when its certified bounds on the two kept coordinates sum to
+/// at most `2^−40 − 4 ε` of the size, and the final roundings add at most
+/// `3.5 ε`; the exact path is within `10.5 ε`. (Typical errors are a few
+/// ulps of the size; [`barycentric_triangle_tight`] promises `16 ε`.) The sum
+/// `α + β + γ` is 1 to within `1.5 ε · max(1, max_i |coord_i|)`.
 ///
 /// **Precision.** The computation runs on the inputs' `f64` values (exact for
 /// `f32`); the `f32` answer rounds the two kept `f64` coordinates to `f32`
 /// (half an ulp each) and recomputes the third in `f32` as `1 −` them (their
 /// errors plus two roundings), so every `f32` coordinate is within
-/// `2.5 ε_f32` of the size of the exact answer *for the `f32` inputs*, and the
-/// sum is 1 as in `f64`.
+/// `2.5 ε_f32` (plus the `f64` answer's `2^−40`, below `1e-5 ε_f32`) of the
+/// size of the exact answer *for the `f32` inputs*, and the sum is 1 as in
+/// `f64`.
+///
+/// **Cost.** Well-shaped queries: the plain formula (about 45 flops, one
+/// division, one square root) and its bound, inline. Slivers and zero-area
+/// triangles: the exact path out of line, on 64- to 256-bit integers, about
+/// five to ten times that; a zero-area triangle then pays for the fallback.
 ///
 /// Degenerate input: a triangle of exactly zero area (collinear or coincident
 /// vertices, `n = 0` exactly, the decision of
@@ -103,18 +124,59 @@ use crate::shapes::Triangle;
 /// when its area is exactly zero, as crashtest's referee decides it.
 /// [`barycentric_triangle_lecture`](super::barycentric_triangle_lecture) keeps
 /// the floating-point threshold `‖n‖ ≤ 16 ε L²`.
+#[inline]
 pub fn barycentric_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Barycentric<T, 3> {
+    coordinates(p, tri, ACCURACY)
+}
+
+/// [`barycentric_triangle`] with the tighter accuracy `16 ε`: each returned
+/// `f64` coordinate within `16 ε · max(1, max_i |coord_i|)` of the exact
+/// coordinate of the projection (the private constant `TIGHT_ACCURACY`),
+/// whatever the triangle's shape, for callers that certify the coordinates'
+/// signs with a margin of a few ulps. Same formula, method, degenerate
+/// behaviour, fallback and `f32` rounding (`2.5 ε_f32`); the filters must
+/// meet `12 ε` instead of `2^−40 − 4 ε`, so their bounds (pessimistic by
+/// about an order of magnitude) send about half of well-shaped random
+/// queries to the exact path, at about twice the cost on average.
+#[inline]
+pub fn barycentric_triangle_tight<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Barycentric<T, 3> {
+    coordinates(p, tri, TIGHT_ACCURACY)
+}
+
+/// The body of [`barycentric_triangle`] and [`barycentric_triangle_tight`],
+/// for a promised `accuracy` relative to the size: the fast filter's answer
+/// inline, every other case out of line ([`slow`]).
+#[inline(always)]
+fn coordinates<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, accuracy: f64) -> Barycentric<T, 3> {
+    match fast_ratios(p, tri, accuracy) {
+        Fast::Answer(beta, gamma) => {
+            let (beta, gamma) = (T::of(beta), T::of(gamma));
+            let alpha = T::one() - beta - gamma;
+            // Non-finite only when a coordinate overflows `T` (`f32`): then
+            // the slow path decides it again, and falls back.
+            if alpha.finite() {
+                return Barycentric { coords: [alpha, beta, gamma], degenerate: false };
+            }
+            slow(p, tri, accuracy, Fast::Filter)
+        }
+        miss => slow(p, tri, accuracy, miss),
+    }
+}
+
+/// Every query the fast filter does not answer: non-finite input, the scaled
+/// filter and the exact path, zero area and coordinates beyond `T`'s range
+/// (the fallback).
+#[inline(never)]
+fn slow<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, accuracy: f64, miss: Fast) -> Barycentric<T, 3> {
     let fallback = || Barycentric { coords: longest_edge_fallback(p, &tri.vertices), degenerate: true };
     if !(finite3(p) && tri.vertices.iter().all(finite3)) {
         return fallback();
     }
-    let Some(r) = signed_area_ratios(p, tri) else {
+    let Some(r) = slow_ratios(p, tri, accuracy, miss) else {
         return fallback();
     };
     // The free coordinate is 1 minus the other two (`1 − c_i − c_j` with
-    // `i, j = k + 1, k + 2`), chosen by selects rather than written through
-    // an index: an indexed store makes the array a memory object, reread in
-    // wider loads than it was written with, which stalls.
+    // `i, j = k + 1, k + 2`).
     let c = r.coords.map(T::of);
     let k = r.free;
     let one_minus = [T::one() - c[1] - c[2], T::one() - c[2] - c[0], T::one() - c[0] - c[1]];

@@ -6,7 +6,7 @@ use super::closest_pt_triangle::{
     nearest_on_edges,
 };
 use super::sphere_sphere::CONCENTRIC_FALLBACK_NORMAL;
-use crate::barycentric::barycentric_triangle;
+use crate::barycentric::barycentric_triangle_tight;
 use crate::exact::filter::Filtered;
 use crate::exact::norm::safe_squared_range;
 use crate::real::{Real, Vec3, c, stable_norm, try_normalize_stable};
@@ -376,8 +376,8 @@ enum Certified {
 ///    a rounding of the point's parameter on an edge), or, if the book said
 ///    face, the closest point of the edges `P` is outside of is taken.
 /// 2. **The centre's barycentric coordinates** otherwise
-///    ([`barycentric_triangle`]: exact where its filter cannot certify, for
-///    any shape): each is within `17 ε` of the size `max(1, |coords|)`
+///    ([`barycentric_triangle_tight`]: exact where its filter cannot
+///    certify `16 ε`, for any shape): each is within `17 ε` of the size `max(1, |coords|)`
 ///    ([`BARY_MARGIN`]), so all above `32 ε` of the size is certainly inside
 ///    (the face). Otherwise the answer is the closest point of the edges `P`
 ///    is not certainly inside of ([`closest_on_outer_edges`]), exact when `P`
@@ -481,8 +481,8 @@ thread_local! {
 }
 
 /// Margin of stage 2 of [`certified_region`], in units of the type's ε and of
-/// the coordinates' size `max(1, |coords|)`: `32`. [`barycentric_triangle`]
-/// puts each coordinate within `16 ε` of the exact coordinates' size
+/// the coordinates' size `max(1, |coords|)`: `32`.
+/// [`barycentric_triangle_tight`] puts each coordinate within `16 ε` of the exact coordinates' size
 /// (`2.5 ε` in `f32`), which is at most the returned size over `1 − 16 ε`:
 /// within `17 ε` of the returned size, so a coordinate above `32 ε` of it is
 /// certainly positive, and one below `−32 ε` of it certainly negative.
@@ -497,7 +497,7 @@ const BARY_MARGIN: f64 = 32.0;
 fn projection_inner<T: Real>(centre: &Vec3<T>, tri: &Triangle<T>) -> [bool; 3] {
     #[cfg(test)]
     STAGE_TWO.with(|n| n.set(n.get() + 1));
-    let bary = barycentric_triangle(centre, tri);
+    let bary = barycentric_triangle_tight(centre, tri);
     if bary.degenerate {
         return [false; 3];
     }
