@@ -88,12 +88,14 @@ pub const SEGMENT_TRIANGLE_EDGE_MISS: Cost = Cost::new(54, 0, 0);
 /// 100 ops, 1 sqrt, 3 div.
 pub const SEGMENT_TRIANGLE_HIT: Cost = Cost::new(100, 1, 3);
 
-/// Barycentric coordinates of the projection: `e0 = v1 − v0`, `e1 = v2 − v0`,
-/// `q = p − v0` (9 sub), `n = e0 × e1` (9), `n · n` (5),
-/// `β' = n · (q × e1)`, `γ' = n · (e0 × q)` (2 × (9 + 5)), `1/(n · n)` (1 div),
-/// `β = β'/(n · n)`, `γ = γ'/(n · n)` (2 mul), `α = 1 − β − γ` (2 sub): 53 ops,
-/// 1 div.
-pub const BARYCENTRIC: Cost = Cost::new(53, 0, 1);
+/// Barycentric coordinates of the projection, in the Gram form collide's
+/// filter evaluates (Lagrange's identity turns the cross-product form's
+/// `n · n` and `n · (q × e1)` into dot products): `e0 = v1 − v0`,
+/// `e1 = v2 − v0`, `q = p − v0` (9 sub), `d00, d01, d11, d20, d21` (5 × 5),
+/// `D = d00 d11 − d01²` (3), `β' = d11 d20 − d01 d21`, `γ' = d00 d21 − d01 d20`
+/// (2 × 3), `1/D` (1 div), `β = β'/D`, `γ = γ'/D` (2 mul), `α = 1 − β − γ`
+/// (2 sub): 47 ops, 1 div.
+pub const BARYCENTRIC: Cost = Cost::new(47, 0, 1);
 
 /// AABB overlap: `a.min_i ≤ b.max_i` and `b.min_i ≤ a.max_i` on three axes:
 /// 6 compares (the answer on a miss can stop at the first failing one; the
