@@ -495,7 +495,10 @@ proptest! {
             FaceTest::Miss => prop_assert!(one.is_none(), "the filter dropped a hit"),
             FaceTest::Hit { lo, hi } => {
                 let h = one.expect("the filter's hit is a hit");
-                prop_assert!(lo <= hi && lo > 0.0 && hi < 1.0, "bracket [{}, {}]", lo, hi);
+                // The bracket is widened by its own rounding, so with an end a
+                // few ulps off the plane `hi` may pass 1 (the exact t < 1 lies
+                // inside it all the same); only its order and sign are asserted.
+                prop_assert!(lo <= hi && lo > 0.0, "bracket [{}, {}]", lo, hi);
                 prop_assert!(lo - VALUE_TOL <= h.t && h.t <= hi + VALUE_TOL, "t {} outside [{}, {}]", h.t, lo, hi);
             }
             FaceTest::Undecided => {}
