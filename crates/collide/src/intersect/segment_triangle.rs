@@ -181,9 +181,11 @@ pub fn intersect_segment_triangle_lecture<T: Real>(seg: &Segment<T>, tri: &Trian
 /// answered by the general path below, unchanged: [`exact::orient3d_estimate`]
 /// (its own scaled filter, then [`exact::BigFloat`], which allocates) with
 /// [`Estimate::refine_jointly`]. For random input stage A decides almost
-/// every query: about 36 multiplications and 50 additions for a hit, half
-/// that for most misses; stage B adds a few hundred operations where it
-/// runs; no allocation.
+/// every query: about 36 multiplications and 50 additions for a hit, as many
+/// for a segment through the plane that misses by an edge (the three edge
+/// volumes are formed, then tested at once), half that for a miss by the
+/// plane; stage B adds a few hundred operations where it runs; no
+/// allocation.
 ///
 /// Source: Ericson, *Real-Time Collision Detection*, §5.3.4
 /// (`IntersectSegmentTriangle` via scalar triple products), with exact
@@ -191,17 +193,21 @@ pub fn intersect_segment_triangle_lecture<T: Real>(seg: &Segment<T>, tri: &Trian
 /// solve; classification is by exact signs, values come from the same volumes.
 pub fn intersect_segment_triangle<T: Real>(seg: &Segment<T>, tri: &Triangle<T>) -> Intersection<T> {
     match filtered(seg, tri) {
-        Filtered::Miss => Intersection::MISS,
+        // The fields themselves rather than the constant: a copy of
+        // `Intersection::MISS` writes the whole (unused) hit payload too.
+        Filtered::Miss => Intersection { hit: None, parallel: false, degenerate: false },
         Filtered::Parallel => Intersection::PARALLEL,
         Filtered::Degenerate => Intersection::DEGENERATE,
         Filtered::Hit(h) => {
-            let point = point_on_segment(to_f64_3(&seg.start), to_f64_3(&seg.end), h.t, h.one_minus_t);
+            // Every input is within the filter's range, so q1 − q0 is finite.
+            let point = point_in_range(to_f64_3(&seg.start), to_f64_3(&seg.end), h.t, h.one_minus_t);
             let vec = |p: [f64; 3]| Vec3::new(T::of(p[0]), T::of(p[1]), T::of(p[2]));
+            let w = h.barycentric;
             Intersection::hit(SegmentHit {
                 t: T::of(h.t),
                 point: vec(point),
                 normal: vec(h.normal),
-                barycentric: Some(h.barycentric.map(T::of)),
+                barycentric: Some([T::of(w[0]), T::of(w[1]), T::of(w[2])]),
             })
         }
         Filtered::Undecided => general(seg, tri),
@@ -284,16 +290,16 @@ fn filtered<T: Real>(seg: &Segment<T>, tri: &Triangle<T>) -> Filtered {
     let (pb, pc) = (sub(b, q0), sub(c, q0));
     let (m, m_perm) = cross(r, pc);
     let alpha = triple(m, m_perm, pb); // α' = (r × pc) · pb
-    if alpha.decided() && (alpha.value > 0.0) == d1_positive {
-        return Filtered::Miss;
-    }
     let beta = triple(m, m_perm, w0); // β' = −(r × pc) · pa = m · w0
-    if beta.decided() && (beta.value > 0.0) == d1_positive {
-        return Filtered::Miss;
-    }
     let (m2, m2_perm) = cross(r, pb);
     let gamma_neg = triple(m2, m2_perm, w0); // −γ' = −(r × pb) · pa = m2 · w0
-    if gamma_neg.decided() && (gamma_neg.value > 0.0) != d1_positive {
+    // All three volumes, then one test: a miss when any of them is decided
+    // with the miss sign (one branch rather than one per edge, each taken at
+    // random on a mix of queries).
+    let miss = (alpha.decided() & ((alpha.value > 0.0) == d1_positive))
+        | (beta.decided() & ((beta.value > 0.0) == d1_positive))
+        | (gamma_neg.decided() & ((gamma_neg.value > 0.0) != d1_positive));
+    if miss {
         return Filtered::Miss;
     }
     let edges = [alpha, beta, gamma_neg];
@@ -324,7 +330,8 @@ struct StageA {
 #[inline(always)]
 fn stage_a_normal(n: P3, n_perm: P3) -> [crate::exact::filter::Filtered; 3] {
     let nb = crate::exact::filter::cross_bounds(n_perm);
-    [0, 1, 2].map(|i| crate::exact::filter::Filtered { value: n[i], bound: nb[i] })
+    let f = |i: usize| crate::exact::filter::Filtered { value: n[i], bound: nb[i] };
+    [f(0), f(1), f(2)]
 }
 
 /// The hit's values from volumes known to their bounds, or `None` when a set
@@ -369,8 +376,8 @@ fn hit_values(
     Some(FilteredHit {
         t,
         one_minus_t,
-        barycentric: wa.map(|x| (x * inv_w).min(1.0)),
-        normal: n.map(|x| x.value * inv_len),
+        barycentric: [(wa[0] * inv_w).min(1.0), (wa[1] * inv_w).min(1.0), (wa[2] * inv_w).min(1.0)],
+        normal: [n[0].value * inv_len, n[1].value * inv_len, n[2].value * inv_len],
     })
 }
 
@@ -600,6 +607,19 @@ fn general<T: Real>(seg: &Segment<T>, tri: &Triangle<T>) -> Intersection<T> {
         normal: vec(normal),
         barycentric: Some(bary.map(T::of)),
     })
+}
+
+/// [`point_on_segment`] for points within the filter's range (every
+/// coordinate at most `2^63` in magnitude), where `q1 − q0` cannot overflow:
+/// the same arithmetic (`q0 + t (q1 − q0)` for `t ≤ u`, else
+/// `q1 + (−u)(q1 − q0)`, equal to `q1 − u (q1 − q0)`), with the endpoint and
+/// the factor selected rather than branched on.
+#[inline(always)]
+fn point_in_range(q0: P3, q1: P3, t: f64, u: f64) -> P3 {
+    let near_start = t <= u;
+    let f = if near_start { t } else { -u };
+    let base = |i: usize| if near_start { q0[i] } else { q1[i] };
+    [base(0) + f * (q1[0] - q0[0]), base(1) + f * (q1[1] - q0[1]), base(2) + f * (q1[2] - q0[2])]
 }
 
 #[cfg(test)]
