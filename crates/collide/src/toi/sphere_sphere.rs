@@ -81,14 +81,11 @@ pub fn toi_sphere_sphere<T: Real>(
     // ≈ R²) and the products in `disc` stay in the plain range, and `c` is not
     // a difference of underflowed squares; ‖Δp × Δv‖² ≤ ‖Δp‖²‖Δv‖² is bounded
     // by the first product. A NaN fails every test: the scaled path.
-    let plain = vv >= lo && dd + rr >= lo && rr <= hi && dd * vv <= hi && vv * rr <= hi;
+    // One branch for the five tests (`&`, not `&&`): they are almost always
+    // all true.
+    let plain = (vv >= lo) & (dd + rr >= lo) & (rr <= hi) & (dd * vv <= hi) & (vv * rr <= hi);
     if !plain {
-        if dv.iter().all(|x| *x == T::zero()) {
-            // No relative motion (exactly: a square can underflow): in contact
-            // at 0 and for good, or never.
-            return at_start(a, b);
-        }
-        return toi_sphere_sphere_scaled(a, va, b, vb, t_max);
+        return not_plain(a, va, b, vb, t_max);
     }
     let c = dd - rr;
     if c <= T::zero()
@@ -169,6 +166,18 @@ const IN_TIME_SLACK: f64 = 9.5367431640625e-7;
 /// documented fallback when the radii sum to 0). Units: relative.
 fn unit_slack<T: Real>() -> T {
     c::<T>(8.0) * T::EPSILON
+}
+
+/// The squares out of the plain range: no relative motion (exactly: a square
+/// can underflow) is in contact at 0 and for good, or never; the rest take
+/// the scaled path.
+#[cold]
+#[inline(never)]
+fn not_plain<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, t_max: T) -> Option<Toi<T>> {
+    if (va - vb).iter().all(|x| *x == T::zero()) {
+        return at_start(a, b);
+    }
+    toi_sphere_sphere_scaled(a, va, b, vb, t_max)
 }
 
 /// Spheres in contact at `t = 0`: the static contact ([`ToiStatus::Penetrating`]).
