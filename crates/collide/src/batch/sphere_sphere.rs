@@ -4,6 +4,7 @@ use crate::contact::{Contact, contact_sphere_sphere};
 use crate::exact::norm::{clear_miss_factor, safe_squared_range};
 use crate::real::{Real, Vec3};
 use crate::shapes::Sphere;
+use core::ops::Range;
 
 /// Spheres as a structure of arrays: sphere `i` is centred at
 /// `(x[i], y[i], z[i])` with radius `radius[i]`. The four arrays have the same
@@ -192,13 +193,9 @@ fn select<T: Real>(keep: bool, x: T) -> T {
 pub fn contact_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mut SphereContacts<T>) {
     let n = a.len().min(b.len());
     out.resize(n);
-    let (lo, hi) = safe_squared_range::<T>();
     let (ax, ay, az, ar) = (&a.x[..n], &a.y[..n], &a.z[..n], &a.radius[..n]);
     let (bx, by, bz, br) = (&b.x[..n], &b.y[..n], &b.z[..n], &b.radius[..n]);
-    let mut start = 0;
-    while start < n {
-        let end = (start + BLOCK).min(n);
-        let r = start..end;
+    for r in blocks(n) {
         let slow = contact_lanes(
             &ax[r.clone()],
             &ay[r.clone()],
@@ -221,16 +218,10 @@ pub fn contact_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mu
         // Second pass, if needed: this block's lanes outside the fast range,
         // one at a time.
         if slow {
-            for i in r {
-                let (dx, dy, dz) = (ax[i] - bx[i], ay[i] - by[i], az[i] - bz[i]);
-                let dd = T::zero() + ((dx * dx + dy * dy) + dz * dz);
-                if !(dd >= lo && dd <= hi) {
-                    let one = |x: &[T], y: &[T], z: &[T], r: &[T]| Sphere::new(Vec3::new(x[i], y[i], z[i]), r[i]);
-                    out.set(i, contact_sphere_sphere(&one(ax, ay, az, ar), &one(bx, by, bz, br)));
-                }
+            for (i, x, y) in outside_fast_range([ax, ay, az, ar], [bx, by, bz, br], r) {
+                out.set(i, contact_sphere_sphere(&x, &y));
             }
         }
-        start = end;
     }
 }
 
@@ -343,14 +334,10 @@ fn test_lanes<T: Real>(
 pub fn test_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mut Vec<bool>) {
     let n = a.len().min(b.len());
     out.resize(n, false);
-    let (lo, hi) = safe_squared_range::<T>();
     let (ax, ay, az, ar) = (&a.x[..n], &a.y[..n], &a.z[..n], &a.radius[..n]);
     let (bx, by, bz, br) = (&b.x[..n], &b.y[..n], &b.z[..n], &b.radius[..n]);
     let hit = &mut out[..n];
-    let mut start = 0;
-    while start < n {
-        let end = (start + BLOCK).min(n);
-        let r = start..end;
+    for r in blocks(n) {
         let slow = test_lanes(
             &ax[r.clone()],
             &ay[r.clone()],
@@ -363,17 +350,33 @@ pub fn test_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mut V
             &mut hit[r.clone()],
         );
         if slow {
-            for i in r {
-                let (dx, dy, dz) = (ax[i] - bx[i], ay[i] - by[i], az[i] - bz[i]);
-                let dd = T::zero() + ((dx * dx + dy * dy) + dz * dz);
-                if !(dd >= lo && dd <= hi) {
-                    let one = |x: &[T], y: &[T], z: &[T], r: &[T]| Sphere::new(Vec3::new(x[i], y[i], z[i]), r[i]);
-                    hit[i] = contact_sphere_sphere(&one(ax, ay, az, ar), &one(bx, by, bz, br)).is_some();
-                }
+            for (i, x, y) in outside_fast_range([ax, ay, az, ar], [bx, by, bz, br], r) {
+                hit[i] = contact_sphere_sphere(&x, &y).is_some();
             }
         }
-        start = end;
     }
+}
+
+/// The lanes `0..n` in blocks of [`BLOCK`].
+fn blocks(n: usize) -> impl Iterator<Item = Range<usize>> {
+    (0..n).step_by(BLOCK).map(move |start| start..(start + BLOCK).min(n))
+}
+
+/// The lanes of `r` whose squared distance lies outside the fast range (the
+/// lanes a first pass leaves to the one-pair function), with their two
+/// spheres; `a` and `b` are the `x`, `y`, `z` and radius arrays.
+fn outside_fast_range<'s, T: Real>(
+    a: [&'s [T]; 4],
+    b: [&'s [T]; 4],
+    r: Range<usize>,
+) -> impl Iterator<Item = (usize, Sphere<T>, Sphere<T>)> + 's {
+    let (lo, hi) = safe_squared_range::<T>();
+    r.filter_map(move |i| {
+        let (dx, dy, dz) = (a[0][i] - b[0][i], a[1][i] - b[1][i], a[2][i] - b[2][i]);
+        let dd = T::zero() + ((dx * dx + dy * dy) + dz * dz);
+        let one = |s: [&[T]; 4]| Sphere::new(Vec3::new(s[0][i], s[1][i], s[2][i]), s[3][i]);
+        (!(dd >= lo && dd <= hi)).then(|| (i, one(a), one(b)))
+    })
 }
 
 /// Lanes per block of [`contact_spheres_spheres`] and
