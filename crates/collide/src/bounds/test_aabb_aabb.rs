@@ -30,10 +30,10 @@ use crate::shapes::Aabb;
 /// answer for it is not meaningful.
 #[inline]
 pub fn test_aabb_aabb<T: Real>(a: &Aabb<T>, b: &Aabb<T>) -> bool {
-    (a.min.x <= b.max.x)
-        & (b.min.x <= a.max.x)
-        & (a.min.y <= b.max.y)
-        & (b.min.y <= a.max.y)
-        & (a.min.z <= b.max.z)
-        & (b.min.z <= a.max.z)
+    // Grouped by the pairs of adjacent numbers (x and y of a corner), which
+    // the compiler compares two at a time in one packed instruction.
+    let low = (a.min.x <= b.max.x) & (a.min.y <= b.max.y);
+    let high = (b.min.x <= a.max.x) & (b.min.y <= a.max.y);
+    let z = (a.min.z <= b.max.z) & (b.min.z <= a.max.z);
+    low & high & z
 }
