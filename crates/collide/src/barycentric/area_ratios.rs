@@ -770,7 +770,7 @@ mod grid {
             small = if a != 0.0 && a < small { a } else { small };
             large = if a > large { a } else { large };
         }
-        if small >= f64::MIN_POSITIVE && small < f64::INFINITY {
+        if (f64::MIN_POSITIVE..f64::INFINITY).contains(&small) {
             let exponent = |x: f64| ((x.to_bits() >> 52) & 0x7ff) as i64 - 1023;
             let (lo, hi) = (exponent(small) - 52, exponent(large) + 1);
             if hi - lo <= NARROW_BITS {

@@ -59,8 +59,6 @@ fn sum_error<T: Real, const N: usize>(b: &Barycentric<T, N>) -> f64 {
     (b.coords.iter().map(|x| x.wide()).sum::<f64>() - 1.0).abs()
 }
 
-/// Runs a generic test body for both precisions.
-
 // ---------------------------------------------------------------- segment
 
 fn segment_hand<T: Real>() {

@@ -140,17 +140,20 @@ mod tests {
 
     /// A box from a corner and non-negative extents (some zero: flat boxes
     /// and points), on a coarse grid so that touching faces are common.
-    fn aabb() -> impl Strategy<Value = ([i32; 3], [u8; 3])> {
+    fn aabb() -> impl Strategy<Value = Spec> {
         (prop::array::uniform3(-6i32..6), prop::array::uniform3(0u8..4))
     }
 
-    fn make<T: Real>((c, e): &([i32; 3], [u8; 3])) -> Aabb<T> {
+    fn make<T: Real>((c, e): &Spec) -> Aabb<T> {
         let min = Vec3::new(T::of(f64::from(c[0])), T::of(f64::from(c[1])), T::of(f64::from(c[2])));
         let ext = Vec3::new(T::of(f64::from(e[0])), T::of(f64::from(e[1])), T::of(f64::from(e[2])));
         Aabb { min, max: min + ext }
     }
 
-    fn check<T: Real>(pairs: &[(([i32; 3], [u8; 3]), ([i32; 3], [u8; 3]))]) -> Result<(), TestCaseError> {
+    /// A box as its corner and extents (see [`aabb`]).
+    type Spec = ([i32; 3], [u8; 3]);
+
+    fn check<T: Real>(pairs: &[(Spec, Spec)]) -> Result<(), TestCaseError> {
         let a: Vec<Aabb<T>> = pairs.iter().map(|p| make(&p.0)).collect();
         let b: Vec<Aabb<T>> = pairs.iter().map(|p| make(&p.1)).collect();
         let (sa, sb): (Aabbs<T>, Aabbs<T>) = (a.iter().collect(), b.iter().collect());

@@ -64,8 +64,6 @@ fn assert_sphere<T: Real>(got: &BoundingSphere<T>, center: [f64; 3], radius: f64
     assert!(!got.degenerate, "{what}: flagged degenerate");
 }
 
-/// Runs a generic test body for both precisions.
-
 // ------------------------------------------------------------------- AABB
 
 fn aabb_hand<T: Real>() {

@@ -149,8 +149,9 @@ pub fn toi_sphere_sphere<T: Real>(
 /// could not come out `≤ t_max`. The screen's other side already passes every
 /// case whose vertex `−b'/a` is before `t_max`, so take it after: then
 /// `t₁ ≤ t_max` means `f(t_max) ≤ 0`, and a root computed early by `η` with
-/// `t₁ > t_max` leaves `f(t_max) = a (t₁ − t_max)(t₂ − t_max) ≤ |η| t₁ (2√disc
-/// + a |η| t₁) ≲ |η| S` (as `2√disc t₁ ≤ 2√a R t₁ ≤ a t₁² + R²`). The root's
+/// `t₁ > t_max` leaves `f(t_max) = a (t₁ − t_max)(t₂ − t_max)`, at most
+/// `|η| t₁ (2√disc + a |η| t₁) ≲ |η| S` (as `2√disc t₁ ≤ 2√a R t₁ ≤ a t₁² +
+/// R²`). The root's
 /// relative error `η` comes from `c` (`u (‖Δp‖² + R²)/c`), from `b'` (at most
 /// `3u √(‖Δp‖²/c)`, since a hit needs `b'² ≥ a c`) and from `√disc` (at most
 /// `√(k u (‖Δp‖² + R²)/c)` at grazing): all below `2^−21` unless `c <

@@ -71,8 +71,6 @@ fn still<T: Real>() -> Vec3<T> {
     Vec3::zeros()
 }
 
-/// Runs a generic test body for both precisions.
-
 // ------------------------------------------------------------ sphere–sphere
 
 fn sphere_sphere_head_on<T: Real>() {
