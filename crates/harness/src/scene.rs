@@ -447,6 +447,19 @@ pub fn mesh_levels(mesh: &TriMesh<f64>, segments: &[(P3, P3)], timing: bool, tim
     let timed_segs = &segs[..timed.min(segs.len())];
     let time = |f: &dyn Fn(&Segment<f64>) -> bool| if timing { time_loop(timed_segs, f) } else { None };
     let brute = |s: &Segment<f64>| intersect_segment_mesh_brute(s, mesh).hit.is_some();
+    // A level that tests one bounding volume first and, when it passes, every
+    // face exactly.
+    let filtered = |cheap: &dyn Fn(&Segment<f64>) -> bool| -> (Vec<Outcome>, Option<Timing>) {
+        let outcomes = segs
+            .iter()
+            .zip(&truth)
+            .map(|(s, &t)| {
+                let passed = cheap(s);
+                Outcome { passed, contact: passed && t, exact_tests: if passed { faces } else { 0 } }
+            })
+            .collect();
+        (outcomes, time(&|s| cheap(s) && brute(s)))
+    };
     let mut out = Vec::new();
     for level in Level::ALL {
         let (outcomes, timing): (Vec<Outcome>, Option<Timing>) = match level {
@@ -458,29 +471,11 @@ pub fn mesh_levels(mesh: &TriMesh<f64>, segments: &[(P3, P3)], timing: bool, tim
                 let Some(spheres) = spheres else { continue };
                 let b = spheres[level.sphere_method()];
                 let (c, r) = (p3(&b.center), b.radius);
-                let cheap = |s: &Segment<f64>| segment_meets_ball(p3(&s.start), p3(&s.end), c, r);
-                let outcomes = segs
-                    .iter()
-                    .zip(&truth)
-                    .map(|(s, &t)| {
-                        let passed = cheap(s);
-                        Outcome { passed, contact: passed && t, exact_tests: if passed { faces } else { 0 } }
-                    })
-                    .collect();
-                (outcomes, time(&|s| cheap(s) && brute(s)))
+                filtered(&|s| segment_meets_ball(p3(&s.start), p3(&s.end), c, r))
             }
             Level::Aabb => {
                 let Some(bb) = aabb else { continue };
-                let cheap = |s: &Segment<f64>| test_aabb_aabb(&aabb_of_segment(s), &bb);
-                let outcomes = segs
-                    .iter()
-                    .zip(&truth)
-                    .map(|(s, &t)| {
-                        let passed = cheap(s);
-                        Outcome { passed, contact: passed && t, exact_tests: if passed { faces } else { 0 } }
-                    })
-                    .collect();
-                (outcomes, time(&|s| cheap(s) && brute(s)))
+                filtered(&|s| test_aabb_aabb(&aabb_of_segment(s), &bb))
             }
             Level::Bvh => {
                 let mut near = Vec::new();
