@@ -318,7 +318,8 @@ fn batches(cases: &Cases) -> Vec<BatchRow> {
     let c = |x: &geom::Sphere| to_collide::sphere::<f64>(x);
     let cost = Cost::mean(cases.sphere_sphere.iter().map(|(a, b)| {
         if contact_sphere_sphere(&c(a), &c(b)).is_some() { SPHERE_SPHERE_HIT } else { SPHERE_SPHERE_MISS }
-    }));
+    }))
+    .reading(input_bytes("sphere_sphere"));
     let row = |label, ids, cost| BatchRow { group: "sphere_sphere_batch", label, per_iter: PER_QUERY, ids, cost };
     vec![
         row("sphere–sphere contact, f64", ("loop_contact_f64", "batch_contact_f64"), Some(cost)),
@@ -330,7 +331,7 @@ fn batches(cases: &Cases) -> Vec<BatchRow> {
             label: "AABB overlap, f64",
             per_iter: PER_QUERY,
             ids: ("loop_f64", "batch_f64"),
-            cost: Some(cost::AABB_OVERLAP),
+            cost: Some(cost::AABB_OVERLAP.reading(input_bytes("overlap"))),
         },
         BatchRow {
             group: "overlap",
@@ -376,11 +377,14 @@ fn rows(cases: &Cases) -> Vec<Row> {
         collide::bounds::test_aabb_aabb(&to_collide::aabb::<f64>(a), &to_collide::aabb(b))
     };
     let pick = |hit: bool, h: Cost, m: Cost| if hit { h } else { m };
-    let row = |group, label, hits, cost, one_method| Row {
+    let row = |group, label, hits, cost: Cost, one_method| Row {
         group,
         label,
         per_iter: PER_QUERY,
-        cost: Some(cost),
+        cost: Some(match input_bytes(group) {
+            0 => cost,
+            bytes => cost.reading(bytes),
+        }),
         hits,
         one_method,
     };
@@ -436,10 +440,28 @@ fn rows(cases: &Cases) -> Vec<Row> {
             Cost::mean(cases.clouds.iter().map(|ps| {
                 let n = ps.len() as f64;
                 Cost { ops: BOUNDING_SPHERE_PER_POINT.ops * n, ..BOUNDING_SPHERE_ONCE }
+                    .reading(ps.len() * size_of::<collide::Vec3<f64>>())
             })),
             false,
         ),
     ]
+}
+
+/// Bytes of one query's `f64` input in collide's types, per group of the main
+/// table (0 for the bounding sphere, whose input is the cloud: counted per
+/// cloud with its cost).
+fn input_bytes(group: &str) -> usize {
+    use collide::{Aabb, Plane, Segment, Sphere, Triangle, Vec3};
+    match group {
+        "sphere_sphere" => 2 * size_of::<Sphere<f64>>(),
+        "sphere_plane" => size_of::<(Sphere<f64>, Plane<f64>)>(),
+        "sphere_triangle" => size_of::<(Sphere<f64>, Triangle<f64>)>(),
+        "segment_plane" => size_of::<(Segment<f64>, Plane<f64>)>(),
+        "segment_triangle" | "segment_triangle_uniform" => size_of::<(Segment<f64>, Triangle<f64>)>(),
+        "barycentric" => size_of::<(Vec3<f64>, Triangle<f64>)>(),
+        "overlap" => 2 * size_of::<Aabb<f64>>(),
+        _ => 0,
+    }
 }
 
 /// Whether both ends of the segment are strictly on one side of the

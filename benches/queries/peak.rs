@@ -9,6 +9,12 @@
 //!   many spill registers).
 //! - **sqrt**, **div**: a square root or a division of each element of an
 //!   array (independent; packed by the compiler).
+//! - **read**: the bytes per nanosecond at which the timed loops' own shape —
+//!   one record after another from an array in L1/L2, each through
+//!   `black_box` — can read records of [`RECORD`] `f64`s (an AABB pair, 96
+//!   bytes) and fold them into one value with bitwise ors (packed, so the
+//!   loads, not the folding, are the limit). A query cannot take less than
+//!   its input's bytes at this rate.
 //!
 //! Each figure is the best of [`REPEATS`] timed runs of [`WORK`] operations.
 
@@ -22,6 +28,12 @@ const REPEATS: usize = 9;
 const WORK: usize = 1 << 24;
 /// Array length of the sqrt and div loops: 2 × 8 KiB in `f64`, in L1.
 const LANES: usize = 1024;
+/// `f64`s per record of the read-rate loop: 12, an AABB pair (96 bytes), the
+/// query whose floor this term sets.
+const RECORD: usize = 12;
+/// Records of the read-rate loop: 1024 × 96 bytes = 96 KiB, like the
+/// benchmarks' case arrays (1024 cases).
+const RECORDS: usize = 1024;
 
 /// Measured peak rates, operations per nanosecond.
 #[derive(Clone, Copy, Debug)]
@@ -34,15 +46,19 @@ pub struct Peak {
     pub sqrt_f64: f64,
     /// `f64` divisions per ns.
     pub div_f64: f64,
+    /// Input bytes read per ns (records of [`RECORD`] `f64`s, one at a time).
+    pub read_bytes: f64,
 }
 
 impl Peak {
-    /// Nanoseconds that `cost` takes at least at these rates: the FP pipes and
-    /// the divider work in parallel, so the larger of their two times.
+    /// Nanoseconds that `cost` takes at least at these rates: the FP pipes,
+    /// the divider and the loads work in parallel, so the largest of their
+    /// three times.
     pub fn bound_ns(&self, cost: super::cost::Cost) -> f64 {
         let pipes = cost.ops / self.ops_f64;
         let divider = cost.sqrt / self.sqrt_f64 + cost.div / self.div_f64;
-        pipes.max(divider)
+        let loads = cost.bytes / self.read_bytes;
+        pipes.max(divider).max(loads)
     }
 }
 
@@ -102,6 +118,24 @@ fn elementwise(op: impl Fn(f64, f64) -> f64) -> f64 {
     })
 }
 
+/// Bytes per ns reading [`RECORDS`] records of [`RECORD`] `f64`s, each
+/// through `black_box` as the benchmarks pass their cases, folded into one
+/// value by bitwise ors.
+fn read_rate() -> f64 {
+    let records: Vec<[f64; RECORD]> =
+        (0..RECORDS).map(|i| std::array::from_fn(|k| (i * RECORD + k) as f64 * 0.25 - 3.0)).collect();
+    let rounds = WORK / RECORDS / 4;
+    let bytes = RECORDS * std::mem::size_of::<[f64; RECORD]>();
+    best_rate(rounds * bytes, || {
+        for _ in 0..rounds {
+            for r in black_box(&records) {
+                let r = black_box(r);
+                black_box(r.iter().fold(0u64, |acc, x| acc | x.to_bits()));
+            }
+        }
+    })
+}
+
 /// Measures the peak rates (about half a second).
 pub fn measure() -> Peak {
     Peak {
@@ -109,5 +143,6 @@ pub fn measure() -> Peak {
         ops_f32: ops_f32(),
         sqrt_f64: elementwise(|a, _| a.sqrt()),
         div_f64: elementwise(|a, b| a / b),
+        read_bytes: read_rate(),
     }
 }

@@ -109,9 +109,12 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
     let _ = writeln!(
         s,
         "Peak of this build on this machine (packed SIMD, measured): {:.2} f64 ops/ns, {:.2} f32 \
-         ops/ns, {:.3} f64 sqrt/ns, {:.3} f64 div/ns. Bound = the query's hand-counted arithmetic \
-         (mean over the cases) at that peak: FP pipes and divider in parallel, the larger time.\n",
-        peak.ops_f64, peak.ops_f32, peak.sqrt_f64, peak.div_f64
+         ops/ns, {:.3} f64 sqrt/ns, {:.3} f64 div/ns, {:.1} input bytes/ns read one record at a \
+         time. Bound = the query's hand-counted arithmetic (mean over the cases) and its input's \
+         bytes at that peak: FP pipes, divider and loads in parallel, the largest time. A target \
+         that asks for less than the bound cannot be met by this build on this machine; its \
+         verdict says so.\n",
+        peak.ops_f64, peak.ops_f32, peak.sqrt_f64, peak.div_f64, peak.read_bytes
     );
 
     let _ = write!(s, "| query | hits |");
@@ -178,15 +181,22 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
             .map(|r| r.per_iter)
             .or_else(|| batches.iter().find(|b| b.group == t.group).map(|b| b.per_iter))
             .unwrap_or(1);
-        let r = ratio(ns_per(t.group, t.ids.0, per, since), ns_per(t.group, t.ids.1, per, since));
-        let _ = writeln!(
-            s,
-            "| {} ≤ {} | {} | {} |",
-            t.what,
-            t.target,
-            r.map_or("—".into(), |x| format!("{x:.2}")),
-            verdict(r, t.target)
-        );
+        let denominator = ns_per(t.group, t.ids.1, per, since);
+        let r = ratio(ns_per(t.group, t.ids.0, per, since), denominator);
+        let cost = rows
+            .iter()
+            .find(|r| r.group == t.group)
+            .and_then(|r| r.cost)
+            .or_else(|| batches.iter().find(|b| b.group == t.group).and_then(|b| b.cost));
+        let bound = cost.map(|c| peak.bound_ns(c));
+        let mut v = verdict(r, t.target).to_string();
+        if let (Some(r), Some(d), Some(b)) = (r, denominator, bound)
+            && r > t.target
+            && t.target * d < b
+        {
+            let _ = write!(v, ": asks for {} ns, below the bound ({} ns)", cell(Some(t.target * d)), cell(Some(b)));
+        }
+        let _ = writeln!(s, "| {} ≤ {} | {} | {v} |", t.what, t.target, r.map_or("—".into(), |x| format!("{x:.2}")),);
     }
     s
 }
