@@ -9,6 +9,9 @@
 //! - collide's robust method: the closed form (sphere–sphere, sphere–plane) or
 //!   conservative advancement (sphere–triangle), `f64` and `f32`;
 //! - the lecture's interval halving to a bracket of 1e-12 (`f64`);
+//! - for sphere–sphere, the textbook closed form with no checks around it
+//!   (`toi/textbook.rs`): a reference, not an engine — how fast the formula
+//!   alone runs on these cases;
 //! - parry3d-f64's and parry3d's `query::cast_shapes`, called directly on
 //!   inputs already in parry's types (poses and shapes built before timing, as
 //!   the oracle's adapter builds them, with its options: stop at a touch, at
@@ -26,6 +29,8 @@
 mod criterion_files;
 #[path = "toi/table.rs"]
 mod table;
+#[path = "toi/textbook.rs"]
+mod textbook;
 
 use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, Throughput};
@@ -254,6 +259,7 @@ fn sphere_sphere(c: &mut Criterion, cases: &[Case<geom::Sphere>]) {
     let c32 = to_c::<f32, _, _>(cases, to_collide::sphere::<f32>);
     run(&mut g, "collide_robust_f64", &c64, |c| toi_sphere_sphere(&c.a, &c.va, &c.b, &c.vb, c.t_max));
     run(&mut g, "collide_robust_f32", &c32, |c| toi_sphere_sphere(&c.a, &c.va, &c.b, &c.vb, c.t_max));
+    run(&mut g, "textbook_f64", &c64, |c| textbook::toi_sphere_sphere(&c.a, &c.va, &c.b, &c.vb, c.t_max));
     let stop = Halving::Tolerance(HALVING_TOLERANCE);
     run(&mut g, "collide_halving_f64", &c64, |c| toi_sphere_sphere_halving(&c.a, &c.va, &c.b, &c.vb, c.t_max, stop));
     parry_benches!(&mut g, cases, p64::ball, p32::ball, cast_sphere_sphere);
@@ -345,6 +351,30 @@ fn targets() -> Vec<Target> {
     ]
 }
 
+/// How far the textbook reference's answers are from collide's on the
+/// sphere–sphere cases (so its column times the same work): cases where one
+/// finds an impact and the other not, and the largest difference in `t`
+/// relative to `max(t, 1)` where both do.
+fn textbook_agreement(cases: &[Case<geom::Sphere>]) -> String {
+    use collide::toi::toi_sphere_sphere;
+    let (mut differ, mut worst) = (0usize, 0.0f64);
+    for x in cases {
+        let (a, b) = (to_collide::sphere::<f64>(&x.a), to_collide::sphere::<f64>(&x.b));
+        let (va, vb) = (to_collide::v::<f64>(x.va), to_collide::v::<f64>(x.vb));
+        match (toi_sphere_sphere(&a, &va, &b, &vb, x.t_max), textbook::toi_sphere_sphere(&a, &va, &b, &vb, x.t_max)) {
+            (Some(r), Some(t)) => worst = worst.max((r.t - t.t).abs() / r.t.abs().max(1.0)),
+            (None, None) => {}
+            _ => differ += 1,
+        }
+    }
+    format!(
+        "\nThe textbook reference against collide's closed form on the {} sphere–sphere cases: {differ} \
+         differ in whether there is an impact; where both find one, `t` differs by at most {worst:.1e} of \
+         max(t, 1).\n",
+        cases.len()
+    )
+}
+
 fn main() {
     let since = SystemTime::now();
     // `cargo bench` passes `--bench`; `cargo test --benches` does not, and then
@@ -363,6 +393,8 @@ fn main() {
     sphere_triangle(&mut c, &cases.sphere_triangle);
     c.final_summary();
     if benching {
-        table::publish(&table::render(&rows(&cases), &targets(), SEED, since));
+        let mut report = table::render(&rows(&cases), &targets(), SEED, since);
+        report.push_str(&textbook_agreement(&cases.sphere_sphere));
+        table::publish(&report);
     }
 }

@@ -26,9 +26,10 @@ fn ratio(x: Option<f64>, y: Option<f64>) -> Option<f64> {
 }
 
 /// The engines of the table: criterion's benchmark id and the column's heading.
-pub const ENGINES: [(&str, &str); 7] = [
+pub const ENGINES: [(&str, &str); 8] = [
     ("collide_robust_f64", "collide robust f64"),
     ("collide_robust_f32", "collide robust f32"),
+    ("textbook_f64", "textbook closed form f64, no checks"),
     ("collide_halving_f64", "collide halving to 1e-12 f64"),
     ("parry64", "parry3d-f64 cast_shapes"),
     ("parry32", "parry3d cast_shapes"),
@@ -76,29 +77,36 @@ pub fn render(rows: &[Row], targets: &[Target], seed: u64, since: SystemTime) ->
          sphere–plane) or conservative advancement (sphere–triangle); halving: the lecture's, to a bracket of \
          1e-12. parry3d-f64 / parry3d: `query::cast_shapes` called directly on inputs already in parry's types, \
          with the oracle's options; \"via adapter\": through `oracle::parry::ParryCast`, which converts inside \
-         each call.\n"
+         each call. The textbook closed form (sphere–sphere only) is the formula with nothing around it — no \
+         range checks, no screen, no unit check, no degenerate cases — a reference for what collide's checks \
+         cost, not an engine.\n"
     );
     let _ = write!(s, "| pair | robust method | hits |");
     for (_, h) in ENGINES {
         let _ = write!(s, " {h} |");
     }
-    let _ = writeln!(s, " robust f64 / parry3d-f64 | halving / robust f64 |");
+    let _ = writeln!(
+        s,
+        " robust f64 / parry3d-f64 | textbook f64 / parry3d-f64 | robust f64 / textbook f64 | halving / robust f64 |"
+    );
     let _ = write!(s, "| --- | --- | ---: |");
     for _ in ENGINES {
         let _ = write!(s, " ---: |");
     }
-    let _ = writeln!(s, " ---: | ---: |");
+    let _ = writeln!(s, " ---: | ---: | ---: | ---: |");
     for r in rows {
         let get = |id: &str| ns_per(r.group, id, r.per_iter, since);
         let _ = write!(s, "| {} | {} | {:.0}% |", r.label, r.robust, 100.0 * r.hits);
         for (id, _) in ENGINES {
             let _ = write!(s, " {} |", cell(get(id)));
         }
-        let robust = get("collide_robust_f64");
+        let (robust, textbook) = (get("collide_robust_f64"), get("textbook_f64"));
         let _ = writeln!(
             s,
-            " {} | {} |",
+            " {} | {} | {} | {} |",
             cell(ratio(robust, get("parry64"))),
+            cell(ratio(textbook, get("parry64"))),
+            cell(ratio(robust, textbook)),
             cell(ratio(get("collide_halving_f64"), robust))
         );
     }

@@ -36,19 +36,18 @@ use crate::shapes::Sphere;
 ///
 /// **Cost.** Where every square lies in the range in which plain sums of
 /// squares lose nothing (`[2^−918, 2^920]` in `f64`) and their products stay
-/// finite: a few dozen operations to screen the case without a root — most
-/// misses (moving apart, passing wide, touching after `t_max`, the last
-/// decided from the quadratic's value at `t_max` and its vertex, with a slack
-/// that only ever lets more cases through, see `IN_TIME_SLACK`) end there;
-/// the rest take one root and one division for `t`, whose comparison with
-/// `t_max` decides, and the normal as `(Δp + t Δv)/R` — `1/R` is known from
-/// the start — whenever that is unit to a few ulps (else one more root and
-/// division); the static contact test
-/// only for spheres that already overlap (`c ≤ 0`). Outside that range a
-/// scaled path computes the same root from lengths divided by the scene's own
-/// scale and the unit direction of the motion (see `toi_sphere_sphere_scaled`),
-/// which never overflows or underflows spuriously. Measured against parry's
-/// `cast_shapes` in `benches/toi.rs`.
+/// finite: the dot products, one root and one division for `t`, whose
+/// comparison with `t_max` decides, and the normal as `(Δp + t Δv)/R` — `1/R`
+/// is known from the start — whenever that is unit to a few ulps (else one
+/// more root and division); the static contact test only for spheres that
+/// already overlap (`c ≤ 0`). Every rare case (out of range, overlapping, a
+/// normal to renormalize) runs out of line from the inputs alone, so the
+/// common path keeps nothing alive for it. Outside that range a scaled path
+/// computes the same root from lengths divided by the scene's own scale and
+/// the unit direction of the motion (see `toi_sphere_sphere_scaled`), which
+/// never overflows or underflows spuriously. Measured against parry's
+/// `cast_shapes` in `benches/toi.rs`, beside the textbook formula with no
+/// checks at all.
 ///
 /// **Cases.** Already in contact at `t = 0` ([`contact_sphere_sphere`], touching
 /// counts): `t = 0`, status [`ToiStatus::Penetrating`], the static contact. No
@@ -81,40 +80,20 @@ pub fn toi_sphere_sphere<T: Real>(
     // ≈ R²) and the products in `disc` stay in the plain range, and `c` is not
     // a difference of underflowed squares; ‖Δp × Δv‖² ≤ ‖Δp‖²‖Δv‖² is bounded
     // by the first product. A NaN fails every test: the scaled path.
-    // One branch for the five tests (`&`, not `&&`): they are almost always
-    // all true.
     let plain = (vv >= lo) & (dd + rr >= lo) & (rr <= hi) & (dd * vv <= hi) & (vv * rr <= hi);
-    if !plain {
-        return not_plain(a, va, b, vb, t_max);
-    }
     let c = dd - rr;
-    if c <= T::zero()
-        && let Some(k) = at_start(a, b)
-    {
-        return Some(k);
-    }
     let bp = dp.dot(&dv);
     let disc = vv * rr - dp.cross(&dv).norm_squared();
-    // Root-free screen: most misses (moving apart, passing wide, touching
-    // after t_max) leave here without the root and the division. "In time"
-    // is the quadratic at t_max, f(t_max) = (a t_max + 2b') t_max + c ≤ 0,
-    // or its vertex −b'/a ≤ t_max (then the first root is before the
-    // vertex); f(t_max) is allowed `IN_TIME_SLACK` of its terms' size, so the
-    // screen lets through every case whose computed root below could come
-    // out ≤ t_max — the decision itself is that comparison, as before. An
-    // overflow to +∞ lets the case through.
-    let in_time = {
-        let (along, tm) = (bp + bp, t_max);
-        let f_end = (vv * tm + along) * tm + c;
-        let size = (vv * tm + along.abs()) * tm + dd + rr;
-        (f_end <= size * T::of(IN_TIME_SLACK)) | (-bp <= vv * tm)
-    };
-    if !((bp < T::zero()) & (disc >= T::zero()) & in_time) {
+    // One branch (`&`, not `&&`) for the range and for "no impact": moving
+    // apart or sideways (`b' ≥ 0`) or passing wide (`disc < 0`). Behind it,
+    // the rare cases: out of range, or already touching by the squares.
+    if !(plain & (c > T::zero()) & (bp < T::zero()) & (disc >= T::zero())) {
+        if !plain | (c <= T::zero()) {
+            return rare(a, va, b, vb, t_max);
+        }
         return None;
     }
-    // Touching at 0 by the squares but not by the static test (a rounding
-    // apart): c ≤ 0 gives t = 0.
-    let t = (c / (disc.max(T::zero()).sqrt() - bp)).max(T::zero());
+    let t = c / (disc.sqrt() - bp);
     if !(t <= t_max) {
         return None;
     }
@@ -125,10 +104,9 @@ pub fn toi_sphere_sphere<T: Real>(
     // from, whose Δp + t Δv carries the rounding of the larger scale, or no
     // radius between the centres) `contact_at` normalizes the vector by its
     // own norm or falls back.
-    let delta = dp + dv * t;
-    let normal = delta * (T::one() / reach);
+    let normal = (dp + dv * t) * (T::one() / reach);
     if !((normal.norm_squared() - T::one()).abs() <= unit_slack::<T>()) {
-        return Some(contact_at(b, vb, &dp, &dv, reach, t));
+        return Some(contact_at(a, va, b, vb, t));
     }
     Some(Toi {
         t,
@@ -140,26 +118,6 @@ pub fn toi_sphere_sphere<T: Real>(
     })
 }
 
-/// How far above zero the quadratic at `t_max` may be computed for
-/// [`toi_sphere_sphere`]'s root-free screen to still let a case through to
-/// the root, relative to the size of its terms `S = a t_max² + 2|b'| t_max +
-/// ‖Δp‖² + R²`: `2^−20`. Units: relative.
-///
-/// Reason: a case may be screened out only if its computed root `t̂ = t₁(1 + η)`
-/// could not come out `≤ t_max`. The screen's other side already passes every
-/// case whose vertex `−b'/a` is before `t_max`, so take it after: then
-/// `t₁ ≤ t_max` means `f(t_max) ≤ 0`, and a root computed early by `η` with
-/// `t₁ > t_max` leaves `f(t_max) = a (t₁ − t_max)(t₂ − t_max)`, at most
-/// `|η| t₁ (2√disc + a |η| t₁) ≲ |η| S` (as `2√disc t₁ ≤ 2√a R t₁ ≤ a t₁² +
-/// R²`). The root's
-/// relative error `η` comes from `c` (`u (‖Δp‖² + R²)/c`), from `b'` (at most
-/// `3u √(‖Δp‖²/c)`, since a hit needs `b'² ≥ a c`) and from `√disc` (at most
-/// `√(k u (‖Δp‖² + R²)/c)` at grazing): all below `2^−21` unless `c <
-/// 2^−27 (‖Δp‖² + R²)` — and then, with the vertex after `t_max`, `f(t_max)
-/// < c − a t_max² ≤ c` is itself within the slack. The screen's own roundings
-/// are a few `u S`.
-const IN_TIME_SLACK: f64 = 9.5367431640625e-7;
-
 /// How far from 1 the squared length of `(Δp + t Δv)/R` may be for it to be
 /// reported as the normal as it is: `16 u` (`u` the unit roundoff), so its
 /// length is within `8 u` of 1 — unit as a normalized vector is, to a few `u`.
@@ -169,33 +127,37 @@ fn unit_slack<T: Real>() -> T {
     c::<T>(8.0) * T::EPSILON
 }
 
-/// The squares out of the plain range: no relative motion (exactly: a square
-/// can underflow) is in contact at 0 and for good, or never; the rest take
-/// the scaled path.
+/// The rare cases of [`toi_sphere_sphere`], out of line: squares out of the
+/// plain range, and spheres in contact at `t = 0` by the squares (`c ≤ 0`).
+/// No relative motion (exactly: a square can underflow) is in contact at 0
+/// and for good, or never. Spheres in contact by the static test get
+/// [`ToiStatus::Penetrating`] and the static contact; the rest (a square out
+/// of range, or `c ≤ 0` by a rounding while the static test says apart) take
+/// the scaled path, which decides from lengths.
 #[cold]
 #[inline(never)]
-fn not_plain<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, t_max: T) -> Option<Toi<T>> {
+fn rare<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, t_max: T) -> Option<Toi<T>> {
+    if let Some(k) = contact_sphere_sphere(a, b) {
+        return Some(Toi::penetrating(&k));
+    }
     if (va - vb).iter().all(|x| *x == T::zero()) {
-        return at_start(a, b);
+        return None;
     }
     toi_sphere_sphere_scaled(a, va, b, vb, t_max)
 }
 
-/// Spheres in contact at `t = 0`: the static contact ([`ToiStatus::Penetrating`]).
-#[cold]
-#[inline(never)]
-fn at_start<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> Option<Toi<T>> {
-    contact_sphere_sphere(a, b).map(|k| Toi::penetrating(&k))
-}
-
 /// The contact of a touch at `t`: the normal from `b` toward `a` (or the
 /// approach direction, flagged, when the radii sum to 0), the point on `b`.
+/// Recomputes `Δp`, `Δv` and `R` from the inputs (the same roundings as the
+/// caller's), so the caller keeps nothing alive for this rare case.
+#[cold]
 #[inline(never)]
-fn contact_at<T: Real>(b: &Sphere<T>, vb: &Vec3<T>, dp: &Vec3<T>, dv: &Vec3<T>, reach: T, t: T) -> Toi<T> {
+fn contact_at<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, t: T) -> Toi<T> {
+    let (dp, dv) = (a.center - b.center, va - vb);
     let delta = dp + dv * t;
     let (normal, degenerate) = match normalize(&delta) {
-        Some(n) if reach > T::zero() => (n, false),
-        _ => (approach_fallback(dv), true),
+        Some(n) if a.radius + b.radius > T::zero() => (n, false),
+        _ => (approach_fallback(&dv), true),
     };
     Toi {
         t,
