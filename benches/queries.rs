@@ -318,8 +318,7 @@ fn batches(cases: &Cases) -> Vec<BatchRow> {
     let c = |x: &geom::Sphere| to_collide::sphere::<f64>(x);
     let cost = Cost::mean(cases.sphere_sphere.iter().map(|(a, b)| {
         if contact_sphere_sphere(&c(a), &c(b)).is_some() { SPHERE_SPHERE_HIT } else { SPHERE_SPHERE_MISS }
-    }))
-    .reading(input_bytes("sphere_sphere"));
+    }));
     let row = |label, ids, cost| BatchRow { group: "sphere_sphere_batch", label, per_iter: PER_QUERY, ids, cost };
     vec![
         row("sphere–sphere contact, f64", ("loop_contact_f64", "batch_contact_f64"), Some(cost)),
@@ -331,7 +330,7 @@ fn batches(cases: &Cases) -> Vec<BatchRow> {
             label: "AABB overlap, f64",
             per_iter: PER_QUERY,
             ids: ("loop_f64", "batch_f64"),
-            cost: Some(cost::AABB_OVERLAP.reading(input_bytes("overlap"))),
+            cost: Some(cost::AABB_OVERLAP),
         },
         BatchRow {
             group: "overlap",
