@@ -158,7 +158,7 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
         // The compensated stage, formed at most once: the face normal and
         // distance where the plain filter was not accurate enough, and the
         // exact on-triangle test after it when the centre is in the plane.
-        let (answer, compensated) = match face_filter.as_ref().and_then(FaceFilter::normal_and_distance) {
+        let (answer, compensated) = match face_filter.as_ref().and_then(|f| f.normal_and_distance(a.radius.wide())) {
             Some(answer) => (Some(answer), None),
             None => {
                 let (answer, face) = face_normal_and_distance_of(a, b);
@@ -282,7 +282,7 @@ fn face_normal_and_distance_of<T: Real>(
 ) -> (Option<([f64; 3], f64)>, Option<FaceCompensated>) {
     let (p, v) = widened(a, b);
     let face = FaceCompensated::new(p, v);
-    (face_normal_and_distance(p, v, face.as_ref()), face)
+    (face_normal_and_distance(p, v, a.radius.wide(), face.as_ref()), face)
 }
 
 /// The book's closest point in the global frame, for the rare inputs whose
@@ -580,14 +580,21 @@ impl FaceFilter {
     }
 
     /// [`face_normal_and_distance`] from the filtered values, when their
-    /// bounds make the volume accurate to `REL` and `n` jointly to `REL` of
-    /// its components' sum (which bounds the unit normal's error by about
-    /// `3 REL`), and `n · n` is in the range where its plain root keeps full
-    /// precision; `None` otherwise.
+    /// bounds make `n` jointly accurate to `REL` of its components' sum (which
+    /// bounds the unit normal's error by about `3 REL`) and the volume
+    /// accurate to `REL` of the larger of itself and `r ‖n‖` — so the
+    /// distance `d` is within about `2 REL · max(d, r)`, and a sphere of
+    /// radius `r` gets its depth `r − d` to `2 REL · r` wherever it touches
+    /// (`d ≤ r`), as a relative bound on `d` alone would give, without asking
+    /// for `d`'s own digits when the centre is deep (`d ≪ r`) — and the
+    /// side is certain; and `n · n` is in the range where its plain root
+    /// keeps full precision. `None` otherwise (`r` not finite counts as 0).
     #[inline]
-    fn normal_and_distance(&self) -> Option<([f64; 3], f64)> {
+    fn normal_and_distance(&self, r: f64) -> Option<([f64; 3], f64)> {
         use crate::exact::filter::jointly_accurate;
         const REL: f64 = FACE_REL;
+        /// Unit roundoff of `f64`.
+        const U: f64 = f64::EPSILON / 2.0;
         /// Smallest `n · n` normalized here (2^−960), as in the segment queries.
         const NORMAL_MIN_SQUARED: f64 = 1.0261342003245941e-289;
         let (vol, n) = (&self.vol, &self.n);
@@ -595,14 +602,19 @@ impl FaceFilter {
         let n_sum = (n[0].value.abs() + n[1].value.abs()) + n[2].value.abs();
         let n_err = (n[0].bound + n[1].bound) + n[2].bound;
         let nn = (n[0].value * n[0].value + n[1].value * n[1].value) + n[2].value * n[2].value;
-        if !(jointly_accurate(vol.bound, magnitude, REL)
-            && jointly_accurate(n_err, n_sum, REL)
-            && nn >= NORMAL_MIN_SQUARED
-            && nn.is_finite())
-        {
+        if !(jointly_accurate(n_err, n_sum, REL) && nn >= NORMAL_MIN_SQUARED && nn.is_finite()) {
             return None;
         }
-        let inv = 1.0 / nn.sqrt();
+        let norm = nn.sqrt();
+        // `r ‖n‖` from below: `√(n·n)` carries at most 3 roundings of the
+        // sum and 1 of the root, the components are off by at most `n_err`
+        // in all, and the products 2 more roundings.
+        let reach = r.max(0.0) * (norm * (1.0 - 8.0 * U) - n_err) * (1.0 - 4.0 * U);
+        let reach = if reach.is_finite() { reach } else { 0.0 };
+        if !(magnitude > vol.bound && jointly_accurate(vol.bound, magnitude.max(reach), REL)) {
+            return None;
+        }
+        let inv = 1.0 / norm;
         let side = if vol.value > 0.0 { inv } else { -inv };
         let d = magnitude * inv;
         d.is_finite().then_some(([n[0].value * side, n[1].value * side, n[2].value * side], d))
@@ -673,18 +685,27 @@ impl FaceCompensated {
 
 /// Relative accuracy of the face region's normal and distance, 2^−40: the
 /// accuracy of crashtest's other computed values
-/// ([`ESTIMATE_REL_ERR`](crate::exact::ESTIMATE_REL_ERR)).
+/// ([`ESTIMATE_REL_ERR`](crate::exact::ESTIMATE_REL_ERR)). The distance is
+/// held to it relative to the larger of itself and the sphere's radius (see
+/// `FaceFilter::normal_and_distance`).
 const FACE_REL: f64 = 1.0 / (1u64 << 40) as f64;
 
 /// The unit face normal on `p`'s side and `p`'s distance from the triangle's
 /// plane, from the triangle's cross product and the volume `orient3d`, each
-/// refined to a relative error of 2^-40 by the exact filters: accurate however
-/// thin the triangle. `None` for `p` in the plane, a zero-area triangle, or a
-/// distance beyond `f64`'s range.
+/// refined to a relative error of 2^-40 by the exact filters (the distance
+/// relative to the larger of itself and the radius `r`: the compensated
+/// filter stops there; the exact estimates give 2^-40 of the distance
+/// itself): accurate however thin the triangle. `None` for `p` in the plane,
+/// a zero-area triangle, or a distance beyond `f64`'s range.
 ///
 /// `face` is [`FaceCompensated::new`]`(p, v)`, formed by the caller (which
 /// may need it again for [`centre_on_triangle`]).
-fn face_normal_and_distance(p: [f64; 3], v: [[f64; 3]; 3], face: Option<&FaceCompensated>) -> Option<([f64; 3], f64)> {
+fn face_normal_and_distance(
+    p: [f64; 3],
+    v: [[f64; 3]; 3],
+    r: f64,
+    face: Option<&FaceCompensated>,
+) -> Option<([f64; 3], f64)> {
     use crate::exact::{Estimate, Sign, cross_estimate, orient3d_estimate};
     const REL: f64 = FACE_REL;
     if let Some(face) = face {
@@ -693,7 +714,7 @@ fn face_normal_and_distance(p: [f64; 3], v: [[f64; 3]; 3], face: Option<&FaceCom
             return None;
         }
         let filter = FaceFilter { n: face.n.components(), vol: face.vol };
-        if let Some(answer) = filter.normal_and_distance() {
+        if let Some(answer) = filter.normal_and_distance(r) {
             return Some(answer);
         }
     }
@@ -1147,6 +1168,86 @@ mod tests {
             s.check::<T>().map_err(TestCaseError::fail)
         }
         prop_both!(512, random_rotated_slivers, sliver(), agrees_with_the_exact_closest_point);
+
+        /// Deep face contacts: a well-shaped triangle, the centre over its
+        /// inside at `10^k` (`k` from −14 to −2) above the plane, and a sphere
+        /// of radius 0.5 to 3 — the distance far below the radius, where the
+        /// face filter holds the distance to `2^−40` of the radius rather than
+        /// of itself. Point, depth and normal agree with the exact answer.
+        fn deep() -> impl Strategy<Value = (Sliver, f64)> {
+            (
+                (0.2..1.0f64, 0.15..0.85f64, -0.8..1.2f64, 0.1..0.5f64, -14.0..-2.0f64, 0.5..3.0f64),
+                ([-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64], [-3.0..3.0f64, -3.0..3.0f64, -3.0..3.0f64]),
+            )
+                .prop_filter("a rotation", |(_, (rot, _))| rot.iter().map(|x| x * x).sum::<f64>() > 0.01)
+                .prop_map(|((rho, alpha, x, y, k, r), (rot, shift))| {
+                    (Sliver { rho, a: 1.3, b: 1.6, alpha, x, y, h: 10f64.powf(k), rot, shift }, r)
+                })
+        }
+
+        fn deep_contacts_agree<T: Real>(case: &(Sliver, f64)) -> Result<(), TestCaseError> {
+            let (s, r) = case;
+            let (m, v) = s.scene();
+            let to = |p: &P3| p.map(|x| T::of(x).wide());
+            check::<T>(&to(&m), *r, &v.map(|p| to(&p))).map_err(TestCaseError::fail)
+        }
+        prop_both!(512, deep_face_contacts, deep(), deep_contacts_agree);
+
+        /// Depth of a face contact against the exact distance to the plane,
+        /// relative to the radius: the face filter promises the distance to
+        /// `2 · 2^−40` of the larger of itself and `r` (two `FACE_REL`, from
+        /// the volume and from `‖n‖`), and `r − d` adds a rounding of `r`;
+        /// `4 · 2^−40` leaves room. An `f32` answer is the `f64` one rounded
+        /// once: `16 ε_f32` of `r`.
+        const DEPTH_OF_RADIUS: f64 = 4.0 * FACE_REL;
+
+        /// Small spheres sunk deep into a well-shaped triangle: radius `10^k`
+        /// (`k` from −12 to −4) of a scene of size about 3, the centre `10^j`
+        /// of the radius above a point inside (`j` from −6 to −1). The plain
+        /// formula's rounding (about `u` of the scene) is far above `2^−40` of
+        /// such a radius, so the face filter must send these on to the
+        /// compensated stage: a depth accurate to the scene only would fail.
+        fn small_and_deep() -> impl Strategy<Value = (Sliver, f64)> {
+            (
+                (0.2..1.0f64, 0.15..0.85f64, 0.1..0.45f64, 0.1..0.45f64, -12.0..-4.0f64, -6.0..-1.0f64),
+                ([-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64], [-3.0..3.0f64, -3.0..3.0f64, -3.0..3.0f64]),
+            )
+                .prop_filter("a rotation", |(_, (rot, _))| rot.iter().map(|x| x * x).sum::<f64>() > 0.01)
+                .prop_map(|((rho, alpha, u, w, k, j), (rot, shift))| {
+                    // The projection `v0 + u (v1 − v0) + w (v2 − v0)`, inside.
+                    let (a, b) = (1.3, 1.6);
+                    let (x, y) = (-a + (u + w * alpha) * (a + b), w);
+                    let r = 10f64.powf(k);
+                    (Sliver { rho, a, b, alpha, x, y, h: r * 10f64.powf(j), rot, shift }, r)
+                })
+        }
+
+        fn small_deep_depth_holds<T: Real>(case: &(Sliver, f64)) -> Result<(), TestCaseError> {
+            let (s, r) = case;
+            let (m, v) = s.scene();
+            let to = |p: &P3| p.map(|x| T::of(x).wide());
+            let (mt, vt) = (to(&m), v.map(|p| to(&p)));
+            let (mb, vb) = (big(&mt), vt.map(|x| big(&x)));
+            let n = cross(&sub(&vb[1], &vb[0]), &sub(&vb[2], &vb[0]));
+            let vol = dot(&n, &sub(&mb, &vb[0]));
+            let d = ratio(&(&vol * &vol), &dot(&n, &n)).sqrt();
+            let radius = T::of(*r);
+            let want = radius.wide() - d;
+            let tol = (16.0 * eps::<T>()).max(DEPTH_OF_RADIUS) * radius.wide();
+            let tri =
+                Triangle::new(Vec3::from(vt[0].map(T::of)), Vec3::from(vt[1].map(T::of)), Vec3::from(vt[2].map(T::of)));
+            let k = contact_sphere_triangle(&Sphere::new(Vec3::from(mt.map(T::of)), radius), &tri);
+            // Rounded to `f32`, the centre may land above the sphere's reach:
+            // then "apart" is the answer, and within the tolerance either is.
+            let got = k.map(|k| k.depth.wide());
+            let right = match got {
+                Some(g) => (g - want).abs() <= tol,
+                None => want <= tol,
+            };
+            prop_assert!(right, "depth {got:?}, exact {want:e} (r {r:e}, d {d:e}), tolerance {tol:e}");
+            Ok(())
+        }
+        prop_both!(256, small_deep_face_contacts, small_and_deep(), small_deep_depth_holds);
     }
 
     /// Stage 1 of `certified_region` settles ordinary queries: random
