@@ -84,9 +84,9 @@ pub fn toi_sphere_sphere<T: Real>(
     let c = dd - rr;
     let bp = dp.dot(&dv);
     let disc = vv * rr - dp.cross(&dv).norm_squared();
-    // One branch (`&`, not `&&`) for the range and for "no impact": moving
-    // apart or sideways (`b' ≥ 0`) or passing wide (`disc < 0`). Behind it,
-    // the rare cases: out of range, or already touching by the squares.
+    // The range and "no impact" (moving apart or sideways, `b' ≥ 0`, or
+    // passing wide, `disc < 0`) tested together (`&`, not `&&`); behind
+    // them, the rare cases: out of range, or already touching by the squares.
     if !(plain & (c > T::zero()) & (bp < T::zero()) & (disc >= T::zero())) {
         if !plain | (c <= T::zero()) {
             return rare(a, va, b, vb, t_max);
