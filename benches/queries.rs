@@ -563,7 +563,7 @@ fn main() {
     bounding_sphere(&mut c, &cases.clouds);
     sphere_sphere_batch(&mut c, &cases.sphere_sphere);
     c.final_summary();
-    if let Some(peak) = peak {
+    if let Some(peak) = peak.map(|p| p.best(peak::measure())) {
         table::publish(&table::render(&rows(&cases), &batches(&cases), &targets(), &peak, since));
         table::write_figures(&rows(&cases), since);
     }
