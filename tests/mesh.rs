@@ -66,20 +66,7 @@ fn bunny() -> harness::mesh::Mesh {
 /// A random rotation (a uniform unit quaternion) and a translation in
 /// [−100, 100]³, applied to every vertex in `f64`.
 fn pose(rng: &mut Rng, vertices: &[P3]) -> Vec<P3> {
-    let q = loop {
-        let q = [0; 4].map(|_| rng.range(-1.0, 1.0));
-        let n2: f64 = q.iter().map(|x| x * x).sum();
-        if n2 > 1e-4 && n2 <= 1.0 {
-            let n = n2.sqrt();
-            break q.map(|x| x / n);
-        }
-    };
-    let [w, x, y, z] = q;
-    let r = [
-        [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
-        [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
-        [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
-    ];
+    let r = rng.rotation();
     let t = [0; 3].map(|_| rng.range(-100.0, 100.0));
     vertices.iter().map(|p| [0, 1, 2].map(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + t[i])).collect()
 }

@@ -33,6 +33,25 @@ impl SplitMix64 {
         (self.next_u64() % n as u64) as usize
     }
 
+    /// A uniform random rotation matrix, from a uniform unit quaternion
+    /// (rejection sampling in the 4-ball, then normalized).
+    pub fn rotation(&mut self) -> [[f64; 3]; 3] {
+        let q = loop {
+            let q = [0; 4].map(|_| self.range(-1.0, 1.0));
+            let n2: f64 = q.iter().map(|x| x * x).sum();
+            if n2 > 1e-4 && n2 <= 1.0 {
+                let n = n2.sqrt();
+                break q.map(|x| x / n);
+            }
+        };
+        let [w, x, y, z] = q;
+        [
+            [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
+            [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
+            [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
+        ]
+    }
+
     /// Standard normal (Box–Muller).
     pub fn normal(&mut self) -> f64 {
         let u = 1.0 - self.unit();

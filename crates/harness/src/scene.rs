@@ -361,24 +361,6 @@ fn time_loop<Q, R>(queries: &[Q], f: impl Fn(&Q) -> R) -> Option<Timing> {
 
 use crate::rng::SplitMix64 as Rng;
 
-/// A uniform rotation matrix (from a uniform unit quaternion).
-fn rotation(rng: &mut Rng) -> [[f64; 3]; 3] {
-    let q = loop {
-        let q = [0; 4].map(|_| rng.range(-1.0, 1.0));
-        let n2: f64 = q.iter().map(|x| x * x).sum();
-        if n2 > 1e-4 && n2 <= 1.0 {
-            let n = n2.sqrt();
-            break q.map(|x| x / n);
-        }
-    };
-    let [w, x, y, z] = q;
-    [
-        [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
-        [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
-        [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
-    ]
-}
-
 fn v(p: P3) -> Vec3<f64> {
     Vec3::new(p[0], p[1], p[2])
 }
@@ -805,7 +787,7 @@ pub fn run(settings: &SceneSettings) -> SceneReport {
         Some(b) => {
             let per: Vec<[f64; 4]> = (0..settings.rotations)
                 .filter_map(|_| {
-                    let r = rotation(&mut rng);
+                    let r = rng.rotation();
                     tightness(&b.vertices.iter().map(|p| rotate(&r, p)).collect::<Vec<_>>())
                 })
                 .collect();
@@ -1330,7 +1312,7 @@ mod tests {
             }
         }
         // A rotated tetrahedron: its minimal sphere is its circumsphere.
-        let r = rotation(&mut rng);
+        let r = rng.rotation();
         clouds.push(
             [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
                 .iter()
