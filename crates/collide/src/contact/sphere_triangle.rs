@@ -54,7 +54,11 @@ use crate::shapes::{Sphere, Triangle};
 /// region is then the exact one except for a projection within `50 ε L` of
 /// an edge (`L` the longest edge), where the edge point taken is within
 /// that of the exact closest point (`certified_region`, in the source, has
-/// the derivation).
+/// the derivation). In the face region the normal and the distance `d` come
+/// from the triangle's cross product and the centre's volume, certified by a
+/// static filter (else compensated, else exact arithmetic) to `2^−40`: the
+/// normal's direction, and `d` relative to the larger of itself and `r` — so
+/// the depth `r − d` of a contact is within about `2^−39 r`.
 ///
 /// **Degenerate input.** A centre exactly on the triangle (decided exactly, with
 /// `orient3d` and `orient2d`) has no direction: the normal falls back to the face
