@@ -7,7 +7,7 @@
 //! `oracle::parry::known_divergences()` (each pinned there by a test showing it
 //! still happens); collide's lecture methods carry their own. A rule whose
 //! divergence stops happening is caught by those pinning tests, and a rule that
-//! names an entry parry no longer lists fails [`tests`] here.
+//! names an entry parry no longer lists fails the tests here.
 
 use crate::case::{Query, Shape};
 use crate::engine::Answer;

@@ -82,10 +82,10 @@ impl<'a, T: Real> FromIterator<&'a Aabb<T>> for Aabbs<T> {
 
 /// Whether boxes `a[i]` and `b[i]` overlap, for every `i` below the shorter
 /// length `n`, written to `out` (resized to `n`; it allocates only when it
-/// grows): exactly [`test_aabb_aabb`]`(a[i], b[i])` — the same six
+/// grows): exactly [`test_aabb_aabb`](crate::bounds::test_aabb_aabb)`(a[i], b[i])` — the same six
 /// comparisons, touching counts.
 ///
-/// **Formula** (the lecture's separating axes, as in [`test_aabb_aabb`]):
+/// **Formula** (the lecture's separating axes, as in [`test_aabb_aabb`](crate::bounds::test_aabb_aabb)):
 /// overlap ⇔ for every axis `k`, `a.min_k ≤ b.max_k` and `b.min_k ≤ a.max_k`.
 ///
 /// **How it vectorizes.** One lane per pair, the six comparisons combined
@@ -96,7 +96,7 @@ impl<'a, T: Real> FromIterator<&'a Aabb<T>> for Aabbs<T> {
 /// `cargo bench --bench queries` measures it against the one-at-a-time loop
 /// and against parry's `Aabb::intersects`.
 ///
-/// Exact: comparisons only. Degenerate input: as [`test_aabb_aabb`].
+/// Exact: comparisons only. Degenerate input: as [`test_aabb_aabb`](crate::bounds::test_aabb_aabb).
 pub fn test_aabbs_aabbs<T: Real>(a: &Aabbs<T>, b: &Aabbs<T>, out: &mut Vec<bool>) {
     let n = a.len().min(b.len());
     out.resize(n, false);
@@ -113,7 +113,7 @@ pub fn test_aabbs_aabbs<T: Real>(a: &Aabbs<T>, b: &Aabbs<T>, out: &mut Vec<bool>
 }
 
 /// Whether box `one` overlaps `many[i]`, for every `i`, written to `out`
-/// (resized to `many.len()`): exactly [`test_aabb_aabb`]`(one, many[i])` —
+/// (resized to `many.len()`): exactly [`test_aabb_aabb`](crate::bounds::test_aabb_aabb)`(one, many[i])` —
 /// the broad phase's "which of these boxes does this one touch", one box's
 /// six numbers held in registers against the arrays. Vectorizes as
 /// [`test_aabbs_aabbs`] does.

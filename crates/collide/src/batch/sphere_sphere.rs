@@ -185,7 +185,7 @@ fn select<T: Real>(keep: bool, x: T) -> T {
 /// range where the plain root is exact enough (`[2^−918, 2^920]` in `f64`:
 /// concentric centres, distances that underflow or overflow) are answered in
 /// a second pass by [`contact_sphere_sphere`] itself, which scales them. The
-/// lanes go in blocks of [`BLOCK`], and only a block holding such a lane is
+/// lanes go in blocks of `BLOCK` (64 lanes), and only a block holding such a lane is
 /// looked at again.
 ///
 /// **Degenerate input**: as [`contact_sphere_sphere`] (concentric: fallback
@@ -330,7 +330,7 @@ fn test_lanes<T: Real>(
 /// [`contact_sphere_sphere`]`(a[i], b[i]).is_some()`, decided the same way
 /// (see [`contact_spheres_spheres`]) without computing the contact. Lanes
 /// outside the fast range are answered by [`contact_sphere_sphere`], block by
-/// block (see [`BLOCK`]).
+/// block (see `BLOCK`, 64 lanes).
 pub fn test_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mut Vec<bool>) {
     let n = a.len().min(b.len());
     out.resize(n, false);

@@ -124,7 +124,7 @@ pub fn intersect_segment_plane_lecture<T: Real>(seg: &Segment<T>, plane: &Plane<
 /// ulps of the plane, a near-parallel segment whose `t` is not accurate
 /// enough, a scene far from the origin whose `n · p` and `d` cancel), stage B
 /// evaluates `s0`, `s1` again in compensated arithmetic
-/// ([`crate::exact::compensated`]: error-free products and sums, a bound of
+/// (`exact::compensated`: error-free products and sums, a bound of
 /// order `u²` times the permanent that is `0` when every operation was
 /// exact), only the ends stage A could not sign at first; an exactly zero
 /// `s_i` (an endpoint on the plane) or an exactly zero `n · (p1 − p0)` (a

@@ -170,7 +170,7 @@ pub fn intersect_segment_triangle_lecture<T: Real>(seg: &Segment<T>, tri: &Trian
 /// accurate enough (a segment through or within ulps of an edge or a vertex,
 /// an endpoint on the plane, a near-parallel segment, a sliver, a scene far
 /// from the origin), stage B re-evaluates just those volumes in compensated
-/// arithmetic ([`crate::exact::compensated`]: differences held exactly,
+/// arithmetic (`exact::compensated`: differences held exactly,
 /// error-free products and sums, a bound of order `u²` times the permanent
 /// that is `0` when every operation was exact) and decides with exact signs,
 /// zeros included: a line through an edge or a vertex, an endpoint on the

@@ -1,5 +1,5 @@
 //! Reports: the campaign ([`campaign`]), what it measured ([`summary`]), how it
-//! is shown ([`charts`], [`markdown`], [`html`]) and written ([`write`]).
+//! is shown ([`charts`], [`markdown`], [`html`]) and written ([`write`](mod@write)).
 
 pub mod bench;
 pub mod campaign;
