@@ -9,6 +9,7 @@
 //! the same cases on every machine.
 
 use crate::generate::build::{Scene, Similarity, cross, dot, mul, normalize_or, perpendicular, sub};
+use crate::rng::SplitMix64;
 use oracle::geom::P3;
 
 /// The ten preferred numbers of a decade (Renard's R10 series, ISO 3): each
@@ -45,37 +46,31 @@ fn parse(label: &str) -> GridValue {
     GridValue { value, label }
 }
 
-/// SplitMix64 (Steele, Lea and Flood 2014): a 64-bit state, one addition and
-/// three xor-shift-multiplies per draw. Small, fast, and the same on every
-/// platform; the draws of one pose come from one generator keyed by the seed,
-/// the sweep, the query and the pose.
+/// The sweeps' generator: [`SplitMix64`] (the same on every platform), with
+/// the draws the sweeps need; the draws of one pose come from one generator
+/// keyed by the seed, the sweep, the query and the pose.
 #[derive(Clone, Debug)]
-pub struct Rng(u64);
+pub struct Rng(SplitMix64);
 
 impl Rng {
     /// A generator keyed by `seed` and a list of words (mixed in one by one).
     pub fn keyed(seed: u64, words: &[u64]) -> Self {
-        let mut r = Rng(seed ^ 0x6A09_E667_F3BC_C909);
+        let mut r = SplitMix64(seed ^ 0x6A09_E667_F3BC_C909);
         for &w in words {
             r.0 ^= w;
             let _ = r.next_u64();
         }
-        r
+        Rng(r)
     }
 
     /// The next 64 random bits.
     pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
 
     /// Uniform in `[lo, hi)` (53 random bits).
     pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        let u = (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
-        lo + (hi - lo) * u
+        self.0.range(lo, hi)
     }
 
     /// An integer uniform in `[lo, hi]`.
