@@ -312,6 +312,7 @@ fn test_lanes<T: Real>(
     let (bx, by, bz, br) = (&bx[..n], &by[..n], &bz[..n], &br[..n]);
     let (lo, hi) = safe_squared_range::<T>();
     let factor = clear_miss_factor::<T>();
+    let sure_reach = near_concentric_reach::<T>();
     let mut slow = false;
     for i in 0..n {
         let (dx, dy, dz) = (ax[i] - bx[i], ay[i] - by[i], az[i] - bz[i]);
@@ -319,10 +320,33 @@ fn test_lanes<T: Real>(
         let reach = ar[i] + br[i];
         let fast = (dd >= lo) & (dd <= hi);
         let apart = (dd > reach * reach * factor) | (dd.sqrt() > reach);
-        hit[i] = fast & !apart;
-        slow |= !fast;
+        // Below the fast range the centres are (nearly) concentric: with a
+        // reach of at least `sure_reach` they certainly touch, and the
+        // one-pair function's scaled path says so too.
+        let sure_touch = (dd < lo) & (reach >= sure_reach);
+        hit[i] = (fast & !apart) | sure_touch;
+        slow |= !(fast | sure_touch);
     }
     slow
+}
+
+/// `2 √lo` (`lo` the bottom of the fast range, [`safe_squared_range`]; `2^−39`
+/// in `f32`, `2^−458` in `f64`): a pair whose computed `‖Δ‖²` is below `lo`
+/// and whose radii sum to at least this touches, for certain.
+///
+/// The computed `‖Δ‖²` is within a few roundings (of the differences, the
+/// squares and the sums) of the exact one, plus 3 halves of the smallest
+/// subnormal (squares that underflow), so the exact squared distance is below
+/// `2 lo`, while the exact reach (one rounding from the computed one) has a
+/// square above `2 lo`: the distance is below the reach. [`contact_sphere_sphere`] then finds
+/// the contact on its scaled path (its distance accurate to a few ulps), or,
+/// for exactly concentric centres, answers its flagged fallback contact:
+/// either way `is_some()`. A negative, NaN or smaller reach is left to the
+/// one-pair function.
+#[inline(always)]
+fn near_concentric_reach<T: Real>() -> T {
+    let (lo, _) = safe_squared_range::<T>();
+    T::of(2.0) * lo.sqrt()
 }
 
 /// Whether spheres `a[i]` and `b[i]` touch or overlap, for every `i` below
@@ -330,7 +354,12 @@ fn test_lanes<T: Real>(
 /// [`contact_sphere_sphere`]`(a[i], b[i]).is_some()`, decided the same way
 /// (see [`contact_spheres_spheres`]) without computing the contact. Lanes
 /// outside the fast range are answered by [`contact_sphere_sphere`], block by
-/// block (see `BLOCK`, 64 lanes).
+/// block (see `BLOCK`, 64 lanes), except nearly concentric pairs (`‖Δ‖²`
+/// below the range) whose radii sum to at least `2 √lo`: they certainly
+/// touch, and the first pass says so. In `f32` those are common — centres a
+/// hair apart in `f64` round to the same `f32` point, or their difference's
+/// squares underflow — and would otherwise send nearly every block to the
+/// one-pair function.
 pub fn test_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mut Vec<bool>) {
     let n = a.len().min(b.len());
     out.resize(n, false);
@@ -482,6 +511,58 @@ mod tests {
             check::<f64>(&spheres(&p))?;
             check::<f32>(&spheres(&p))?;
         }
+    }
+
+    /// Nearly concentric pairs: the second centre a tiny offset from the
+    /// first (at the origin, so that offsets whose squares underflow survive;
+    /// elsewhere, where `f32` often rounds them away), with radii around the
+    /// batch's sure-touch threshold (`2^−39` in `f32`, `2^−458` in `f64`),
+    /// zero and ordinary. The batch's first pass answers many of these
+    /// itself; it must agree with the one-pair function on every lane.
+    fn near_concentric() -> impl Strategy<Value = ([f64; 4], [f64; 4])> {
+        let centre = prop_oneof![1 => prop::array::uniform3(-4.0..4.0f64), 1 => Just([0.0; 3])];
+        let offset = prop::array::uniform3((-1.0..1.0f64, -620i32..-20).prop_map(|(m, e)| m * 2f64.powi(e)));
+        let radius = prop_oneof![
+            1 => 0.1..3.0f64,
+            1 => (0.5..2.0f64, -45i32..-35).prop_map(|(m, e)| m * 2f64.powi(e)),
+            1 => (0.5..2.0f64, -465i32..-450).prop_map(|(m, e)| m * 2f64.powi(e)),
+            1 => Just(0.0),
+        ];
+        (centre, offset, radius.clone(), radius)
+            .prop_map(|(c, o, ra, rb)| ([c[0] + o[0], c[1] + o[1], c[2] + o[2], ra], [c[0], c[1], c[2], rb]))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        #[test]
+        fn batch_matches_one_pair_at_a_time_near_concentric(p in proptest::collection::vec(near_concentric(), 0..70)) {
+            check::<f64>(&spheres(&p))?;
+            check::<f32>(&spheres(&p))?;
+        }
+    }
+
+    /// Centres `2^−70` apart in `f32`: the squares underflow to 0, below the
+    /// fast range. With no radius they do not touch (the distance is not
+    /// 0), with radii summing to the sure-touch threshold `2^−39` they do,
+    /// and exactly concentric ones touch whatever the radii (the flagged
+    /// fallback). The first pass answers the second and third; the first
+    /// is left to the one-pair function.
+    #[test]
+    fn nearly_concentric_pairs_below_the_fast_range() {
+        let tiny = 2f32.powi(-70);
+        let s = |x: f32, r: f32| Sphere::new(Vec3::new(x, 0.0, 0.0), r);
+        let pairs = [
+            (s(tiny, 0.0), s(0.0, 0.0)),
+            (s(tiny, 2f32.powi(-40)), s(0.0, 2f32.powi(-40))),
+            (s(0.0, 0.0), s(0.0, 0.0)),
+        ];
+        check(&pairs).expect("batch agrees");
+        let a: Spheres<f32> = pairs.iter().map(|p| &p.0).collect();
+        let b: Spheres<f32> = pairs.iter().map(|p| &p.1).collect();
+        let mut tests = Vec::new();
+        test_spheres_spheres(&a, &b, &mut tests);
+        assert_eq!(tests, vec![false, true, true]);
     }
 
     #[test]
