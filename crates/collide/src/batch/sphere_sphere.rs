@@ -1,6 +1,6 @@
 //! Spheres against spheres, pairwise, over arrays.
 
-use crate::contact::{Contact, contact_sphere_sphere};
+use crate::contact::{CONCENTRIC_FALLBACK_NORMAL, Contact, contact_sphere_sphere};
 use crate::exact::norm::{clear_miss_factor, safe_squared_range};
 use crate::real::{Real, Vec3};
 use crate::shapes::Sphere;
@@ -181,9 +181,11 @@ fn select<T: Real>(keep: bool, x: T) -> T {
 /// **How it vectorizes.** The first pass computes every lane with the same
 /// straight-line arithmetic (all of them take the root and the division — on
 /// packed registers that costs less than a branch per pair), and keeps or
-/// zeroes the answers by the contact mask. Lanes whose `‖Δ‖²` lies outside the
-/// range where the plain root is exact enough (`[2^−918, 2^920]` in `f64`:
-/// concentric centres, distances that underflow or overflow) are answered in
+/// zeroes the answers by the contact mask. Exactly concentric centres get the
+/// one-pair function's flagged fallback there too (common in `f32`, where
+/// centres a hair apart round to one point). Other lanes whose `‖Δ‖²` lies
+/// outside the range where the plain root is exact enough (`[2^−918, 2^920]`
+/// in `f64`: distances that underflow or overflow) are answered in
 /// a second pass by [`contact_sphere_sphere`] itself, which scales them. The
 /// lanes go in blocks of `BLOCK` (64 lanes), and only a block holding such a lane is
 /// looked at again.
@@ -265,6 +267,7 @@ fn contact_lanes<T: Real>(
     // the vectorizer costs as one packed compare (the bit test it is otherwise
     // lowered to made it judge the loop not worth vectorizing).
     let largest = T::max_value().unwrap_or_else(|| T::of(f64::MAX));
+    let [fx, fy, fz] = CONCENTRIC_FALLBACK_NORMAL.map(T::of);
     let mut slow = false;
     for i in 0..n {
         let (dx, dy, dz) = (ax[i] - bx[i], ay[i] - by[i], az[i] - bz[i]);
@@ -274,9 +277,14 @@ fn contact_lanes<T: Real>(
         let inv = T::one() / dist;
         let fast = (dd >= lo) & (dd <= hi);
         let apart = (dd > reach * reach * factor) | (dist > reach);
-        let keep = fast & !apart;
-        let (ux, uy, uz) = (dx * inv, dy * inv, dz * inv);
-        let d = reach - dist;
+        // Exactly concentric centres: the one-pair function's flagged
+        // fallback (normal `CONCENTRIC_FALLBACK_NORMAL`, depth the reach),
+        // whatever the radii.
+        let concentric = (dx == T::zero()) & (dy == T::zero()) & (dz == T::zero());
+        let keep = (fast & !apart) | concentric;
+        let pick = |x: T, fallback: T| if concentric { fallback } else { x };
+        let (ux, uy, uz) = (pick(dx * inv, fx), pick(dy * inv, fy), pick(dz * inv, fz));
+        let d = pick(reach - dist, reach);
         hit[i] = keep;
         nx[i] = select(keep, ux);
         ny[i] = select(keep, uy);
@@ -286,8 +294,8 @@ fn contact_lanes<T: Real>(
         pz[i] = select(keep, bz[i] + uz * br[i]);
         depth[i] = select(keep, d);
         let finite = d.abs() <= largest; // false for NaN and ±∞
-        degenerate[i] = keep & !finite;
-        slow |= !fast;
+        degenerate[i] = (keep & !finite) | concentric;
+        slow |= !(fast | concentric);
     }
     slow
 }
