@@ -11,7 +11,7 @@
 //! | --- | --- |
 //! | sphere–sphere, –plane, –triangle contact | `query::contact(pose_a, shape_a, pose_b, shape_b, 0)` |
 //! | the same, by pair function (`*_pair`) | what `query::contact` does without its dynamic dispatch: `pos12 = pose_a⁻¹ pose_b`, the pair's `query::details` function (`contact_ball_ball`, `contact_support_map_halfspace`, `contact_ball_convex_polyhedron`, the ones its dispatcher picks), the contact moved back to world space |
-//! | segment–plane | `HalfSpace::cast_ray_and_get_normal(pose, ray, 1, false)` |
+//! | segment–plane | `HalfSpace::cast_ray_and_get_normal(pose, ray, 1, false)`, keeping the parameter; like for like (`*_like`), also the hit point `ray.point_at(t)` and the normal, which collide's answer holds |
 //! | segment–triangle | `Triangle::cast_local_ray_and_get_normal(ray, 1, false)`, and on a hit `project_local_point_and_get_location` of the hit point, for the barycentrics collide's answer carries |
 //! | barycentric | `Triangle::project_local_point_and_get_location(p, false)` |
 //! | AABB overlap | `Aabb::intersects` |
@@ -114,6 +114,14 @@ macro_rules! parry_direct {
             #[inline]
             pub fn intersect_segment_plane(r: &Ray, b: &(Pose, HalfSpace)) -> Option<Real> {
                 b.1.cast_ray_and_get_normal(&b.0, r, 1.0, false).map(|h| h.time_of_impact)
+            }
+            /// [`intersect_segment_plane`] answering what collide's answer
+            /// holds: the parameter, the hit point and the normal.
+            #[inline]
+            #[allow(dead_code, reason = "timed for parry3d-f64 only")]
+            pub fn intersect_segment_plane_like(r: &Ray, b: &(Pose, HalfSpace)) -> Option<(Real, Vector, Vector)> {
+                b.1.cast_ray_and_get_normal(&b.0, r, 1.0, false)
+                    .map(|h| (h.time_of_impact, r.point_at(h.time_of_impact), h.normal))
             }
             /// A segment's ray against a triangle, with the hit's barycentrics.
             #[inline]

@@ -17,7 +17,7 @@ pub const ENGINES: [(&str, &str); 9] = [
     ("collide_lecture_f32", "collide lecture f32"),
     ("collide_robust_f32", "collide robust f32"),
     ("parry64", "parry3d-f64"),
-    ("parry64_pair", "parry3d-f64 pair fn"),
+    ("parry64_like", "parry3d-f64 like for like"),
     ("parry32", "parry3d"),
     ("parry64_adapter", "parry3d-f64 via adapter"),
     ("parry32_adapter", "parry3d via adapter"),
@@ -102,8 +102,10 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
          the cases per iteration; `—`: not run). Same pre-generated cases for every engine \
          (seed {:#x}, the campaign's generators and mix). parry3d-f64 / parry3d: parry called \
          directly on pre-converted inputs; \"via adapter\": through `oracle::parry::ParryEngine`, \
-         which converts and translates inside each call; \"pair fn\" (contact queries): parry's \
-         pair function without `query::contact`'s dynamic dispatch, like collide's.\n",
+         which converts and translates inside each call; \"like for like\": parry doing what \
+         collide's function does — for the contact queries its pair function without \
+         `query::contact`'s dynamic dispatch, for segment–plane the same ray cast also \
+         answering the hit point and the normal, as collide does.\n",
         super::cases::SEED
     );
     let _ = writeln!(
