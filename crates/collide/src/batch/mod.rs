@@ -14,7 +14,9 @@
 //! order, so the answers are the same to the bit ([`contact_spheres_spheres`]
 //! against [`crate::contact::contact_sphere_sphere`]); the rare lane the fast
 //! arithmetic cannot answer (a squared distance that would underflow or
-//! overflow) is answered afterwards by the one-pair function itself.
+//! overflow, other than exactly concentric centres, and for the overlap test
+//! nearly concentric ones that certainly touch) is answered afterwards by the
+//! one-pair function itself.
 //!
 //! Boxes ([`Aabbs`]) come the same way: [`test_aabbs_aabbs`] pairwise and
 //! [`test_aabb_aabbs`] one box against many (the broad phase), the same six
