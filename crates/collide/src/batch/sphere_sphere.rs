@@ -328,10 +328,12 @@ fn test_lanes<T: Real>(
         let reach = ar[i] + br[i];
         let fast = (dd >= lo) & (dd <= hi);
         let apart = (dd > reach * reach * factor) | (dd.sqrt() > reach);
-        // Below the fast range the centres are (nearly) concentric: with a
-        // reach of at least `sure_reach` they certainly touch, and the
-        // one-pair function's scaled path says so too.
-        let sure_touch = (dd < lo) & (reach >= sure_reach);
+        // Below the fast range the centres are (nearly) concentric: exactly
+        // concentric ones touch whatever the radii (the one-pair function's
+        // flagged fallback), others with a reach of at least `sure_reach`
+        // certainly touch, and the one-pair function's scaled path says so.
+        let concentric = (dx == T::zero()) & (dy == T::zero()) & (dz == T::zero());
+        let sure_touch = ((dd < lo) & (reach >= sure_reach)) | concentric;
         hit[i] = (fast & !apart) | sure_touch;
         slow |= !(fast | sure_touch);
     }
@@ -346,11 +348,11 @@ fn test_lanes<T: Real>(
 /// squares and the sums) of the exact one, plus 3 halves of the smallest
 /// subnormal (squares that underflow), so the exact squared distance is below
 /// `2 lo`, while the exact reach (one rounding from the computed one) has a
-/// square above `2 lo`: the distance is below the reach. [`contact_sphere_sphere`] then finds
-/// the contact on its scaled path (its distance accurate to a few ulps), or,
+/// square above `2 lo`: the distance is below the reach.
+/// [`contact_sphere_sphere`] then finds the contact on its scaled path (its distance accurate to a few ulps), or,
 /// for exactly concentric centres, answers its flagged fallback contact:
 /// either way `is_some()`. A negative, NaN or smaller reach is left to the
-/// one-pair function.
+/// one-pair function (unless the centres are exactly concentric).
 #[inline(always)]
 fn near_concentric_reach<T: Real>() -> T {
     let (lo, _) = safe_squared_range::<T>();
@@ -362,9 +364,10 @@ fn near_concentric_reach<T: Real>() -> T {
 /// [`contact_sphere_sphere`]`(a[i], b[i]).is_some()`, decided the same way
 /// (see [`contact_spheres_spheres`]) without computing the contact. Lanes
 /// outside the fast range are answered by [`contact_sphere_sphere`], block by
-/// block (see `BLOCK`, 64 lanes), except nearly concentric pairs (`‖Δ‖²`
-/// below the range) whose radii sum to at least `2 √lo`: they certainly
-/// touch, and the first pass says so. In `f32` those are common — centres a
+/// block (see `BLOCK`, 64 lanes), except exactly concentric pairs (which
+/// touch whatever the radii) and nearly concentric pairs (`‖Δ‖²` below the
+/// range) whose radii sum to at least `2 √lo`: they certainly touch, and the
+/// first pass says so. In `f32` those are common — centres a
 /// hair apart in `f64` round to the same `f32` point, or their difference's
 /// squares underflow — and would otherwise send nearly every block to the
 /// one-pair function.
