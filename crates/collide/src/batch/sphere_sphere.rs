@@ -217,10 +217,10 @@ pub fn contact_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mu
             &mut out.normal_z[r.clone()],
             &mut out.depth[r.clone()],
         );
-        // Second pass, if needed: this block's lanes outside the fast range,
-        // one at a time.
+        // Second pass, if needed: this block's lanes the first pass left
+        // open (outside the fast range, not concentric), one at a time.
         if slow {
-            for (i, x, y) in outside_fast_range([ax, ay, az, ar], [bx, by, bz, br], r) {
+            for (i, x, y) in left_open([ax, ay, az, ar], [bx, by, bz, br], r, None) {
                 out.set(i, contact_sphere_sphere(&x, &y));
             }
         }
@@ -390,7 +390,7 @@ pub fn test_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mut V
             &mut hit[r.clone()],
         );
         if slow {
-            for (i, x, y) in outside_fast_range([ax, ay, az, ar], [bx, by, bz, br], r) {
+            for (i, x, y) in left_open([ax, ay, az, ar], [bx, by, bz, br], r, Some(near_concentric_reach())) {
                 hit[i] = contact_sphere_sphere(&x, &y).is_some();
             }
         }
@@ -402,20 +402,28 @@ fn blocks(n: usize) -> impl Iterator<Item = Range<usize>> {
     (0..n).step_by(BLOCK).map(move |start| start..(start + BLOCK).min(n))
 }
 
-/// The lanes of `r` whose squared distance lies outside the fast range (the
-/// lanes a first pass leaves to the one-pair function), with their two
-/// spheres; `a` and `b` are the `x`, `y`, `z` and radius arrays.
-fn outside_fast_range<'s, T: Real>(
+/// The lanes of `r` a first pass left to the one-pair function, with their
+/// two spheres (`a` and `b` are the `x`, `y`, `z` and radius arrays): those
+/// whose squared distance lies outside the fast range, except exactly
+/// concentric centres and, below the range, pairs whose reach is at least
+/// `sure_reach` — the lanes the first passes answer themselves
+/// ([`near_concentric_reach`] for the overlap test; `None` for the contact
+/// batch, which answers only the concentric ones). The same arithmetic as
+/// the first passes, so the same lanes.
+fn left_open<'s, T: Real>(
     a: [&'s [T]; 4],
     b: [&'s [T]; 4],
     r: Range<usize>,
+    sure_reach: Option<T>,
 ) -> impl Iterator<Item = (usize, Sphere<T>, Sphere<T>)> + 's {
     let (lo, hi) = safe_squared_range::<T>();
     r.filter_map(move |i| {
         let (dx, dy, dz) = (a[0][i] - b[0][i], a[1][i] - b[1][i], a[2][i] - b[2][i]);
         let dd = T::zero() + ((dx * dx + dy * dy) + dz * dz);
+        let concentric = dx == T::zero() && dy == T::zero() && dz == T::zero();
+        let sure = dd < lo && sure_reach.is_some_and(|s| a[3][i] + b[3][i] >= s);
         let one = |s: [&[T]; 4]| Sphere::new(Vec3::new(s[0][i], s[1][i], s[2][i]), s[3][i]);
-        (!(dd >= lo && dd <= hi)).then(|| (i, one(a), one(b)))
+        (!(dd >= lo && dd <= hi) && !concentric && !sure).then(|| (i, one(a), one(b)))
     })
 }
 
@@ -553,8 +561,11 @@ mod tests {
     /// fast range. With no radius they do not touch (the distance is not
     /// 0), with radii summing to the sure-touch threshold `2^−39` they do,
     /// and exactly concentric ones touch whatever the radii (the flagged
-    /// fallback). The first pass answers the second and third; the first
-    /// is left to the one-pair function.
+    /// fallback). Centres `2^−41` apart (`‖Δ‖² = 2^−82`, also below the
+    /// range) with radii summing to `2^−45` do not touch: below the
+    /// threshold, the one-pair function decides. The first pass answers the
+    /// second and third; the first and fourth are left to the one-pair
+    /// function.
     #[test]
     fn nearly_concentric_pairs_below_the_fast_range() {
         let tiny = 2f32.powi(-70);
@@ -563,13 +574,14 @@ mod tests {
             (s(tiny, 0.0), s(0.0, 0.0)),
             (s(tiny, 2f32.powi(-40)), s(0.0, 2f32.powi(-40))),
             (s(0.0, 0.0), s(0.0, 0.0)),
+            (s(2f32.powi(-41), 2f32.powi(-46)), s(0.0, 2f32.powi(-46))),
         ];
         check(&pairs).expect("batch agrees");
         let a: Spheres<f32> = pairs.iter().map(|p| &p.0).collect();
         let b: Spheres<f32> = pairs.iter().map(|p| &p.1).collect();
         let mut tests = Vec::new();
         test_spheres_spheres(&a, &b, &mut tests);
-        assert_eq!(tests, vec![false, true, true]);
+        assert_eq!(tests, vec![false, true, true, false]);
     }
 
     #[test]
