@@ -423,7 +423,8 @@ fn left_open<'s, T: Real>(
         let concentric = dx == T::zero() && dy == T::zero() && dz == T::zero();
         let sure = dd < lo && sure_reach.is_some_and(|s| a[3][i] + b[3][i] >= s);
         let one = |s: [&[T]; 4]| Sphere::new(Vec3::new(s[0][i], s[1][i], s[2][i]), s[3][i]);
-        (!(dd >= lo && dd <= hi) && !concentric && !sure).then(|| (i, one(a), one(b)))
+        let answered = (dd >= lo && dd <= hi) || concentric || sure;
+        (!answered).then(|| (i, one(a), one(b)))
     })
 }
 
