@@ -280,7 +280,7 @@ fn contact_lanes<T: Real>(
         // Exactly concentric centres: the one-pair function's flagged
         // fallback (normal `CONCENTRIC_FALLBACK_NORMAL`, depth the reach),
         // whatever the radii.
-        let concentric = (dx == T::zero()) & (dy == T::zero()) & (dz == T::zero());
+        let concentric = concentric(dx, dy, dz);
         let keep = (fast & !apart) | concentric;
         let pick = |x: T, fallback: T| if concentric { fallback } else { x };
         let (ux, uy, uz) = (pick(dx * inv, fx), pick(dy * inv, fy), pick(dz * inv, fz));
@@ -332,7 +332,7 @@ fn test_lanes<T: Real>(
         // concentric ones touch whatever the radii (the one-pair function's
         // flagged fallback), others with a reach of at least `sure_reach`
         // certainly touch, and the one-pair function's scaled path says so.
-        let concentric = (dx == T::zero()) & (dy == T::zero()) & (dz == T::zero());
+        let concentric = concentric(dx, dy, dz);
         let sure_touch = ((dd < lo) & (reach >= sure_reach)) | concentric;
         hit[i] = (fast & !apart) | sure_touch;
         slow |= !(fast | sure_touch);
@@ -397,6 +397,14 @@ pub fn test_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mut V
     }
 }
 
+/// Whether the centres' difference is exactly zero: the lanes every first
+/// pass answers with the one-pair function's concentric answer (branch-free,
+/// for the lane loops).
+#[inline(always)]
+fn concentric<T: Real>(dx: T, dy: T, dz: T) -> bool {
+    (dx == T::zero()) & (dy == T::zero()) & (dz == T::zero())
+}
+
 /// The lanes `0..n` in blocks of [`BLOCK`].
 fn blocks(n: usize) -> impl Iterator<Item = Range<usize>> {
     (0..n).step_by(BLOCK).map(move |start| start..(start + BLOCK).min(n))
@@ -420,7 +428,7 @@ fn left_open<'s, T: Real>(
     r.filter_map(move |i| {
         let (dx, dy, dz) = (a[0][i] - b[0][i], a[1][i] - b[1][i], a[2][i] - b[2][i]);
         let dd = T::zero() + ((dx * dx + dy * dy) + dz * dz);
-        let concentric = dx == T::zero() && dy == T::zero() && dz == T::zero();
+        let concentric = concentric(dx, dy, dz);
         let sure = dd < lo && sure_reach.is_some_and(|s| a[3][i] + b[3][i] >= s);
         let one = |s: [&[T]; 4]| Sphere::new(Vec3::new(s[0][i], s[1][i], s[2][i]), s[3][i]);
         let answered = (dd >= lo && dd <= hi) || concentric || sure;
