@@ -11,8 +11,17 @@
 //!   collide answers more (the exact first hit's face, `t`, point, normal and
 //!   barycentrics; parry its face, `t` and normal), so the comparison does not
 //!   favour collide.
+//! - **Batch: many segments against one mesh**: collide's batch query
+//!   ([`intersect_segments_mesh`] over [`FaceArrays`]) against the
+//!   one-at-a-time loops a user would otherwise write — the brute-force query
+//!   (every face, the batch's like for like) and the BVH query — and parry's
+//!   ray cast, on seeded height-field terrains of 32 and 288 faces and on the
+//!   bunny ([`BATCH_SEGMENTS_BUNNY`] segments there, every face being tested
+//!   for each), the segments drawn as above from each mesh's box. All answers
+//!   are the same bits (the batch's tests check it); the table shows where the
+//!   batch beats the loops and where the BVH is the better choice.
 //! - **Build**: `TriMesh::new` + `MeshBvh::new` (collide's mesh checks and its
-//!   tree) against parry's `TriMesh::new` (its checks and its BVH), both from
+//!   tree; and `FaceArrays::new`, the batch query's arrays, instead of the tree) against parry's `TriMesh::new` (its checks and its BVH), both from
 //!   vertex and index arrays cloned before timing.
 //!
 //! The bunny is `fixtures/meshes/bunny.obj` as loaded (no pose). Inputs are
@@ -27,7 +36,10 @@ mod criterion_files;
 mod table;
 
 use collide::Vec3;
-use collide::mesh::{MeshBvh, SplitRule, TriMesh, intersect_segment_mesh_bvh};
+use collide::mesh::{
+    FaceArrays, MeshBvh, SplitRule, TriMesh, intersect_segment_mesh_brute, intersect_segment_mesh_bvh,
+    intersect_segments_mesh,
+};
 use criterion::measurement::WallTime;
 use criterion::{BatchSize, BenchmarkGroup, Criterion, Throughput};
 use oracle::geom::P3;
@@ -42,6 +54,18 @@ const SEED: u64 = 0x0B0B_5E6E;
 /// branch predictor's memory of a short loop; the bunny's trees (about 200 KiB
 /// each) stay in L2 across them.
 const SEGMENTS: usize = 1024;
+/// Segments per iteration of the batch benchmarks on the bunny: each tests
+/// all 3,674 faces in the brute-force loop and the batch, so fewer than
+/// [`SEGMENTS`] keep an iteration near a millisecond.
+const BATCH_SEGMENTS_BUNNY: usize = 64;
+/// Cells per side of the batch benchmarks' terrains (two faces per cell): 8,
+/// 32 and 288 faces, around where the BVH starts to pay.
+const TERRAIN_CELLS: [usize; 3] = [2, 4, 12];
+/// Height range of the terrains (their extent is 1 × 1).
+const TERRAIN_HEIGHT: f64 = 0.2;
+/// Seed of the terrains' heights.
+const TERRAIN_SEED: u64 = 0x7E22_A1B0;
+
 /// Growth of the bunny's box on each side, as a fraction of its largest size,
 /// for the segments' endpoints.
 const GROW: f64 = 0.25;
@@ -64,7 +88,30 @@ fn bunny() -> harness::mesh::Mesh {
     harness::mesh::load_mesh_file(&path).expect("the bunny loads")
 }
 
-/// [`SEGMENTS`] segments with both endpoints uniform in the bunny's grown box.
+/// A height field over the unit square, `cells × cells` cells of two faces,
+/// heights seeded uniform in `[0, TERRAIN_HEIGHT]`.
+fn terrain(cells: usize) -> harness::mesh::Mesh {
+    let mut rng = Rng(TERRAIN_SEED);
+    let side = cells + 1;
+    let mut vertices = Vec::with_capacity(side * side);
+    for j in 0..side {
+        for i in 0..side {
+            let (x, y) = (i as f64 / cells as f64, j as f64 / cells as f64);
+            vertices.push([x, y, rng.range(0.0, TERRAIN_HEIGHT)]);
+        }
+    }
+    let mut faces = Vec::with_capacity(2 * cells * cells);
+    for j in 0..cells {
+        for i in 0..cells {
+            let k = j * side + i;
+            faces.push([k, k + 1, k + side + 1]);
+            faces.push([k, k + side + 1, k + side]);
+        }
+    }
+    harness::mesh::Mesh::new(vertices, faces).expect("a terrain is a valid mesh")
+}
+
+/// [`SEGMENTS`] segments with both endpoints uniform in the mesh's grown box.
 fn segments(vertices: &[P3]) -> Vec<(P3, P3)> {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
@@ -160,6 +207,58 @@ fn segment_bunny(c: &mut Criterion, m: &harness::mesh::Mesh, segs: &[(P3, P3)]) 
     g.finish();
 }
 
+/// The batch query against the one-at-a-time loops and parry, on one mesh.
+fn segment_batch(c: &mut Criterion, group: &str, m: &harness::mesh::Mesh, segs: &[(P3, P3)]) {
+    let mut g = c.benchmark_group(group);
+    g.throughput(Throughput::Elements(segs.len() as u64));
+    let bvh = collide_bvh::<f64>(m, SplitRule::SahBinned);
+    let faces = FaceArrays::new(bvh.mesh().clone());
+    let s64: Vec<_> = segs.iter().map(|s| collide::Segment::new(v::<f64>(s.0), v(s.1))).collect();
+    run(&mut g, "loop_brute_f64", &s64, |s| intersect_segment_mesh_brute(s, bvh.mesh()));
+    run(&mut g, "loop_bvh_f64", &s64, |s| intersect_segment_mesh_bvh(s, &bvh));
+    let mut out = Vec::with_capacity(s64.len());
+    g.bench_function("batch_f64", |b| {
+        b.iter(|| {
+            intersect_segments_mesh(black_box(&s64), &faces, &mut out);
+            black_box(&out);
+        })
+    });
+    let mesh64 = p64::build(p64::arrays(m));
+    let r64: Vec<_> = segs.iter().map(p64::ray).collect();
+    run(&mut g, "parry64", &r64, |r| p64::cast(&mesh64, r));
+    g.finish();
+}
+
+/// One mesh of the batch benchmarks.
+struct BatchMesh {
+    /// criterion's group.
+    group: &'static str,
+    /// The table's row heading.
+    label: String,
+    mesh: harness::mesh::Mesh,
+    segs: Vec<(P3, P3)>,
+}
+
+/// The batch benchmarks' meshes: the terrains and the bunny, with their
+/// criterion groups and segments.
+fn batch_meshes(bunny: &harness::mesh::Mesh) -> Vec<BatchMesh> {
+    let mut out = Vec::new();
+    for (cells, group) in TERRAIN_CELLS.into_iter().zip([
+        "mesh_segment_batch_terrain_8",
+        "mesh_segment_batch_terrain_32",
+        "mesh_segment_batch_terrain_288",
+    ]) {
+        let m = terrain(cells);
+        let segs = segments(&m.vertices);
+        out.push(BatchMesh { group, label: format!("terrain, {} faces", m.triangles.len()), mesh: m, segs });
+    }
+    let mut segs = segments(&bunny.vertices);
+    segs.truncate(BATCH_SEGMENTS_BUNNY);
+    let label = format!("bunny, {} faces", bunny.triangles.len());
+    out.push(BatchMesh { group: "mesh_segment_batch_bunny", label, mesh: bunny.clone(), segs });
+    out
+}
+
 fn build(c: &mut Criterion, m: &harness::mesh::Mesh) {
     let mut g = c.benchmark_group("mesh_build_bunny");
     g.throughput(Throughput::Elements(1));
@@ -186,6 +285,13 @@ fn build(c: &mut Criterion, m: &harness::mesh::Mesh) {
             BatchSize::SmallInput,
         )
     });
+    g.bench_function("collide_faces_f64", |b| {
+        b.iter_batched(
+            || arrays64.clone(),
+            |(vs, fs)| FaceArrays::new(TriMesh::new(vs, fs).expect("mesh")),
+            BatchSize::SmallInput,
+        )
+    });
     let (a64, a32) = (p64::arrays(m), p32::arrays(m));
     g.bench_function("parry64", |b| b.iter_batched(|| a64.clone(), p64::build, BatchSize::SmallInput));
     g.bench_function("parry32", |b| b.iter_batched(|| a32.clone(), p32::build, BatchSize::SmallInput));
@@ -202,11 +308,45 @@ fn hit_fraction(m: &harness::mesh::Mesh, segs: &[(P3, P3)]) -> f64 {
     hits as f64 / segs.len() as f64
 }
 
-fn report(m: &harness::mesh::Mesh, segs: &[(P3, P3)], since: SystemTime) -> String {
+/// The batch table: one row per mesh, the batch against the loops and parry.
+fn batch_report(batches: &[BatchMesh], since: SystemTime) -> String {
+    let columns = [
+        Column { id: "loop_brute_f64", heading: "loop, brute force f64" },
+        Column { id: "batch_f64", heading: "batch f64" },
+        Column { id: "loop_bvh_f64", heading: "loop, BVH f64" },
+        Column { id: "parry64", heading: "parry3d-f64" },
+    ];
+    let ratios = [
+        ("batch_f64", "loop_brute_f64", "batch / brute-force loop"),
+        ("batch_f64", "loop_bvh_f64", "batch / BVH loop"),
+        ("batch_f64", "parry64", "batch / parry3d-f64"),
+    ];
+    let rows: Vec<Row> = batches
+        .iter()
+        .map(|b| Row {
+            group: b.group,
+            label: format!("{} ({} segments)", b.label, b.segs.len()),
+            per_iter: b.segs.len(),
+            unit_ns: 1.0,
+            unit: "ns/segment",
+        })
+        .collect();
+    let intro = format!(
+        "`intersect_segments_mesh` over `FaceArrays` (every face: a box test in packed lanes, then the filter and the exact test on the faces it keeps) against \
+         the one-at-a-time loops over the same segments: `intersect_segment_mesh_brute` (every face: like for \
+         like) and `intersect_segment_mesh_bvh`, and parry's `TriMesh` ray cast. Terrains: height fields over \
+         the unit square, heights seeded ({TERRAIN_SEED:#x}) in [0, {TERRAIN_HEIGHT}]. Segments as above, from \
+         each mesh's grown box. Every answer is the same bits in the three collide columns."
+    );
+    table::render("Batch: many segments against one mesh", &intro, &columns, &rows, &ratios, since)
+}
+
+fn report(m: &harness::mesh::Mesh, segs: &[(P3, P3)], batches: &[BatchMesh], since: SystemTime) -> String {
     let columns = [
         Column { id: "collide_bvh_f64", heading: "collide BVH f64 (SAH)" },
         Column { id: "collide_bvh_median_f64", heading: "collide BVH f64 (median)" },
         Column { id: "collide_bvh_f32", heading: "collide BVH f32 (SAH)" },
+        Column { id: "collide_faces_f64", heading: "collide FaceArrays f64 (batch, no tree)" },
         Column { id: "parry64", heading: "parry3d-f64" },
         Column { id: "parry32", heading: "parry3d" },
     ];
@@ -240,16 +380,28 @@ fn report(m: &harness::mesh::Mesh, segs: &[(P3, P3)], since: SystemTime) -> Stri
         m.triangles.len(),
         segs.len()
     );
-    let targets = [Target {
+    let mut targets = vec![Target {
         group: "mesh_segment_bunny",
         per_iter: segs.len(),
-        what: "segment–bunny: collide BVH f64 / parry3d-f64 TriMesh ray cast",
+        what: "segment–bunny: collide BVH f64 / parry3d-f64 TriMesh ray cast".into(),
         ids: ("collide_bvh_f64", "parry64"),
         target: 1.0,
     }];
+    // The batch API against the loop it replaces (every face, one segment at
+    // a time), on each mesh.
+    for b in batches {
+        targets.push(Target {
+            group: b.group,
+            per_iter: b.segs.len(),
+            what: format!("segments–mesh batch / brute-force loop, {}", b.label),
+            ids: ("batch_f64", "loop_brute_f64"),
+            target: 1.0,
+        });
+    }
     format!(
-        "# crashtest speed: meshes, collide against parry, one run\n\n{}\n{}",
+        "# crashtest speed: meshes, collide against parry, one run\n\n{}\n{}\n{}",
         table::render("Segment–bunny and build", &intro, &columns, &rows, &ratios, since),
+        batch_report(batches, since),
         table::render_targets(&targets, since)
     )
 }
@@ -269,9 +421,13 @@ fn main() {
         .nresamples(RESAMPLES)
         .configure_from_args();
     segment_bunny(&mut c, &m, &segs);
+    let batches = batch_meshes(&m);
+    for b in &batches {
+        segment_batch(&mut c, b.group, &b.mesh, &b.segs);
+    }
     build(&mut c, &m);
     c.final_summary();
     if benching {
-        table::publish(&report(&m, &segs, since));
+        table::publish(&report(&m, &segs, &batches, since));
     }
 }

@@ -57,7 +57,7 @@ pub struct Target {
     /// Elements per iteration.
     pub per_iter: usize,
     /// What is compared, for the reader.
-    pub what: &'static str,
+    pub what: String,
     /// Benchmark ids of the numerator and the denominator.
     pub ids: (&'static str, &'static str),
     /// The largest ratio that meets it.

@@ -21,11 +21,16 @@
 //! Boxes ([`Aabbs`]) come the same way: [`test_aabbs_aabbs`] pairwise and
 //! [`test_aabb_aabbs`] one box against many (the broad phase), the same six
 //! comparisons as [`crate::bounds::test_aabb_aabb`] per lane.
-//! `cargo bench --bench queries` measures each batch against the
-//! one-at-a-time loop.
+//! Segments against one mesh ([`intersect_segments_mesh`] over the mesh's
+//! [`FaceArrays`], defined with the other mesh queries in [`crate::mesh`])
+//! test each segment's box against every face's box in packed lanes, and
+//! only the faces kept go on to the filter and the exact test.
+//! `cargo bench --bench queries` measures the pair batches against the
+//! one-at-a-time loop, `cargo bench --bench mesh` the segment batch.
 
 mod aabb;
 mod sphere_sphere;
 
+pub use crate::mesh::{FaceArrays, intersect_segments_mesh};
 pub use aabb::{Aabbs, test_aabb_aabbs, test_aabbs_aabbs};
 pub use sphere_sphere::{SphereContacts, Spheres, contact_spheres_spheres, test_spheres_spheres};

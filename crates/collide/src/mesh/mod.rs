@@ -31,6 +31,9 @@
 //!   [`intersect_segment_mesh_culled`], [`intersect_segment_mesh_bvh`], and the
 //!   lecture's [`intersect_segment_mesh_lecture`]), answering a
 //!   [`MeshIntersection`] whose [`MeshHit`] names the face;
+//! - many segments against one mesh at once ([`intersect_segments_mesh`] over
+//!   a mesh's [`FaceArrays`]): every face, a box test in packed lanes first;
+//!   each answer the same bits as [`intersect_segment_mesh_brute`]'s;
 //! - sphere–mesh contact, the deepest over the faces
 //!   ([`contact_sphere_mesh_brute`], [`contact_sphere_mesh_culled`],
 //!   [`contact_sphere_mesh_bvh`]), answering a [`MeshContact`].
@@ -43,6 +46,7 @@
 mod bvh;
 mod filter;
 mod hit;
+mod segment_batch;
 mod segment_mesh;
 mod sphere_mesh;
 mod trimesh;
@@ -53,6 +57,7 @@ mod tests;
 
 pub use bvh::{BVH_MAX_DEPTH, MeshBvh, SplitRule};
 pub use hit::{MeshContact, MeshHit, MeshIntersection};
+pub use segment_batch::{FaceArrays, intersect_segments_mesh};
 pub use segment_mesh::{
     intersect_segment_mesh_brute, intersect_segment_mesh_bvh, intersect_segment_mesh_culled,
     intersect_segment_mesh_lecture,

@@ -1,7 +1,7 @@
 //! Segment against a triangle mesh: the first face the segment meets.
 
 use super::bvh::{MeshBvh, STACK, SegmentProbe};
-use super::filter::{FaceTest, SegmentFilter};
+use super::filter::{FaceFilter, FaceTest, SegmentFilter};
 use super::hit::{MeshHit, MeshIntersection};
 use super::trimesh::TriMesh;
 use super::values::hit_values;
@@ -20,7 +20,7 @@ const T_ROUNDING: f64 = 8.0 * f64::EPSILON / 2.0;
 
 /// The segment as exact `f64` endpoints, or `None` when it is degenerate
 /// (a non-finite coordinate, or zero length exactly).
-fn prepare<T: Real>(seg: &Segment<T>) -> Option<(P3, P3)> {
+pub(super) fn prepare<T: Real>(seg: &Segment<T>) -> Option<(P3, P3)> {
     if !(finite3(&seg.start) && finite3(&seg.end)) {
         return None;
     }
@@ -30,7 +30,7 @@ fn prepare<T: Real>(seg: &Segment<T>) -> Option<(P3, P3)> {
 
 /// A face the segment hits, with what it takes to compare its segment
 /// parameter exactly with another's.
-struct Candidate<T: Real> {
+pub(super) struct Candidate<T: Real> {
     face: usize,
     /// The face (a copy: the BVH's leaf copy is in cache, the mesh's index
     /// and vertex arrays may not be).
@@ -208,7 +208,12 @@ fn consider<T: Real>(best: &mut Option<Candidate<T>>, mut cand: Candidate<T>, q:
 /// The answer from the winning face (if any), with the mesh-wide flags. The
 /// winner's values are computed once per query, from the face and the segment
 /// alone (so every variant gives the same bits): see `values.rs`.
-fn finish<T: Real>(best: Option<Candidate<T>>, seg: &Segment<T>, mesh: &TriMesh<T>, q: [P3; 2]) -> MeshIntersection<T> {
+pub(super) fn finish<T: Real>(
+    best: Option<Candidate<T>>,
+    seg: &Segment<T>,
+    mesh: &TriMesh<T>,
+    q: [P3; 2],
+) -> MeshIntersection<T> {
     let degenerate = mesh.degenerate_face_count() > 0;
     match best {
         Some(b) => match hit_values(seg, &b.tri, q) {
@@ -277,7 +282,7 @@ pub fn intersect_segment_mesh_brute<T: Real>(seg: &Segment<T>, mesh: &TriMesh<T>
     brute(seg, mesh, [q0, q1])
 }
 
-fn brute<T: Real>(seg: &Segment<T>, mesh: &TriMesh<T>, q: [P3; 2]) -> MeshIntersection<T> {
+pub(super) fn brute<T: Real>(seg: &Segment<T>, mesh: &TriMesh<T>, q: [P3; 2]) -> MeshIntersection<T> {
     let mut best = None;
     for face in 0..mesh.len() {
         if mesh.is_degenerate_face(face) {
@@ -428,7 +433,20 @@ fn leaf_face<T: Real>(
     q: [P3; 2],
     best: &mut Option<Candidate<T>>,
 ) {
-    let data = bvh.leaf_data(k);
+    filtered_face(bvh.leaf_data(k), filter, q, best, || bvh.leaf_face(k));
+}
+
+/// One face, given its filter data: the filter (when `filter` is given), then
+/// (if it cannot tell) the exact test; a face hit becomes a candidate. `face`
+/// answers the triangle and its index in the mesh, read only for a hit.
+#[inline(always)]
+pub(super) fn filtered_face<'a, T: Real + 'a>(
+    data: &FaceFilter,
+    filter: Option<&SegmentFilter>,
+    q: [P3; 2],
+    best: &mut Option<Candidate<T>>,
+    face: impl FnOnce() -> (&'a Triangle<T>, usize),
+) {
     let test = match filter {
         Some(f) => data.test(f),
         None => FaceTest::Undecided,
@@ -440,14 +458,14 @@ fn leaf_face<T: Real>(
             if best.as_ref().is_some_and(|b| lo > b.hi) {
                 return;
             }
-            let (tri, face) = bvh.leaf_face(k);
+            let (tri, face) = face();
             Candidate { face, tri: *tri, lo, hi, volumes: None }
         }
         FaceTest::Undecided => {
             let Some(vol) = classify(data.v, q) else {
                 return;
             };
-            let (tri, face) = bvh.leaf_face(k);
+            let (tri, face) = face();
             Candidate::from_volumes(face, tri, vol)
         }
     };

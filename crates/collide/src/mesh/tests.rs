@@ -56,8 +56,9 @@ const TETRA_F: [[usize; 3]; 4] = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
 const QUAD_V: [P3; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
 const QUAD_F: [[usize; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
 
-/// Every segment variant of one query, answered for the same inputs.
-fn all_segment<T: Real>(s: &Segment<T>, m: &TriMesh<T>) -> [MeshIntersection<T>; 4] {
+/// Every segment variant of one query, answered for the same inputs (the
+/// batch query with a batch of one).
+fn all_segment<T: Real>(s: &Segment<T>, m: &TriMesh<T>) -> [MeshIntersection<T>; 5] {
     let median = MeshBvh::with_split(m.clone(), SplitRule::MedianCentroid);
     let sah = MeshBvh::with_split(m.clone(), SplitRule::SahBinned);
     [
@@ -65,7 +66,17 @@ fn all_segment<T: Real>(s: &Segment<T>, m: &TriMesh<T>) -> [MeshIntersection<T>;
         intersect_segment_mesh_culled(s, m),
         intersect_segment_mesh_bvh(s, &median),
         intersect_segment_mesh_bvh(s, &sah),
+        batch_of_one(s, m),
     ]
+}
+
+/// [`intersect_segments_mesh`] on one segment; the output holds exactly one
+/// answer.
+fn batch_of_one<T: Real>(s: &Segment<T>, m: &TriMesh<T>) -> MeshIntersection<T> {
+    let mut out = vec![MeshIntersection::DEGENERATE; 3];
+    intersect_segments_mesh(core::slice::from_ref(s), &FaceArrays::new(m.clone()), &mut out);
+    assert_eq!(out.len(), 1, "one answer per segment");
+    out[0]
 }
 
 /// The robust variants agree exactly (bit for bit is the claim, so `==`); the
@@ -437,12 +448,14 @@ fn mesh_bvh_agrees_with_brute_force_on_a_closed_sphere() {
     let m = mesh::<f64>(&vs, &fs);
     let bvh = MeshBvh::new(m.clone());
     let mut hits = 0;
+    let mut segs = Vec::new();
     for i in 0..2000 {
         let a = i as f64 * 0.618_033_988_749_895;
         let z = 2.0 * ((i as f64 * 0.414_213_562_373_095) % 1.0) - 1.0;
         let r = (1.0 - z * z).sqrt();
         let far = [2.0 * r * a.cos(), 2.0 * r * a.sin(), 2.0 * z];
         let s = seg::<f64>(far, [0.0, 0.0, 0.0]);
+        segs.push(s);
         let b = intersect_segment_mesh_brute(&s, &m);
         assert_eq!(intersect_segment_mesh_bvh(&s, &bvh), b, "segment {i}");
         let h = b.hit.unwrap_or_else(|| panic!("segment {i} {far:?} misses: {b:?}"));
@@ -450,6 +463,50 @@ fn mesh_bvh_agrees_with_brute_force_on_a_closed_sphere() {
         hits += 1;
     }
     assert_eq!(hits, 2000);
+    // The batch query over all of them at once (many blocks of faces).
+    let faces = FaceArrays::new(m.clone());
+    assert!(faces.len() > 900, "{} faces with area", faces.len());
+    let mut out = Vec::new();
+    intersect_segments_mesh(&segs, &faces, &mut out);
+    assert_eq!(out.len(), segs.len());
+    for (i, (s, got)) in segs.iter().zip(&out).enumerate() {
+        assert_eq!(*got, intersect_segment_mesh_brute(s, &m), "batch, segment {i}");
+    }
+}
+
+#[test]
+fn mesh_batch_answers_segments_beyond_the_filter_range_and_degenerate_ones() {
+    // A batch mixing a segment within the filter's range, one beyond it (2^61,
+    // answered by the brute-force query), a zero-length one and a non-finite
+    // one; then a mesh beyond the range (every segment brute force).
+    let m = mesh::<f64>(&QUAD_V, &QUAD_F);
+    let big = 2.0f64.powi(61);
+    let segs = [
+        seg::<f64>([0.5, 0.25, 1.0], [0.5, 0.25, -1.0]),
+        seg::<f64>([0.5, 0.25, big], [0.5, 0.25, -big]),
+        seg::<f64>([0.5, 0.25, 0.0], [0.5, 0.25, 0.0]),
+        seg::<f64>([0.5, f64::NAN, 1.0], [0.5, 0.25, -1.0]),
+        seg::<f64>([2.0, 2.0, 1.0], [2.0, 2.0, -1.0]),
+    ];
+    let mut out = Vec::new();
+    intersect_segments_mesh(&segs, &FaceArrays::new(m.clone()), &mut out);
+    assert_eq!(out.len(), segs.len());
+    for (i, (s, got)) in segs.iter().zip(&out).enumerate() {
+        assert_eq!(*got, intersect_segment_mesh_brute(s, &m), "segment {i}");
+    }
+    assert_eq!(out[0].hit.expect("hit").triangle, 0);
+    assert_eq!(out[1].hit.expect("hit").triangle, 0);
+    assert_eq!(out[2], MeshIntersection::DEGENERATE);
+    assert_eq!(out[3], MeshIntersection::DEGENERATE);
+    assert!(out[4].hit.is_none() && !out[4].degenerate);
+    let far: Vec<P3> = QUAD_V.iter().map(|p| p.map(|x| x * big)).collect();
+    let mf = mesh::<f64>(&far, &QUAD_F);
+    let faces = FaceArrays::new(mf.clone());
+    assert_eq!(faces.len(), 2);
+    let segs = [seg::<f64>([0.5 * big, 0.25 * big, 1.0], [0.5 * big, 0.25 * big, -1.0])];
+    intersect_segments_mesh(&segs, &faces, &mut out);
+    assert_eq!(out, vec![intersect_segment_mesh_brute(&segs[0], &mf)]);
+    assert_eq!(out[0].hit.expect("hit").triangle, 0);
 }
 
 fn coord() -> impl Strategy<Value = f64> {
@@ -537,6 +594,31 @@ proptest! {
         let l = intersect_segment_mesh_lecture(&seg::<f64>(a, b), &mesh::<f64>(&vs, &fs));
         if let Some(h) = l.hit {
             prop_assert!(h.t.is_finite() && (0.0..=1.0).contains(&h.t), "lecture t {}", h.t);
+        }
+    }
+
+    #[test]
+    fn mesh_batch_agrees_exactly_across_blocks(
+        vs in prop::collection::vec(point(), 3..16),
+        picks in prop::collection::vec([0..1000usize, 0..1000usize, 0..1000usize], 0..200),
+        ends in prop::collection::vec((point(), point()), 1..6),
+    ) {
+        // Up to 200 faces: several blocks of lanes, a part-filled last one.
+        let fs: Vec<[usize; 3]> = picks.iter().map(|p| p.map(|i| i % vs.len())).collect();
+        let segs: Vec<Segment<f64>> = ends.iter().map(|&(a, b)| seg(a, b)).collect();
+        let m = mesh::<f64>(&vs, &fs);
+        let mut out = Vec::new();
+        intersect_segments_mesh(&segs, &FaceArrays::new(m.clone()), &mut out);
+        prop_assert_eq!(out.len(), segs.len());
+        for (s, got) in segs.iter().zip(&out) {
+            prop_assert_eq!(*got, intersect_segment_mesh_brute(s, &m));
+        }
+        let m32 = mesh::<f32>(&vs, &fs);
+        let s32: Vec<Segment<f32>> = ends.iter().map(|&(a, b)| seg(a, b)).collect();
+        let mut out32 = Vec::new();
+        intersect_segments_mesh(&s32, &FaceArrays::new(m32.clone()), &mut out32);
+        for (s, got) in s32.iter().zip(&out32) {
+            prop_assert_eq!(*got, intersect_segment_mesh_brute(s, &m32), "f32");
         }
     }
 
