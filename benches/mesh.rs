@@ -332,7 +332,7 @@ fn batch_report(batches: &[BatchMesh], since: SystemTime) -> String {
         })
         .collect();
     let intro = format!(
-        "`intersect_segments_mesh` over `FaceArrays` (every face: a box test in packed lanes, then the filter and the exact test on the faces it keeps) against \
+        "`intersect_segments_mesh` over `FaceArrays` (every face: its box culled in packed lanes — the BVH's slab test — then the filter and the exact test on the faces kept) against \
          the one-at-a-time loops over the same segments: `intersect_segment_mesh_brute` (every face: like for \
          like) and `intersect_segment_mesh_bvh`, and parry's `TriMesh` ray cast. Terrains: height fields over \
          the unit square, heights seeded ({TERRAIN_SEED:#x}) in [0, {TERRAIN_HEIGHT}]. Segments as above, from \

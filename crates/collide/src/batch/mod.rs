@@ -23,7 +23,7 @@
 //! comparisons as [`crate::bounds::test_aabb_aabb`] per lane.
 //! Segments against one mesh ([`intersect_segments_mesh`] over the mesh's
 //! [`FaceArrays`], defined with the other mesh queries in [`crate::mesh`])
-//! test each segment's box against every face's box in packed lanes, and
+//! test each segment against every face's box in packed lanes, and
 //! only the faces kept go on to the filter and the exact test.
 //! `cargo bench --bench queries` measures the pair batches against the
 //! one-at-a-time loop, `cargo bench --bench mesh` the segment batch.

@@ -684,6 +684,45 @@ impl SegmentProbe<f64> {
     }
 }
 
+impl SegmentProbe<f64> {
+    /// Whether every axis is a usual slab ([`entry`](Self::entry)'s
+    /// branch-free case): [`keep_lanes`](Self::keep_lanes) needs it.
+    pub(crate) fn all_slab(&self) -> bool {
+        self.all_slab
+    }
+
+    /// [`entry`](Self::entry)'s test over arrays of boxes, for a segment all
+    /// of whose axes are slabs ([`all_slab`](Self::all_slab); else every
+    /// lane is kept): `keep[i]` is false when the segment certainly misses
+    /// box `i` (`lo[k][i] ≤ x_k ≤ hi[k][i]`). The same arithmetic, slack and
+    /// analysis, without a branch, so that the loop vectorizes; every array
+    /// is cut to `keep`'s length first (no bounds checks in the loop).
+    #[inline(always)]
+    pub(crate) fn keep_lanes(&self, lo: [&[f64]; 3], hi: [&[f64]; 3], keep: &mut [bool]) {
+        let len = keep.len();
+        if !self.all_slab {
+            keep.fill(true);
+            return;
+        }
+        // Per axis, the planes the segment enters and leaves through.
+        let pick =
+            |k: usize| if self.negative[k] { (&hi[k][..len], &lo[k][..len]) } else { (&lo[k][..len], &hi[k][..len]) };
+        let ((nx, fx), (ny, fy), (nz, fz)) = (pick(0), pick(1), pick(2));
+        let (o, inv, slack) = (self.o, self.inv, self.slack);
+        for i in 0..len {
+            let mut enter = 0.0f64;
+            let mut exit = 1.0f64;
+            for (k, (near, far)) in [(nx[i], fx[i]), (ny[i], fy[i]), (nz[i], fz[i])].into_iter().enumerate() {
+                let tn = (near - o[k]) * inv[k];
+                let tf = (far - o[k]) * inv[k];
+                enter = if tn > enter { tn } else { enter };
+                exit = if tf < exit { tf } else { exit };
+            }
+            keep[i] = enter <= exit + slack;
+        }
+    }
+}
+
 /// Relative slack of the sphere culling, `8ε` of the type (16 units of
 /// roundoff). Reason: a face's distance and a box's distance are each computed
 /// by [`stable_norm`] (one division and one multiplication by the largest

@@ -32,7 +32,7 @@
 //!   lecture's [`intersect_segment_mesh_lecture`]), answering a
 //!   [`MeshIntersection`] whose [`MeshHit`] names the face;
 //! - many segments against one mesh at once ([`intersect_segments_mesh`] over
-//!   a mesh's [`FaceArrays`]): every face, a box test in packed lanes first;
+//!   a mesh's [`FaceArrays`]): every face, its box culled in packed lanes first;
 //!   each answer the same bits as [`intersect_segment_mesh_brute`]'s;
 //! - sphere–mesh contact, the deepest over the faces
 //!   ([`contact_sphere_mesh_brute`], [`contact_sphere_mesh_culled`],
