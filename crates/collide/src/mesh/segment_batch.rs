@@ -54,9 +54,9 @@ impl<T: Real> FaceArrays<T> {
             let v: [P3; 3] = tri.vertices.map(|p| [p.x.wide(), p.y.wide(), p.z.wide()]);
             arrays.filter_ok &= v.iter().flatten().all(|x| x.abs() <= FILTER_MAX_COORD);
             let f = FaceFilter::new(v);
-            for k in 0..3 {
-                arrays.lo[k].push(v[0][k].min(v[1][k]).min(v[2][k]));
-                arrays.hi[k].push(v[0][k].max(v[1][k]).max(v[2][k]));
+            for (k, (lo, hi)) in arrays.lo.iter_mut().zip(&mut arrays.hi).enumerate() {
+                lo.push(v[0][k].min(v[1][k]).min(v[2][k]));
+                hi.push(v[0][k].max(v[1][k]).max(v[2][k]));
             }
             arrays.face.push(i);
             arrays.filters.push(f);
