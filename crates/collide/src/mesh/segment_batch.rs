@@ -99,8 +99,8 @@ impl<T: Real> FaceArrays<T> {
 /// segment enters and leaves each box, with a slack for rounding), or, for a
 /// segment with a coordinate the same at both ends, the exact overlap of the
 /// two boxes. A face whose box the segment certainly misses cannot be hit
-/// and is not looked at again — all but a few dozen faces, for most
-/// segments. The faces kept go one at a time through the BVH query's
+/// and is not looked at again — most faces of a mesh, for most segments.
+/// The faces kept go one at a time through the BVH query's
 /// floating-point filter and, where it cannot decide, the exact test, and
 /// the hits are ordered exactly as the other variants order them. The filter
 /// is used when every coordinate is at most 2^60 in magnitude; a segment
