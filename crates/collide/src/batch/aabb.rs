@@ -1,29 +1,21 @@
 //! Boxes against boxes, over arrays: the broad phase's overlap test.
 
+use super::columns::Columns;
 #[cfg(test)]
 use crate::bounds::test_aabb_aabb;
 use crate::real::{Real, Vec3};
 use crate::shapes::Aabb;
 
 /// Axis-aligned boxes as a structure of arrays: box `i` spans
-/// `[min_x[i], max_x[i]] × [min_y[i], max_y[i]] × [min_z[i], max_z[i]]`. The
-/// six arrays have the same length (every constructor keeps them so; a caller
-/// filling the fields by hand must too — the batch functions use the
-/// shortest).
+/// `[min_x[i], max_x[i]] × [min_y[i], max_y[i]] × [min_z[i], max_z[i]]`, each
+/// coordinate an array of its own ([`min_x`](Self::min_x) …). The six arrays
+/// share one allocation, their starts staggered (see `columns.rs`) so that
+/// the batch loop's twelve streams do not evict each other from the cache
+/// whatever the number of boxes.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Aabbs<T: Real> {
-    /// Lower corners' `x`.
-    pub min_x: Vec<T>,
-    /// Lower corners' `y`.
-    pub min_y: Vec<T>,
-    /// Lower corners' `z`.
-    pub min_z: Vec<T>,
-    /// Upper corners' `x`.
-    pub max_x: Vec<T>,
-    /// Upper corners' `y`.
-    pub max_y: Vec<T>,
-    /// Upper corners' `z`.
-    pub max_z: Vec<T>,
+    /// `min_x, min_y, min_z, max_x, max_y, max_z`.
+    cols: Columns<T, 6>,
 }
 
 impl<T: Real> Aabbs<T> {
@@ -32,23 +24,19 @@ impl<T: Real> Aabbs<T> {
         Self::default()
     }
 
-    /// Appends a box.
-    pub fn push(&mut self, b: &Aabb<T>) {
-        self.min_x.push(b.min.x);
-        self.min_y.push(b.min.y);
-        self.min_z.push(b.min.z);
-        self.max_x.push(b.max.x);
-        self.max_y.push(b.max.y);
-        self.max_z.push(b.max.z);
+    /// No boxes, room for `n`.
+    pub fn with_capacity(n: usize) -> Self {
+        Self { cols: Columns::with_capacity(n) }
     }
 
-    /// The number of boxes (the shortest array's length).
+    /// Appends a box.
+    pub fn push(&mut self, b: &Aabb<T>) {
+        self.cols.push([b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z]);
+    }
+
+    /// The number of boxes.
     pub fn len(&self) -> usize {
-        [&self.min_x, &self.min_y, &self.min_z, &self.max_x, &self.max_y, &self.max_z]
-            .iter()
-            .map(|v| v.len())
-            .min()
-            .unwrap_or(0)
+        self.cols.len()
     }
 
     /// Whether there are no boxes.
@@ -58,21 +46,53 @@ impl<T: Real> Aabbs<T> {
 
     /// Box `i`, or `None` past the end.
     pub fn get(&self, i: usize) -> Option<Aabb<T>> {
-        let min = Vec3::new(*self.min_x.get(i)?, *self.min_y.get(i)?, *self.min_z.get(i)?);
-        let max = Vec3::new(*self.max_x.get(i)?, *self.max_y.get(i)?, *self.max_z.get(i)?);
+        let [x0, y0, z0, x1, y1, z1] = self.cols.cols();
+        let min = Vec3::new(*x0.get(i)?, *y0.get(i)?, *z0.get(i)?);
+        let max = Vec3::new(*x1.get(i)?, *y1.get(i)?, *z1.get(i)?);
         Some(Aabb { min, max })
+    }
+
+    /// Lower corners' `x`.
+    pub fn min_x(&self) -> &[T] {
+        self.cols.col(0)
+    }
+
+    /// Lower corners' `y`.
+    pub fn min_y(&self) -> &[T] {
+        self.cols.col(1)
+    }
+
+    /// Lower corners' `z`.
+    pub fn min_z(&self) -> &[T] {
+        self.cols.col(2)
+    }
+
+    /// Upper corners' `x`.
+    pub fn max_x(&self) -> &[T] {
+        self.cols.col(3)
+    }
+
+    /// Upper corners' `y`.
+    pub fn max_y(&self) -> &[T] {
+        self.cols.col(4)
+    }
+
+    /// Upper corners' `z`.
+    pub fn max_z(&self) -> &[T] {
+        self.cols.col(5)
     }
 
     /// The six arrays cut to the first `n` boxes, in the order
     /// `min_x, min_y, min_z, max_x, max_y, max_z`.
     fn lanes(&self, n: usize) -> [&[T]; 6] {
-        [&self.min_x[..n], &self.min_y[..n], &self.min_z[..n], &self.max_x[..n], &self.max_y[..n], &self.max_z[..n]]
+        self.cols.cols().map(|c| &c[..n])
     }
 }
 
 impl<'a, T: Real> FromIterator<&'a Aabb<T>> for Aabbs<T> {
     fn from_iter<I: IntoIterator<Item = &'a Aabb<T>>>(iter: I) -> Self {
-        let mut s = Aabbs::new();
+        let iter = iter.into_iter();
+        let mut s = Aabbs::with_capacity(iter.size_hint().0);
         for b in iter {
             s.push(b);
         }
@@ -196,10 +216,9 @@ mod tests {
     }
 
     #[test]
-    fn arrays_of_unequal_length_use_the_shortest() {
+    fn batches_of_unequal_length_use_the_shorter() {
         let unit = Aabb { min: Vec3::new(0.0, 0.0, 0.0), max: Vec3::new(1.0, 1.0, 1.0) };
-        let mut a: Aabbs<f64> = [unit, unit, unit].iter().collect();
-        a.max_z.pop();
+        let a: Aabbs<f64> = [unit, unit].iter().collect();
         assert_eq!(a.len(), 2);
         let b: Aabbs<f64> = [unit, unit, unit].iter().collect();
         let mut out = Vec::new();

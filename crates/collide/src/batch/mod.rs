@@ -18,6 +18,13 @@
 //! nearly concentric ones that certainly touch) is answered afterwards by the
 //! one-pair function itself.
 //!
+//! Each batch type keeps its arrays in one allocation, their starts
+//! staggered modulo 4 KiB (`columns.rs`): arrays allocated one by one at a
+//! power-of-two length start at the same offset in their pages, and a loop
+//! reading a dozen of them at once then evicts its own lines from the L1
+//! cache (the box batch ran at 2.2 ns per pair that way, 1.3 staggered, on
+//! the same data).
+//!
 //! Boxes ([`Aabbs`]) come the same way: [`test_aabbs_aabbs`] pairwise and
 //! [`test_aabb_aabbs`] one box against many (the broad phase), the same six
 //! comparisons as [`crate::bounds::test_aabb_aabb`] per lane.
@@ -29,6 +36,7 @@
 //! one-at-a-time loop, `cargo bench --bench mesh` the segment batch.
 
 mod aabb;
+mod columns;
 mod sphere_sphere;
 
 pub use crate::mesh::{FaceArrays, intersect_segments_mesh};

@@ -6,49 +6,37 @@ use crate::real::{Real, Vec3};
 use crate::shapes::Sphere;
 use core::ops::Range;
 
+use super::columns::Columns;
+
 /// Spheres as a structure of arrays: sphere `i` is centred at
-/// `(x[i], y[i], z[i])` with radius `radius[i]`. The four arrays have the same
-/// length (every constructor keeps them so; a caller filling the fields by
-/// hand must too — the batch functions use the shortest).
+/// `(x[i], y[i], z[i])` with radius `radius[i]`, each an array of its own
+/// ([`x`](Self::x) …), in one allocation with staggered starts (see
+/// `columns.rs`).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Spheres<T: Real> {
-    /// Centres' `x`.
-    pub x: Vec<T>,
-    /// Centres' `y`.
-    pub y: Vec<T>,
-    /// Centres' `z`.
-    pub z: Vec<T>,
-    /// Radii.
-    pub radius: Vec<T>,
+    /// `x, y, z, radius`.
+    cols: Columns<T, 4>,
 }
 
 impl<T: Real> Spheres<T> {
     /// No spheres.
     pub fn new() -> Self {
-        Self { x: Vec::new(), y: Vec::new(), z: Vec::new(), radius: Vec::new() }
+        Self::default()
     }
 
     /// No spheres, room for `n`.
     pub fn with_capacity(n: usize) -> Self {
-        Self {
-            x: Vec::with_capacity(n),
-            y: Vec::with_capacity(n),
-            z: Vec::with_capacity(n),
-            radius: Vec::with_capacity(n),
-        }
+        Self { cols: Columns::with_capacity(n) }
     }
 
     /// Appends a sphere.
     pub fn push(&mut self, s: &Sphere<T>) {
-        self.x.push(s.center.x);
-        self.y.push(s.center.y);
-        self.z.push(s.center.z);
-        self.radius.push(s.radius);
+        self.cols.push([s.center.x, s.center.y, s.center.z, s.radius]);
     }
 
-    /// The number of spheres (the shortest array's length).
+    /// The number of spheres.
     pub fn len(&self) -> usize {
-        self.x.len().min(self.y.len()).min(self.z.len()).min(self.radius.len())
+        self.cols.len()
     }
 
     /// Whether there are no spheres.
@@ -58,13 +46,40 @@ impl<T: Real> Spheres<T> {
 
     /// Sphere `i`, or `None` past the end.
     pub fn get(&self, i: usize) -> Option<Sphere<T>> {
-        Some(Sphere::new(Vec3::new(*self.x.get(i)?, *self.y.get(i)?, *self.z.get(i)?), *self.radius.get(i)?))
+        let [x, y, z, r] = self.cols.cols();
+        Some(Sphere::new(Vec3::new(*x.get(i)?, *y.get(i)?, *z.get(i)?), *r.get(i)?))
+    }
+
+    /// Centres' `x`.
+    pub fn x(&self) -> &[T] {
+        self.cols.col(0)
+    }
+
+    /// Centres' `y`.
+    pub fn y(&self) -> &[T] {
+        self.cols.col(1)
+    }
+
+    /// Centres' `z`.
+    pub fn z(&self) -> &[T] {
+        self.cols.col(2)
+    }
+
+    /// Radii.
+    pub fn radius(&self) -> &[T] {
+        self.cols.col(3)
+    }
+
+    /// The four arrays cut to the first `n` spheres: `x, y, z, radius`.
+    fn lanes(&self, n: usize) -> [&[T]; 4] {
+        self.cols.cols().map(|c| &c[..n])
     }
 }
 
 impl<'a, T: Real> FromIterator<&'a Sphere<T>> for Spheres<T> {
     fn from_iter<I: IntoIterator<Item = &'a Sphere<T>>>(iter: I) -> Self {
-        let mut s = Spheres::new();
+        let iter = iter.into_iter();
+        let mut s = Spheres::with_capacity(iter.size_hint().0);
         for x in iter {
             s.push(x);
         }
@@ -73,30 +88,19 @@ impl<'a, T: Real> FromIterator<&'a Sphere<T>> for Spheres<T> {
 }
 
 /// The answers of [`contact_spheres_spheres`], as a structure of arrays: pair
-/// `i` is in contact when `hit[i]`, and then its [`Contact`] is
-/// `{point: (point_x[i], point_y[i], point_z[i]), normal: (normal_x[i], …),
-/// depth: depth[i], degenerate: degenerate[i]}`; for a pair not in contact
-/// every number is 0 and `degenerate` false.
+/// `i` is in contact when `hit()[i]`, and then its [`Contact`] is
+/// `{point: (point_x()[i], point_y()[i], point_z()[i]), normal: (normal_x()[i],
+/// …), depth: depth()[i], degenerate: degenerate()[i]}`; for a pair not in
+/// contact every number is 0 and `degenerate` false. The seven number arrays
+/// share one allocation with staggered starts (see `columns.rs`).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SphereContacts<T: Real> {
     /// Whether pair `i` touches or overlaps.
-    pub hit: Vec<bool>,
-    /// Contact points' `x` (on sphere `b[i]`).
-    pub point_x: Vec<T>,
-    /// Contact points' `y`.
-    pub point_y: Vec<T>,
-    /// Contact points' `z`.
-    pub point_z: Vec<T>,
-    /// Normals' `x` (unit, from `b[i]` toward `a[i]`).
-    pub normal_x: Vec<T>,
-    /// Normals' `y`.
-    pub normal_y: Vec<T>,
-    /// Normals' `z`.
-    pub normal_z: Vec<T>,
-    /// Penetration depths.
-    pub depth: Vec<T>,
+    hit: Vec<bool>,
+    /// `point_x, point_y, point_z, normal_x, normal_y, normal_z, depth`.
+    cols: Columns<T, 7>,
     /// The normal is a fallback (see [`contact_sphere_sphere`]).
-    pub degenerate: Vec<bool>,
+    degenerate: Vec<bool>,
 }
 
 impl<T: Real> SphereContacts<T> {
@@ -121,28 +125,64 @@ impl<T: Real> SphereContacts<T> {
         if !*self.hit.get(i)? {
             return None;
         }
+        let [px, py, pz, nx, ny, nz, depth] = self.cols.cols();
         Some(Contact {
-            point: Vec3::new(self.point_x[i], self.point_y[i], self.point_z[i]),
-            normal: Vec3::new(self.normal_x[i], self.normal_y[i], self.normal_z[i]),
-            depth: self.depth[i],
+            point: Vec3::new(px[i], py[i], pz[i]),
+            normal: Vec3::new(nx[i], ny[i], nz[i]),
+            depth: depth[i],
             degenerate: self.degenerate[i],
         })
+    }
+
+    /// Whether each pair touches or overlaps.
+    pub fn hit(&self) -> &[bool] {
+        &self.hit
+    }
+
+    /// Contact points' `x` (on sphere `b[i]`).
+    pub fn point_x(&self) -> &[T] {
+        self.cols.col(0)
+    }
+
+    /// Contact points' `y`.
+    pub fn point_y(&self) -> &[T] {
+        self.cols.col(1)
+    }
+
+    /// Contact points' `z`.
+    pub fn point_z(&self) -> &[T] {
+        self.cols.col(2)
+    }
+
+    /// Normals' `x` (unit, from `b[i]` toward `a[i]`).
+    pub fn normal_x(&self) -> &[T] {
+        self.cols.col(3)
+    }
+
+    /// Normals' `y`.
+    pub fn normal_y(&self) -> &[T] {
+        self.cols.col(4)
+    }
+
+    /// Normals' `z`.
+    pub fn normal_z(&self) -> &[T] {
+        self.cols.col(5)
+    }
+
+    /// Penetration depths.
+    pub fn depth(&self) -> &[T] {
+        self.cols.col(6)
+    }
+
+    /// Whether each pair's normal is a fallback (see [`contact_sphere_sphere`]).
+    pub fn degenerate(&self) -> &[bool] {
+        &self.degenerate
     }
 
     fn resize(&mut self, n: usize) {
         self.hit.resize(n, false);
         self.degenerate.resize(n, false);
-        for v in [
-            &mut self.point_x,
-            &mut self.point_y,
-            &mut self.point_z,
-            &mut self.normal_x,
-            &mut self.normal_y,
-            &mut self.normal_z,
-            &mut self.depth,
-        ] {
-            v.resize(n, T::zero());
-        }
+        self.cols.resize(n);
     }
 
     fn set(&mut self, i: usize, k: Option<Contact<T>>) {
@@ -150,13 +190,9 @@ impl<T: Real> SphereContacts<T> {
             (true, [k.point.x, k.point.y, k.point.z, k.normal.x, k.normal.y, k.normal.z, k.depth], k.degenerate)
         });
         self.hit[i] = k.0;
-        self.point_x[i] = k.1[0];
-        self.point_y[i] = k.1[1];
-        self.point_z[i] = k.1[2];
-        self.normal_x[i] = k.1[3];
-        self.normal_y[i] = k.1[4];
-        self.normal_z[i] = k.1[5];
-        self.depth[i] = k.1[6];
+        for (col, x) in self.cols.cols_mut().into_iter().zip(k.1) {
+            col[i] = x;
+        }
         self.degenerate[i] = k.2;
     }
 }
@@ -195,9 +231,10 @@ fn select<T: Real>(keep: bool, x: T) -> T {
 pub fn contact_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mut SphereContacts<T>) {
     let n = a.len().min(b.len());
     out.resize(n);
-    let (ax, ay, az, ar) = (&a.x[..n], &a.y[..n], &a.z[..n], &a.radius[..n]);
-    let (bx, by, bz, br) = (&b.x[..n], &b.y[..n], &b.z[..n], &b.radius[..n]);
+    let [ax, ay, az, ar] = a.lanes(n);
+    let [bx, by, bz, br] = b.lanes(n);
     for r in blocks(n) {
+        let [px, py, pz, nx, ny, nz, depth] = out.cols.cols_mut();
         let slow = contact_lanes(
             &ax[r.clone()],
             &ay[r.clone()],
@@ -209,13 +246,13 @@ pub fn contact_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mu
             &br[r.clone()],
             &mut out.hit[r.clone()],
             &mut out.degenerate[r.clone()],
-            &mut out.point_x[r.clone()],
-            &mut out.point_y[r.clone()],
-            &mut out.point_z[r.clone()],
-            &mut out.normal_x[r.clone()],
-            &mut out.normal_y[r.clone()],
-            &mut out.normal_z[r.clone()],
-            &mut out.depth[r.clone()],
+            &mut px[r.clone()],
+            &mut py[r.clone()],
+            &mut pz[r.clone()],
+            &mut nx[r.clone()],
+            &mut ny[r.clone()],
+            &mut nz[r.clone()],
+            &mut depth[r.clone()],
         );
         // Second pass, if needed: this block's lanes the first pass left
         // open (outside the fast range, not concentric), one at a time.
@@ -374,8 +411,8 @@ fn near_concentric_reach<T: Real>() -> T {
 pub fn test_spheres_spheres<T: Real>(a: &Spheres<T>, b: &Spheres<T>, out: &mut Vec<bool>) {
     let n = a.len().min(b.len());
     out.resize(n, false);
-    let (ax, ay, az, ar) = (&a.x[..n], &a.y[..n], &a.z[..n], &a.radius[..n]);
-    let (bx, by, bz, br) = (&b.x[..n], &b.y[..n], &b.z[..n], &b.radius[..n]);
+    let [ax, ay, az, ar] = a.lanes(n);
+    let [bx, by, bz, br] = b.lanes(n);
     let hit = &mut out[..n];
     for r in blocks(n) {
         let slow = test_lanes(
@@ -478,7 +515,7 @@ mod tests {
             prop_assert!(same(out.get(i), one), "pair {i}: batch {:?}, one {:?}", out.get(i), one);
             prop_assert_eq!(tests[i], one.is_some(), "test of pair {}", i);
             if one.is_none() {
-                prop_assert!(out.depth[i].wide().to_bits() == 0 && out.normal_x[i].wide().to_bits() == 0, "zeroed");
+                prop_assert!(out.depth()[i].wide().to_bits() == 0 && out.normal_x()[i].wide().to_bits() == 0, "zeroed");
             }
         }
         Ok(())
@@ -607,7 +644,7 @@ mod tests {
         let b: Spheres<f64> = pairs.iter().map(|p| &p.1).collect();
         let mut out = SphereContacts::new();
         contact_spheres_spheres(&a, &b, &mut out);
-        assert_eq!(out.hit, vec![true, true, false, false]);
-        assert!(out.degenerate[1] && !out.degenerate[0]);
+        assert_eq!(out.hit(), &[true, true, false, false]);
+        assert!(out.degenerate()[1] && !out.degenerate()[0]);
     }
 }
