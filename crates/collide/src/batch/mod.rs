@@ -36,7 +36,7 @@
 //! one-at-a-time loop, `cargo bench --bench mesh` the segment batch.
 
 mod aabb;
-mod columns;
+pub(crate) mod columns;
 mod sphere_sphere;
 
 pub use crate::mesh::{FaceArrays, intersect_segments_mesh};

@@ -6,6 +6,7 @@ use super::filter::{FILTER_MAX_COORD, FaceFilter, SegmentFilter};
 use super::hit::MeshIntersection;
 use super::segment_mesh::{Candidate, brute, filtered_face, finish, prepare};
 use super::trimesh::TriMesh;
+use crate::batch::columns::Columns;
 use crate::exact::P3;
 use crate::real::{Real, Vec3};
 use crate::shapes::{Segment, Triangle};
@@ -24,10 +25,11 @@ pub struct FaceArrays<T: Real> {
     mesh: TriMesh<T>,
     /// Per lane: the mesh's face index.
     face: Vec<usize>,
-    /// Per lane: the face's box, `lo[k] ≤ v[i][k] ≤ hi[k]` (exact: the
-    /// vertices' least and greatest coordinates).
-    lo: [Vec<f64>; 3],
-    hi: [Vec<f64>; 3],
+    /// Per lane: the face's box, `lo_k ≤ v[i][k] ≤ hi_k` (exact: the
+    /// vertices' least and greatest coordinates), as the columns
+    /// `lo_x, lo_y, lo_z, hi_x, hi_y, hi_z` (one allocation, staggered: see
+    /// `crate::batch::columns`).
+    boxes: Columns<f64, 6>,
     /// Per lane: the face's filter data (vertices, normal, permanents).
     filters: Vec<FaceFilter>,
     /// Per lane: the face as a triangle.
@@ -42,8 +44,7 @@ impl<T: Real> FaceArrays<T> {
     pub fn new(mesh: TriMesh<T>) -> Self {
         let mut arrays = Self {
             face: Vec::new(),
-            lo: Default::default(),
-            hi: Default::default(),
+            boxes: Columns::default(),
             filters: Vec::new(),
             tris: Vec::new(),
             filter_ok: true,
@@ -54,10 +55,9 @@ impl<T: Real> FaceArrays<T> {
             let v: [P3; 3] = tri.vertices.map(|p| [p.x.wide(), p.y.wide(), p.z.wide()]);
             arrays.filter_ok &= v.iter().flatten().all(|x| x.abs() <= FILTER_MAX_COORD);
             let f = FaceFilter::new(v);
-            for (k, (lo, hi)) in arrays.lo.iter_mut().zip(&mut arrays.hi).enumerate() {
-                lo.push(v[0][k].min(v[1][k]).min(v[2][k]));
-                hi.push(v[0][k].max(v[1][k]).max(v[2][k]));
-            }
+            let lo = |k: usize| v[0][k].min(v[1][k]).min(v[2][k]);
+            let hi = |k: usize| v[0][k].max(v[1][k]).max(v[2][k]);
+            arrays.boxes.push([lo(0), lo(1), lo(2), hi(0), hi(1), hi(2)]);
             arrays.face.push(i);
             arrays.filters.push(f);
             arrays.tris.push(tri);
@@ -145,12 +145,13 @@ pub fn intersect_segments_mesh<T: Real>(
         let mut start = 0;
         while start < n {
             let end = (start + BLOCK).min(n);
-            let cut = |x| block(x, start, end);
+            let [lx, ly, lz, hx, hy, hz] = faces.boxes.cols().map(|c| &c[start..end]);
+            let (lo, hi) = ([lx, ly, lz], [hx, hy, hz]);
             let kept = &mut keep[..end - start];
             if probe.all_slab() {
-                cull_lanes(&probe, cut(&faces.lo), cut(&faces.hi), kept);
+                cull_lanes(&probe, lo, hi, kept);
             } else {
-                box_lanes(q, cut(&faces.lo), cut(&faces.hi), kept);
+                box_lanes(q, lo, hi, kept);
             }
             for (j, _) in kept.iter().enumerate().filter(|(_, k)| **k) {
                 let k = start + j;
@@ -189,12 +190,6 @@ fn box_lanes(q: [P3; 2], lo: [&[f64]; 3], hi: [&[f64]; 3], keep: &mut [bool]) {
             & (hy[i] >= smin[1])
             & (hz[i] >= smin[2]);
     }
-}
-
-/// Lanes `start..end` of three arrays.
-#[inline(always)]
-fn block(x: &[Vec<f64>; 3], start: usize, end: usize) -> [&[f64]; 3] {
-    [&x[0][start..end], &x[1][start..end], &x[2][start..end]]
 }
 
 /// The first `len` lanes of three arrays.
