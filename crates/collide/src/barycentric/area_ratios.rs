@@ -190,6 +190,12 @@ pub(super) fn fast_ratios<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, accuracy: f64
 /// ([`Fast::Filter`] or [`Fast::Exact`]): the scaled filter, then the exact
 /// path, or the exact path at once. Inputs must be finite.
 pub(super) fn slow_ratios<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, accuracy: f64, miss: Fast) -> Option<Ratios> {
+    // Two coincident vertices: zero area, certainly, with no arithmetic (the
+    // exact path would find `D = 0` too, after an exact evaluation).
+    let [v0, v1, v2] = tri.vertices;
+    if v0 == v1 || v1 == v2 || v2 == v0 {
+        return None;
+    }
     if let Fast::Filter = miss {
         let v = [to_f64_3(&tri.vertices[0]), to_f64_3(&tri.vertices[1]), to_f64_3(&tri.vertices[2])];
         if let Some(r) = filtered(&to_f64_3(p), &v, filter_target(accuracy)) {

@@ -172,13 +172,6 @@ fn slow<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, accuracy: f64, miss: Fast) -> B
     if !(finite3(p) && tri.vertices.iter().all(finite3)) {
         return fallback();
     }
-    // Two coincident vertices: zero area, certainly, with no arithmetic (the
-    // exact path would find `D = 0` and answer the same fallback, at the
-    // cost of an exact evaluation).
-    let [v0, v1, v2] = tri.vertices;
-    if v0 == v1 || v1 == v2 || v2 == v0 {
-        return fallback();
-    }
     let Some(r) = slow_ratios(p, tri, accuracy, miss) else {
         return fallback();
     };

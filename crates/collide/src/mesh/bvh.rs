@@ -682,9 +682,7 @@ impl SegmentProbe<f64> {
         let entry = |j: usize| if enter[j] <= exit[j] + slack { enter[j] - slack } else { f64::INFINITY };
         [entry(0), entry(1)]
     }
-}
 
-impl SegmentProbe<f64> {
     /// Whether every axis is a usual slab ([`entry`](Self::entry)'s
     /// branch-free case): [`keep_lanes`](Self::keep_lanes) needs it.
     pub(crate) fn all_slab(&self) -> bool {
