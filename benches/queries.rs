@@ -325,7 +325,11 @@ fn batches(cases: &Cases) -> Vec<BatchRow> {
     }));
     let row = |label, ids, cost| BatchRow { group: "sphere_sphere_batch", label, per_iter: PER_QUERY, ids, cost };
     vec![
-        row("sphere–sphere contact, f64", ("loop_contact_f64", "batch_contact_f64"), Some(cost)),
+        row(
+            "sphere–sphere contact, f64",
+            ("loop_contact_f64", "batch_contact_f64"),
+            Some(cost.reading(input_bytes("sphere_sphere"))),
+        ),
         row("sphere–sphere contact, f32", ("loop_contact_f32", "batch_contact_f32"), None),
         row("sphere–sphere overlap test, f64", ("loop_test_f64", "batch_test_f64"), None),
         row("sphere–sphere overlap test, f32", ("loop_test_f32", "batch_test_f32"), None),
@@ -334,7 +338,7 @@ fn batches(cases: &Cases) -> Vec<BatchRow> {
             label: "AABB overlap, f64",
             per_iter: PER_QUERY,
             ids: ("loop_f64", "batch_f64"),
-            cost: Some(cost::AABB_OVERLAP),
+            cost: Some(cost::AABB_OVERLAP.reading(input_bytes("overlap"))),
         },
         BatchRow {
             group: "overlap",
