@@ -82,10 +82,10 @@ impl<T: Real> Aabbs<T> {
         self.cols.col(5)
     }
 
-    /// The six arrays cut to the first `n` boxes, in the order
+    /// The six arrays cut to boxes `range`, in the order
     /// `min_x, min_y, min_z, max_x, max_y, max_z`.
-    fn lanes(&self, n: usize) -> [&[T]; 6] {
-        self.cols.cols().map(|c| &c[..n])
+    pub(crate) fn lanes(&self, range: core::ops::Range<usize>) -> [&[T]; 6] {
+        self.cols.cols().map(|c| &c[range.clone()])
     }
 }
 
@@ -120,8 +120,8 @@ impl<'a, T: Real> FromIterator<&'a Aabb<T>> for Aabbs<T> {
 pub fn test_aabbs_aabbs<T: Real>(a: &Aabbs<T>, b: &Aabbs<T>, out: &mut Vec<bool>) {
     let n = a.len().min(b.len());
     out.resize(n, false);
-    let [ax0, ay0, az0, ax1, ay1, az1] = a.lanes(n);
-    let [bx0, by0, bz0, bx1, by1, bz1] = b.lanes(n);
+    let [ax0, ay0, az0, ax1, ay1, az1] = a.lanes(0..n);
+    let [bx0, by0, bz0, bx1, by1, bz1] = b.lanes(0..n);
     for (i, o) in out[..n].iter_mut().enumerate() {
         *o = (ax0[i] <= bx1[i])
             & (bx0[i] <= ax1[i])
@@ -140,9 +140,19 @@ pub fn test_aabbs_aabbs<T: Real>(a: &Aabbs<T>, b: &Aabbs<T>, out: &mut Vec<bool>
 pub fn test_aabb_aabbs<T: Real>(one: &Aabb<T>, many: &Aabbs<T>, out: &mut Vec<bool>) {
     let n = many.len();
     out.resize(n, false);
-    let [x0, y0, z0, x1, y1, z1] = many.lanes(n);
+    overlap_lanes(one, many.lanes(0..n), &mut out[..n]);
+}
+
+/// [`test_aabb_aabbs`]'s loop over lanes: `out[i]` is whether `one` overlaps
+/// box `i` of the arrays `min_x, min_y, min_z, max_x, max_y, max_z` (each
+/// cut to `out`'s length first: no bounds checks in the loop). Also the box
+/// pass of the segments–mesh batch.
+#[inline(always)]
+pub(crate) fn overlap_lanes<T: Real>(one: &Aabb<T>, lanes: [&[T]; 6], out: &mut [bool]) {
+    let n = out.len();
+    let [x0, y0, z0, x1, y1, z1] = lanes.map(|c| &c[..n]);
     let (lo, hi) = (one.min, one.max);
-    for (i, o) in out[..n].iter_mut().enumerate() {
+    for (i, o) in out.iter_mut().enumerate() {
         *o = (lo.x <= x1[i]) & (x0[i] <= hi.x) & (lo.y <= y1[i]) & (y0[i] <= hi.y) & (lo.z <= z1[i]) & (z0[i] <= hi.z);
     }
 }

@@ -35,8 +35,8 @@
 //! `cargo bench --bench queries` measures the pair batches against the
 //! one-at-a-time loop, `cargo bench --bench mesh` the segment batch.
 
-mod aabb;
-pub(crate) mod columns;
+pub(crate) mod aabb;
+mod columns;
 mod sphere_sphere;
 
 pub use crate::mesh::{FaceArrays, intersect_segments_mesh};

@@ -693,9 +693,10 @@ impl SegmentProbe<f64> {
     /// of whose axes are slabs ([`all_slab`](Self::all_slab); else every
     /// lane is kept): `keep[i]` is false when the segment certainly misses
     /// box `i` (`lo[k][i] ≤ x_k ≤ hi[k][i]`). The same arithmetic, slack and
-    /// analysis, without a branch, so that the loop vectorizes; every array
-    /// is cut to `keep`'s length first (no bounds checks in the loop).
-    #[inline(always)]
+    /// analysis, without a branch, so that the loop vectorizes (out of line,
+    /// a function of its own); every array is cut to `keep`'s length first
+    /// (no bounds checks in the loop).
+    #[inline(never)]
     pub(crate) fn keep_lanes(&self, lo: [&[f64]; 3], hi: [&[f64]; 3], keep: &mut [bool]) {
         let len = keep.len();
         if !self.all_slab {

@@ -6,10 +6,11 @@ use super::filter::{FILTER_MAX_COORD, FaceFilter, SegmentFilter};
 use super::hit::MeshIntersection;
 use super::segment_mesh::{Candidate, brute, filtered_face, finish, prepare};
 use super::trimesh::TriMesh;
-use crate::batch::columns::Columns;
+use crate::batch::Aabbs;
+use crate::batch::aabb::overlap_lanes;
 use crate::exact::P3;
 use crate::real::{Real, Vec3};
-use crate::shapes::{Segment, Triangle};
+use crate::shapes::{Aabb, Segment, Triangle};
 
 /// Faces per block of the lane pass: the lanes' keep flags of one block fit
 /// in 64 bytes (one cache line), on the stack.
@@ -25,11 +26,9 @@ pub struct FaceArrays<T: Real> {
     mesh: TriMesh<T>,
     /// Per lane: the mesh's face index.
     face: Vec<usize>,
-    /// Per lane: the face's box, `lo_k ≤ v[i][k] ≤ hi_k` (exact: the
-    /// vertices' least and greatest coordinates), as the columns
-    /// `lo_x, lo_y, lo_z, hi_x, hi_y, hi_z` (one allocation, staggered: see
-    /// `crate::batch::columns`).
-    boxes: Columns<f64, 6>,
+    /// Per lane: the face's box (exact: the vertices' least and greatest
+    /// coordinates, in `f64`).
+    boxes: Aabbs<f64>,
     /// Per lane: the face's filter data (vertices, normal, permanents).
     filters: Vec<FaceFilter>,
     /// Per lane: the face as a triangle.
@@ -44,7 +43,7 @@ impl<T: Real> FaceArrays<T> {
     pub fn new(mesh: TriMesh<T>) -> Self {
         let mut arrays = Self {
             face: Vec::new(),
-            boxes: Columns::default(),
+            boxes: Aabbs::new(),
             filters: Vec::new(),
             tris: Vec::new(),
             filter_ok: true,
@@ -55,9 +54,7 @@ impl<T: Real> FaceArrays<T> {
             let v: [P3; 3] = tri.vertices.map(|p| [p.x.wide(), p.y.wide(), p.z.wide()]);
             arrays.filter_ok &= v.iter().flatten().all(|x| x.abs() <= FILTER_MAX_COORD);
             let f = FaceFilter::new(v);
-            let lo = |k: usize| v[0][k].min(v[1][k]).min(v[2][k]);
-            let hi = |k: usize| v[0][k].max(v[1][k]).max(v[2][k]);
-            arrays.boxes.push([lo(0), lo(1), lo(2), hi(0), hi(1), hi(2)]);
+            arrays.boxes.push(&points_box(v));
             arrays.face.push(i);
             arrays.filters.push(f);
             arrays.tris.push(tri);
@@ -140,18 +137,19 @@ pub fn intersect_segments_mesh<T: Real>(
         };
         let v3 = |p: P3| Vec3::new(p[0], p[1], p[2]);
         let probe = SegmentProbe::new(&Segment::new(v3(q0), v3(q1)));
+        let seg_box = points_box([q0, q1]);
         let mut best: Option<Candidate<T>> = None;
         let n = faces.len();
         let mut start = 0;
         while start < n {
             let end = (start + BLOCK).min(n);
-            let [lx, ly, lz, hx, hy, hz] = faces.boxes.cols().map(|c| &c[start..end]);
-            let (lo, hi) = ([lx, ly, lz], [hx, hy, hz]);
+            let lanes = faces.boxes.lanes(start..end);
             let kept = &mut keep[..end - start];
             if probe.all_slab() {
-                cull_lanes(&probe, lo, hi, kept);
+                let [lx, ly, lz, hx, hy, hz] = lanes;
+                probe.keep_lanes([lx, ly, lz], [hx, hy, hz], kept);
             } else {
-                box_lanes(q, lo, hi, kept);
+                box_lanes(&seg_box, lanes, kept);
             }
             for (j, _) in kept.iter().enumerate().filter(|(_, k)| **k) {
                 let k = start + j;
@@ -163,37 +161,19 @@ pub fn intersect_segments_mesh<T: Real>(
     }
 }
 
-/// The slab pass of one block, for a segment with every axis a slab:
-/// `keep[i]` is false when the segment certainly misses face `i`'s box
-/// (the BVH's conservative slab test, `SegmentProbe`, over the lanes).
+/// The box pass of one block, for a segment with a coordinate the same at
+/// both ends: `keep[i]` is whether face `i`'s box meets the segment's
+/// (touching counts; [`overlap_lanes`], out of line so that it vectorizes).
+/// Exact comparisons of exact coordinates: a face the segment hits has the
+/// hit point in both boxes, so no hit is dropped.
 #[inline(never)]
-fn cull_lanes(probe: &SegmentProbe<f64>, lo: [&[f64]; 3], hi: [&[f64]; 3], keep: &mut [bool]) {
-    probe.keep_lanes(lo, hi, keep);
+fn box_lanes(seg_box: &Aabb<f64>, lanes: [&[f64]; 6], keep: &mut [bool]) {
+    overlap_lanes(seg_box, lanes, keep);
 }
 
-/// The box pass of one block: `keep[i]` is whether face `i`'s box meets the
-/// segment's (touching counts). Exact comparisons of exact coordinates: a
-/// face the segment hits has the hit point in both boxes, so no hit is
-/// dropped. Branch-free; a function of its own, with every array cut to the
-/// block's length, so that the loop needs no bounds checks and vectorizes.
-#[inline(never)]
-fn box_lanes(q: [P3; 2], lo: [&[f64]; 3], hi: [&[f64]; 3], keep: &mut [bool]) {
-    let len = keep.len();
-    let ([lx, ly, lz], [hx, hy, hz]) = (prefix(lo, len), prefix(hi, len));
-    let smin = [0, 1, 2].map(|k| q[0][k].min(q[1][k]));
-    let smax = [0, 1, 2].map(|k| q[0][k].max(q[1][k]));
-    for i in 0..len {
-        keep[i] = (lx[i] <= smax[0])
-            & (ly[i] <= smax[1])
-            & (lz[i] <= smax[2])
-            & (hx[i] >= smin[0])
-            & (hy[i] >= smin[1])
-            & (hz[i] >= smin[2]);
-    }
-}
-
-/// The first `len` lanes of three arrays.
-#[inline(always)]
-fn prefix(x: [&[f64]; 3], len: usize) -> [&[f64]; 3] {
-    [&x[0][..len], &x[1][..len], &x[2][..len]]
+/// The box of points given in `f64` (exact: least and greatest coordinates).
+fn points_box<const N: usize>(ps: [P3; N]) -> Aabb<f64> {
+    let lo = [0, 1, 2].map(|k| ps.iter().fold(f64::INFINITY, |m, p| m.min(p[k])));
+    let hi = [0, 1, 2].map(|k| ps.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p[k])));
+    Aabb::new(Vec3::new(lo[0], lo[1], lo[2]), Vec3::new(hi[0], hi[1], hi[2]))
 }
