@@ -2,7 +2,7 @@
 
 use super::time_of_impact::{Toi, ToiStatus, approach_fallback, clamp_t_max};
 use crate::contact::contact_sphere_sphere;
-use crate::exact::norm::{normalize, safe_squared_range};
+use crate::exact::norm::{clear_miss_factor, normalize, safe_squared_range};
 use crate::real::{Real, Vec3, c, stable_norm, try_normalize_stable};
 use crate::shapes::Sphere;
 
@@ -40,9 +40,10 @@ use crate::shapes::Sphere;
 /// comparison with `t_max` decides, and the normal as `(Δp + t Δv)/R` — `1/R`
 /// is known from the start — whenever that is unit to a few ulps (else one
 /// more root and division); the static contact test only for spheres that
-/// already overlap (`c ≤ 0`). Every rare case (out of range, overlapping, a
-/// normal to renormalize) runs out of line from the inputs alone, so the
-/// common path keeps nothing alive for it. Outside that range a scaled path
+/// already overlap or touch within the roundings
+/// (`‖Δp‖² ≤ R²(1 + 8u)`, its own clear-miss threshold). Every rare case (out
+/// of range, touching, a normal to renormalize) runs out of line from the
+/// inputs alone, so the common path keeps nothing alive for it. Outside that range a scaled path
 /// computes the same root from lengths divided by the scene's own scale and
 /// the unit direction of the motion (see `toi_sphere_sphere_scaled`), which
 /// never overflows or underflows spuriously. Measured against parry's
@@ -84,11 +85,15 @@ pub fn toi_sphere_sphere<T: Real>(
     let c = dd - rr;
     let bp = dp.dot(&dv);
     let disc = vv * rr - dp.cross(&dv).norm_squared();
-    // The range and "no impact" (moving apart or sideways, `b' ≥ 0`, or
-    // passing wide, `disc < 0`) tested together (`&`, not `&&`); behind
-    // them, the rare cases: out of range, or already touching by the squares.
-    if !(plain & (c > T::zero()) & (bp < T::zero()) & (disc >= T::zero())) {
-        if !plain | (c <= T::zero()) {
+    // Within the roundings of touching or closer (`‖Δp‖² ≤ R²(1 + 8u)`), the
+    // static test decides whether the spheres are in contact at `t = 0`;
+    // beyond, they are certainly apart (its own clear-miss test).
+    let near = dd <= rr * clear_miss_factor::<T>();
+    // The range, "apart" and "no impact" (moving apart or sideways,
+    // `b' ≥ 0`, or passing wide, `disc < 0`) tested together (`&`, not
+    // `&&`); behind them, the rarer cases.
+    if !(plain & !near & (bp < T::zero()) & (disc >= T::zero())) {
+        if !plain | near {
             return rare(a, va, b, vb, t_max);
         }
         return None;
@@ -128,12 +133,12 @@ fn unit_slack<T: Real>() -> T {
 }
 
 /// The rare cases of [`toi_sphere_sphere`], out of line: squares out of the
-/// plain range, and spheres in contact at `t = 0` by the squares (`c ≤ 0`).
-/// No relative motion (exactly: a square can underflow) is in contact at 0
-/// and for good, or never. Spheres in contact by the static test get
-/// [`ToiStatus::Penetrating`] and the static contact; the rest (a square out
-/// of range, or `c ≤ 0` by a rounding while the static test says apart) take
-/// the scaled path, which decides from lengths.
+/// plain range, and spheres overlapping or within the roundings of touching
+/// (`‖Δp‖² ≤ R²(1 + 8u)`), where the static test decides. No relative motion (exactly: a
+/// square can underflow) is in contact at 0 and for good, or never. Spheres
+/// in contact by the static test get [`ToiStatus::Penetrating`] and the
+/// static contact; the rest take the scaled path, which decides from
+/// lengths.
 #[cold]
 #[inline(never)]
 fn rare<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, t_max: T) -> Option<Toi<T>> {

@@ -698,6 +698,68 @@ fn check_sphere_sphere_at_t_max<T: Real>(s: &Scene) -> Result<(), TestCaseError>
 }
 
 prop_both!(2048, sphere_sphere_keeps_every_impact_at_t_max, scene(), check_sphere_sphere_at_t_max);
+
+/// Two spheres (centre, radius) and their velocities.
+#[derive(Clone, Debug)]
+struct Overlapping {
+    a: ([f64; 3], f64),
+    b: ([f64; 3], f64),
+    va: [f64; 3],
+    vb: [f64; 3],
+}
+
+/// Spheres already in contact, or just apart, at `t = 0`: centre distance
+/// `R (1 + k·2^−50)` for `k` in `[−3, 3]` (touching within a few ulps, either
+/// way) or a fraction of `R` (deep, down to concentric), at scales from
+/// `2^−600` to `2^600`, with any motion.
+fn overlapping() -> impl Strategy<Value = Overlapping> {
+    let dir = [-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64];
+    let vel = || [-4.0..4.0f64, -4.0..4.0f64, -4.0..4.0f64];
+    let ratio = prop_oneof![(-3i32..=3).prop_map(|k| 1.0 + f64::from(k) * 2f64.powi(-50)), 0.0..1.0f64, Just(0.0)];
+    (-600i32..600, dir, vel(), 0.0..1.0f64, ratio, vel(), vel()).prop_map(|(e, dir, b, share, ratio, va, vb)| {
+        let scale = 2f64.powi(e);
+        let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt().max(1e-3);
+        let reach = 2.0 * scale;
+        let gap = ratio * reach / len;
+        let b = b.map(|x| x * scale);
+        let a = std::array::from_fn(|k| b[k] + dir[k] * gap);
+        Overlapping {
+            a: (a, share * reach),
+            b: (b, reach - share * reach),
+            va: va.map(|x| x * scale),
+            vb: vb.map(|x| x * scale),
+        }
+    })
+}
+
+/// Spheres in contact at `t = 0` by the static test get its contact, bit for
+/// bit, with `t = 0` and [`ToiStatus::Penetrating`]; spheres the static test
+/// calls apart are not penetrating. Touching within the roundings decides
+/// both ways: before this check, a pair whose `‖Δp‖²` rounded just above
+/// `R²` while the static test's root came out at `R` was answered "moving
+/// apart, no impact" although the static test said touching.
+fn check_sphere_sphere_start_is_static<T: Real>(s: &Overlapping) -> Result<(), TestCaseError> {
+    let (a, b) = (Sphere::new(vt::<T>(&s.a.0), T::of(s.a.1)), Sphere::new(vt::<T>(&s.b.0), T::of(s.b.1)));
+    let got = toi_sphere_sphere(&a, &vt(&s.va), &b, &vt(&s.vb), T::one());
+    match contact_sphere_sphere(&a, &b) {
+        Some(k) => {
+            let toi = got.expect("in contact at t = 0: an answer");
+            prop_assert!(toi.status == ToiStatus::Penetrating && toi.t == T::zero(), "{toi:?}");
+            prop_assert!(same_bits(&toi.point, &k.point) && same_bits(&toi.normal, &k.normal), "{toi:?} vs {k:?}");
+            prop_assert!(toi.degenerate == k.degenerate, "{toi:?} vs {k:?}");
+        }
+        None => prop_assert!(got.is_none_or(|x| x.status != ToiStatus::Penetrating), "{got:?}"),
+    }
+    Ok(())
+}
+
+/// The claim is that the answer is the static test's, not a recomputation
+/// close to it: bit for bit.
+fn same_bits<T: Real>(got: &Vec3<T>, want: &Vec3<T>) -> bool {
+    got.iter().zip(want.iter()).all(|(g, w)| g.wide().to_bits() == w.wide().to_bits())
+}
+
+prop_both!(1024, sphere_sphere_start_is_the_static_contact, overlapping(), check_sphere_sphere_start_is_static);
 prop_both!(512, sphere_plane_no_contact_before_and_touching_at_t, scene(), check_sphere_plane);
 prop_both!(256, sphere_triangle_no_contact_before_and_touching_at_t, scene(), check_sphere_triangle);
 
