@@ -26,12 +26,14 @@
 //!
 //! The bunny is `fixtures/meshes/bunny.obj` as loaded (no pose). Inputs are
 //! converted to each engine's types before timing; each segment and answer
-//! passes through `black_box`. At the end, a table of ns per query (ms per
+//! passes through `black_box` (the answer by reference: see
+//! `shared/criterion.rs`). At the end, a table of ns per query (ms per
 //! build) with the ratios collide / parry is printed and written to
 //! `target/criterion/crashtest-mesh-table.md`.
 
 #[path = "shared/criterion.rs"]
 mod criterion_files;
+use criterion_files::run;
 #[path = "mesh/table.rs"]
 mod table;
 
@@ -40,8 +42,7 @@ use collide::mesh::{
     FaceArrays, MeshBvh, SplitRule, TriMesh, intersect_segment_mesh_brute, intersect_segment_mesh_bvh,
     intersect_segments_mesh,
 };
-use criterion::measurement::WallTime;
-use criterion::{BatchSize, BenchmarkGroup, Criterion, Throughput};
+use criterion::{BatchSize, Criterion, Throughput};
 use oracle::geom::P3;
 use std::hint::black_box;
 use std::path::Path;
@@ -175,17 +176,6 @@ macro_rules! parry_mesh {
 
 parry_mesh!(p64, parry3d_f64);
 parry_mesh!(p32, parry3d);
-
-/// Times `f` over every input of `inputs` as benchmark `id` of `g`.
-fn run<I, O>(g: &mut BenchmarkGroup<'_, WallTime>, id: &str, inputs: &[I], f: impl Fn(&I) -> O) {
-    g.bench_function(id, |b| {
-        b.iter(|| {
-            for x in inputs {
-                black_box(f(black_box(x)));
-            }
-        })
-    });
-}
 
 fn segment_bunny(c: &mut Criterion, m: &harness::mesh::Mesh, segs: &[(P3, P3)]) {
     let mut g = c.benchmark_group("mesh_segment_bunny");

@@ -7,7 +7,9 @@
 //! misses, touching and near-degenerate cases come in the campaign's
 //! proportions. Every engine's inputs are converted to its own types before
 //! timing; a timed iteration runs the query on every case, each input and
-//! answer passed through `black_box` so that nothing is hoisted or dropped.
+//! answer passed through `black_box` (the answer by reference, where the
+//! query left it: see `shared/criterion.rs`) so that nothing is hoisted or
+//! dropped.
 //!
 //! parry is timed twice: directly (its own calls on inputs already in its
 //! types — see `parry_direct.rs`), which the ratios use, and through
@@ -34,6 +36,7 @@ mod cases;
 mod cost;
 #[path = "shared/criterion.rs"]
 mod criterion_files;
+use criterion_files::run;
 #[path = "queries/parry_direct.rs"]
 mod parry_direct;
 #[path = "queries/peak.rs"]
@@ -63,17 +66,6 @@ const SAMPLES: usize = 20;
 /// Bootstrap resamples of criterion's analysis (its default, 100 000, costs
 /// more time than the measurement here).
 const RESAMPLES: usize = 10_000;
-
-/// Times `f` over every input of `inputs` as benchmark `id` of `g`.
-fn run<I, O>(g: &mut BenchmarkGroup<'_, WallTime>, id: &str, inputs: &[I], f: impl Fn(&I) -> O) {
-    g.bench_function(id, |b| {
-        b.iter(|| {
-            for x in inputs {
-                black_box(f(black_box(x)));
-            }
-        })
-    });
-}
 
 fn group<'a>(c: &'a mut Criterion, name: &str, n: usize) -> BenchmarkGroup<'a, WallTime> {
     let mut g = c.benchmark_group(name);

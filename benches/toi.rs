@@ -20,13 +20,14 @@
 //!
 //! Every engine's inputs are converted to its own types before timing; a timed
 //! iteration runs the query on every case, each input and answer through
-//! `black_box`. At the end a table of ns per query with the ratios is printed
+//! `black_box` (the answer by reference: see `shared/criterion.rs`). At the end a table of ns per query with the ratios is printed
 //! and written to `target/criterion/crashtest-toi-table.md`; the target is
 //! closed-form sphere–sphere toi at most a quarter of parry3d-f64's
 //! `cast_shapes`.
 
 #[path = "shared/criterion.rs"]
 mod criterion_files;
+use criterion_files::run;
 #[path = "toi/table.rs"]
 mod table;
 #[path = "toi/textbook.rs"]
@@ -38,7 +39,6 @@ use harness::case::{Query, Shape};
 use harness::generate::generate;
 use oracle::geom::{self, P3};
 use oracle::parry::{Parry32, Parry64, ParryCast};
-use std::hint::black_box;
 use std::time::{Duration, SystemTime};
 use table::{Row, Target};
 
@@ -215,17 +215,6 @@ macro_rules! parry_cast {
 
 parry_cast!(p64, parry3d_f64);
 parry_cast!(p32, parry3d);
-
-/// Times `f` over every input as benchmark `id` of `g`.
-fn run<I, O>(g: &mut BenchmarkGroup<'_, WallTime>, id: &str, inputs: &[I], f: impl Fn(&I) -> O) {
-    g.bench_function(id, |b| {
-        b.iter(|| {
-            for x in inputs {
-                black_box(f(black_box(x)));
-            }
-        })
-    });
-}
 
 fn group<'a>(c: &'a mut Criterion, name: &str, n: usize) -> BenchmarkGroup<'a, WallTime> {
     let mut g = c.benchmark_group(name);
