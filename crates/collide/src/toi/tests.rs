@@ -760,6 +760,58 @@ fn same_bits<T: Real>(got: &Vec3<T>, want: &Vec3<T>) -> bool {
 }
 
 prop_both!(1024, sphere_sphere_start_is_the_static_contact, overlapping(), check_sphere_sphere_start_is_static);
+
+/// A sphere and a plane in contact, or just apart, at `t = 0`: the centre at
+/// signed distance `r (1 + k·2^−50)` (`k` in `[−3, 3]`), a fraction of `r`,
+/// or behind the plane, with the sphere's scale, the normal's length and the
+/// radius each drawn over hundreds of binades, and any motion.
+#[derive(Clone, Debug)]
+struct NearPlane {
+    a: ([f64; 3], f64),
+    normal: [f64; 3],
+    offset: f64,
+    va: [f64; 3],
+    vb: [f64; 3],
+}
+
+fn near_plane() -> impl Strategy<Value = NearPlane> {
+    let unit = || [-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64];
+    let ratio = prop_oneof![(-3i32..=3).prop_map(|k| 1.0 + f64::from(k) * 2f64.powi(-50)), -1.0..1.0f64, Just(0.0)];
+    ((-400i32..400, -400i32..400, -300i32..300), unit(), unit(), ratio, unit(), unit()).prop_map(
+        |((e_scene, e_radius, e_normal), centre, dir, ratio, va, vb)| {
+            let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt().max(1e-3);
+            let (scene, radius, n_len) = (2f64.powi(e_scene), 2f64.powi(e_radius), 2f64.powi(e_normal));
+            let unit_n = dir.map(|x| x / len);
+            let normal = unit_n.map(|x| x * n_len);
+            let centre = centre.map(|x| x * scene);
+            // The plane n·x = offset at signed distance `ratio·r` below the centre.
+            let along = unit_n[0] * centre[0] + unit_n[1] * centre[1] + unit_n[2] * centre[2];
+            let offset = (along - ratio * radius) * n_len;
+            NearPlane { a: (centre, radius), normal, offset, va: va.map(|x| x * scene), vb: vb.map(|x| x * scene) }
+        },
+    )
+}
+
+/// A sphere in contact with the plane at `t = 0` by the static test gets its
+/// contact, bit for bit, with `t = 0` and [`ToiStatus::Penetrating`]; one the
+/// static test calls apart is not penetrating.
+fn check_sphere_plane_start_is_static<T: Real>(s: &NearPlane) -> Result<(), TestCaseError> {
+    let a = Sphere::new(vt::<T>(&s.a.0), T::of(s.a.1));
+    let b = Plane::new(vt::<T>(&s.normal), T::of(s.offset));
+    let got = toi_sphere_plane(&a, &vt(&s.va), &b, &vt(&s.vb), T::one());
+    match contact_sphere_plane(&a, &b) {
+        Some(k) => {
+            let toi = got.expect("in contact at t = 0: an answer");
+            prop_assert!(toi.status == ToiStatus::Penetrating && toi.t == T::zero(), "{toi:?}");
+            prop_assert!(same_bits(&toi.point, &k.point) && same_bits(&toi.normal, &k.normal), "{toi:?} vs {k:?}");
+            prop_assert!(toi.degenerate == k.degenerate, "{toi:?} vs {k:?}");
+        }
+        None => prop_assert!(got.is_none_or(|x| x.status != ToiStatus::Penetrating), "{got:?}"),
+    }
+    Ok(())
+}
+
+prop_both!(2048, sphere_plane_start_is_the_static_contact, near_plane(), check_sphere_plane_start_is_static);
 prop_both!(512, sphere_plane_no_contact_before_and_touching_at_t, scene(), check_sphere_plane);
 prop_both!(256, sphere_triangle_no_contact_before_and_touching_at_t, scene(), check_sphere_triangle);
 
