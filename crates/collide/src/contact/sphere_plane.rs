@@ -46,8 +46,7 @@ pub fn contact_sphere_plane<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<Cont
         // squares accurate (≥ lo), implies s' / ‖n‖ > r (1 + 6u), so the
         // computed s below would exceed r too.
         let sp = b.normal.dot(&a.center) - b.offset;
-        let (sp2, r2) = (sp * sp, a.radius * a.radius);
-        if sp > T::zero() && sp2 >= lo && r2 >= lo && sp2 > r2 * nn * clear_miss_factor::<T>() {
+        if clearly_apart(sp, a.radius, nn) {
             return None;
         }
         let inv = T::one() / nn.sqrt();
@@ -65,6 +64,18 @@ pub fn contact_sphere_plane<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<Cont
         }
     }
     contact_sphere_plane_scaled(a, b)
+}
+
+/// The root-free "apart" test of [`contact_sphere_plane`]'s plain path, for
+/// `s' = n · M − d`, the radius `r` and `n · n` in the plain range: `s' > 0`
+/// and `s'² > r² (n · n)(1 + 16u)` with both squares at least `lo` (so
+/// neither underflowed). Shared with the time of impact, which asks the
+/// static test whenever this does not hold, so the two agree on every start.
+#[inline(always)]
+pub(crate) fn clearly_apart<T: Real>(sp: T, r: T, nn: T) -> bool {
+    let (lo, _) = safe_squared_range::<T>();
+    let (sp2, r2) = (sp * sp, r * r);
+    sp > T::zero() && sp2 >= lo && r2 >= lo && sp2 > r2 * nn * clear_miss_factor::<T>()
 }
 
 /// `1 + 16u` (`u` the unit roundoff of `T`): covers the four roundings of the

@@ -1,9 +1,9 @@
 //! Sphere–plane time of impact in closed form.
 
 use super::time_of_impact::{Toi, ToiStatus, clamp_t_max};
-use crate::contact::contact_sphere_plane;
+use crate::contact::{clearly_apart, contact_sphere_plane};
 use crate::exact::norm::safe_squared_range;
-use crate::real::{Real, Vec3, c, stable_norm};
+use crate::real::{Real, Vec3, stable_norm};
 use crate::shapes::{Plane, Sphere};
 
 /// Time of impact of sphere `a` (centre `M`, radius `r`, velocity `va`) and the
@@ -29,7 +29,9 @@ use crate::shapes::{Plane, Sphere};
 /// `s' = n·M − d` and `k' = −n·(va − vb)` (the normal's length cancels), one
 /// root and one division for `t`, one division for the unit normal beside it;
 /// the static contact test only for a sphere that may already be within `r`
-/// (decided from the squares, without the root). Other normals, and a
+/// (decided from the squares, without the root, by the static test's own
+/// "clearly apart" test, so the two agree on every start; squares below the
+/// plain range always ask it). Other normals, and a
 /// signed distance that overflows, take a scaled path (the normal divided by
 /// its scaled norm first).
 ///
@@ -55,10 +57,10 @@ pub fn toi_sphere_plane<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: 
     if !sp.finite() {
         return toi_sphere_plane_scaled(a, va, b, vb, t_max);
     }
-    // Within r (up to rounding; decided by the static test): s' ≤ 0, or
-    // s'² ≤ r² n·n with the static test's margin.
+    // Within r (up to rounding), or squares too small to tell: the static
+    // test decides, whenever its own root-free test does not say apart.
     let r = a.radius;
-    if (sp <= T::zero() || sp * sp <= r * r * nn * touch_factor::<T>())
+    if !clearly_apart(sp, r, nn)
         && let Some(k) = contact_sphere_plane(a, b)
     {
         return Some(Toi::penetrating(&k));
@@ -81,13 +83,6 @@ pub fn toi_sphere_plane<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: 
         iterations: 0,
         degenerate: false,
     })
-}
-
-/// `1 + 16u` (`u` the unit roundoff): the root-free "maybe within `r`" test
-/// above errs toward asking the static test, whose own decision counts (its
-/// apart test allows the same margin).
-fn touch_factor<T: Real>() -> T {
-    T::one() + c::<T>(8.0) * T::EPSILON
 }
 
 /// The scaled path of [`toi_sphere_plane`]: a normal whose squared length would

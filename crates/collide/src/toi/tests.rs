@@ -296,6 +296,22 @@ fn sphere_plane_no_impact_and_overlap<T: Real>() {
 }
 both!(sphere_plane_no_impact_and_overlap_case, sphere_plane_no_impact_and_overlap);
 
+fn sphere_plane_touching_with_tiny_squares<T: Real>() {
+    // Radius 2^−75 at the origin, plane −16 z = −16 · 2^−75 (z = 2^−75 below
+    // after dividing by −16: the centre at distance exactly r), no motion.
+    // In f32, s'² and r² underflow below the plain range: the static test
+    // answers "touching" from s' / ‖n‖ = r, and the time of impact must too
+    // (it used to compare the underflowed squares and answer "no impact").
+    let r = 2f64.powi(-75);
+    let a = Sphere::new(v::<T>(0.0, 0.0, 0.0), T::of(r));
+    let b = Plane::new(v::<T>(0.0, 0.0, -16.0), T::of(-16.0 * r));
+    let k = contact_sphere_plane(&a, &b).expect("touching by the static test");
+    let toi = toi_sphere_plane(&a, &still(), &b, &still(), T::one()).expect("touching at t = 0");
+    assert!(toi.status == ToiStatus::Penetrating && toi.t == T::zero(), "{toi:?}");
+    close_v(&toi.normal, [k.normal.x.wide(), k.normal.y.wide(), k.normal.z.wide()], "normal");
+}
+both!(sphere_plane_touching_with_tiny_squares_case, sphere_plane_touching_with_tiny_squares);
+
 // ---------------------------------------------------------- sphere–triangle
 
 fn sphere_triangle_regions<T: Real>() {
