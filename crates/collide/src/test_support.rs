@@ -13,6 +13,12 @@ pub(crate) fn eps<T: Real>() -> f64 {
     T::EPSILON.wide()
 }
 
+/// Whether two vectors are the same bits, component by component: for claims
+/// that a value is passed through or shared, not recomputed close to it.
+pub(crate) fn same_bits<T: Real>(got: &Vec3<T>, want: &Vec3<T>) -> bool {
+    got.iter().zip(want.iter()).all(|(g, w)| g.wide().to_bits() == w.wide().to_bits())
+}
+
 /// `both!(name, body)`: a module `name` with tests `f32` and `f64` running the
 /// generic function `body` in each precision.
 macro_rules! both {

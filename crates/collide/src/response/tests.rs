@@ -6,7 +6,7 @@
 use super::*;
 use crate::real::{Real, Vec3};
 use crate::shapes::Sphere;
-use crate::test_support::{both, eps, prop_both, v};
+use crate::test_support::{both, eps, prop_both, same_bits, v};
 use proptest::prelude::*;
 
 /// Hand-derived answers are short rational expressions of values ≤ 4: a few
@@ -24,12 +24,6 @@ fn close_v<T: Real>(got: &Vec3<T>, want: [f64; 3], what: &str) {
         let g = got[k].wide();
         assert!((g - w).abs() <= HAND_TOL_EPS * eps::<T>(), "{what}[{k}]: got {got:?}, want {want:?}");
     }
-}
-
-/// The claim is that the velocity was passed through untouched, not computed:
-/// bit for bit.
-fn same_bits<T: Real>(got: &Vec3<T>, want: &Vec3<T>) -> bool {
-    got.iter().zip(want.iter()).all(|(g, w)| g.wide().to_bits() == w.wide().to_bits())
 }
 
 fn equal_masses_head_on<T: Real>() {

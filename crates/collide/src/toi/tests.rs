@@ -5,10 +5,10 @@
 //! and `f64`.
 
 use super::*;
-use crate::contact::{contact_sphere_plane, contact_sphere_sphere, contact_sphere_triangle};
+use crate::contact::{Contact, contact_sphere_plane, contact_sphere_sphere, contact_sphere_triangle};
 use crate::real::{Real, Vec3};
 use crate::shapes::{Plane, Sphere, Triangle};
-use crate::test_support::{both, eps, prop_both, v};
+use crate::test_support::{both, eps, prop_both, same_bits, v};
 use proptest::prelude::*;
 
 /// Hand-derived scenes have coordinates of at most 10 and answers reached by a
@@ -757,7 +757,15 @@ fn overlapping() -> impl Strategy<Value = Overlapping> {
 fn check_sphere_sphere_start_is_static<T: Real>(s: &Overlapping) -> Result<(), TestCaseError> {
     let (a, b) = (Sphere::new(vt::<T>(&s.a.0), T::of(s.a.1)), Sphere::new(vt::<T>(&s.b.0), T::of(s.b.1)));
     let got = toi_sphere_sphere(&a, &vt(&s.va), &b, &vt(&s.vb), T::one());
-    match contact_sphere_sphere(&a, &b) {
+    start_is_static(got, contact_sphere_sphere(&a, &b))
+}
+
+/// A time of impact `got` whose start the static test answered `k`: in
+/// contact, the static contact itself (the same bits, not a recomputation
+/// close to it) at `t = 0`, [`ToiStatus::Penetrating`]; apart, not
+/// penetrating.
+fn start_is_static<T: Real>(got: Option<Toi<T>>, k: Option<Contact<T>>) -> Result<(), TestCaseError> {
+    match k {
         Some(k) => {
             let toi = got.expect("in contact at t = 0: an answer");
             prop_assert!(toi.status == ToiStatus::Penetrating && toi.t == T::zero(), "{toi:?}");
@@ -767,12 +775,6 @@ fn check_sphere_sphere_start_is_static<T: Real>(s: &Overlapping) -> Result<(), T
         None => prop_assert!(got.is_none_or(|x| x.status != ToiStatus::Penetrating), "{got:?}"),
     }
     Ok(())
-}
-
-/// The claim is that the answer is the static test's, not a recomputation
-/// close to it: bit for bit.
-fn same_bits<T: Real>(got: &Vec3<T>, want: &Vec3<T>) -> bool {
-    got.iter().zip(want.iter()).all(|(g, w)| g.wide().to_bits() == w.wide().to_bits())
 }
 
 prop_both!(1024, sphere_sphere_start_is_the_static_contact, overlapping(), check_sphere_sphere_start_is_static);
@@ -815,16 +817,7 @@ fn check_sphere_plane_start_is_static<T: Real>(s: &NearPlane) -> Result<(), Test
     let a = Sphere::new(vt::<T>(&s.a.0), T::of(s.a.1));
     let b = Plane::new(vt::<T>(&s.normal), T::of(s.offset));
     let got = toi_sphere_plane(&a, &vt(&s.va), &b, &vt(&s.vb), T::one());
-    match contact_sphere_plane(&a, &b) {
-        Some(k) => {
-            let toi = got.expect("in contact at t = 0: an answer");
-            prop_assert!(toi.status == ToiStatus::Penetrating && toi.t == T::zero(), "{toi:?}");
-            prop_assert!(same_bits(&toi.point, &k.point) && same_bits(&toi.normal, &k.normal), "{toi:?} vs {k:?}");
-            prop_assert!(toi.degenerate == k.degenerate, "{toi:?} vs {k:?}");
-        }
-        None => prop_assert!(got.is_none_or(|x| x.status != ToiStatus::Penetrating), "{got:?}"),
-    }
-    Ok(())
+    start_is_static(got, contact_sphere_plane(&a, &b))
 }
 
 prop_both!(2048, sphere_plane_start_is_the_static_contact, near_plane(), check_sphere_plane_start_is_static);
