@@ -40,10 +40,10 @@ use crate::shapes::Sphere;
 /// comparison with `t_max` decides, and the normal as `(Δp + t Δv)/R` — `1/R`
 /// is known from the start — whenever that is unit to a few ulps (else one
 /// more root and division); the static contact test only for spheres that
-/// already overlap or touch within the roundings
-/// (`‖Δp‖² ≤ R²(1 + 8u)`, its own clear-miss threshold). Every rare case (out
-/// of range, touching, a normal to renormalize) runs out of line from the
-/// inputs alone, so the common path keeps nothing alive for it. Outside that range a scaled path
+/// already overlap or touch within the roundings (`‖Δp‖² ≤ R²(1 + 8u)`, its
+/// own clear-miss threshold). Every rare case (out of range, touching, a
+/// normal to renormalize) runs out of line from the inputs alone, so the
+/// common path keeps nothing alive for it. Outside that range a scaled path
 /// computes the same root from lengths divided by the scene's own scale and
 /// the unit direction of the motion (see `toi_sphere_sphere_scaled`), which
 /// never overflows or underflows spuriously. Measured against parry's
@@ -134,11 +134,11 @@ fn unit_slack<T: Real>() -> T {
 
 /// The rare cases of [`toi_sphere_sphere`], out of line: squares out of the
 /// plain range, and spheres overlapping or within the roundings of touching
-/// (`‖Δp‖² ≤ R²(1 + 8u)`), where the static test decides. No relative motion (exactly: a
-/// square can underflow) is in contact at 0 and for good, or never. Spheres
-/// in contact by the static test get [`ToiStatus::Penetrating`] and the
-/// static contact; the rest take the scaled path, which decides from
-/// lengths.
+/// (`‖Δp‖² ≤ R²(1 + 8u)`), where the static test decides. No relative motion
+/// (exactly: a square can underflow) is in contact at 0 and for good, or
+/// never. Spheres in contact by the static test get
+/// [`ToiStatus::Penetrating`] and the static contact; the rest take the
+/// scaled path, which decides from lengths.
 #[cold]
 #[inline(never)]
 fn rare<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, t_max: T) -> Option<Toi<T>> {

@@ -297,8 +297,8 @@ fn sphere_plane_no_impact_and_overlap<T: Real>() {
 both!(sphere_plane_no_impact_and_overlap_case, sphere_plane_no_impact_and_overlap);
 
 fn sphere_plane_touching_with_tiny_squares<T: Real>() {
-    // Radius 2^−75 at the origin, plane −16 z = −16 · 2^−75 (z = 2^−75 below
-    // after dividing by −16: the centre at distance exactly r), no motion.
+    // Radius 2^−75 at the origin, plane −16 z = −16 · 2^−75, that is
+    // z = 2^−75: the centre at distance exactly r. No motion.
     // In f32, s'² and r² underflow below the plain range: the static test
     // answers "touching" from s' / ‖n‖ = r, and the time of impact must too
     // (it used to compare the underflowed squares and answer "no impact").
