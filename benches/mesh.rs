@@ -33,7 +33,7 @@
 
 #[path = "shared/criterion.rs"]
 mod criterion_files;
-use criterion_files::run;
+use criterion_files::{PAIRING, Pairs, run};
 #[path = "mesh/table.rs"]
 mod table;
 
@@ -195,10 +195,14 @@ fn segment_bunny(c: &mut Criterion, m: &harness::mesh::Mesh, segs: &[(P3, P3)]) 
     run(&mut g, "parry64", &r64, |r| p64::cast(&mesh64, r));
     run(&mut g, "parry32", &r32, |r| p32::cast(&mesh32, r));
     g.finish();
+    let mut pairs = Pairs::new("mesh_segment_bunny");
+    pairs.keep("collide_bvh_f64", &s64, |s| intersect_segment_mesh_bvh(s, &sah64));
+    pairs.keep("parry64", &r64, |r| p64::cast(&mesh64, r));
+    pairs.measure(&[("collide_bvh_f64", "parry64")]);
 }
 
 /// The batch query against the one-at-a-time loops and parry, on one mesh.
-fn segment_batch(c: &mut Criterion, group: &str, m: &harness::mesh::Mesh, segs: &[(P3, P3)]) {
+fn segment_batch(c: &mut Criterion, group: &'static str, m: &harness::mesh::Mesh, segs: &[(P3, P3)]) {
     let mut g = c.benchmark_group(group);
     g.throughput(Throughput::Elements(segs.len() as u64));
     let bvh = collide_bvh::<f64>(m, SplitRule::SahBinned);
@@ -217,6 +221,13 @@ fn segment_batch(c: &mut Criterion, group: &str, m: &harness::mesh::Mesh, segs: 
     let r64: Vec<_> = segs.iter().map(p64::ray).collect();
     run(&mut g, "parry64", &r64, |r| p64::cast(&mesh64, r));
     g.finish();
+    let mut pairs = Pairs::new(group);
+    pairs.keep("loop_brute_f64", &s64, |s| intersect_segment_mesh_brute(s, bvh.mesh()));
+    pairs.keep_pass("batch_f64", s64.len(), || {
+        intersect_segments_mesh(black_box(&s64), &faces, &mut out);
+        black_box(&out);
+    });
+    pairs.measure(&[("batch_f64", "loop_brute_f64")]);
 }
 
 /// One mesh of the batch benchmarks.
@@ -401,6 +412,7 @@ fn main() {
     // `cargo bench` passes `--bench`; `cargo test --benches` does not, and then
     // criterion runs each benchmark once as a test: no table.
     let benching = std::env::args().any(|a| a == "--bench");
+    PAIRING.store(benching, std::sync::atomic::Ordering::Relaxed);
     let m = bunny();
     let segs = segments(&m.vertices);
     let mut c = Criterion::default()

@@ -36,7 +36,7 @@ mod cases;
 mod cost;
 #[path = "shared/criterion.rs"]
 mod criterion_files;
-use criterion_files::run;
+use criterion_files::{PAIRING, Pairs, run};
 #[path = "queries/parry_direct.rs"]
 mod parry_direct;
 #[path = "queries/peak.rs"]
@@ -95,6 +95,11 @@ fn sphere_sphere(c: &mut Criterion, cases: &[(geom::Sphere, geom::Sphere)]) {
     run(&mut g, "parry64_adapter", cases, |(a, b)| Parry64.contact_sphere_sphere(*a, *b));
     run(&mut g, "parry32_adapter", cases, |(a, b)| Parry32.contact_sphere_sphere(*a, *b));
     g.finish();
+    let mut pairs = Pairs::new("sphere_sphere");
+    pairs.keep("collide_robust_f64", &c64, |(a, b)| contact_sphere_sphere(a, b));
+    pairs.keep("parry64", &d64, |(a, b)| p64::contact_sphere_sphere(a, b));
+    pairs.keep("parry64_like", &d64, |(a, b)| p64::contact_sphere_sphere_pair(a, b));
+    pairs.measure(&target_pairs("sphere_sphere"));
 }
 
 fn sphere_plane(c: &mut Criterion, cases: &[(geom::Sphere, geom::Plane)]) {
@@ -112,6 +117,11 @@ fn sphere_plane(c: &mut Criterion, cases: &[(geom::Sphere, geom::Plane)]) {
     run(&mut g, "parry64_adapter", cases, |(a, b)| Parry64.contact_sphere_plane(*a, *b));
     run(&mut g, "parry32_adapter", cases, |(a, b)| Parry32.contact_sphere_plane(*a, *b));
     g.finish();
+    let mut pairs = Pairs::new("sphere_plane");
+    pairs.keep("collide_robust_f64", &c64, |(a, b)| contact_sphere_plane(a, b));
+    pairs.keep("parry64", &d64, |(a, b)| p64::contact_sphere_plane(a, b));
+    pairs.keep("parry64_like", &d64, |(a, b)| p64::contact_sphere_plane_pair(a, b));
+    pairs.measure(&target_pairs("sphere_plane"));
 }
 
 fn sphere_triangle(c: &mut Criterion, cases: &[(geom::Sphere, geom::Triangle)]) {
@@ -129,6 +139,11 @@ fn sphere_triangle(c: &mut Criterion, cases: &[(geom::Sphere, geom::Triangle)]) 
     run(&mut g, "parry64_adapter", cases, |(a, b)| Parry64.contact_sphere_triangle(*a, *b));
     run(&mut g, "parry32_adapter", cases, |(a, b)| Parry32.contact_sphere_triangle(*a, *b));
     g.finish();
+    let mut pairs = Pairs::new("sphere_triangle");
+    pairs.keep("collide_robust_f64", &c64, |(a, b)| contact_sphere_triangle(a, b));
+    pairs.keep("parry64", &d64, |(a, b)| p64::contact_sphere_triangle(a, b));
+    pairs.keep("parry64_like", &d64, |(a, b)| p64::contact_sphere_triangle_pair(a, b));
+    pairs.measure(&target_pairs("sphere_triangle"));
 }
 
 fn segment_plane(c: &mut Criterion, cases: &[(geom::Segment, geom::Plane)]) {
@@ -148,9 +163,14 @@ fn segment_plane(c: &mut Criterion, cases: &[(geom::Segment, geom::Plane)]) {
     run(&mut g, "parry64_adapter", cases, |(s, p)| Parry64.intersect_segment_plane(*s, *p));
     run(&mut g, "parry32_adapter", cases, |(s, p)| Parry32.intersect_segment_plane(*s, *p));
     g.finish();
+    let mut pairs = Pairs::new("segment_plane");
+    pairs.keep("collide_robust_f64", &c64, |(s, p)| intersect_segment_plane(s, p));
+    pairs.keep("parry64", &d64, |(r, p)| p64::intersect_segment_plane(r, p));
+    pairs.keep("parry64_like", &d64, |(r, p)| p64::intersect_segment_plane_like(r, p));
+    pairs.measure(&target_pairs("segment_plane"));
 }
 
-fn segment_triangle(c: &mut Criterion, name: &str, cases: &[(geom::Segment, geom::Triangle)], adapters: bool) {
+fn segment_triangle(c: &mut Criterion, name: &'static str, cases: &[(geom::Segment, geom::Triangle)], adapters: bool) {
     use collide::intersect::{intersect_segment_triangle, intersect_segment_triangle_lecture};
     let mut g = group(c, name, cases.len());
     let c64 = conv(cases, to_collide::segment::<f64>, to_collide::triangle::<f64>);
@@ -168,6 +188,11 @@ fn segment_triangle(c: &mut Criterion, name: &str, cases: &[(geom::Segment, geom
         run(&mut g, "parry32_adapter", cases, |(s, t)| Parry32.intersect_segment_triangle(*s, *t));
     }
     g.finish();
+    let mut pairs = Pairs::new(name);
+    pairs.keep("collide_robust_f64", &c64, |(s, t)| intersect_segment_triangle(s, t));
+    pairs.keep("collide_lecture_f64", &c64, |(s, t)| intersect_segment_triangle_lecture(s, t));
+    pairs.keep("parry64", &d64, |(r, t)| p64::intersect_segment_triangle(r, t));
+    pairs.measure(&target_pairs(name));
 }
 
 fn barycentric(c: &mut Criterion, cases: &[(geom::P3, geom::Triangle)]) {
@@ -186,6 +211,10 @@ fn barycentric(c: &mut Criterion, cases: &[(geom::P3, geom::Triangle)]) {
     run(&mut g, "parry64_adapter", cases, |(p, t)| Parry64.barycentric_triangle(*p, *t));
     run(&mut g, "parry32_adapter", cases, |(p, t)| Parry32.barycentric_triangle(*p, *t));
     g.finish();
+    let mut pairs = Pairs::new("barycentric");
+    pairs.keep("collide_robust_f64", &c64, |(p, t)| barycentric_triangle(p, t));
+    pairs.keep("parry64", &d64, |(p, t)| p64::barycentric(p, t));
+    pairs.measure(&target_pairs("barycentric"));
 }
 
 fn overlap(c: &mut Criterion, cases: &[(geom::Aabb, geom::Aabb)]) {
@@ -204,36 +233,50 @@ fn overlap(c: &mut Criterion, cases: &[(geom::Aabb, geom::Aabb)]) {
     overlap_batch(&mut g, &c64, "f64");
     overlap_batch(&mut g, &c32, "f32");
     g.finish();
+    let mut pairs = Pairs::new("overlap");
+    pairs.keep("collide_robust_f64", &c64, |(a, b)| test_aabb_aabb(a, b));
+    pairs.keep("parry64", &d64, |(a, b)| p64::overlap(a, b));
+    let [looped, batched] = overlap_passes(&c64);
+    pairs.keep_pass("loop_f64", c64.len(), looped);
+    pairs.keep_pass("batch_f64", c64.len(), batched);
+    pairs.measure(&target_pairs("overlap"));
+}
+
+/// One pass of the box loop and one of the box batch over `pairs`, each
+/// owning its arrays and answers: criterion's benchmarks and the paired
+/// ratios time the same closures.
+fn overlap_passes<T: collide::Real>(pairs: &[(collide::Aabb<T>, collide::Aabb<T>)]) -> [Box<dyn FnMut() + '_>; 2] {
+    use collide::batch::{Aabbs, test_aabbs_aabbs};
+    use collide::bounds::test_aabb_aabb;
+    let a: Aabbs<T> = pairs.iter().map(|p| &p.0).collect();
+    let b: Aabbs<T> = pairs.iter().map(|p| &p.1).collect();
+    let (mut one, mut all) = (vec![false; pairs.len()], vec![false; pairs.len()]);
+    [
+        Box::new(move || {
+            for (o, (x, y)) in one.iter_mut().zip(black_box(pairs)) {
+                *o = test_aabb_aabb(x, y);
+            }
+            black_box(&mut one);
+        }),
+        Box::new(move || {
+            test_aabbs_aabbs(black_box(&a), black_box(&b), &mut all);
+            black_box(&mut all);
+        }),
+    ]
 }
 
 /// The box batch API against the one-at-a-time loop over the same pairs,
 /// both writing their answers to an array (what a broad phase does): the
 /// loop calls `test_aabb_aabb` per pair, the batch is `test_aabbs_aabbs` over
-/// the pairs as arrays.
+/// the pairs as arrays (see [`overlap_passes`]).
 fn overlap_batch<T: collide::Real>(
     g: &mut BenchmarkGroup<'_, WallTime>,
     pairs: &[(collide::Aabb<T>, collide::Aabb<T>)],
     p: &str,
 ) {
-    use collide::batch::{Aabbs, test_aabbs_aabbs};
-    use collide::bounds::test_aabb_aabb;
-    let a: Aabbs<T> = pairs.iter().map(|p| &p.0).collect();
-    let b: Aabbs<T> = pairs.iter().map(|p| &p.1).collect();
-    let mut flags = vec![false; pairs.len()];
-    g.bench_function(format!("loop_{p}"), |bn| {
-        bn.iter(|| {
-            for (o, (x, y)) in flags.iter_mut().zip(black_box(pairs)) {
-                *o = test_aabb_aabb(x, y);
-            }
-            black_box(&mut flags);
-        })
-    });
-    g.bench_function(format!("batch_{p}"), |bn| {
-        bn.iter(|| {
-            test_aabbs_aabbs(black_box(&a), black_box(&b), &mut flags);
-            black_box(&mut flags);
-        })
-    });
+    let [mut looped, mut batched] = overlap_passes(pairs);
+    g.bench_function(format!("loop_{p}"), |bn| bn.iter(&mut looped));
+    g.bench_function(format!("batch_{p}"), |bn| bn.iter(&mut batched));
 }
 
 fn bounding_sphere(c: &mut Criterion, clouds: &[Vec<geom::P3>]) {
@@ -267,45 +310,60 @@ fn sphere_sphere_batch(c: &mut Criterion, cases: &[(geom::Sphere, geom::Sphere)]
     batch_of::<f64>(&mut g, cases, "f64");
     batch_of::<f32>(&mut g, cases, "f32");
     g.finish();
+    let c64 = conv(cases, to_collide::sphere::<f64>, to_collide::sphere::<f64>);
+    let [looped, batched, _, _] = sphere_batch_passes(&c64);
+    let mut pairs = Pairs::new("sphere_sphere_batch");
+    pairs.keep_pass("loop_contact_f64", c64.len(), looped);
+    pairs.keep_pass("batch_contact_f64", c64.len(), batched);
+    pairs.measure(&target_pairs("sphere_sphere_batch"));
 }
 
 fn batch_of<T: collide::Real>(g: &mut BenchmarkGroup<'_, WallTime>, cases: &[(geom::Sphere, geom::Sphere)], p: &str) {
+    let pairs = conv(cases, to_collide::sphere::<T>, to_collide::sphere::<T>);
+    let passes = sphere_batch_passes(&pairs);
+    for (name, mut pass) in ["loop_contact", "batch_contact", "loop_test", "batch_test"].into_iter().zip(passes) {
+        g.bench_function(format!("{name}_{p}"), |bn| bn.iter(&mut pass));
+    }
+}
+
+/// One pass over `pairs` of: the contact loop, the contact batch, the
+/// overlap-test loop, the overlap-test batch — each owning its arrays and
+/// answers (criterion's benchmarks and the paired ratios time the same
+/// closures). The loops are what a user writes: each pair's
+/// `contact_sphere_sphere` stored into an array, no `black_box` inside.
+fn sphere_batch_passes<T: collide::Real>(
+    pairs: &[(collide::Sphere<T>, collide::Sphere<T>)],
+) -> [Box<dyn FnMut() + '_>; 4] {
     use collide::batch::{SphereContacts, Spheres, contact_spheres_spheres, test_spheres_spheres};
     use collide::contact::{Contact, contact_sphere_sphere};
-    let pairs = conv(cases, to_collide::sphere::<T>, to_collide::sphere::<T>);
     let a: Spheres<T> = pairs.iter().map(|p| &p.0).collect();
     let b: Spheres<T> = pairs.iter().map(|p| &p.1).collect();
+    let (a2, b2) = (a.clone(), b.clone());
     let mut one: Vec<Option<Contact<T>>> = vec![None; pairs.len()];
-    g.bench_function(format!("loop_contact_{p}"), |bn| {
-        bn.iter(|| {
-            for (o, (x, y)) in one.iter_mut().zip(black_box(&pairs)) {
+    let mut out = SphereContacts::new();
+    let (mut flags, mut flags2) = (vec![false; pairs.len()], vec![false; pairs.len()]);
+    [
+        Box::new(move || {
+            for (o, (x, y)) in one.iter_mut().zip(black_box(pairs)) {
                 *o = contact_sphere_sphere(x, y);
             }
             black_box(&mut one);
-        })
-    });
-    let mut out = SphereContacts::new();
-    g.bench_function(format!("batch_contact_{p}"), |bn| {
-        bn.iter(|| {
+        }),
+        Box::new(move || {
             contact_spheres_spheres(black_box(&a), black_box(&b), &mut out);
             black_box(&mut out);
-        })
-    });
-    let mut flags = vec![false; pairs.len()];
-    g.bench_function(format!("loop_test_{p}"), |bn| {
-        bn.iter(|| {
-            for (o, (x, y)) in flags.iter_mut().zip(black_box(&pairs)) {
+        }),
+        Box::new(move || {
+            for (o, (x, y)) in flags.iter_mut().zip(black_box(pairs)) {
                 *o = contact_sphere_sphere(x, y).is_some();
             }
             black_box(&mut flags);
-        })
-    });
-    g.bench_function(format!("batch_test_{p}"), |bn| {
-        bn.iter(|| {
-            test_spheres_spheres(black_box(&a), black_box(&b), &mut flags);
-            black_box(&mut flags);
-        })
-    });
+        }),
+        Box::new(move || {
+            test_spheres_spheres(black_box(&a2), black_box(&b2), &mut flags2);
+            black_box(&mut flags2);
+        }),
+    ]
 }
 
 fn batches(cases: &Cases) -> Vec<BatchRow> {
@@ -472,6 +530,12 @@ fn plane_miss(s: &geom::Segment, t: &geom::Triangle) -> bool {
     s0 == s1 && !s0.is_zero()
 }
 
+/// The numerator and denominator ids of `group`'s targets (see
+/// [`targets`]), for its paired ratios.
+fn target_pairs(group: &str) -> Vec<(&'static str, &'static str)> {
+    targets().into_iter().filter(|t| t.group == group).map(|t| t.ids).collect()
+}
+
 fn targets() -> Vec<Target> {
     let half = |group, what| Target { group, what, ids: ("collide_robust_f64", "parry64"), target: 0.5 };
     vec![
@@ -549,6 +613,7 @@ fn main() {
     // `cargo bench` passes `--bench`; `cargo test --benches` does not, and then
     // criterion runs each benchmark once as a test: no peak, no table.
     let benching = std::env::args().any(|a| a == "--bench");
+    PAIRING.store(benching, std::sync::atomic::Ordering::Relaxed);
     let peak = benching.then(peak::measure);
     let cases = Cases::draw();
     let mut c = Criterion::default()

@@ -27,7 +27,7 @@
 
 #[path = "shared/criterion.rs"]
 mod criterion_files;
-use criterion_files::run;
+use criterion_files::{PAIRING, Pairs, run};
 #[path = "toi/table.rs"]
 mod table;
 #[path = "toi/textbook.rs"]
@@ -223,7 +223,8 @@ fn group<'a>(c: &'a mut Criterion, name: &str, n: usize) -> BenchmarkGroup<'a, W
 }
 
 /// The parry direct and adapter benchmarks of one pair: `place64` and
-/// `place32` build `b` in parry's types, `adapter` is the oracle's call.
+/// `place32` build `b` in parry's types, `adapter` is the oracle's call. The
+/// `f64` inputs in parry's types are returned, for the paired ratios.
 macro_rules! parry_benches {
     ($g:expr, $cases:expr, $place64:path, $place32:path, $adapter:ident) => {{
         let d64: Vec<_> = $cases
@@ -238,8 +239,12 @@ macro_rules! parry_benches {
         run($g, "parry32", &d32, |(a, va, b, vb, o)| p32::cast(a, *va, b, *vb, *o));
         run($g, "parry64_adapter", $cases, |c| Parry64.$adapter(c.a, c.va, c.b, c.vb, c.t_max));
         run($g, "parry32_adapter", $cases, |c| Parry32.$adapter(c.a, c.va, c.b, c.vb, c.t_max));
+        d64
     }};
 }
+
+/// The target's pair of a group (see [`targets`]), measured paired.
+const TARGET_PAIR: [(&str, &str); 1] = [("collide_robust_f64", "parry64")];
 
 fn sphere_sphere(c: &mut Criterion, cases: &[Case<geom::Sphere>]) {
     use collide::toi::{Halving, toi_sphere_sphere, toi_sphere_sphere_halving};
@@ -251,8 +256,12 @@ fn sphere_sphere(c: &mut Criterion, cases: &[Case<geom::Sphere>]) {
     run(&mut g, "textbook_f64", &c64, |c| textbook::toi_sphere_sphere(&c.a, &c.va, &c.b, &c.vb, c.t_max));
     let stop = Halving::Tolerance(HALVING_TOLERANCE);
     run(&mut g, "collide_halving_f64", &c64, |c| toi_sphere_sphere_halving(&c.a, &c.va, &c.b, &c.vb, c.t_max, stop));
-    parry_benches!(&mut g, cases, p64::ball, p32::ball, cast_sphere_sphere);
+    let d64 = parry_benches!(&mut g, cases, p64::ball, p32::ball, cast_sphere_sphere);
     g.finish();
+    let mut pairs = Pairs::new("toi_sphere_sphere");
+    pairs.keep("collide_robust_f64", &c64, |c| toi_sphere_sphere(&c.a, &c.va, &c.b, &c.vb, c.t_max));
+    pairs.keep("parry64", &d64, |(a, va, b, vb, o)| p64::cast(a, *va, b, *vb, *o));
+    pairs.measure(&TARGET_PAIR);
 }
 
 fn sphere_plane(c: &mut Criterion, cases: &[Case<geom::Plane>]) {
@@ -264,8 +273,12 @@ fn sphere_plane(c: &mut Criterion, cases: &[Case<geom::Plane>]) {
     run(&mut g, "collide_robust_f32", &c32, |c| toi_sphere_plane(&c.a, &c.va, &c.b, &c.vb, c.t_max));
     let stop = Halving::Tolerance(HALVING_TOLERANCE);
     run(&mut g, "collide_halving_f64", &c64, |c| toi_sphere_plane_halving(&c.a, &c.va, &c.b, &c.vb, c.t_max, stop));
-    parry_benches!(&mut g, cases, p64::half_space, p32::half_space, cast_sphere_plane);
+    let d64 = parry_benches!(&mut g, cases, p64::half_space, p32::half_space, cast_sphere_plane);
     g.finish();
+    let mut pairs = Pairs::new("toi_sphere_plane");
+    pairs.keep("collide_robust_f64", &c64, |c| toi_sphere_plane(&c.a, &c.va, &c.b, &c.vb, c.t_max));
+    pairs.keep("parry64", &d64, |(a, va, b, vb, o)| p64::cast(a, *va, b, *vb, *o));
+    pairs.measure(&TARGET_PAIR);
 }
 
 fn sphere_triangle(c: &mut Criterion, cases: &[Case<geom::Triangle>]) {
@@ -369,6 +382,7 @@ fn main() {
     // `cargo bench` passes `--bench`; `cargo test --benches` does not, and then
     // criterion runs each benchmark once as a test: no table.
     let benching = std::env::args().any(|a| a == "--bench");
+    PAIRING.store(benching, std::sync::atomic::Ordering::Relaxed);
     let cases = draw();
     let mut c = Criterion::default()
         .output_directory(&table::criterion_dir())

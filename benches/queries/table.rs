@@ -56,7 +56,7 @@ pub struct BatchRow {
 }
 
 pub use super::criterion_files::criterion_dir;
-use super::criterion_files::ns_per;
+use super::criterion_files::{ns_per, paired_cell, paired_ratio};
 
 fn cell(x: Option<f64>) -> String {
     match x {
@@ -176,7 +176,8 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
         }
     }
 
-    let _ = writeln!(s, "\n## Targets\n\n| target | measured | verdict |\n| --- | ---: | --- |");
+    let _ = writeln!(s, "\n## Targets\n\n{}", super::criterion_files::PAIRED_NOTE);
+    let _ = writeln!(s, "| target | criterion | paired (quartiles) | verdict |\n| --- | ---: | ---: | --- |");
     for t in targets {
         let per = rows
             .iter()
@@ -186,6 +187,8 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
             .unwrap_or(1);
         let denominator = ns_per(t.group, t.ids.1, per, since);
         let r = ratio(ns_per(t.group, t.ids.0, per, since), denominator);
+        let paired = paired_ratio(t.group, t.ids.0, t.ids.1);
+        let judged = paired.map(|p| p.median).or(r);
         // The bound of the numerator's row: the main table's for a query one
         // at a time, the batch table's for a batch.
         let cost = if t.ids.0.starts_with("collide_") {
@@ -194,14 +197,21 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
             batches.iter().find(|b| b.group == t.group && b.ids.1 == t.ids.0).and_then(|b| b.cost)
         };
         let bound = cost.map(|c| peak.bound_ns(c));
-        let mut v = verdict(r, t.target).to_string();
-        if let (Some(r), Some(d), Some(b)) = (r, denominator, bound)
+        let mut v = verdict(judged, t.target).to_string();
+        if let (Some(r), Some(d), Some(b)) = (judged, denominator, bound)
             && r > t.target
             && t.target * d < b
         {
             let _ = write!(v, ": asks for {} ns, below the bound ({} ns)", cell(Some(t.target * d)), cell(Some(b)));
         }
-        let _ = writeln!(s, "| {} ≤ {} | {} | {v} |", t.what, t.target, r.map_or("—".into(), |x| format!("{x:.2}")),);
+        let _ = writeln!(
+            s,
+            "| {} ≤ {} | {} | {} | {v} |",
+            t.what,
+            t.target,
+            r.map_or("—".into(), |x| format!("{x:.2}")),
+            paired_cell(paired)
+        );
     }
     s
 }

@@ -59,3 +59,158 @@ pub fn run<I, O>(
         })
     });
 }
+
+/// Rounds of a paired ratio: each round times both engines back to back.
+const PAIRED_ROUNDS: usize = 31;
+
+/// Least time of one engine's slice in a round: long enough for the clock's
+/// resolution and the loop's start to vanish, short enough that a change in
+/// the machine's speed seldom falls inside a round.
+const PAIRED_SLICE: std::time::Duration = std::time::Duration::from_millis(20);
+
+/// Whether this run measures paired ratios (`cargo bench`, not the one-shot
+/// test run of `cargo test --benches`). Set once by the bench's `main`.
+pub static PAIRING: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// One paired ratio: the numerator's time over the denominator's, from
+/// rounds in which both ran back to back on their inputs (in alternating
+/// order), as the median of the rounds' ratios with the quartiles.
+#[derive(Clone, Copy, Debug)]
+pub struct PairedRatio {
+    /// Median of the rounds' ratios.
+    pub median: f64,
+    /// Lower quartile.
+    pub low: f64,
+    /// Upper quartile.
+    pub high: f64,
+}
+
+/// Every paired ratio measured in this run: group, numerator id, denominator
+/// id, ratio.
+static PAIRED: std::sync::Mutex<Vec<(String, String, String, PairedRatio)>> = std::sync::Mutex::new(Vec::new());
+
+/// The paired ratio `a / b` of `group` measured in this run, if any.
+pub fn paired_ratio(group: &str, a: &str, b: &str) -> Option<PairedRatio> {
+    let all = PAIRED.lock().ok()?;
+    all.iter().find(|(g, x, y, _)| g == group && x == a && y == b).map(|e| e.3)
+}
+
+/// How the targets tables read, for their introduction.
+pub const PAIRED_NOTE: &str = "Each ratio twice: from criterion's estimates (each engine timed for about a second, one \
+     after the other) and paired: both engines timed back to back over the same cases for 20 ms each, \
+     in alternating order, 31 times, the median of the 31 ratios with its quartiles. A machine whose speed changes \
+     for seconds at a time moves the first (one engine may be timed fast and the other slow) but not the second; the \
+     verdict is the paired ratio's where it was measured.\n";
+
+/// A paired ratio as a table cell: the median and, in brackets, the
+/// quartiles; `—` when not measured.
+pub fn paired_cell(p: Option<PairedRatio>) -> String {
+    p.map_or("—".into(), |p| format!("{:.3} ({:.3}–{:.3})", p.median, p.low, p.high))
+}
+
+/// A timer kept for a paired ratio: `passes` passes over its inputs, in
+/// nanoseconds per query.
+type Timer<'a> = Box<dyn FnMut(u32) -> f64 + 'a>;
+
+/// The engines of one group kept for paired ratios.
+///
+/// Why pairs: criterion measures one engine after another, each for about a
+/// second. On a shared machine whose speed changes for seconds at a time (on
+/// the one these benches were written on, the same loop ran at 13 ns per case
+/// for some seconds and 20 ns for the next, back and forth), two engines can
+/// be measured at different speeds, and their ratio is off by as much. A
+/// paired ratio times both within 20 ms of each other, many
+/// times over, and takes the median of the rounds' ratios: a change of speed
+/// spoils the rounds it falls in, not the median.
+pub struct Pairs<'a> {
+    group: &'static str,
+    timers: Vec<(&'static str, Timer<'a>)>,
+    /// Inputs per pass of each timer.
+    inputs: Vec<usize>,
+}
+
+impl<'a> Pairs<'a> {
+    /// No engines yet, for `group`.
+    pub fn new(group: &'static str) -> Self {
+        Self { group, timers: Vec::new(), inputs: Vec::new() }
+    }
+
+    /// Keeps engine `id`: `f` over every input, as [`run`] times it.
+    pub fn keep<I, O>(&mut self, id: &'static str, inputs: &'a [I], f: impl Fn(&I) -> O + 'a) {
+        let n = inputs.len().max(1) as f64;
+        let timer = move |passes: u32| {
+            let start = std::time::Instant::now();
+            for _ in 0..passes {
+                for x in std::hint::black_box(inputs) {
+                    let answer = f(std::hint::black_box(x));
+                    std::hint::black_box(&answer);
+                }
+            }
+            start.elapsed().as_nanos() as f64 / (f64::from(passes) * n)
+        };
+        self.timers.push((id, Box::new(timer)));
+        self.inputs.push(inputs.len().max(1));
+    }
+
+    /// Keeps engine `id` whose pass is one call of `f` answering `per_pass`
+    /// queries (a batch call, or a loop that writes its answers itself).
+    #[allow(dead_code, reason = "the queries and mesh benches time batches; the toi bench has none")]
+    pub fn keep_pass(&mut self, id: &'static str, per_pass: usize, mut f: impl FnMut() + 'a) {
+        let n = per_pass.max(1) as f64;
+        let timer = move |passes: u32| {
+            let start = std::time::Instant::now();
+            for _ in 0..passes {
+                f();
+            }
+            start.elapsed().as_nanos() as f64 / (f64::from(passes) * n)
+        };
+        self.timers.push((id, Box::new(timer)));
+        self.inputs.push(per_pass.max(1));
+    }
+
+    /// Measures `a / b` for every pair of kept ids given (in a benchmarking
+    /// run only) and records them for [`paired_ratio`].
+    pub fn measure(mut self, pairs: &[(&str, &str)]) {
+        if !PAIRING.load(std::sync::atomic::Ordering::Relaxed) {
+            return;
+        }
+        for &(a, b) in pairs {
+            let (Some(ia), Some(ib)) =
+                (self.timers.iter().position(|t| t.0 == a), self.timers.iter().position(|t| t.0 == b))
+            else {
+                continue;
+            };
+            let r = self.pair(ia, ib);
+            if let Ok(mut all) = PAIRED.lock() {
+                all.push((self.group.into(), a.into(), b.into(), r));
+            }
+        }
+    }
+
+    /// Times timers `ia` and `ib` in [`PAIRED_ROUNDS`] rounds.
+    fn pair(&mut self, ia: usize, ib: usize) -> PairedRatio {
+        let (pa, pb) = (self.passes(ia), self.passes(ib));
+        let mut ratios = Vec::with_capacity(PAIRED_ROUNDS);
+        for round in 0..PAIRED_ROUNDS {
+            let (ta, tb) = if round % 2 == 0 {
+                let ta = (self.timers[ia].1)(pa);
+                (ta, (self.timers[ib].1)(pb))
+            } else {
+                let tb = (self.timers[ib].1)(pb);
+                ((self.timers[ia].1)(pa), tb)
+            };
+            ratios.push(ta / tb);
+        }
+        ratios.sort_by(f64::total_cmp);
+        let at = |q: f64| ratios[((ratios.len() - 1) as f64 * q).round() as usize];
+        PairedRatio { median: at(0.5), low: at(0.25), high: at(0.75) }
+    }
+
+    /// Passes of timer `i` that last at least [`PAIRED_SLICE`], from one
+    /// pass (which also warms it).
+    fn passes(&mut self, i: usize) -> u32 {
+        let n = self.inputs[i] as f64;
+        let once_s = (self.timers[i].1)(1) * n * 1e-9;
+        (PAIRED_SLICE.as_secs_f64() / once_s.max(1e-9)).ceil().clamp(1.0, 1e6) as u32
+    }
+}
