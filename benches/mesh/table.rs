@@ -104,26 +104,12 @@ pub fn render(
 
 /// Renders the targets with their verdicts.
 pub fn render_targets(targets: &[Target], since: SystemTime) -> String {
-    use super::criterion_files::{PAIRED_NOTE, paired_cell, paired_ratio};
-    let mut s = format!(
-        "## Targets\n\n{PAIRED_NOTE}\n| target | criterion | paired (quartiles) | verdict |\n| --- | ---: | ---: | --- |\n"
-    );
+    use super::criterion_files::{judged, paired_ratio, target_row, targets_heading, verdict};
+    let mut s = targets_heading();
     for t in targets {
         let r = ratio(ns_per(t.group, t.ids.0, t.per_iter, since), ns_per(t.group, t.ids.1, t.per_iter, since));
         let paired = paired_ratio(t.group, t.ids.0, t.ids.1);
-        let verdict = match paired.map(|p| p.median).or(r) {
-            Some(r) if r <= t.target => "met",
-            Some(_) => "**missed**",
-            None => "not measured",
-        };
-        let _ = writeln!(
-            s,
-            "| {} ≤ {} | {} | {} | {verdict} |",
-            t.what,
-            t.target,
-            r.map_or("—".into(), |x| format!("{x:.2}")),
-            paired_cell(paired)
-        );
+        s.push_str(&target_row(&t.what, t.target, r, paired, verdict(judged(r, paired), t.target)));
     }
     s
 }

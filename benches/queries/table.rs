@@ -56,7 +56,7 @@ pub struct BatchRow {
 }
 
 pub use super::criterion_files::criterion_dir;
-use super::criterion_files::{ns_per, paired_cell, paired_ratio};
+use super::criterion_files::{judged, ns_per, paired_ratio, target_row, targets_heading, verdict};
 
 fn cell(x: Option<f64>) -> String {
     match x {
@@ -69,15 +69,6 @@ fn cell(x: Option<f64>) -> String {
 
 fn ratio(x: Option<f64>, y: Option<f64>) -> Option<f64> {
     Some(x? / y?)
-}
-
-/// The verdict on a ratio against its target.
-fn verdict(r: Option<f64>, target: f64) -> &'static str {
-    match r {
-        Some(r) if r <= target => "met",
-        Some(_) => "**missed**",
-        None => "not measured",
-    }
 }
 
 /// One speed target: `numerator / denominator ≤ target`, over one group.
@@ -176,8 +167,8 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
         }
     }
 
-    let _ = writeln!(s, "\n## Targets\n\n{}", super::criterion_files::PAIRED_NOTE);
-    let _ = writeln!(s, "| target | criterion | paired (quartiles) | verdict |\n| --- | ---: | ---: | --- |");
+    s.push('\n');
+    s.push_str(&targets_heading());
     for t in targets {
         let per = rows
             .iter()
@@ -188,7 +179,7 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
         let denominator = ns_per(t.group, t.ids.1, per, since);
         let r = ratio(ns_per(t.group, t.ids.0, per, since), denominator);
         let paired = paired_ratio(t.group, t.ids.0, t.ids.1);
-        let judged = paired.map(|p| p.median).or(r);
+        let judged = judged(r, paired);
         // The bound of the numerator's row: the main table's for a query one
         // at a time, the batch table's for a batch.
         let cost = if t.ids.0.starts_with("collide_") {
@@ -204,14 +195,7 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
         {
             let _ = write!(v, ": asks for {} ns, below the bound ({} ns)", cell(Some(t.target * d)), cell(Some(b)));
         }
-        let _ = writeln!(
-            s,
-            "| {} ≤ {} | {} | {} | {v} |",
-            t.what,
-            t.target,
-            r.map_or("—".into(), |x| format!("{x:.2}")),
-            paired_cell(paired)
-        );
+        s.push_str(&target_row(t.what, t.target, r, paired, &v));
     }
     s
 }

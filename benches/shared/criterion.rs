@@ -102,10 +102,41 @@ pub const PAIRED_NOTE: &str = "Each ratio twice: from criterion's estimates (eac
      for seconds at a time moves the first (one engine may be timed fast and the other slow) but not the second; the \
      verdict is the paired ratio's where it was measured.\n";
 
-/// A paired ratio as a table cell: the median and, in brackets, the
-/// quartiles; `—` when not measured.
-pub fn paired_cell(p: Option<PairedRatio>) -> String {
-    p.map_or("—".into(), |p| format!("{:.3} ({:.3}–{:.3})", p.median, p.low, p.high))
+/// The targets table's heading, with [`PAIRED_NOTE`], its columns and
+/// their alignment.
+pub fn targets_heading() -> String {
+    format!(
+        "## Targets\n\n{PAIRED_NOTE}\n| target | criterion | paired (quartiles) | verdict |\n| --- | ---: | ---: | --- |\n"
+    )
+}
+
+/// The ratio a target is judged on: the paired median where it was
+/// measured, else criterion's ratio.
+pub fn judged(criterion: Option<f64>, paired: Option<PairedRatio>) -> Option<f64> {
+    paired.map(|p| p.median).or(criterion)
+}
+
+/// The verdict on a ratio against its target.
+pub fn verdict(r: Option<f64>, target: f64) -> &'static str {
+    match r {
+        Some(r) if r <= target => "met",
+        Some(_) => "**missed**",
+        None => "not measured",
+    }
+}
+
+/// One row of the targets table: what is compared and its target, criterion's
+/// ratio, the paired ratio (median and quartiles), the verdict.
+pub fn target_row(
+    what: &str,
+    target: f64,
+    criterion: Option<f64>,
+    paired: Option<PairedRatio>,
+    verdict: &str,
+) -> String {
+    let paired = paired.map_or("—".into(), |p| format!("{:.3} ({:.3}–{:.3})", p.median, p.low, p.high));
+    let criterion = criterion.map_or("—".into(), |x| format!("{x:.3}"));
+    format!("| {what} ≤ {target} | {criterion} | {paired} | {verdict} |\n")
 }
 
 /// A timer kept for a paired ratio: `passes` passes over its inputs, in

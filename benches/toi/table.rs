@@ -110,25 +110,14 @@ pub fn render(rows: &[Row], targets: &[Target], seed: u64, since: SystemTime) ->
             cell(ratio(get("collide_halving_f64"), robust))
         );
     }
-    let _ = writeln!(s, "\n## Targets\n\n{}", super::criterion_files::PAIRED_NOTE);
-    let _ = writeln!(s, "| target | criterion | paired (quartiles) | verdict |\n| --- | ---: | ---: | --- |");
+    use super::criterion_files::{judged, paired_ratio, target_row, targets_heading, verdict};
+    s.push('\n');
+    s.push_str(&targets_heading());
     for t in targets {
         let per = rows.iter().find(|r| r.group == t.group).map_or(1, |r| r.per_iter);
         let r = ratio(ns_per(t.group, t.ids.0, per, since), ns_per(t.group, t.ids.1, per, since));
-        let paired = super::criterion_files::paired_ratio(t.group, t.ids.0, t.ids.1);
-        let verdict = match paired.map(|p| p.median).or(r) {
-            Some(x) if x <= t.target => "met",
-            Some(_) => "**missed**",
-            None => "not measured",
-        };
-        let _ = writeln!(
-            s,
-            "| {} ≤ {} | {} | {} | {verdict} |",
-            t.what,
-            t.target,
-            r.map_or("—".into(), |x| format!("{x:.3}")),
-            super::criterion_files::paired_cell(paired)
-        );
+        let paired = paired_ratio(t.group, t.ids.0, t.ids.1);
+        s.push_str(&target_row(t.what, t.target, r, paired, verdict(judged(r, paired), t.target)));
     }
     s
 }
