@@ -2,30 +2,14 @@
 //! `target/criterion/crashtest-mesh-table.md`): criterion's estimates of this
 //! run as time per query and per build, with the ratios collide / parry.
 //!
-//! Reads criterion's `estimates.json` files as `benches/queries/table.rs` does
-//! (that module's reader is private to the queries bench and tied to its
-//! tables, so the few lines are repeated here rather than shared).
+//! Reads criterion's `estimates.json` files through `benches/shared`, as the
+//! other tables do.
 
 use std::fmt::Write as _;
 
 use std::time::SystemTime;
 
-pub use super::criterion_files::{criterion_dir, ns_per};
-
-/// A number with three significant digits or so; `—` when missing.
-pub fn cell(x: Option<f64>) -> String {
-    match x {
-        Some(v) if v >= 100.0 => format!("{v:.0}"),
-        Some(v) if v >= 10.0 => format!("{v:.1}"),
-        Some(v) => format!("{v:.2}"),
-        None => "—".into(),
-    }
-}
-
-/// `x / y` when both were measured.
-pub fn ratio(x: Option<f64>, y: Option<f64>) -> Option<f64> {
-    Some(x? / y?)
-}
+pub use super::criterion_files::{cell, criterion_dir, ns_per, ratio};
 
 /// One engine of a table: benchmark id and heading.
 pub struct Column {

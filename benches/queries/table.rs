@@ -56,20 +56,7 @@ pub struct BatchRow {
 }
 
 pub use super::criterion_files::criterion_dir;
-use super::criterion_files::{judged, ns_per, paired_ratio, target_row, targets_heading, verdict};
-
-fn cell(x: Option<f64>) -> String {
-    match x {
-        Some(v) if v >= 100.0 => format!("{v:.0}"),
-        Some(v) if v >= 10.0 => format!("{v:.1}"),
-        Some(v) => format!("{v:.2}"),
-        None => "—".into(),
-    }
-}
-
-fn ratio(x: Option<f64>, y: Option<f64>) -> Option<f64> {
-    Some(x? / y?)
-}
+use super::criterion_files::{cell, judged, ns_per, paired_ratio, ratio, target_row, targets_heading, verdict};
 
 /// One speed target: `numerator / denominator ≤ target`, over one group.
 pub struct Target {

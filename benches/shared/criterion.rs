@@ -1,9 +1,24 @@
 //! Shared by the benchmarks (`queries`, `mesh`, `toi`): the timing loop every
-//! one-at-a-time row uses, and reading criterion's estimates back for the
-//! tables.
+//! one-at-a-time row uses, reading criterion's estimates back for the
+//! tables, the paired ratios of the targets, and the tables' cells.
 
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
+
+/// A number with three significant digits or so; `—` when missing.
+pub fn cell(x: Option<f64>) -> String {
+    match x {
+        Some(v) if v >= 100.0 => format!("{v:.0}"),
+        Some(v) if v >= 10.0 => format!("{v:.1}"),
+        Some(v) => format!("{v:.2}"),
+        None => "—".into(),
+    }
+}
+
+/// `x / y` when both are known.
+pub fn ratio(x: Option<f64>, y: Option<f64>) -> Option<f64> {
+    Some(x? / y?)
+}
 
 /// Where criterion writes: `$CARGO_TARGET_DIR/criterion`, else the
 /// workspace's `target/criterion`.

@@ -2,28 +2,14 @@
 //! `target/criterion/crashtest-toi-table.md`): criterion's estimates of this
 //! run as nanoseconds per query, with the ratios the speed target is stated in.
 //!
-//! Reads criterion's `estimates.json` files as `benches/queries/table.rs` does
-//! (that reader is private to the queries bench, so the few lines are repeated
-//! here rather than shared).
+//! Reads criterion's `estimates.json` files through `benches/shared`, as the
+//! other tables do.
 
 use std::fmt::Write as _;
 
 use std::time::SystemTime;
 
-pub use super::criterion_files::{criterion_dir, ns_per};
-
-fn cell(x: Option<f64>) -> String {
-    match x {
-        Some(v) if v >= 100.0 => format!("{v:.0}"),
-        Some(v) if v >= 10.0 => format!("{v:.1}"),
-        Some(v) => format!("{v:.2}"),
-        None => "—".into(),
-    }
-}
-
-fn ratio(x: Option<f64>, y: Option<f64>) -> Option<f64> {
-    Some(x? / y?)
-}
+pub use super::criterion_files::{cell, criterion_dir, ns_per, ratio};
 
 /// The engines of the table: criterion's benchmark id and the column's heading.
 pub const ENGINES: [(&str, &str); 8] = [
