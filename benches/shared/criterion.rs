@@ -65,14 +65,16 @@ pub fn run<I, O>(
     inputs: &[I],
     f: impl Fn(&I) -> O,
 ) {
-    g.bench_function(id, |b| {
-        b.iter(|| {
-            for x in inputs {
-                let answer = f(std::hint::black_box(x));
-                std::hint::black_box(&answer);
-            }
-        })
-    });
+    g.bench_function(id, |b| b.iter(|| pass(inputs, &f)));
+}
+
+/// One pass of `f` over `inputs`, as [`run`] and [`Pairs::keep`] time it.
+#[inline(always)]
+fn pass<I, O>(inputs: &[I], f: &impl Fn(&I) -> O) {
+    for x in inputs {
+        let answer = f(std::hint::black_box(x));
+        std::hint::black_box(&answer);
+    }
 }
 
 /// Rounds of a paired ratio: each round times both engines back to back.
@@ -110,18 +112,17 @@ pub fn paired_ratio(group: &str, a: &str, b: &str) -> Option<PairedRatio> {
     all.iter().find(|(g, x, y, _)| g == group && x == a && y == b).map(|e| e.3)
 }
 
-/// How the targets tables read, for their introduction.
-pub const PAIRED_NOTE: &str = "Each ratio twice: from criterion's estimates (each engine timed for about a second, one \
-     after the other) and paired: both engines timed back to back over the same cases for 20 ms each, \
-     in alternating order, 31 times, the median of the 31 ratios with its quartiles. A machine whose speed changes \
-     for seconds at a time moves the first (one engine may be timed fast and the other slow) but not the second; the \
-     verdict is the paired ratio's where it was measured.\n";
-
-/// The targets table's heading, with [`PAIRED_NOTE`], its columns and
-/// their alignment.
+/// The targets table's heading: how its ratios were measured, its columns
+/// and their alignment.
 pub fn targets_heading() -> String {
     format!(
-        "## Targets\n\n{PAIRED_NOTE}\n| target | criterion | paired (quartiles) | verdict |\n| --- | ---: | ---: | --- |\n"
+        "## Targets\n\nEach ratio twice: from criterion's estimates (each engine timed for about a second, one after \
+         the other) and paired: both engines timed back to back over the same cases for {} ms each, in alternating \
+         order, {PAIRED_ROUNDS} times, the median of the {PAIRED_ROUNDS} ratios with its quartiles. A machine whose \
+         speed changes for seconds at a time moves the first (one engine may be timed fast and the other slow) but \
+         not the second; the verdict is the paired ratio's where it was measured.\n\n\
+         | target | criterion | paired (quartiles) | verdict |\n| --- | ---: | ---: | --- |\n",
+        PAIRED_SLICE.as_millis()
     )
 }
 
@@ -154,9 +155,13 @@ pub fn target_row(
     format!("| {what} ≤ {target} | {criterion} | {paired} | {verdict} |\n")
 }
 
-/// A timer kept for a paired ratio: `passes` passes over its inputs, in
-/// nanoseconds per query.
-type Timer<'a> = Box<dyn FnMut(u32) -> f64 + 'a>;
+/// An engine kept for a paired ratio: its id, the queries one pass answers,
+/// and a timer running `passes` passes and giving nanoseconds per query.
+struct Kept<'a> {
+    id: &'static str,
+    per_pass: usize,
+    timer: Box<dyn FnMut(u32) -> f64 + 'a>,
+}
 
 /// The engines of one group kept for paired ratios.
 ///
@@ -165,53 +170,37 @@ type Timer<'a> = Box<dyn FnMut(u32) -> f64 + 'a>;
 /// the one these benches were written on, the same loop ran at 13 ns per case
 /// for some seconds and 20 ns for the next, back and forth), two engines can
 /// be measured at different speeds, and their ratio is off by as much. A
-/// paired ratio times both within 20 ms of each other, many
-/// times over, and takes the median of the rounds' ratios: a change of speed
+/// paired ratio times both within [`PAIRED_SLICE`] of each other, many times
+/// over, and takes the median of the rounds' ratios: a change of speed
 /// spoils the rounds it falls in, not the median.
 pub struct Pairs<'a> {
     group: &'static str,
-    timers: Vec<(&'static str, Timer<'a>)>,
-    /// Inputs per pass of each timer.
-    inputs: Vec<usize>,
+    kept: Vec<Kept<'a>>,
 }
 
 impl<'a> Pairs<'a> {
     /// No engines yet, for `group`.
     pub fn new(group: &'static str) -> Self {
-        Self { group, timers: Vec::new(), inputs: Vec::new() }
+        Self { group, kept: Vec::new() }
     }
 
     /// Keeps engine `id`: `f` over every input, as [`run`] times it.
     pub fn keep<I, O>(&mut self, id: &'static str, inputs: &'a [I], f: impl Fn(&I) -> O + 'a) {
-        let n = inputs.len().max(1) as f64;
-        let timer = move |passes: u32| {
-            let start = std::time::Instant::now();
-            for _ in 0..passes {
-                for x in std::hint::black_box(inputs) {
-                    let answer = f(std::hint::black_box(x));
-                    std::hint::black_box(&answer);
-                }
-            }
-            start.elapsed().as_nanos() as f64 / (f64::from(passes) * n)
-        };
-        self.timers.push((id, Box::new(timer)));
-        self.inputs.push(inputs.len().max(1));
+        self.keep_pass(id, inputs.len(), move || pass(inputs, &f));
     }
 
     /// Keeps engine `id` whose pass is one call of `f` answering `per_pass`
     /// queries (a batch call, or a loop that writes its answers itself).
-    #[allow(dead_code, reason = "the queries and mesh benches time batches; the toi bench has none")]
     pub fn keep_pass(&mut self, id: &'static str, per_pass: usize, mut f: impl FnMut() + 'a) {
-        let n = per_pass.max(1) as f64;
+        let per_pass = per_pass.max(1);
         let timer = move |passes: u32| {
             let start = std::time::Instant::now();
             for _ in 0..passes {
                 f();
             }
-            start.elapsed().as_nanos() as f64 / (f64::from(passes) * n)
+            start.elapsed().as_nanos() as f64 / (f64::from(passes) * per_pass as f64)
         };
-        self.timers.push((id, Box::new(timer)));
-        self.inputs.push(per_pass.max(1));
+        self.kept.push(Kept { id, per_pass, timer: Box::new(timer) });
     }
 
     /// Measures `a / b` for every pair of kept ids given (in a benchmarking
@@ -222,7 +211,7 @@ impl<'a> Pairs<'a> {
         }
         for &(a, b) in pairs {
             let (Some(ia), Some(ib)) =
-                (self.timers.iter().position(|t| t.0 == a), self.timers.iter().position(|t| t.0 == b))
+                (self.kept.iter().position(|k| k.id == a), self.kept.iter().position(|k| k.id == b))
             else {
                 continue;
             };
@@ -233,17 +222,17 @@ impl<'a> Pairs<'a> {
         }
     }
 
-    /// Times timers `ia` and `ib` in [`PAIRED_ROUNDS`] rounds.
+    /// Times engines `ia` and `ib` in [`PAIRED_ROUNDS`] rounds.
     fn pair(&mut self, ia: usize, ib: usize) -> PairedRatio {
         let (pa, pb) = (self.passes(ia), self.passes(ib));
         let mut ratios = Vec::with_capacity(PAIRED_ROUNDS);
         for round in 0..PAIRED_ROUNDS {
             let (ta, tb) = if round % 2 == 0 {
-                let ta = (self.timers[ia].1)(pa);
-                (ta, (self.timers[ib].1)(pb))
+                let ta = (self.kept[ia].timer)(pa);
+                (ta, (self.kept[ib].timer)(pb))
             } else {
-                let tb = (self.timers[ib].1)(pb);
-                ((self.timers[ia].1)(pa), tb)
+                let tb = (self.kept[ib].timer)(pb);
+                ((self.kept[ia].timer)(pa), tb)
             };
             ratios.push(ta / tb);
         }
@@ -252,11 +241,11 @@ impl<'a> Pairs<'a> {
         PairedRatio { median: at(0.5), low: at(0.25), high: at(0.75) }
     }
 
-    /// Passes of timer `i` that last at least [`PAIRED_SLICE`], from one
+    /// Passes of engine `i` that last at least [`PAIRED_SLICE`], from one
     /// pass (which also warms it).
     fn passes(&mut self, i: usize) -> u32 {
-        let n = self.inputs[i] as f64;
-        let once_s = (self.timers[i].1)(1) * n * 1e-9;
+        let k = &mut self.kept[i];
+        let once_s = (k.timer)(1) * k.per_pass as f64 * 1e-9;
         (PAIRED_SLICE.as_secs_f64() / once_s.max(1e-9)).ceil().clamp(1.0, 1e6) as u32
     }
 }
