@@ -59,7 +59,7 @@ pub fn render(
     since: SystemTime,
 ) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "## {title}\n\n{intro}\n");
+    let _ = writeln!(s, "## {title}\n\n{intro} {}\n", super::criterion_files::PAIRED_MARK);
     let _ = write!(s, "| | unit |");
     for c in columns {
         let _ = write!(s, " {} |", c.heading);
@@ -79,7 +79,8 @@ pub fn render(
             let _ = write!(s, " {} |", cell(get(c.id).map(|v| v / r.unit_ns)));
         }
         for (num, den, _) in ratios {
-            let _ = write!(s, " {} |", cell(ratio(get(num), get(den))));
+            let paired = super::criterion_files::paired_ratio(r.group, num, den);
+            let _ = write!(s, " {} |", super::criterion_files::ratio_cell(ratio(get(num), get(den)), paired));
         }
         let _ = writeln!(s);
     }

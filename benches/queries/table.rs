@@ -56,7 +56,9 @@ pub struct BatchRow {
 }
 
 pub use super::criterion_files::criterion_dir;
-use super::criterion_files::{cell, judged, ns_per, paired_ratio, ratio, target_row, targets_heading, verdict};
+use super::criterion_files::{
+    PAIRED_MARK, cell, judged, ns_per, paired_ratio, ratio, ratio_cell, target_row, targets_heading, verdict,
+};
 
 /// One speed target: `numerator / denominator ≤ target`, over one group.
 pub struct Target {
@@ -93,7 +95,7 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
          time. Bound = the query's hand-counted arithmetic (mean over the cases) and its input's \
          bytes at that peak: FP pipes, divider and loads in parallel, the largest time. A target \
          that asks for less than the bound cannot be met by this build on this machine; its \
-         verdict says so.\n",
+         verdict says so. {PAIRED_MARK}\n",
         peak.ops_f64, peak.ops_f32, peak.sqrt_f64, peak.div_f64, peak.read_bytes
     );
 
@@ -125,7 +127,7 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
         let _ = writeln!(
             s,
             " {} | {} | {} | {} |",
-            cell(ratio(robust, parry)),
+            ratio_cell(ratio(robust, parry), paired_ratio(r.group, "collide_robust_f64", "parry64")),
             cell(ratio(lecture, parry)),
             cell(bound),
             cell(ratio(robust, bound)),

@@ -126,6 +126,20 @@ pub fn targets_heading() -> String {
     )
 }
 
+/// A table's ratio cell: the paired median `paired` where measured, marked
+/// `*`, else criterion's ratio (see [`PAIRED_MARK`]).
+pub fn ratio_cell(criterion: Option<f64>, paired: Option<PairedRatio>) -> String {
+    match paired {
+        Some(p) => format!("{}*", cell(Some(p.median))),
+        None => cell(criterion),
+    }
+}
+
+/// The sentence that explains [`ratio_cell`]'s mark, for the tables'
+/// introductions.
+pub const PAIRED_MARK: &str = "A ratio marked * is the paired median of the targets below (both engines timed back \
+     to back, many times over); unmarked ratios are from criterion's estimates, each engine timed after the other.";
+
 /// The ratio a target is judged on: the paired median where it was
 /// measured, else criterion's ratio.
 pub fn judged(criterion: Option<f64>, paired: Option<PairedRatio>) -> Option<f64> {

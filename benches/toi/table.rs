@@ -65,7 +65,8 @@ pub fn render(rows: &[Row], targets: &[Target], seed: u64, since: SystemTime) ->
          with the oracle's options; \"via adapter\": through `oracle::parry::ParryCast`, which converts inside \
          each call. The textbook closed form (sphere–sphere only) is the formula with nothing around it — no \
          range checks, no screen, no unit check, no degenerate cases — a reference for what collide's checks \
-         cost, not an engine.\n"
+         cost, not an engine. {}\n",
+        super::criterion_files::PAIRED_MARK
     );
     let _ = write!(s, "| pair | robust method | hits |");
     for (_, h) in ENGINES {
@@ -90,7 +91,10 @@ pub fn render(rows: &[Row], targets: &[Target], seed: u64, since: SystemTime) ->
         let _ = writeln!(
             s,
             " {} | {} | {} | {} |",
-            cell(ratio(robust, get("parry64"))),
+            super::criterion_files::ratio_cell(
+                ratio(robust, get("parry64")),
+                super::criterion_files::paired_ratio(r.group, "collide_robust_f64", "parry64")
+            ),
             cell(ratio(textbook, get("parry64"))),
             cell(ratio(robust, textbook)),
             cell(ratio(get("collide_halving_f64"), robust))
