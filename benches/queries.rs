@@ -53,7 +53,7 @@ use oracle::parry::{Parry32, Parry64, ParryEngine};
 use parry_direct::{p32, p64};
 use std::hint::black_box;
 use std::time::{Duration, SystemTime};
-use table::{BatchRow, Row, Target};
+use table::{BatchRow, FamilyTable, Row, Target};
 
 /// Warm-up per benchmark: long enough for criterion to size its iterations
 /// (each iteration runs all the cases, 1–300 µs).
@@ -146,7 +146,7 @@ fn sphere_triangle(c: &mut Criterion, cases: &[(geom::Sphere, geom::Triangle)]) 
     pairs.measure(&target_pairs("sphere_triangle"));
 }
 
-fn segment_plane(c: &mut Criterion, cases: &[(geom::Segment, geom::Plane)]) {
+fn segment_plane(c: &mut Criterion, cases: &[(geom::Segment, geom::Plane)], families: &[&'static str]) {
     use collide::intersect::{intersect_segment_plane, intersect_segment_plane_lecture};
     let mut g = group(c, "segment_plane", cases.len());
     let c64 = conv(cases, to_collide::segment::<f64>, to_collide::plane::<f64>);
@@ -168,9 +168,22 @@ fn segment_plane(c: &mut Criterion, cases: &[(geom::Segment, geom::Plane)]) {
     pairs.keep("parry64", &d64, |(r, p)| p64::intersect_segment_plane(r, p));
     pairs.keep("parry64_like", &d64, |(r, p)| p64::intersect_segment_plane_like(r, p));
     pairs.measure(&target_pairs("segment_plane"));
+    by_family(
+        "segment_plane",
+        families,
+        (&c64, |(s, p)| intersect_segment_plane(s, p)),
+        (&d64, |(r, p)| p64::intersect_segment_plane(r, p)),
+    );
 }
 
-fn segment_triangle(c: &mut Criterion, name: &'static str, cases: &[(geom::Segment, geom::Triangle)], adapters: bool) {
+/// Segment–triangle over `cases`, as group `name`; with the parry adapters
+/// and the by-family ratios when `families` is given (the campaign mix).
+fn segment_triangle(
+    c: &mut Criterion,
+    name: &'static str,
+    cases: &[(geom::Segment, geom::Triangle)],
+    families: Option<&[&'static str]>,
+) {
     use collide::intersect::{intersect_segment_triangle, intersect_segment_triangle_lecture};
     let mut g = group(c, name, cases.len());
     let c64 = conv(cases, to_collide::segment::<f64>, to_collide::triangle::<f64>);
@@ -183,7 +196,7 @@ fn segment_triangle(c: &mut Criterion, name: &'static str, cases: &[(geom::Segme
     let d32 = conv(cases, p32::ray, p32::triangle);
     run(&mut g, "parry64", &d64, |(r, t)| p64::intersect_segment_triangle(r, t));
     run(&mut g, "parry32", &d32, |(r, t)| p32::intersect_segment_triangle(r, t));
-    if adapters {
+    if families.is_some() {
         run(&mut g, "parry64_adapter", cases, |(s, t)| Parry64.intersect_segment_triangle(*s, *t));
         run(&mut g, "parry32_adapter", cases, |(s, t)| Parry32.intersect_segment_triangle(*s, *t));
     }
@@ -193,9 +206,17 @@ fn segment_triangle(c: &mut Criterion, name: &'static str, cases: &[(geom::Segme
     pairs.keep("collide_lecture_f64", &c64, |(s, t)| intersect_segment_triangle_lecture(s, t));
     pairs.keep("parry64", &d64, |(r, t)| p64::intersect_segment_triangle(r, t));
     pairs.measure(&target_pairs(name));
+    if let Some(families) = families {
+        by_family(
+            name,
+            families,
+            (&c64, |(s, t)| intersect_segment_triangle(s, t)),
+            (&d64, |(r, t)| p64::intersect_segment_triangle(r, t)),
+        );
+    }
 }
 
-fn barycentric(c: &mut Criterion, cases: &[(geom::P3, geom::Triangle)]) {
+fn barycentric(c: &mut Criterion, cases: &[(geom::P3, geom::Triangle)], families: &[&'static str]) {
     use collide::barycentric::{barycentric_triangle, barycentric_triangle_lecture};
     let mut g = group(c, "barycentric", cases.len());
     let c64 = conv(cases, |p| to_collide::v::<f64>(*p), to_collide::triangle::<f64>);
@@ -215,6 +236,54 @@ fn barycentric(c: &mut Criterion, cases: &[(geom::P3, geom::Triangle)]) {
     pairs.keep("collide_robust_f64", &c64, |(p, t)| barycentric_triangle(p, t));
     pairs.keep("parry64", &d64, |(p, t)| p64::barycentric(p, t));
     pairs.measure(&target_pairs("barycentric"));
+    by_family(
+        "barycentric",
+        families,
+        (&c64, |(p, t)| barycentric_triangle(p, t)),
+        (&d64, |(p, t)| p64::barycentric(p, t)),
+    );
+}
+
+/// The distinct families of `families` in order of first appearance, with
+/// their numbers of cases.
+fn family_counts(families: &[&'static str]) -> Vec<(&'static str, usize)> {
+    let mut out: Vec<(&'static str, usize)> = Vec::new();
+    for f in families {
+        match out.iter_mut().find(|(g, _)| g == f) {
+            Some((_, n)) => *n += 1,
+            None => out.push((f, 1)),
+        }
+    }
+    out
+}
+
+/// The cases of `xs` drawn from `family`.
+fn of_family<X: Clone>(families: &[&'static str], xs: &[X], family: &str) -> Vec<X> {
+    families.iter().zip(xs).filter(|(f, _)| **f == family).map(|(_, x)| x.clone()).collect()
+}
+
+/// The paired ratios' group of one family of `group`'s cases.
+fn family_group(group: &str, family: &str) -> String {
+    format!("{group} / {family}")
+}
+
+/// collide's robust `f64` against parry3d-f64 on each campaign family's
+/// cases alone, as paired ratios (group [`family_group`]): `ours` and
+/// `theirs` are the same cases in each engine's types, `families[i]` the
+/// family of case `i`.
+fn by_family<I: Clone, J: Clone, O, P>(
+    group: &str,
+    families: &[&'static str],
+    ours: (&[I], impl Fn(&I) -> O + Copy),
+    theirs: (&[J], impl Fn(&J) -> P + Copy),
+) {
+    for (family, _) in family_counts(families) {
+        let (ours_cases, theirs_cases) = (of_family(families, ours.0, family), of_family(families, theirs.0, family));
+        let mut pairs = Pairs::new(family_group(group, family));
+        pairs.keep("collide_robust_f64", &ours_cases, ours.1);
+        pairs.keep("parry64", &theirs_cases, theirs.1);
+        pairs.measure(&[("collide_robust_f64", "parry64")]);
+    }
 }
 
 fn overlap(c: &mut Criterion, cases: &[(geom::Aabb, geom::Aabb)]) {
@@ -236,10 +305,21 @@ fn overlap(c: &mut Criterion, cases: &[(geom::Aabb, geom::Aabb)]) {
     let mut pairs = Pairs::new("overlap");
     pairs.keep("collide_robust_f64", &c64, |(a, b)| test_aabb_aabb(a, b));
     pairs.keep("parry64", &d64, |(a, b)| p64::overlap(a, b));
+    pairs.keep("read_f64", &c64, |(a, b)| read_both(a, b));
     let [looped, batched] = overlap_passes(&c64);
     pairs.keep_pass("loop_f64", c64.len(), looped);
     pairs.keep_pass("batch_f64", c64.len(), batched);
     pairs.measure(&target_pairs("overlap"));
+}
+
+/// The floor of any box test in this loop: both boxes' twelve coordinates
+/// read and folded by bitwise or, nothing compared (the read rate of
+/// `peak.rs`, on the bench's own cases). A test that answers from fewer
+/// loads (one axis's, when it separates) pays a branch for it.
+#[inline(always)]
+fn read_both(a: &collide::Aabb<f64>, b: &collide::Aabb<f64>) -> u64 {
+    let bits = |v: &Vec3<f64>| v.x.to_bits() | v.y.to_bits() | v.z.to_bits();
+    bits(&a.min) | bits(&a.max) | bits(&b.min) | bits(&b.max)
 }
 
 /// The one-at-a-time loop a user writes over `pairs`: each pair's `f`
@@ -533,77 +613,89 @@ fn plane_miss(s: &geom::Segment, t: &geom::Triangle) -> bool {
 /// The numerator and denominator ids of `group`'s targets (see
 /// [`targets`]), for its paired ratios.
 fn target_pairs(group: &str) -> Vec<(&'static str, &'static str)> {
-    targets().into_iter().filter(|t| t.group == group).map(|t| t.ids).collect()
+    let targets: Vec<Target> = targets().into_iter().filter(|t| t.group == group).collect();
+    let floors = targets.iter().filter_map(|t| Some((t.floor?, t.ids.1)));
+    targets.iter().map(|t| t.ids).chain(floors).collect()
 }
 
 fn targets() -> Vec<Target> {
-    let half = |group, what| Target { group, what, ids: ("collide_robust_f64", "parry64"), target: 0.5 };
+    let half = |group, what| Target { group, what, ids: ("collide_robust_f64", "parry64"), target: 0.5, floor: None };
     vec![
         half("sphere_sphere", "sphere–sphere: robust f64 / parry3d-f64"),
         half("sphere_plane", "sphere–plane: robust f64 / parry3d-f64"),
         half("sphere_triangle", "sphere–triangle: robust f64 / parry3d-f64"),
         half("segment_plane", "segment–plane: robust f64 / parry3d-f64"),
         half("barycentric", "barycentric: robust f64 / parry3d-f64"),
-        half("overlap", "AABB overlap: robust f64 / parry3d-f64"),
+        Target { floor: Some("read_f64"), ..half("overlap", "AABB overlap: robust f64 / parry3d-f64") },
         Target {
             group: "sphere_sphere",
             what: "(like for like) sphere–sphere: robust f64 / parry3d-f64 pair function",
             ids: ("collide_robust_f64", "parry64_like"),
             target: 0.5,
+            floor: None,
         },
         Target {
             group: "sphere_plane",
             what: "(like for like) sphere–plane: robust f64 / parry3d-f64 pair function",
             ids: ("collide_robust_f64", "parry64_like"),
             target: 0.5,
+            floor: None,
         },
         Target {
             group: "sphere_triangle",
             what: "(like for like) sphere–triangle: robust f64 / parry3d-f64 pair function",
             ids: ("collide_robust_f64", "parry64_like"),
             target: 0.5,
+            floor: None,
         },
         Target {
             group: "segment_plane",
             what: "(like for like) segment–plane: robust f64 / parry3d-f64 answering t, point and normal",
             ids: ("collide_robust_f64", "parry64_like"),
             target: 0.5,
+            floor: None,
         },
         Target {
             group: "segment_triangle",
             what: "segment–triangle (campaign mix): robust f64 / parry3d-f64",
             ids: ("collide_robust_f64", "parry64"),
             target: 1.0,
+            floor: None,
         },
         Target {
             group: "segment_triangle_uniform",
             what: "segment–triangle (uniform random): exact (robust) f64 / lecture f64",
             ids: ("collide_robust_f64", "collide_lecture_f64"),
             target: 1.5,
+            floor: None,
         },
         Target {
             group: "segment_triangle",
             what: "segment–triangle (campaign mix): exact (robust) f64 / lecture f64",
             ids: ("collide_robust_f64", "collide_lecture_f64"),
             target: 1.5,
+            floor: None,
         },
         Target {
             group: "overlap",
             what: "AABB overlap, many pairs (broad phase): collide batch f64 / parry3d-f64 one at a time",
             ids: ("batch_f64", "parry64"),
             target: 0.5,
+            floor: None,
         },
         Target {
             group: "overlap",
             what: "AABB overlap f64: batch / one-at-a-time loop",
             ids: ("batch_f64", "loop_f64"),
             target: 1.0,
+            floor: None,
         },
         Target {
             group: "sphere_sphere_batch",
             what: "sphere–sphere contact f64: batch / one-at-a-time loop",
             ids: ("batch_contact_f64", "loop_contact_f64"),
             target: 1.0,
+            floor: None,
         },
     ]
 }
@@ -626,16 +718,35 @@ fn main() {
     sphere_sphere(&mut c, &cases.sphere_sphere);
     sphere_plane(&mut c, &cases.sphere_plane);
     sphere_triangle(&mut c, &cases.sphere_triangle);
-    segment_plane(&mut c, &cases.segment_plane);
-    segment_triangle(&mut c, "segment_triangle", &cases.segment_triangle, true);
-    segment_triangle(&mut c, "segment_triangle_uniform", &cases.segment_triangle_uniform, false);
-    barycentric(&mut c, &cases.barycentric);
+    segment_plane(&mut c, &cases.segment_plane, &cases.families.segment_plane);
+    segment_triangle(&mut c, "segment_triangle", &cases.segment_triangle, Some(&cases.families.segment_triangle));
+    segment_triangle(&mut c, "segment_triangle_uniform", &cases.segment_triangle_uniform, None);
+    barycentric(&mut c, &cases.barycentric, &cases.families.barycentric);
     overlap(&mut c, &cases.overlap);
     bounding_sphere(&mut c, &cases.clouds);
     sphere_sphere_batch(&mut c, &cases.sphere_sphere);
     c.final_summary();
     if let Some(peak) = peak.map(|p| p.best(peak::measure())) {
-        table::publish(&table::render(&rows(&cases), &batches(&cases), &targets(), &peak, since));
+        let families = [
+            FamilyTable {
+                label: "segment–plane",
+                group: "segment_plane",
+                families: family_counts(&cases.families.segment_plane),
+            },
+            FamilyTable {
+                label: "segment–triangle",
+                group: "segment_triangle",
+                families: family_counts(&cases.families.segment_triangle),
+            },
+            FamilyTable {
+                label: "barycentric",
+                group: "barycentric",
+                families: family_counts(&cases.families.barycentric),
+            },
+        ];
+        let tables =
+            table::Tables { rows: &rows(&cases), batches: &batches(&cases), targets: &targets(), families: &families };
+        table::publish(&table::render(&tables, family_group, &peak, since));
         table::write_figures(&rows(&cases), since);
     }
 }

@@ -44,7 +44,25 @@ pub struct Cases {
     pub overlap: Vec<(geom::Aabb, geom::Aabb)>,
     /// Point clouds (bounding sphere).
     pub clouds: Vec<Vec<geom::P3>>,
+    /// The campaign family each case of the three queries whose targets
+    /// depend most on the mix was drawn from, case by case.
+    pub families: Families,
 }
+
+/// The campaign family of each case (`harness::generate::family_for`), in
+/// the order of the case sets, for the by-family table.
+pub struct Families {
+    /// Of [`Cases::segment_plane`].
+    pub segment_plane: Vec<&'static str>,
+    /// Of [`Cases::segment_triangle`].
+    pub segment_triangle: Vec<&'static str>,
+    /// Of [`Cases::barycentric`].
+    pub barycentric: Vec<&'static str>,
+}
+
+/// The family name of a case the generators drew with no family (none do
+/// today: every query kind has families of both kinds).
+const NO_FAMILY: &str = "(no family)";
 
 fn sphere(s: &Shape) -> Option<geom::Sphere> {
     match s {
@@ -82,9 +100,13 @@ fn aabb(s: &Shape) -> Option<geom::Aabb> {
 }
 
 /// Draws cases of `query` from index 0 on, keeping those `keep` accepts, until
-/// `PER_QUERY` are kept (or [`MAX_INDICES`] were tried).
-fn draw<T>(query: Query, mut keep: impl FnMut(u64, &Shape, Option<&Shape>) -> Option<T>) -> Vec<T> {
-    let mut out = Vec::with_capacity(PER_QUERY);
+/// `PER_QUERY` are kept (or [`MAX_INDICES`] were tried); with each kept
+/// case's family.
+fn draw_with_families<T>(
+    query: Query,
+    mut keep: impl FnMut(u64, &Shape, Option<&Shape>) -> Option<T>,
+) -> (Vec<T>, Vec<&'static str>) {
+    let (mut out, mut families) = (Vec::with_capacity(PER_QUERY), Vec::with_capacity(PER_QUERY));
     for index in 0..MAX_INDICES {
         if out.len() == PER_QUERY {
             break;
@@ -92,10 +114,16 @@ fn draw<T>(query: Query, mut keep: impl FnMut(u64, &Shape, Option<&Shape>) -> Op
         let lc = generate(query, SEED, index);
         if let Some(x) = keep(index, &lc.case.a, lc.case.b.as_ref()) {
             out.push(x);
+            families.push(family_for(query, index).unwrap_or(NO_FAMILY));
         }
     }
     assert!(out.len() == PER_QUERY, "only {} {query} cases in {MAX_INDICES} indices", out.len());
-    out
+    (out, families)
+}
+
+/// [`draw_with_families`] without the families.
+fn draw<T>(query: Query, keep: impl FnMut(u64, &Shape, Option<&Shape>) -> Option<T>) -> Vec<T> {
+    draw_with_families(query, keep).0
 }
 
 /// The pair `(x, y)` of the kinds asked for, in either order.
@@ -116,27 +144,36 @@ impl Cases {
     /// Draws every set (about a second: the generators are proptest strategies).
     pub fn draw() -> Self {
         let seg_tri = |_: u64, a: &Shape, b: Option<&Shape>| either(a, b, segment, triangle);
+        let (segment_plane, segment_plane_families) =
+            draw_with_families(Query::Intersect, |_, a, b| either(a, b, segment, plane));
+        let (segment_triangle, segment_triangle_families) = draw_with_families(Query::Intersect, seg_tri);
+        let (barycentric, barycentric_families) = draw_with_families(Query::Barycentric, |_, a, b| {
+            let point = |s: &Shape| match s {
+                Shape::Point(p) => Some(p.at),
+                _ => None,
+            };
+            either(a, b, point, triangle)
+        });
         Self {
             sphere_sphere: draw(Query::Contact, |_, a, b| Some((sphere(a)?, sphere(b?)?))),
             sphere_plane: draw(Query::Contact, |_, a, b| either(a, b, sphere, plane)),
             sphere_triangle: draw(Query::Contact, |_, a, b| either(a, b, sphere, triangle)),
-            segment_plane: draw(Query::Intersect, |_, a, b| either(a, b, segment, plane)),
-            segment_triangle: draw(Query::Intersect, seg_tri),
+            segment_plane,
+            segment_triangle,
             segment_triangle_uniform: draw(Query::Intersect, |i, a, b| {
                 (family_for(Query::Intersect, i) == Some(UNIFORM_SEGMENT_TRIANGLE)).then(|| seg_tri(i, a, b)).flatten()
             }),
-            barycentric: draw(Query::Barycentric, |_, a, b| {
-                let point = |s: &Shape| match s {
-                    Shape::Point(p) => Some(p.at),
-                    _ => None,
-                };
-                either(a, b, point, triangle)
-            }),
+            barycentric,
             overlap: draw(Query::Overlap, |_, a, b| Some((aabb(a)?, aabb(b?)?))),
             clouds: draw(Query::Bounds, |_, a, _| match a {
                 Shape::Points(p) => Some(p.points.clone()),
                 _ => None,
             }),
+            families: Families {
+                segment_plane: segment_plane_families,
+                segment_triangle: segment_triangle_families,
+                barycentric: barycentric_families,
+            },
         }
     }
 }

@@ -70,10 +70,41 @@ pub struct Target {
     pub ids: (&'static str, &'static str),
     /// The largest ratio that meets it.
     pub target: f64,
+    /// A benchmark id of the same group that does no more than read the
+    /// numerator's inputs: its paired ratio to the denominator is the least
+    /// ratio any function of those inputs can have in this loop, and the
+    /// verdict says so when that is above the target.
+    pub floor: Option<&'static str>,
+}
+
+/// One query's cases by campaign family, for the by-family table.
+pub struct FamilyTable {
+    /// The query, for the reader.
+    pub label: &'static str,
+    /// The main table's group.
+    pub group: &'static str,
+    /// Each family and its number of cases, in the order drawn.
+    pub families: Vec<(&'static str, usize)>,
+}
+
+/// Everything the report renders from.
+pub struct Tables<'a> {
+    /// The main table's queries.
+    pub rows: &'a [Row],
+    /// The batch table's comparisons.
+    pub batches: &'a [BatchRow],
+    /// The speed targets.
+    pub targets: &'a [Target],
+    /// The by-family tables.
+    pub families: &'a [FamilyTable],
 }
 
 /// Renders the whole report as Markdown.
-pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Peak, since: SystemTime) -> String {
+///
+/// `family_group` names the paired ratios' group of a family of a query's
+/// cases.
+pub fn render(tables: &Tables, family_group: fn(&str, &str) -> String, peak: &Peak, since: SystemTime) -> String {
+    let Tables { rows, batches, targets, families } = *tables;
     let mut s = String::new();
     let _ = writeln!(s, "# crashtest speed: collide against parry, one run\n");
     let _ = writeln!(
@@ -184,7 +215,46 @@ pub fn render(rows: &[Row], batches: &[BatchRow], targets: &[Target], peak: &Pea
         {
             let _ = write!(v, ": asks for {} ns, below the bound ({} ns)", cell(Some(t.target * d)), cell(Some(b)));
         }
+        if let Some(floor) = t.floor.and_then(|f| paired_ratio(t.group, f, t.ids.1))
+            && floor.median > t.target
+        {
+            let _ = write!(
+                v,
+                "; unreachable in this loop: reading the inputs and nothing else takes {:.3} ({:.3}–{:.3}) of the \
+                 denominator's time, paired",
+                floor.median, floor.low, floor.high
+            );
+        }
         s.push_str(&target_row(t.what, t.target, r, paired, &v));
+    }
+    s.push_str(&by_family(families, family_group));
+    s
+}
+
+/// The by-family table: each campaign family's cases timed alone, collide's
+/// robust `f64` against parry3d-f64, paired.
+fn by_family(families: &[FamilyTable], family_group: fn(&str, &str) -> String) -> String {
+    let mut s = String::from(
+        "\n## By case family\n\nThe mixes above are the campaign's: half uniform random cases, half drawn toward \
+         where methods fail. Here each family's cases are timed alone, collide robust f64 against parry3d-f64, paired \
+         as the targets are, to show where the time goes: the exact predicates' fallbacks run on the families near \
+         a degeneracy. A family timed alone is a shorter loop of like cases, whose branches predict better than \
+         the mix's, so the mix's time is not the cases' weighted mean of these.\n\n\
+         | query | family | cases | robust f64 (ns) | parry3d-f64 (ns) | robust / parry (quartiles) |\n\
+         | --- | --- | ---: | ---: | ---: | ---: |\n",
+    );
+    for table in families {
+        for &(family, n) in &table.families {
+            let p = paired_ratio(&family_group(table.group, family), "collide_robust_f64", "parry64");
+            let _ = writeln!(
+                s,
+                "| {} | {family} | {n} | {} | {} | {} |",
+                table.label,
+                cell(p.map(|p| p.ns_a)),
+                cell(p.map(|p| p.ns_b)),
+                p.map_or("—".into(), |p| format!("{:.3} ({:.3}–{:.3})", p.median, p.low, p.high)),
+            );
+        }
     }
     s
 }

@@ -100,6 +100,10 @@ pub struct PairedRatio {
     pub low: f64,
     /// Upper quartile.
     pub high: f64,
+    /// Median over the rounds of the numerator's nanoseconds per query.
+    pub ns_a: f64,
+    /// Median over the rounds of the denominator's nanoseconds per query.
+    pub ns_b: f64,
 }
 
 /// Every paired ratio measured in this run: group, numerator id, denominator
@@ -120,8 +124,9 @@ pub fn targets_heading() -> String {
          the other) and paired: both engines timed back to back over the same cases for {} ms each, in alternating \
          order, {PAIRED_ROUNDS} times, the median of the {PAIRED_ROUNDS} ratios with its quartiles. A machine whose \
          speed changes for seconds at a time moves the first (one engine may be timed fast and the other slow) but \
-         not the second; the verdict is the paired ratio's where it was measured.\n\n\
-         | target | criterion | paired (quartiles) | verdict |\n| --- | ---: | ---: | --- |\n",
+         not the second; the verdict is the paired ratio's where it was measured. \"paired ns\" gives both \
+         engines' median times per query in those rounds, numerator / denominator.\n\n\
+         | target | criterion | paired (quartiles) | paired ns | verdict |\n| --- | ---: | ---: | ---: | --- |\n",
         PAIRED_SLICE.as_millis()
     )
 }
@@ -156,7 +161,8 @@ pub fn verdict(r: Option<f64>, target: f64) -> &'static str {
 }
 
 /// One row of the targets table: what is compared and its target, criterion's
-/// ratio, the paired ratio (median and quartiles), the verdict.
+/// ratio, the paired ratio (median and quartiles), both engines' paired
+/// times, the verdict.
 pub fn target_row(
     what: &str,
     target: f64,
@@ -164,9 +170,10 @@ pub fn target_row(
     paired: Option<PairedRatio>,
     verdict: &str,
 ) -> String {
+    let ns = paired.map_or("—".into(), |p| format!("{} / {}", cell(Some(p.ns_a)), cell(Some(p.ns_b))));
     let paired = paired.map_or("—".into(), |p| format!("{:.3} ({:.3}–{:.3})", p.median, p.low, p.high));
     let criterion = criterion.map_or("—".into(), |x| format!("{x:.3}"));
-    format!("| {what} ≤ {target} | {criterion} | {paired} | {verdict} |\n")
+    format!("| {what} ≤ {target} | {criterion} | {paired} | {ns} | {verdict} |\n")
 }
 
 /// An engine kept for a paired ratio: its id, the queries one pass answers,
@@ -188,14 +195,14 @@ struct Kept<'a> {
 /// over, and takes the median of the rounds' ratios: a change of speed
 /// spoils the rounds it falls in, not the median.
 pub struct Pairs<'a> {
-    group: &'static str,
+    group: String,
     kept: Vec<Kept<'a>>,
 }
 
 impl<'a> Pairs<'a> {
     /// No engines yet, for `group`.
-    pub fn new(group: &'static str) -> Self {
-        Self { group, kept: Vec::new() }
+    pub fn new(group: impl Into<String>) -> Self {
+        Self { group: group.into(), kept: Vec::new() }
     }
 
     /// Keeps engine `id`: `f` over every input, as [`run`] times it.
@@ -231,7 +238,7 @@ impl<'a> Pairs<'a> {
             };
             let r = self.pair(ia, ib);
             if let Ok(mut all) = PAIRED.lock() {
-                all.push((self.group.into(), a.into(), b.into(), r));
+                all.push((self.group.clone(), a.into(), b.into(), r));
             }
         }
     }
@@ -240,6 +247,7 @@ impl<'a> Pairs<'a> {
     fn pair(&mut self, ia: usize, ib: usize) -> PairedRatio {
         let (pa, pb) = (self.passes(ia), self.passes(ib));
         let mut ratios = Vec::with_capacity(PAIRED_ROUNDS);
+        let (mut times_a, mut times_b) = (Vec::with_capacity(PAIRED_ROUNDS), Vec::with_capacity(PAIRED_ROUNDS));
         for round in 0..PAIRED_ROUNDS {
             let (ta, tb) = if round % 2 == 0 {
                 let ta = (self.kept[ia].timer)(pa);
@@ -249,10 +257,20 @@ impl<'a> Pairs<'a> {
                 ((self.kept[ia].timer)(pa), tb)
             };
             ratios.push(ta / tb);
+            times_a.push(ta);
+            times_b.push(tb);
         }
-        ratios.sort_by(f64::total_cmp);
-        let at = |q: f64| ratios[((ratios.len() - 1) as f64 * q).round() as usize];
-        PairedRatio { median: at(0.5), low: at(0.25), high: at(0.75) }
+        let at = |xs: &mut Vec<f64>, q: f64| {
+            xs.sort_by(f64::total_cmp);
+            xs[((xs.len() - 1) as f64 * q).round() as usize]
+        };
+        PairedRatio {
+            median: at(&mut ratios, 0.5),
+            low: at(&mut ratios, 0.25),
+            high: at(&mut ratios, 0.75),
+            ns_a: at(&mut times_a, 0.5),
+            ns_b: at(&mut times_b, 0.5),
+        }
     }
 
     /// Passes of engine `i` that last at least [`PAIRED_SLICE`], from one
