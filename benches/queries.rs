@@ -37,6 +37,9 @@ mod cost;
 #[path = "shared/criterion.rs"]
 mod criterion_files;
 use criterion_files::{PAIRING, Pairs, run};
+#[path = "shared/families.rs"]
+mod families;
+use families::{FamilyTable, by_family, family_counts};
 #[path = "queries/parry_direct.rs"]
 mod parry_direct;
 #[path = "queries/peak.rs"]
@@ -53,7 +56,7 @@ use oracle::parry::{Parry32, Parry64, ParryEngine};
 use parry_direct::{p32, p64};
 use std::hint::black_box;
 use std::time::{Duration, SystemTime};
-use table::{BatchRow, FamilyTable, Row, Target};
+use table::{BatchRow, Row, Target};
 
 /// Warm-up per benchmark: long enough for criterion to size its iterations
 /// (each iteration runs all the cases, 1–300 µs).
@@ -242,48 +245,6 @@ fn barycentric(c: &mut Criterion, cases: &[(geom::P3, geom::Triangle)], families
         (&c64, |(p, t)| barycentric_triangle(p, t)),
         (&d64, |(p, t)| p64::barycentric(p, t)),
     );
-}
-
-/// The distinct families of `families` in order of first appearance, with
-/// their numbers of cases.
-fn family_counts(families: &[&'static str]) -> Vec<(&'static str, usize)> {
-    let mut out: Vec<(&'static str, usize)> = Vec::new();
-    for f in families {
-        match out.iter_mut().find(|(g, _)| g == f) {
-            Some((_, n)) => *n += 1,
-            None => out.push((f, 1)),
-        }
-    }
-    out
-}
-
-/// The cases of `xs` drawn from `family`.
-fn of_family<X: Clone>(families: &[&'static str], xs: &[X], family: &str) -> Vec<X> {
-    families.iter().zip(xs).filter(|(f, _)| **f == family).map(|(_, x)| x.clone()).collect()
-}
-
-/// The paired ratios' group of one family of `group`'s cases.
-fn family_group(group: &str, family: &str) -> String {
-    format!("{group} / {family}")
-}
-
-/// collide's robust `f64` against parry3d-f64 on each campaign family's
-/// cases alone, as paired ratios (group [`family_group`]): `ours` and
-/// `theirs` are the same cases in each engine's types, `families[i]` the
-/// family of case `i`.
-fn by_family<I: Clone, J: Clone, O, P>(
-    group: &str,
-    families: &[&'static str],
-    ours: (&[I], impl Fn(&I) -> O + Copy),
-    theirs: (&[J], impl Fn(&J) -> P + Copy),
-) {
-    for (family, _) in family_counts(families) {
-        let (ours_cases, theirs_cases) = (of_family(families, ours.0, family), of_family(families, theirs.0, family));
-        let mut pairs = Pairs::new(family_group(group, family));
-        pairs.keep("collide_robust_f64", &ours_cases, ours.1);
-        pairs.keep("parry64", &theirs_cases, theirs.1);
-        pairs.measure(&[("collide_robust_f64", "parry64")]);
-    }
 }
 
 fn overlap(c: &mut Criterion, cases: &[(geom::Aabb, geom::Aabb)]) {
@@ -746,7 +707,7 @@ fn main() {
         ];
         let tables =
             table::Tables { rows: &rows(&cases), batches: &batches(&cases), targets: &targets(), families: &families };
-        table::publish(&table::render(&tables, family_group, &peak, since));
+        table::publish(&table::render(&tables, &peak, since));
         table::write_figures(&rows(&cases), since);
     }
 }

@@ -28,6 +28,9 @@
 #[path = "shared/criterion.rs"]
 mod criterion_files;
 use criterion_files::{PAIRING, Pairs, run};
+#[path = "shared/families.rs"]
+mod families;
+use families::{FamilyTable, by_family, family_counts, family_table};
 #[path = "toi/table.rs"]
 mod table;
 #[path = "toi/textbook.rs"]
@@ -36,7 +39,7 @@ mod textbook;
 use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, Throughput};
 use harness::case::{Query, Shape};
-use harness::generate::generate;
+use harness::generate::{family_for, generate};
 use oracle::geom::{self, P3};
 use oracle::parry::{Parry32, Parry64, ParryCast};
 use std::time::{Duration, SystemTime};
@@ -79,10 +82,24 @@ struct Cases {
     sphere_sphere: Vec<Case<geom::Sphere>>,
     sphere_plane: Vec<Case<geom::Plane>>,
     sphere_triangle: Vec<Case<geom::Triangle>>,
+    /// The campaign family of each sphere–sphere case, in order.
+    sphere_sphere_families: Vec<&'static str>,
+    /// The campaign family of each sphere–plane case, in order.
+    sphere_plane_families: Vec<&'static str>,
 }
 
+/// The family name of a case the generators drew with no family (none do
+/// today: the toi query has families of both kinds).
+const NO_FAMILY: &str = "(no family)";
+
 fn draw() -> Cases {
-    let mut c = Cases { sphere_sphere: Vec::new(), sphere_plane: Vec::new(), sphere_triangle: Vec::new() };
+    let mut c = Cases {
+        sphere_sphere: Vec::new(),
+        sphere_plane: Vec::new(),
+        sphere_triangle: Vec::new(),
+        sphere_sphere_families: Vec::new(),
+        sphere_plane_families: Vec::new(),
+    };
     for i in 0..MAX_INDICES {
         if c.sphere_sphere.len() >= PER_PAIR && c.sphere_plane.len() >= PER_PAIR && c.sphere_triangle.len() >= PER_PAIR
         {
@@ -94,12 +111,15 @@ fn draw() -> Cases {
         let (a, va, t_max) = (a.to_geom(), case.a.velocity(), case.t_max());
         let Some(bs) = case.b.as_ref() else { continue };
         let vb = bs.velocity();
+        let family = family_for(Query::Toi, i).unwrap_or(NO_FAMILY);
         match bs {
             Shape::Sphere(b) if c.sphere_sphere.len() < PER_PAIR => {
-                c.sphere_sphere.push(Case { a, va, b: b.to_geom(), vb, t_max })
+                c.sphere_sphere.push(Case { a, va, b: b.to_geom(), vb, t_max });
+                c.sphere_sphere_families.push(family);
             }
             Shape::Plane(b) if c.sphere_plane.len() < PER_PAIR => {
-                c.sphere_plane.push(Case { a, va, b: b.to_geom(), vb, t_max })
+                c.sphere_plane.push(Case { a, va, b: b.to_geom(), vb, t_max });
+                c.sphere_plane_families.push(family);
             }
             Shape::Triangle(b) if c.sphere_triangle.len() < PER_PAIR => {
                 c.sphere_triangle.push(Case { a, va, b: b.to_geom(), vb, t_max })
@@ -136,6 +156,7 @@ mod to_collide {
 }
 
 /// A case in collide's types.
+#[derive(Clone, Copy)]
 struct C<T: collide::Real, B> {
     a: collide::Sphere<T>,
     va: collide::Vec3<T>,
@@ -246,7 +267,7 @@ macro_rules! parry_benches {
 /// The target's pair of a group (see [`targets`]), measured paired.
 const TARGET_PAIR: [(&str, &str); 1] = [("collide_robust_f64", "parry64")];
 
-fn sphere_sphere(c: &mut Criterion, cases: &[Case<geom::Sphere>]) {
+fn sphere_sphere(c: &mut Criterion, cases: &[Case<geom::Sphere>], families: &[&'static str]) {
     use collide::toi::{Halving, toi_sphere_sphere, toi_sphere_sphere_halving};
     let mut g = group(c, "toi_sphere_sphere", cases.len());
     let c64 = to_c::<f64, _, _>(cases, to_collide::sphere::<f64>);
@@ -262,9 +283,15 @@ fn sphere_sphere(c: &mut Criterion, cases: &[Case<geom::Sphere>]) {
     pairs.keep("collide_robust_f64", &c64, |c| toi_sphere_sphere(&c.a, &c.va, &c.b, &c.vb, c.t_max));
     pairs.keep("parry64", &d64, |(a, va, b, vb, o)| p64::cast(a, *va, b, *vb, *o));
     pairs.measure(&TARGET_PAIR);
+    by_family(
+        "toi_sphere_sphere",
+        families,
+        (&c64, |c| toi_sphere_sphere(&c.a, &c.va, &c.b, &c.vb, c.t_max)),
+        (&d64, |(a, va, b, vb, o)| p64::cast(a, *va, b, *vb, *o)),
+    );
 }
 
-fn sphere_plane(c: &mut Criterion, cases: &[Case<geom::Plane>]) {
+fn sphere_plane(c: &mut Criterion, cases: &[Case<geom::Plane>], families: &[&'static str]) {
     use collide::toi::{Halving, toi_sphere_plane, toi_sphere_plane_halving};
     let mut g = group(c, "toi_sphere_plane", cases.len());
     let c64 = to_c::<f64, _, _>(cases, to_collide::plane::<f64>);
@@ -279,6 +306,12 @@ fn sphere_plane(c: &mut Criterion, cases: &[Case<geom::Plane>]) {
     pairs.keep("collide_robust_f64", &c64, |c| toi_sphere_plane(&c.a, &c.va, &c.b, &c.vb, c.t_max));
     pairs.keep("parry64", &d64, |(a, va, b, vb, o)| p64::cast(a, *va, b, *vb, *o));
     pairs.measure(&TARGET_PAIR);
+    by_family(
+        "toi_sphere_plane",
+        families,
+        (&c64, |c| toi_sphere_plane(&c.a, &c.va, &c.b, &c.vb, c.t_max)),
+        (&d64, |(a, va, b, vb, o)| p64::cast(a, *va, b, *vb, *o)),
+    );
 }
 
 fn sphere_triangle(c: &mut Criterion, cases: &[Case<geom::Triangle>]) {
@@ -391,13 +424,32 @@ fn main() {
         .sample_size(SAMPLES)
         .nresamples(RESAMPLES)
         .configure_from_args();
-    sphere_sphere(&mut c, &cases.sphere_sphere);
-    sphere_plane(&mut c, &cases.sphere_plane);
+    sphere_sphere(&mut c, &cases.sphere_sphere, &cases.sphere_sphere_families);
+    sphere_plane(&mut c, &cases.sphere_plane, &cases.sphere_plane_families);
     sphere_triangle(&mut c, &cases.sphere_triangle);
     c.final_summary();
     if benching {
         let mut report = table::render(&rows(&cases), &targets(), SEED, since);
         report.push_str(&textbook_agreement(&cases.sphere_sphere));
+        let families = [
+            FamilyTable {
+                label: "sphere–sphere",
+                group: "toi_sphere_sphere",
+                families: family_counts(&cases.sphere_sphere_families),
+            },
+            FamilyTable {
+                label: "sphere–plane",
+                group: "toi_sphere_plane",
+                families: family_counts(&cases.sphere_plane_families),
+            },
+        ];
+        report.push_str(&family_table(
+            &families,
+            "The cases above are the campaign's toi mix: hits, misses, grazing passes, shapes already in contact, \
+             tunneling. Here each family's cases are timed alone, collide's closed form f64 against parry3d-f64's \
+             `cast_shapes`, paired as the targets are, to show where the time goes.",
+            ("closed form f64", "parry3d-f64"),
+        ));
         table::publish(&report);
     }
 }

@@ -59,6 +59,7 @@ pub use super::criterion_files::criterion_dir;
 use super::criterion_files::{
     PAIRED_MARK, cell, judged, ns_per, paired_ratio, ratio, ratio_cell, target_row, targets_heading, verdict,
 };
+use super::families::{FamilyTable, family_table};
 
 /// One speed target: `numerator / denominator ≤ target`, over one group.
 pub struct Target {
@@ -77,16 +78,6 @@ pub struct Target {
     pub floor: Option<&'static str>,
 }
 
-/// One query's cases by campaign family, for the by-family table.
-pub struct FamilyTable {
-    /// The query, for the reader.
-    pub label: &'static str,
-    /// The main table's group.
-    pub group: &'static str,
-    /// Each family and its number of cases, in the order drawn.
-    pub families: Vec<(&'static str, usize)>,
-}
-
 /// Everything the report renders from.
 pub struct Tables<'a> {
     /// The main table's queries.
@@ -100,10 +91,7 @@ pub struct Tables<'a> {
 }
 
 /// Renders the whole report as Markdown.
-///
-/// `family_group` names the paired ratios' group of a family of a query's
-/// cases.
-pub fn render(tables: &Tables, family_group: fn(&str, &str) -> String, peak: &Peak, since: SystemTime) -> String {
+pub fn render(tables: &Tables, peak: &Peak, since: SystemTime) -> String {
     let Tables { rows, batches, targets, families } = *tables;
     let mut s = String::new();
     let _ = writeln!(s, "# crashtest speed: collide against parry, one run\n");
@@ -227,35 +215,13 @@ pub fn render(tables: &Tables, family_group: fn(&str, &str) -> String, peak: &Pe
         }
         s.push_str(&target_row(t.what, t.target, r, paired, &v));
     }
-    s.push_str(&by_family(families, family_group));
-    s
-}
-
-/// The by-family table: each campaign family's cases timed alone, collide's
-/// robust `f64` against parry3d-f64, paired.
-fn by_family(families: &[FamilyTable], family_group: fn(&str, &str) -> String) -> String {
-    let mut s = String::from(
-        "\n## By case family\n\nThe mixes above are the campaign's: half uniform random cases, half drawn toward \
-         where methods fail. Here each family's cases are timed alone, collide robust f64 against parry3d-f64, paired \
-         as the targets are, to show where the time goes: the exact predicates' fallbacks run on the families near \
-         a degeneracy. A family timed alone is a shorter loop of like cases, whose branches predict better than \
-         the mix's, so the mix's time is not the cases' weighted mean of these.\n\n\
-         | query | family | cases | robust f64 (ns) | parry3d-f64 (ns) | robust / parry (quartiles) |\n\
-         | --- | --- | ---: | ---: | ---: | ---: |\n",
-    );
-    for table in families {
-        for &(family, n) in &table.families {
-            let p = paired_ratio(&family_group(table.group, family), "collide_robust_f64", "parry64");
-            let _ = writeln!(
-                s,
-                "| {} | {family} | {n} | {} | {} | {} |",
-                table.label,
-                cell(p.map(|p| p.ns_a)),
-                cell(p.map(|p| p.ns_b)),
-                p.map_or("—".into(), |p| format!("{:.3} ({:.3}–{:.3})", p.median, p.low, p.high)),
-            );
-        }
-    }
+    s.push_str(&family_table(
+        families,
+        "The mixes above are the campaign's: half uniform random cases, half drawn toward where methods fail. Here \
+         each family's cases are timed alone, collide robust f64 against parry3d-f64, paired as the targets are, to \
+         show where the time goes: the exact predicates' fallbacks run on the families near a degeneracy.",
+        ("robust f64", "parry3d-f64"),
+    ));
     s
 }
 
