@@ -336,11 +336,8 @@ pub(crate) fn sign_known(x: &Filtered) -> bool {
 /// certainly different (`Some(true)`), certainly equal (`Some(false)`: both
 /// exact and equal), or neither is certain (`None`).
 ///
-/// Both exact: their values are the exact values. Otherwise the computed
-/// difference `g = fl(b − a)` is within `u |g|` of `b − a`, which is within
-/// `bound_a + bound_b` of the exact difference; `|g| (1 − u) > bound_a +
-/// bound_b` (with `4u` of margin for the comparison's own roundings) shows it
-/// non-zero.
+/// Both exact: their values are the exact values. Otherwise
+/// [`Filtered::differs_from`] decides "certainly different".
 #[inline(always)]
 pub(crate) fn differ(a: &Filtered, b: &Filtered) -> Option<bool> {
     if a.bound == 0.0 && b.bound == 0.0 {
@@ -348,8 +345,7 @@ pub(crate) fn differ(a: &Filtered, b: &Filtered) -> Option<bool> {
         let equal = a.value == b.value;
         return Some(!equal);
     }
-    let gap = (b.value - a.value).abs();
-    if gap * (1.0 - 4.0 * U) > a.bound + b.bound { Some(true) } else { None }
+    if a.differs_from(b) { Some(true) } else { None }
 }
 
 #[cfg(test)]

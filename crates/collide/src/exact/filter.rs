@@ -104,6 +104,16 @@ impl Filtered {
     pub(crate) fn decided(&self) -> bool {
         self.value.abs() > self.bound
     }
+
+    /// Whether the exact values of `self` and `other` certainly differ: the
+    /// computed difference `g = fl(other − self)` is within `u |g|` of
+    /// `other − self`, which is within both bounds of the exact difference,
+    /// so `|g| (1 − u) > bound_self + bound_other` (with `4u` of margin for
+    /// the comparison's own roundings) shows it non-zero.
+    #[inline(always)]
+    pub(crate) fn differs_from(&self, other: &Filtered) -> bool {
+        (other.value - self.value).abs() * (1.0 - 4.0 * U) > self.bound + other.bound
+    }
 }
 
 /// `a − b`, per component.

@@ -184,10 +184,30 @@ fn filtered<T: Real>(seg: &Segment<T>, pl: &Plane<T>) -> Filtered {
         return Filtered::Undecided;
     }
     let (s0, s1) = (plane(n, d, p0), plane(n, d, p1));
-    match classify(&s0, &s1) {
-        Filtered::Undecided => stage_b(seg, pl, s0.value, s0.bound, s1.value, s1.bound),
-        answer => answer,
+    // [`classify`] for stage A's values, whose bounds are positive (they
+    // include the underflow slack): a value beyond its bound is non-zero
+    // with a known sign, and none is exact, so the zero and exact cases of
+    // `classify` cannot arise. One test per outcome rather than `classify`'s
+    // chain of sign matches, which cost the common path a branch per sign
+    // (measured: about 2 ns a query on the uniform random family).
+    if s0.decided() & s1.decided() {
+        if (s0.value > 0.0) == (s1.value > 0.0) {
+            // One side: a miss when s1 − s0 = n · (p1 − p0) is certainly
+            // non-zero.
+            if s0.differs_from(&s1) {
+                return Filtered::Miss;
+            }
+        } else {
+            let (a0, a1) = (s0.value.abs(), s1.value.abs());
+            let sum = a0 + a1;
+            if crate::exact::filter::jointly_accurate(s0.bound + s1.bound, sum, ESTIMATE_REL_ERR) {
+                // As in `classify`: one division, clamped.
+                let inv = 1.0 / sum;
+                return Filtered::Hit { t: (a0 * inv).min(1.0), one_minus_t: (a1 * inv).min(1.0) };
+            }
+        }
     }
+    stage_b(seg, pl, s0.value, s0.bound, s1.value, s1.bound)
 }
 
 /// The classification from `s0`, `s1` known to their bounds (stage A's or

@@ -237,9 +237,6 @@ struct FilteredHit {
     normal: [f64; 3],
 }
 
-/// Unit roundoff (2^−53): margins for the roundings of the checks below.
-const U: f64 = f64::EPSILON / 2.0;
-
 /// Smallest `‖n‖²` normalized by the filter (2^−960): above it the sum of
 /// squares keeps full relative precision (its largest term is normal with 60
 /// bits to spare); below it the general path normalizes by scaling.
@@ -276,10 +273,9 @@ fn filtered<T: Real>(seg: &Segment<T>, tri: &Triangle<T>) -> Filtered {
     let d1_positive = d1.value > 0.0;
     if (d0.value > 0.0) == d1_positive {
         // Both ends strictly on one side: a miss unless n · (q1 − q0) =
-        // d1 − d0 is exactly 0 (parallel), impossible when the computed
-        // difference exceeds both bounds (1 rounding each way: 4u of margin).
-        let gap = (d1.value - d0.value).abs();
-        if gap * (1.0 - 4.0 * U) > d0.bound + d1.bound {
+        // d1 − d0 is exactly 0 (parallel), impossible when the two certainly
+        // differ.
+        if d0.differs_from(&d1) {
             return Filtered::Miss;
         }
         return stage_b(seg, tri, stage_a([None; 3]));
