@@ -142,7 +142,9 @@ pub fn intersect_segment_plane_lecture<T: Real>(seg: &Segment<T>, plane: &Plane<
 /// denominator `== 0`, and `t` comes from the endpoint distances.
 pub fn intersect_segment_plane<T: Real>(seg: &Segment<T>, plane: &Plane<T>) -> Intersection<T> {
     match filtered(seg, plane) {
-        Filtered::Miss => Intersection::MISS,
+        // The fields themselves rather than the constant: a copy of
+        // `Intersection::MISS` writes the whole (unused) hit payload too.
+        Filtered::Miss => Intersection { hit: None, parallel: false, degenerate: false },
         Filtered::Parallel => Intersection::PARALLEL,
         Filtered::Hit { t, one_minus_t } => {
             let Some(normal) = crate::exact::norm::normalize(&plane.normal) else {
