@@ -186,17 +186,27 @@ pub(super) fn fast_ratios<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, accuracy: f64
     fast(&to_f64_3(p), &v, filter_target(accuracy))
 }
 
-/// Steps 2 and 3 of [`fast_ratios`] after the fast filter's `miss`
-/// ([`Fast::Filter`] or [`Fast::Exact`]): the scaled filter, then the exact
-/// path, or the exact path at once. Inputs must be finite.
-pub(super) fn slow_ratios<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, accuracy: f64, miss: Fast) -> Option<Ratios> {
+/// Steps 2 and 3 of [`fast_ratios`] after the fast filter's miss: the
+/// scaled filter, then the exact path, when `scaled_filter` (the miss was
+/// [`Fast::Filter`]), or the exact path at once ([`Fast::Exact`]). Inputs
+/// must be finite.
+///
+/// The miss comes as a flag rather than as the [`Fast`] value: passing the
+/// enum (with its answer's payload) to an out-of-line call gave it a home in
+/// memory on the fast filter's own path, about 1 ns a query.
+pub(super) fn slow_ratios<T: Real>(
+    p: &Vec3<T>,
+    tri: &Triangle<T>,
+    accuracy: f64,
+    scaled_filter: bool,
+) -> Option<Ratios> {
     // Two coincident vertices: zero area, certainly, with no arithmetic (the
     // exact path would find `D = 0` too, after an exact evaluation).
     let [v0, v1, v2] = tri.vertices;
     if v0 == v1 || v1 == v2 || v2 == v0 {
         return None;
     }
-    if let Fast::Filter = miss {
+    if scaled_filter {
         let v = [to_f64_3(&tri.vertices[0]), to_f64_3(&tri.vertices[1]), to_f64_3(&tri.vertices[2])];
         if let Some(r) = filtered(&to_f64_3(p), &v, filter_target(accuracy)) {
             return Some(r);

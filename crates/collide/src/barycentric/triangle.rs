@@ -157,22 +157,23 @@ fn coordinates<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, accuracy: f64) -> Baryce
             if alpha.finite() {
                 return Barycentric { coords: [alpha, beta, gamma], degenerate: false };
             }
-            slow(p, tri, accuracy, Fast::Filter)
+            slow(p, tri, accuracy, true)
         }
-        miss => slow(p, tri, accuracy, miss),
+        miss => slow(p, tri, accuracy, matches!(miss, Fast::Filter)),
     }
 }
 
 /// Every query the fast filter does not answer: non-finite input, the scaled
 /// filter and the exact path, zero area and coordinates beyond `T`'s range
-/// (the fallback).
+/// (the fallback). `scaled_filter`: whether the scaled filter runs before
+/// the exact path (the fast filter's miss was [`Fast::Filter`]).
 #[inline(never)]
-fn slow<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, accuracy: f64, miss: Fast) -> Barycentric<T, 3> {
+fn slow<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, accuracy: f64, scaled_filter: bool) -> Barycentric<T, 3> {
     let fallback = || Barycentric { coords: longest_edge_fallback(p, &tri.vertices), degenerate: true };
     if !(finite3(p) && tri.vertices.iter().all(finite3)) {
         return fallback();
     }
-    let Some(r) = slow_ratios(p, tri, accuracy, miss) else {
+    let Some(r) = slow_ratios(p, tri, accuracy, scaled_filter) else {
         return fallback();
     };
     // The free coordinate is 1 minus the other two (`1 − c_i − c_j` with
