@@ -199,14 +199,8 @@ fn filtered<T: Real>(seg: &Segment<T>, pl: &Plane<T>) -> Filtered {
             if s0.differs_from(&s1) {
                 return Filtered::Miss;
             }
-        } else {
-            let (a0, a1) = (s0.value.abs(), s1.value.abs());
-            let sum = a0 + a1;
-            if crate::exact::filter::jointly_accurate(s0.bound + s1.bound, sum, ESTIMATE_REL_ERR) {
-                // As in `classify`: one division, clamped.
-                let inv = 1.0 / sum;
-                return Filtered::Hit { t: (a0 * inv).min(1.0), one_minus_t: (a1 * inv).min(1.0) };
-            }
+        } else if let hit @ Filtered::Hit { .. } = crossing(&s0, &s1) {
+            return hit;
         }
     }
     stage_b(seg, pl, s0.value, s0.bound, s1.value, s1.bound)
@@ -222,7 +216,6 @@ fn filtered<T: Real>(seg: &Segment<T>, pl: &Plane<T>) -> Filtered {
 #[inline(always)]
 fn classify(s0: &crate::exact::filter::Filtered, s1: &crate::exact::filter::Filtered) -> Filtered {
     use crate::exact::compensated::{differ, sign_known};
-    use crate::exact::filter::jointly_accurate;
     if !(sign_known(s0) && sign_known(s1)) {
         return Filtered::Undecided;
     }
@@ -235,18 +228,24 @@ fn classify(s0: &crate::exact::filter::Filtered, s1: &crate::exact::filter::Filt
         },
         (Sign::Zero, _) => Filtered::Hit { t: 0.0, one_minus_t: 1.0 },
         (_, Sign::Zero) => Filtered::Hit { t: 1.0, one_minus_t: 0.0 },
-        _ => {
-            let (a0, a1) = (s0.value.abs(), s1.value.abs());
-            let sum = a0 + a1;
-            if jointly_accurate(s0.bound + s1.bound, sum, ESTIMATE_REL_ERR) {
-                // One division: x · fl(1/sum) is within 2 roundings of x / sum
-                // (clamped: it may round past 1 where the quotient cannot).
-                let inv = 1.0 / sum;
-                Filtered::Hit { t: (a0 * inv).min(1.0), one_minus_t: (a1 * inv).min(1.0) }
-            } else {
-                Filtered::Undecided
-            }
-        }
+        _ => crossing(s0, s1),
+    }
+}
+
+/// A hit at `t = |s0| / (|s0| + |s1|)` for `s0`, `s1` of opposite non-zero
+/// signs, when their bounds make `t` and `1 − t` accurate to
+/// [`ESTIMATE_REL_ERR`]; `Undecided` otherwise.
+#[inline(always)]
+fn crossing(s0: &crate::exact::filter::Filtered, s1: &crate::exact::filter::Filtered) -> Filtered {
+    let (a0, a1) = (s0.value.abs(), s1.value.abs());
+    let sum = a0 + a1;
+    if crate::exact::filter::jointly_accurate(s0.bound + s1.bound, sum, ESTIMATE_REL_ERR) {
+        // One division: x · fl(1/sum) is within 2 roundings of x / sum
+        // (clamped: it may round past 1 where the quotient cannot).
+        let inv = 1.0 / sum;
+        Filtered::Hit { t: (a0 * inv).min(1.0), one_minus_t: (a1 * inv).min(1.0) }
+    } else {
+        Filtered::Undecided
     }
 }
 
