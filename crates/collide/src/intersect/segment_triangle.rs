@@ -513,15 +513,41 @@ fn stage_b<T: Real>(seg: &Segment<T>, tri: &Triangle<T>, sa: StageA) -> Filtered
     if !d_compensated {
         d = plane_dd(&n);
     }
-    for i in 0..3 {
+    for i in 0..2 {
         if !w_compensated[i] {
             w[i] = compensated_edge(i);
         }
+    }
+    if !w_compensated[2] {
+        w[2] = third_edge(&w, &d);
     }
     match hit_values(&d, &w, &n.components()) {
         Some(hit) => Filtered::Hit(hit),
         None => Filtered::Undecided,
     }
+}
+
+/// `−γ'` from the other volumes, by `α' + β' + γ' = s1 − s0 = d0 − d1`:
+/// `−γ' = ((α' + β') + d1) − d0`, with the bound the four values' bounds
+/// plus the sum's own three roundings (at most `γ3` times the sum of the
+/// magnitudes, within `4u`), raised for the bound's roundings. For a hit
+/// the three edge volumes share one sign and the two plane values have
+/// opposite signs, so every magnitude here is at most `|d0| + |d1|`, the
+/// sum of the three volumes' magnitudes: from compensated values (bounds of
+/// order `u²`) the result is accurate to a few `u` of that sum, which is all
+/// [`hit_values`] asks, for one compensated cross product and one dot
+/// product less than evaluating `−γ'` itself.
+#[inline(always)]
+fn third_edge(
+    w: &[crate::exact::filter::Filtered; 3],
+    d: &[crate::exact::filter::Filtered; 2],
+) -> crate::exact::filter::Filtered {
+    /// Unit roundoff (2^−53).
+    const U: f64 = f64::EPSILON / 2.0;
+    let value = ((w[0].value + w[1].value) + d[1].value) - d[0].value;
+    let magnitudes = ((w[0].value.abs() + w[1].value.abs()) + d[1].value.abs()) + d[0].value.abs();
+    let bounds = ((w[0].bound + w[1].bound) + d[1].bound) + d[0].bound;
+    crate::exact::filter::Filtered { value, bound: (bounds + 4.0 * U * magnitudes) * (1.0 + 8.0 * U) }
 }
 
 /// The general path of [`intersect_segment_triangle`]: the predicates of
