@@ -395,7 +395,8 @@ fn hit_values(
 ///
 /// A hit's values come from stage A's volumes where they are accurate to
 /// [`ESTIMATE_REL_ERR`] and from the compensated ones (accurate to about
-/// `u`) otherwise. Inputs outside stage B's domain (a coordinate non-zero and
+/// `u`) otherwise; when every value is recomputed, `−γ'` is derived from
+/// the others ([`third_edge`]). Inputs outside stage B's domain (a coordinate non-zero and
 /// below `2^−250`), a zero-length segment, and values still undecided go to
 /// the general path.
 #[inline(never)]
