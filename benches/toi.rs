@@ -30,7 +30,7 @@ mod criterion_files;
 use criterion_files::{PAIRING, Pairs, run};
 #[path = "shared/families.rs"]
 mod families;
-use families::{FamilyTable, by_family, family_counts, family_table};
+use families::{FamilyTable, NO_FAMILY, by_family, family_counts, family_table};
 #[path = "toi/table.rs"]
 mod table;
 #[path = "toi/textbook.rs"]
@@ -87,10 +87,6 @@ struct Cases {
     /// The campaign family of each sphere–plane case, in order.
     sphere_plane_families: Vec<&'static str>,
 }
-
-/// The family name of a case the generators drew with no family (none do
-/// today: the toi query has families of both kinds).
-const NO_FAMILY: &str = "(no family)";
 
 fn draw() -> Cases {
     let mut c = Cases {

@@ -4,6 +4,7 @@
 //! cases; each engine's inputs are converted to its own types here, before any
 //! timing starts.
 
+use super::families::NO_FAMILY;
 use harness::case::{Query, Shape};
 use harness::generate::{family_for, generate};
 use oracle::geom;
@@ -59,10 +60,6 @@ pub struct Families {
     /// Of [`Cases::barycentric`].
     pub barycentric: Vec<&'static str>,
 }
-
-/// The family name of a case the generators drew with no family (none do
-/// today: every query kind has families of both kinds).
-const NO_FAMILY: &str = "(no family)";
 
 fn sphere(s: &Shape) -> Option<geom::Sphere> {
     match s {

@@ -208,9 +208,9 @@ pub fn render(tables: &Tables, peak: &Peak, since: SystemTime) -> String {
         {
             let _ = write!(
                 v,
-                "; unreachable in this loop: reading the inputs and nothing else takes {:.3} ({:.3}–{:.3}) of the \
-                 denominator's time, paired",
-                floor.median, floor.low, floor.high
+                "; unreachable in this loop: reading the inputs and nothing else takes {} of the denominator's \
+                 time, paired",
+                floor.quartiles()
             );
         }
         s.push_str(&target_row(t.what, t.target, r, paired, &v));

@@ -106,6 +106,13 @@ pub struct PairedRatio {
     pub ns_b: f64,
 }
 
+impl PairedRatio {
+    /// The median with its quartiles, as the tables print it.
+    pub fn quartiles(&self) -> String {
+        format!("{:.3} ({:.3}–{:.3})", self.median, self.low, self.high)
+    }
+}
+
 /// Every paired ratio measured in this run: group, numerator id, denominator
 /// id, ratio.
 static PAIRED: std::sync::Mutex<Vec<(String, String, String, PairedRatio)>> = std::sync::Mutex::new(Vec::new());
@@ -171,7 +178,7 @@ pub fn target_row(
     verdict: &str,
 ) -> String {
     let ns = paired.map_or("—".into(), |p| format!("{} / {}", cell(Some(p.ns_a)), cell(Some(p.ns_b))));
-    let paired = paired.map_or("—".into(), |p| format!("{:.3} ({:.3}–{:.3})", p.median, p.low, p.high));
+    let paired = paired.map_or("—".into(), |p| p.quartiles());
     let criterion = criterion.map_or("—".into(), |x| format!("{x:.3}"));
     format!("| {what} ≤ {target} | {criterion} | {paired} | {ns} | {verdict} |\n")
 }

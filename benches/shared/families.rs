@@ -5,6 +5,10 @@
 use super::criterion_files::{Pairs, cell, paired_ratio};
 use std::fmt::Write as _;
 
+/// The family name of a case the generators drew with no family (none do
+/// today: every query kind has families of both kinds).
+pub const NO_FAMILY: &str = "(no family)";
+
 /// The distinct families of `families` in order of first appearance, with
 /// their numbers of cases.
 pub fn family_counts(families: &[&'static str]) -> Vec<(&'static str, usize)> {
@@ -81,7 +85,7 @@ pub fn family_table(tables: &[FamilyTable], intro: &str, engines: (&str, &str)) 
                 table.label,
                 cell(p.map(|p| p.ns_a)),
                 cell(p.map(|p| p.ns_b)),
-                p.map_or("—".into(), |p| format!("{:.3} ({:.3}–{:.3})", p.median, p.low, p.high)),
+                p.map_or("—".into(), |p| p.quartiles()),
             );
         }
     }
