@@ -32,14 +32,28 @@ use crate::shapes::Sphere;
 /// approach `‖Δp × Δv‖ / ‖Δv‖` is at most `R` (grazing, equality, touches once
 /// and counts). The contact at `t` is the sphere contact there:
 /// `n = (Δp + t Δv)/‖Δp + t Δv‖` (from `b` toward `a`), point `M2 + t vb + r2 n`
-/// on `b`.
+/// on `b`. The normal is computed from the split of `Δp + t Δv` into its parts
+/// across and along the motion, with `w = Δp × Δv` (the same `w` as in `disc`):
+///
+/// ```text
+/// Δp + t Δv = (Δv × w − √disc Δv) / a,      ‖Δv × w‖² = a ‖w‖²,  ‖√disc Δv‖² = a disc
+/// n         = (Δv × w − √disc Δv) / (a R)
+/// ```
+///
+/// (`Δv × (Δp × Δv) = a Δp − b' Δv`, and `t + b'/a = −√disc/a` at the first
+/// root.) The two parts are orthogonal and their squared lengths sum to
+/// `a (‖w‖² + disc) = a² R²` by the definition of `disc`, so `n` is unit to a
+/// few ulps however far the spheres start apart: the roundings of `w` move
+/// its direction, as they move every method's, but not its length. Written as
+/// `(Δp + t Δv)/R`, the vector carries the rounding of `Δp`'s scale into its
+/// length, and a small sphere coming from afar needs a second root.
 ///
 /// **Cost.** Where every square lies in the range in which plain sums of
 /// squares lose nothing (`[2^−918, 2^920]` in `f64`) and their products stay
 /// finite: the dot products, one root and one division for `t`, whose
-/// comparison with `t_max` decides, and the normal as `(Δp + t Δv)/R` — `1/R`
-/// is known from the start — whenever that is unit to a few ulps (else one
-/// more root and division); the static contact test only for spheres that
+/// comparison with `t_max` decides, and the normal as above — one more
+/// division, by `a R`, known before the root — whenever that is unit to a few
+/// ulps (else one more root and division); the static contact test only for spheres that
 /// already overlap or touch within the roundings (`‖Δp‖² ≤ R²(1 + 8u)`, its
 /// own clear-miss threshold). Every rare case (out of range, touching, a
 /// normal to renormalize) runs out of line from the inputs alone, so the
@@ -84,32 +98,38 @@ pub fn toi_sphere_sphere<T: Real>(
     let plain = (vv >= lo) & (dd + rr >= lo) & (rr <= hi) & (dd * vv <= hi) & (vv * rr <= hi);
     let c = dd - rr;
     let bp = dp.dot(&dv);
-    let disc = vv * rr - dp.cross(&dv).norm_squared();
     // Within the roundings of touching or closer (`‖Δp‖² ≤ R²(1 + 8u)`), the
     // static test decides whether the spheres are in contact at `t = 0`;
     // beyond, they are certainly apart (its own clear-miss test).
     let near = dd <= rr * clear_miss_factor::<T>();
-    // The range, "apart" and "no impact" (moving apart or sideways,
-    // `b' ≥ 0`, or passing wide, `disc < 0`) tested together (`&`, not
-    // `&&`); behind them, the rarer cases.
-    if !(plain & !near & (bp < T::zero()) & (disc >= T::zero())) {
+    // The range, "apart" and "moving apart or sideways" (`b' ≥ 0`) tested
+    // together (`&`, not `&&`); behind them, the rarer cases.
+    if !(plain & !near & (bp < T::zero())) {
         if !plain | near {
             return rare(a, va, b, vb, t_max);
         }
         return None;
     }
-    let t = c / (disc.sqrt() - bp);
+    let w = dp.cross(&dv);
+    let disc = vv * rr - w.norm_squared();
+    // Passing wide. In the plain range every value here is finite.
+    if disc < T::zero() {
+        return None;
+    }
+    let root = disc.sqrt();
+    let t = c / (root - bp);
     if !(t <= t_max) {
         return None;
     }
-    // At the touch ‖Δp + t Δv‖ = R: dividing by R (known from the start)
-    // keeps a second root and division off the path from the data to the
-    // answer. That quotient is the normal when it is unit to within
-    // `unit_slack`; otherwise (a pair small against the distance it comes
-    // from, whose Δp + t Δv carries the rounding of the larger scale, or no
-    // radius between the centres) `contact_at` normalizes the vector by its
-    // own norm or falls back.
-    let normal = (dp + dv * t) * (T::one() / reach);
+    // At the touch ‖Δp + t Δv‖ = R, and a (Δp + t Δv) = Δv × w − √disc Δv,
+    // two orthogonal parts whose squares sum to a² R² (see above): dividing
+    // by a R (known before the root) keeps a second root off the path, and
+    // the division for `t` too. That quotient is the normal when it is unit
+    // to within `unit_slack`; otherwise (no radius between the centres, a
+    // product a R out of the normal range, or spheres over some 2^26 radii apart,
+    // where the roundings of `w` tilt it off Δv's normal plane)
+    // `contact_at` normalizes Δp + t Δv by its own norm or falls back.
+    let normal = (dv.cross(&w) - dv * root) * (T::one() / (vv * reach));
     if !((normal.norm_squared() - T::one()).abs() <= unit_slack::<T>()) {
         return Some(contact_at(a, va, b, vb, t));
     }
@@ -123,7 +143,7 @@ pub fn toi_sphere_sphere<T: Real>(
     })
 }
 
-/// How far from 1 the squared length of `(Δp + t Δv)/R` may be for it to be
+/// How far from 1 the squared length of `(Δv × w − √disc Δv)/(a R)` may be for it to be
 /// reported as the normal as it is: `16 u` (`u` the unit roundoff), so its
 /// length is within `8 u` of 1 — unit as a normalized vector is, to a few `u`.
 /// Beyond that the vector is normalized by its own norm (or replaced by the
