@@ -48,9 +48,10 @@ use crate::shapes::Sphere;
 /// `(Δp + t Δv)/R`, the vector carries the rounding of `Δp`'s scale into its
 /// length, and a small sphere coming from afar needs a second root.
 ///
-/// **Cost.** Where every square lies in the range in which plain sums of
-/// squares lose nothing (`[2^−918, 2^920]` in `f64`) and their products stay
-/// finite: the dot products, one root and one division for `t`, whose
+/// **Cost.** Where `‖Δp‖² + ‖Δv‖² + R² ≤ 2^460` (in `f64`; `2^41` in `f32`),
+/// so that every product of two squares lies in the range in which plain sums
+/// of squares lose nothing (`[2^−918, 2^920]`), and `‖Δv‖²` and `‖Δp‖² + R²`
+/// are at least `2^−918`: the dot products, one root and one division for `t`, whose
 /// comparison with `t_max` decides, and the normal as above — one more
 /// division, by `a R`, known before the root — whenever that is unit to a few
 /// ulps (else one more root and division); the static contact test only for spheres that
@@ -91,11 +92,14 @@ pub fn toi_sphere_sphere<T: Real>(
     let reach = a.radius + b.radius;
     let (lo, hi) = safe_squared_range::<T>();
     let (dd, vv, rr) = (dp.norm_squared(), dv.norm_squared(), reach * reach);
-    // The squares whose roots are taken (`disc`, and at the touch ‖Δp + tΔv‖²
-    // ≈ R²) and the products in `disc` stay in the plain range, and `c` is not
-    // a difference of underflowed squares; ‖Δp × Δv‖² ≤ ‖Δp‖²‖Δv‖² is bounded
-    // by the first product. A NaN fails every test: the scaled path.
-    let plain = (vv >= lo) & (dd + rr >= lo) & (rr <= hi) & (dd * vv <= hi) & (vv * rr <= hi);
+    // The three squares sum to at most √hi, so every product of two of them
+    // (the terms of `disc`, ‖Δp × Δv‖² ≤ ‖Δp‖²‖Δv‖², a R² for the normal)
+    // stays in the plain range, and `disc`'s root is as accurate as the type
+    // allows; ‖Δv‖² and ‖Δp‖² + R² are at least `lo`, so `c` is not a
+    // difference of underflowed squares. One sum and three comparisons (√hi
+    // is a constant). A NaN fails every test: the scaled path.
+    let span = dd + rr;
+    let plain = (vv >= lo) & (span >= lo) & (span + vv <= hi.sqrt());
     let c = dd - rr;
     let bp = dp.dot(&dv);
     // Within the roundings of touching or closer (`‖Δp‖² ≤ R²(1 + 8u)`), the

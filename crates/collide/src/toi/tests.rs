@@ -1269,3 +1269,34 @@ fn closed_forms_out_of_the_plain_range<T: Real>() {
     assert!((k.normal.norm().wide() - 1.0).abs() <= TOUCH_TOL_EPS * eps::<T>(), "normal {:?}", k.normal);
 }
 both!(closed_forms_out_of_the_plain_range_case, closed_forms_out_of_the_plain_range);
+
+/// Powers of two that carry the glancing scene (squares summing to about 2^6)
+/// across the sphere–sphere closed form's plain range, whose squares must sum
+/// to at most `2^460` in `f64` and `2^41` in `f32`: from well inside to well
+/// outside, one exponent at a time.
+fn across_the_range_boundary<T: Real>() -> std::ops::RangeInclusive<i32> {
+    if eps::<T>() < 1e-10 { 220..=232 } else { 14..=22 }
+}
+
+fn sphere_sphere_agrees_across_the_range_boundary<T: Real>() {
+    // The glancing hand case scaled by 2^k (exact, times unchanged): inside
+    // the range the plain path answers, outside the scaled one; both give
+    // t = 5 − √3, the normal (−√3/2, 1/2, 0) and the point scaled.
+    let r3 = 3f64.sqrt();
+    for k in across_the_range_boundary::<T>() {
+        let s = 2f64.powi(k);
+        let got = toi_sphere_sphere(
+            &ball::<T>(-5.0 * s, s, 0.0, s),
+            &v(s, 0.0, 0.0),
+            &ball(0.0, 0.0, 0.0, s),
+            &still(),
+            T::of(10.0),
+        );
+        let k = got.unwrap_or_else(|| panic!("glancing at scale 2^{k}: no impact"));
+        close(k.t, 5.0 - r3, "t");
+        close_v(&k.normal, [-r3 / 2.0, 0.5, 0.0], "normal");
+        let on_b = k.point * T::of(1.0 / s);
+        close_v(&on_b, [-r3 / 2.0, 0.5, 0.0], "point / scale");
+    }
+}
+both!(sphere_sphere_agrees_across_the_range_boundary_case, sphere_sphere_agrees_across_the_range_boundary);
