@@ -64,6 +64,7 @@ pub fn contact_sphere_sphere_lecture<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> O
 /// Centres so far apart that `M1 − M2` overflows are compared at half scale
 /// (exact); they are never in contact with finite radii below the overflow
 /// threshold, and a contact whose depth overflows is flagged.
+#[inline]
 pub fn contact_sphere_sphere<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> Option<Contact<T>> {
     let delta = a.center - b.center;
     let dd = delta.norm_squared();

@@ -106,17 +106,18 @@ pub fn toi_sphere_sphere<T: Real>(
     // static test decides whether the spheres are in contact at `t = 0`;
     // beyond, they are certainly apart (its own clear-miss test).
     let near = dd <= rr * clear_miss_factor::<T>();
-    // The range, "apart" and "moving apart or sideways" (`b' ≥ 0`) tested
-    // together (`&`, not `&&`); behind them, the rarer cases.
-    if !(plain & !near & (bp < T::zero())) {
-        if !plain | near {
-            return rare(a, va, b, vb, t_max);
-        }
+    // The range and "apart" tested together (`&`, not `&&`): one branch
+    // that is rarely taken, to the rarer cases.
+    if !(plain & !near) {
+        return rare(a, va, b, vb, t_max);
+    }
+    // Moving apart or sideways. The plain range leaves no NaN here.
+    if bp >= T::zero() {
         return None;
     }
     let w = dp.cross(&dv);
     let disc = vv * rr - w.norm_squared();
-    // Passing wide. In the plain range every value here is finite.
+    // Passing wide.
     if disc < T::zero() {
         return None;
     }
