@@ -53,8 +53,10 @@ use crate::shapes::Sphere;
 /// of squares lose nothing (`[2^−918, 2^920]`), and `‖Δv‖²` and `‖Δp‖² + R²`
 /// are at least `2^−918`: the dot products, one root and one division for `t`, whose
 /// comparison with `t_max` decides, and the normal as above — one more
-/// division, by `a R`, known before the root — whenever that is unit to a few
-/// ulps (else one more root and division); the static contact test only for spheres that
+/// division, by `a R` — for spheres starting up to `2^24` radii apart in `f64`
+/// (`2^9.5` in `f32`) with `a R² ≥ 2^−918`, where it is unit to within `16u`
+/// in length without normalizing (else one more root and division); the
+/// static contact test only for spheres that
 /// already overlap or touch within the roundings (`‖Δp‖² ≤ R²(1 + 8u)`, its
 /// own clear-miss threshold). Every rare case (out of range, touching, a
 /// normal to renormalize) runs out of line from the inputs alone, so the
@@ -128,16 +130,19 @@ pub fn toi_sphere_sphere<T: Real>(
     }
     // At the touch ‖Δp + t Δv‖ = R, and a (Δp + t Δv) = Δv × w − √disc Δv,
     // two orthogonal parts whose squares sum to a² R² (see above): dividing
-    // by a R (known before the root) keeps a second root off the path, and
-    // the division for `t` too. That quotient is the normal when it is unit
-    // to within `unit_slack`; otherwise (no radius between the centres, a
-    // product a R out of the normal range, or spheres over some 2^26 radii apart,
-    // where the roundings of `w` tilt it off Δv's normal plane)
-    // `contact_at` normalizes Δp + t Δv by its own norm or falls back.
-    let normal = (dv.cross(&w) - dv * root) * (T::one() / (vv * reach));
-    if !((normal.norm_squared() - T::one()).abs() <= unit_slack::<T>()) {
+    // by a R keeps a second root off the path, and the division for `t` too.
+    // The quotient is unit to within `16 u` in length (see `far_apart`)
+    // where a R² ≥ `lo` (then a R ≥ `lo` too, so 1/(a R) is finite and exact
+    // to an ulp) and ‖Δp‖² ≤ R² · `far_apart` (spheres starting up to 2^24
+    // radii apart in f64); this depends on the data alone, so the branch is
+    // decided early, not after the normal. Otherwise
+    // (no radius between the centres, a R out of the normal range, spheres
+    // farther apart) `contact_at` normalizes Δp + t Δv by its own norm or
+    // falls back.
+    if !((vv * rr >= lo) & (dd <= rr * far_apart::<T>())) {
         return Some(contact_at(a, va, b, vb, t));
     }
+    let normal = (dv.cross(&w) - dv * root) * (T::one() / (vv * reach));
     Some(Toi {
         t,
         point: b.center + vb * t + normal * b.radius,
@@ -148,13 +153,31 @@ pub fn toi_sphere_sphere<T: Real>(
     })
 }
 
-/// How far from 1 the squared length of `(Δv × w − √disc Δv)/(a R)` may be for it to be
-/// reported as the normal as it is: `16 u` (`u` the unit roundoff), so its
-/// length is within `8 u` of 1 — unit as a normalized vector is, to a few `u`.
-/// Beyond that the vector is normalized by its own norm (or replaced by the
-/// documented fallback when the radii sum to 0). Units: relative.
-fn unit_slack<T: Real>() -> T {
-    c::<T>(8.0) * T::EPSILON
+/// `1/(32u)` (`u` the unit roundoff: `2^48` in `f64`, `2^19` in `f32`): the
+/// largest `‖Δp‖²/R²` for which [`toi_sphere_sphere`] reports
+/// `(Δv × w − √disc Δv)/(a R)` as the normal without normalizing it, so
+/// spheres starting up to `2^24` radii apart in `f64` (`2^9.5` in `f32`).
+///
+/// **Why the quotient is unit there** (`u` the unit roundoff; `Δp`, `Δv`, `R`
+/// as computed, `W` the computed `w`, `a` the computed `‖Δv‖²`; first order
+/// in `u`):
+/// - `W = w + e`, `‖e‖ ≤ 2√2 u ‖Δp‖‖Δv‖`, and `Δv·w = 0`, so
+///   `‖Δv × W‖² = ‖Δv‖²‖W‖² − (Δv·e)²` with `(Δv·e)² ≤ 8u²‖Δv‖⁴‖Δp‖²`: at most
+///   `u/4` of `‖Δv‖² a R²` while `‖Δp‖² ≤ R²/(32u)`. This is the only term that
+///   grows with the distance.
+/// - `disc ≥ 0` was tested, so `‖W‖² ≤ a R²(1 + 4u)`, and
+///   `‖W‖² + (√disc)² = a R²(1 + η)` with `|η| ≤ 11u` (the roundings of the
+///   squares, `R²`, the difference and the root; `‖W‖²` enters both with
+///   opposite signs), which moves the length by `5.5u`.
+/// - The cross product, the product by `√disc`, the difference, `a R`, its
+///   reciprocal and the scaling add at most `7u` to the length, and
+///   `‖Δv‖/√a` is within `1.5u` of 1.
+///
+/// So `|‖n‖ − 1| ≤ 14.2u < 16u`. On the bench's 1024 campaign cases
+/// `|‖n‖² − 1|` reaches `6u` (spheres up to `2^20` radii apart). Units: a ratio of squared
+/// lengths.
+fn far_apart<T: Real>() -> T {
+    T::one() / (c::<T>(16.0) * T::EPSILON)
 }
 
 /// The rare cases of [`toi_sphere_sphere`], out of line: squares out of the

@@ -1300,3 +1300,68 @@ fn sphere_sphere_agrees_across_the_range_boundary<T: Real>() {
     }
 }
 both!(sphere_sphere_agrees_across_the_range_boundary_case, sphere_sphere_agrees_across_the_range_boundary);
+
+/// How far from 1 the squared length of a sphere–sphere toi normal may be,
+/// in units of `u` (half of ε): the closed form reports its normal without
+/// normalizing it where it can show the length is within `16u` of 1 (its
+/// `far_apart`), which is `32u` on the square, and the test's own sum of
+/// squares adds up to `3u`; normalized normals are closer.
+const NORMAL_SQUARED_LENGTH_U: f64 = 35.0;
+
+/// A small pair aimed at each other from `2^e` radii apart, `e` in
+/// `[0, 34]`: across the distance up to which the closed form reports its
+/// normal without normalizing it (`2^24` radii in `f64`, `2^9.5` in `f32`).
+#[derive(Clone, Debug)]
+struct FarPair {
+    b: [f64; 3],
+    radii: (f64, f64),
+    e: i32,
+    dir: [f64; 3],
+    miss: f64,
+    vb: [f64; 3],
+    when: f64,
+}
+
+fn far_pair() -> impl Strategy<Value = FarPair> {
+    let dir = [-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64];
+    (p3(), (0.05..1.2f64, 0.05..1.2f64), 0i32..=34, dir, 0.0..0.9f64, vel(), 0.2..0.8f64)
+        .prop_map(|(b, radii, e, dir, miss, vb, when)| FarPair { b, radii, e, dir, miss, vb, when })
+}
+
+/// The normal is unit to within the closed form's bound at every distance,
+/// on either side of the one where it stops normalizing; the pair is found
+/// wherever the roundings of its distance are far below its radii.
+fn check_sphere_sphere_far_normal<T: Real>(s: &FarPair) -> Result<(), TestCaseError> {
+    let reach = s.radii.0 + s.radii.1;
+    let len = (s.dir[0] * s.dir[0] + s.dir[1] * s.dir[1] + s.dir[2] * s.dir[2]).sqrt();
+    prop_assume!(len > 0.1);
+    let u: [f64; 3] = std::array::from_fn(|k| s.dir[k] / len);
+    // A unit vector across `u`, for the miss distance.
+    let side = if u[0].abs() < 0.9 { [0.0, -u[2], u[1]] } else { [u[2], 0.0, -u[0]] };
+    let side_len = (side[0] * side[0] + side[1] * side[1] + side[2] * side[2]).sqrt();
+    let distance = reach * 2f64.powi(s.e);
+    let a: [f64; 3] = std::array::from_fn(|k| s.b[k] + u[k] * distance);
+    let target: [f64; 3] = std::array::from_fn(|k| s.b[k] + side[k] / side_len * s.miss * reach);
+    let t_max = 1.0;
+    let va: [f64; 3] = std::array::from_fn(|k| (target[k] - a[k]) / (s.when * t_max) + s.vb[k]);
+    let got = toi_sphere_sphere(
+        &Sphere::new(vt::<T>(&a), T::of(s.radii.0)),
+        &vt(&va),
+        &Sphere::new(vt::<T>(&s.b), T::of(s.radii.1)),
+        &vt(&s.vb),
+        T::of(t_max),
+    );
+    let u_t = eps::<T>() / 2.0;
+    // Rounding the centres moves the closest approach by about u·distance;
+    // a tenth of the radii's margin (0.1 R) leaves the impact certain.
+    if 64.0 * u_t * distance <= 0.01 * reach {
+        prop_assert!(got.is_some(), "2^{} radii apart: no impact", s.e);
+    }
+    if let Some(k) = got {
+        let off = (k.normal.norm_squared().wide() - 1.0).abs();
+        prop_assert!(off <= NORMAL_SQUARED_LENGTH_U * u_t, "2^{} radii apart: |n|² − 1 = {off:e}", s.e);
+    }
+    Ok(())
+}
+
+prop_both!(1024, sphere_sphere_normal_unit_however_far_apart, far_pair(), check_sphere_sphere_far_normal);
