@@ -89,68 +89,98 @@ pub fn toi_sphere_sphere<T: Real>(
     t_max: T,
 ) -> Option<Toi<T>> {
     let t_max = clamp_t_max(t_max);
-    let dp = a.center - b.center;
-    let dv = va - vb;
-    let reach = a.radius + b.radius;
-    let (lo, hi) = safe_squared_range::<T>();
-    let (dd, vv, rr) = (dp.norm_squared(), dv.norm_squared(), reach * reach);
-    // The three squares sum to at most √hi, so every product of two of them
-    // (the terms of `disc`, ‖Δp × Δv‖² ≤ ‖Δp‖²‖Δv‖², a R² for the normal)
-    // stays in the plain range, and `disc`'s root is as accurate as the type
-    // allows; ‖Δv‖² and ‖Δp‖² + R² are at least `lo`, so `c` is not a
-    // difference of underflowed squares. One sum and three comparisons (√hi
-    // is a constant). A NaN fails every test: the scaled path.
-    let span = dd + rr;
-    let plain = (vv >= lo) & (span >= lo) & (span + vv <= hi.sqrt());
-    let c = dd - rr;
-    let bp = dp.dot(&dv);
+    let m = Relative::new(a, va, b, vb);
     // Within the roundings of touching or closer (`‖Δp‖² ≤ R²(1 + 8u)`), the
     // static test decides whether the spheres are in contact at `t = 0`;
     // beyond, they are certainly apart (its own clear-miss test).
-    let near = dd <= rr * clear_miss_factor::<T>();
+    let near = m.dd <= m.rr * clear_miss_factor::<T>();
     // The range and "apart" tested together (`&`, not `&&`): one branch
     // that is rarely taken, to the rarer cases.
-    if !(plain & !near) {
+    if !(m.plain() & !near) {
         return rare(a, va, b, vb, t_max);
     }
-    // Moving apart or sideways. The plain range leaves no NaN here.
-    if bp >= T::zero() {
-        return None;
+    m.first_touch(a, va, b, vb, m.dd - m.rr, t_max)
+}
+
+/// The relative motion of two spheres and its squares, as the closed form
+/// reads them: `Δp = M1 − M2`, `Δv = va − vb`, `R = r1 + r2`, `‖Δp‖²`,
+/// `a = ‖Δv‖²`, `R²`.
+struct Relative<T: Real> {
+    dp: Vec3<T>,
+    dv: Vec3<T>,
+    reach: T,
+    dd: T,
+    vv: T,
+    rr: T,
+}
+
+impl<T: Real> Relative<T> {
+    #[inline(always)]
+    fn new(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>) -> Self {
+        let (dp, dv, reach) = (a.center - b.center, va - vb, a.radius + b.radius);
+        Self { dp, dv, reach, dd: dp.norm_squared(), vv: dv.norm_squared(), rr: reach * reach }
     }
-    let w = dp.cross(&dv);
-    let disc = vv * rr - w.norm_squared();
-    // Passing wide.
-    if disc < T::zero() {
-        return None;
+
+    /// Whether the closed form runs on plain squares. The three squares sum
+    /// to at most √hi, so every product of two of them (the terms of `disc`,
+    /// ‖Δp × Δv‖² ≤ ‖Δp‖²‖Δv‖², a R² for the normal) stays in the plain range,
+    /// and `disc`'s root is as accurate as the type allows; ‖Δv‖² and
+    /// ‖Δp‖² + R² are at least `lo`, so `c` is not a difference of underflowed
+    /// squares. One sum and three comparisons (√hi is a constant). A NaN
+    /// fails every test: the scaled path.
+    #[inline(always)]
+    fn plain(&self) -> bool {
+        let (lo, hi) = safe_squared_range::<T>();
+        let span = self.dd + self.rr;
+        (self.vv >= lo) & (span >= lo) & (span + self.vv <= hi.sqrt())
     }
-    let root = disc.sqrt();
-    let t = c / (root - bp);
-    if !(t <= t_max) {
-        return None;
+
+    /// The first touch within `[0, t_max]` of spheres apart at `t = 0`, in the
+    /// plain range, with `c = ‖Δp‖² − R²` (see [`toi_sphere_sphere`]).
+    #[inline(always)]
+    fn first_touch(&self, a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, c: T, t_max: T) -> Option<Toi<T>> {
+        let Self { dp, dv, reach, dd, vv, rr } = *self;
+        let bp = dp.dot(&dv);
+        // Moving apart or sideways. The plain range leaves no NaN here.
+        if bp >= T::zero() {
+            return None;
+        }
+        let w = dp.cross(&dv);
+        let disc = vv * rr - w.norm_squared();
+        // Passing wide.
+        if disc < T::zero() {
+            return None;
+        }
+        let root = disc.sqrt();
+        let t = c / (root - bp);
+        if !(t <= t_max) {
+            return None;
+        }
+        // At the touch ‖Δp + t Δv‖ = R, and a (Δp + t Δv) = Δv × w − √disc Δv,
+        // two orthogonal parts whose squares sum to a² R² (see above):
+        // dividing by a R keeps a second root off the path, and the division
+        // for `t` too. The quotient is unit to within `16 u` in length (see
+        // `far_apart`) where a R² ≥ `lo` (then a R ≥ `lo` too, so 1/(a R) is
+        // finite and exact to an ulp) and ‖Δp‖² ≤ R² · `far_apart` (spheres
+        // starting up to 2^24 radii apart in f64); this depends on the data
+        // alone, so the branch is decided early, not after the normal.
+        // Otherwise (no radius between the centres, a R out of the normal
+        // range, spheres farther apart) `contact_at` normalizes Δp + t Δv by
+        // its own norm or falls back.
+        let (lo, _) = safe_squared_range::<T>();
+        if !((vv * rr >= lo) & (dd <= rr * far_apart::<T>())) {
+            return Some(contact_at(a, va, b, vb, t));
+        }
+        let normal = (dv.cross(&w) - dv * root) * (T::one() / (vv * reach));
+        Some(Toi {
+            t,
+            point: b.center + vb * t + normal * b.radius,
+            normal,
+            status: ToiStatus::Converged,
+            iterations: 0,
+            degenerate: false,
+        })
     }
-    // At the touch ‖Δp + t Δv‖ = R, and a (Δp + t Δv) = Δv × w − √disc Δv,
-    // two orthogonal parts whose squares sum to a² R² (see above): dividing
-    // by a R keeps a second root off the path, and the division for `t` too.
-    // The quotient is unit to within `16 u` in length (see `far_apart`)
-    // where a R² ≥ `lo` (then a R ≥ `lo` too, so 1/(a R) is finite and exact
-    // to an ulp) and ‖Δp‖² ≤ R² · `far_apart` (spheres starting up to 2^24
-    // radii apart in f64); this depends on the data alone, so the branch is
-    // decided early, not after the normal. Otherwise
-    // (no radius between the centres, a R out of the normal range, spheres
-    // farther apart) `contact_at` normalizes Δp + t Δv by its own norm or
-    // falls back.
-    if !((vv * rr >= lo) & (dd <= rr * far_apart::<T>())) {
-        return Some(contact_at(a, va, b, vb, t));
-    }
-    let normal = (dv.cross(&w) - dv * root) * (T::one() / (vv * reach));
-    Some(Toi {
-        t,
-        point: b.center + vb * t + normal * b.radius,
-        normal,
-        status: ToiStatus::Converged,
-        iterations: 0,
-        degenerate: false,
-    })
 }
 
 /// `1/(32u)` (`u` the unit roundoff: `2^48` in `f64`, `2^19` in `f32`): the
@@ -185,8 +215,10 @@ fn far_apart<T: Real>() -> T {
 /// (`‖Δp‖² ≤ R²(1 + 8u)`), where the static test decides. No relative motion
 /// (exactly: a square can underflow) is in contact at 0 and for good, or
 /// never. Spheres in contact by the static test get
-/// [`ToiStatus::Penetrating`] and the static contact; the rest take the
-/// scaled path, which decides from lengths.
+/// [`ToiStatus::Penetrating`] and the static contact. Spheres it calls
+/// apart (within the roundings of touching) take the closed form with
+/// `c = max(‖Δp‖² − R², 0)` in the plain range, the scaled path, which
+/// decides from lengths, outside it.
 #[cold]
 #[inline(never)]
 fn rare<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, t_max: T) -> Option<Toi<T>> {
@@ -195,6 +227,13 @@ fn rare<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, t_max
     }
     if (va - vb).iter().all(|x| *x == T::zero()) {
         return None;
+    }
+    let m = Relative::new(a, va, b, vb);
+    if m.plain() {
+        // Apart by the static test, within the roundings of touching:
+        // ‖Δp‖² − R² may have rounded to 0 or below, and the touch, if any,
+        // is a few ulps of R over the closing speed away. From 0.
+        return m.first_touch(a, va, b, vb, (m.dd - m.rr).max(T::zero()), t_max);
     }
     toi_sphere_sphere_scaled(a, va, b, vb, t_max)
 }
