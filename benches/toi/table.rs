@@ -64,7 +64,7 @@ pub fn render(rows: &[Row], targets: &[Target], seed: u64, since: SystemTime) ->
          1e-12. parry3d-f64 / parry3d: `query::cast_shapes` called directly on inputs already in parry's types, \
          with the oracle's options; \"via adapter\": through `oracle::parry::ParryCast`, which converts inside \
          each call. The textbook closed form (sphere–sphere only) is the formula with nothing around it — no \
-         range checks, no screen, no unit check, no degenerate cases — a reference for what collide's checks \
+         range checks, no screen, no bound on the normal's length, no degenerate cases — a reference for what collide's checks \
          cost, not an engine. {}\n",
         super::criterion_files::PAIRED_MARK
     );

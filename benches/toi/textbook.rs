@@ -4,8 +4,8 @@
 //! formula itself comes to the target.
 //!
 //! Not an engine: it has no range checks (extreme scales overflow or
-//! underflow), no scaled path, no screen before the root, no check that the
-//! normal came out unit, and concentric spheres get a NaN normal. Only the
+//! underflow), no scaled path, no screen before the root, nothing that bounds
+//! the normal's length, and concentric spheres get a NaN normal. Only the
 //! answer's shape is collide's ([`Toi`]), so both write the same bytes.
 
 use collide::toi::{Toi, ToiStatus};

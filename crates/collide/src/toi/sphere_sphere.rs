@@ -42,9 +42,10 @@ use crate::shapes::Sphere;
 ///
 /// (`Δv × (Δp × Δv) = a Δp − b' Δv`, and `t + b'/a = −√disc/a` at the first
 /// root.) The two parts are orthogonal and their squared lengths sum to
-/// `a (‖w‖² + disc) = a² R²` by the definition of `disc`, so `n` is unit to a
-/// few ulps however far the spheres start apart: the roundings of `w` move
-/// its direction, as they move every method's, but not its length. Written as
+/// `a (‖w‖² + disc) = a² R²` by the definition of `disc`, so `n` is unit to
+/// within `16u` in length for spheres starting up to `2^24` radii apart (see
+/// `far_apart`): the roundings of `w` move its direction, as they move every
+/// method's, but barely its length. Written as
 /// `(Δp + t Δv)/R`, the vector carries the rounding of `Δp`'s scale into its
 /// length, and a small sphere coming from afar needs a second root.
 ///
@@ -73,7 +74,10 @@ use crate::shapes::Sphere;
 /// wide (`disc < 0`) or touching after `t_max`: `None`. Otherwise the status is
 /// [`ToiStatus::Converged`] and `t` is accurate to a few ulps of the inputs'
 /// scale over the closing speed — except near grazing, where `t` depends on the
-/// data like `√disc` and any method loses half the digits.
+/// data like `√disc` and any method loses half the digits. Spheres the static
+/// test calls apart while `‖Δp‖² ≤ R²(1 + 8u)` start within the roundings of
+/// touching: `c` is read as `max(c, 0)`, so such a touch may be reported at
+/// `t = 0`, converged.
 ///
 /// **Degenerate input.** Concentric spheres at `t = 0` get the static test's
 /// fallback normal (flagged). Two spheres of zero total radius meet at a point

@@ -1261,8 +1261,9 @@ fn closed_forms_out_of_the_plain_range<T: Real>() {
     // already touching.
     let (a, b) = (ball::<T>(-5.0, 0.0, 0.0, 1.0), ball::<T>(0.0, 0.0, 0.0, 1.0));
     assert!(toi_sphere_sphere(&a, &v(1.0, 2.0, 3.0), &b, &v(1.0, 2.0, 3.0), T::of(9.0)).is_none());
-    // A pair small against the distance it comes from: the normal is still
-    // unit (normalized by its own norm when (Δp + tΔv)/R is not unit enough).
+    // A pair small against the distance it comes from (4500 radii): the
+    // normal is still unit (its split across and along the motion keeps the
+    // length whatever the roundings of Δp's scale do to the direction).
     let (a, va) = (ball::<T>(-9.0, 0.3, 0.0, 1e-3), v::<T>(10.0, 0.0, 0.0));
     let b = ball::<T>(0.0, 0.3 + 1.5e-3, 0.0, 1e-3);
     let k = toi_sphere_sphere(&a, &va, &b, &still(), T::one()).expect("small pair");
