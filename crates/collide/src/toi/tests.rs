@@ -753,11 +753,29 @@ fn overlapping() -> impl Strategy<Value = Overlapping> {
 /// calls apart are not penetrating. Touching within the roundings decides
 /// both ways: before this check, a pair whose `‖Δp‖²` rounded just above
 /// `R²` while the static test's root came out at `R` was answered "moving
-/// apart, no impact" although the static test said touching.
+/// apart, no impact" although the static test said touching. A pair it
+/// calls apart within the roundings of touching is answered as any other:
+/// no contact before the reported touch, touching there — where the inputs
+/// are finite in the type and every nonzero one is at least the smallest
+/// normal over ε, so that the sampling's moved spheres are not rounded to
+/// the subnormal grid (below that, a move by `v t` advances in whole steps
+/// of the grid, and the sampled motion is no longer the linear one).
 fn check_sphere_sphere_start_is_static<T: Real>(s: &Overlapping) -> Result<(), TestCaseError> {
     let (a, b) = (Sphere::new(vt::<T>(&s.a.0), T::of(s.a.1)), Sphere::new(vt::<T>(&s.b.0), T::of(s.b.1)));
-    let got = toi_sphere_sphere(&a, &vt(&s.va), &b, &vt(&s.vb), T::one());
-    start_is_static(got, contact_sphere_sphere(&a, &b))
+    let (va, vb) = (vt::<T>(&s.va), vt::<T>(&s.vb));
+    let got = toi_sphere_sphere(&a, &va, &b, &vb, T::one());
+    let at_start = contact_sphere_sphere(&a, &b);
+    start_is_static(got, at_start)?;
+    let smallest_normal = if eps::<T>() < 1e-10 { f64::MIN_POSITIVE } else { f64::from(f32::MIN_POSITIVE) };
+    let linear = [a.center, b.center, va, vb]
+        .iter()
+        .flat_map(|p| p.iter())
+        .chain([&a.radius, &b.radius])
+        .all(|x| x.finite() && (*x == T::zero() || x.wide().abs() >= smallest_normal / eps::<T>()));
+    if at_start.is_none() && linear {
+        check_answer(&Spheres { a, va, b, vb, t_max: T::one() }, got, T::one(), 0.0)?;
+    }
+    Ok(())
 }
 
 /// A time of impact `got` whose start the static test answered `k`: in
