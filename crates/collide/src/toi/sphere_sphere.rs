@@ -265,7 +265,8 @@ fn contact_at<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>,
     }
 }
 
-/// The scaled path of [`toi_sphere_sphere`]: squares out of the plain range.
+/// The scaled path of [`toi_sphere_sphere`]: squares out of the plain range,
+/// for spheres its caller (`rare`) found apart at `t = 0` by the static test.
 ///
 /// Lengths are divided by `m = max(‖Δp‖∞, R)` first (so `‖Δp/m‖∞ ≤ 1` and
 /// `R/m ≤ 1`), and the motion is its unit direction `u` and its speed `s`
@@ -285,9 +286,6 @@ fn toi_sphere_sphere_scaled<T: Real>(
     vb: &Vec3<T>,
     t_max: T,
 ) -> Option<Toi<T>> {
-    if let Some(k) = contact_sphere_sphere(a, b) {
-        return Some(Toi::penetrating(&k));
-    }
     let dv = va - vb;
     let u = try_normalize_stable(&dv)?;
     let speed = stable_norm(&dv);
