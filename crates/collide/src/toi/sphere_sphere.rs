@@ -229,10 +229,10 @@ fn rare<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, t_max
     if let Some(k) = contact_sphere_sphere(a, b) {
         return Some(Toi::penetrating(&k));
     }
-    if (va - vb).iter().all(|x| *x == T::zero()) {
+    let m = Relative::new(a, va, b, vb);
+    if m.dv.iter().all(|x| *x == T::zero()) {
         return None;
     }
-    let m = Relative::new(a, va, b, vb);
     if m.plain() {
         // Apart by the static test, within the roundings of touching:
         // ‖Δp‖² − R² may have rounded to 0 or below, and the touch, if any,
