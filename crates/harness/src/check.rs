@@ -43,7 +43,8 @@ pub struct CaseResult {
     pub name: String,
     /// Its query.
     pub query: Query,
-    /// The scene's scale (relative errors divide by it).
+    /// The answer's length scale (relative errors divide by it): the local
+    /// magnitude its lengths are judged by (`judge::answer_scale`).
     pub scale: f64,
     /// The referee's margin from the nearest decision boundary, if any.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -141,9 +142,10 @@ pub fn run_caught(engine: &Engine, lc: &LoadedCase) -> Result<Answer, Verdict> {
 /// Judges one case with every engine.
 pub fn check_case(lc: &LoadedCase, judged: &[Engine], referee: &Engine) -> CaseResult {
     let truth = run_caught(referee, lc).ok();
-    let scale = judge::scene_scale(lc);
+    // The answer's own length scale (relative errors in reports divide by it);
+    // the scene's when the referee gave no answer.
+    let scale = truth.as_ref().map_or_else(|| judge::scene_scale(lc), |t| judge::answer_scale(lc, t));
     let margin = engines::referee::margin(lc);
-    let rel_margin = margin.map(|m| m / scale);
     let has_expect = lc.case.expect.is_some();
     let mut results = Vec::new();
     let mut passed = false;
@@ -154,7 +156,7 @@ pub fn check_case(lc: &LoadedCase, judged: &[Engine], referee: &Engine) -> CaseR
                 let mism = has_expect.then(|| judge::check_expect(lc, &a));
                 let (v, e) = match &truth {
                     Some(t) => {
-                        let (v, e) = judge::judge(lc, &a, t, &tol, rel_margin);
+                        let (v, e) = judge::judge(lc, &a, t, &tol, margin);
                         match &v {
                             Verdict::Disagree { reasons } => {
                                 match crate::divergence::explain(&engine.name, lc, &a, t, reasons) {

@@ -22,6 +22,7 @@ pub mod engines;
 pub mod generate;
 pub mod judge;
 pub mod load;
+pub mod local;
 pub mod mesh;
 pub mod report;
 pub mod rng;

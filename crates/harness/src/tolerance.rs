@@ -1,10 +1,38 @@
 //! Tolerances for judging an engine against the referee: one entry per precision
-//! and quantity, each with its reason. Errors of points, depths and times are
-//! measured relative to the scene's scale (the largest coordinate, radius or
-//! offset in the case), so the same table serves a scene at the origin and one at
-//! 1e9; normals are judged by their angle.
+//! and quantity, each with its reason.
+//!
+//! **The rule: each field is judged by the problem's own scale.** What a field
+//! may be off by is derived from the sizes that decide that field at that input
+//! (see [`crate::local`], which writes the rule out per query kind), never from
+//! the scene's bounding size alone:
+//!
+//! `allowed = FIXED · magnitude + K · ε · condition`, at least [`Tolerance::floor`]
+//!
+//! - `magnitude` sums the magnitudes the field is built from: for a contact with
+//!   a triangle, the sphere's centre and radius, the answer's point, and the
+//!   triangle's vertices each weighted by the share the closest point takes of it
+//!   (a sphere of radius 4 beside a triangle with legs of 1e15 is judged at the
+//!   size of 4, not of 1e15); for a segment hit, the segment's ends and the
+//!   surface at the hit; for a barycentric coordinate, the coordinates' own
+//!   size; for a time, `t_max`; for a velocity, the input and output speeds;
+//! - `condition` is the first-order change of the field when every input point
+//!   moves by `ε` of its own size (backward error): a normal between two points
+//!   at distance `d` turns by their sizes over `d`; a crossing's `t` moves by the
+//!   ends' distance changes over the segment's extent across the surface; a
+//!   sliver's plane tilts by the vertices' sizes over its altitudes; a time moves
+//!   by a distance change over the closing speed;
+//! - `FIXED` is the precision's fixed allowance below ([`F64_REL`], …), `K` the
+//!   conditioning allowance in units of the engine's ε ([`NORMAL_CONDITION_ULPS`],
+//!   …), and the floor a few of the precision's smallest subnormals, so that no
+//!   allowance is 0 (an answer of 4.9e-324 off by 4.9e-324 is one rounding, not a
+//!   disagreement) — and none is NaN or infinite: every size is computed with norms
+//!   that scale before they square, and an infinite condition is capped by the
+//!   field's own range (π for a normal, `t_max` for a time).
+//!
+//! The same table therefore serves a scene at the origin, one at 1e9, and a small
+//! feature beside a huge one; normals are judged by their angle.
 
-/// Relative (to the scene's scale) error allowed of an `f64` engine's points,
+/// Relative (to the field's local magnitude) error allowed of an `f64` engine's points,
 /// depths and barycentric reconstructions: 1e-9. A well-conditioned query loses a
 /// few hundred ulps at most (2.2e-16 each); the remaining six orders of magnitude
 /// are left for the conditioning of near-degenerate cases (grazing contacts,
@@ -69,10 +97,22 @@ pub const BARY_CONDITION_ULPS: f64 = 16.0;
 /// staying far below what a wrong first touch costs (a whole feature's time).
 pub const TIME_CONDITION_ULPS: f64 = 64.0;
 
+/// Conditioning allowance for lengths (points, depths, velocities), in units of
+/// the engine's epsilon: a point built from a normal turns with it (a sphere's
+/// surface point moves by its radius times the normal's turn), a crossing moves
+/// along its segment by the length times the error of `t`. 16, as for normals.
+pub const LENGTH_CONDITION_ULPS: f64 = 16.0;
+
+/// The floor of every allowance, in units of the precision's smallest positive
+/// (subnormal) number: an answer of that size has no finer grid, so one
+/// rounding of it is that far. 16 leaves room for the few roundings of a
+/// subnormal result.
+pub const FLOOR_SUBNORMALS: f64 = 16.0;
+
 /// The tolerances in force for one engine.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tolerance {
-    /// Points, depths, distances, radii: relative to the scene's scale.
+    /// Points, depths, distances, radii: relative to the field's local magnitude.
     pub rel: f64,
     /// Normals: radians.
     pub normal_rad: f64,
@@ -81,6 +121,8 @@ pub struct Tolerance {
     /// The engine's machine epsilon (unit roundoff × 2), for the conditioning
     /// allowances.
     pub eps: f64,
+    /// The precision's smallest positive (subnormal) number.
+    pub tiny: f64,
 }
 
 impl Tolerance {
@@ -88,10 +130,26 @@ impl Tolerance {
     /// for f32; `None`, the referee itself, is held to the f64 entry).
     pub fn for_precision(precision: Option<u32>) -> Self {
         match precision {
-            Some(p) if p < 53 => {
-                Tolerance { rel: F32_REL, normal_rad: F32_NORMAL_RAD, unitless: F32_BARY, eps: f64::from(f32::EPSILON) }
-            }
-            _ => Tolerance { rel: F64_REL, normal_rad: F64_NORMAL_RAD, unitless: F64_BARY, eps: f64::EPSILON },
+            Some(p) if p < 53 => Tolerance {
+                rel: F32_REL,
+                normal_rad: F32_NORMAL_RAD,
+                unitless: F32_BARY,
+                eps: f64::from(f32::EPSILON),
+                tiny: f64::from(f32::from_bits(1)),
+            },
+            _ => Tolerance {
+                rel: F64_REL,
+                normal_rad: F64_NORMAL_RAD,
+                unitless: F64_BARY,
+                eps: f64::EPSILON,
+                tiny: f64::from_bits(1),
+            },
         }
+    }
+
+    /// The smallest allowance of any field: [`FLOOR_SUBNORMALS`] of the
+    /// precision's smallest positive number.
+    pub fn floor(&self) -> f64 {
+        FLOOR_SUBNORMALS * self.tiny
     }
 }

@@ -1,0 +1,473 @@
+//! The problem's own scale: for each field of an answer, the sizes that decide
+//! it, from which its tolerance is derived (see [`crate::tolerance`] for the
+//! rules' reasons and [`crate::judge`] for their use).
+//!
+//! The model is backward error. An engine working in a precision with machine
+//! epsilon `ε` is allowed what the exact answer changes by when each input
+//! point `x` moves by `ε·‖x‖` (each radius, offset, speed and mass by `ε` of
+//! itself), to first order. For each field that change is written as two
+//! sizes, both lengths (or radians, or unitless, by the field):
+//!
+//! - `magnitude`: the sum of the magnitudes the field is built from — the
+//!   answer's own value, the centre and radius of the sphere, the vertices of
+//!   the triangle weighted by the barycentric coordinates of the answer's point
+//!   (a small sphere beside a triangle with legs of 1e15 has a local scale of
+//!   its own size, not of the legs). The fixed allowance (`rel`) multiplies it.
+//! - `condition`: what ill-conditioning adds (a distance divided by a small
+//!   one: a normal from two nearly coincident points, a near-parallel crossing,
+//!   the tilt of a sliver's plane). The conditioning allowance (`K·ε`)
+//!   multiplies it.
+//!
+//! Every size is computed with norms that scale before they square (no
+//! overflow for coordinates near `f64::MAX`, no underflow for subnormal ones),
+//! is never NaN, and is clamped into `[0, f64::MAX]`; an ill-conditioned size
+//! that is infinite (a zero distance) is capped by the field's own range where
+//! it has one (π for a normal, `t_max` for a time).
+
+use crate::case::{Query, Shape};
+use crate::engine::Answer;
+use crate::load::LoadedCase;
+use oracle::geom::P3;
+
+/// The two sizes of one field (see the module docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Size {
+    /// Multiplied by the fixed relative allowance.
+    pub magnitude: f64,
+    /// Multiplied by the conditioning allowance `K·ε`.
+    pub condition: f64,
+}
+
+impl Size {
+    fn new(magnitude: f64, condition: f64) -> Self {
+        Size { magnitude: clean(magnitude), condition: clean(condition) }
+    }
+}
+
+/// The sizes of every field of one case's answer, from the case and the
+/// referee's answer. A field that the answer does not have keeps its default
+/// (zero sizes: only the floor is allowed).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Local {
+    /// The contact, hit, impact or bounding sphere's point; an AABB's corners.
+    pub point: Size,
+    /// The contact's depth, the bounding sphere's radius.
+    pub depth: Size,
+    /// The normal, in radians (`magnitude` is 1: the fixed angle allowance).
+    pub normal: Size,
+    /// The segment parameter or the time of impact (`magnitude`: 1 for a
+    /// segment parameter, `t_max` for a time).
+    pub t: Size,
+    /// Barycentric coordinates (`magnitude`: the coordinates' own size, at least 1).
+    pub barycentric: Size,
+    /// Response velocities.
+    pub velocity: Size,
+    /// The referee's margin from the nearest decision boundary (a length).
+    pub margin: Size,
+}
+
+/// A size as a finite, non-negative number: NaN (which no rule should give)
+/// is treated as the largest size, so that it can never make a wrong answer
+/// agree by a comparison with NaN.
+fn clean(x: f64) -> f64 {
+    if x.is_nan() { f64::MAX } else { x.clamp(0.0, f64::MAX) }
+}
+
+/// Largest absolute coordinate.
+pub fn mag(p: &P3) -> f64 {
+    p[0].abs().max(p[1].abs()).max(p[2].abs())
+}
+
+fn sub(a: &P3, b: &P3) -> P3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// The Euclidean norm, scaled first by the largest coordinate: finite for every
+/// finite vector (at most `√3 · f64::MAX` rounds to `f64::MAX`... and above,
+/// which only a difference of opposite near-`f64::MAX` coordinates reaches:
+/// then `∞`, cleaned by the caller).
+pub fn norm(v: &P3) -> f64 {
+    let m = mag(v);
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    let s = [v[0] / m, v[1] / m, v[2] / m];
+    m * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt()
+}
+
+/// A difference whose coordinates do not overflow: `a − b` halved when a
+/// coordinate of it would (the caller gets the factor back as `scale`).
+fn diff(a: &P3, b: &P3) -> (P3, f64) {
+    let d = sub(a, b);
+    if d.iter().all(|x| x.is_finite()) {
+        (d, 1.0)
+    } else {
+        ([a[0] / 2.0 - b[0] / 2.0, a[1] / 2.0 - b[1] / 2.0, a[2] / 2.0 - b[2] / 2.0], 2.0)
+    }
+}
+
+/// `‖a − b‖` without overflow (finite up to `f64::MAX`, saturating above).
+pub fn distance(a: &P3, b: &P3) -> f64 {
+    let (d, k) = diff(a, b);
+    clean(norm(&d) * k)
+}
+
+/// A unit vector along `v` (scaled first), or zero for a zero vector.
+fn unit(v: &P3) -> P3 {
+    let m = mag(v);
+    if m == 0.0 || !m.is_finite() {
+        return [0.0; 3];
+    }
+    let s = [v[0] / m, v[1] / m, v[2] / m];
+    let n = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
+    [s[0] / n, s[1] / n, s[2] / n]
+}
+
+fn dot(a: &P3, b: &P3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: &P3, b: &P3) -> P3 {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// The triangle's shape in sizes that do not overflow: the vertices scaled by
+/// a power of two (exact) so that the largest coordinate is about 1, then the
+/// edges, the twice-area and the three altitudes computed there and scaled back
+/// (altitudes are lengths; their ratios to the vertices' sizes are unitless).
+struct TriangleShape {
+    verts: [P3; 3],
+    /// The unit normal `(v1 − v0) × (v2 − v0)` (zero for a zero-area triangle).
+    normal: P3,
+    /// `alt[i]`: the distance of vertex `i` from the line of the other two
+    /// (0 for a zero-area triangle).
+    alt: [f64; 3],
+}
+
+impl TriangleShape {
+    fn new(v: &[P3; 3]) -> Self {
+        let m = mag(&v[0]).max(mag(&v[1])).max(mag(&v[2]));
+        // A power of two near the largest coordinate: dividing by it is exact
+        // unless a coordinate far below it falls into the subnormals (its loss
+        // is far below the ε of the sizes computed here).
+        let k = if m > 0.0 && m.is_finite() { 2f64.powi(m.log2().floor() as i32) } else { 1.0 };
+        let s = v.map(|p| [p[0] / k, p[1] / k, p[2] / k]);
+        let n = cross(&sub(&s[1], &s[0]), &sub(&s[2], &s[0]));
+        let twice_area = norm(&n);
+        let edge = |i: usize, j: usize| norm(&sub(&s[i], &s[j]));
+        let alt_of = |opposite: f64| if opposite > 0.0 { twice_area / opposite * k } else { 0.0 };
+        TriangleShape { verts: *v, normal: unit(&n), alt: [alt_of(edge(1, 2)), alt_of(edge(2, 0)), alt_of(edge(0, 1))] }
+    }
+
+    /// The tilt of the triangle's plane per ε of vertex motion: `Σ ‖v_i‖/alt_i`
+    /// radians (a vertex moved by `ε‖v_i‖` across the plane turns it by that over
+    /// its altitude). Infinite for a zero-area triangle.
+    fn tilt(&self) -> f64 {
+        (0..3).map(|i| if self.alt[i] > 0.0 { mag(&self.verts[i]) / self.alt[i] } else { f64::INFINITY }).sum()
+    }
+
+    /// The smallest altitude.
+    fn min_alt(&self) -> f64 {
+        self.alt[0].min(self.alt[1]).min(self.alt[2])
+    }
+
+    /// Barycentric weights of the point `p` (taken in the plane), clamped to be
+    /// non-negative and to sum to 1: each vertex's share in where `p` is. For a
+    /// zero-area triangle, equal shares (the bound then rests on the tilt,
+    /// which is infinite there).
+    fn weights(&self, p: &P3) -> [f64; 3] {
+        let [a, b, c] = self.verts;
+        let m = mag(&a).max(mag(&b)).max(mag(&c)).max(mag(p));
+        let k = if m > 0.0 && m.is_finite() { 2f64.powi(m.log2().floor() as i32) } else { 1.0 };
+        let sc = |q: &P3| [q[0] / k, q[1] / k, q[2] / k];
+        let (a, b, c, p) = (sc(&a), sc(&b), sc(&c), sc(p));
+        let n = cross(&sub(&b, &a), &sub(&c, &a));
+        let nn = dot(&n, &n);
+        if !(nn > 0.0) {
+            return [1.0 / 3.0; 3];
+        }
+        let area = |x: &P3, y: &P3, z: &P3| (dot(&cross(&sub(y, x), &sub(z, x)), &n) / nn).max(0.0);
+        let w = [area(&p, &b, &c), area(&a, &p, &c), area(&a, &b, &p)];
+        let sum = w[0] + w[1] + w[2];
+        if sum > 0.0 { w.map(|x| x / sum) } else { [1.0 / 3.0; 3] }
+    }
+
+    /// `Σ w_i ‖v_i‖`: the vertices' sizes in the share the point `p` takes of
+    /// each.
+    fn weighted_size(&self, p: &P3) -> f64 {
+        let w = self.weights(p);
+        (0..3).map(|i| w[i] * mag(&self.verts[i])).sum()
+    }
+
+    /// `Σ |λ_i| ‖v_i‖` for signed coordinates `λ` (a barycentric answer).
+    fn coords_size(&self, l: &P3) -> f64 {
+        (0..3).map(|i| l[i].abs() * mag(&self.verts[i])).sum()
+    }
+
+    /// The distance of `p` from the triangle's plane.
+    fn height(&self, p: &P3) -> f64 {
+        let (d, k) = diff(p, &self.verts[0]);
+        clean(dot(&d, &self.normal).abs() * k)
+    }
+}
+
+/// A plane's offset in lengths, `|d|/‖n‖`, and its unit normal, without
+/// overflow or underflow for normals of any finite length.
+fn plane_offset(normal: &P3, offset: f64) -> (f64, P3) {
+    let m = mag(normal);
+    if m == 0.0 {
+        return (0.0, [0.0; 3]);
+    }
+    let s = [normal[0] / m, normal[1] / m, normal[2] / m];
+    let n = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
+    // |d| / (m·n), dividing by the two factors in turn.
+    (clean(offset.abs() / n / m), unit(normal))
+}
+
+/// A ratio of sizes, `num / den`, with `0/0 = 0` and `x/0 = ∞` (then cleaned
+/// or capped by the caller).
+fn ratio(num: f64, den: f64) -> f64 {
+    if num == 0.0 {
+        0.0
+    } else if den > 0.0 {
+        num / den
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// The sizes of the case's answer fields, from the case and the referee's
+/// answer `truth`.
+pub fn local(lc: &LoadedCase, truth: &Answer) -> Local {
+    let case = &lc.case;
+    match (case.query, &case.a, case.b.as_ref(), truth) {
+        (Query::Contact, a, Some(b), Answer::Contact(w)) => contact(a, b, w.contact.as_ref()),
+        (Query::Intersect, Shape::Segment(s), Some(b), Answer::Intersect(w)) => {
+            let tri = match b {
+                Shape::Triangle(t) => Some(TriangleShape::new(&t.vertices)),
+                Shape::Mesh(_) => w.hit.and_then(|h| h.triangle).and_then(|i| {
+                    let m = lc.meshes[1].as_ref()?;
+                    let f = m.triangles.get(i)?;
+                    Some(TriangleShape::new(&[m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]]))
+                }),
+                _ => None,
+            };
+            let mesh_size = lc.meshes[1].as_ref().map(|m| m.vertices.iter().map(mag).fold(0.0, f64::max));
+            intersect(&s.start, &s.end, b, tri.as_ref(), mesh_size, w.hit.as_ref())
+        }
+        (Query::Barycentric, Shape::Point(p), Some(Shape::Triangle(t)), Answer::Barycentric(w)) => {
+            barycentric(&p.at, &TriangleShape::new(&t.vertices), &w.coords)
+        }
+        (Query::Bounds, _, _, Answer::Bounds(w)) => {
+            let pts = crate::judge::bounded_points(lc);
+            let points = pts.iter().map(mag).fold(0.0, f64::max);
+            let (center, radius) = w.sphere.map(|s| (mag(&s.center), s.radius)).unwrap_or((0.0, 0.0));
+            let corners = w.aabb.map(|b| mag(&b.min).max(mag(&b.max))).unwrap_or(0.0);
+            Local {
+                // The AABB's coordinates are judged each by its own size (see
+                // `judge`); the sphere's centre by the points' sizes.
+                point: Size::new(corners.max(center).max(points), 0.0),
+                depth: Size::new(radius + center + points, 0.0),
+                ..Local::default()
+            }
+        }
+        (Query::Overlap, Shape::Aabb(a), Some(Shape::Aabb(b)), _) => {
+            let m = mag(&a.min).max(mag(&a.max)).max(mag(&b.min)).max(mag(&b.max));
+            Local { margin: Size::new(m, 0.0), ..Local::default() }
+        }
+        (Query::Toi, Shape::Sphere(a), Some(b), Answer::Toi(w)) => toi(lc, a, b, w),
+        (Query::Response, Shape::Sphere(a), Some(b), Answer::Response(w)) => response(a, b, w),
+        _ => Local::default(),
+    }
+}
+
+fn contact(a: &Shape, b: &Shape, w: Option<&oracle::geom::Contact>) -> Local {
+    let Some(w) = w else {
+        // Apart: only the margin (the negative depth) is judged, by the
+        // shapes' own sizes.
+        let m = contact_margin_size(a, b);
+        return Local { margin: m, ..Local::default() };
+    };
+    let pm = mag(&w.point);
+    let dm = w.depth.abs();
+    match (a, b) {
+        (Shape::Sphere(sa), Shape::Sphere(sb)) => {
+            let (ca, cb) = (mag(&sa.center), mag(&sb.center));
+            // The centres' distance (scaled: no overflow near f64's limits).
+            let d = distance(&sa.center, &sb.center);
+            let spread = ca + cb;
+            let turn = ratio(spread, d).min(std::f64::consts::PI / f64::EPSILON);
+            let depth = Size::new(sa.radius + sb.radius + spread + dm, 0.0);
+            Local {
+                point: Size::new(cb + sb.radius + pm, sb.radius * turn),
+                depth,
+                normal: Size::new(1.0, turn),
+                margin: depth,
+                ..Local::default()
+            }
+        }
+        (Shape::Sphere(s), Shape::Plane(p)) | (Shape::Plane(p), Shape::Sphere(s)) => {
+            let c = mag(&s.center);
+            let (dn, _) = plane_offset(&p.normal, p.offset);
+            let depth = Size::new(s.radius + 2.0 * c + 2.0 * dn + dm, 0.0);
+            // The point is the centre's projection (on the plane) or the
+            // sphere's deepest point: both within the centre, the radius and
+            // the offset's sizes.
+            let point = Size::new(depth.magnitude + pm + c, 0.0);
+            Local { point, depth, normal: Size::new(1.0, 1.0), margin: depth, ..Local::default() }
+        }
+        (Shape::Sphere(s), Shape::Triangle(t)) | (Shape::Triangle(t), Shape::Sphere(s)) => {
+            let tri = TriangleShape::new(&t.vertices);
+            let c = mag(&s.center);
+            let h = (s.radius - w.depth).abs();
+            let sphere_first = matches!(a, Shape::Sphere(_));
+            // The triangle's closest point: the answer's point when the
+            // triangle is `b`, else the sphere's centre moved by `h` toward it.
+            let q = if sphere_first {
+                w.point
+            } else {
+                [s.center[0] + h * w.normal[0], s.center[1] + h * w.normal[1], s.center[2] + h * w.normal[2]]
+            };
+            let wq = tri.weighted_size(&q);
+            let tilt = h * tri.tilt();
+            let q_size = c + wq + mag(&q);
+            let turn = ratio(q_size + tilt, h).min(std::f64::consts::PI / f64::EPSILON);
+            let depth = Size::new(s.radius + q_size + dm, tilt);
+            let point =
+                if sphere_first { Size::new(q_size + pm, tilt) } else { Size::new(c + s.radius + pm, s.radius * turn) };
+            Local { point, depth, normal: Size::new(1.0, turn), margin: depth, ..Local::default() }
+        }
+        _ => Local::default(),
+    }
+}
+
+/// The size of a contact's margin (its signed depth) when the referee says
+/// apart: the sizes of the shapes the distance is measured between.
+fn contact_margin_size(a: &Shape, b: &Shape) -> Size {
+    let size = |s: &Shape| match s {
+        Shape::Sphere(s) => mag(&s.center) + s.radius,
+        Shape::Plane(p) => plane_offset(&p.normal, p.offset).0,
+        Shape::Triangle(t) => t.vertices.iter().map(mag).fold(0.0, f64::max),
+        _ => 0.0,
+    };
+    let tilt = match (a, b) {
+        (Shape::Sphere(s), Shape::Triangle(t)) | (Shape::Triangle(t), Shape::Sphere(s)) => {
+            let tri = TriangleShape::new(&t.vertices);
+            tri.height(&s.center) * tri.tilt()
+        }
+        _ => 0.0,
+    };
+    Size::new(size(a) + size(b), tilt)
+}
+
+fn intersect(
+    s0: &P3,
+    s1: &P3,
+    b: &Shape,
+    tri: Option<&TriangleShape>,
+    mesh_size: Option<f64>,
+    w: Option<&oracle::geom::SegmentHit>,
+) -> Local {
+    let (m0, m1) = (mag(s0), mag(s1));
+    let len = distance(s0, s1);
+    // The surface's unit normal, its offset's size at the hit, and its tilt.
+    let (normal, surface, tilt) = match (b, tri) {
+        (Shape::Plane(p), _) => {
+            let (dn, n) = plane_offset(&p.normal, p.offset);
+            (n, dn, 0.0)
+        }
+        (_, Some(t)) => {
+            let at = w.map(|h| h.point).unwrap_or(*s0);
+            (t.normal, t.weighted_size(&at), t.tilt())
+        }
+        // A mesh hit without a face (none reported): its vertices' size.
+        _ => ([0.0; 3], mesh_size.unwrap_or(0.0), 0.0),
+    };
+    let Some(w) = w else {
+        let size = m0 + m1 + surface;
+        return Local { margin: Size::new(size, len * tilt), ..Local::default() };
+    };
+    // Each end's signed distance from the surface moves, per ε, by its own
+    // size (twice: itself, and the normal's turn acting on it), the surface's
+    // offset at the hit, and the tilt acting on its distance from the hit.
+    let (d0, d1) = (distance(s0, &w.point), distance(s1, &w.point));
+    let h_cond = 2.0 * (m0 + m1) + 2.0 * surface + tilt * (d0 + d1);
+    let (dir, k) = diff(s1, s0);
+    let across = clean(dot(&dir, &normal).abs() * k);
+    // t = h0/(h0 − h1): moved by (δh0 + δh1)/|h0 − h1|, |h0 − h1| the
+    // segment's extent across the surface.
+    let t_cond = ratio(h_cond, across).min(1.0 / f64::EPSILON);
+    let pm = mag(&w.point);
+    let point = Size::new(m0 + m1 + pm + surface, (t_cond * len).min(f64::MAX));
+    let mut out = Local {
+        point,
+        t: Size::new(1.0, t_cond),
+        normal: Size::new(1.0, tilt.min(std::f64::consts::PI / f64::EPSILON)),
+        margin: Size::new(point.magnitude, point.condition),
+        ..Local::default()
+    };
+    if let (Some(t), Some(l)) = (tri, w.barycentric) {
+        let moved = point.magnitude + point.condition + t.coords_size(&l);
+        let size = l.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+        out.barycentric = Size::new(size, ratio(moved, t.min_alt()));
+    }
+    out
+}
+
+fn barycentric(p: &P3, t: &TriangleShape, l: &P3) -> Local {
+    // A coordinate is an area over the whole: moving the point by δ changes
+    // it by δ/altitude, moving a vertex j by δ_j by |λ_j| δ_j/altitude, and a
+    // point at height D off the plane moves its projection by D times the
+    // plane's tilt.
+    let height = t.height(p);
+    let moved = mag(p) + t.coords_size(l) + height * t.tilt();
+    let size = l.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+    Local { barycentric: Size::new(size, ratio(moved, t.min_alt())), ..Local::default() }
+}
+
+fn toi(lc: &LoadedCase, a: &crate::case::SphereSpec, b: &Shape, w: &oracle::geom::ToiAnswer) -> Local {
+    let va = a.velocity.unwrap_or_default();
+    let vb = b.velocity();
+    let t_max = lc.case.t_max();
+    let b_size = match b {
+        Shape::Sphere(s) => mag(&s.center) + s.radius,
+        Shape::Plane(p) => plane_offset(&p.normal, p.offset).0,
+        Shape::Triangle(t) => match w.toi {
+            // The triangle's share at the impact point, taken back to t = 0.
+            Some(h) => {
+                let s = h.t;
+                let at = [h.point[0] - vb[0] * s, h.point[1] - vb[1] * s, h.point[2] - vb[2] * s];
+                TriangleShape::new(&t.vertices).weighted_size(&at) + mag(&at)
+            }
+            None => t.vertices.iter().map(mag).fold(0.0, f64::max),
+        },
+        Shape::Mesh(_) => lc.meshes[1].as_ref().map(|m| m.vertices.iter().map(mag).fold(0.0, f64::max)).unwrap_or(0.0),
+        _ => 0.0,
+    };
+    let moving = mag(&va) + mag(&vb);
+    // The sizes at the impact (or, without one, over the whole interval): the
+    // shapes have moved by then.
+    let (until, at) = match w.toi {
+        Some(h) => (h.t.abs(), mag(&h.point)),
+        None => (t_max, 0.0),
+    };
+    let reach = Size::new(mag(&a.center) + a.radius + b_size + at + moving * until, 0.0);
+    Local { point: reach, margin: reach, t: Size::new(t_max, 0.0), normal: Size::new(1.0, 0.0), ..Local::default() }
+}
+
+fn response(a: &crate::case::SphereSpec, b: &Shape, w: &oracle::geom::ResponseAnswer) -> Local {
+    let va = a.velocity.unwrap_or_default();
+    let vb = b.velocity();
+    let (v, k) = diff(&va, &vb);
+    let rel = clean(norm(&v) * k);
+    let size = mag(&va) + mag(&vb) + mag(&w.velocity_a) + mag(&w.velocity_b);
+    // The impulse acts along the normal; a normal from two centres turns by
+    // (‖ca‖ + ‖cb‖)/‖ca − cb‖ per ε, and the change of velocity (up to twice
+    // the relative one) turns with it. A plane's normal is an input.
+    let turn = match b {
+        Shape::Sphere(sb) => ratio(mag(&a.center) + mag(&sb.center), distance(&a.center, &sb.center))
+            .min(std::f64::consts::PI / f64::EPSILON),
+        _ => 1.0,
+    };
+    Local { velocity: Size::new(size, 2.0 * rel * turn), ..Local::default() }
+}
