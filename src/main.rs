@@ -36,6 +36,11 @@ enum Command {
         /// Random cases per query kind.
         #[arg(long, default_value_t = harness::report::campaign::DEFAULT_CASES)]
         cases: u64,
+        /// Full-range cases per query kind (raw bit patterns, huge, tiny and
+        /// subnormal magnitudes, signed zeros, multi-scale scenes), scored
+        /// apart in the report's "Full range" table.
+        #[arg(long, default_value_t = harness::report::campaign::DEFAULT_FULL_RANGE_CASES)]
+        full_range: u64,
         /// Seed of the random cases.
         #[arg(long, default_value_t = harness::report::campaign::DEFAULT_SEED)]
         seed: u64,
@@ -135,10 +140,22 @@ fn main() -> ExitCode {
             }
             ExitCode::from(result.exit_code() as u8)
         }
-        Command::Report { cases, seed, out, only, shard, fixtures, no_timing, no_sections, bench_figures } => {
+        Command::Report {
+            cases,
+            full_range,
+            seed,
+            out,
+            only,
+            shard,
+            fixtures,
+            no_timing,
+            no_sections,
+            bench_figures,
+        } => {
             let config = harness::report::campaign::Config {
                 seed,
                 cases_per_query: cases,
+                full_range_per_query: full_range,
                 only,
                 shard,
                 fixtures,

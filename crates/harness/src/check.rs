@@ -123,6 +123,11 @@ pub fn answer_as_expect(a: &Answer) -> Expect {
     e
 }
 
+/// The reason given to every engine for a case whose exact answer lies beyond
+/// `f64`'s range (see `fixtures/README.md`, "Answers beyond f64").
+pub const OUT_OF_RANGE: &str =
+    "out of range: the exact answer lies beyond f64's range (its rounding is infinite), so no engine is graded on it";
+
 /// Runs one engine on one case, catching a panic.
 pub fn run_caught(engine: &Engine, lc: &LoadedCase) -> Result<Answer, Verdict> {
     match catch_unwind(AssertUnwindSafe(|| engine.run(lc))) {
@@ -141,7 +146,15 @@ pub fn run_caught(engine: &Engine, lc: &LoadedCase) -> Result<Answer, Verdict> {
 
 /// Judges one case with every engine.
 pub fn check_case(lc: &LoadedCase, judged: &[Engine], referee: &Engine) -> CaseResult {
-    let truth = run_caught(referee, lc).ok();
+    // The truth, or why there is none: the referee refused the input, or the
+    // exact answer lies beyond f64's range (its rounding would be ±∞, and no
+    // engine is graded against an infinity).
+    let (truth, no_truth) = match run_caught(referee, lc) {
+        Ok(a) if judge::all_finite(&a) => (Some(a), String::new()),
+        Ok(_) => (None, OUT_OF_RANGE.to_string()),
+        Err(Verdict::Unsupported { reason }) | Err(Verdict::Failed { reason }) => (None, reason),
+        Err(_) => (None, "the referee gave no answer".to_string()),
+    };
     // The answer's own length scale (relative errors in reports divide by it);
     // the scene's when the referee gave no answer.
     let scale = truth.as_ref().map_or_else(|| judge::scene_scale(lc), |t| judge::answer_scale(lc, t));
@@ -167,7 +180,7 @@ pub fn check_case(lc: &LoadedCase, judged: &[Engine], referee: &Engine) -> CaseR
                             _ => (v, e),
                         }
                     }
-                    None => (Verdict::Unsupported { reason: "the referee gave no answer".into() }, Errors::default()),
+                    None => (Verdict::Unsupported { reason: no_truth.clone() }, Errors::default()),
                 };
                 (Some(answer_as_expect(&a)), v, e, mism)
             }

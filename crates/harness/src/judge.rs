@@ -333,7 +333,10 @@ pub fn angle(a: &P3, b: &P3) -> f64 {
     s.atan2(d)
 }
 
-fn all_finite(answer: &Answer) -> bool {
+/// Whether every number of an answer is finite. The referee's answer to a case
+/// whose exact answer lies beyond `f64`'s range is not (its rounding is ±∞):
+/// such a case is refused as out of range, and no engine is graded on it.
+pub fn all_finite(answer: &Answer) -> bool {
     let f3 = |p: &P3| p.iter().all(|x| x.is_finite());
     match answer {
         Answer::Contact(a) => a.contact.is_none_or(|c| f3(&c.point) && f3(&c.normal) && c.depth.is_finite()),
@@ -350,6 +353,11 @@ fn all_finite(answer: &Answer) -> bool {
         Answer::Response(a) => f3(&a.velocity_a) && f3(&a.velocity_b),
     }
 }
+
+/// The reason of a `Failed` verdict on an answer holding NaN or an infinity
+/// (the referee's answer is finite: see [`all_finite`]); counted apart in
+/// reports.
+pub const NON_FINITE: &str = "non-finite number in the answer";
 
 /// What each field of one case's answer is allowed to be off by, for one
 /// engine: from the sizes that decide the field ([`crate::local`]) and the
@@ -445,7 +453,7 @@ pub fn judge(
 ) -> (Verdict, Errors) {
     let mut e = Errors::default();
     if !all_finite(answer) {
-        return (Verdict::Failed { reason: "non-finite number in the answer".into() }, e);
+        return (Verdict::Failed { reason: NON_FINITE.into() }, e);
     }
     let allow = allowed(lc, truth, tol);
     let mut class = Vec::new();

@@ -30,6 +30,7 @@ mod barycentric;
 mod bounds;
 pub(crate) mod build;
 mod contact;
+pub mod full_range;
 mod intersect;
 mod overlap;
 mod response;
@@ -261,6 +262,61 @@ pub fn try_generate(query: Query, seed: u64, index: u64) -> Option<LoadedCase> {
     case.name = format!("{query} #{index} (seed {seed}, {})", entry.name);
     case.source = format!("generated: seed {seed}, index {index}, family {}", entry.name);
     Some(loaded(case))
+}
+
+/// The first words of every full-range case's `source`: the campaign keeps
+/// these cases apart from the ordinary mix.
+pub const FULL_RANGE_SOURCE: &str = "generated: full range";
+
+/// The full-range family of `query` (see [`full_range`]): one strategy per
+/// sub-family, built once and shared.
+fn full_range_entries(query: Query) -> &'static [SBoxedStrategy<Case>] {
+    static FULL: OnceLock<Vec<(Query, Vec<SBoxedStrategy<Case>>)>> = OnceLock::new();
+    let all = FULL.get_or_init(|| {
+        GENERATED
+            .iter()
+            .map(|&q| {
+                let es = entries(q);
+                let nu = es.iter().filter(|e| !e.biased).count() as u32;
+                let nb = es.iter().filter(|e| e.biased).count() as u32;
+                let base = Union::new_weighted(
+                    es.iter().map(|e| (if e.biased { nu } else { nb }, e.strategy.clone())).collect(),
+                )
+                .sboxed();
+                (q, full_range::FAMILIES.iter().map(|f| full_range::sub_family(q, f, base.clone())).collect())
+            })
+            .collect()
+    });
+    all.iter().find(|(q, _)| *q == query).map_or(&[], |(_, s)| s.as_slice())
+}
+
+/// Case `index` of the full-range family of `query` for the campaign `seed`:
+/// the sub-family [`full_range::family_for`]`(index)`, its values drawn from a
+/// ChaCha generator keyed by `(seed, index)` apart from the ordinary cases'
+/// keys. Named `"<query> full range #<index> (seed <seed>, <sub-family>)"`,
+/// with source `"generated: full range, seed <seed>, index <index>, family
+/// <sub-family>"`. Deterministic in its arguments; `None` for a kind without
+/// generators.
+pub fn try_generate_full_range(query: Query, seed: u64, index: u64) -> Option<LoadedCase> {
+    let strategies = full_range_entries(query);
+    let family = full_range::family_for(index);
+    let strategy = strategies.get((index % full_range::FAMILIES.len() as u64) as usize)?;
+    let mut k = key(seed, index);
+    // Apart from the ordinary cases' keys: the last byte flipped.
+    k[31] ^= 0xA5;
+    let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &k);
+    let mut runner = TestRunner::new_with_rng(Config::default(), rng);
+    let mut case = strategy.new_tree(&mut runner).ok()?.current();
+    case.name = format!("{query} full range #{index} (seed {seed}, {family})");
+    case.source = format!("{FULL_RANGE_SOURCE}, seed {seed}, index {index}, family {family}");
+    Some(loaded(case))
+}
+
+/// One full-range sub-family's strategy for proptest (`None` for an unknown
+/// name or a kind without generators).
+pub fn full_range_strategy(query: Query, family: &str) -> Option<BoxedStrategy<Case>> {
+    let i = full_range::FAMILIES.iter().position(|f| *f == family)?;
+    full_range_entries(query).get(i).map(|s| s.clone().boxed())
 }
 
 /// A generated case ready to run: `file` [`GENERATED_FILE`], and its inline

@@ -30,6 +30,11 @@ pub const DEFAULT_CASES: u64 = 10_000;
 /// The built-in campaign's seed.
 pub const DEFAULT_SEED: u64 = 20_261_122;
 
+/// The built-in campaign's full-range cases per query kind (see
+/// `generate::full_range`), judged and scored apart from the ordinary mix: enough
+/// that each of its five sub-families gets a few hundred cases of every kind.
+pub const DEFAULT_FULL_RANGE_CASES: u64 = 1_000;
+
 /// At most this many discrepancies per engine and query kind are written out in
 /// full (the summary counts all of them): enough to study every failure family,
 /// few enough to keep `discrepancies.json` readable.
@@ -50,6 +55,9 @@ pub struct Config {
     pub seed: u64,
     /// Random cases per query kind, before sharding.
     pub cases_per_query: u64,
+    /// Full-range cases per query kind, before sharding (scored apart: the
+    /// summary's `full_range`).
+    pub full_range_per_query: u64,
     /// Only this query kind (fixtures included only for it).
     pub only: Option<Query>,
     /// This shard `(i, n)`, 0 ≤ i < n: the cases with index in
@@ -74,6 +82,7 @@ impl Default for Config {
         Self {
             seed: DEFAULT_SEED,
             cases_per_query: DEFAULT_CASES,
+            full_range_per_query: DEFAULT_FULL_RANGE_CASES,
             only: None,
             shard: None,
             fixtures: vec![PathBuf::from("fixtures")],
@@ -165,6 +174,17 @@ pub fn cases(config: &Config) -> (Vec<LoadedCase>, Vec<String>) {
             (lo..hi).into_par_iter().map(|i| crate::generate::generate(q, config.seed, i)).collect();
         out.extend(generated);
     }
+    let (lo, hi) = shard_range(config.full_range_per_query, config.shard);
+    for q in CAMPAIGN_QUERIES {
+        if config.only.is_some_and(|o| o != q) {
+            continue;
+        }
+        let generated: Vec<LoadedCase> = (lo..hi)
+            .into_par_iter()
+            .filter_map(|i| crate::generate::try_generate_full_range(q, config.seed, i))
+            .collect();
+        out.extend(generated);
+    }
     (out, errors)
 }
 
@@ -211,13 +231,31 @@ pub fn headline(e: &Errors, scale: f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Whether a case is one of the full-range family's (scored apart).
+pub fn is_full_range(lc: &LoadedCase) -> bool {
+    lc.case.source.starts_with(crate::generate::FULL_RANGE_SOURCE)
+}
+
+/// The statistics' key: engine index, query kind, and whether the case is of
+/// the full-range family.
+type StatsKey = (usize, Query, bool);
+
 fn stats_for<'a>(
-    map: &'a mut BTreeMap<(usize, Query), EngineQueryStats>,
+    map: &'a mut BTreeMap<StatsKey, EngineQueryStats>,
     ix: usize,
     name: &str,
     q: Query,
 ) -> &'a mut EngineQueryStats {
-    map.entry((ix, q)).or_insert_with(|| EngineQueryStats {
+    stats_in(map, (ix, q, false), name)
+}
+
+fn stats_in<'a>(
+    map: &'a mut BTreeMap<StatsKey, EngineQueryStats>,
+    key: StatsKey,
+    name: &str,
+) -> &'a mut EngineQueryStats {
+    let q = key.1;
+    map.entry(key).or_insert_with(|| EngineQueryStats {
         engine: name.to_string(),
         query: Some(q),
         ..Default::default()
@@ -225,9 +263,9 @@ fn stats_for<'a>(
 }
 
 /// Folds one case's results into the statistics.
-fn fold(map: &mut BTreeMap<(usize, Query), EngineQueryStats>, c: &CaseResult) {
+fn fold(map: &mut BTreeMap<StatsKey, EngineQueryStats>, c: &CaseResult, full_range: bool) {
     for (ix, r) in c.engines.iter().enumerate() {
-        let s = stats_for(map, ix, &r.engine, c.query);
+        let s = stats_in(map, (ix, c.query, full_range), &r.engine);
         s.cases += 1;
         let e = &r.errors;
         let record_values = |s: &mut EngineQueryStats| {
@@ -268,8 +306,11 @@ fn fold(map: &mut BTreeMap<(usize, Query), EngineQueryStats>, c: &CaseResult) {
             }
             Verdict::KnownDivergence { .. } => s.known += 1,
             Verdict::Unsupported { .. } => s.unsupported += 1,
-            Verdict::Failed { .. } => {
+            Verdict::Failed { reason } => {
                 s.failed += 1;
+                if reason == crate::judge::NON_FINITE {
+                    s.non_finite += 1;
+                }
                 s.headline.add(1.0);
             }
         }
@@ -372,14 +413,15 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
 
     let mut map = BTreeMap::new();
     let mut discrepancies = Vec::new();
-    let mut per_group: BTreeMap<(usize, Query), usize> = BTreeMap::new();
+    let mut per_group: BTreeMap<StatsKey, usize> = BTreeMap::new();
     let mut total_discrepancies = 0u64;
     for (c, lc) in results.iter().zip(&cases) {
-        fold(&mut map, c);
+        let full = is_full_range(lc);
+        fold(&mut map, c, full);
         for (ix, r) in c.engines.iter().enumerate() {
             if matches!(r.verdict, Verdict::Disagree { .. } | Verdict::Failed { .. }) {
                 total_discrepancies += 1;
-                let n = per_group.entry((ix, c.query)).or_default();
+                let n = per_group.entry((ix, c.query, full)).or_default();
                 if *n < MAX_DISCREPANCIES_PER_GROUP {
                     *n += 1;
                     discrepancies.push(discrepancy(c, lc, ix, Tolerance::for_precision(judged[ix].precision)));
@@ -396,8 +438,10 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
             // Timed on the generated cases only: the fixtures mix in meshes (whose
             // structures the adapters build per call), which would swamp a
             // per-query figure.
-            let qcases: Vec<&LoadedCase> =
-                cases.iter().filter(|c| c.case.query == q && c.case.source.starts_with("generated")).collect();
+            let qcases: Vec<&LoadedCase> = cases
+                .iter()
+                .filter(|c| c.case.query == q && c.case.source.starts_with("generated") && !is_full_range(c))
+                .collect();
             if qcases.is_empty() {
                 continue;
             }
@@ -428,7 +472,13 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
         throughput.push(("campaign (referee excluded, estimated)".into(), n / without));
     }
 
-    let mut stats: Vec<EngineQueryStats> = map.into_values().collect();
+    let (full, ordinary): (Vec<_>, Vec<_>) = map.into_iter().partition(|((_, _, full), _)| *full);
+    let mut stats: Vec<EngineQueryStats> = ordinary.into_iter().map(|(_, s)| s).collect();
+    // The full-range family in query order, then engine order (its table is
+    // read query by query).
+    let mut full: Vec<(StatsKey, EngineQueryStats)> = full;
+    full.sort_by_key(|((ix, q, _), _)| (*q, *ix));
+    let full_range: Vec<EngineQueryStats> = full.into_iter().map(|(_, s)| s).collect();
     let mut input_errors = input_errors;
     let mut speed_source = None;
     if let Some(path) = &config.bench {
@@ -447,6 +497,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     provenance.engines = engine_infos(&judged);
     provenance.seed = config.seed;
     provenance.cases_per_query = config.cases_per_query;
+    provenance.full_range_per_query = config.full_range_per_query;
     provenance.shards = config.shard.into_iter().collect();
     provenance.fixture_cases = fixture_cases;
     provenance.random_cases = cases.len() as u64 - fixture_cases;
@@ -457,6 +508,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
             format: "crashtest-summary/1".into(),
             provenance,
             stats,
+            full_range,
             discrepancies: total_discrepancies,
             throughput,
         },

@@ -134,6 +134,9 @@ pub fn index_html(summary: &Summary, charts: &[Chart]) -> String {
             let t = query_title(*q);
             let _ = write!(out, "<a href=\"#{}\">{}</a>", anchor(&t), escape(&t));
         }
+        if !summary.full_range.is_empty() {
+            out.push_str("<a href=\"#full-range\">full range</a>");
+        }
         out.push_str("<a href=\"#throughput\">throughput</a><a href=\"#files\">files</a></nav>\n");
     } else {
         out.push_str("<p>No results.</p>\n");
@@ -159,6 +162,12 @@ pub fn index_html(summary: &Summary, charts: &[Chart]) -> String {
             out.push_str(&table_html(&detail));
             out.push_str("</details>\n");
         }
+    }
+
+    if !summary.full_range.is_empty() {
+        out.push_str("<h2 id=\"full-range\">Full range</h2>\n");
+        let _ = writeln!(out, "<p>{}</p>", escape(crate::report::markdown::FULL_RANGE_NOTE));
+        out.push_str(&table_html(&crate::report::markdown::full_range_table(summary)));
     }
 
     out.push_str("<h2 id=\"throughput\">Throughput</h2>\n");

@@ -175,6 +175,58 @@ pub fn query_table(summary: &Summary, query: Option<Query>) -> Table {
     t
 }
 
+/// The full-range family's table (`generate::full_range`: raw bit patterns,
+/// huge, tiny and subnormal magnitudes, signed zeros, multi-scale scenes),
+/// scored apart from the ordinary mix: per query kind and engine, the counts,
+/// the non-finite answers among the failures, and the p99 and largest headline
+/// error. Empty when the campaign ran no full-range case.
+pub fn full_range_table(summary: &Summary) -> Table {
+    let mut t = Table::new(&[
+        ("query", false),
+        ("engine", false),
+        ("cases", true),
+        ("agree", true),
+        ("disagree", true),
+        ("borderline", true),
+        ("known", true),
+        ("unsupported", true),
+        ("failed", true),
+        ("non-finite", true),
+        ("false +", true),
+        ("false −", true),
+        ("headline p99", true),
+        ("max headline", true),
+    ]);
+    for s in &summary.full_range {
+        t.rows.push(vec![
+            query_title(s.query),
+            s.engine.clone(),
+            s.cases.to_string(),
+            s.agree.to_string(),
+            s.disagree.to_string(),
+            s.borderline.to_string(),
+            s.known.to_string(),
+            s.unsupported.to_string(),
+            s.failed.to_string(),
+            s.non_finite.to_string(),
+            s.false_positives.to_string(),
+            s.false_negatives.to_string(),
+            p99(&s.headline),
+            if s.headline.n > 0 { sci(s.headline.max) } else { "—".into() },
+        ]);
+    }
+    t
+}
+
+/// The paragraph under the full-range table.
+pub const FULL_RANGE_NOTE: &str = "Cases over the whole finite range of f64, scored apart from the \
+     tables above: raw bit patterns, huge and tiny (subnormal) magnitudes, signed zeros, and \
+     multi-scale scenes (a small sphere, segment or point beside a triangle with legs up to 1e300; \
+     plane normals of length 2^±600; masses from the subnormals to 1e300). Every allowance is the \
+     problem's own scale, so a wrong answer disagrees at any magnitude. A case whose exact answer \
+     lies beyond f64's range is refused by the referee and counted unsupported for every engine; \
+     f32 engines cannot represent most of these inputs (their scores here show that).";
+
 /// The error distributions of one query kind in full: per engine and measured
 /// error, the sample count, exact zeros, median, p99 and maximum.
 pub fn detail_table(summary: &Summary, query: Option<Query>) -> Table {
@@ -243,6 +295,7 @@ pub fn provenance_lines(summary: &Summary) -> Vec<(String, String)> {
         ("wall time".into(), format!("{} s", sig3(p.wall_seconds))),
         ("seed".into(), p.seed.to_string()),
         ("random cases per query".into(), p.cases_per_query.to_string()),
+        ("full-range cases per query".into(), p.full_range_per_query.to_string()),
         ("shards".into(), shards),
         ("fixture cases".into(), p.fixture_cases.to_string()),
         ("random cases".into(), p.random_cases.to_string()),
@@ -263,9 +316,10 @@ pub fn reading_notes() -> Vec<String> {
          tolerance band), known (a documented divergence), unsupported, failed (panicked or \
          non-finite); false + and false − are misclassifications outside the band."
             .into(),
-        "Errors are relative to the scene's scale (points, depths, radii), in radians (normals), or \
-         as they are (t, barycentric coordinates). The headline error of a case is the largest of \
-         them, and 1 for a misclassification or failure."
+        "Errors are relative to the answer's own scale (points, depths, radii: the magnitudes that \
+         decide them, not the scene's size), in radians (normals), or as they are (t, barycentric \
+         coordinates). The headline error of a case is the largest of them, and 1 for a \
+         misclassification or failure."
             .into(),
         format!(
             "Quantiles are read from log histograms with {BINS_PER_DECADE} bins per decade: within 5% \
@@ -336,6 +390,12 @@ pub fn summary_md(summary: &Summary) -> String {
             out.push_str("\nError distributions:\n\n");
             out.push_str(&table_md(&detail));
         }
+        out.push('\n');
+    }
+    if !summary.full_range.is_empty() {
+        out.push_str("## Full range\n\n");
+        let _ = writeln!(out, "{}\n", escape_md(FULL_RANGE_NOTE));
+        out.push_str(&table_md(&full_range_table(summary)));
         out.push('\n');
     }
     if !summary.throughput.is_empty() {

@@ -133,6 +133,10 @@ pub struct EngineQueryStats {
     pub unsupported: u64,
     /// Panicked or returned a non-finite number.
     pub failed: u64,
+    /// Of the failures, answers holding NaN or an infinity where the exact
+    /// answer is finite.
+    #[serde(default)]
+    pub non_finite: u64,
     /// Reported contact / hit / overlap where the referee has none (outside the band).
     pub false_positives: u64,
     /// Missed a contact / hit / overlap the referee has (outside the band).
@@ -195,6 +199,9 @@ pub struct Provenance {
     pub seed: u64,
     /// Random cases per query kind (before sharding).
     pub cases_per_query: u64,
+    /// Full-range cases per query kind (before sharding), scored apart.
+    #[serde(default)]
+    pub full_range_per_query: u64,
     /// Shards joined in this report: `(index, count)` of each.
     pub shards: Vec<(u32, u32)>,
     /// Fixture cases run.
@@ -221,6 +228,10 @@ pub struct Summary {
     pub provenance: Provenance,
     /// Per engine and query kind, in engine order then query order.
     pub stats: Vec<EngineQueryStats>,
+    /// The full-range family's (`generate::full_range`), per query kind then
+    /// engine, scored apart from `stats`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub full_range: Vec<EngineQueryStats>,
     /// Disagreements and failures found, all engines (`discrepancies.json` holds
     /// the first few of each engine and query kind in full).
     pub discrepancies: u64,
