@@ -80,6 +80,26 @@ enum Command {
     },
     /// Print the JSON Schema of the fixture format (crashtest-fixture/1).
     Schema,
+    /// Write generated cases as a fixture file on standard output (no
+    /// `expect`: `crashtest check` judges them against the referee), to replay
+    /// a slice of a campaign or to run it through another build.
+    Cases {
+        /// The query kind (every kind when absent).
+        #[arg(long, value_parser = parse_query)]
+        only: Option<harness::case::Query>,
+        /// Cases per query kind, from index --start on.
+        #[arg(long, default_value_t = 100)]
+        count: u64,
+        /// The first index.
+        #[arg(long, default_value_t = 0)]
+        start: u64,
+        /// The full-range family's cases instead of the ordinary mix.
+        #[arg(long)]
+        full_range: bool,
+        /// Seed of the cases.
+        #[arg(long, default_value_t = harness::report::campaign::DEFAULT_SEED)]
+        seed: u64,
+    },
     /// Run one stability sweep (a degeneracy parameter over many decades, every
     /// engine against the referee), write its charts (SVG) and data (JSON) into
     /// --out, and print where each engine breaks. Exit 2 for an unknown name.
@@ -284,6 +304,37 @@ fn main() -> ExitCode {
         Command::Schema => {
             print!("{}", harness::case::json_schema());
             ExitCode::SUCCESS
+        }
+        Command::Cases { only, count, start, full_range, seed } => {
+            let Some(end) = start.checked_add(count) else {
+                eprintln!("error: --start {start} + --count {count} overflows");
+                return ExitCode::from(2);
+            };
+            let mut cases = Vec::new();
+            for q in harness::report::campaign::CAMPAIGN_QUERIES {
+                if only.is_some_and(|o| o != q) {
+                    continue;
+                }
+                for i in start..end {
+                    let lc = if full_range {
+                        harness::generate::try_generate_full_range(q, seed, i)
+                    } else {
+                        harness::generate::try_generate(q, seed, i)
+                    };
+                    cases.extend(lc.map(|lc| lc.case));
+                }
+            }
+            let file = harness::case::FixtureFile { schema: harness::case::SCHEMA.into(), cases };
+            match serde_json::to_string_pretty(&file) {
+                Ok(s) => {
+                    println!("{s}");
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: cannot write the cases as JSON: {e}");
+                    ExitCode::from(2)
+                }
+            }
         }
     }
 }
