@@ -107,3 +107,39 @@ pub fn try_normalize_stable<T: Real>(v: &Vec3<T>) -> Option<Vec3<T>> {
     let n = s.norm();
     Some(s / n)
 }
+
+/// The power of two `2^k` that brings a scene whose largest magnitude is `m`
+/// to about 1, when `m` lies outside the type's plain range `[2^-e, 2^e]`
+/// (`e` = 200 for `f64`, 25 for `f32`: there the fourth powers of such
+/// magnitudes, the highest a query forms, neither overflow nor underflow);
+/// `None` inside it, and for a zero or non-finite `m`.
+///
+/// Scaling a scene by `2^k` is exact (apart from numbers so much smaller than
+/// the largest that they fall into the subnormals, whose loss is far below
+/// the answer's rounding), and every query's answer scales with it (lengths
+/// by `2^k`, times and directions not at all), so a query outside the range
+/// can be answered on the scaled scene and its lengths scaled back.
+pub(crate) fn unit_scale<T: Real>(m: T) -> Option<i32> {
+    let m = m.wide();
+    let e = if T::EPSILON.wide() < 1e-10 { 200 } else { 25 };
+    if !(m > 0.0 && m.is_finite()) || (m >= 2f64.powi(-e) && m <= 2f64.powi(e)) {
+        return None;
+    }
+    Some(-(m.log2().round() as i32))
+}
+
+/// `x · 2^k`, in steps of at most `2^±60` (each exact in both types unless the
+/// result under- or overflows).
+pub(crate) fn scale2<T: Real>(mut x: T, mut k: i32) -> T {
+    while k != 0 {
+        let step = k.clamp(-60, 60);
+        x *= T::of(2f64.powi(step));
+        k -= step;
+    }
+    x
+}
+
+/// A vector times `2^k` (see [`scale2`]).
+pub(crate) fn scale2v<T: Real>(v: &Vec3<T>, k: i32) -> Vec3<T> {
+    Vec3::new(scale2(v.x, k), scale2(v.y, k), scale2(v.z, k))
+}

@@ -1,11 +1,11 @@
 //! Sphere–mesh time of impact by conservative advancement, every face or the
 //! faces a bounding volume hierarchy cannot rule out.
 
-use super::sphere_triangle::{Advanced, Advancement, advance, scale};
+use super::sphere_triangle::{Advanced, Advancement, advance, amax, scale};
 use super::sweep::{Sweep, sweep_faces};
 use super::time_of_impact::{Toi, clamp_t_max};
 use crate::mesh::{MeshBvh, MeshContact, TriMesh, contact_sphere_mesh_brute, contact_sphere_mesh_bvh};
-use crate::real::{Real, Vec3, c};
+use crate::real::{Real, Vec3, c, scale2, scale2v, unit_scale};
 use crate::shapes::{Sphere, Triangle};
 
 /// A time of impact against a mesh: the answer (in the convention of [`Toi`])
@@ -19,7 +19,33 @@ pub struct MeshToi<T: Real> {
     pub triangle: usize,
 }
 
+/// A scene outside the plain range (see [`unit_scale`]) scaled by a power of
+/// two `2^k` to about 1: the sphere, both velocities and a copy of the mesh
+/// (rebuilt: only such scenes pay for it), with `k`. `None` for a scene in
+/// the plain range.
+#[allow(clippy::type_complexity)]
+fn scaled_scene<T: Real>(
+    a: &Sphere<T>,
+    va: &Vec3<T>,
+    b: &TriMesh<T>,
+    vb: &Vec3<T>,
+) -> Option<(Sphere<T>, Vec3<T>, Vec3<T>, TriMesh<T>, i32)> {
+    let boxed = b.aabb().map_or(T::zero(), |x| amax(&x.min).max(amax(&x.max)));
+    let k = unit_scale(scale(a, &[]).max(boxed).max(amax(va)).max(amax(vb)))?;
+    let vertices = b.vertices().iter().map(|p| scale2v(p, k)).collect();
+    let mesh = TriMesh::new(vertices, b.faces().to_vec()).ok()?;
+    let a2 = Sphere { center: scale2v(&a.center, k), radius: scale2(a.radius, k) };
+    Some((a2, scale2v(va, k), scale2v(vb, k), mesh, k))
+}
+
 impl<T: Real> MeshToi<T> {
+    /// The answer on a scene scaled by `2^k`, in the scene's own size: the
+    /// point scaled back (times and directions do not scale).
+    fn scaled_back(mut self, k: i32) -> Self {
+        self.toi.point = scale2v(&self.toi.point, -k);
+        self
+    }
+
     /// The answer for a sphere already in contact at `t = 0`: the static
     /// contact with the face nearest its centre.
     fn penetrating(k: &MeshContact<T>) -> Self {
@@ -112,6 +138,9 @@ pub fn toi_sphere_mesh_brute<T: Real>(
     t_max: T,
     rule: &Advancement,
 ) -> Option<MeshToi<T>> {
+    if let Some((a2, va2, vb2, mesh, k)) = scaled_scene(a, va, b, vb) {
+        return toi_sphere_mesh_brute(&a2, &va2, &mesh, &vb2, t_max, rule).map(|r| r.scaled_back(k));
+    }
     if let Some(k) = contact_sphere_mesh_brute(a, b) {
         return Some(MeshToi::penetrating(&k));
     }
@@ -162,6 +191,9 @@ pub fn toi_sphere_mesh<T: Real>(
     t_max: T,
     rule: &Advancement,
 ) -> Option<MeshToi<T>> {
+    if let Some((a2, va2, vb2, mesh, k)) = scaled_scene(a, va, b.mesh(), vb) {
+        return toi_sphere_mesh(&a2, &va2, &MeshBvh::new(mesh), &vb2, t_max, rule).map(|r| r.scaled_back(k));
+    }
     if let Some(k) = contact_sphere_mesh_bvh(a, b) {
         return Some(MeshToi::penetrating(&k));
     }

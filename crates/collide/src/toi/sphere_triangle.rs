@@ -2,7 +2,7 @@
 
 use super::time_of_impact::{Toi, ToiStatus, approach_fallback, clamp_t_max};
 use crate::contact::{closest_pt_point_triangle, contact_sphere_triangle};
-use crate::real::{Real, Vec3, c, stable_norm, try_normalize_stable};
+use crate::real::{Real, Vec3, c, scale2, scale2v, stable_norm, try_normalize_stable, unit_scale};
 use crate::shapes::{Sphere, Triangle};
 
 /// The default gap tolerance of conservative advancement, in units of the
@@ -104,6 +104,18 @@ pub fn toi_sphere_triangle<T: Real>(
     rule: &Advancement,
 ) -> Option<Toi<T>> {
     let t_max = clamp_t_max(t_max);
+    // Outside the plain range (huge, tiny or subnormal scenes, displacements
+    // near the type's limits) the scene is answered scaled by a power of two
+    // to about 1, where no square or distance under- or overflows and the
+    // tolerance is not lost in the subnormals; its point is scaled back.
+    if let Some(k) = unit_scale(scale(a, &b.vertices).max(amax(va)).max(amax(vb))) {
+        let a2 = Sphere { center: scale2v(&a.center, k), radius: scale2(a.radius, k) };
+        let b2 = Triangle { vertices: b.vertices.map(|p| scale2v(&p, k)) };
+        return toi_sphere_triangle(&a2, &scale2v(va, k), &b2, &scale2v(vb, k), t_max, rule).map(|mut r| {
+            r.point = scale2v(&r.point, -k);
+            r
+        });
+    }
     if let Some(k) = contact_sphere_triangle(a, b) {
         return Some(Toi::penetrating(&k));
     }
@@ -240,10 +252,14 @@ fn polish<T: Real>(a: &Sphere<T>, v: &Vec3<T>, b: &Triangle<T>, t_max: T, at: Ad
 /// there is already of this scale, and a huge `t_max` (parry's "no limit",
 /// `f64::MAX`) would otherwise make the tolerance infinite.
 pub(crate) fn scale<T: Real>(a: &Sphere<T>, vertices: &[Vec3<T>]) -> T {
-    let amax = |p: &Vec3<T>| p.x.abs().max(p.y.abs()).max(p.z.abs());
     let mut s = a.radius.abs().max(amax(&a.center));
     for p in vertices {
         s = s.max(amax(p));
     }
     s
+}
+
+/// The largest absolute coordinate.
+pub(crate) fn amax<T: Real>(p: &Vec3<T>) -> T {
+    p.x.abs().max(p.y.abs()).max(p.z.abs())
 }

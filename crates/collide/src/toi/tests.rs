@@ -1385,3 +1385,47 @@ fn check_sphere_sphere_far_normal<T: Real>(s: &FarPair) -> Result<(), TestCaseEr
 }
 
 prop_both!(1024, sphere_sphere_normal_unit_however_far_apart, far_pair(), check_sphere_sphere_far_normal);
+
+// ------------------------------------------------- outside the plain range
+
+/// A ball of radius 1/2 at (1/2, 1/2, 3/2) falling at speed 1 onto the
+/// triangle `tri()` (and onto a one-face mesh of it), scaled by `2^k`: the
+/// impact is at `t = 1` at every scale, at the point (1/2, 1/2, 0)·2^k. The
+/// scales reach the subnormals of each type (where the advancement's
+/// tolerance, `ε` of the scene, would round to 0) and its largest binades
+/// (where the squares of distances overflow); the scene is exact at every one
+/// of them (short dyadic coordinates).
+fn falling_onto_a_scaled_triangle<T: Real>(k: i32) {
+    let s = 2f64.powi(k / 2) * 2f64.powi(k - k / 2);
+    let ball = Sphere::new(v::<T>(0.5 * s, 0.5 * s, 1.5 * s), T::of(0.5 * s));
+    let fall = v::<T>(0.0, 0.0, -s);
+    let t = tri::<T>();
+    let tri = Triangle { vertices: t.vertices.map(|p| p * T::of(s)) };
+    let mesh = crate::mesh::TriMesh::new(tri.vertices.to_vec(), vec![[0, 1, 2]]).expect("one face");
+    let bvh = crate::mesh::MeshBvh::new(mesh.clone());
+    let rule = Advancement::default();
+    let answers = [
+        toi_sphere_triangle(&ball, &fall, &tri, &still(), T::of(2.0), &rule),
+        toi_sphere_mesh_brute(&ball, &fall, &mesh, &still(), T::of(2.0), &rule).map(|m| m.toi),
+        toi_sphere_mesh(&ball, &fall, &bvh, &still(), T::of(2.0), &rule).map(|m| m.toi),
+    ];
+    for (i, got) in answers.into_iter().enumerate() {
+        let got = got.unwrap_or_else(|| panic!("scale 2^{k}, query {i}: the impact at t = 1 is missed"));
+        close(got.t, 1.0, &format!("t at 2^{k}, query {i}"));
+        close_v(&got.normal, [0.0, 0.0, 1.0], &format!("normal at 2^{k}, query {i}"));
+        let p = [got.point.x.wide() / s, got.point.y.wide() / s, got.point.z.wide() / s];
+        for (j, w) in [0.5, 0.5, 0.0].iter().enumerate() {
+            assert!((p[j] - w).abs() <= hand_tol::<T>(), "point at 2^{k}, query {i}: {p:?}");
+        }
+    }
+}
+
+#[test]
+fn sphere_triangle_and_mesh_toi_at_every_scale() {
+    for k in [-1060, -1000, -600, -300, 0, 300, 600, 1000] {
+        falling_onto_a_scaled_triangle::<f64>(k);
+    }
+    for k in [-140, -120, -60, 0, 60, 120] {
+        falling_onto_a_scaled_triangle::<f32>(k);
+    }
+}
