@@ -821,6 +821,7 @@ pub(crate) mod fixture {
                 ],
                 seed: 42,
                 cases_per_query: 100,
+                only: None,
                 shards: vec![],
                 fixture_cases: 12,
                 random_cases: 200,

@@ -133,6 +133,11 @@ pub struct EngineQueryStats {
     pub unsupported: u64,
     /// Panicked or returned a non-finite number.
     pub failed: u64,
+    /// Of `failed`, the engine's panics that were caught (each one line with
+    /// its location in the verdict's reason; none printed). Absent in reports
+    /// written before it was counted.
+    #[serde(default)]
+    pub panics: u64,
     /// Reported contact / hit / overlap where the referee has none (outside the band).
     pub false_positives: u64,
     /// Missed a contact / hit / overlap the referee has (outside the band).
@@ -195,6 +200,9 @@ pub struct Provenance {
     pub seed: u64,
     /// Random cases per query kind (before sharding).
     pub cases_per_query: u64,
+    /// The one query kind run (`--only`), or absent for every kind.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub only: Option<Query>,
     /// Shards joined in this report: `(index, count)` of each.
     pub shards: Vec<(u32, u32)>,
     /// Fixture cases run.
