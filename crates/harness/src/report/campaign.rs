@@ -44,10 +44,10 @@ pub const MAX_CASES: u64 = CAMPAIGN_MEMORY_BYTES / (BYTES_PER_CASE * CAMPAIGN_QU
 pub const CAMPAIGN_MEMORY_BYTES: u64 = 16 << 30;
 
 /// What one random case costs while the campaign holds it: 8 KiB. Measured: the
-/// peak memory of `report --no-sections --no-timing` was 1.01 GB at `--cases
-/// 20000` and 3.95 GB at `--cases 80000`, 7.2 KB for each of the 420,000 cases
-/// more (the case, its six engines' results and the referee's answer); rounded
-/// up for the discrepancies kept and the allocator's slack.
+/// peak memory of `report --no-sections --no-timing` was 989 MiB at `--cases
+/// 20000` and 3.77 GiB at `--cases 80000`, 7,172 bytes for each of the 420,000
+/// cases more (the case, its six engines' results and the referee's answer);
+/// rounded up for the discrepancies kept and the allocator's slack.
 pub const BYTES_PER_CASE: u64 = 8 << 10;
 
 /// Checks that the random cases per query kind one run holds — its shard's

@@ -87,11 +87,12 @@ pub const DEFAULT_POSES: usize = 24;
 /// a sweep is one question, not a campaign).
 pub const SWEEP_MEMORY_BYTES: u64 = 8 << 30;
 
-/// What one sweep case costs while the sweep holds it: 16 KiB. Measured: the
-/// peak memory of `sweep offset` (160 cases a pose) was 24 MB at `--poses 8`
-/// and 411 MB at `--poses 200`, 12.6 KB for each of the 30,720 cases more (the
-/// case, every engine's result, the errors kept per point); rounded up.
-pub const BYTES_PER_SWEEP_CASE: u64 = 16 << 10;
+/// What one sweep case costs while the sweep holds it: 2 KiB. Measured: the
+/// peak memory of `sweep offset` (1,510 cases a pose) was 23 MiB at `--poses 8`
+/// and 402 MiB at `--poses 200`, 1,369 bytes for each of the 289,920 cases more
+/// (the case, every engine's outcome, the errors kept per point); rounded up
+/// for the allocator's slack.
+pub const BYTES_PER_SWEEP_CASE: u64 = 2 << 10;
 
 /// The most poses per point `sweep` takes: [`SWEEP_MEMORY_BYTES`] over
 /// [`BYTES_PER_SWEEP_CASE`] for each of its cases of one pose (one per probe
