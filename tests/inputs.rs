@@ -418,16 +418,24 @@ fn merge_refuses_what_would_double_count_or_leave_shards_out() {
 #[cfg(target_os = "linux")]
 #[test]
 fn a_killed_runs_folder_is_removed_and_a_live_ones_kept() {
+    use harness::report::write::{INCOMPLETE_PREFIX, incomplete_suffix};
     let dir = Scratch::new("abandoned");
-    // A process that has ended: its id names no live process.
+    // This process's suffix with its id replaced: by one that has ended, and
+    // kept (this process is alive).
     let mut gone = Command::new("true").spawn().expect("true runs");
     let gone_pid = gone.id();
     gone.wait().unwrap();
-    let dead = dir.write(&format!("reports/.incomplete-20250101T000000Z-seed1-{gone_pid}/summary.json"), "{}\n");
-    let dead = dead.parent().unwrap().to_path_buf();
-    let live =
-        dir.write(&format!("reports/.incomplete-20250101T000000Z-seed2-{}/summary.json", std::process::id()), "");
-    let live = live.parent().unwrap().to_path_buf();
+    let ours = incomplete_suffix();
+    let host_part = ours.rsplit_once('-').unwrap().0;
+    let folder = |id: &str, suffix: &str| {
+        let f = dir.write(&format!("reports/{INCOMPLETE_PREFIX}{id}{suffix}/summary.json"), "{}\n");
+        f.parent().unwrap().to_path_buf()
+    };
+    let dead = folder("20250101T000000Z-seed1", &format!("{host_part}-{gone_pid}"));
+    let live = folder("20250101T000000Z-seed2", &ours);
+    // The same dead id written from another machine: its process cannot be
+    // looked up here.
+    let elsewhere = folder("20250101T000000Z-seed3", &format!("-another_machine-{gone_pid}"));
     let run = crashtest(&[
         "report",
         "--cases",
@@ -443,6 +451,7 @@ fn a_killed_runs_folder_is_removed_and_a_live_ones_kept() {
     assert!(run.stderr.contains(&format!("removed {}", dead.display())), "{}", run.both());
     assert!(!dead.exists(), "the killed run's folder is still there");
     assert!(live.exists(), "a live process's folder was removed");
+    assert!(elsewhere.exists(), "another machine's folder was removed");
 }
 
 #[test]

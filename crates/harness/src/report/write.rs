@@ -3,9 +3,10 @@
 //! A report is assembled in a hidden sibling folder and renamed into place in one
 //! step, and `latest` is switched only after that, so a run killed at any point
 //! leaves the previous report (and `latest`) intact. The hidden folder's name
-//! ends in the writing process's id, so that the next run can tell a folder
-//! abandoned by a killed run (its process is gone) from one a concurrent run is
-//! still writing, and remove only the first ([`remove_abandoned`]).
+//! ends in the writing machine's name and process id, so that the next run can
+//! tell a folder abandoned by a killed run (its process is gone) from one a
+//! concurrent run is still writing, and remove only the first
+//! ([`remove_abandoned`]).
 
 use crate::report::campaign::{MAX_DISCREPANCIES_PER_GROUP, Outcome};
 use crate::report::section::Section;
@@ -35,8 +36,24 @@ fn pretty<T: serde::Serialize + ?Sized>(v: &T) -> String {
 }
 
 /// How the name of a report folder being written begins; the name ends in
-/// `-<process id>` of the run writing it.
+/// `-<host>-<process id>` of the run writing it ([`incomplete_suffix`]).
 pub const INCOMPLETE_PREFIX: &str = ".incomplete-";
+
+/// This machine's name, as it goes into the name of a folder being written:
+/// shards of one campaign may write into one shared folder from several
+/// machines, and a process id means something only on its own machine. Only
+/// letters, digits, `.` and `_` are kept; `unknown-host` where the name
+/// cannot be read.
+fn host() -> String {
+    let name = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap_or_default();
+    let name: String = name.trim().chars().filter(|c| c.is_ascii_alphanumeric() || *c == '.' || *c == '_').collect();
+    if name.is_empty() { "unknown_host".into() } else { name }
+}
+
+/// The end of the name of the folder this process writes: `-<host>-<pid>`.
+pub fn incomplete_suffix() -> String {
+    format!("-{}-{}", host(), std::process::id())
+}
 
 /// Checks that reports (or a sweep's files) can be written under `dir`: creates
 /// it, then creates, writes and removes a probe file in it. Run before the
@@ -55,10 +72,11 @@ pub fn probe_writable(dir: &Path) -> io::Result<()> {
 }
 
 /// Removes the report folders under `root` that runs which ended before they
-/// finished left behind: every `.incomplete-*-<pid>` folder whose process is
-/// no longer running (on Linux, `/proc/<pid>` is gone). A folder of a live
-/// process — a concurrent run — is left alone, and so is one whose name carries
-/// no process id. Elsewhere than Linux, where a process cannot be looked up so,
+/// finished left behind: every `.incomplete-*-<host>-<pid>` folder of this
+/// machine whose process is no longer running (on Linux, `/proc/<pid>` is
+/// gone). A folder of a live process — a concurrent run — is left alone, and
+/// so is one written from another machine (its process cannot be looked up
+/// here) or whose name carries no host and process id. Elsewhere than Linux,
 /// nothing is removed. Returns each folder removed or that could not be.
 pub fn remove_abandoned(root: &Path) -> Vec<(PathBuf, io::Result<()>)> {
     let mut out = Vec::new();
@@ -66,16 +84,21 @@ pub fn remove_abandoned(root: &Path) -> Vec<(PathBuf, io::Result<()>)> {
         return out;
     }
     let Ok(entries) = std::fs::read_dir(root) else { return out };
+    let host = format!("-{}", host());
     for entry in entries.flatten() {
         let name = entry.file_name();
         let Some(name) = name.to_str() else { continue };
         let Some(rest) = name.strip_prefix(INCOMPLETE_PREFIX) else { continue };
-        let Some(pid) = rest.rsplit('-').next().and_then(|p| p.parse::<u32>().ok()) else { continue };
-        let path = entry.path();
+        let Some((before, pid)) = rest.rsplit_once('-') else { continue };
+        let Ok(pid) = pid.parse::<u32>() else { continue };
         let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
-        if !is_dir || pid == std::process::id() || Path::new(&format!("/proc/{pid}")).exists() {
+        if !is_dir || !before.ends_with(&host) || pid == std::process::id() {
             continue;
         }
+        if Path::new(&format!("/proc/{pid}")).exists() {
+            continue;
+        }
+        let path = entry.path();
         let result = std::fs::remove_dir_all(&path);
         out.push((path, result));
     }
@@ -87,7 +110,7 @@ pub fn remove_abandoned(root: &Path) -> Vec<(PathBuf, io::Result<()>)> {
 /// at it. Returns the report's folder.
 pub fn write_report(root: &Path, id: &str, files: &[(PathBuf, String)]) -> io::Result<PathBuf> {
     std::fs::create_dir_all(root)?;
-    let tmp = root.join(format!("{INCOMPLETE_PREFIX}{id}-{}", std::process::id()));
+    let tmp = root.join(format!("{INCOMPLETE_PREFIX}{id}{}", incomplete_suffix()));
     if tmp.exists() {
         std::fs::remove_dir_all(&tmp)?;
     }
