@@ -183,9 +183,10 @@ pub fn load_file_into(path: &Path, out: &mut Loaded) {
 
 /// Checks that `path` is a file crashtest may read: a regular file (a FIFO
 /// would block the run, a device such as `/dev/zero` never ends) of at most
-/// [`MAX_INPUT_BYTES`]. Returns its size. Nothing is opened.
-pub fn check_input_file(path: &Path) -> Result<u64, String> {
-    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read file: {e}"))?;
+/// [`MAX_INPUT_BYTES`]. Returns its size. Nothing is opened. `what` names the
+/// file in the message when it cannot be read (`file`, `mesh`).
+pub fn check_input_file(path: &Path, what: &str) -> Result<u64, String> {
+    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read {what}: {e}"))?;
     if !meta.is_file() {
         return Err(format!("not a regular file ({}): refused without reading it", file_kind(&meta)));
     }
@@ -202,7 +203,7 @@ pub fn check_input_file(path: &Path) -> Result<u64, String> {
 /// Reads a fixture file whole, after [`check_input_file`]; never more than
 /// [`MAX_INPUT_BYTES`] even if the file grows meanwhile.
 pub fn read_input(path: &Path) -> Result<String, String> {
-    let size = check_input_file(path)?;
+    let size = check_input_file(path, "file")?;
     let file = std::fs::File::open(path).map_err(|e| format!("cannot read file: {e}"))?;
     let mut text = String::with_capacity(size as usize);
     file.take(MAX_INPUT_BYTES + 1).read_to_string(&mut text).map_err(|e| format!("cannot read file: {e}"))?;
@@ -427,7 +428,7 @@ fn resolve_mesh(m: &MeshSpec, base: &Path) -> Result<Mesh, (String, String)> {
         (Some(v), Some(t), None) => Mesh::new(v.clone(), t.clone()),
         (None, None, Some(f)) => {
             let path = base.join(f);
-            check_input_file(&path).map_err(|m| ("file".to_string(), format!("{}: {m}", path.display())))?;
+            check_input_file(&path, "mesh").map_err(|m| ("file".to_string(), format!("{}: {m}", path.display())))?;
             load_mesh_file(&path).map_err(|m| ("file".to_string(), m))
         }
         (_, _, Some(_)) => Err(("file".into(), "give either `file` or `vertices` and `triangles`, not both".into())),
