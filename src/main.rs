@@ -33,7 +33,9 @@ enum Command {
     /// engine, timings) and write a report: reports/<id>/index.html, summary.md,
     /// summary.json, discrepancies.json, charts/*.svg; reports/latest names it.
     Report {
-        /// Random cases per query kind.
+        /// Random cases per query kind (one run, or one shard, holds at most
+        /// harness::report::campaign::MAX_CASES of them: every case and its
+        /// results stay in memory).
         #[arg(long, default_value_t = harness::report::campaign::DEFAULT_CASES)]
         cases: u64,
         /// Full-range cases per query kind (raw bit patterns, huge, tiny and
@@ -113,7 +115,8 @@ enum Command {
         /// Folder the charts and data go in.
         #[arg(long, default_value = "reports/sweeps")]
         out: PathBuf,
-        /// Random rigid poses per point.
+        /// Random rigid poses per point (at most what the sweep's cases allow
+        /// in memory; the message of a larger count names it).
         #[arg(long, default_value_t = harness::sweep::DEFAULT_POSES as u64, value_parser = clap::value_parser!(u64).range(1..))]
         poses: u64,
         /// Seed of the poses.
@@ -154,9 +157,17 @@ fn main() -> ExitCode {
                     Ok(s) => println!("{s}"),
                     Err(e) => eprintln!("error: cannot write JSON: {e}"),
                 }
+                eprint!("{}", harness::check::render_errors(&result));
                 eprintln!("{} passed, {} failed", result.passed, result.failed);
             } else {
-                print!("{}", harness::check::render_text(&result));
+                // The tables, then the errors (standard error), then the closing
+                // line: on a terminal it stays the last line.
+                let text = harness::check::render_text(&result);
+                let closing = format!("{} passed, {} failed\n", result.passed, result.failed);
+                print!("{}", text.strip_suffix(&closing).unwrap_or(&text));
+                let _ = std::io::Write::flush(&mut std::io::stdout());
+                eprint!("{}", harness::check::render_errors(&result));
+                print!("{closing}");
             }
             ExitCode::from(result.exit_code() as u8)
         }
@@ -172,6 +183,15 @@ fn main() -> ExitCode {
             no_sections,
             bench_figures,
         } => {
+            // The run holds its random cases of both sets: the limit is on their sum.
+            let held = cases.saturating_add(full_range);
+            if let Err(e) = harness::report::campaign::check_cases(held, shard) {
+                eprintln!("error: --cases {cases} with --full-range {full_range}: {e}");
+                return ExitCode::from(2);
+            }
+            if let Err(code) = prepare_out(&out) {
+                return code;
+            }
             let config = harness::report::campaign::Config {
                 seed,
                 cases_per_query: cases,
@@ -217,6 +237,9 @@ fn main() -> ExitCode {
             ExitCode::from(if outcome.input_errors.is_empty() { 0 } else { 2 })
         }
         Command::Merge { reports, out } => {
+            if let Err(code) = prepare_out(&out) {
+                return code;
+            }
             let mut read = Vec::new();
             for dir in &reports {
                 match harness::report::write::read_report(dir) {
@@ -262,6 +285,14 @@ fn main() -> ExitCode {
                 eprintln!("error: {}", harness::sweep::unknown_name(&name));
                 return ExitCode::from(2);
             };
+            if let Err(e) = harness::sweep::check_poses(sweep, poses) {
+                eprintln!("error: --poses {poses}: {e}");
+                return ExitCode::from(2);
+            }
+            if let Err(e) = harness::report::write::probe_writable(&out) {
+                eprintln!("error: cannot write under {}: {e}", out.display());
+                return ExitCode::from(2);
+            }
             let settings = harness::sweep::Settings { poses: poses as usize, seed };
             let fixture = match cases_at.as_deref().map(|l| (l, harness::sweep::fixture_at(sweep, &settings, l))) {
                 Some((label, None)) => {
@@ -337,4 +368,22 @@ fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// Checks, before any work, that reports can be written under `out` (the
+/// folder is created and a file written and removed in it), and removes the
+/// folders that killed runs left there. On failure the error is printed and
+/// the exit code (2) returned.
+fn prepare_out(out: &std::path::Path) -> Result<(), ExitCode> {
+    if let Err(e) = harness::report::write::probe_writable(out) {
+        eprintln!("error: cannot write the report under {}: {e}", out.display());
+        return Err(ExitCode::from(2));
+    }
+    for (dir, result) in harness::report::write::remove_abandoned(out) {
+        match result {
+            Ok(()) => eprintln!("removed {}, left by a run that ended before it finished", dir.display()),
+            Err(e) => eprintln!("warning: cannot remove {}, left by a run that ended: {e}", dir.display()),
+        }
+    }
+    Ok(())
 }

@@ -5,10 +5,11 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn crashtest(args: &[&str]) -> (i32, String) {
+/// Runs crashtest: its exit code, standard output and standard error.
+fn crashtest(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_crashtest")).args(args).output().expect("crashtest runs");
-    let text = String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
-    (out.status.code().unwrap_or(-1), text)
+    let text = |b: &[u8]| String::from_utf8_lossy(b).to_string();
+    (out.status.code().unwrap_or(-1), text(&out.stdout), text(&out.stderr))
 }
 
 /// A scratch folder of this test binary, emptied first.
@@ -40,8 +41,8 @@ fn last_line(text: &str) -> &str {
 
 #[test]
 fn the_shipped_fixtures_pass_with_exit_0() {
-    let (code, out) = crashtest(&["check", "fixtures"]);
-    assert_eq!(code, 0, "crashtest check fixtures:\n{out}");
+    let (code, out, err) = crashtest(&["check", "fixtures"]);
+    assert_eq!(code, 0, "crashtest check fixtures:\n{out}{err}");
     assert!(last_line(&out).ends_with(" 0 failed"), "closing line: {}", last_line(&out));
 }
 
@@ -49,8 +50,8 @@ fn the_shipped_fixtures_pass_with_exit_0() {
 fn a_good_file_passes_and_the_closing_line_counts_it() {
     let dir = scratch("good");
     std::fs::write(dir.join("good.json"), GOOD).unwrap();
-    let (code, out) = crashtest(&["check", dir.join("good.json").to_str().unwrap()]);
-    assert_eq!(code, 0, "{out}");
+    let (code, out, err) = crashtest(&["check", dir.join("good.json").to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}{err}");
     assert_eq!(last_line(&out), "1 passed, 0 failed");
 }
 
@@ -58,8 +59,8 @@ fn a_good_file_passes_and_the_closing_line_counts_it() {
 fn a_wrong_expectation_exits_1() {
     let dir = scratch("wrong");
     std::fs::write(dir.join("wrong.json"), GOOD.replace("\"depth\": 0.5", "\"depth\": 0.25")).unwrap();
-    let (code, out) = crashtest(&["check", dir.to_str().unwrap()]);
-    assert_eq!(code, 1, "{out}");
+    let (code, out, err) = crashtest(&["check", dir.to_str().unwrap()]);
+    assert_eq!(code, 1, "{out}{err}");
     assert_eq!(last_line(&out), "0 passed, 1 failed");
     assert!(out.contains("expect.contact.depth"), "names the mismatching field:\n{out}");
 }
@@ -78,8 +79,8 @@ fn json_output_is_json_and_the_closing_line_follows() {
     assert_eq!(String::from_utf8_lossy(&out.stderr).lines().last(), Some("1 passed, 0 failed"));
 }
 
-/// Each broken file gets one line naming it (and the case and field), exit 2, and
-/// the good file beside them is still checked.
+/// Each broken file gets one line naming it (and the case and field), on
+/// standard error, exit 2, and the good file beside them is still checked.
 #[test]
 fn bad_input_is_named_and_the_rest_of_the_run_still_happens() {
     let dir = scratch("bad");
@@ -138,20 +139,21 @@ fn bad_input_is_named_and_the_rest_of_the_run_still_happens() {
         std::fs::write(dir.join(name), text).unwrap();
     }
     let missing = dir.join("no_such_file.json");
-    let (code, out) = crashtest(&["check", dir.to_str().unwrap(), missing.to_str().unwrap()]);
-    assert_eq!(code, 2, "{out}");
+    let (code, out, err) = crashtest(&["check", dir.to_str().unwrap(), missing.to_str().unwrap()]);
+    assert_eq!(code, 2, "{out}{err}");
+    assert!(!out.lines().any(|l| l.starts_with("error:")), "error lines on standard output:\n{out}");
     for (name, _, needles) in files {
-        let line = out
+        let line = err
             .lines()
             .find(|l| l.starts_with("error:") && l.contains(name))
-            .unwrap_or_else(|| panic!("no error line for {name}:\n{out}"));
+            .unwrap_or_else(|| panic!("no error line for {name} on standard error:\n{err}"));
         for n in *needles {
             assert!(line.contains(n), "error line for {name} lacks {n:?}: {line}");
         }
     }
     assert!(
-        out.lines().any(|l| l.starts_with("error:") && l.contains("no_such_file.json") && l.contains("cannot read")),
-        "{out}"
+        err.lines().any(|l| l.starts_with("error:") && l.contains("no_such_file.json") && l.contains("cannot read")),
+        "{err}"
     );
     assert!(out.contains("PASS") && out.contains("ball sunk half a unit"), "the good file was still checked:\n{out}");
     assert_eq!(last_line(&out), "1 passed, 0 failed");
@@ -168,8 +170,8 @@ fn one_bad_case_does_not_sink_its_neighbours() {
 }"#,
     );
     std::fs::write(dir.join("mixed.json"), text).unwrap();
-    let (code, out) = crashtest(&["check", dir.to_str().unwrap()]);
-    assert_eq!(code, 2, "{out}");
-    assert!(out.contains("case \"huge\"") && out.contains("a.sphere.center"), "{out}");
+    let (code, out, err) = crashtest(&["check", dir.to_str().unwrap()]);
+    assert_eq!(code, 2, "{out}{err}");
+    assert!(err.contains("case \"huge\"") && err.contains("a.sphere.center"), "{err}");
     assert_eq!(last_line(&out), "1 passed, 0 failed");
 }

@@ -109,7 +109,7 @@ fn shards_merge_into_the_whole_campaign() {
     use harness::report::write::{ReadReport, merge};
     let shard = |i| {
         let o = run(&Config { shard: Some((i, 2)), ..small(5) }, Default::default());
-        ReadReport { summary: o.summary, discrepancies: Vec::new(), sections: Vec::new() }
+        ReadReport { dir: PathBuf::new(), summary: o.summary, discrepancies: Vec::new(), sections: Vec::new() }
     };
     let (merged, _) = merge(&[shard(0), shard(1)]).expect("same campaign");
     let whole = run(&small(5), Default::default()).summary;
@@ -135,6 +135,7 @@ fn merged_shards_keep_the_sections_of_the_shard_that_ran_them() {
         data: serde_json::json!({ "body": body }),
     };
     let shard = |sections| ReadReport {
+        dir: PathBuf::new(),
         summary: run(&Config { cases_per_query: 4, ..small(1) }, Default::default()).summary,
         discrepancies: Vec::new(),
         sections,

@@ -3,9 +3,11 @@
 //!
 //! These types read and write the format exactly. Optional fields the project adds
 //! are marked as such and never change the meaning of the format's own fields.
-//! Shapes and expectations reject unknown fields (a misspelt `raduis` must not
-//! silently become a default); a case's own unknown keys are ignored, so a case
-//! written elsewhere with a comment field still runs.
+//! Every level rejects unknown fields — the file, the case, its shapes and its
+//! expectation — because a misspelt key is never harmless: `raduis` would
+//! become a default, `tmax` would run with `t_max` = 1, and `expected` for
+//! `expect` would make a wrong expectation pass unchecked. Free text goes in
+//! `source`.
 
 use oracle::geom::{Aabb, Contact, P3, SegmentHit, Toi};
 use schemars::JsonSchema;
@@ -23,6 +25,7 @@ pub const DEFAULT_T_MAX: f64 = 1.0;
 
 /// One fixture file.
 #[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
 pub struct FixtureFile {
     /// Always [`SCHEMA`].
     pub schema: String,
@@ -33,6 +36,7 @@ pub struct FixtureFile {
 /// One case: a query about two shapes (one for `bounds`), with an optional
 /// expected answer.
 #[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
 pub struct Case {
     /// Unique within its file.
     pub name: String,

@@ -4,7 +4,8 @@
 //! A case passes when the default engine ([`DEFAULT_ENGINE`]) meets every named
 //! expectation and does not disagree with the referee (borderline is not a
 //! disagreement). An engine that panics is caught and recorded as failing that
-//! case; the run goes on.
+//! case, the panic's message and location in the verdict's reason and nothing
+//! on standard error (see [`run_caught`]); the run goes on.
 
 use crate::case::{Expect, Query};
 use crate::engine::{Answer, Engine};
@@ -13,7 +14,9 @@ use crate::judge::{self, Errors, Mismatch, Verdict};
 use crate::load::{InputError, LoadedCase};
 use crate::tolerance::Tolerance;
 use serde::Serialize;
+use std::cell::{Cell, RefCell};
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::Once;
 
 /// One engine's result on one case.
 #[derive(Clone, Debug, Serialize)]
@@ -129,17 +132,73 @@ pub const OUT_OF_RANGE: &str =
     "out of range: the exact answer lies beyond f64's range (its rounding is infinite), so no engine is graded on it";
 
 /// Runs one engine on one case, catching a panic.
+/// How the reason of a [`Verdict::Failed`] for a caught panic begins: the
+/// campaign counts these per engine ([`is_caught_panic`]).
+pub const PANIC_REASON_PREFIX: &str = "panicked at ";
+
+thread_local! {
+    /// Whether this thread is inside [`run_caught`]'s call of an engine.
+    static CATCHING: Cell<bool> = const { Cell::new(false) };
+    /// The location and message of the panic caught on this thread, as the
+    /// hook saw them.
+    static CAUGHT: RefCell<Option<String>> = const { RefCell::new(None) };
+}
+
+static HOOK: Once = Once::new();
+
+/// Installs (once per process) a panic hook that, on a thread inside
+/// [`run_caught`], records the panic's location and message instead of
+/// printing them and a backtrace: a campaign of thousands of cases whose
+/// engine panics on some would otherwise bury its output under them. A panic
+/// anywhere else — another thread, crashtest's own code — goes to the hook
+/// that was there before, and prints as usual. The flag is per thread, so the
+/// cases rayon runs in parallel do not see each other's.
+fn install_quiet_hook() {
+    HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if CATCHING.with(Cell::get) {
+                let location =
+                    info.location().map(|l| format!("{}:{}:{}", l.file(), l.line(), l.column())).unwrap_or_default();
+                let payload = info.payload();
+                let message = payload
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| payload.downcast_ref::<String>().cloned())
+                    .unwrap_or_else(|| "(no message)".into());
+                CAUGHT.with(|c| *c.borrow_mut() = Some(format!("{location}: {message}")));
+            } else {
+                previous(info);
+            }
+        }));
+    });
+}
+
+/// Whether a verdict is a panic [`run_caught`] caught.
+pub fn is_caught_panic(v: &Verdict) -> bool {
+    matches!(v, Verdict::Failed { reason } if reason.starts_with(PANIC_REASON_PREFIX))
+}
+
+/// Runs one engine on one case, catching a panic: it becomes a
+/// [`Verdict::Failed`] whose reason is one line, `panicked at
+/// <file>:<line>:<column>: <message>`, and nothing is printed.
 pub fn run_caught(engine: &Engine, lc: &LoadedCase) -> Result<Answer, Verdict> {
-    match catch_unwind(AssertUnwindSafe(|| engine.run(lc))) {
+    install_quiet_hook();
+    let outer = CATCHING.with(|c| c.replace(true));
+    let result = catch_unwind(AssertUnwindSafe(|| engine.run(lc)));
+    CATCHING.with(|c| c.set(outer));
+    match result {
         Ok(Ok(a)) => Ok(a),
         Ok(Err(u)) => Err(Verdict::Unsupported { reason: u.0 }),
         Err(p) => {
-            let msg = p
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| p.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "panic".into());
-            Err(Verdict::Failed { reason: format!("panicked: {msg}") })
+            let seen = CAUGHT.with(|c| c.borrow_mut().take());
+            let what = seen.unwrap_or_else(|| {
+                p.downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| p.downcast_ref::<String>().cloned())
+                    .unwrap_or_else(|| "(no message)".into())
+            });
+            Err(Verdict::Failed { reason: format!("{PANIC_REASON_PREFIX}{what}") })
         }
     }
 }
@@ -230,8 +289,10 @@ fn fmt_err(x: Option<f64>) -> String {
     x.map(|v| format!("{v:.1e}")).unwrap_or_else(|| "-".into())
 }
 
-/// The human-readable report: a table per case, the input errors, and last the
-/// line `N passed, M failed` (cases, default engine).
+/// The human-readable report: a table per case, and last the line `N passed, M
+/// failed` (cases, default engine). The input errors are not in it: they are
+/// for standard error ([`render_errors`]), so that a pipe of the results does
+/// not carry them.
 pub fn render_text(r: &CheckResult) -> String {
     use std::fmt::Write;
     let mut s = String::new();
@@ -289,9 +350,11 @@ pub fn render_text(r: &CheckResult) -> String {
             }
         }
     }
-    for e in &r.errors {
-        let _ = writeln!(s, "error: {e}");
-    }
     let _ = writeln!(s, "{} passed, {} failed", r.passed, r.failed);
     s
+}
+
+/// The input errors, one `error:` line each.
+pub fn render_errors(r: &CheckResult) -> String {
+    r.errors.iter().map(|e| format!("error: {e}\n")).collect()
 }

@@ -2,22 +2,41 @@
 //! (line and column for JSON syntax), and one bad case or file never costs the
 //! others.
 //!
+//! Only regular files are read, and none above [`MAX_INPUT_BYTES`]; folders are
+//! walked without entering one already walked (so links back up the tree end),
+//! and each file is read once however often it is named.
+//!
 //! A file is read in two passes. The first checks the JSON syntax and splits the
 //! `cases` array into raw slices without converting a single number, so a number
 //! beyond `f64` in one case does not sink its neighbours. The second reads each
 //! case on its own (the field path of a type error comes from
 //! `serde_path_to_error`, its line and column are made absolute in the file), then
-//! checks what the type system cannot: finite numbers, positive radii, non-zero
-//! normals, `min ≤ max`, mesh indices in range, shapes that fit the query.
+//! checks what the type system cannot: that a shape has one key (the derives
+//! refuse unknown keys at every other level: the file, the case, the shapes'
+//! fields, `expect`), finite numbers, positive radii, non-zero normals, `min ≤
+//! max`, mesh indices in range, shapes that fit the query.
 
 use crate::case::{Case, Expect, MeshSpec, Query, SCHEMA, Shape};
 use crate::mesh::{Mesh, load_mesh_file};
 use oracle::geom::P3;
 use serde::Deserialize;
+use serde::de::{self, Deserializer, MapAccess, Visitor};
 use serde_json::value::RawValue;
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
+use std::io::Read;
 use std::path::{Path, PathBuf};
+
+/// The largest fixture or mesh file read: 64 MiB. Reason: a file is read whole
+/// and its cases held in memory several times over (text, cases, results), the
+/// shipped files are all under 128 KiB (the bunny's mesh is the largest), and a
+/// file of 100,000 cases is about 40 MiB; anything larger is far more likely a
+/// wrong path (a log, a disk image) than a case file, and is refused before it
+/// is read.
+pub const MAX_INPUT_BYTES: u64 = 64 << 20;
+
+/// [`MAX_INPUT_BYTES`] as written in messages.
+const MAX_INPUT_TEXT: &str = "64 MiB";
 
 /// A refusal of malformed input.
 #[derive(Clone, Debug, PartialEq)]
@@ -73,25 +92,57 @@ pub struct Loaded {
 }
 
 /// Reads files, and folders searched recursively for `*.json` (in sorted order).
+///
+/// A folder already walked is not entered again (its canonical path decides,
+/// so a link to `.` or to a parent ends the walk instead of looping), and a
+/// file is read once however many names reach it. A folder with no `*.json`
+/// file, and a selection with no case at all, are input errors ("no cases
+/// found in …"): a check of nothing must not pass.
 pub fn load_paths<P: AsRef<Path>>(paths: &[P]) -> Loaded {
     let mut out = Loaded::default();
+    let mut read = BTreeSet::new();
     for p in paths {
         let p = p.as_ref();
-        if p.is_dir() {
+        if std::fs::metadata(p).is_ok_and(|m| m.is_dir()) {
             let mut files = Vec::new();
-            collect_json(p, &mut files, &mut out.errors);
+            collect_json(p, &mut files, &mut BTreeSet::new(), &mut out.errors);
+            if files.is_empty() {
+                out.errors
+                    .push(file_error(p, "no cases found in this folder (no *.json file in it or below it)".into()));
+            }
             files.sort();
             for f in files {
-                load_file_into(&f, &mut out);
+                if read.insert(canonical(&f)) {
+                    load_file_into(&f, &mut out);
+                }
             }
-        } else {
+        } else if read.insert(canonical(p)) {
             load_file_into(p, &mut out);
         }
+    }
+    if out.cases.is_empty() && out.errors.is_empty() {
+        let names: Vec<String> = paths.iter().map(|p| p.as_ref().display().to_string()).collect();
+        out.errors.push(InputError {
+            file: PathBuf::from(names.join(", ")),
+            case: None,
+            field: None,
+            position: None,
+            message: "no cases found in the files named (each has an empty `cases`)".into(),
+        });
     }
     out
 }
 
-fn collect_json(dir: &Path, files: &mut Vec<PathBuf>, errors: &mut Vec<InputError>) {
+/// The canonical path of `p` (links and `..` resolved), or `p` itself when it
+/// has none (a missing file: reading it then reports why).
+fn canonical(p: &Path) -> PathBuf {
+    std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf())
+}
+
+fn collect_json(dir: &Path, files: &mut Vec<PathBuf>, walked: &mut BTreeSet<PathBuf>, errors: &mut Vec<InputError>) {
+    if !walked.insert(canonical(dir)) {
+        return;
+    }
     let entries = match std::fs::read_dir(dir) {
         Ok(e) => e,
         Err(e) => {
@@ -99,10 +150,14 @@ fn collect_json(dir: &Path, files: &mut Vec<PathBuf>, errors: &mut Vec<InputErro
             return;
         }
     };
-    for entry in entries.flatten() {
-        let path = entry.path();
-        if path.is_dir() {
-            collect_json(&path, files, errors);
+    let mut paths: Vec<PathBuf> = entries.flatten().map(|e| e.path()).collect();
+    paths.sort();
+    for path in paths {
+        // `metadata` follows links: a link to a folder is walked (once), a link
+        // to a file is read (once), and anything else named `*.json` (a FIFO, a
+        // device, a broken link) is refused by `load_file_into` with its reason.
+        if std::fs::metadata(&path).is_ok_and(|m| m.is_dir()) {
+            collect_json(&path, files, walked, errors);
         } else if path.extension().is_some_and(|x| x == "json") {
             files.push(path);
         }
@@ -116,21 +171,133 @@ fn file_error(file: &Path, message: String) -> InputError {
 /// Reads one file into `out`.
 pub fn load_file_into(path: &Path, out: &mut Loaded) {
     out.files.push(path.to_path_buf());
-    let text = match std::fs::read_to_string(path) {
+    let text = match read_input(path) {
         Ok(t) => t,
-        Err(e) => {
-            out.errors.push(file_error(path, format!("cannot read file: {e}")));
+        Err(message) => {
+            out.errors.push(file_error(path, message));
             return;
         }
     };
     load_str_into(path, &text, out);
 }
 
-#[derive(Deserialize)]
+/// Checks that `path` is a file crashtest may read: a regular file (a FIFO
+/// would block the run, a device such as `/dev/zero` never ends) of at most
+/// [`MAX_INPUT_BYTES`]. Returns its size. Nothing is opened. `what` names the
+/// file in the message when it cannot be read (`file`, `mesh`).
+pub fn check_input_file(path: &Path, what: &str) -> Result<u64, String> {
+    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read {what}: {e}"))?;
+    if !meta.is_file() {
+        return Err(format!("not a regular file ({}): refused without reading it", file_kind(&meta)));
+    }
+    if meta.len() > MAX_INPUT_BYTES {
+        return Err(format!(
+            "file is {} bytes, over the limit of {MAX_INPUT_TEXT} ({MAX_INPUT_BYTES} bytes) for an input file: refused \
+             without reading it",
+            meta.len()
+        ));
+    }
+    Ok(meta.len())
+}
+
+/// Reads a fixture file whole, after [`check_input_file`]; never more than
+/// [`MAX_INPUT_BYTES`] even if the file grows meanwhile.
+pub fn read_input(path: &Path) -> Result<String, String> {
+    let size = check_input_file(path, "file")?;
+    let file = std::fs::File::open(path).map_err(|e| format!("cannot read file: {e}"))?;
+    let mut text = String::with_capacity(size as usize);
+    file.take(MAX_INPUT_BYTES + 1).read_to_string(&mut text).map_err(|e| format!("cannot read file: {e}"))?;
+    if text.len() as u64 > MAX_INPUT_BYTES {
+        return Err(format!("file grew past the limit of {MAX_INPUT_TEXT} while being read: refused"));
+    }
+    Ok(text)
+}
+
+/// What a path that is not a regular file is, in words.
+fn file_kind(meta: &std::fs::Metadata) -> &'static str {
+    let t = meta.file_type();
+    if t.is_dir() {
+        return "a folder";
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_char_device() {
+            return "a character device";
+        }
+        if t.is_block_device() {
+            return "a block device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    "not a file"
+}
+
+/// The keys of a fixture file's top level.
+const FILE_FIELDS: &[&str] = &["schema", "cases"];
+
+/// The top level of a fixture file, read without converting a number: its
+/// `schema`, and its `cases` as raw slices. Anything but an object (a bare
+/// array of cases, say) is refused, and so is any key but [`FILE_FIELDS`].
 struct RawFile<'a> {
     schema: Option<String>,
-    #[serde(borrow)]
     cases: Option<Vec<&'a RawValue>>,
+}
+
+impl<'de> Deserialize<'de> for RawFile<'de> {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Top;
+        impl<'de> Visitor<'de> for Top {
+            type Value = RawFile<'de>;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("an object with `schema` and `cases`")
+            }
+            fn visit_map<M: MapAccess<'de>>(self, mut m: M) -> Result<RawFile<'de>, M::Error> {
+                let mut file = RawFile { schema: None, cases: None };
+                while let Some(key) = m.next_key::<std::borrow::Cow<'de, str>>()? {
+                    match key.as_ref() {
+                        "schema" if file.schema.is_none() => file.schema = Some(m.next_value()?),
+                        "cases" if file.cases.is_none() => file.cases = Some(m.next_value()?),
+                        "schema" | "cases" => return Err(de::Error::custom(format!("duplicate field `{key}`"))),
+                        other => return Err(de::Error::unknown_field(other, FILE_FIELDS)),
+                    }
+                }
+                Ok(file)
+            }
+        }
+        d.deserialize_map(Top)
+    }
+}
+
+/// The field an "unknown field `x`" message names, if it is one.
+fn unknown_field(message: &str) -> Option<&str> {
+    message.strip_prefix("unknown field `")?.split('`').next()
+}
+
+/// A shape is one key, its kind (`{"sphere": {…}}`). serde's own error for a
+/// second key does not name it, so the keys are checked here first: the error
+/// names the shape's field, the extra key and where the shape starts.
+fn check_shape_keys(case_slice: &str) -> Option<(String, usize, String)> {
+    let keys: BTreeMap<String, &RawValue> = serde_json::from_str(case_slice).ok()?;
+    for slot in ["a", "b"] {
+        let Some(raw) = keys.get(slot) else { continue };
+        let Ok(shape) = serde_json::from_str::<BTreeMap<String, &RawValue>>(raw.get()) else { continue };
+        if shape.len() > 1 {
+            let names: Vec<String> = shape.keys().map(|k| format!("`{k}`")).collect();
+            let offset = raw.get().as_ptr() as usize - case_slice.as_ptr() as usize;
+            return Some((
+                slot.to_string(),
+                offset,
+                format!("a shape has exactly one key, its kind; found {}", names.join(", ")),
+            ));
+        }
+    }
+    None
 }
 
 #[derive(Deserialize)]
@@ -147,10 +314,12 @@ pub fn load_str_into(path: &Path, text: &str, out: &mut Loaded) {
             out.errors.push(InputError {
                 file: path.to_path_buf(),
                 case: None,
-                field: None,
-                position: Some((e.line(), e.column())),
+                // serde_json gives column 0 for an error before the first
+                // character of a line (a value of the wrong type at its start).
+                position: Some((e.line(), e.column().max(1))),
                 message: if syntax { format!("JSON syntax: {e}") } else { format!("not a fixture file: {e}") }
                     .replace(&format!(" at line {} column {}", e.line(), e.column()), ""),
+                field: unknown_field(&e.to_string()).map(str::to_string),
             });
             return;
         }
@@ -192,16 +361,28 @@ pub fn load_str_into(path: &Path, text: &str, out: &mut Loaded) {
             position,
             message,
         };
+        if let Some((field, at, msg)) = check_shape_keys(slice) {
+            out.errors.push(err(Some(field), Some(absolute(text, offset + at, 1, 1)), msg));
+            continue;
+        }
         let mut de = serde_json::Deserializer::from_str(slice);
         let case: Case = match serde_path_to_error::deserialize(&mut de) {
             Ok(c) => c,
             Err(e) => {
-                let field = e.path().to_string();
+                let path = e.path().to_string();
                 let inner = e.into_inner();
                 let pos = absolute(text, offset, inner.line(), inner.column());
                 let msg = inner.to_string();
                 let msg = msg.split(" at line ").next().unwrap_or(&msg).to_string();
-                out.errors.push(err((field != ".").then_some(field), Some(pos), msg));
+                // An unknown key's field is the key itself, inside the object
+                // the path names.
+                let field = match (unknown_field(&msg), path.as_str()) {
+                    (Some(key), ".") => Some(key.to_string()),
+                    (Some(key), p) if !p.ends_with(key) => Some(format!("{p}.{key}")),
+                    (_, ".") => None,
+                    _ => Some(path.clone()),
+                };
+                out.errors.push(err(field, Some(pos), msg));
                 continue;
             }
         };
@@ -245,7 +426,11 @@ fn absolute(text: &str, offset: usize, line: usize, column: usize) -> (usize, us
 fn resolve_mesh(m: &MeshSpec, base: &Path) -> Result<Mesh, (String, String)> {
     match (&m.vertices, &m.triangles, &m.file) {
         (Some(v), Some(t), None) => Mesh::new(v.clone(), t.clone()),
-        (None, None, Some(f)) => load_mesh_file(&base.join(f)).map_err(|m| ("file".to_string(), m)),
+        (None, None, Some(f)) => {
+            let path = base.join(f);
+            check_input_file(&path, "mesh").map_err(|m| ("file".to_string(), format!("{}: {m}", path.display())))?;
+            load_mesh_file(&path).map_err(|m| ("file".to_string(), m))
+        }
         (_, _, Some(_)) => Err(("file".into(), "give either `file` or `vertices` and `triangles`, not both".into())),
         (None, _, None) => Err(("vertices".into(), "missing field (or give `file`)".into())),
         (Some(_), None, None) => Err(("triangles".into(), "missing field".into())),

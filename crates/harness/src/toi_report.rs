@@ -40,13 +40,16 @@ pub struct Settings {
     pub cases: usize,
     /// Repetitions of each timing loop (the median is reported).
     pub reps: u32,
+    /// Whether to time the methods at all (`report --no-timing` turns it off:
+    /// the section then reports errors only, and says that nothing was timed).
+    pub timing: bool,
 }
 
 impl Default for Settings {
     /// The campaign's seed, [`DEFAULT_CASES`] impacts per pair, [`DEFAULT_REPS`]
-    /// repetitions.
+    /// repetitions, timed.
     fn default() -> Self {
-        Self { seed: crate::report::campaign::DEFAULT_SEED, cases: DEFAULT_CASES, reps: DEFAULT_REPS }
+        Self { seed: crate::report::campaign::DEFAULT_SEED, cases: DEFAULT_CASES, reps: DEFAULT_REPS, timing: true }
     }
 }
 
@@ -128,8 +131,9 @@ pub struct MethodRow {
     pub max_error: f64,
     /// Cases where it found no impact (every case has one).
     pub misses: usize,
-    /// Nanoseconds per query (median of the repetitions).
-    pub ns_per_query: f64,
+    /// Nanoseconds per query (median of the repetitions); `None` when the
+    /// section was not timed.
+    pub ns_per_query: Option<f64>,
 }
 
 /// The lecture's halving after `steps` bisections on one pair.
@@ -406,8 +410,13 @@ fn parry<E: ParryCast>(e: &E, c: &Case) -> Option<f64> {
     toi.map(|k| k.t)
 }
 
-/// Median nanoseconds per query of `reps` loops of `f` over `n` queries.
-fn time_ns(reps: u32, n: usize, mut f: impl FnMut()) -> f64 {
+/// Median nanoseconds per query of `reps` loops of `f` over `n` queries, or
+/// `None` without running `f` when the section is not timed.
+fn time_ns(settings: &Settings, n: usize, f: impl FnMut()) -> Option<f64> {
+    settings.timing.then(|| time_loops(settings.reps, n, f))
+}
+
+fn time_loops(reps: u32, n: usize, mut f: impl FnMut()) -> f64 {
     let mut per = Vec::with_capacity(reps.max(1) as usize);
     for _ in 0..reps.max(1) {
         let start = Instant::now();
@@ -428,15 +437,15 @@ fn summarize(cases: &[Case], answers: &[Option<f64>]) -> (f64, f64, usize) {
     (median, errs.last().copied().unwrap_or(f64::NAN), misses)
 }
 
-fn method_row(pair: Pair, method: &str, cases: &[Case], answers: &[Option<f64>], ns: f64) -> MethodRow {
+fn method_row(pair: Pair, method: &str, cases: &[Case], answers: &[Option<f64>], ns: Option<f64>) -> MethodRow {
     let (median_error, max_error, misses) = summarize(cases, answers);
     MethodRow { pair, method: method.into(), median_error, max_error, misses, ns_per_query: ns }
 }
 
-fn fixed_methods<T: Real>(pair: Pair, cases: &[Case], reps: u32, precision: &str) -> MethodRow {
+fn fixed_methods<T: Real>(pair: Pair, cases: &[Case], settings: &Settings, precision: &str) -> MethodRow {
     let prepared: Vec<Prepared<T>> = cases.iter().map(prepare).collect();
     let answers: Vec<Option<f64>> = prepared.iter().map(|p| robust(p).map(|t| t.wide())).collect();
-    let ns = time_ns(reps, prepared.len(), || {
+    let ns = time_ns(settings, prepared.len(), || {
         for p in &prepared {
             black_box(robust(black_box(p)));
         }
@@ -444,9 +453,9 @@ fn fixed_methods<T: Real>(pair: Pair, cases: &[Case], reps: u32, precision: &str
     method_row(pair, &format!("collide {} {precision}", pair.robust_method()), cases, &answers, ns)
 }
 
-fn parry_row<E: ParryCast>(pair: Pair, e: &E, name: &str, cases: &[Case], reps: u32) -> MethodRow {
+fn parry_row<E: ParryCast>(pair: Pair, e: &E, name: &str, cases: &[Case], settings: &Settings) -> MethodRow {
     let answers: Vec<Option<f64>> = cases.iter().map(|c| parry(e, c)).collect();
-    let ns = time_ns(reps, cases.len(), || {
+    let ns = time_ns(settings, cases.len(), || {
         for c in cases {
             black_box(parry(e, black_box(c)));
         }
@@ -460,21 +469,23 @@ pub fn run(settings: &Settings) -> ToiReport {
     let mut points = Vec::new();
     for pair in Pair::ALL {
         let cases = cases(pair, settings);
-        methods.push(fixed_methods::<f64>(pair, &cases, settings.reps, "f64"));
-        methods.push(fixed_methods::<f32>(pair, &cases, settings.reps, "f32"));
-        methods.push(parry_row(pair, &Parry64, Parry64::NAME, &cases, settings.reps));
-        methods.push(parry_row(pair, &Parry32, Parry32::NAME, &cases, settings.reps));
+        methods.push(fixed_methods::<f64>(pair, &cases, settings, "f64"));
+        methods.push(fixed_methods::<f32>(pair, &cases, settings, "f32"));
+        methods.push(parry_row(pair, &Parry64, Parry64::NAME, &cases, settings));
+        methods.push(parry_row(pair, &Parry32, Parry32::NAME, &cases, settings));
         let prepared: Vec<Prepared<f64>> = cases.iter().map(prepare).collect();
         for steps in 1..=MAX_HALVING_STEPS {
             let answers: Vec<Option<f64>> = prepared.iter().map(|p| halving(p, steps)).collect();
             let (median_error, max_error, misses) = summarize(&cases, &answers);
-            let ns_per_query = TIMED_STEPS.contains(&steps).then(|| {
-                time_ns(settings.reps, prepared.len(), || {
+            let ns_per_query = if TIMED_STEPS.contains(&steps) {
+                time_ns(settings, prepared.len(), || {
                     for p in &prepared {
                         black_box(halving(black_box(p), steps));
                     }
                 })
-            });
+            } else {
+                None
+            };
             let bound = 0.5f64.powi(steps as i32);
             points.push(HalvingPoint { pair, steps, median_error, max_error, bound, misses, ns_per_query });
         }
@@ -486,6 +497,27 @@ pub fn run(settings: &Settings) -> ToiReport {
 
 fn sci(x: f64) -> String {
     crate::report::markdown::sci(x)
+}
+
+/// A time per query as a table cell: `—` where nothing was timed.
+fn ns_cell(ns: Option<f64>) -> String {
+    ns.map_or("—".into(), |ns| format!("{ns:.1}"))
+}
+
+/// What the section says of its times: how they were measured, or that they
+/// were not.
+fn timing_words(s: &Settings) -> String {
+    if s.timing {
+        format!(
+            "times are ns per query, the median of {} loops over the cases on one thread. parry is called through \
+             the oracle's adapter (its conversions included; `cargo bench --bench toi` times it directly).",
+            s.reps
+        )
+    } else {
+        "nothing was timed (the report was run with --no-timing): the ns / query column is empty and the \
+         error-against-time charts are left out."
+            .into()
+    }
 }
 
 /// The table of the fixed methods and of halving at a few depths.
@@ -503,7 +535,7 @@ fn table(r: &ToiReport) -> Table {
                 sci(m.median_error),
                 sci(m.max_error),
                 m.misses.to_string(),
-                format!("{:.1}", m.ns_per_query),
+                ns_cell(m.ns_per_query),
             ]);
         }
         for h in r.halving.iter().filter(|h| h.pair == pair && [8, 24, 40, 60].contains(&h.steps)) {
@@ -513,7 +545,7 @@ fn table(r: &ToiReport) -> Table {
                 sci(h.median_error),
                 sci(h.max_error),
                 h.misses.to_string(),
-                h.ns_per_query.map_or("—".into(), |ns| format!("{ns:.1}")),
+                ns_cell(h.ns_per_query),
             ]);
         }
     }
@@ -526,10 +558,10 @@ pub fn markdown(r: &ToiReport) -> String {
     let _ = writeln!(s, "## Time of impact: accuracy against speed\n");
     let _ = writeln!(
         s,
-        "{} impacts per pair (seed {}); errors are |t − t*| / t_max against the referee's exact t*; times are \
-         ns per query, the median of {} loops over the cases on one thread. parry is called through the oracle's \
-         adapter (its conversions included; `cargo bench --bench toi` times it directly).\n",
-        r.settings.cases, r.settings.seed, r.settings.reps
+        "{} impacts per pair (seed {}); errors are |t − t*| / t_max against the referee's exact t*; {}\n",
+        r.settings.cases,
+        r.settings.seed,
+        timing_words(&r.settings)
     );
     let _ = writeln!(s, "{}\n", r.design);
     let _ = writeln!(
@@ -550,7 +582,7 @@ fn floor(x: f64) -> f64 {
 }
 
 /// The section's charts: the error against the number of bisections, and for
-/// each pair the error against the time per query.
+/// each pair the error against the time per query (when timed).
 pub fn charts(r: &ToiReport) -> Vec<SectionChart> {
     let mut out = Vec::new();
     let mut series: Vec<Line> = Pair::ALL
@@ -617,7 +649,7 @@ pub fn charts(r: &ToiReport) -> Vec<SectionChart> {
         title,
         file: "toi-halving.svg".into(),
     });
-    for pair in Pair::ALL {
+    for pair in Pair::ALL.into_iter().filter(|_| r.settings.timing) {
         let mut series = vec![Line {
             name: "collide lecture halving f64 (k bisections)".into(),
             style: 0,
@@ -633,7 +665,7 @@ pub fn charts(r: &ToiReport) -> Vec<SectionChart> {
             series.push(Line {
                 name: m.method.clone(),
                 style: i + 1,
-                points: vec![(m.ns_per_query, floor(m.median_error))],
+                points: m.ns_per_query.map(|ns| (ns, floor(m.median_error))).into_iter().collect(),
                 failures: Vec::new(),
             });
         }
@@ -658,9 +690,10 @@ pub fn section(settings: &Settings) -> Section {
     let html = format!(
         "<p>{}</p>\n<p>{}</p>\n{}",
         crate::report::html::escape(&format!(
-            "{} impacts per pair (seed {}); errors are |t − t*| / t_max against the referee's exact t*; times are \
-             ns per query (median of {} loops, one thread; parry through the oracle's adapter).",
-            r.settings.cases, r.settings.seed, r.settings.reps
+            "{} impacts per pair (seed {}); errors are |t − t*| / t_max against the referee's exact t*; {}",
+            r.settings.cases,
+            r.settings.seed,
+            timing_words(&r.settings)
         )),
         crate::report::html::escape(&r.design),
         crate::report::html::table_html(&table(&r))
@@ -680,7 +713,19 @@ mod tests {
     use super::*;
 
     fn small() -> Settings {
-        Settings { seed: 3, cases: 40, reps: 1 }
+        Settings { seed: 3, cases: 40, reps: 1, timing: true }
+    }
+
+    #[test]
+    fn toi_section_untimed_times_nothing_and_says_so() {
+        let s = section(&Settings { timing: false, ..small() });
+        assert!(s.markdown.contains("nothing was timed"), "{}", s.markdown);
+        assert!(s.html.contains("nothing was timed"), "{}", s.html);
+        assert_eq!(s.charts.len(), 1, "only the error-against-bisections chart");
+        let methods = s.data["methods"].as_array().expect("methods");
+        assert!(!methods.is_empty() && methods.iter().all(|m| m["ns_per_query"].is_null()), "{methods:?}");
+        let halving = s.data["halving"].as_array().expect("halving");
+        assert!(halving.iter().all(|h| h["ns_per_query"].is_null()));
     }
 
     #[test]

@@ -34,6 +34,47 @@ pub const DEFAULT_SEED: u64 = 20_261_122;
 /// `generate::full_range`), judged and scored apart from the ordinary mix: enough
 /// that each of its five sub-families gets a few hundred cases of every kind.
 pub const DEFAULT_FULL_RANGE_CASES: u64 = 1_000;
+/// The most random cases per query kind a campaign takes: [`CAMPAIGN_MEMORY_BYTES`]
+/// over [`BYTES_PER_CASE`] for each of the [`CAMPAIGN_QUERIES`]. It bounds one
+/// run's slice: a larger campaign is split with `--shard` (each shard holds
+/// only its own slice).
+pub const MAX_CASES: u64 = CAMPAIGN_MEMORY_BYTES / (BYTES_PER_CASE * CAMPAIGN_QUERIES.len() as u64);
+
+/// The memory a campaign may hold its cases and results in: 16 GiB. Reason:
+/// every case and its every engine's result stay in memory until the summary
+/// is folded, so the count is bounded by what a workstation has, with room
+/// for the rest of the machine; a count beyond it would fail allocating (or
+/// swap for hours) after the fixtures were already read.
+pub const CAMPAIGN_MEMORY_BYTES: u64 = 16 << 30;
+
+/// What one random case costs while the campaign holds it: 8 KiB. Measured: the
+/// peak memory of `report --no-sections --no-timing` was 989 MiB at `--cases
+/// 20000` and 3.77 GiB at `--cases 80000`, 7,172 bytes for each of the 420,000
+/// cases more (the case, its six engines' results and the referee's answer);
+/// rounded up for the discrepancies kept and the allocator's slack.
+pub const BYTES_PER_CASE: u64 = 8 << 10;
+
+/// Checks that the random cases per query kind one run holds — its shard's
+/// slice of `n` — are at most [`MAX_CASES`]; the error names the largest count
+/// allowed, why, and how many shards would hold `n`.
+pub fn check_cases(n: u64, shard: Option<(u32, u32)>) -> Result<(), String> {
+    let (lo, hi) = shard_range(n, shard);
+    if hi - lo <= MAX_CASES {
+        return Ok(());
+    }
+    let what = match shard {
+        Some((i, k)) => format!("shard {i}/{k} of {n} cases per query kind holds {}", hi - lo),
+        None => format!("{n} cases per query kind"),
+    };
+    Err(format!(
+        "{what}, more than the largest allowed in one run, {MAX_CASES}: a run holds every case and its results in \
+         memory (about {BYTES_PER_CASE} bytes each, for {} query kinds, within {} GiB); split it with --shard i/n, \
+         n ≥ {}",
+        CAMPAIGN_QUERIES.len(),
+        CAMPAIGN_MEMORY_BYTES >> 30,
+        n.div_ceil(MAX_CASES)
+    ))
+}
 
 /// At most this many discrepancies per engine and query kind are written out in
 /// full (the summary counts all of them): enough to study every failure family,
@@ -311,6 +352,7 @@ fn fold(map: &mut BTreeMap<StatsKey, EngineQueryStats>, c: &CaseResult, full_ran
                 if reason == crate::judge::NON_FINITE {
                     s.non_finite += 1;
                 }
+                s.panics += u64::from(crate::check::is_caught_panic(&r.verdict));
                 s.headline.add(1.0);
             }
         }
@@ -498,6 +540,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     provenance.seed = config.seed;
     provenance.cases_per_query = config.cases_per_query;
     provenance.full_range_per_query = config.full_range_per_query;
+    provenance.only = config.only;
     provenance.shards = config.shard.into_iter().collect();
     provenance.fixture_cases = fixture_cases;
     provenance.random_cases = cases.len() as u64 - fixture_cases;
@@ -531,7 +574,11 @@ fn sections(config: &Config, results: &[CaseResult]) -> Vec<crate::report::secti
         timing: config.timing,
         ..Default::default()
     }));
-    out.push(crate::toi_report::section(&crate::toi_report::Settings { seed: config.seed, ..Default::default() }));
+    out.push(crate::toi_report::section(&crate::toi_report::Settings {
+        seed: config.seed,
+        timing: config.timing,
+        ..Default::default()
+    }));
     out.extend(crate::report::peers::section(results));
     out.push(crate::dynamics::section(&crate::dynamics::run()));
     out
@@ -549,4 +596,40 @@ fn progress_bar(wanted: bool, len: u64) -> indicatif::ProgressBar {
         bar.set_style(style.progress_chars("=> "));
     }
     bar
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::{EngineResult, PANIC_REASON_PREFIX};
+
+    #[test]
+    fn caught_panics_are_counted_per_engine_apart_from_other_failures() {
+        let failed = |engine: &str, reason: String| EngineResult {
+            engine: engine.into(),
+            answer: None,
+            verdict: Verdict::Failed { reason },
+            errors: Errors::default(),
+            expect_mismatches: None,
+        };
+        let case = CaseResult {
+            file: "f.json".into(),
+            name: "c".into(),
+            query: Query::Overlap,
+            scale: 1.0,
+            margin: None,
+            referee: None,
+            referee_meets_expect: None,
+            engines: vec![
+                failed("panics", format!("{PANIC_REASON_PREFIX}src/x.rs:1:2: broke")),
+                failed("nan", "non-finite depth".into()),
+            ],
+            passed: false,
+        };
+        let mut map = BTreeMap::new();
+        fold(&mut map, &case, false);
+        fold(&mut map, &case, false);
+        let by_engine: Vec<(String, u64, u64)> = map.values().map(|s| (s.engine.clone(), s.failed, s.panics)).collect();
+        assert_eq!(by_engine, vec![("panics".into(), 2, 2), ("nan".into(), 2, 0)]);
+    }
 }

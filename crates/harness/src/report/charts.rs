@@ -821,6 +821,8 @@ pub(crate) mod fixture {
                 ],
                 seed: 42,
                 cases_per_query: 100,
+                full_range_per_query: 0,
+                only: None,
                 shards: vec![],
                 fixture_cases: 12,
                 random_cases: 200,
@@ -829,6 +831,7 @@ pub(crate) mod fixture {
                 speed_source: None,
             },
             stats,
+            full_range: Vec::new(),
             discrepancies: 3,
             throughput: vec![("fast<f32>".into(), 1.5e6), ("all".into(), 2.0e4)],
         }

@@ -116,7 +116,8 @@ const MEASURES: [(Option<&str>, &str, fn(&EngineQueryStats) -> &Dist); 8] = [
 ];
 
 /// The main table of one query kind: per engine its counts (cases, agree,
-/// disagree, borderline, known, unsupported, failed, false +, false −), the p99
+/// disagree, borderline, known, unsupported, failed, of them panics, false +,
+/// false −), the p99
 /// of its relative point and depth errors, normal angle, t and barycentric
 /// errors, the largest headline error and the time per query.
 ///
@@ -141,6 +142,7 @@ pub fn query_table(summary: &Summary, query: Option<Query>) -> Table {
         ("known", true),
         ("unsupported", true),
         ("failed", true),
+        ("panics", true),
         ("false +", true),
         ("false −", true),
     ];
@@ -161,6 +163,7 @@ pub fn query_table(summary: &Summary, query: Option<Query>) -> Table {
             s.known.to_string(),
             s.unsupported.to_string(),
             s.failed.to_string(),
+            s.panics.to_string(),
             s.false_positives.to_string(),
             s.false_negatives.to_string(),
         ];
@@ -314,7 +317,8 @@ pub fn reading_notes() -> Vec<String> {
         "Counts are against the exact referee: agree (same classification, errors within tolerance), \
          disagree (beyond tolerance), borderline (classification differs inside the referee's \
          tolerance band), known (a documented divergence), unsupported, failed (panicked or \
-         non-finite); false + and false − are misclassifications outside the band."
+         non-finite; panics counts the caught panics among them; discrepancies.json gives the first of each engine \
+         and query kind with the panic's location); false + and false − are misclassifications outside the band."
             .into(),
         "Errors are relative to the answer's own scale (points, depths, radii: the magnitudes that \
          decide them, not the scene's size), in radians (normals), or as they are (t, barycentric \
@@ -449,7 +453,7 @@ mod tests {
         ] {
             assert!(md.contains(needle), "missing {needle:?} in\n{md}");
         }
-        assert!(md.contains("| fast\\<f32\\> | 100 | 97 | 1 | 1 | 1 | 0 | 0 | 1 | 0 |"), "{md}");
+        assert!(md.contains("| fast\\<f32\\> | 100 | 97 | 1 | 1 | 1 | 0 | 0 | 0 | 1 | 0 |"), "{md}");
         assert!(md.contains("1.0e-6"), "p99 of fast on contact: {md}");
         assert!(md.contains("20.0 (18.0–24.0)"), "timing with spread: {md}");
         assert!(!md.contains("bary p99"), "no barycentric column without samples");

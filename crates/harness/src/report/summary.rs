@@ -137,6 +137,11 @@ pub struct EngineQueryStats {
     /// answer is finite.
     #[serde(default)]
     pub non_finite: u64,
+    /// Of `failed`, the engine's panics that were caught (each one line with
+    /// its location in the verdict's reason; none printed). Absent in reports
+    /// written before it was counted.
+    #[serde(default)]
+    pub panics: u64,
     /// Reported contact / hit / overlap where the referee has none (outside the band).
     pub false_positives: u64,
     /// Missed a contact / hit / overlap the referee has (outside the band).
@@ -202,6 +207,9 @@ pub struct Provenance {
     /// Full-range cases per query kind (before sharding), scored apart.
     #[serde(default)]
     pub full_range_per_query: u64,
+    /// The one query kind run (`--only`), or absent for every kind.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub only: Option<Query>,
     /// Shards joined in this report: `(index, count)` of each.
     pub shards: Vec<(u32, u32)>,
     /// Fixture cases run.

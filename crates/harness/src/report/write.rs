@@ -2,7 +2,11 @@
 //!
 //! A report is assembled in a hidden sibling folder and renamed into place in one
 //! step, and `latest` is switched only after that, so a run killed at any point
-//! leaves the previous report (and `latest`) intact.
+//! leaves the previous report (and `latest`) intact. The hidden folder's name
+//! ends in the writing machine's name and process id, so that the next run can
+//! tell a folder abandoned by a killed run (its process is gone) from one a
+//! concurrent run is still writing, and remove only the first
+//! ([`remove_abandoned`]).
 
 use crate::report::campaign::{MAX_DISCREPANCIES_PER_GROUP, Outcome};
 use crate::report::section::Section;
@@ -31,11 +35,82 @@ fn pretty<T: serde::Serialize + ?Sized>(v: &T) -> String {
     s
 }
 
+/// How the name of a report folder being written begins; the name ends in
+/// `-<host>-<process id>` of the run writing it ([`incomplete_suffix`]).
+pub const INCOMPLETE_PREFIX: &str = ".incomplete-";
+
+/// This machine's name, as it goes into the name of a folder being written:
+/// shards of one campaign may write into one shared folder from several
+/// machines, and a process id means something only on its own machine. Only
+/// letters, digits, `.` and `_` are kept; `unknown-host` where the name
+/// cannot be read.
+fn host() -> String {
+    let name = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap_or_default();
+    let name: String = name.trim().chars().filter(|c| c.is_ascii_alphanumeric() || *c == '.' || *c == '_').collect();
+    if name.is_empty() { "unknown_host".into() } else { name }
+}
+
+/// The end of the name of the folder this process writes: `-<host>-<pid>`.
+pub fn incomplete_suffix() -> String {
+    format!("-{}-{}", host(), std::process::id())
+}
+
+/// Checks that reports (or a sweep's files) can be written under `dir`: creates
+/// it, then creates, writes and removes a probe file in it. Run before the
+/// campaign, so that a bad `--out` (a regular file, a read-only place) is told
+/// at once, not after hours of work.
+pub fn probe_writable(dir: &Path) -> io::Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(io::Error::new(io::ErrorKind::AlreadyExists, "it exists and is not a folder"));
+    }
+    std::fs::create_dir_all(dir)?;
+    let probe = dir.join(format!(".probe-{}", std::process::id()));
+    let written = std::fs::File::create_new(&probe).and_then(|mut f| io::Write::write_all(&mut f, b"probe\n"));
+    let removed = std::fs::remove_file(&probe);
+    written?;
+    removed
+}
+
+/// Removes the report folders under `root` that runs which ended before they
+/// finished left behind: every `.incomplete-*-<host>-<pid>` folder of this
+/// machine whose process is no longer running (on Linux, `/proc/<pid>` is
+/// gone). A folder of a live process — a concurrent run — is left alone, and
+/// so is one written from another machine (its process cannot be looked up
+/// here) or whose name carries no host and process id. Elsewhere than Linux,
+/// nothing is removed. Returns each folder removed or that could not be.
+pub fn remove_abandoned(root: &Path) -> Vec<(PathBuf, io::Result<()>)> {
+    let mut out = Vec::new();
+    if !cfg!(target_os = "linux") {
+        return out;
+    }
+    let Ok(entries) = std::fs::read_dir(root) else { return out };
+    let host = format!("-{}", host());
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(name) = name.to_str() else { continue };
+        let Some(rest) = name.strip_prefix(INCOMPLETE_PREFIX) else { continue };
+        let Some((before, pid)) = rest.rsplit_once('-') else { continue };
+        let Ok(pid) = pid.parse::<u32>() else { continue };
+        let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
+        if !is_dir || !before.ends_with(&host) || pid == std::process::id() {
+            continue;
+        }
+        if Path::new(&format!("/proc/{pid}")).exists() {
+            continue;
+        }
+        let path = entry.path();
+        let result = std::fs::remove_dir_all(&path);
+        out.push((path, result));
+    }
+    out.sort_by(|a, b| a.0.cmp(&b.0));
+    out
+}
+
 /// Writes `files` as the report `root/id` atomically and points `root/latest`
 /// at it. Returns the report's folder.
 pub fn write_report(root: &Path, id: &str, files: &[(PathBuf, String)]) -> io::Result<PathBuf> {
     std::fs::create_dir_all(root)?;
-    let tmp = root.join(format!(".incomplete-{id}-{}", std::process::id()));
+    let tmp = root.join(format!("{INCOMPLETE_PREFIX}{id}{}", incomplete_suffix()));
     if tmp.exists() {
         std::fs::remove_dir_all(&tmp)?;
     }
@@ -90,6 +165,9 @@ pub fn write_outcome(root: &Path, id: &str, outcome: &Outcome) -> io::Result<Pat
 /// A report read back for merging.
 #[derive(Debug)]
 pub struct ReadReport {
+    /// The folder it was read from (named in merge's errors; empty when the
+    /// report was not read from a folder).
+    pub dir: PathBuf,
     /// Its summary.
     pub summary: Summary,
     /// Its discrepancies, as written.
@@ -115,7 +193,7 @@ pub fn read_report(dir: &Path) -> Result<ReadReport, String> {
         Err(e) if e.kind() == io::ErrorKind::NotFound => Vec::new(),
         Err(e) => return Err(format!("{}: cannot read: {e}", dir.join("sections.json").display())),
     };
-    Ok(ReadReport { summary, discrepancies, sections })
+    Ok(ReadReport { dir: dir.to_path_buf(), summary, discrepancies, sections })
 }
 
 /// The extra sections of merged shards: each section once, as the first shard
@@ -138,6 +216,8 @@ fn merge_stats(into: &mut EngineQueryStats, s: &EngineQueryStats) {
     into.known += s.known;
     into.unsupported += s.unsupported;
     into.failed += s.failed;
+    into.panics += s.panics;
+    into.non_finite += s.non_finite;
     into.false_positives += s.false_positives;
     into.false_negatives += s.false_negatives;
     into.flag_mismatches += s.flag_mismatches;
@@ -162,13 +242,110 @@ fn merge_stats(into: &mut EngineQueryStats, s: &EngineQueryStats) {
     }
 }
 
+/// How a report is named in merge's errors: its folder, or its place in the
+/// list when it was not read from one.
+fn label(r: &ReadReport, i: usize) -> String {
+    if r.dir.as_os_str().is_empty() { format!("report #{}", i + 1) } else { r.dir.display().to_string() }
+}
+
+/// Checks that `reports` are the shards of one campaign, each once, and all of
+/// them, so that their counts add up to that campaign's and no case is counted
+/// twice: the same folder named twice, a whole (unsharded) report with any
+/// other, shards of different splits (`0/2` with `1/3`), a shard given twice,
+/// different seeds, case counts or `--only`, and a missing shard (a lone shard
+/// included) are each refused with the reports named. A single whole report is
+/// accepted as it is.
+pub fn check_mergeable(reports: &[ReadReport]) -> Result<(), String> {
+    let first = reports.first().ok_or("nothing to merge")?;
+    let mut dirs: BTreeMap<PathBuf, usize> = BTreeMap::new();
+    for (i, r) in reports.iter().enumerate() {
+        if r.dir.as_os_str().is_empty() {
+            continue;
+        }
+        let canonical = std::fs::canonicalize(&r.dir).unwrap_or_else(|_| r.dir.clone());
+        if let Some(&j) = dirs.get(&canonical) {
+            return Err(format!("{} and {} are the same report, given twice", label(&reports[j], j), label(r, i)));
+        }
+        dirs.insert(canonical, i);
+    }
+    let p0 = &first.summary.provenance;
+    for (i, r) in reports.iter().enumerate() {
+        let p = &r.summary.provenance;
+        if p.shards.is_empty() && reports.len() > 1 {
+            return Err(format!(
+                "{} is a whole report (not a shard): merging it with other reports would count its cases twice",
+                label(r, i)
+            ));
+        }
+        if p.seed != p0.seed || p.cases_per_query != p0.cases_per_query {
+            return Err(format!(
+                "shards of different campaigns: {} has seed {} / {} cases, {} has seed {} / {} cases",
+                label(first, 0),
+                p0.seed,
+                p0.cases_per_query,
+                label(r, i),
+                p.seed,
+                p.cases_per_query
+            ));
+        }
+        if p.full_range_per_query != p0.full_range_per_query {
+            return Err(format!(
+                "shards of different campaigns: {} has {} full-range cases per query kind, {} has {}",
+                label(first, 0),
+                p0.full_range_per_query,
+                label(r, i),
+                p.full_range_per_query
+            ));
+        }
+        if p.only != p0.only {
+            let only = |q: Option<crate::case::Query>| q.map_or("every query".to_string(), |q| format!("--only {q}"));
+            return Err(format!(
+                "shards of different campaigns: {} ran {}, {} ran {}",
+                label(first, 0),
+                only(p0.only),
+                label(r, i),
+                only(p.only)
+            ));
+        }
+    }
+    let mut owner: BTreeMap<(u32, u32), usize> = BTreeMap::new();
+    for (i, r) in reports.iter().enumerate() {
+        for &(k, n) in &r.summary.provenance.shards {
+            if let Some((&(k0, n0), &j)) = owner.iter().find(|((_, n0), _)| *n0 != n) {
+                return Err(format!(
+                    "shards of different splits: {} is shard {k0}/{n0}, {} is shard {k}/{n}",
+                    label(&reports[j], j),
+                    label(r, i)
+                ));
+            }
+            if let Some(&j) = owner.get(&(k, n)) {
+                return Err(format!("shard {k}/{n} given twice: {} and {}", label(&reports[j], j), label(r, i)));
+            }
+            owner.insert((k, n), i);
+        }
+    }
+    let n = owner.keys().next().map_or(0, |&(_, n)| n);
+    let missing: Vec<String> = (0..n).filter(|k| !owner.contains_key(&(*k, n))).map(|k| format!("{k}/{n}")).collect();
+    if !missing.is_empty() {
+        return Err(format!(
+            "incomplete shard set: {} of {n} shards given, missing {}",
+            owner.len(),
+            missing.join(", ")
+        ));
+    }
+    Ok(())
+}
+
 /// Joins shard reports into one: counts and histograms add, maxima take the
 /// larger, provenance lists every shard; discrepancies are kept up to the same
-/// cap per engine and query kind as a single run.
+/// cap per engine and query kind as a single run. The reports must pass
+/// [`check_mergeable`].
 pub fn merge(reports: &[ReadReport]) -> Result<(Summary, Vec<Value>), String> {
+    check_mergeable(reports)?;
     let first = reports.first().ok_or("nothing to merge")?;
     let mut out = first.summary.clone();
     out.stats.clear();
+    out.full_range.clear();
     out.provenance.shards.clear();
     out.provenance.fixture_cases = 0;
     out.provenance.random_cases = 0;
@@ -176,19 +353,24 @@ pub fn merge(reports: &[ReadReport]) -> Result<(Summary, Vec<Value>), String> {
     out.discrepancies = 0;
     let mut order: Vec<(String, Option<crate::case::Query>)> = Vec::new();
     let mut stats: BTreeMap<(String, Option<crate::case::Query>), EngineQueryStats> = BTreeMap::new();
+    let mut full_order: Vec<(String, Option<crate::case::Query>)> = Vec::new();
+    let mut full: BTreeMap<(String, Option<crate::case::Query>), EngineQueryStats> = BTreeMap::new();
+    for r in reports {
+        for st in &r.summary.full_range {
+            let key = (st.engine.clone(), st.query);
+            if !full.contains_key(&key) {
+                full_order.push(key.clone());
+            }
+            let into = full.entry(key).or_insert_with(|| EngineQueryStats {
+                engine: st.engine.clone(),
+                query: st.query,
+                ..Default::default()
+            });
+            merge_stats(into, st);
+        }
+    }
     for r in reports {
         let s = &r.summary;
-        if s.provenance.seed != first.summary.provenance.seed
-            || s.provenance.cases_per_query != first.summary.provenance.cases_per_query
-        {
-            return Err(format!(
-                "shards of different campaigns: seed {} / {} cases vs seed {} / {} cases",
-                s.provenance.seed,
-                s.provenance.cases_per_query,
-                first.summary.provenance.seed,
-                first.summary.provenance.cases_per_query
-            ));
-        }
         out.provenance.shards.extend(s.provenance.shards.iter().copied());
         out.provenance.fixture_cases += s.provenance.fixture_cases;
         out.provenance.random_cases += s.provenance.random_cases;
@@ -210,11 +392,8 @@ pub fn merge(reports: &[ReadReport]) -> Result<(Summary, Vec<Value>), String> {
         }
     }
     out.provenance.shards.sort_unstable();
-    let dup = out.provenance.shards.windows(2).find(|w| w[0] == w[1]);
-    if let Some(w) = dup {
-        return Err(format!("shard {}/{} given twice", w[0].0, w[0].1));
-    }
     out.stats = order.into_iter().filter_map(|k| stats.remove(&k)).collect();
+    out.full_range = full_order.into_iter().filter_map(|k| full.remove(&k)).collect();
     let mut per_group: BTreeMap<(String, String), usize> = BTreeMap::new();
     let mut disc = Vec::new();
     for d in reports.iter().flat_map(|r| &r.discrepancies) {

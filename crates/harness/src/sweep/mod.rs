@@ -79,6 +79,47 @@ pub const BREAK_REL: f64 = 1e-6;
 /// while all sweeps together stay within seconds in a release build.
 pub const DEFAULT_POSES: usize = 24;
 
+/// The memory one sweep may hold its cases and their outcomes in: 8 GiB.
+/// Reason: a sweep builds every case of every point and pose before judging
+/// them and keeps every outcome until its statistics are folded, so the poses
+/// are bounded by what a workstation has, with room for the rest of the
+/// machine (half of a report's budget, [`crate::report::campaign::CAMPAIGN_MEMORY_BYTES`]:
+/// a sweep is one question, not a campaign).
+pub const SWEEP_MEMORY_BYTES: u64 = 8 << 30;
+
+/// What one sweep case costs while the sweep holds it: 2 KiB. Measured: the
+/// peak memory of `sweep offset` (1,510 cases a pose) was 23 MiB at `--poses 8`
+/// and 402 MiB at `--poses 200`, 1,369 bytes for each of the 289,920 cases more
+/// (the case, every engine's outcome, the errors kept per point); rounded up
+/// for the allocator's slack.
+pub const BYTES_PER_SWEEP_CASE: u64 = 2 << 10;
+
+/// The most poses per point `sweep` takes: [`SWEEP_MEMORY_BYTES`] over
+/// [`BYTES_PER_SWEEP_CASE`] for each of its cases of one pose (one per probe
+/// and point).
+pub fn max_poses(sweep: &Sweep) -> u64 {
+    let per_pose = (sweep.probes.len() * sweep.points().len()).max(1) as u64;
+    SWEEP_MEMORY_BYTES / (BYTES_PER_SWEEP_CASE * per_pose)
+}
+
+/// Checks a count of poses per point against [`max_poses`]; the error names
+/// the largest count allowed and why.
+pub fn check_poses(sweep: &Sweep, poses: u64) -> Result<(), String> {
+    let max = max_poses(sweep);
+    if poses <= max {
+        return Ok(());
+    }
+    Err(format!(
+        "more than the largest allowed for sweep {}, {max} poses per point: the sweep holds its {} cases per pose \
+         ({} probes × {} points) and their outcomes in memory (about {BYTES_PER_SWEEP_CASE} bytes each, within {} GiB)",
+        sweep.name,
+        sweep.probes.len() * sweep.points().len(),
+        sweep.probes.len(),
+        sweep.points().len(),
+        SWEEP_MEMORY_BYTES >> 30
+    ))
+}
+
 /// The default seed of the sweeps' poses: the campaign's.
 pub const DEFAULT_SEED: u64 = crate::report::campaign::DEFAULT_SEED;
 
