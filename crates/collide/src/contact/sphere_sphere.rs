@@ -95,16 +95,23 @@ pub fn contact_sphere_sphere<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> Option<Co
 /// underflow or overflow (see [`contact_sphere_sphere`]).
 #[inline(never)]
 fn contact_sphere_sphere_scaled<T: Real>(a: &Sphere<T>, b: &Sphere<T>, delta: Vec3<T>) -> Option<Contact<T>> {
-    let mut delta = delta;
-    let mut scale = T::one();
+    let h: T = c(0.5);
     if !crate::real::finite3(&delta) {
-        let h: T = c(0.5);
-        delta = a.center * h - b.center * h;
-        scale = c(2.0);
+        // Centres whose difference overflows: distance and reach compared at
+        // half scale (exact for the radii that can reach that far, which are
+        // normal), the depth formed there too. Never concentric.
+        let half = a.center * h - b.center * h;
+        let normal = try_normalize_stable(&half)?;
+        let (dist, reach) = (crate::real::stable_norm(&half), a.radius * h + b.radius * h);
+        if !(dist <= reach) {
+            return None;
+        }
+        let depth = (reach - dist) * c::<T>(2.0);
+        return Some(Contact { point: b.center + normal * b.radius, normal, depth, degenerate: !depth.finite() });
     }
     let reach = a.radius + b.radius;
     let Some(normal) = try_normalize_stable(&delta) else {
-        // Exactly concentric (a non-finite delta cannot survive the halving).
+        // Exactly concentric.
         return Some(Contact {
             point: b.center + fallback_normal::<T>() * b.radius,
             normal: fallback_normal(),
@@ -112,7 +119,9 @@ fn contact_sphere_sphere_scaled<T: Real>(a: &Sphere<T>, b: &Sphere<T>, delta: Ve
             degenerate: true,
         });
     };
-    let dist = crate::real::stable_norm(&delta) * scale;
+    // A reach that overflowed exceeds every finite distance: `dist > ∞` is
+    // false, as the exact comparison.
+    let dist = crate::real::stable_norm(&delta);
     if dist > reach {
         return None;
     }
@@ -219,6 +228,15 @@ mod tests {
         let b = ball::<f64>(-1.5e308, 0.0, 0.0, 1.0);
         assert!(contact_sphere_sphere(&a, &b).is_none());
         assert!(contact_sphere_sphere_lecture(&a, &b).is_none());
+        // Radii 1e308 at ∓1.7e308: the difference 3.4e308 and the reach
+        // 2e308 both overflow; compared at half scale they are apart (before,
+        // ∞ > ∞ was false: a contact of depth ∞). At ∓0.9e308 they overlap
+        // by 2e308 − 1.8e308 = 2e307.
+        let (a, b) = (ball::<f64>(-1.7e308, 0.0, 0.0, 1e308), ball::<f64>(1.7e308, 0.0, 0.0, 1e308));
+        assert!(contact_sphere_sphere(&a, &b).is_none());
+        let (a, b) = (ball::<f64>(-0.9e308, 0.0, 0.0, 1e308), ball::<f64>(0.9e308, 0.0, 0.0, 1e308));
+        let k = contact_sphere_sphere(&a, &b).expect("overlap");
+        assert!((k.depth - 2e307).abs() <= HUGE_DEPTH_REL * 1e308 && !k.degenerate, "{k:?}");
     }
 
     /// The depth of the huge pairs below: two roundings of a value near
