@@ -113,7 +113,8 @@ fn toi_sphere_plane_scaled<T: Real>(
         return Some(Toi::penetrating(&k));
     }
     let n = b.normal / len;
-    let t = T::of(scaled_time(a, va, b, vb)?);
+    let (t, point) = scaled_time(a, va, b, vb)?;
+    let t = T::of(t);
     if t.is_nan() || t > t_max {
         return None;
     }
@@ -121,7 +122,7 @@ fn toi_sphere_plane_scaled<T: Real>(
     let t = t.max(T::zero());
     Some(Toi {
         t,
-        point: a.center + va * t - n * a.radius,
+        point: Vec3::new(T::of(point[0]), T::of(point[1]), T::of(point[2])),
         normal: n,
         status: ToiStatus::Converged,
         iterations: 0,
@@ -138,8 +139,9 @@ fn toi_sphere_plane_scaled<T: Real>(
 /// `[1/2, 1)` (exact, except for components far below that one, whose
 /// roundings are below it by the same factor), so neither `va − vb` nor
 /// `n̂ · (va − vb)` overflows or underflows; the quotient scaled back once.
-/// `None` for no closing speed (or none defined: NaN).
-fn scaled_time<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>) -> Option<f64> {
+/// `None` for no closing speed (or none defined: NaN). With it, the contact
+/// point at that time (see the body).
+fn scaled_time<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>) -> Option<(f64, [f64; 3])> {
     use crate::exact::{frexp, ldexp};
     let w = crate::real::to_f64_3::<T>;
     let (nw, m, pa, pb) = (w(&b.normal), w(&a.center), w(va), w(vb));
@@ -156,5 +158,16 @@ fn scaled_time<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>)
     if !(closing > 0.0) {
         return None;
     }
-    Some(ldexp((gap_quarter / closing).max(0.0), 2 - e))
+    let t = ldexp((gap_quarter / closing).max(0.0), 2 - e);
+    // The point: the centre's projection onto the plane at t = 0, moved by
+    // the centre's motion with its normal part replaced by the plane's,
+    // `va + n̂ k` (k the closing speed) — not `M + va t − n̂ r`, whose terms
+    // cancel: at speed 2.8e307 the rounding of `t` alone is 1e284 there.
+    // The foot is `M − n̂ (n̂ · M) + n̂ d/‖n‖`: its part along `n̂` is the
+    // plane's offset itself, not `n̂ · M − s0` (which cancels).
+    let (mq, offset) = (m.map(|x| x * 0.25), b.offset.wide() / len);
+    let mn = dot(mq);
+    let along = [0, 1, 2].map(|i| ldexp(pa[i], -e) + n[i] * closing);
+    let point = [0, 1, 2].map(|i| ((mq[i] - n[i] * mn) * 4.0 + n[i] * offset) + ldexp(along[i] * t, e));
+    Some((t, point))
 }

@@ -333,6 +333,9 @@ fn sphere_plane_closing_speed_out_of_range<T: Real>() {
     assert!(k.status == ToiStatus::Converged && !k.degenerate, "{k:?}");
     assert!((k.t.wide() - want).abs() <= SCALED_TIME_REL_EPS * eps::<T>() * want, "t {:e}, want {want:e}", k.t.wide());
     close_v(&k.normal, [0.0, 0.0, 1.0], "normal");
+    // The point: the centre's foot (0, 0, 1), not 1e300 − V t (off by the
+    // rounding of t times V).
+    close_v(&k.point, [0.0, 0.0, 1.0], "point");
     // The plane moving up at V as well (relative speed 2V, which overflows
     // too in f32's case as 16 V): half the time.
     let k = toi_sphere_plane(&a, &v(0.0, 0.0, -speed), &plane, &v(0.0, 0.0, speed), T::one()).expect("meets");
