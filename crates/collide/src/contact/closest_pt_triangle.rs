@@ -238,18 +238,88 @@ pub fn closest_pt_point_segment<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) 
 /// [`closest_pt_point_segment`], and whether the foot of `p` on the
 /// segment's line fell strictly inside it (`0 < t < 1` as computed), i.e.
 /// was not clamped to an end.
+///
+/// The foot is formed from the nearer end: `a + (b − a) t` for `t ≤ 1/2`,
+/// else `b + (a − b) t_b` with `t_b` computed from `b` (not `1 − t`), so its
+/// rounding is relative to its distance from that end, not to the
+/// segment's length: a foot 3.5 from the end of an edge of length `1e15` is
+/// placed to a few ulps of 3.5, where `b + (a − b)(1 − t)` would be off by
+/// `ε · 1e15`; and it is clamped at `b` by `t_b ≤ 0`, not by `t ≥ 1`
+/// (which rounds a foot `1e-16` of the length inside to the end). A segment whose squared length is outside the plain range
+/// (huge or tiny edges) takes [`segment_foot_scaled`].
 fn segment_foot<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) -> (Vec3<T>, bool) {
     let ab = b - a;
     let len2 = ab.norm_squared();
-    if len2 <= T::zero() || !len2.finite() {
+    let (lo, hi) = crate::exact::norm::safe_squared_range::<T>();
+    if !(len2 >= lo && len2 <= hi) {
+        return segment_foot_scaled(p, a, b);
+    }
+    // Numerators below the plain range may have lost their products to
+    // underflow (a tiny scene): the scaled path.
+    let num = (p - a).dot(&ab);
+    if num.abs() < lo && num != T::zero() {
+        return segment_foot_scaled(p, a, b);
+    }
+    let raw = num / len2;
+    let half: T = crate::real::c(0.5);
+    if !(raw > T::zero()) {
         return (*a, false);
     }
-    let raw = (p - a).dot(&ab) / len2;
-    let t = raw.max(T::zero()).min(T::one());
-    if !t.finite() {
+    if raw <= half {
+        return (a + ab * raw, true);
+    }
+    // Clamped at `b` by its own parameter: `raw` near 1 has lost what
+    // separates a foot a little inside from `b`.
+    let num_b = (p - b).dot(&(-ab));
+    if num_b.abs() < lo && num_b != T::zero() {
+        return segment_foot_scaled(p, a, b);
+    }
+    let from_b = num_b / len2;
+    if !(from_b > T::zero()) {
+        return (*b, false);
+    }
+    (b - ab * from_b, true)
+}
+
+/// [`segment_foot`] for a segment whose squared length leaves the plain
+/// range, in `f64` on the widened inputs: the edge at half scale
+/// (`b/2 − a/2`, which cannot overflow) divided by the power of two `s` of
+/// its largest component, the offsets `p − a` and `p − b` at a quarter
+/// scale, the parameter scaled back once; the foot from the nearer end. A
+/// zero-length segment is `a`.
+#[cold]
+#[inline(never)]
+fn segment_foot_scaled<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) -> (Vec3<T>, bool) {
+    use crate::exact::{frexp, ldexp};
+    let w = crate::real::to_f64_3::<T>;
+    let (pw, aw, bw) = (w(p), w(a), w(b));
+    let half = [0, 1, 2].map(|i| bw[i] * 0.5 - aw[i] * 0.5);
+    let top = half.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if !(top > 0.0 && top.is_finite()) {
         return (*a, false);
     }
-    (a + ab * t, raw > T::zero() && raw < T::one())
+    let (_, k) = frexp(top);
+    let u = half.map(|x| ldexp(x, -k));
+    let uu = (u[0] * u[0] + u[1] * u[1]) + u[2] * u[2];
+    let dot = |x: [f64; 3], y: [f64; 3]| (x[0] * y[0] + x[1] * y[1]) + x[2] * y[2];
+    // ab = 2 · 2^k u and p − a = 4 q: t = (q · u)/(u · u) · 2^(1 − k).
+    let param = |from: [f64; 3], dir: [f64; 3]| {
+        let q = [0, 1, 2].map(|i| pw[i] * 0.25 - from[i] * 0.25);
+        ldexp(dot(q, dir) / uu, 1 - k)
+    };
+    let raw = param(aw, u);
+    if !(raw > 0.0) {
+        return (*a, false);
+    }
+    let back = |x: [f64; 3]| Vec3::new(T::of(x[0]), T::of(x[1]), T::of(x[2]));
+    if raw <= 0.5 {
+        return (back([0, 1, 2].map(|i| aw[i] + half[i] * (2.0 * raw))), true);
+    }
+    let from_b = param(bw, u.map(|x| -x));
+    if !(from_b > 0.0) {
+        return (*b, false);
+    }
+    (back([0, 1, 2].map(|i| bw[i] - half[i] * (2.0 * from_b))), true)
 }
 
 /// The point of the triangle's three edges nearest to `p` (each edge's

@@ -63,7 +63,9 @@ pub fn contact_sphere_sphere_lecture<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> O
 /// [`CONCENTRIC_FALLBACK_NORMAL`], point `M2 + r2 n`, depth `r1 + r2`, flagged.
 /// Centres so far apart that `M1 − M2` overflows are compared at half scale
 /// (exact); they are never in contact with finite radii below the overflow
-/// threshold, and a contact whose depth overflows is flagged.
+/// threshold, and a contact whose depth overflows is flagged. Radii whose
+/// sum overflows (two of `1e308`) are summed at half scale: the depth is
+/// finite whenever its exact value is representable.
 #[inline]
 pub fn contact_sphere_sphere<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> Option<Contact<T>> {
     let delta = a.center - b.center;
@@ -71,7 +73,9 @@ pub fn contact_sphere_sphere<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> Option<Co
     let (lo, hi) = safe_squared_range::<T>();
     if dd >= lo && dd <= hi {
         // The plain distance is as accurate as the scaled one here (see
-        // `safe_squared_range`), and a clear miss needs no root at all.
+        // `safe_squared_range`), and a clear miss needs no root at all. A
+        // sum of radii that overflows here overflows the exact depth too
+        // (`‖Δ‖ ≤ 2^460` is far below an ulp of it): `∞`, flagged.
         let reach = a.radius + b.radius;
         if dd > reach * reach * clear_miss_factor::<T>() {
             return None;
@@ -91,29 +95,54 @@ pub fn contact_sphere_sphere<T: Real>(a: &Sphere<T>, b: &Sphere<T>) -> Option<Co
 /// underflow or overflow (see [`contact_sphere_sphere`]).
 #[inline(never)]
 fn contact_sphere_sphere_scaled<T: Real>(a: &Sphere<T>, b: &Sphere<T>, delta: Vec3<T>) -> Option<Contact<T>> {
-    let mut delta = delta;
-    let mut scale = T::one();
+    let h: T = c(0.5);
     if !crate::real::finite3(&delta) {
-        let h: T = c(0.5);
-        delta = a.center * h - b.center * h;
-        scale = c(2.0);
+        // Centres whose difference overflows: distance and reach compared at
+        // half scale (exact for the radii that can reach that far, which are
+        // normal), the depth formed there too. Never concentric.
+        let half = a.center * h - b.center * h;
+        let normal = try_normalize_stable(&half)?;
+        let (dist, reach) = (crate::real::stable_norm(&half), a.radius * h + b.radius * h);
+        if !(dist <= reach) {
+            return None;
+        }
+        let depth = (reach - dist) * c::<T>(2.0);
+        return Some(Contact { point: b.center + normal * b.radius, normal, depth, degenerate: !depth.finite() });
     }
     let reach = a.radius + b.radius;
     let Some(normal) = try_normalize_stable(&delta) else {
-        // Exactly concentric (a non-finite delta cannot survive the halving).
+        // Exactly concentric.
         return Some(Contact {
             point: b.center + fallback_normal::<T>() * b.radius,
             normal: fallback_normal(),
-            depth: reach,
+            depth: depth_of(a.radius, b.radius, reach, T::zero()),
             degenerate: true,
         });
     };
-    let dist = crate::real::stable_norm(&delta) * scale;
+    // A reach that overflowed exceeds every finite distance: `dist > ∞` is
+    // false, as the exact comparison.
+    let dist = crate::real::stable_norm(&delta);
     if dist > reach {
         return None;
     }
-    let depth = reach - dist;
+    let depth = depth_of(a.radius, b.radius, reach, dist);
     Some(Contact { point: b.center + normal * b.radius, normal, depth, degenerate: !depth.finite() })
+}
+
+/// `r1 + r2 − dist` (with `reach = fl(r1 + r2)`), without the spurious
+/// overflow of `reach`: two finite radii whose sum overflows (each near the
+/// top of the range, so both normal and their halves exact) give the depth
+/// at half scale, `((r1/2 + r2/2) − dist/2) · 2`, two roundings as in the
+/// plain form (halving `dist` loses at most `2^−1075`, nothing against a
+/// depth that large). It is infinite only when the exact depth overflows
+/// (or a radius is infinite).
+#[inline]
+pub(crate) fn depth_of<T: Real>(r1: T, r2: T, reach: T, dist: T) -> T {
+    if reach.finite() {
+        return reach - dist;
+    }
+    let h: T = c(0.5);
+    ((r1 * h + r2 * h) - dist * h) * c::<T>(2.0)
 }
 
 #[cfg(test)]
@@ -199,5 +228,38 @@ mod tests {
         let b = ball::<f64>(-1.5e308, 0.0, 0.0, 1.0);
         assert!(contact_sphere_sphere(&a, &b).is_none());
         assert!(contact_sphere_sphere_lecture(&a, &b).is_none());
+        // Radii 1e308 at ∓1.7e308: the difference 3.4e308 and the reach
+        // 2e308 both overflow; compared at half scale they are apart (before,
+        // ∞ > ∞ was false: a contact of depth ∞). At ∓0.9e308 they overlap
+        // by 2e308 − 1.8e308 = 2e307.
+        let (a, b) = (ball::<f64>(-1.7e308, 0.0, 0.0, 1e308), ball::<f64>(1.7e308, 0.0, 0.0, 1e308));
+        assert!(contact_sphere_sphere(&a, &b).is_none());
+        let (a, b) = (ball::<f64>(-0.9e308, 0.0, 0.0, 1e308), ball::<f64>(0.9e308, 0.0, 0.0, 1e308));
+        let k = contact_sphere_sphere(&a, &b).expect("overlap");
+        assert!((k.depth - 2e307).abs() <= HUGE_DEPTH_REL * 1e308 && !k.degenerate, "{k:?}");
+    }
+
+    /// The depth of the huge pairs below: two roundings of a value near
+    /// `1e308`, so 4 ulps of it, relative.
+    const HUGE_DEPTH_REL: f64 = 4.0 * f64::EPSILON;
+
+    #[test]
+    fn radii_whose_sum_overflows_give_a_finite_depth() {
+        // r1 = r2 = 1e308, centres 1e308 apart on x: r1 + r2 = 2e308
+        // overflows, the exact depth 2e308 − 1e308 = 1e308 does not. The
+        // normal from b toward a is −x, the point M2 + r2 n = 0. Before the
+        // half-scale sum the depth was ∞ (flagged).
+        let a = ball::<f64>(0.0, 0.0, 0.0, 1e308);
+        let b = ball::<f64>(1e308, 0.0, 0.0, 1e308);
+        let k = contact_sphere_sphere(&a, &b).expect("overlap");
+        assert!((k.depth - 1e308).abs() <= HUGE_DEPTH_REL * 1e308 && !k.degenerate, "{k:?}");
+        assert!(close(k.normal.x, -1.0) && k.point.x.abs() <= HUGE_DEPTH_REL * 1e308, "{k:?}");
+        // The same radii 1 apart (the plain range of ‖Δ‖²): depth 2e308 − 1
+        // is beyond the range, so ∞ and flagged; 1.7e308 apart it is 3e307.
+        let k = contact_sphere_sphere(&a, &ball(1.0, 0.0, 0.0, 1e308)).expect("overlap");
+        assert!(k.depth.is_infinite() && k.degenerate, "{k:?}");
+        let (a, b) = (ball::<f64>(-0.85e308, 0.0, 0.0, 1e308), ball::<f64>(0.85e308, 0.0, 0.0, 1e308));
+        let k = contact_sphere_sphere(&a, &b).expect("overlap");
+        assert!((k.depth - 3e307).abs() <= HUGE_DEPTH_REL * 1e308 && !k.degenerate, "{k:?}");
     }
 }

@@ -49,12 +49,16 @@ use crate::shapes::{Sphere, Triangle};
 /// face region is taken only when the projection is proven inside, by the
 /// book's own edge tests against a rigorous bound on their rounding (every
 /// ordinary query) or else by the signs of the centre's barycentric
-/// coordinates (exact where needed); otherwise the closest point is on an
-/// edge the projection may be outside of. However thin the triangle, the
-/// region is then the exact one except for a projection within `50 ε L` of
-/// an edge (`L` the longest edge), where the edge point taken is within
-/// that of the exact closest point (`certified_region`, in the source, has
-/// the derivation). In the face region the normal and the distance `d` come
+/// coordinates, or else by the exact signs of the three edge tests (a
+/// projection within `50 ε L` of an edge, `L` the longest edge: for a small
+/// sphere beside a huge triangle that is several radii); otherwise the
+/// closest point is on an edge the projection is outside of. A book's edge
+/// point far closer to the centre than the triangle's extent (`2^−20` of
+/// it) is recomputed from the exact region, and every edge foot is formed
+/// from its edge's nearer end, without overflow or underflow, so a sphere
+/// of radius 4 beside a triangle with legs of `1e300` gets its closest
+/// point to the rounding of its own scale, not of the triangle's
+/// (`certified_region`, in the source, has the derivation). In the face region the normal and the distance `d` come
 /// from the triangle's cross product and the centre's volume, certified by a
 /// static filter (else compensated, else exact arithmetic) to `2^−40`: the
 /// normal's direction, and `d` relative to the larger of itself and `r` — so
@@ -146,6 +150,20 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
         };
         match certified_region(&found, in_local, &a.center, b) {
             Certified::Face => (found.point, Region::Face),
+            // The book's boundary point is formed from its region's base
+            // vertex (`a + ab v`, `b + bc w`): from the far end of a huge
+            // edge its rounding is of that edge's size. A point far closer
+            // to the centre than the triangle's extent is recomputed from
+            // the exact region, from the nearer end of its edge.
+            Certified::Book if found.region == Region::Boundary && local_feature(&found, in_local) => {
+                match exact_region(&a.center, b) {
+                    Certified::Edges(outer) => {
+                        let (p, t) = frame();
+                        (closest_on_outer_edges(&p, &t, outer), Region::Boundary)
+                    }
+                    _ => (found.point, found.region),
+                }
+            }
             Certified::Book => (found.point, found.region),
             Certified::Edges(outer) => {
                 let (p, t) = frame();
@@ -407,8 +425,64 @@ fn certified_region<T: Real>(found: &Closest<T>, in_local: bool, centre: &Vec3<T
     }
     match projection_inner(centre, tri) {
         [true, true, true] => Certified::Face,
-        inner => Certified::Edges(outer(inner)),
+        _ => exact_region(centre, tri),
     }
+}
+
+/// Stage 3 of [`certified_region`], where the barycentric coordinates
+/// cannot tell (a projection within `50 ε` of the triangle's size from an
+/// edge — which for a small sphere beside a huge triangle, `r = 4` against
+/// legs of `1e15`, is several radii): the signs of the three edge tests
+/// `va`, `vb`, `vc` decided exactly ([`exact_edge_tests`]). All positive is
+/// the face; otherwise the closest point is on the edges the projection is
+/// outside of or on, exactly those.
+#[cold]
+#[inline(never)]
+fn exact_region<T: Real>(centre: &Vec3<T>, tri: &Triangle<T>) -> Certified {
+    let inner = exact_edge_tests(centre, tri).map(|s| s == crate::exact::Sign::Positive);
+    match inner {
+        [true, true, true] => Certified::Face,
+        _ => Certified::Edges([!inner[2], !inner[0], !inner[1]]),
+    }
+}
+
+/// The exact signs of the book's edge tests of `p` against `tri` (see
+/// [`Closest::edge_tests`]): `va = n · ((b − p) × (c − p))`, `vb`, `vc`
+/// cyclically, `n = (b − a) × (c − a)`, in [`BigFloat`](crate::exact::BigFloat)
+/// arithmetic on the widened inputs (degree 4, any finite magnitudes).
+fn exact_edge_tests<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> [crate::exact::Sign; 3] {
+    use crate::exact::BigFloat;
+    type B3 = [BigFloat; 3];
+    let big = |v: &Vec3<T>| [v.x.wide(), v.y.wide(), v.z.wide()].map(BigFloat::from_f64);
+    let sub = |x: &B3, y: &B3| -> B3 { [0, 1, 2].map(|i| &x[i] - &y[i]) };
+    let cross = |x: &B3, y: &B3| -> B3 {
+        [0, 1, 2].map(|i| {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            &(&x[j] * &y[k]) - &(&x[k] * &y[j])
+        })
+    };
+    let dot = |x: &B3, y: &B3| &(&(&x[0] * &y[0]) + &(&x[1] * &y[1])) + &(&x[2] * &y[2]);
+    let m = big(p);
+    let v = tri.vertices.each_ref().map(|x| big(x));
+    let n = cross(&sub(&v[1], &v[0]), &sub(&v[2], &v[0]));
+    let rel = v.each_ref().map(|x| sub(x, &m));
+    [0, 1, 2].map(|i| dot(&n, &cross(&rel[(i + 1) % 3], &rel[(i + 2) % 3])).sign())
+}
+
+/// Ratio of a triangle's extent to its closest point's distance from the
+/// centre above which the book's boundary point is recomputed (see
+/// [`local_feature`]): `2^20`.
+const LOCAL_FEATURE_RATIO: f64 = 1048576.0;
+
+/// Whether the book's closest point `found`, computed in the centre's frame
+/// (so its coordinates are its offset from the centre), is within
+/// `1/`[`LOCAL_FEATURE_RATIO`] of the triangle's extent from the centre: a
+/// small sphere beside a huge triangle, where the book's rounding (relative
+/// to the extent) is far above the local scale. Ordinary queries (a
+/// triangle and a sphere of comparable sizes) never are.
+#[inline]
+fn local_feature<T: Real>(found: &Closest<T>, in_local: bool) -> bool {
+    in_local && found.point.amax().wide() * LOCAL_FEATURE_RATIO < found.edge_extent.wide()
 }
 
 /// Bound on the error of the book's edge tests computed in the centre's
@@ -1252,6 +1326,165 @@ mod tests {
             Ok(())
         }
         prop_both!(256, small_deep_face_contacts, small_and_deep(), small_deep_depth_holds);
+    }
+
+    /// Small spheres beside huge (and tiny) triangles.
+    mod huge_triangles {
+        use super::super::*;
+        use crate::test_support::{both, eps, prop_both};
+        use proptest::prelude::*;
+
+        /// A small sphere beside a huge triangle: a right triangle with its
+        /// corner `V` and legs of length `L` along two coordinate axes (so its
+        /// edges from `V` stay exactly on the axis lines however `V + L`
+        /// rounds), its vertices listed in any rotation, a sphere of radius
+        /// `r` centred at `V + o` (`V`, `o` on a grid of `2^−20`, `|V| ≤ 8`,
+        /// `|o| ≤ 6`, all scaled by `2^j`, `j` from −100 to 0 in `f64`, −20
+        /// to 0 in `f32`): the exact closest point is
+        /// `V + (max(o_1, 0), max(o_2, 0), 0)` in the legs' frame, for
+        /// `L` far above `|o|`.
+        #[derive(Clone, Debug)]
+        struct Beside {
+            corner: [i32; 3],
+            offset: [i32; 3],
+            /// Decimal exponent of `L`, a fraction of the type's range.
+            legs: f64,
+            /// Which axes the legs run along (the third is the normal's) and their signs.
+            axes: usize,
+            signs: [bool; 3],
+            rotation: usize,
+            radius: f64,
+            /// Power-of-two scale of the whole scene, a fraction of the type's range.
+            scale: f64,
+        }
+
+        /// Tolerance of the huge-triangle family, relative to the local scale
+        /// (the largest of `r`, `|o|`, `|V|` and 1 grid step, times `2^j`):
+        /// the face region's normal and distance are held to `FACE_REL = 2^−40`
+        /// of `r`, the edge and vertex points to a few ulps; `8 FACE_REL`
+        /// covers both with room. An `f32` answer is the `f64` one rounded once:
+        /// `16 ε_f32`.
+        const BESIDE_REL: f64 = 8.0 * FACE_REL;
+
+        impl Beside {
+            /// The scene in `T` (exact: grid values times powers of two) and
+            /// the exact closest point, all as `f64`.
+            fn scene<T: Real>(&self) -> ([f64; 3], f64, [[f64; 3]; 3], [f64; 3], f64) {
+                let f64_type = eps::<T>() < 1e-10;
+                let (top, low) = if f64_type { (300.0, -100) } else { (36.0, -20) };
+                let s = 2f64.powi((self.scale * f64::from(low)) as i32);
+                let grid = 2f64.powi(-20) * s;
+                let l = T::of(10f64.powf(2.0 + self.legs * (top - 2.0)) * s).wide();
+                let (i, j, k) = [(0, 1, 2), (1, 2, 0), (2, 0, 1)][self.axes % 3];
+                let sign = |b: bool| if b { 1.0 } else { -1.0 };
+                let v = self.corner.map(|c| f64::from(c) * grid);
+                let o = self.offset.map(|c| f64::from(c) * grid);
+                let m = [0, 1, 2].map(|d| v[d] + o[d]);
+                let mut b = v;
+                b[i] += sign(self.signs[0]) * l;
+                let mut c = v;
+                c[j] += sign(self.signs[1]) * l;
+                let tri = [v, b, c];
+                let r = self.rotation % 3;
+                let tri = [tri[r], tri[(r + 1) % 3], tri[(r + 2) % 3]];
+                let mut q = v;
+                q[i] += if o[i] * sign(self.signs[0]) > 0.0 { o[i] } else { 0.0 };
+                q[j] += if o[j] * sign(self.signs[1]) > 0.0 { o[j] } else { 0.0 };
+                let _ = k;
+                let local = [v, o].as_flattened().iter().fold(self.radius.max(1.0), |x, y| x.max(y.abs() / s)) * s;
+                (m, self.radius * s, tri, q, local)
+            }
+        }
+
+        fn beside() -> impl Strategy<Value = Beside> {
+            let c = |k: i32| [-k..=k, -k..=k, -k..=k];
+            (c(8 << 20), c(6 << 20), 0.0..=1.0f64, 0..3usize, [any::<bool>(), any::<bool>(), any::<bool>()], 0..3usize)
+                .prop_flat_map(|(corner, offset, legs, axes, signs, rotation)| {
+                    (0.5..8.0f64, 0.0..=1.0f64).prop_map(move |(radius, scale)| Beside {
+                        corner,
+                        offset,
+                        legs,
+                        axes,
+                        signs,
+                        rotation,
+                        radius,
+                        scale,
+                    })
+                })
+        }
+
+        /// The contact of a small sphere beside a huge triangle: whenever the
+        /// exact distance is below `r`, a contact, finite, whose point is the
+        /// exact closest point, whose depth is `r − ‖M − q‖` and whose normal is
+        /// `(M − q)/‖M − q‖`, all within [`BESIDE_REL`] of the local scale
+        /// (never of the triangle's).
+        fn beside_agrees<T: Real>(case: &Beside) -> Result<(), TestCaseError> {
+            let (m, r, tri, q, local) = case.scene::<T>();
+            let to = |p: &[f64; 3]| Vec3::new(T::of(p[0]), T::of(p[1]), T::of(p[2]));
+            let delta = [0, 1, 2].map(|d| m[d] - q[d]);
+            let dist = delta.iter().map(|x| (x / local).powi(2)).sum::<f64>().sqrt() * local;
+            prop_assume!(dist < r * (1.0 - 1e-6) && dist > r * 1e-6);
+            let k = contact_sphere_triangle(
+                &Sphere::new(to(&m), T::of(r)),
+                &Triangle::new(to(&tri[0]), to(&tri[1]), to(&tri[2])),
+            );
+            let tol = (16.0 * eps::<T>()).max(BESIDE_REL) * local;
+            let what = format!("{case:?}: exact point {q:?}, distance {dist:e}, r {r:e}");
+            let Some(k) = k else {
+                return Err(TestCaseError::fail(format!("no contact: {what}")));
+            };
+            let p = [k.point.x.wide(), k.point.y.wide(), k.point.z.wide()];
+            let off = (0..3).map(|d| (p[d] - q[d]).abs()).fold(0.0, f64::max);
+            let n = [k.normal.x.wide(), k.normal.y.wide(), k.normal.z.wide()];
+            let n_off = (0..3).map(|d| (n[d] - delta[d] / dist).abs()).fold(0.0, f64::max);
+            let depth_off = (k.depth.wide() - (r - dist)).abs();
+            prop_assert!(
+                off <= tol && depth_off <= tol && n_off <= tol / dist,
+                "{k:?}: point off {off:e}, depth {depth_off:e}, normal {n_off:e} (tol {tol:e}): {what}"
+            );
+            Ok(())
+        }
+        prop_both!(256, small_sphere_beside_a_huge_triangle, beside(), beside_agrees);
+
+        /// The user's reproducer: `r = 4` at `(3.5, 2.25, 1)` over the triangle
+        /// `(0,0,0), (L,0,0), (0,L,0)`: the exact contact is the face's, point
+        /// `(3.5, 2.25, 0)`, normal `+z`, depth 3, for every `L` above the
+        /// sphere's reach. From `L = 1e15` the barycentric stage could not
+        /// certify the face and the edge point `(3.5, 0, 0)` was taken (normal
+        /// 0.79 rad off); at `1e300` the answer was "apart". The vertices in
+        /// each rotation (the corner first, second, third), and beside an edge:
+        /// the centre at `(3.5, −2, 1)` touches the edge `y = 0` at `(3.5, 0, 0)`,
+        /// distance √5.
+        fn huge_triangle_reproducer<T: Real>() {
+            let tops: &[f64] =
+                if eps::<T>() < 1e-10 { &[1e15, 1e16, 1e20, 1e100, 1e300] } else { &[1e8, 1e15, 1e30, 1e38] };
+            for &l in tops {
+                let corners = [[0.0, 0.0, 0.0], [l, 0.0, 0.0], [0.0, l, 0.0]];
+                for rot in 0..3 {
+                    let v = |i: usize| {
+                        let p = corners[(rot + i) % 3];
+                        Vec3::new(T::of(p[0]), T::of(p[1]), T::of(p[2]))
+                    };
+                    let tri = Triangle::new(v(0), v(1), v(2));
+                    let tol = (16.0 * eps::<T>()).max(BESIDE_REL) * 4.0;
+                    for (m, q, depth) in [
+                        ([3.5, 2.25, 1.0], [3.5, 2.25, 0.0], 3.0),
+                        ([3.5, -2.0, 1.0], [3.5, 0.0, 0.0], 4.0 - 5f64.sqrt()),
+                    ] {
+                        let centre = Vec3::new(T::of(m[0]), T::of(m[1]), T::of(m[2]));
+                        let k = contact_sphere_triangle(&Sphere::new(centre, T::of(4.0)), &tri)
+                            .unwrap_or_else(|| panic!("L {l:e}, rotation {rot}: no contact"));
+                        let d = (m[1] - q[1]).hypot(m[2] - q[2]);
+                        let p = [k.point.x.wide(), k.point.y.wide(), k.point.z.wide()];
+                        let n = [k.normal.x.wide(), k.normal.y.wide(), k.normal.z.wide()];
+                        let ok = (0..3).all(|i| (p[i] - q[i]).abs() <= tol && (n[i] - (m[i] - q[i]) / d).abs() <= tol)
+                            && (k.depth.wide() - depth).abs() <= tol;
+                        assert!(ok, "L {l:e}, rotation {rot}, centre {m:?}: {k:?}, want point {q:?}, depth {depth}");
+                    }
+                }
+            }
+        }
+        both!(small_sphere_beside_huge_triangles, huge_triangle_reproducer);
     }
 
     /// Stage 1 of `certified_region` settles ordinary queries: random

@@ -49,6 +49,7 @@ mod tests;
 
 pub use bigfloat::BigFloat;
 pub use estimate::{ESTIMATE_REL_ERR, Estimate};
+pub(crate) use estimate::{frexp, ldexp};
 
 #[cfg(test)]
 pub(crate) use predicates::exact_evaluations;

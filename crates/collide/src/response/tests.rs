@@ -140,6 +140,87 @@ fn degenerate_input<T: Real>() {
 }
 both!(degenerate_input_case, degenerate_input);
 
+/// The largest and a subnormal mass of the test's precision: `1e300` and
+/// `1e-310` in `f64`, `1e38` and `1e-40` in `f32` (the sums `1e38 + 1e38`
+/// and inverses `1/1e-40` overflow `f32` as `1e300`'s products and
+/// `1/1e-310` overflow `f64`).
+fn huge_and_subnormal<T: Real>() -> (T, T) {
+    if eps::<T>() > 1e-10 { (T::of(1e38), T::of(1e-40)) } else { (T::of(1e300), T::of(1e-310)) }
+}
+
+/// The smallest positive subnormal of the test's precision.
+fn least<T: Real>() -> T {
+    if eps::<T>() > 1e-10 { T::of(f64::from(f32::from_bits(1))) } else { T::of(f64::from_bits(1)) }
+}
+
+fn huge_masses<T: Real>() {
+    // Masses 1e300 (f64) at ±1e10 head on, normal −x: v_n = −2e10, each
+    // mass fraction 1/2, so e = 1 swaps the velocities and e = 0 stops both,
+    // exactly. Before the fractions, 1/ma + 1/mb = 2e-300 and
+    // j = 4e10/2e-300 overflowed: velocities ∞ and NaN.
+    let (big, _) = huge_and_subnormal::<T>();
+    let (va, vb, n) = (v::<T>(1e10, 0.0, 0.0), v::<T>(-1e10, 0.0, 0.0), v::<T>(-1.0, 0.0, 0.0));
+    let speed = 1e10;
+    let close = |got: &Vec3<T>, want: [f64; 3], what: &str| {
+        for k in 0..3 {
+            let g = got[k].wide();
+            assert!((g - want[k]).abs() <= HAND_TOL_EPS * eps::<T>() * speed, "{what}: {got:?}, want {want:?}");
+        }
+    };
+    let r = respond_sphere_sphere(&va, big, &vb, big, &n, T::one());
+    close(&r.velocity_a, [-1e10, 0.0, 0.0], "e = 1, a");
+    close(&r.velocity_b, [1e10, 0.0, 0.0], "e = 1, b");
+    assert!(!r.degenerate, "{r:?}");
+    let r = respond_sphere_sphere(&va, big, &vb, big, &n, T::zero());
+    close(&r.velocity_a, [0.0; 3], "e = 0, a");
+    close(&r.velocity_b, [0.0; 3], "e = 0, b");
+    // One huge and one unit mass, e = 1: the light body bounces back with
+    // 3e10 (the 1-D elastic formula 2 mb/(ma + mb) · 1e10 − (ma − mb)/(ma + mb) · 1e10,
+    // to within 1/big), the heavy one keeps its velocity.
+    let r = respond_sphere_sphere(&va, T::one(), &vb, big, &n, T::one());
+    close(&r.velocity_a, [-3e10, 0.0, 0.0], "light a");
+    close(&r.velocity_b, [-1e10, 0.0, 0.0], "heavy b");
+    // Velocities whose difference overflows (±0.9e308 in f64, exact at a
+    // quarter scale): equal unit masses swap them.
+    if eps::<T>() < 1e-10 {
+        let (va, vb) = (v::<T>(0.9e308, 1.0, 0.0), v::<T>(-0.9e308, 0.0, 0.0));
+        let r = respond_sphere_sphere(&va, T::one(), &vb, T::one(), &n, T::one());
+        let tol = HAND_TOL_EPS * eps::<T>() * 0.9e308;
+        assert!(
+            (r.velocity_a.x.wide() + 0.9e308).abs() <= tol && (r.velocity_b.x.wide() - 0.9e308).abs() <= tol,
+            "{r:?}"
+        );
+        assert!((r.velocity_a.y.wide() - 1.0).abs() <= tol && !r.degenerate, "{r:?}");
+    }
+}
+both!(huge_masses_case, huge_masses);
+
+fn subnormal_masses<T: Real>() {
+    // A positive subnormal mass is a mass: its inverse overflows, its
+    // fraction does not. ma = 1e-310 (f64) against mb = 1, head on at ±1,
+    // e = 1: a bounces back at 1 − 4 · mb/(ma + mb) = −3 (to within 1e-310),
+    // b's change 4 · ma/(ma + mb) is subnormal: −1 to the last bit. Equal
+    // subnormal masses swap the velocities. Before, both were flagged
+    // degenerate and left unchanged.
+    let (_, tiny) = huge_and_subnormal::<T>();
+    let (va, vb, n) = (v::<T>(1.0, 0.0, 0.0), v::<T>(-1.0, 0.0, 0.0), v::<T>(-1.0, 0.0, 0.0));
+    for ma in [tiny, least::<T>()] {
+        let r = respond_sphere_sphere(&va, ma, &vb, T::one(), &n, T::one());
+        assert!(!r.degenerate, "{r:?}");
+        close_v(&r.velocity_a, [-3.0, 0.0, 0.0], "subnormal a");
+        close_v(&r.velocity_b, [-1.0, 0.0, 0.0], "unit b");
+    }
+    let r = respond_sphere_sphere(&va, tiny, &vb, tiny, &n, T::one());
+    assert!(!r.degenerate, "{r:?}");
+    close_v(&r.velocity_a, [-1.0, 0.0, 0.0], "equal subnormal a");
+    close_v(&r.velocity_b, [1.0, 0.0, 0.0], "equal subnormal b");
+    // Its impulse is 4 μ, μ = ma mb/(ma + mb) = ma/2: 2 · tiny, to a rounding
+    // of the subnormal range.
+    let want = 2.0 * tiny.wide();
+    assert!((r.impulse.wide() - want).abs() <= HAND_TOL_EPS * eps::<T>() * want + least::<T>().wide(), "{r:?}");
+}
+both!(subnormal_masses_case, subnormal_masses);
+
 // --------------------------------------------------------------- properties
 
 #[derive(Clone, Debug)]
@@ -242,3 +323,86 @@ fn check_plane<T: Real>(s: &Bodies) -> Result<(), TestCaseError> {
 prop_both!(1000, response_conserves_momentum_and_obeys_restitution, bodies(), check_conservation);
 prop_both!(1000, response_elastic_keeps_energy_and_plastic_stops_normal_motion, bodies(), check_extremes);
 prop_both!(1000, response_plane_reflects_with_restitution, bodies(), check_plane);
+
+/// Bodies over the whole range: masses from subnormal to the top of the
+/// type (`1e-310 … 1e300` in `f64`, `1e-40 … 1e38` in `f32`, as decimal
+/// exponents drawn as fractions of the range), velocity components of
+/// magnitude `10^j` (`j` from −300 to 300 in `f64`, −36 to 36 in `f32`).
+#[derive(Clone, Debug)]
+struct WideBodies {
+    /// Fractions of the mass range (decimal exponents).
+    ka: f64,
+    kb: f64,
+    va: [(f64, f64); 3],
+    vb: [(f64, f64); 3],
+    n: [f64; 3],
+    e: f64,
+}
+
+fn wide_bodies() -> impl Strategy<Value = WideBodies> {
+    let c = || (-1.0..1.0f64, 0.0..1.0f64);
+    let p = || [-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64];
+    (0.0..1.0f64, 0.0..1.0f64, [c(), c(), c()], [c(), c(), c()], p(), 0.0..=1.0f64)
+        .prop_map(|(ka, kb, va, vb, n, e)| WideBodies { ka, kb, va, vb, n, e })
+}
+
+/// Full range: every velocity finite (the exact ones are: each is at most
+/// `(1 + e) · 2 √3` times the largest input speed, far below the top), the
+/// restitution law along the normal and the tangential part as in
+/// [`check_conservation`], and momentum with the masses divided by the
+/// exact products (they leave the range).
+fn check_wide<T: Real>(s: &WideBodies) -> Result<(), TestCaseError> {
+    let f64_type = eps::<T>() < 1e-10;
+    let (mlo, mhi, vhi) = if f64_type { (-310.0, 300.0, 300.0) } else { (-40.0, 38.0, 36.0) };
+    let mass = |k: f64| T::of(10f64.powf(mlo + k * (mhi - mlo)));
+    let vel = |c: &[(f64, f64); 3]| {
+        v::<T>(
+            c[0].0 * 10f64.powf((2.0 * c[0].1 - 1.0) * vhi),
+            c[1].0 * 10f64.powf((2.0 * c[1].1 - 1.0) * vhi),
+            c[2].0 * 10f64.powf((2.0 * c[2].1 - 1.0) * vhi),
+        )
+    };
+    let (ma, mb, va, vb, n) = (mass(s.ka), mass(s.kb), vel(&s.va), vel(&s.vb), vt::<T>(&s.n));
+    prop_assume!(ma > T::zero() && mb > T::zero() && n.norm().wide() > 0.1);
+    let e = T::of(s.e);
+    let r = respond_sphere_sphere(&va, ma, &vb, mb, &n, e);
+    prop_assert!(!r.degenerate, "{r:?}");
+    let finite = |x: &Vec3<T>| x.iter().all(|c| c.wide().is_finite());
+    prop_assert!(finite(&r.velocity_a) && finite(&r.velocity_b), "{r:?}");
+    prop_assert!(!r.impulse.wide().is_nan() && r.impulse >= T::zero(), "{r:?}");
+    let (va, vb, n) = (wide3(&va), wide3(&vb), wide3(&n).normalize());
+    let (va2, vb2) = (wide3(&r.velocity_a), wide3(&r.velocity_b));
+    let eps = eps::<T>();
+    let (u0, u1) = (va - vb, va2 - vb2);
+    let speed = u0.amax().max(u1.amax()).max(va.amax()).max(vb.amax());
+    let (n0, n1) = (u0.dot(&n), u1.dot(&n));
+    let want = if n0 < 0.0 { -e.wide() * n0 } else { n0 };
+    prop_assert!((n1 - want).abs() <= CONSERVE_TOL_EPS * eps * speed, "normal {n0:e} → {n1:e}, want {want:e}");
+    let (t0, t1) = (u0 - n * n0, u1 - n * n1);
+    prop_assert!((t1 - t0).amax() <= CONSERVE_TOL_EPS * eps * speed, "tangential {t0:?} → {t1:?}");
+    // Momentum exactly (the products of masses and velocities leave the
+    // range): per component, |Σ m v' − Σ m v| within the tolerance of the
+    // largest term, plus each mass times the least subnormal (a velocity
+    // change below the range rounds to 0 or a subnormal, whatever the mass:
+    // a heavy body's change `μ Δ/ma` may be `1e-460`).
+    use crate::exact::{BigFloat, Sign};
+    let big = BigFloat::from_f64;
+    let abs = |x: BigFloat| if x.sign() == Sign::Negative { -x } else { x };
+    let (ma, mb) = (big(ma.wide()), big(mb.wide()));
+    for k in 0..3 {
+        let terms = [&ma * &big(va[k]), &mb * &big(vb[k]), &ma * &big(va2[k]), &mb * &big(vb2[k])];
+        let diff = abs(&(&terms[2] + &terms[3]) - &(&terms[0] + &terms[1]));
+        let size = terms.into_iter().map(abs).max().expect("four terms");
+        let floor = &(&ma + &mb) * &big(2.0 * least::<T>().wide());
+        let bound = &(&big(CONSERVE_TOL_EPS * eps) * &size) + &floor;
+        prop_assert!(
+            diff.cmp_value(&bound) != core::cmp::Ordering::Greater,
+            "momentum [{k}]: off by {:e} of {:e}",
+            diff.to_f64(),
+            size.to_f64()
+        );
+    }
+    Ok(())
+}
+
+prop_both!(256, response_over_the_whole_range, wide_bodies(), check_wide);

@@ -31,9 +31,12 @@ use crate::shapes::{Plane, Sphere};
 /// the static contact test only for a sphere that may already be within `r`
 /// (decided from the squares, without the root, by the static test's own
 /// "clearly apart" test, so the two agree on every start; squares below the
-/// plain range always ask it). Other normals, and a
-/// signed distance that overflows, take a scaled path (the normal divided by
-/// its scaled norm first).
+/// plain range always ask it). Other normals, a
+/// signed distance that overflows, and a closing speed `k'` that overflows
+/// (a normal of length 8 and a speed of `2.8e307`) or falls below the plain
+/// range, take a scaled path: the unit normal from the scaled norm, `s0 − r`
+/// at a quarter scale and the relative velocity at its own power-of-two
+/// scale, so no intermediate overflows or underflows.
 ///
 /// **Cases.** Already in contact at `t = 0` ([`contact_sphere_plane`]: `s0 ≤ r`,
 /// a centre inside the solid included): `t = 0`, [`ToiStatus::Penetrating`],
@@ -65,7 +68,14 @@ pub fn toi_sphere_plane<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: 
     {
         return Some(Toi::penetrating(&k));
     }
+    // A closing speed that overflowed (`8 · 2.8e307` for a normal of length
+    // 8) or fell below the plain range (its products may have underflowed)
+    // takes the scaled path, which forms it from the unit normal and the
+    // relative velocity at its own scale.
     let kp = -b.normal.dot(&(va - vb));
+    if !(kp.abs() >= lo && kp.finite()) {
+        return toi_sphere_plane_scaled(a, va, b, vb, t_max);
+    }
     if !(kp > T::zero()) {
         return None;
     }
@@ -103,12 +113,8 @@ fn toi_sphere_plane_scaled<T: Real>(
         return Some(Toi::penetrating(&k));
     }
     let n = b.normal / len;
-    let s0 = n.dot(&a.center) - b.offset / len;
-    let closing = -n.dot(&(va - vb));
-    if closing.is_nan() || closing <= T::zero() {
-        return None;
-    }
-    let t = (s0 - a.radius) / closing;
+    let (t, point) = scaled_time(a, va, b, vb)?;
+    let t = T::of(t);
     if t.is_nan() || t > t_max {
         return None;
     }
@@ -116,10 +122,52 @@ fn toi_sphere_plane_scaled<T: Real>(
     let t = t.max(T::zero());
     Some(Toi {
         t,
-        point: a.center + va * t - n * a.radius,
+        point: Vec3::new(T::of(point[0]), T::of(point[1]), T::of(point[2])),
         normal: n,
         status: ToiStatus::Converged,
         iterations: 0,
         degenerate: false,
     })
+}
+
+/// `(s0 − r)/k` of [`toi_sphere_plane_scaled`] (`s0` the centre's signed
+/// distance, `k` the closing speed), in `f64` on the widened inputs, with no
+/// intermediate overflow or underflow: the unit normal `n̂` from the scaled
+/// norm; `s0 − r` at a quarter of its scale (`n̂ · (M/4)` cannot overflow,
+/// and quartering is exact for normal numbers); the relative velocity at
+/// the scale `2^−e` that brings the largest component of `va` and `vb` to
+/// `[1/2, 1)` (exact, except for components far below that one, whose
+/// roundings are below it by the same factor), so neither `va − vb` nor
+/// `n̂ · (va − vb)` overflows or underflows; the quotient scaled back once.
+/// `None` for no closing speed (or none defined: NaN). With it, the contact
+/// point at that time (see the body).
+fn scaled_time<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>) -> Option<(f64, [f64; 3])> {
+    use crate::exact::{frexp, ldexp};
+    let w = crate::real::to_f64_3::<T>;
+    let (nw, m, pa, pb) = (w(&b.normal), w(&a.center), w(va), w(vb));
+    let len = stable_norm(&Vec3::from(nw));
+    let n = nw.map(|x| x / len);
+    let dot = |x: [f64; 3]| (n[0] * x[0] + n[1] * x[1]) + n[2] * x[2];
+    let gap_quarter = (dot(m.map(|x| x * 0.25)) - (b.offset.wide() / len) * 0.25) - a.radius.wide() * 0.25;
+    let top = pa.iter().chain(pb.iter()).fold(0.0f64, |t, x| t.max(x.abs()));
+    if !(top > 0.0 && top.is_finite()) {
+        return None;
+    }
+    let (_, e) = frexp(top);
+    let closing = -dot([0, 1, 2].map(|i| ldexp(pa[i], -e) - ldexp(pb[i], -e)));
+    if !(closing > 0.0) {
+        return None;
+    }
+    let t = ldexp((gap_quarter / closing).max(0.0), 2 - e);
+    // The point: the centre's projection onto the plane at t = 0, moved by
+    // the centre's motion with its normal part replaced by the plane's,
+    // `va + n̂ k` (k the closing speed) — not `M + va t − n̂ r`, whose terms
+    // cancel: at speed 2.8e307 the rounding of `t` alone is 1e284 there.
+    // The foot is `M − n̂ (n̂ · M) + n̂ d/‖n‖`: its part along `n̂` is the
+    // plane's offset itself, not `n̂ · M − s0` (which cancels).
+    let (mq, offset) = (m.map(|x| x * 0.25), b.offset.wide() / len);
+    let mn = dot(mq);
+    let along = [0, 1, 2].map(|i| ldexp(pa[i], -e) + n[i] * closing);
+    let point = [0, 1, 2].map(|i| ((mq[i] - n[i] * mn) * 4.0 + n[i] * offset) + ldexp(along[i] * t, e));
+    Some((t, point))
 }

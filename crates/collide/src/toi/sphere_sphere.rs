@@ -275,9 +275,8 @@ fn contact_at<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>,
 /// `τ = (‖p‖² − r²)/(along + √((r − h)(r + h)))` is the distance travelled to
 /// the touch in units of `m`, and `t = τ · (m / s)`; the normal is `p + τ u`
 /// normalized. Nothing here overflows or underflows spuriously whatever the
-/// scale of the scene (a centre difference that overflows is taken at half
-/// scale, exactly); a speed that overflows is no motion the type can
-/// represent: `None`.
+/// scale of the scene (a centre difference, a sum of radii or a relative
+/// velocity that overflows is taken at half scale, exactly).
 #[inline(never)]
 fn toi_sphere_sphere_scaled<T: Real>(
     a: &Sphere<T>,
@@ -286,7 +285,16 @@ fn toi_sphere_sphere_scaled<T: Real>(
     vb: &Vec3<T>,
     t_max: T,
 ) -> Option<Toi<T>> {
-    let dv = va - vb;
+    // A relative velocity that overflows (`±1e308`) is taken at half scale,
+    // exactly: its direction is the same, and the time divides by half the
+    // speed (`speed_unit`).
+    let mut dv = va - vb;
+    let mut speed_unit = T::one();
+    if !crate::real::finite3(&dv) {
+        let h: T = c(0.5);
+        dv = va * h - vb * h;
+        speed_unit = h;
+    }
     let u = try_normalize_stable(&dv)?;
     let speed = stable_norm(&dv);
     let mut dp = a.center - b.center;
@@ -315,7 +323,7 @@ fn toi_sphere_sphere_scaled<T: Real>(
     let w = ((r - h) * (r + h)).sqrt();
     let d = stable_norm(&p);
     let tau = ((d - r) * (d + r) / (along + w)).max(T::zero());
-    let t = tau * (m / speed) * unit;
+    let t = tau * (m / speed) * unit * speed_unit;
     if !(t <= t_max) {
         return None;
     }

@@ -312,6 +312,73 @@ fn sphere_plane_touching_with_tiny_squares<T: Real>() {
 }
 both!(sphere_plane_touching_with_tiny_squares_case, sphere_plane_touching_with_tiny_squares);
 
+/// Times of the overflow and underflow cases below: a quotient of a
+/// difference and a dot product, a few roundings of `t` itself. Units: ε
+/// relative to `t`.
+const SCALED_TIME_REL_EPS: f64 = 8.0;
+
+fn sphere_plane_closing_speed_out_of_range<T: Real>() {
+    // The plane z = 1 given as 8 z = 8 (normal length 8), a unit sphere at
+    // z = Z falling at speed V with 8 V beyond the largest finite value
+    // (f64: Z = 1e300, V = 2.8e307; f32: Z = 1e30, V = 1e38): clearly apart
+    // at t = 0, touching at t = (Z − 1 − 1)/V. The plain path's
+    // k' = −n · v = 8 V overflowed and gave t = (s' − r‖n‖)/∞ = 0: a false
+    // impact at t = 0.
+    let (z, speed) = if eps::<T>() > 1e-10 { (1e30, 1e38) } else { (1e300, 2.8e307) };
+    let a = ball::<T>(0.0, 0.0, z, 1.0);
+    let plane = Plane::new(v::<T>(0.0, 0.0, 8.0), T::of(8.0));
+    let (zt, vt) = (T::of(z).wide(), T::of(speed).wide());
+    let want = (zt - 2.0) / vt;
+    let k = toi_sphere_plane(&a, &v(0.0, 0.0, -speed), &plane, &still(), T::one()).expect("falls");
+    assert!(k.status == ToiStatus::Converged && !k.degenerate, "{k:?}");
+    assert!((k.t.wide() - want).abs() <= SCALED_TIME_REL_EPS * eps::<T>() * want, "t {:e}, want {want:e}", k.t.wide());
+    close_v(&k.normal, [0.0, 0.0, 1.0], "normal");
+    // The point: the centre's foot (0, 0, 1), not 1e300 − V t (off by the
+    // rounding of t times V).
+    close_v(&k.point, [0.0, 0.0, 1.0], "point");
+    // The plane moving up at V as well (relative speed 2V, which overflows
+    // too in f32's case as 16 V): half the time.
+    let k = toi_sphere_plane(&a, &v(0.0, 0.0, -speed), &plane, &v(0.0, 0.0, speed), T::one()).expect("meets");
+    assert!((k.t.wide() - want / 2.0).abs() <= SCALED_TIME_REL_EPS * eps::<T>() * want, "t {:e}", k.t.wide());
+    // f64: velocities ±1e308, whose difference overflows: the sphere at
+    // z = 1e308 meets the plane z = 1 after (1e308 − 2)/2e308 = 1/2.
+    if eps::<T>() < 1e-10 {
+        let a = ball::<T>(0.0, 0.0, 1e308, 1.0);
+        let k = toi_sphere_plane(&a, &v(0.0, 0.0, -1e308), &plane, &v(0.0, 0.0, 1e308), T::one()).expect("meets");
+        assert!((k.t.wide() - 0.5).abs() <= SCALED_TIME_REL_EPS * eps::<T>(), "t {:e}", k.t.wide());
+        // A closing speed whose products underflow: the normal 2^−400 z,
+        // the plane z = 1, a unit sphere at z = 3 falling at 1e-300 meets it
+        // at t = 1/1e-300 = 1e300 (k' = 2^−400 · 1e-300 underflowed to 0:
+        // "no impact").
+        let tiny = 2f64.powi(-400);
+        let plane = Plane::new(v::<T>(0.0, 0.0, tiny), T::of(tiny));
+        let a = ball::<T>(0.0, 0.0, 3.0, 1.0);
+        let k = toi_sphere_plane(&a, &v(0.0, 0.0, -1e-300), &plane, &still(), T::of(1e301)).expect("falls");
+        assert!((k.t.wide() - 1e300).abs() <= SCALED_TIME_REL_EPS * eps::<T>() * 1e300, "t {:e}", k.t.wide());
+    }
+}
+both!(sphere_plane_closing_speed_out_of_range_case, sphere_plane_closing_speed_out_of_range);
+
+#[test]
+fn sphere_sphere_relative_velocity_that_overflows() {
+    // Spheres at ∓1.7e308 with radii 1e308 (R = 2e308 and ‖Δp‖ = 3.4e308
+    // overflow too), closing at 1e308 + 1e308 = 2e308: they touch when the
+    // gap 3.4e308 − 2e308 is closed, at t = 1.4/2 = 0.7. Before, the
+    // relative velocity overflowed and the scaled path answered "no
+    // motion": None.
+    let a = ball::<f64>(-1.7e308, 0.0, 0.0, 1e308);
+    let b = ball::<f64>(1.7e308, 0.0, 0.0, 1e308);
+    let (va, vb) = (v::<f64>(1e308, 0.0, 0.0), v::<f64>(-1e308, 0.0, 0.0));
+    let k = toi_sphere_sphere(&a, &va, &b, &vb, 1.0).expect("meets");
+    assert!((k.t - 0.7).abs() <= SCALED_TIME_REL_EPS * f64::EPSILON, "{k:?}");
+    assert!((k.normal.x + 1.0).abs() <= SCALED_TIME_REL_EPS * f64::EPSILON && !k.degenerate, "{k:?}");
+    // Unit spheres at ∓1e308 closing at 2e308: t = (2e308 − 2)/2e308 = 1 to
+    // the last bit.
+    let (a, b) = (ball::<f64>(-1e308, 0.0, 0.0, 1.0), ball::<f64>(1e308, 0.0, 0.0, 1.0));
+    let k = toi_sphere_sphere(&a, &va, &b, &vb, 2.0).expect("meets");
+    assert!((k.t - 1.0).abs() <= SCALED_TIME_REL_EPS * f64::EPSILON, "{k:?}");
+}
+
 // ---------------------------------------------------------- sphere–triangle
 
 fn sphere_triangle_regions<T: Real>() {
