@@ -9,7 +9,7 @@ use super::sphere_sphere::CONCENTRIC_FALLBACK_NORMAL;
 use crate::barycentric::barycentric_triangle_tight;
 use crate::exact::filter::Filtered;
 use crate::exact::norm::safe_squared_range;
-use crate::real::{Real, Vec3, c, stable_norm, try_normalize_stable};
+use crate::real::{Real, Vec3, c, scale2, scale2v, stable_norm, try_normalize_stable, unit_scale};
 use crate::shapes::{Sphere, Triangle};
 
 /// Contact between a sphere `a` (centre `M`, radius `r`) and a triangle `b`.
@@ -92,6 +92,20 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
             normal: n(&wide.normal),
             depth: T::of(wide.depth),
             degenerate: wide.degenerate,
+        });
+    }
+    // Outside the plain range (a tiny or subnormal scene, or a huge one) the
+    // scene is answered scaled by a power of two to about 1, where no square
+    // of a distance under- or overflows, and its lengths are scaled back.
+    let amax = |p: &Vec3<T>| p.x.abs().max(p.y.abs()).max(p.z.abs());
+    let size = b.vertices.iter().map(amax).fold(amax(&a.center).max(a.radius.abs()), |m, x| m.max(x));
+    if let Some(k) = unit_scale(size) {
+        let a2 = Sphere::new(scale2v(&a.center, k), scale2(a.radius, k));
+        let b2 = Triangle { vertices: b.vertices.map(|p| scale2v(&p, k)) };
+        return contact_sphere_triangle(&a2, &b2).map(|r| Contact {
+            point: scale2v(&r.point, -k),
+            depth: scale2(r.depth, -k),
+            ..r
         });
     }
     // Work in the frame of the centre: `M − q` is then computed as `−q'`, the
