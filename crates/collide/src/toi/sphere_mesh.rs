@@ -86,7 +86,7 @@ impl<'a, T: Real> Query<'a, T> {
     /// answer.
     fn face(&self, best: &mut Option<Best<T>>, face: usize, tri: &Triangle<T>) {
         let limit = best.as_ref().map_or(self.t_max, |b| b.advanced.t);
-        if let Some(adv) = advance(self.a, &self.v, tri, limit, self.tol, self.max_steps)
+        if let Some(adv) = advance(self.a, &self.v, tri, limit, self.tol, T::zero(), self.max_steps)
             && Best::beaten_by(best, adv.t, face)
         {
             *best = Some(Best { face, advanced: adv });

@@ -108,7 +108,11 @@ pub fn toi_sphere_triangle<T: Real>(
     // near the type's limits) the scene is answered scaled by a power of two
     // to about 1, where no square or distance under- or overflows and the
     // tolerance is not lost in the subnormals; its point is scaled back.
-    if let Some(k) = unit_scale(scale(a, &b.vertices).max(amax(va)).max(amax(vb))) {
+    // The sphere and the motion decide: a small sphere beside a huge triangle
+    // is answered as it is (the closest point is exact enough at any size,
+    // and the tolerance is the sphere's), since scaling the triangle to 1
+    // would push the sphere into the subnormals.
+    if let Some(k) = unit_scale(a.radius.abs().max(amax(&a.center)).max(amax(va)).max(amax(vb))) {
         let a2 = Sphere { center: scale2v(&a.center, k), radius: scale2(a.radius, k) };
         let b2 = Triangle { vertices: b.vertices.map(|p| scale2v(&p, k)) };
         return toi_sphere_triangle(&a2, &scale2v(va, k), &b2, &scale2v(vb, k), t_max, rule).map(|mut r| {
@@ -120,8 +124,14 @@ pub fn toi_sphere_triangle<T: Real>(
         return Some(Toi::penetrating(&k));
     }
     let v = va - vb;
-    let tol = c::<T>(rule.tol_eps) * T::EPSILON * scale(a, &b.vertices);
-    advance(a, &v, b, t_max, tol, rule.max_steps).map(|s| s.answer(a, &v, vb))
+    // The tolerance is the problem's own scale, not the triangle's: the
+    // sphere's (its radius and centre), grown at each step to the closest
+    // point's size. A small sphere beside a triangle with legs of 1e300 has a
+    // distance that resolves to its own ulps, and a tolerance of the legs'
+    // size would stop the advancement at once.
+    let per_size = c::<T>(rule.tol_eps) * T::EPSILON;
+    let tol = per_size * a.radius.abs().max(amax(&a.center));
+    advance(a, &v, b, t_max, tol, per_size, rule.max_steps).map(|s| s.answer(a, &v, vb))
 }
 
 /// Where conservative advancement against one triangle stopped.
@@ -159,19 +169,27 @@ impl<T: Real> Advanced<T> {
 /// Its answers do not depend on `t_max` other than through that cut: the steps
 /// are the same whatever the limit, so an answer at `t ≤ t_max` is the same for
 /// every `t_max ≥ t`.
+///
+/// The gap tolerance is `tol`, or `per_size` times the size of the centre and
+/// of the closest point at that step when that is larger (0 keeps `tol`
+/// fixed, as the mesh query does, whose `tol` is of the whole mesh's scale).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn advance<T: Real>(
     a: &Sphere<T>,
     v: &Vec3<T>,
     b: &Triangle<T>,
     t_max: T,
     tol: T,
+    per_size: T,
     max_steps: u32,
 ) -> Option<Advanced<T>> {
     let mut t = T::zero();
     let mut steps = 0u32;
+    let fixed = tol;
     loop {
         let p = a.center + v * t;
         let q = closest_pt_point_triangle(&p, b);
+        let tol = fixed.max(per_size * amax(&p).max(amax(&q)));
         let delta = p - q;
         let dist = stable_norm(&delta);
         let gap = dist - a.radius;
