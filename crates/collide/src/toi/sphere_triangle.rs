@@ -186,9 +186,10 @@ pub(crate) fn advance<T: Real>(
     let mut t = T::zero();
     let mut steps = 0u32;
     let fixed = tol;
+    let closest = closest_for(a, v, b, t_max);
     loop {
         let p = a.center + v * t;
-        let q = closest_pt_point_triangle(&p, b);
+        let q = closest(&p);
         let tol = fixed.max(per_size * amax(&p).max(amax(&q)));
         let delta = p - q;
         let dist = stable_norm(&delta);
@@ -256,7 +257,7 @@ fn polish<T: Real>(a: &Sphere<T>, v: &Vec3<T>, b: &Triangle<T>, t_max: T, at: Ad
             break;
         }
         let p = a.center + v * next;
-        let q = closest_pt_point_triangle(&p, b);
+        let q = closest_for(a, v, b, t_max)(&p);
         at = Advanced { t: next, q, delta: p - q, steps: at.steps + 1, ..at };
     }
     Some(at)
@@ -280,4 +281,32 @@ pub(crate) fn scale<T: Real>(a: &Sphere<T>, vertices: &[Vec3<T>]) -> T {
 /// The largest absolute coordinate.
 pub(crate) fn amax<T: Real>(p: &Vec3<T>) -> T {
     p.x.abs().max(p.y.abs()).max(p.z.abs())
+}
+
+/// How far beyond the sphere's own size (its radius, centre and motion) a
+/// triangle's vertices must reach before the advancement takes its closest
+/// points from the static contact's certified path: 2^20. Reason: below it the
+/// plain closest point's rounding, relative to the vertices' size, stays within
+/// the gap tolerance's few hundred ulps of the sphere's size; above it the
+/// small coordinates beside the huge ones are lost (a sphere near the small
+/// vertex of a triangle with legs of 1e70 missed its impact).
+const MULTI_SCALE_RATIO: f64 = 1_048_576.0;
+
+/// The closest point of `b` to a point on the sphere's path: the plain one,
+/// or, for a small sphere beside a huge triangle (see [`MULTI_SCALE_RATIO`]),
+/// the static contact's, which is exact to the sphere's size there (asked of a
+/// sphere at that point large enough to touch the triangle).
+fn closest_for<'a, T: Real>(a: &Sphere<T>, v: &Vec3<T>, b: &'a Triangle<T>, t_max: T) -> impl Fn(&Vec3<T>) -> Vec3<T> + 'a {
+    let reach = a.radius.abs().max(amax(&a.center)).max(amax(v) * t_max.min(T::one()));
+    let huge = b.vertices.iter().map(amax).fold(T::zero(), |m, x| m.max(x));
+    let multi = huge.wide() > MULTI_SCALE_RATIO * reach.wide();
+    move |p: &Vec3<T>| {
+        let q = closest_pt_point_triangle(p, b);
+        if !multi {
+            return q;
+        }
+        let d = crate::real::stable_norm(&(p - q));
+        let probe = Sphere::new(*p, d + d + T::of(f64::MIN_POSITIVE));
+        contact_sphere_triangle(&probe, b).map_or(q, |k| k.point)
+    }
 }
