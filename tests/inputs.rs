@@ -361,7 +361,7 @@ fn an_unwritable_out_is_refused_before_the_run() {
 /// its own root; returns the report's folder.
 fn tiny_report(dir: &Scratch, root: &str, extra: &[&str]) -> PathBuf {
     let out = dir.s(root);
-    let mut args = vec!["report", "--cases", "10", "--no-sections", "--no-timing", "--out", &out];
+    let mut args = vec!["report", "--cases", "10", "--full-range", "2", "--no-sections", "--no-timing", "--out", &out];
     if !extra.contains(&"--only") {
         args.extend(["--only", "overlap"]);
     }
@@ -440,6 +440,8 @@ fn a_killed_runs_folder_is_removed_and_a_live_ones_kept() {
         "report",
         "--cases",
         "2",
+        "--full-range",
+        "2",
         "--only",
         "overlap",
         "--no-sections",
@@ -458,7 +460,7 @@ fn a_killed_runs_folder_is_removed_and_a_live_ones_kept() {
 fn no_timing_times_nothing_in_the_time_of_impact_section() {
     let dir = Scratch::new("notiming");
     let out = dir.s("reports");
-    let run = crashtest(&["report", "--cases", "1", "--no-timing", "--out", &out]);
+    let run = crashtest(&["report", "--cases", "1", "--full-range", "1", "--no-timing", "--out", &out]);
     assert_eq!(run.code, 0, "{}", run.both());
     let toi: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path("reports/latest/toi.json")).unwrap()).unwrap();

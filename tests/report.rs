@@ -10,7 +10,15 @@ use std::process::Command;
 
 /// A campaign small enough for a test: 150 random cases per query kind, no timing.
 fn small(seed: u64) -> Config {
-    Config { seed, cases_per_query: 150, timing: false, progress: false, sections: false, ..Config::default() }
+    Config {
+        seed,
+        cases_per_query: 150,
+        full_range_per_query: 30,
+        timing: false,
+        progress: false,
+        sections: false,
+        ..Config::default()
+    }
 }
 
 /// The summary with its timing and provenance fields blanked: what must not
@@ -64,7 +72,7 @@ fn report_dir(name: &str) -> PathBuf {
 fn a_report_folder_has_every_file_and_latest_names_it() {
     let out = report_dir("report-files");
     let status = Command::new(env!("CARGO_BIN_EXE_crashtest"))
-        .args(["report", "--cases", "40", "--no-timing", "--no-sections", "--out"])
+        .args(["report", "--cases", "40", "--full-range", "10", "--no-timing", "--no-sections", "--out"])
         .arg(&out)
         .status()
         .unwrap();
@@ -84,7 +92,7 @@ fn a_report_folder_has_every_file_and_latest_names_it() {
 fn killing_a_run_leaves_the_previous_report_intact() {
     let out = report_dir("report-killed");
     let first = Command::new(env!("CARGO_BIN_EXE_crashtest"))
-        .args(["report", "--cases", "20", "--no-timing", "--no-sections", "--out"])
+        .args(["report", "--cases", "20", "--full-range", "10", "--no-timing", "--no-sections", "--out"])
         .arg(&out)
         .status()
         .unwrap();
