@@ -252,3 +252,16 @@ fn collide_robust_agrees_over_the_full_range() {
     assert_eq!(known_seen.len(), KNOWN_WRONG.len(), "every known case is generated");
     assert!(bad.is_empty(), "{} of {} cases:\n{}", bad.len(), ROBUST_CASES * 7, bad.join("\n"));
 }
+
+/// Two spheres of radius 1.5e308 whose centres are 1e308 apart overlap by
+/// 2e308, beyond f64: the case is refused as out of range, and no engine is
+/// graded on it (each is `unsupported` with that reason), whatever it answers.
+#[test]
+fn an_exact_answer_beyond_f64_is_refused_and_nobody_is_graded() {
+    let lc = loaded(Query::Contact, ball([0.0; 3], 1.5e308), Some(ball([1e308, 0.0, 0.0], 1.5e308)));
+    let r = check_case(&lc, &engines::judged(), &referee());
+    assert!(r.referee.is_none(), "the referee gives no answer");
+    for e in &r.engines {
+        assert_eq!(e.verdict, Verdict::Unsupported { reason: harness::check::OUT_OF_RANGE.into() }, "{}", e.engine);
+    }
+}
