@@ -1,6 +1,7 @@
 //! Judging answers: against a case's expectation (the fixture's `expect`, with its
-//! absolute `tol`) and against the referee (the tolerance table, relative to the
-//! scene's scale, with borderline cases and known divergences kept apart).
+//! absolute `tol`) and against the referee (the tolerance table applied to the
+//! problem's own scale, [`crate::local`], with borderline cases and known
+//! divergences kept apart).
 
 use crate::case::{Case, Expect, Shape};
 use crate::engine::Answer;
@@ -394,14 +395,16 @@ fn allowance(size: crate::local::Size, fixed: f64, ulps: f64, tol: &Tolerance, c
 /// The allowances of every field of the case's answer (see [`Allowed`]), from
 /// the referee's answer `truth`.
 pub fn allowed(lc: &LoadedCase, truth: &Answer, tol: &Tolerance) -> Allowed {
-    use crate::tolerance::{BARY_CONDITION_ULPS, LENGTH_CONDITION_ULPS, NORMAL_CONDITION_ULPS, TIME_CONDITION_ULPS};
+    use crate::tolerance::{BARY_CONDITION_ULPS, LENGTH_CONDITION_ULPS, NORMAL_CONDITION_ULPS};
     let l = crate::local::local(lc, truth);
     let big = f64::MAX;
     let mut a = Allowed {
         point: allowance(l.point, tol.rel, LENGTH_CONDITION_ULPS, tol, big),
         depth: allowance(l.depth, tol.rel, LENGTH_CONDITION_ULPS, tol, big),
         normal: allowance(l.normal, tol.normal_rad, NORMAL_CONDITION_ULPS, tol, std::f64::consts::PI),
-        t: allowance(l.t, tol.unitless, TIME_CONDITION_ULPS, tol, big),
+        // A segment parameter lies in [0, 1]: an allowance of 1 already admits
+        // every value (a time's is capped by t_max below).
+        t: allowance(l.t, tol.unitless, LENGTH_CONDITION_ULPS, tol, 1.0),
         barycentric: allowance(l.barycentric, tol.unitless, BARY_CONDITION_ULPS, tol, big),
         velocity: allowance(l.velocity, tol.rel, LENGTH_CONDITION_ULPS, tol, big),
         margin: allowance(l.margin, tol.rel, LENGTH_CONDITION_ULPS, tol, big),

@@ -393,7 +393,10 @@ fn intersect(
     let (d0, d1) = (distance(s0, &w.point), distance(s1, &w.point));
     let h_cond = 2.0 * (m0 + m1) + 2.0 * surface + tilt * (d0 + d1);
     let (dir, k) = diff(s1, s0);
-    let across = clean(dot(&dir, &normal).abs() * k);
+    // Without a known surface normal (a mesh hit whose face is not reported),
+    // the whole length counts as across: no near-parallel allowance is given
+    // that the data cannot show.
+    let across = if normal == [0.0; 3] { len } else { clean(dot(&dir, &normal).abs() * k) };
     // t = h0/(h0 − h1): moved by (δh0 + δh1)/|h0 − h1|, |h0 − h1| the
     // segment's extent across the surface.
     let t_cond = ratio(h_cond, across).min(1.0 / f64::EPSILON);

@@ -296,7 +296,12 @@ const MULTI_SCALE_RATIO: f64 = 1_048_576.0;
 /// or, for a small sphere beside a huge triangle (see [`MULTI_SCALE_RATIO`]),
 /// the static contact's, which is exact to the sphere's size there (asked of a
 /// sphere at that point large enough to touch the triangle).
-fn closest_for<'a, T: Real>(a: &Sphere<T>, v: &Vec3<T>, b: &'a Triangle<T>, t_max: T) -> impl Fn(&Vec3<T>) -> Vec3<T> + 'a {
+fn closest_for<'a, T: Real>(
+    a: &Sphere<T>,
+    v: &Vec3<T>,
+    b: &'a Triangle<T>,
+    t_max: T,
+) -> impl Fn(&Vec3<T>) -> Vec3<T> + 'a {
     let reach = a.radius.abs().max(amax(&a.center)).max(amax(v) * t_max.min(T::one()));
     let huge = b.vertices.iter().map(amax).fold(T::zero(), |m, x| m.max(x));
     let multi = huge.wide() > MULTI_SCALE_RATIO * reach.wide();

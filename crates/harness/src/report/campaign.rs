@@ -150,7 +150,7 @@ pub struct Discrepancy {
     pub verdict: Verdict,
     /// Its errors against the referee (absolute lengths).
     pub errors: Errors,
-    /// The scene's scale (relative errors divide by it).
+    /// The answer's length scale (relative errors divide by it).
     pub scale: f64,
     /// The tolerances the engine was held to.
     pub tolerance: ToleranceJson,
@@ -163,7 +163,7 @@ pub struct Discrepancy {
 /// A [`Tolerance`] as written in a report.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct ToleranceJson {
-    /// Relative to the scene's scale.
+    /// Relative to the field's local magnitude.
     pub rel: f64,
     /// Normals, radians.
     pub normal_rad: f64,
@@ -261,7 +261,7 @@ fn precision_name(p: Option<u32>) -> &'static str {
 }
 
 /// The campaign's headline error of one answer: the largest of the point and
-/// depth errors relative to the scene's scale, the normal's angle (radians),
+/// depth errors relative to the answer's scale, the normal's angle (radians),
 /// and the segment parameter's and barycentrics' errors (unitless) — the
 /// measure of the report's accuracy tables and charts, and of the stability
 /// sweeps.

@@ -150,11 +150,11 @@ pub struct EngineQueryStats {
     pub flag_mismatches: u64,
     /// Point errors, absolute.
     pub point_abs: Dist,
-    /// Point errors relative to the scene's scale.
+    /// Point errors relative to the answer's scale (`judge::answer_scale`).
     pub point_rel: Dist,
     /// Depth (or bounding radius) errors, absolute.
     pub depth_abs: Dist,
-    /// Depth (or radius) errors relative to the scene's scale.
+    /// Depth (or radius) errors relative to the answer's scale.
     pub depth_rel: Dist,
     /// Normal angle errors, radians.
     pub normal_rad: Dist,
