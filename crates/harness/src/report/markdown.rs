@@ -181,7 +181,7 @@ pub fn query_table(summary: &Summary, query: Option<Query>) -> Table {
 /// The full-range family's table (`generate::full_range`: raw bit patterns,
 /// huge, tiny and subnormal magnitudes, signed zeros, multi-scale scenes),
 /// scored apart from the ordinary mix: per query kind and engine, the counts,
-/// the non-finite answers among the failures, and the p99 and largest headline
+/// the non-finite answers and caught panics among the failures, and the p99 and largest headline
 /// error. Empty when the campaign ran no full-range case.
 pub fn full_range_table(summary: &Summary) -> Table {
     let mut t = Table::new(&[
@@ -195,6 +195,7 @@ pub fn full_range_table(summary: &Summary) -> Table {
         ("unsupported", true),
         ("failed", true),
         ("non-finite", true),
+        ("panics", true),
         ("false +", true),
         ("false −", true),
         ("headline p99", true),
@@ -212,6 +213,7 @@ pub fn full_range_table(summary: &Summary) -> Table {
             s.unsupported.to_string(),
             s.failed.to_string(),
             s.non_finite.to_string(),
+            s.panics.to_string(),
             s.false_positives.to_string(),
             s.false_negatives.to_string(),
             p99(&s.headline),
