@@ -463,6 +463,20 @@ mod tests {
     }
 
     #[test]
+    fn the_full_range_table_comes_after_the_queries_with_its_counts() {
+        let mut summary = fixture::summary();
+        assert!(!summary_md(&summary).contains("## Full range"), "no full-range cases, no table");
+        let mut s = summary.stats[0].clone();
+        s.non_finite = 2;
+        s.panics = 3;
+        summary.full_range = vec![s];
+        let md = summary_md(&summary);
+        let full = md.find("## Full range").expect("a full-range section");
+        assert!(full > md.find("## intersect").expect("intersect section"), "after the query tables");
+        assert!(md.contains("| contact | fast\\<f32\\> | 100 | 97 | 1 | 1 | 1 | 0 | 0 | 2 | 3 |"), "{md}");
+    }
+
+    #[test]
     fn markdown_escapes_table_syntax() {
         assert_eq!(escape_md("a|b<c>*"), "a\\|b\\<c\\>\\*");
     }
