@@ -115,6 +115,14 @@ const MEASURES: [(Option<&str>, &str, fn(&EngineQueryStats) -> &Dist); 8] = [
     (None, "headline", |s| &s.headline),
 ];
 
+/// The count columns every score table shares: cases, then each verdict.
+const COUNTS: [&str; 7] = ["cases", "agree", "disagree", "borderline", "known", "unsupported", "failed"];
+
+/// The cells of [`COUNTS`] for one engine and query kind.
+fn counts(s: &EngineQueryStats) -> [String; 7] {
+    [s.cases, s.agree, s.disagree, s.borderline, s.known, s.unsupported, s.failed].map(|n| n.to_string())
+}
+
 /// The main table of one query kind: per engine its counts (cases, agree,
 /// disagree, borderline, known, unsupported, failed, of them panics, false +,
 /// false −), the p99
@@ -133,19 +141,9 @@ pub fn query_table(summary: &Summary, query: Option<Query>) -> Table {
         .filter(|(_, get)| stats.iter().any(|s| get(s).n > 0))
         .collect();
     let flags = stats.iter().any(|s| s.flag_mismatches > 0);
-    let mut cols: Vec<(&str, bool)> = vec![
-        ("engine", false),
-        ("cases", true),
-        ("agree", true),
-        ("disagree", true),
-        ("borderline", true),
-        ("known", true),
-        ("unsupported", true),
-        ("failed", true),
-        ("panics", true),
-        ("false +", true),
-        ("false −", true),
-    ];
+    let mut cols: Vec<(&str, bool)> = vec![("engine", false)];
+    cols.extend(COUNTS.map(|c| (c, true)));
+    cols.extend([("panics", true), ("false +", true), ("false −", true)]);
     if flags {
         cols.push(("flags ≠", true));
     }
@@ -154,19 +152,9 @@ pub fn query_table(summary: &Summary, query: Option<Query>) -> Table {
     cols.push(("ns/query (min–max)", true));
     let mut t = Table::new(&cols);
     for s in stats {
-        let mut row = vec![
-            s.engine.clone(),
-            s.cases.to_string(),
-            s.agree.to_string(),
-            s.disagree.to_string(),
-            s.borderline.to_string(),
-            s.known.to_string(),
-            s.unsupported.to_string(),
-            s.failed.to_string(),
-            s.panics.to_string(),
-            s.false_positives.to_string(),
-            s.false_negatives.to_string(),
-        ];
+        let mut row = vec![s.engine.clone()];
+        row.extend(counts(s));
+        row.extend([s.panics.to_string(), s.false_positives.to_string(), s.false_negatives.to_string()]);
         if flags {
             row.push(s.flag_mismatches.to_string());
         }
@@ -184,16 +172,9 @@ pub fn query_table(summary: &Summary, query: Option<Query>) -> Table {
 /// the non-finite answers and caught panics among the failures, and the p99 and largest headline
 /// error. Empty when the campaign ran no full-range case.
 pub fn full_range_table(summary: &Summary) -> Table {
-    let mut t = Table::new(&[
-        ("query", false),
-        ("engine", false),
-        ("cases", true),
-        ("agree", true),
-        ("disagree", true),
-        ("borderline", true),
-        ("known", true),
-        ("unsupported", true),
-        ("failed", true),
+    let mut cols: Vec<(&str, bool)> = vec![("query", false), ("engine", false)];
+    cols.extend(COUNTS.map(|c| (c, true)));
+    cols.extend([
         ("non-finite", true),
         ("panics", true),
         ("false +", true),
@@ -201,17 +182,11 @@ pub fn full_range_table(summary: &Summary) -> Table {
         ("headline p99", true),
         ("max headline", true),
     ]);
+    let mut t = Table::new(&cols);
     for s in &summary.full_range {
-        t.rows.push(vec![
-            query_title(s.query),
-            s.engine.clone(),
-            s.cases.to_string(),
-            s.agree.to_string(),
-            s.disagree.to_string(),
-            s.borderline.to_string(),
-            s.known.to_string(),
-            s.unsupported.to_string(),
-            s.failed.to_string(),
+        let mut row = vec![query_title(s.query), s.engine.clone()];
+        row.extend(counts(s));
+        row.extend([
             s.non_finite.to_string(),
             s.panics.to_string(),
             s.false_positives.to_string(),
@@ -219,6 +194,7 @@ pub fn full_range_table(summary: &Summary) -> Table {
             p99(&s.headline),
             if s.headline.n > 0 { sci(s.headline.max) } else { "—".into() },
         ]);
+        t.rows.push(row);
     }
     t
 }
