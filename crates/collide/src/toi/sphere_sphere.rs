@@ -285,6 +285,20 @@ fn toi_sphere_sphere_scaled<T: Real>(
     vb: &Vec3<T>,
     t_max: T,
 ) -> Option<Toi<T>> {
+    // A tiny scene (subnormal coordinates, whose norms and quotients lose
+    // their few bits) is answered scaled up by a power of two to about 1,
+    // exactly, and its point scaled back; times and directions do not scale.
+    let amax = |p: &Vec3<T>| p.x.abs().max(p.y.abs()).max(p.z.abs());
+    let size = amax(&a.center).max(amax(&b.center)).max(a.radius).max(b.radius).max(amax(va)).max(amax(vb));
+    if let Some(k) = crate::real::unit_scale(size).filter(|k| *k > 0) {
+        use crate::real::{scale2, scale2v};
+        let a2 = Sphere::new(scale2v(&a.center, k), scale2(a.radius, k));
+        let b2 = Sphere::new(scale2v(&b.center, k), scale2(b.radius, k));
+        return toi_sphere_sphere_scaled(&a2, &scale2v(va, k), &b2, &scale2v(vb, k), t_max).map(|mut r| {
+            r.point = scale2v(&r.point, -k);
+            r
+        });
+    }
     // A relative velocity that overflows (`±1e308`) is taken at half scale,
     // exactly: its direction is the same, and the time divides by half the
     // speed (`speed_unit`).
