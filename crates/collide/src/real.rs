@@ -120,9 +120,12 @@ pub fn try_normalize_stable<T: Real>(v: &Vec3<T>) -> Option<Vec3<T>> {
 /// by `2^k`, times and directions not at all), so a query outside the range
 /// can be answered on the scaled scene and its lengths scaled back.
 pub(crate) fn unit_scale<T: Real>(m: T) -> Option<i32> {
+    // 2^±200 and 2^±25 (exponent fields 1023 ± e).
+    const F64_RANGE: (f64, f64) = (f64::from_bits((1023 - 200) << 52), f64::from_bits((1023 + 200) << 52));
+    const F32_RANGE: (f64, f64) = (f64::from_bits((1023 - 25) << 52), f64::from_bits((1023 + 25) << 52));
     let m = m.wide();
-    let e = if T::EPSILON.wide() < 1e-10 { 200 } else { 25 };
-    if !(m > 0.0 && m.is_finite()) || (m >= 2f64.powi(-e) && m <= 2f64.powi(e)) {
+    let (lo, hi) = if T::EPSILON.wide() < 1e-10 { F64_RANGE } else { F32_RANGE };
+    if !(m > 0.0 && m.is_finite()) || (m >= lo && m <= hi) {
         return None;
     }
     Some(-(m.log2().round() as i32))
@@ -142,4 +145,26 @@ pub(crate) fn scale2<T: Real>(mut x: T, mut k: i32) -> T {
 /// A vector times `2^k` (see [`scale2`]).
 pub(crate) fn scale2v<T: Real>(v: &Vec3<T>, k: i32) -> Vec3<T> {
     Vec3::new(scale2(v.x, k), scale2(v.y, k), scale2(v.z, k))
+}
+
+#[cfg(test)]
+mod unit_scale_tests {
+    use super::*;
+
+    #[test]
+    fn unit_scale_leaves_the_plain_range_alone_and_brings_the_rest_near_1() {
+        for m in [1.0, 2f64.powi(-200), 2f64.powi(200), 3.5e-60, 7.0e59] {
+            assert_eq!(unit_scale::<f64>(m), None, "{m:e} is in the plain range");
+        }
+        assert_eq!(unit_scale::<f64>(0.0), None);
+        assert_eq!(unit_scale::<f64>(f64::INFINITY), None);
+        for m in [f64::from_bits(1), 1e-300, 2f64.powi(-201), 2f64.powi(201), 1e300, f64::MAX] {
+            let k = unit_scale::<f64>(m).expect("outside the plain range");
+            let scaled = scale2(m, k);
+            assert!((0.5..=2.0).contains(&scaled), "{m:e} scaled by 2^{k} is {scaled:e}");
+        }
+        assert_eq!(unit_scale::<f32>(1e7), None);
+        let k = unit_scale::<f32>(1e-40).expect("an f32 subnormal");
+        assert!((0.5..=2.0).contains(&scale2(1e-40f32, k)));
+    }
 }
