@@ -97,9 +97,20 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
     // Outside the plain range (a tiny or subnormal scene, or a huge one) the
     // scene is answered scaled by a power of two to about 1, where no square
     // of a distance under- or overflows, and its lengths are scaled back.
+    // Scaling up is exact; scaling down is done only when it pushes no
+    // non-zero number of the scene below the normal range (a scene whose
+    // numbers span more than the range itself — a huge radius beside tiny
+    // coordinates — is answered as it is, by the paths below that scale their
+    // own squares).
     let amax = |p: &Vec3<T>| p.x.abs().max(p.y.abs()).max(p.z.abs());
     let size = b.vertices.iter().map(amax).fold(amax(&a.center).max(a.radius.abs()), |m, x| m.max(x));
-    if let Some(k) = unit_scale(size) {
+    let safe = |k: i32| {
+        k > 0 || {
+            let numbers = b.vertices.iter().chain([&a.center]).flat_map(|p| [p.x, p.y, p.z]).chain([a.radius]);
+            numbers.filter(|x| *x != T::zero()).all(|x| scale2(x.abs(), k).wide() >= f64::MIN_POSITIVE)
+        }
+    };
+    if let Some(k) = unit_scale(size).filter(|k| safe(*k)) {
         let a2 = Sphere::new(scale2v(&a.center, k), scale2(a.radius, k));
         let b2 = Triangle { vertices: b.vertices.map(|p| scale2v(&p, k)) };
         return contact_sphere_triangle(&a2, &b2).map(|r| Contact {
