@@ -175,3 +175,23 @@ fn one_bad_case_does_not_sink_its_neighbours() {
     assert!(err.contains("case \"huge\"") && err.contains("a.sphere.center"), "{err}");
     assert_eq!(last_line(&out), "1 passed, 0 failed");
 }
+
+#[test]
+fn cases_writes_a_fixture_file_that_check_replays() {
+    let dir = scratch("cases");
+    let (code, out, err) = crashtest(&["cases", "--full-range", "--only", "overlap", "--count", "5", "--start", "3"]);
+    assert_eq!(code, 0, "{err}");
+    let file: serde_json::Value = serde_json::from_str(&out).expect("a JSON fixture file");
+    let cases = file["cases"].as_array().expect("cases");
+    assert_eq!(cases.len(), 5);
+    assert!(cases[0]["name"].as_str().unwrap_or("").starts_with("overlap full range #3 "), "{}", cases[0]["name"]);
+    let path = dir.join("cases.json");
+    std::fs::write(&path, &out).unwrap();
+    let (code, out, err) = crashtest(&["check", path.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert_eq!(last_line(&out), "5 passed, 0 failed");
+    // A range past the last index is bad input, named.
+    let (code, _, err) = crashtest(&["cases", "--start", "18446744073709551615", "--count", "2"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("error: --start 18446744073709551615 + --count 2 overflows"), "{err}");
+}
