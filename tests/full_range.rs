@@ -262,3 +262,33 @@ fn an_exact_answer_beyond_f64_is_refused_and_nobody_is_graded() {
         assert_eq!(e.verdict, Verdict::Unsupported { reason: harness::check::OUT_OF_RANGE.into() }, "{}", e.engine);
     }
 }
+
+/// The referee's contact with its point moved by one unit along x.
+struct PointMovedByOne;
+
+impl Queries for PointMovedByOne {
+    fn contact_sphere_triangle(&self, a: &Sphere, b: &Triangle) -> Reply<ContactAnswer> {
+        let mut k = Exact.contact_sphere_triangle(a, b)?;
+        if let Some(c) = k.contact.as_mut() {
+            c.point[0] += 1.0;
+        }
+        Ok(k)
+    }
+}
+
+/// Slivers and zero-area triangles get no allowance from a plane they do not
+/// have: a contact point one unit off on a collinear triangle, or at an edge
+/// of a sliver, disagrees.
+#[test]
+fn a_wrong_point_on_a_collapsed_or_sliver_triangle_disagrees() {
+    let wrong = || Engine::new("moved by one", Some(53), PointMovedByOne);
+    for third in [[4.0, 0.0, 0.0], [4.0, 1e-15, 0.0]] {
+        let lc = loaded(
+            Query::Contact,
+            ball([1.0, 1.0, 0.0], 2.0),
+            Some(Shape::Triangle(TriangleSpec { vertices: [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], third], velocity: None })),
+        );
+        let r = check_case(&lc, &[wrong()], &referee());
+        assert!(matches!(r.engines[0].verdict, Verdict::Disagree { .. }), "{third:?}: {:?}", r.engines[0].verdict);
+    }
+}

@@ -29,6 +29,14 @@ use crate::engine::Answer;
 use crate::load::LoadedCase;
 use oracle::geom::P3;
 
+/// How nearly a contact normal must be the triangle's face normal (the cosine
+/// of the angle between them) for the closest point to count as in the face
+/// region, where the plane's tilt moves it: within 1e-6 rad. An edge or vertex
+/// contact whose normal is that close to the face's has its centre within 1e-6
+/// of the distance over the plane of that feature, where the two regions'
+/// allowances meet anyway.
+const FACE_REGION_COSINE: f64 = 1.0 - 5e-13;
+
 /// The two sizes of one field (see the module docs).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Size {
@@ -161,9 +169,13 @@ impl TriangleShape {
 
     /// The tilt of the triangle's plane per ε of vertex motion: `Σ ‖v_i‖/alt_i`
     /// radians (a vertex moved by `ε‖v_i‖` across the plane turns it by that over
-    /// its altitude). Infinite for a zero-area triangle.
+    /// its altitude). 0 for a zero-area triangle, which has no plane to tilt:
+    /// its answers are those of the segment or point it collapsed to.
     fn tilt(&self) -> f64 {
-        (0..3).map(|i| if self.alt[i] > 0.0 { mag(&self.verts[i]) / self.alt[i] } else { f64::INFINITY }).sum()
+        if self.normal == [0.0; 3] {
+            return 0.0;
+        }
+        clean((0..3).map(|i| if self.alt[i] > 0.0 { mag(&self.verts[i]) / self.alt[i] } else { f64::MAX }).sum())
     }
 
     /// The smallest altitude.
@@ -329,7 +341,13 @@ fn contact(a: &Shape, b: &Shape, w: Option<&oracle::geom::Contact>) -> Local {
                 [s.center[0] + h * w.normal[0], s.center[1] + h * w.normal[1], s.center[2] + h * w.normal[2]]
             };
             let wq = tri.weighted_size(&q);
-            let tilt = h * tri.tilt();
+            // The plane's tilt moves the closest point only in the face region,
+            // where the normal is the face's: at an edge or a vertex the point
+            // depends on that feature's own vertices alone (the weights), and a
+            // zero-area triangle has no face.
+            let across = dot(&unit(&w.normal), &tri.normal).abs();
+            let in_face = across >= FACE_REGION_COSINE;
+            let tilt = if in_face && h > 0.0 { h * tri.tilt() } else { 0.0 };
             let q_size = c + wq + mag(&q);
             let turn = ratio(q_size + tilt, h).min(std::f64::consts::PI / f64::EPSILON);
             let depth = Size::new(s.radius + q_size + dm, tilt);
