@@ -90,10 +90,10 @@ fn sub(a: &P3, b: &P3) -> P3 {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-/// The Euclidean norm, scaled first by the largest coordinate: finite for every
-/// finite vector (at most `√3 · f64::MAX` rounds to `f64::MAX`... and above,
-/// which only a difference of opposite near-`f64::MAX` coordinates reaches:
-/// then `∞`, cleaned by the caller).
+/// The Euclidean norm, scaled first by the largest coordinate, so that no
+/// square under- or overflows. The norm itself can exceed `f64::MAX` (up to
+/// `√3` times it) for coordinates near the top of the range: then it is `∞`,
+/// which the callers clean to `f64::MAX`.
 pub fn norm(v: &P3) -> f64 {
     let m = mag(v);
     if m == 0.0 || !m.is_finite() {
