@@ -395,8 +395,12 @@ fn allowance(size: crate::local::Size, fixed: f64, ulps: f64, tol: &Tolerance, c
 /// The allowances of every field of the case's answer (see [`Allowed`]), from
 /// the referee's answer `truth`.
 pub fn allowed(lc: &LoadedCase, truth: &Answer, tol: &Tolerance) -> Allowed {
+    allowed_from(lc, truth, tol, &crate::local::local(lc, truth))
+}
+
+/// [`allowed`] from the case's sizes `l`, already taken.
+fn allowed_from(lc: &LoadedCase, truth: &Answer, tol: &Tolerance, l: &crate::local::Local) -> Allowed {
     use crate::tolerance::{BARY_CONDITION_ULPS, LENGTH_CONDITION_ULPS, NORMAL_CONDITION_ULPS};
-    let l = crate::local::local(lc, truth);
     let big = f64::MAX;
     let mut a = Allowed {
         point: allowance(l.point, tol.rel, LENGTH_CONDITION_ULPS, tol, big),
@@ -458,7 +462,8 @@ pub fn judge(
     if !all_finite(answer) {
         return (Verdict::Failed { reason: NON_FINITE.into() }, e);
     }
-    let allow = allowed(lc, truth, tol);
+    let sizes = crate::local::local(lc, truth);
+    let allow = allowed_from(lc, truth, tol, &sizes);
     let mut class = Vec::new();
     let mut value = Vec::new();
     let over = |what: &str, err: f64, allowed: f64, unit: &str, value: &mut Vec<String>| {
@@ -597,7 +602,7 @@ pub fn judge(
         },
         (Answer::Response(g), Answer::Response(w)) => {
             let err = dist3(&g.velocity_a, &w.velocity_a).max(dist3(&g.velocity_b, &w.velocity_b));
-            let speed = crate::local::local(lc, truth).velocity.magnitude;
+            let speed = sizes.velocity.magnitude;
             e.velocity = Some(if speed > 0.0 { err / speed } else { err });
             over("velocity", err, allow.velocity, "", &mut value);
         }
@@ -659,12 +664,7 @@ fn toi_allowance(lc: &LoadedCase, w: &oracle::geom::Toi, b: &Shape, tol: &Tolera
     let vb = b.velocity();
     // The relative velocity, halved where its difference would overflow (and
     // its norm doubled back).
-    let d = [va[0] - vb[0], va[1] - vb[1], va[2] - vb[2]];
-    let (v, k) = if d.iter().all(|x| x.is_finite()) {
-        (d, 1.0)
-    } else {
-        ([va[0] / 2.0 - vb[0] / 2.0, va[1] / 2.0 - vb[1] / 2.0, va[2] / 2.0 - vb[2] / 2.0], 2.0)
-    };
+    let (v, k) = crate::local::diff(&va, &vb);
     let speed = norm(&v) * k;
     let closing = -(v[0] * w.normal[0] + v[1] * w.normal[1] + v[2] * w.normal[2]) * k;
     let delta = crate::tolerance::TIME_CONDITION_ULPS * tol.eps * reach;

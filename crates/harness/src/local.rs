@@ -105,7 +105,7 @@ pub fn norm(v: &P3) -> f64 {
 
 /// A difference whose coordinates do not overflow: `a − b` halved when a
 /// coordinate of it would (the caller gets the factor back as `scale`).
-fn diff(a: &P3, b: &P3) -> (P3, f64) {
+pub(crate) fn diff(a: &P3, b: &P3) -> (P3, f64) {
     let d = sub(a, b);
     if d.iter().all(|x| x.is_finite()) {
         (d, 1.0)

@@ -199,7 +199,7 @@ pub(crate) fn advance<T: Real>(
         }
         let stop = |status| Some(Advanced { t, q, delta, status, steps });
         if gap <= tol {
-            return polish(a, v, b, t_max, Advanced { t, q, delta, status: ToiStatus::Converged, steps });
+            return polish(a, v, &closest, t_max, Advanced { t, q, delta, status: ToiStatus::Converged, steps });
         }
         if steps >= max_steps {
             return stop(ToiStatus::OutOfIterations);
@@ -237,7 +237,13 @@ const POLISH_STEPS: u32 = 6;
 /// closing speed, or at a step below `t`'s resolution; a step that would end
 /// after `t_max` means the contact is after it: no impact, as for any other
 /// step.
-fn polish<T: Real>(a: &Sphere<T>, v: &Vec3<T>, b: &Triangle<T>, t_max: T, at: Advanced<T>) -> Option<Advanced<T>> {
+fn polish<T: Real>(
+    a: &Sphere<T>,
+    v: &Vec3<T>,
+    closest: &impl Fn(&Vec3<T>) -> Vec3<T>,
+    t_max: T,
+    at: Advanced<T>,
+) -> Option<Advanced<T>> {
     let mut at = at;
     for _ in 0..POLISH_STEPS {
         let dist = stable_norm(&at.delta);
@@ -257,7 +263,7 @@ fn polish<T: Real>(a: &Sphere<T>, v: &Vec3<T>, b: &Triangle<T>, t_max: T, at: Ad
             break;
         }
         let p = a.center + v * next;
-        let q = closest_for(a, v, b, t_max)(&p);
+        let q = closest(&p);
         at = Advanced { t: next, q, delta: p - q, steps: at.steps + 1, ..at };
     }
     Some(at)
