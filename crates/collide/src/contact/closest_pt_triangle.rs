@@ -247,7 +247,7 @@ pub fn closest_pt_point_segment<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) 
 /// `ε · 1e15`; and it is clamped at `b` by `t_b ≤ 0`, not by `t ≥ 1`
 /// (which rounds a foot `1e-16` of the length inside to the end). A segment whose squared length is outside the plain range
 /// (huge or tiny edges) takes [`segment_foot_scaled`].
-fn segment_foot<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) -> (Vec3<T>, bool) {
+pub(crate) fn segment_foot<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) -> (Vec3<T>, bool) {
     let ab = b - a;
     let len2 = ab.norm_squared();
     let (lo, hi) = crate::exact::norm::safe_squared_range::<T>();
@@ -302,24 +302,29 @@ fn segment_foot_scaled<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) -> (Vec3<
     let u = half.map(|x| ldexp(x, -k));
     let uu = (u[0] * u[0] + u[1] * u[1]) + u[2] * u[2];
     let dot = |x: [f64; 3], y: [f64; 3]| (x[0] * y[0] + x[1] * y[1]) + x[2] * y[2];
-    // ab = 2 · 2^k u and p − a = 4 q: t = (q · u)/(u · u) · 2^(1 − k).
-    let param = |from: [f64; 3], dir: [f64; 3]| {
+    // ab = 2 · 2^k u and p − a = 4 q: t = (q · u)/(u · u) · 2^(1 − k), and
+    // the foot a + t ab = a + 4 s u with s = (q · u)/(u · u). The foot is
+    // formed from `s`, never from `t`: on a huge edge the parameter of a
+    // foot near its end underflows (a foot 7e-55 from the end of an edge of
+    // 4e303 has t ≈ 2e-358) while its offset `4 s u` is representable. The
+    // side tests read the sign of `s`, which `t`'s underflow would lose.
+    let unit_param = |from: [f64; 3], dir: [f64; 3]| {
         let q = [0, 1, 2].map(|i| pw[i] * 0.25 - from[i] * 0.25);
-        ldexp(dot(q, dir) / uu, 1 - k)
+        dot(q, dir) / uu
     };
-    let raw = param(aw, u);
-    if !(raw > 0.0) {
+    let s = unit_param(aw, u);
+    if !(s > 0.0) {
         return (*a, false);
     }
     let back = |x: [f64; 3]| Vec3::new(T::of(x[0]), T::of(x[1]), T::of(x[2]));
-    if raw <= 0.5 {
-        return (back([0, 1, 2].map(|i| aw[i] + half[i] * (2.0 * raw))), true);
+    if ldexp(s, 1 - k) <= 0.5 {
+        return (back([0, 1, 2].map(|i| aw[i] + (u[i] * s) * 4.0)), true);
     }
-    let from_b = param(bw, u.map(|x| -x));
-    if !(from_b > 0.0) {
+    let s_b = unit_param(bw, u.map(|x| -x));
+    if !(s_b > 0.0) {
         return (*b, false);
     }
-    (back([0, 1, 2].map(|i| bw[i] - half[i] * (2.0 * from_b))), true)
+    (back([0, 1, 2].map(|i| bw[i] - (u[i] * s_b) * 4.0)), true)
 }
 
 /// The point of the triangle's three edges nearest to `p` (each edge's

@@ -58,7 +58,11 @@ use crate::shapes::{Sphere, Triangle};
 /// from its edge's nearer end, without overflow or underflow, so a sphere
 /// of radius 4 beside a triangle with legs of `1e300` gets its closest
 /// point to the rounding of its own scale, not of the triangle's
-/// (`certified_region`, in the source, has the derivation). In the face region the normal and the distance `d` come
+/// (`certified_region`, in the source, has the derivation). A foot far
+/// closer to the centre than the triangle's extent takes its normal and
+/// distance from the edge's cross products, not from `M − q`, whose rounding
+/// along the edge (of the edge's size) would otherwise point it along the
+/// edge. In the face region the normal and the distance `d` come
 /// from the triangle's cross product and the centre's volume, certified by a
 /// static filter (else compensated, else exact arithmetic) to `2^−40`: the
 /// normal's direction, and `d` relative to the larger of itself and `r` — so
@@ -197,6 +201,26 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
         }
     };
     let (q, delta) = if in_local { (a.center + q_raw, -q_raw) } else { (q_raw, a.center - q_raw) };
+    // A foot inside an edge far closer to the centre than the edge's ends
+    // carries its rounding, of the ends' size, along the edge: `M − q` is
+    // then that rounding, not the direction to the edge (a centre 1e26 from
+    // an edge whose foot is at 1.8e56 got a normal along the edge). Such a
+    // contact takes its normal and distance from the edge's line directly
+    // (`edge_line_normal`).
+    let refined = if region == Region::Boundary {
+        let (p, t) = frame();
+        let extent = t.vertices.iter().fold(T::zero(), |m, v| m.max(v.amax()));
+        let reach = delta.amax();
+        if reach.wide() * LOCAL_FEATURE_RATIO < extent.wide() { edge_line_normal(&p, &t, &q_raw) } else { None }
+    } else {
+        None
+    };
+    if let Some((normal, dist)) = refined {
+        if !(dist <= a.radius) {
+            return None;
+        }
+        return Some(Contact { point: q, normal, depth: a.radius - dist, degenerate: false });
+    }
     // In the face region the direction is the face normal and the distance the
     // plane distance; both come accurately from exact-filtered volumes, where
     // the closest point's own rounding would tilt the normal of a thin triangle
@@ -288,6 +312,75 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
         },
     };
     Some(Contact { point: q, normal, depth: a.radius - dist, degenerate: false })
+}
+
+/// For a closest point `q` of `tri` to `p` inside one of its edges: the
+/// direction from that edge's line to `p` and the distance, from the edge's
+/// two cross products (`e × ((p − u) × e)`, `‖(p − u) × e‖ / ‖e‖`) rather
+/// than from `p − q`. The foot `q` is rounded to its own size along the edge
+/// as well as across it; the cross products are not: each component of
+/// `(p − u) × e` is rounded relative to the products forming it, so the
+/// normal and distance are as accurate as the edge's line is. Every factor
+/// is scaled by a power of two first (exact): the offset from the edge's
+/// nearer end and the edge itself halved (no overflow) and scaled to a
+/// largest component of about 1, and so is the first product. `None` when
+/// `q` is a vertex, or no edge has its foot inside, or the scaled product
+/// underflows to zero (then `p − q` answers).
+#[cold]
+#[inline(never)]
+fn edge_line_normal<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, q: &Vec3<T>) -> Option<(Vec3<T>, T)> {
+    use crate::exact::{frexp, ldexp};
+    let w = crate::real::to_f64_3::<T>;
+    let [a, b, c] = tri.vertices;
+    // Every path to `q` returns a vertex's closest point as that vertex,
+    // exactly.
+    if tri.vertices.contains(q) {
+        return None;
+    }
+    // The edge whose inside foot is `q` (the nearest to it: the paths differ
+    // in rounding only).
+    let mut best: Option<(T, Vec3<T>, Vec3<T>)> = None;
+    for (u, v) in [(a, b), (b, c), (c, a)] {
+        let (foot, inside) = super::closest_pt_triangle::segment_foot(p, &u, &v);
+        if !inside {
+            continue;
+        }
+        let gap = stable_norm(&(foot - q));
+        if best.as_ref().is_none_or(|(g, _, _)| gap < *g) {
+            best = Some((gap, u, v));
+        }
+    }
+    // From the edge's end nearer to `p`: the offset's rounding is then of
+    // the size of the distance to the edge, not of the edge's length.
+    let (_, u, v) = best?;
+    let (pw, u, v) = (w(p), w(&u), w(&v));
+    let reach = |e: [f64; 3]| (0..3).fold(0.0f64, |m, i| m.max((pw[i] * 0.5 - e[i] * 0.5).abs()));
+    let (uw, vw) = if reach(v) < reach(u) { (v, u) } else { (u, v) };
+    let unit = |x: [f64; 3]| {
+        let top = x.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+        if !(top > 0.0 && top.is_finite()) {
+            return None;
+        }
+        let (_, k) = frexp(top);
+        Some((x.map(|c| ldexp(c, -k)), k))
+    };
+    let cross =
+        |x: [f64; 3], y: [f64; 3]| [x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]];
+    let norm = |x: [f64; 3]| ((x[0] * x[0] + x[1] * x[1]) + x[2] * x[2]).sqrt();
+    // x = (p − u)/2 and e = (v − u)/2, each scaled to a largest component
+    // in [1/2, 1).
+    let (x, kx) = unit([0, 1, 2].map(|i| pw[i] * 0.5 - uw[i] * 0.5))?;
+    let (e, _) = unit([0, 1, 2].map(|i| vw[i] * 0.5 - uw[i] * 0.5))?;
+    let (m, km) = unit(cross(x, e))?;
+    let perp = cross(e, m);
+    let size = norm(perp);
+    if !(size > 0.0) {
+        return None;
+    }
+    // ‖p − u‖ sin θ = 2 · 2^kx ‖x × e‖ / ‖e‖ = 2^(kx + km + 1) ‖m‖ / ‖e‖.
+    let dist = ldexp(norm(m) / norm(e), kx + km + 1);
+    let n = perp.map(|c| c / size);
+    Some((Vec3::new(T::of(n[0]), T::of(n[1]), T::of(n[2])), T::of(dist)))
 }
 
 /// The centre and the vertices widened to `f64`.
@@ -908,8 +1001,21 @@ fn centre_on_triangle<T: Real>(p: &Vec3<T>, t: &Triangle<T>, face: Option<&FaceC
 /// Contact between a triangle `a` and a sphere `b`: the reverse order of
 /// [`contact_sphere_triangle`] (normal from the sphere toward the triangle, point
 /// the sphere's deepest point).
+///
+/// The deepest point is formed as `centre − r n`, not as
+/// [`Contact::swapped`]'s `q − n · depth` (equal in exact arithmetic): the
+/// closest point `q` carries the rounding of the edge end it was formed
+/// from, which on a huge edge is far larger than the sphere (a foot near
+/// the origin on an edge from `−2.7e267` is `6e251` off along it, inside a
+/// sphere of radius `1.7e235`); `centre − r n` is rounded to the sphere's
+/// own size.
 pub fn contact_triangle_sphere<T: Real>(a: &Triangle<T>, b: &Sphere<T>) -> Option<Contact<T>> {
-    contact_sphere_triangle(b, a).map(|k| k.swapped())
+    contact_sphere_triangle(b, a).map(|k| Contact {
+        point: b.center - k.normal * b.radius,
+        normal: -k.normal,
+        depth: k.depth,
+        degenerate: k.degenerate,
+    })
 }
 
 #[cfg(test)]
@@ -926,6 +1032,62 @@ mod tests {
 
     fn v<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
         Vec3::new(c(x), c(y), c(z))
+    }
+
+    /// Relative error allowed on a coordinate of the huge-edge answers
+    /// below, each formed by a few rounded operations from exact inputs
+    /// (a scaled offset, a product, a sum): 8 ulps of the coordinate.
+    fn within_ulps(a: f64, b: f64) -> bool {
+        (a - b).abs() <= ULPS * f64::EPSILON * b.abs()
+    }
+
+    /// A foot `7.2e-55` from the end of an edge of length `3.7e303` (the
+    /// full-range campaign, raw bit patterns, index 3800): its parameter
+    /// (`2e-358`) underflows, and the foot was taken for the end (`z = 0`).
+    #[test]
+    fn a_foot_near_the_end_of_a_huge_edge_is_not_its_end() {
+        let s = Sphere::new(
+            v::<f64>(-2.1797482487979055e-300, 1.4706778739662349e-249, 7.238951690163617e-55),
+            5.0858359477770045e+231,
+        );
+        let t = Triangle::new(
+            v(3.796234833260682e-78, -3.781149537639335e-244, 4.066951617276957e-247),
+            v(-3.8573463642415374e-119, -2.7196405130348315e+159, 5.0445766859638205e+92),
+            v(-1.1337068712159971e-262, -3.442577365552834e-177, 3.7276057721076633e+303),
+        );
+        let k = contact_sphere_triangle(&s, &t).expect("the sphere holds the triangle's near end");
+        // The referee's point: (3.796e-78, -3.781e-244, 7.239e-55).
+        assert!(within_ulps(k.point.z, 7.238951690163617e-55), "{:?}", k.point);
+        assert!(within_ulps(k.point.x, 3.796234833260682e-78), "{:?}", k.point);
+    }
+
+    /// A centre `1e26` from an edge whose foot lies `1.8e56` along it (the
+    /// full-range campaign, raw bit patterns, index 14335): the foot's
+    /// rounding along the edge (`2e40`) swamps the distance, and the normal
+    /// taken as centre minus foot pointed along the edge. The exact normal
+    /// is `(3.3e-195, 1, -5.8e-23)`; in the reverse order the sphere's
+    /// deepest point is `centre − r n`, `(-1.6e108, -4.9e302, 2.8e280)`.
+    #[test]
+    fn the_normal_to_a_huge_edge_is_across_it() {
+        let s = Sphere::new(
+            v::<f64>(1.7702592031397714e+56, 1.0212668022875161e+26, -5894.59007441647),
+            4.918565576084892e+302,
+        );
+        let t = Triangle::new(
+            v(3.3627509181147913e-69, -1.324379897733534e+47, 2.975027893590003e+193),
+            v(8.672205556851418e-292, 1.4909137178941164e-108, 1.7941519537498704e-239),
+            v(4.5683505341957413e+86, -3.0584212840271063e-153, -1.5447717696326936e-167),
+        );
+        let k = contact_sphere_triangle(&s, &t).expect("the sphere holds the triangle");
+        assert!(within_ulps(k.normal.y, 1.0) && within_ulps(k.normal.z, -5.771841463184048e-23), "{:?}", k.normal);
+        assert!(k.normal.x.abs() <= ULPS * f64::EPSILON, "{:?}", k.normal);
+        let r = contact_triangle_sphere(&t, &s).expect("the same contact");
+        assert!(within_ulps(r.point.y, -4.918565576084892e+302), "{:?}", r.point);
+        assert!(
+            (r.point.x - -1.6052088899167074e+108).abs() <= ULPS * f64::EPSILON * 4.918565576084892e+302,
+            "{:?}",
+            r.point
+        );
     }
 
     fn tri<T: Real>() -> Triangle<T> {
