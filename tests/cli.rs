@@ -25,7 +25,7 @@ const GOOD: &str = r#"{
   "cases": [
     {
       "name": "ball sunk half a unit into the ground",
-      "source": "FIXTURES.md example: s = 0.5, depth = r − s = 0.5, p = M − s n = 0",
+      "source": "the format's example (docs/FORMAT.md): s = 0.5, depth = r − s = 0.5, p = M − s n = 0",
       "query": "contact",
       "a": { "sphere": { "center": [0, 0, 0.5], "radius": 1 } },
       "b": { "plane": { "normal": [0, 0, 1], "offset": 0 } },

@@ -120,7 +120,7 @@ impl Drop for Scratch {
 /// One case that collide/robust passes: a ball sunk half a unit into the ground.
 const GOOD_CASE: &str = r#"{
       "name": "ball sunk half a unit into the ground",
-      "source": "FIXTURES.md example: s = 0.5, depth = r − s = 0.5, p = M − s n = 0",
+      "source": "the format's example (docs/FORMAT.md): s = 0.5, depth = r − s = 0.5, p = M − s n = 0",
       "query": "contact",
       "a": { "sphere": { "center": [0, 0, 0.5], "radius": 1 } },
       "b": { "plane": { "normal": [0, 0, 1], "offset": 0 } },

@@ -7,7 +7,7 @@
 //!
 //! Decisions:
 //! - **Generic over `f32` and `f64`** ([`Real`]), so precision is measurable.
-//! - **Conventions are the fixture format's** (`shared/FIXTURES.md`): in
+//! - **Conventions are the fixture format's** (`docs/FORMAT.md`): in
 //!   `contact(a, b)` the normal points from `b` toward `a` and is unit length, the
 //!   point lies on `b`'s surface, depth ≥ 0 and touching counts as contact. A
 //!   plane `n · x = d` bounds the solid `n · x ≤ d`. A triangle's face normal is

@@ -1,4 +1,4 @@
-//! The fixture format `crashtest-fixture/1` (shared/FIXTURES.md): the contract
+//! The fixture format `crashtest-fixture/1` (docs/FORMAT.md): the contract
 //! between whoever writes cases and every engine the harness runs.
 //!
 //! These types read and write the format exactly. Optional fields the project adds

@@ -6,9 +6,9 @@
 //! never see each other's answers.
 //!
 //! Decisions:
-//! - The fixture format (`shared/FIXTURES.md`) is read and written exactly by
+//! - The fixture format (`docs/FORMAT.md`) is read and written exactly by
 //!   [`case`]; its JSON Schema is generated from these types
-//!   (`fixtures/schema.json`, kept current by a test).
+//!   (`schema/crashtest-fixture-1.schema.json`, kept current by a test).
 //! - Conventions are translated once per engine, in that engine's adapter.
 //! - Every tolerance is a named constant with its reason ([`tolerance`]).
 #![deny(missing_docs)]

@@ -1,6 +1,6 @@
 //! The neutral vocabulary every reference speaks: plain `f64` data, no engine
 //! types. Field names and conventions are those of the fixture format
-//! (`shared/FIXTURES.md`), so the harness reads and writes these structs directly:
+//! (`docs/FORMAT.md`), so the harness reads and writes these structs directly:
 //!
 //! - a contact normal points from `b` toward `a` and is unit length; the contact
 //!   point lies on `b`'s surface; depth ≥ 0 is the penetration; touching counts;

@@ -20,7 +20,7 @@ pub struct SegmentHit<T: Real> {
 ///
 /// - `hit`: the first hit (smallest `t`), or `None`;
 /// - `parallel`: the segment is parallel to the surface (coplanar included); a
-///   parallel segment reports no hit, as FIXTURES.md asks, even when coplanar and
+///   parallel segment reports no hit, as the format (docs/FORMAT.md) asks, even when coplanar and
 ///   overlapping;
 /// - `degenerate`: the question was not well posed (a zero-length segment, a zero
 ///   normal, a zero-area triangle, a scene beyond the type's range); the other

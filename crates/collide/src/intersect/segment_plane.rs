@@ -422,7 +422,7 @@ mod tests {
             // Parallel above the plane: n·(p1 − p0) = 2·(3 − 3) = 0.
             let r = f(&seg([0.0, 0.0, 3.0], [5.0, 1.0, 3.0]), &pl);
             assert!(r.hit.is_none() && r.parallel && !r.degenerate, "{name}: parallel {r:?}");
-            // Lying in the plane: parallel, no hit (FIXTURES.md).
+            // Lying in the plane: parallel, no hit (docs/FORMAT.md).
             let r = f(&seg([0.0, 0.0, 1.0], [5.0, 1.0, 1.0]), &pl);
             assert!(r.hit.is_none() && r.parallel, "{name}: coplanar {r:?}");
             // Both ends above (z = 2, 5): a miss, not parallel.

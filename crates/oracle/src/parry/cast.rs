@@ -1,7 +1,7 @@
 //! parry's linear shape casts (`query::cast_shapes`) as a time-of-impact
 //! reference: a sphere moving linearly against a sphere, a half-space or a
 //! triangle moving linearly, over `[0, t_max]`, in both precisions ([`Parry64`]
-//! and [`Parry32`]), answering in crashtest's `toi` convention (FIXTURES.md).
+//! and [`Parry32`]), answering in crashtest's `toi` convention (docs/FORMAT.md).
 //!
 //! # Options, set in one place
 //!

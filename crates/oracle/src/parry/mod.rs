@@ -15,7 +15,7 @@
 //!
 //! # Conventions, and their translation
 //!
-//! Everything parry says is translated to crashtest's conventions (FIXTURES.md) in
+//! Everything parry says is translated to crashtest's conventions (docs/FORMAT.md) in
 //! exactly one place per kind of answer (`translate_contact`, `translate_hit` and
 //! `translate_location` in `engine.rs`). What parry says:
 //!

@@ -1,7 +1,7 @@
 //! The referee: crashtest's ground truth.
 //!
 //! Every `f64` input is taken as the exact rational number it denotes, and the
-//! definitions of the fixture format (`shared/FIXTURES.md`) are evaluated with big
+//! definitions of the fixture format (`docs/FORMAT.md`) are evaluated with big
 //! rationals ([`dashu::rational::RBig`]). Every predicate — contact or apart, hit or
 //! miss, parallel, inside or outside, touching — is therefore decided exactly:
 //! touching (depth exactly 0) is contact, a segment stopping one ulp short of a face
