@@ -93,7 +93,7 @@ fn bad_input_is_named_and_the_rest_of_the_run_still_happens() {
         ("syntax.json", "{\n  \"schema\": \"crashtest-fixture/1\",\n  \"cases\": [ {,] }".into(), &["syntax.json:3:", "JSON syntax"]),
         (
             "radius.json",
-            case("negative radius", &format!(r#""a": {{"sphere": {{"center": [0,0,0], "radius": -1}}}}, "b": {{"plane": {{"normal": [0,0,1], "offset": 0}}}}"#)),
+            case("negative radius", r#""a": {"sphere": {"center": [0,0,0], "radius": -1}}, "b": {"plane": {"normal": [0,0,1], "offset": 0}}"#),
             &["radius.json", "case \"negative radius\"", "a.sphere.radius", "> 0"],
         ),
         (

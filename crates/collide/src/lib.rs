@@ -21,6 +21,10 @@
 //! - **No serde, no parry, no rapier**: nalgebra only. This is a library someone
 //!   could use alone.
 #![deny(missing_docs)]
+// `!(x <= y)` is this crate's idiom for "not certainly at most": it is true for
+// a NaN, which is the point (a NaN never passes a test it cannot pass);
+// `partial_cmp` would hide that behind an `Option`.
+#![allow(clippy::neg_cmp_op_on_partial_ord, reason = "`!(x <= y)` is deliberately true for NaN")]
 
 pub mod barycentric;
 pub mod batch;

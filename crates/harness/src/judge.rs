@@ -103,19 +103,19 @@ pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
                                 None => out.push(mm("hit.barycentric", wb, "none")),
                             }
                         }
-                        if let Some(wt) = w.triangle {
-                            if g.triangle != Some(wt) {
-                                out.push(mm("hit.triangle", wt, g.triangle));
-                            }
+                        if let Some(wt) = w.triangle
+                            && g.triangle != Some(wt)
+                        {
+                            out.push(mm("hit.triangle", wt, g.triangle));
                         }
                     }
                     (w, g) => out.push(mm("hit", w, g)),
                 }
             }
-            if let Some(want) = e.parallel {
-                if want != a.parallel {
-                    out.push(mm("parallel", want, a.parallel));
-                }
+            if let Some(want) = e.parallel
+                && want != a.parallel
+            {
+                out.push(mm("parallel", want, a.parallel));
             }
         }
         Answer::Barycentric(a) => {
@@ -151,10 +151,10 @@ pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
             }
         }
         Answer::Overlap(g) => {
-            if let Some(w) = e.overlap {
-                if w != *g {
-                    out.push(mm("overlap", w, g));
-                }
+            if let Some(w) = e.overlap
+                && w != *g
+            {
+                out.push(mm("overlap", w, g));
             }
         }
         Answer::Toi(a) => {
@@ -413,16 +413,16 @@ fn allowed_from(lc: &LoadedCase, truth: &Answer, tol: &Tolerance, l: &crate::loc
         velocity: allowance(l.velocity, tol.rel, LENGTH_CONDITION_ULPS, tol, big),
         margin: allowance(l.margin, tol.rel, LENGTH_CONDITION_ULPS, tol, big),
     };
-    if let (Answer::Toi(w), Some(b)) = (truth, lc.case.b.as_ref()) {
-        if let Some(wt) = &w.toi {
-            let extra = toi_allowance(lc, wt, b, tol, l.point.magnitude);
-            // A time is judged relative to the interval: t_max plays the
-            // scene's scale for the time axis.
-            let t_max = lc.case.t_max();
-            a.t = (tol.rel * t_max + extra.t).clamp(tol.floor(), t_max.max(tol.floor()));
-            a.point = (a.point + extra.point).clamp(tol.floor(), big);
-            a.normal = (a.normal + extra.normal).clamp(tol.floor(), std::f64::consts::PI);
-        }
+    if let (Answer::Toi(w), Some(b)) = (truth, lc.case.b.as_ref())
+        && let Some(wt) = &w.toi
+    {
+        let extra = toi_allowance(lc, wt, b, tol, l.point.magnitude);
+        // A time is judged relative to the interval: t_max plays the
+        // scene's scale for the time axis.
+        let t_max = lc.case.t_max();
+        a.t = (tol.rel * t_max + extra.t).clamp(tol.floor(), t_max.max(tol.floor()));
+        a.point = (a.point + extra.point).clamp(tol.floor(), big);
+        a.normal = (a.normal + extra.normal).clamp(tol.floor(), std::f64::consts::PI);
     }
     a
 }

@@ -483,6 +483,7 @@ fn validate_shape(key: &str, shape: &Shape, query: Query) -> FieldResult {
         Shape::Plane(p) => {
             finite3(&format!("{k}.normal"), &p.normal)?;
             finite(&format!("{k}.offset"), p.offset)?;
+            #[allow(clippy::float_cmp, reason = "the format refuses exactly the zero normal (either sign of zero)")]
             if p.normal == [0.0; 3] {
                 return bad(format!("{k}.normal"), "zero normal");
             }
@@ -527,17 +528,17 @@ fn validate_shape(key: &str, shape: &Shape, query: Query) -> FieldResult {
 
 /// The shape kinds the format allows for `a` and `b` of each query.
 fn fits(query: Query, a: &str, b: Option<&str>) -> bool {
-    match (query, a, b) {
-        (Query::Contact, "sphere", Some("sphere" | "plane" | "triangle")) => true,
-        (Query::Contact, "plane" | "triangle", Some("sphere")) => true,
-        (Query::Intersect, "segment", Some("plane" | "triangle" | "mesh")) => true,
-        (Query::Barycentric, "point", Some("triangle")) => true,
-        (Query::Bounds, "points" | "mesh", None) => true,
-        (Query::Overlap, "aabb", Some("aabb")) => true,
-        (Query::Toi, "sphere", Some("sphere" | "plane" | "triangle" | "mesh")) => true,
-        (Query::Response, "sphere", Some("sphere" | "plane")) => true,
-        _ => false,
-    }
+    matches!(
+        (query, a, b),
+        (Query::Contact, "sphere", Some("sphere" | "plane" | "triangle"))
+            | (Query::Contact, "plane" | "triangle", Some("sphere"))
+            | (Query::Intersect, "segment", Some("plane" | "triangle" | "mesh"))
+            | (Query::Barycentric, "point", Some("triangle"))
+            | (Query::Bounds, "points" | "mesh", None)
+            | (Query::Overlap, "aabb", Some("aabb"))
+            | (Query::Toi, "sphere", Some("sphere" | "plane" | "triangle" | "mesh"))
+            | (Query::Response, "sphere", Some("sphere" | "plane"))
+    )
 }
 
 /// The `expect` fields that belong to each query.
@@ -596,15 +597,15 @@ pub fn validate(case: &Case) -> FieldResult {
     if let Some(b) = &case.b {
         validate_shape("b", b, case.query)?;
     }
-    if let Some(t) = case.tol {
-        if !(t.is_finite() && t >= 0.0) {
-            return bad("tol", format!("tolerance must be finite and ≥ 0, got {t}"));
-        }
+    if let Some(t) = case.tol
+        && !(t.is_finite() && t >= 0.0)
+    {
+        return bad("tol", format!("tolerance must be finite and ≥ 0, got {t}"));
     }
-    if let Some(t) = case.t_max {
-        if !(t.is_finite() && t >= 0.0) {
-            return bad("t_max", format!("t_max must be finite and ≥ 0, got {t}"));
-        }
+    if let Some(t) = case.t_max
+        && !(t.is_finite() && t >= 0.0)
+    {
+        return bad("t_max", format!("t_max must be finite and ≥ 0, got {t}"));
     }
     match case.restitution {
         Some(e) if !(e.is_finite() && (0.0..=1.0).contains(&e)) => {

@@ -172,6 +172,7 @@ impl TriangleShape {
     /// its altitude). 0 for a zero-area triangle, which has no plane to tilt:
     /// its answers are those of the segment or point it collapsed to.
     fn tilt(&self) -> f64 {
+        #[allow(clippy::float_cmp, reason = "exactly zero marks a triangle without a plane")]
         if self.normal == [0.0; 3] {
             return 0.0;
         }
@@ -414,6 +415,7 @@ fn intersect(
     // Without a known surface normal (a mesh hit whose face is not reported),
     // the whole length counts as across: no near-parallel allowance is given
     // that the data cannot show.
+    #[allow(clippy::float_cmp, reason = "exactly zero marks a hit without a reported face")]
     let across = if normal == [0.0; 3] { len } else { clean(dot(&dir, &normal).abs() * k) };
     // t = h0/(h0 − h1): moved by (δh0 + δh1)/|h0 − h1|, |h0 − h1| the
     // segment's extent across the surface.

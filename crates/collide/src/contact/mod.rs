@@ -2,9 +2,14 @@
 //!
 //! One file per shape pair; every function takes `(a, b)` and answers in the
 //! convention of [`Contact`] (normal from `b` toward `a`, point on `b`). The
-//! reverse orders are thin wrappers over [`Contact::swapped`].
+//! reverse orders are thin wrappers over [`Contact::swapped`], but for the
+//! triangle's, which forms the sphere's deepest point from its centre.
 
 mod closest_pt_triangle;
+#[allow(
+    clippy::module_inception,
+    reason = "`contact::contact` holds the result type; users name it `contact::Contact`"
+)]
 mod contact;
 mod sphere_plane;
 mod sphere_sphere;

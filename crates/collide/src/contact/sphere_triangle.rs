@@ -473,6 +473,7 @@ fn box_clear_miss(v: [[f64; 3]; 3], r: f64) -> bool {
     let max = |x: f64, y: f64| if x > y { x } else { y };
     let reach = r.max(0.0) * EARLY_MISS_MARGIN;
     let mut miss = false;
+    #[allow(clippy::needless_range_loop, reason = "`k` is the axis: it indexes the three vertices alike")]
     for k in 0..3 {
         // Plain selects (`minsd`, `maxsd`): the coordinates are finite.
         let (lo, hi) = (min(min(v[0][k], v[1][k]), v[2][k]), max(max(v[0][k], v[1][k]), v[2][k]));
@@ -581,7 +582,7 @@ fn exact_edge_tests<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> [crate::exact::S
     };
     let dot = |x: &B3, y: &B3| &(&(&x[0] * &y[0]) + &(&x[1] * &y[1])) + &(&x[2] * &y[2]);
     let m = big(p);
-    let v = tri.vertices.each_ref().map(|x| big(x));
+    let v = tri.vertices.each_ref().map(big);
     let n = cross(&sub(&v[1], &v[0]), &sub(&v[2], &v[0]));
     let rel = v.each_ref().map(|x| sub(x, &m));
     [0, 1, 2].map(|i| dot(&n, &cross(&rel[(i + 1) % 3], &rel[(i + 2) % 3])).sign())

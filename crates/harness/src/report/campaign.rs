@@ -400,11 +400,11 @@ fn discrepancy(c: &CaseResult, lc: &LoadedCase, ix: usize, tol: Tolerance) -> Di
 fn inline_meshes(mut case: Case, lc: &LoadedCase) -> Case {
     let shapes = [Some(&mut case.a), case.b.as_mut()];
     for (shape, mesh) in shapes.into_iter().zip(&lc.meshes) {
-        if let (Some(crate::case::Shape::Mesh(spec)), Some(m)) = (shape, mesh) {
-            if spec.file.take().is_some() {
-                spec.vertices = Some(m.vertices.clone());
-                spec.triangles = Some(m.triangles.clone());
-            }
+        if let (Some(crate::case::Shape::Mesh(spec)), Some(m)) = (shape, mesh)
+            && spec.file.take().is_some()
+        {
+            spec.vertices = Some(m.vertices.clone());
+            spec.triangles = Some(m.triangles.clone());
         }
     }
     case
