@@ -146,6 +146,36 @@ fn parse_shard(s: &str) -> Result<(u32, u32), String> {
     Ok((i, n))
 }
 
+/// Writes to standard output. A reader that closed the pipe early
+/// (`crashtest cases | head`) is not a failure of the run: the rest of the
+/// output is dropped and the exit code stays the run's. Any other write error
+/// is reported once, on standard error.
+fn emit(text: &str) {
+    use std::io::Write;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static FAILED: AtomicBool = AtomicBool::new(false);
+    if FAILED.load(Ordering::Relaxed) {
+        return;
+    }
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        FAILED.store(true, Ordering::Relaxed);
+        if e.kind() != std::io::ErrorKind::BrokenPipe {
+            eprintln!("error: cannot write to standard output: {e}");
+        }
+    }
+}
+
+/// [`emit`] with `format!` arguments.
+macro_rules! out {
+    ($($arg:tt)*) => { emit(&format!($($arg)*)) };
+}
+
+/// [`out!`] and a newline.
+macro_rules! outln {
+    ($($arg:tt)*) => { emit(&format!("{}\n", format_args!($($arg)*))) };
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
@@ -154,7 +184,7 @@ fn main() -> ExitCode {
             let result = harness::check::check(&loaded.cases, &loaded.errors);
             if json {
                 match serde_json::to_string_pretty(&result) {
-                    Ok(s) => println!("{s}"),
+                    Ok(s) => outln!("{s}"),
                     Err(e) => eprintln!("error: cannot write JSON: {e}"),
                 }
                 eprint!("{}", harness::check::render_errors(&result));
@@ -164,10 +194,9 @@ fn main() -> ExitCode {
                 // line: on a terminal it stays the last line.
                 let text = harness::check::render_text(&result);
                 let closing = format!("{} passed, {} failed\n", result.passed, result.failed);
-                print!("{}", text.strip_suffix(&closing).unwrap_or(&text));
-                let _ = std::io::Write::flush(&mut std::io::stdout());
+                out!("{}", text.strip_suffix(&closing).unwrap_or(&text));
                 eprint!("{}", harness::check::render_errors(&result));
-                print!("{closing}");
+                out!("{closing}");
             }
             ExitCode::from(result.exit_code() as u8)
         }
@@ -216,7 +245,7 @@ fn main() -> ExitCode {
             match harness::report::write::write_outcome(&out, &id, &outcome) {
                 Ok(dir) => {
                     let p = &outcome.summary.provenance;
-                    println!(
+                    outln!(
                         "{} cases ({} fixtures, {} random) in {:.1} s; {} discrepancies",
                         p.fixture_cases + p.random_cases,
                         p.fixture_cases,
@@ -225,9 +254,9 @@ fn main() -> ExitCode {
                         outcome.summary.discrepancies
                     );
                     for (name, rate) in &outcome.summary.throughput {
-                        println!("  {name}: {rate:.0} cases/s");
+                        outln!("  {name}: {rate:.0} cases/s");
                     }
-                    println!("report: {}", dir.join("index.html").display());
+                    outln!("report: {}", dir.join("index.html").display());
                 }
                 Err(e) => {
                     eprintln!("error: cannot write the report under {}: {e}", out.display());
@@ -266,7 +295,7 @@ fn main() -> ExitCode {
             let files = harness::report::write::render_files(&summary, &discrepancies, &sections);
             match harness::report::write::write_report(&out, &id, &files) {
                 Ok(dir) => {
-                    println!("merged {} shards: {}", reports.len(), dir.join("index.html").display());
+                    outln!("merged {} shards: {}", reports.len(), dir.join("index.html").display());
                     ExitCode::SUCCESS
                 }
                 Err(e) => {
@@ -277,7 +306,7 @@ fn main() -> ExitCode {
         }
         Command::Sweep { name, list, out, poses, seed, cases_at } => {
             if list {
-                print!("{}", harness::sweep::list_text());
+                out!("{}", harness::sweep::list_text());
                 return ExitCode::SUCCESS;
             }
             let name = name.unwrap_or_default();
@@ -304,7 +333,7 @@ fn main() -> ExitCode {
             };
             let started = std::time::Instant::now();
             let result = harness::sweep::run(sweep, &settings);
-            print!("{}", harness::sweep::table_text(std::slice::from_ref(&result)));
+            out!("{}", harness::sweep::table_text(std::slice::from_ref(&result)));
             match harness::sweep::write(&result, &out) {
                 Ok(mut files) => {
                     if let Some((label, f)) = fixture {
@@ -316,13 +345,13 @@ fn main() -> ExitCode {
                         }
                         files.push(path);
                     }
-                    println!(
+                    outln!(
                         "{} in {:.1} s ({poses} poses per point, seed {seed}):",
                         sweep.name,
                         started.elapsed().as_secs_f64()
                     );
                     for f in files {
-                        println!("  {}", f.display());
+                        outln!("  {}", f.display());
                     }
                     ExitCode::SUCCESS
                 }
@@ -333,7 +362,7 @@ fn main() -> ExitCode {
             }
         }
         Command::Schema => {
-            print!("{}", harness::case::json_schema());
+            out!("{}", harness::case::json_schema());
             ExitCode::SUCCESS
         }
         Command::Cases { only, count, start, full_range, seed } => {
@@ -358,7 +387,7 @@ fn main() -> ExitCode {
             let file = harness::case::FixtureFile { schema: harness::case::SCHEMA.into(), cases };
             match serde_json::to_string_pretty(&file) {
                 Ok(s) => {
-                    println!("{s}");
+                    outln!("{s}");
                     ExitCode::SUCCESS
                 }
                 Err(e) => {

@@ -195,3 +195,25 @@ fn cases_writes_a_fixture_file_that_check_replays() {
     assert_eq!(code, 2);
     assert!(err.contains("error: --start 18446744073709551615 + --count 2 overflows"), "{err}");
 }
+
+/// A reader that stops early (`crashtest cases | head`) ends the output, not
+/// the run: no panic message, and the exit code is the run's own (0 here).
+#[test]
+fn a_reader_closing_the_pipe_early_is_not_a_panic() {
+    use std::io::Read;
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .args(["cases", "--count", "3000"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("crashtest runs");
+    let mut first = [0u8; 64];
+    child.stdout.take().expect("piped").read_exact(&mut first).expect("the first bytes arrive");
+    // The read end is dropped here: every later write hits a closed pipe.
+    let out = child.wait_with_output().expect("crashtest ends");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "stderr: {stderr}");
+    assert!(!stderr.contains("panicked"), "stderr: {stderr}");
+    assert!(String::from_utf8_lossy(&first).contains("crashtest-fixture/1"));
+}
