@@ -488,12 +488,24 @@ fn filtered(p: &P3, v: &[P3; 3], target: f64) -> Option<Ratios> {
     let (i, j) = ((free + 1) % 3, (free + 2) % 3);
     // err_i + err_j ≤ target · max(1, |c_i|, |c_j|), with
     // err_k = (A_k + |N̂_k| B/D̂)/(D̂ − B) and c_k = (N̂_k/D̂) 2^s, multiplied
-    // through by D̂ (D̂ − B) > 0 (no division).
+    // through by D̂ (D̂ − B) > 0 (no division). D̂ may be as small as about
+    // 2^−1000 here (a triangle far thinner than its size, or the edges'
+    // small components), so the products of bounds and D̂ would underflow to
+    // zero and the test pass whatever the bounds; first every value of the
+    // test is brought to D̂'s scale by one power of two, `D̂ ∈ [1, 2)`
+    // (exact: D̂, B and the bounds exceed 2^−1000, and scaling up loses
+    // nothing). A numerator may then overflow (coordinates beyond about
+    // 2^1000 of 2^−s): the test fails and the exact path decides.
+    let kd = unit_exponent(d);
+    let (d, b) = (ldexp(d, kd), ldexp(b, kd));
+    let num = num.map(|(x, err)| (ldexp(x, kd), ldexp(err, kd)));
     let (ni, nj) = (num[i].0.abs(), num[j].0.abs());
     let lhs = ((num[i].1 + num[j].1) * d + (ni + nj) * b) * BOUND_ROUNDING;
-    let size = ldexp(d, -s).max(ni).max(nj);
+    // `D̂ 2^−s` is capped at 2^1001 (lowering the right side only makes the
+    // test stricter), so the right side is finite unless a numerator is.
+    let size = ldexp(d, (-s).min(1000)).max(ni).max(nj);
     let rhs = target * ((d - b) * size);
-    if lhs > rhs {
+    if !(lhs <= rhs && lhs < f64::INFINITY) {
         return None;
     }
     let inv = 1.0 / d;
@@ -845,3 +857,4 @@ mod grid {
         }
     }
 }
+

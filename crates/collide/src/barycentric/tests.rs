@@ -975,3 +975,48 @@ fn filter_answers_well_shaped_queries() {
     let narrow = f64::from(narrow) / f64::from(cases);
     assert!(narrow >= MIN_NARROW_SHARE, "narrow grid fits only {narrow:.3}");
 }
+
+/// Regression: triangles whose coordinates span the whole `f64` range (raw
+/// bit patterns from crashtest's full-range barycentric family, seed
+/// 20261122, cases #160, #945 and #835). In the scaled filter's frame the
+/// denominator `D̂` is about `2^−940`, so its acceptance test — the bounds
+/// multiplied through by `D̂ (D̂ − B)` — underflowed to `0 ≤ 0` and
+/// certified numerators that were pure rounding (`β = γ = 0`, answered
+/// `[1, 0, 0]` for the exact `[1.000001, −9.97e-7, −3.3e-220]` and
+/// `[1.3e-35, 1, −5.2e-168]`). Against the independent exact reference.
+#[test]
+fn scaled_filter_does_not_certify_underflowed_bounds() {
+    let cases: [([f64; 3], [[f64; 3]; 3]); 3] = [
+        (
+            [7.467278377768561e-165, -1.1361900441823032e-137, 2663.153470133173],
+            [
+                [-2.312704422947053e+151, -4.571121435426069e+79, -6.660857384276954e+30],
+                [-2.3195055350094972e+157, 1.8533137813369009e-242, 1.722692135241105e-276],
+                [-2.3425524651652588e+176, -1.3919361931443998e+299, -5.5901651846061356e+184],
+            ],
+        ),
+        (
+            [-2.261968041063866e+42, 1.61831888936319e-164, -1.2260496509428935e-90],
+            [
+                [-1.7188808943645088e+77, -1.1663328194914507e-53, 1.9867023559200062e-29],
+                [-3.8515525051642e-221, 6.0207175956428776e+16, -1.7262088903562762e-155],
+                [-3.475190621974285e+104, 1.1551129341997111e+184, 9.627050383457715e+141],
+            ],
+        ),
+        (
+            [3.440409197747224e-219, 1.2705172451686673e-35, 3.1180087455132664e+175],
+            [
+                [2.0888192723913104e+93, -1.0053608857532008e-55, 3.905521734296366e+49],
+                [1.1716475096646746e+182, 74850199353052.55, 1.0379638236874816e+195],
+                [-5.084167611985097e-72, -4.276569186960503e-245, -2.6212751643403288e+95],
+            ],
+        ),
+    ];
+    for (k, (p, v)) in cases.iter().enumerate() {
+        let want = reference_coords(p, v).expect("a genuine triangle");
+        let got = barycentric_triangle(&Vec3::from(*p), &tri64(*v));
+        assert_exact(&got, want, accuracy::<f64>(), &format!("full-range case {k}"));
+        let got = barycentric_triangle_tight(&Vec3::from(*p), &tri64(*v));
+        assert_exact(&got, want, tight_accuracy::<f64>(), &format!("full-range case {k} (tight)"));
+    }
+}

@@ -63,10 +63,13 @@ pub fn toi_sphere_plane<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: 
     // Within r (up to rounding), or squares too small to tell: the static
     // test decides, whenever its own root-free test does not say apart.
     let r = a.radius;
-    if !clearly_apart(sp, r, nn)
-        && let Some(k) = contact_sphere_plane(a, b)
-    {
-        return Some(Toi::penetrating(&k));
+    if !clearly_apart(sp, r, nn) {
+        if let Some(k) = contact_sphere_plane(a, b) {
+            return Some(Toi::penetrating(&k));
+        }
+        if let Some(k) = tiny_scene(a, va, b, vb) {
+            return scaled_up(a, va, b, vb, t_max, k);
+        }
     }
     // A closing speed that overflowed (`8 · 2.8e307` for a normal of length
     // 8) or fell below the plain range (its products may have underflowed)
@@ -112,6 +115,9 @@ fn toi_sphere_plane_scaled<T: Real>(
     if let Some(k) = contact_sphere_plane(a, b) {
         return Some(Toi::penetrating(&k));
     }
+    if let Some(k) = tiny_scene(a, va, b, vb) {
+        return scaled_up(a, va, b, vb, t_max, k);
+    }
     let n = b.normal / len;
     let (t, point) = scaled_time(a, va, b, vb)?;
     let t = T::of(t);
@@ -130,25 +136,64 @@ fn toi_sphere_plane_scaled<T: Real>(
     })
 }
 
+/// The power of two `2^k` (`k > 0`) that brings a scene whose lengths (the
+/// centre, the radius, the plane's offset and both velocities; the normal is
+/// a direction) all lie below the plain range (see
+/// [`unit_scale`](crate::real::unit_scale)) to about 1; `None` otherwise.
+/// In such a scene the signed distance, the closing speed and their
+/// quotient are formed from subnormal products with a few bits each (a `t`
+/// of `1.6249995` for `1.625`, from coordinates near `1e-317`).
+fn tiny_scene<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>) -> Option<i32> {
+    let amax = |p: &Vec3<T>| p.x.abs().max(p.y.abs()).max(p.z.abs());
+    let size = amax(&a.center).max(a.radius.abs()).max(b.offset.abs()).max(amax(va)).max(amax(vb));
+    crate::real::unit_scale(size).filter(|k| *k > 0)
+}
+
+/// [`toi_sphere_plane`] of the scene with every length scaled by `2^k`
+/// (exact, scaling up: the plane `n·x = d` becomes `n·x = 2^k d`), the
+/// contact point scaled back; the time and the normal do not scale. For a
+/// sphere the static test called apart at the original scale (the static
+/// test decides the start, so the time of impact and the contact agree on
+/// it): a contact of the scaled scene at `t = 0` is a touch at 0, within
+/// the roundings of the original one, not a penetration.
+#[cold]
+#[inline(never)]
+fn scaled_up<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>, t_max: T, k: i32) -> Option<Toi<T>> {
+    use crate::real::{scale2, scale2v};
+    let a2 = Sphere::new(scale2v(&a.center, k), scale2(a.radius, k));
+    let b2 = Plane::new(b.normal, scale2(b.offset, k));
+    toi_sphere_plane(&a2, &scale2v(va, k), &b2, &scale2v(vb, k), t_max).map(|mut r| {
+        r.point = scale2v(&r.point, -k);
+        r.status = ToiStatus::Converged;
+        r
+    })
+}
+
 /// `(s0 − r)/k` of [`toi_sphere_plane_scaled`] (`s0` the centre's signed
 /// distance, `k` the closing speed), in `f64` on the widened inputs, with no
-/// intermediate overflow or underflow: the unit normal `n̂` from the scaled
-/// norm; `s0 − r` at a quarter of its scale (`n̂ · (M/4)` cannot overflow,
-/// and quartering is exact for normal numbers); the relative velocity at
-/// the scale `2^−e` that brings the largest component of `va` and `vb` to
-/// `[1/2, 1)` (exact, except for components far below that one, whose
-/// roundings are below it by the same factor), so neither `va − vb` nor
-/// `n̂ · (va − vb)` overflows or underflows; the quotient scaled back once.
-/// `None` for no closing speed (or none defined: NaN). With it, the contact
-/// point at that time (see the body).
+/// intermediate overflow or underflow, and with it the contact point at that
+/// time. `None` for no closing speed (or none defined: NaN).
+///
+/// - The unit normal `n̂` from the scaled norm.
+/// - The relative velocity at the scale `2^−e` that brings the largest
+///   component of `va` and `vb` to `[1/2, 1)` (exact, except for components
+///   far below that one, whose roundings are below it by the same factor), so
+///   neither `va − vb` nor `n̂ · (va − vb)` overflows or underflows.
+/// - The gap `s0 − r` at the scale `2^−g` of its largest term (`‖M‖∞`, `r`
+///   and the plane's distance `d/‖n‖`, the last from the mantissas and
+///   exponents of `d` and `‖n‖`): `d/‖n‖` alone can exceed `f64` (an offset
+///   of 3e109 over a normal of length 3.6e-209) while the time is finite.
+/// - The time from the mantissas of gap and closing speed, scaled back once
+///   (their quotient can overflow where the time does not: a gap of 1e302
+///   over a closing speed of 1e-39 at its scale is a time of 8e57).
 fn scaled_time<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>) -> Option<(f64, [f64; 3])> {
     use crate::exact::{frexp, ldexp};
     let w = crate::real::to_f64_3::<T>;
     let (nw, m, pa, pb) = (w(&b.normal), w(&a.center), w(va), w(vb));
+    let (offset, radius) = (b.offset.wide(), a.radius.wide());
     let len = stable_norm(&Vec3::from(nw));
     let n = nw.map(|x| x / len);
     let dot = |x: [f64; 3]| (n[0] * x[0] + n[1] * x[1]) + n[2] * x[2];
-    let gap_quarter = (dot(m.map(|x| x * 0.25)) - (b.offset.wide() / len) * 0.25) - a.radius.wide() * 0.25;
     let top = pa.iter().chain(pb.iter()).fold(0.0f64, |t, x| t.max(x.abs()));
     if !(top > 0.0 && top.is_finite()) {
         return None;
@@ -158,16 +203,61 @@ fn scaled_time<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>)
     if !(closing > 0.0) {
         return None;
     }
-    let t = ldexp((gap_quarter / closing).max(0.0), 2 - e);
-    // The point: the centre's projection onto the plane at t = 0, moved by
-    // the centre's motion with its normal part replaced by the plane's,
-    // `va + n̂ k` (k the closing speed) — not `M + va t − n̂ r`, whose terms
-    // cancel: at speed 2.8e307 the rounding of `t` alone is 1e284 there.
-    // The foot is `M − n̂ (n̂ · M) + n̂ d/‖n‖`: its part along `n̂` is the
-    // plane's offset itself, not `n̂ · M − s0` (which cancels).
-    let (mq, offset) = (m.map(|x| x * 0.25), b.offset.wide() / len);
-    let mn = dot(mq);
+    // The exponent of each length: `|x| < 2^exp(x)` (zero: far below all).
+    let exp = |x: f64| if x == 0.0 { i64::MIN / 4 } else { frexp(x.abs()).1 };
+    let ((om, oe), (lm, le)) = (frexp(offset.abs()), frexp(len));
+    let plane_exp = if offset == 0.0 { i64::MIN / 4 } else { oe - le + 1 };
+    let mmax = m.iter().fold(0.0f64, |t, x| t.max(x.abs()));
+    // 2 more: n̂ · M is at most √3 ‖M‖∞, and three terms are summed.
+    let g = exp(mmax).max(exp(radius)).max(plane_exp) + 2;
+    let plane = offset.signum() * ldexp(om / lm, oe - le - g);
+    let mg = m.map(|x| ldexp(x, -g));
+    let gap = (dot(mg) - plane) - ldexp(radius, -g);
+    let ((gm, ge), (cm, ce)) = (frexp(gap.max(0.0)), frexp(closing));
+    let t = if gap > 0.0 { ldexp(gm / cm, ge + g - ce - e) } else { 0.0 };
+    // The point, in one of two forms that agree at the touch, whichever
+    // sums the smaller terms (the other cancels):
+    // - the centre's projection onto the plane at t = 0, moved by the
+    //   centre's motion with its normal part replaced by the plane's,
+    //   `va + n̂ k` (k the closing speed); the foot is
+    //   `M − n̂ (n̂ · M) + n̂ d/‖n‖`, whose part along `n̂` is the plane's
+    //   offset itself. Its normal part sums `d/‖n‖` and `t n̂·vb`: right for
+    //   a sphere that moves fast onto a still plane (`M + va t − n̂ r`
+    //   cancels there: at speed 2.8e307 the rounding of `t` alone is 1e284);
+    // - the sphere's lowest point `M + va t − n̂ r`, whose normal part sums
+    //   `n̂·M`, `r` and `t n̂·va`: right for a plane that comes from afar to a
+    //   slow sphere (a plane 2^1100 away: the foot is beyond `f64`).
+    // Both at one scale `2^−h` that holds every term (the foot and the
+    // motion may each exceed `f64` where their sum does not).
     let along = [0, 1, 2].map(|i| ldexp(pa[i], -e) + n[i] * closing);
-    let point = [0, 1, 2].map(|i| ((mq[i] - n[i] * mn) * 4.0 + n[i] * offset) + ldexp(along[i] * t, e));
+    let (tm, te) = frexp(t);
+    let va_s = pa.map(|x| ldexp(x, -e));
+    let vb_s = pb.map(|x| ldexp(x, -e));
+    // The exponent of a velocity component's motion `x 2^e t` (`x` at the
+    // scale 2^−e): below `2^(exp(x) + e + te)`.
+    let motion = |x: f64| if t > 0.0 && x != 0.0 { exp(x) + e + te } else { i64::MIN / 4 };
+    // Which form sums the smaller terms along the normal (as exponents):
+    // the plane's `d/‖n‖` and `t n̂·vb`, or the sphere's `n̂·M`, `r` and
+    // `t n̂·va` (`n̂·M` at a quarter scale, which cannot overflow).
+    let plane_cost = plane_exp.max(motion(dot(vb_s)));
+    let sphere_cost = (exp(dot(m.map(|x| x * 0.25))) + 2).max(exp(radius)).max(motion(dot(va_s)));
+    let vmax = |v: &[f64; 3]| v.iter().fold(0.0f64, |x, y| x.max(y.abs()));
+    // Each form at the scale `2^−h` of its largest term, 2 more for the sums.
+    let (velocity, h) = if sphere_cost < plane_cost {
+        (va_s, exp(mmax).max(exp(radius)).max(motion(vmax(&va_s))) + 2)
+    } else {
+        (along, (g - 2).max(motion(vmax(&along))) + 2)
+    };
+    // `x · t · 2^(e − h)` for a velocity component `x` at the scale 2^−e;
+    // a zero moves nothing however long the time.
+    let tscale = ldexp(tm, e + te - h);
+    let moved = |x: f64| if x == 0.0 { 0.0 } else { x * tscale };
+    let (mh, ph, rh) = (m.map(|x| ldexp(x, -h)), offset.signum() * ldexp(om / lm, oe - le - h), ldexp(radius, -h));
+    let point = if sphere_cost < plane_cost {
+        [0, 1, 2].map(|i| ldexp((mh[i] - n[i] * rh) + moved(velocity[i]), h))
+    } else {
+        let mn = dot(mh);
+        [0, 1, 2].map(|i| ldexp(((mh[i] - n[i] * mn) + n[i] * ph) + moved(velocity[i]), h))
+    };
     Some((t, point))
 }

@@ -52,7 +52,9 @@ use crate::shapes::Sphere;
 /// **Cost.** Where `‖Δp‖² + ‖Δv‖² + R² ≤ 2^460` (in `f64`; `2^41` in `f32`),
 /// so that every product of two squares lies in the range in which plain sums
 /// of squares lose nothing (`[2^−918, 2^920]`), and `‖Δv‖²` and `‖Δp‖² + R²`
-/// are at least `2^−918`: the dot products, one root and one division for `t`, whose
+/// are at least `2^−459` (so that `a R²` and `‖Δp × Δv‖²`, products of two
+/// squares, are not flushed to 0 beside each other: at `2^−400` a head-on
+/// pair's `disc` underflowed and `t` came out `8/3` for 2): the dot products, one root and one division for `t`, whose
 /// comparison with `t_max` decides, and the normal as above — one more
 /// division, by `a R` — for spheres starting up to `2^24` radii apart in `f64`
 /// (`2^9.5` in `f32`) with `a R² ≥ 2^−918`, where it is unit to within `16u`
@@ -129,13 +131,17 @@ impl<T: Real> Relative<T> {
     /// to at most √hi, so every product of two of them (the terms of `disc`,
     /// ‖Δp × Δv‖² ≤ ‖Δp‖²‖Δv‖², a R² for the normal) stays in the plain range,
     /// and `disc`'s root is as accurate as the type allows; ‖Δv‖² and
-    /// ‖Δp‖² + R² are at least `lo`, so `c` is not a difference of underflowed
-    /// squares. One sum and three comparisons (√hi is a constant). A NaN
-    /// fails every test: the scaled path.
+    /// ‖Δp‖² + R² are at least `√lo`, so `c` is not a difference of
+    /// underflowed squares and the products of two squares in `disc` (`a R²`
+    /// and `‖Δp × Δv‖²`, of the scales `‖Δv‖²` times `‖Δp‖² + R²`) do not
+    /// fall below `lo`, where they would be flushed toward 0 beside each
+    /// other. One sum and three comparisons (√lo and √hi are constants). A
+    /// NaN fails every test: the scaled path.
     #[inline(always)]
     fn plain(&self) -> bool {
         let (lo, hi) = safe_squared_range::<T>();
         let span = self.dd + self.rr;
+        let lo = lo.sqrt();
         (self.vv >= lo) & (span >= lo) & (span + self.vv <= hi.sqrt())
     }
 
@@ -229,6 +235,23 @@ fn rare<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, t_max
     if let Some(k) = contact_sphere_sphere(a, b) {
         return Some(Toi::penetrating(&k));
     }
+    // A tiny scene (subnormal coordinates, whose differences, norms and
+    // quotients lose their few bits) is answered scaled up by a power of two
+    // to about 1, exactly, and its point scaled back; times and directions
+    // do not scale. The static test has decided the start at the original
+    // scale (so the time of impact and the contact agree on it): a contact
+    // of the scaled scene at `t = 0` is a touch at 0, within the roundings
+    // of the original one, not a penetration.
+    if let Some(k) = tiny_scene(a, va, b, vb) {
+        use crate::real::{scale2, scale2v};
+        let a2 = Sphere::new(scale2v(&a.center, k), scale2(a.radius, k));
+        let b2 = Sphere::new(scale2v(&b.center, k), scale2(b.radius, k));
+        return toi_sphere_sphere(&a2, &scale2v(va, k), &b2, &scale2v(vb, k), t_max).map(|mut r| {
+            r.point = scale2v(&r.point, -k);
+            r.status = ToiStatus::Converged;
+            r
+        });
+    }
     let m = Relative::new(a, va, b, vb);
     if m.dv.iter().all(|x| *x == T::zero()) {
         return None;
@@ -240,6 +263,16 @@ fn rare<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, t_max
         return m.first_touch(a, va, b, vb, (m.dd - m.rr).max(T::zero()), t_max);
     }
     toi_sphere_sphere_scaled(a, va, b, vb, t_max)
+}
+
+/// The power of two `2^k` (`k > 0`) that brings a scene whose lengths (centres,
+/// radii, velocities) all lie below the plain range (see
+/// [`unit_scale`](crate::real::unit_scale)) to about 1; `None` otherwise.
+/// Scaling up is exact, and every length of the answer scales with it.
+fn tiny_scene<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>) -> Option<i32> {
+    let amax = |p: &Vec3<T>| p.x.abs().max(p.y.abs()).max(p.z.abs());
+    let size = amax(&a.center).max(amax(&b.center)).max(a.radius.abs()).max(b.radius.abs()).max(amax(va)).max(amax(vb));
+    crate::real::unit_scale(size).filter(|k| *k > 0)
 }
 
 /// The contact of a touch at `t`: the normal from `b` toward `a` (or the
@@ -285,20 +318,6 @@ fn toi_sphere_sphere_scaled<T: Real>(
     vb: &Vec3<T>,
     t_max: T,
 ) -> Option<Toi<T>> {
-    // A tiny scene (subnormal coordinates, whose norms and quotients lose
-    // their few bits) is answered scaled up by a power of two to about 1,
-    // exactly, and its point scaled back; times and directions do not scale.
-    let amax = |p: &Vec3<T>| p.x.abs().max(p.y.abs()).max(p.z.abs());
-    let size = amax(&a.center).max(amax(&b.center)).max(a.radius).max(b.radius).max(amax(va)).max(amax(vb));
-    if let Some(k) = crate::real::unit_scale(size).filter(|k| *k > 0) {
-        use crate::real::{scale2, scale2v};
-        let a2 = Sphere::new(scale2v(&a.center, k), scale2(a.radius, k));
-        let b2 = Sphere::new(scale2v(&b.center, k), scale2(b.radius, k));
-        return toi_sphere_sphere_scaled(&a2, &scale2v(va, k), &b2, &scale2v(vb, k), t_max).map(|mut r| {
-            r.point = scale2v(&r.point, -k);
-            r
-        });
-    }
     // A relative velocity that overflows (`±1e308`) is taken at half scale,
     // exactly: its direction is the same, and the time divides by half the
     // speed (`speed_unit`).

@@ -379,6 +379,70 @@ fn sphere_sphere_relative_velocity_that_overflows() {
     assert!((k.t - 1.0).abs() <= SCALED_TIME_REL_EPS * f64::EPSILON, "{k:?}");
 }
 
+/// A sphere–plane scene whose lengths are a few subnormal ulps
+/// (`w = 2^−1070`, 16 ulps), where every product formed in place keeps only a
+/// few bits: before, the radius times `√2` rounded to 23 of
+/// `16 √2 ≈ 22.6` ulps and the time came out `2.28125`. Answered scaled up by
+/// a power of two now, exactly. The plane `x + y = 0` (normal `(1, 1, 0)`,
+/// length `√2`), a sphere of radius `w` at `(3w, 3w, 0)` moving at
+/// `(−w, −w, 0)`: `s0 = 3√2 w`, closing speed `√2 w`,
+/// `t = (3√2 − 1)/√2 = 3 − 1/√2`.
+#[test]
+fn subnormal_sphere_plane_scene_is_answered_at_its_own_scale() {
+    let w = 2f64.powi(-1070);
+    let plane = Plane::new(v::<f64>(1.0, 1.0, 0.0), 0.0);
+    let a = Sphere::new(v::<f64>(3.0 * w, 3.0 * w, 0.0), w);
+    let k = toi_sphere_plane(&a, &v(-w, -w, 0.0), &plane, &still(), 4.0).expect("it lands");
+    let want = 3.0 - 1.0 / 2f64.sqrt();
+    assert!((k.t - want).abs() <= SCALED_TIME_REL_EPS * f64::EPSILON * want, "t {:e}, want {want:e}", k.t);
+}
+
+/// Spheres at the scale `s = 2^−400`, whose squares (`2^−800`) are in the
+/// plain range but whose products of two squares in `disc` are not: head-on,
+/// `Δp = (3s, 0, 0)`, `R = s`, `Δv = (−s, 0, 0)` touch when the gap `2s` is
+/// closed, at `t = 2`, normal `+x`. Before, `a R²` and `‖Δp × Δv‖²`
+/// underflowed to 0, `disc` with them, and `t = c/(−b')` came out `8/3`.
+#[test]
+fn sphere_sphere_disc_whose_products_underflow() {
+    let s = 2f64.powi(-400);
+    let a = Sphere::new(v::<f64>(3.0 * s, 0.0, 0.0), 0.5 * s);
+    let b = Sphere::new(v::<f64>(0.0, 0.0, 0.0), 0.5 * s);
+    let k = toi_sphere_sphere(&a, &v(-s, 0.0, 0.0), &b, &still(), 4.0).expect("head-on");
+    assert!((k.t - 2.0).abs() <= SCALED_TIME_REL_EPS * f64::EPSILON * 2.0, "{k:?}");
+    assert!((k.normal.x - 1.0).abs() <= SCALED_TIME_REL_EPS * f64::EPSILON, "{k:?}");
+    assert!((k.point.x - 0.5 * s).abs() <= SCALED_TIME_REL_EPS * f64::EPSILON * s, "{k:?}");
+}
+
+/// The scaled sphere–plane path where an intermediate of the time exceeds
+/// `f64` but the time does not. Before, both were answered "no impact".
+/// (1) The plane `2^−600 x = −2^500` lies at `x = −2^1100`, beyond `f64`;
+/// moving at `+2^1000` it reaches a unit sphere at the origin (lowest point
+/// `x = −1`) at `t = (2^1100 − 1)/2^1000`, which is `2^100` in `f64`, at the
+/// point `(−1, 0, 0)`. (2) The normal `2^−700 x` (its square underflows), a
+/// sphere of radius `2^499` at `x = 2^500` closing at `2^−100` while the plane
+/// slides sideways at `2^900`: the closing speed at the velocities' scale is
+/// `2^−1001`, and the gap over it overflowed; `t = 2^499 / 2^−100 = 2^599`,
+/// the point the origin.
+#[test]
+fn sphere_plane_time_whose_intermediates_exceed_the_range() {
+    let plane = Plane::new(v::<f64>(2f64.powi(-600), 0.0, 0.0), -2f64.powi(500));
+    let a = Sphere::new(v::<f64>(0.0, 0.0, 0.0), 1.0);
+    let vb = v::<f64>(2f64.powi(1000), 0.0, 0.0);
+    let k = toi_sphere_plane(&a, &still(), &plane, &vb, 2f64.powi(101)).expect("the plane arrives");
+    let want = 2f64.powi(100);
+    assert!((k.t - want).abs() <= SCALED_TIME_REL_EPS * f64::EPSILON * want, "t {:e}", k.t);
+    assert!((k.point.x + 1.0).abs() <= SCALED_TIME_REL_EPS * f64::EPSILON && k.point.y == 0.0, "{k:?}");
+    let plane = Plane::new(v::<f64>(2f64.powi(-700), 0.0, 0.0), 0.0);
+    let a = Sphere::new(v::<f64>(2f64.powi(500), 0.0, 0.0), 2f64.powi(499));
+    let (va, vb) = (v::<f64>(-2f64.powi(-100), 0.0, 0.0), v::<f64>(0.0, 2f64.powi(900), 0.0));
+    let k = toi_sphere_plane(&a, &va, &plane, &vb, f64::MAX).expect("it lands");
+    let want = 2f64.powi(599);
+    assert!((k.t - want).abs() <= SCALED_TIME_REL_EPS * f64::EPSILON * want, "t {:e}", k.t);
+    // The point is within the roundings of the scene's size (2^500) of 0.
+    let scale = 2f64.powi(500);
+    assert!(k.point.norm() <= SCALED_TIME_REL_EPS * f64::EPSILON * scale, "{k:?}");
+}
+
 // ---------------------------------------------------------- sphere–triangle
 
 fn sphere_triangle_regions<T: Real>() {
@@ -1496,3 +1560,4 @@ fn sphere_triangle_and_mesh_toi_at_every_scale() {
         falling_onto_a_scaled_triangle::<f32>(k);
     }
 }
+
