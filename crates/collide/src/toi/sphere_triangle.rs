@@ -104,6 +104,26 @@ pub fn toi_sphere_triangle<T: Real>(
     rule: &Advancement,
 ) -> Option<Toi<T>> {
     let t_max = clamp_t_max(t_max);
+    // The static contact on the scene as given: it scales its own scene
+    // where that is safe, while the advancement's scaling below may push the
+    // smallest coordinates beside a huge sphere into the subnormals or to
+    // zero — a centre just off the triangle's plane would land in it.
+    if let Some(k) = contact_sphere_triangle(a, b) {
+        return Some(Toi::penetrating(&k));
+    }
+    toi_clear(a, va, b, vb, t_max, rule)
+}
+
+/// [`toi_sphere_triangle`] for a sphere known to be clear of the triangle at
+/// `t = 0`.
+fn toi_clear<T: Real>(
+    a: &Sphere<T>,
+    va: &Vec3<T>,
+    b: &Triangle<T>,
+    vb: &Vec3<T>,
+    t_max: T,
+    rule: &Advancement,
+) -> Option<Toi<T>> {
     // Outside the plain range (huge, tiny or subnormal scenes, displacements
     // near the type's limits) the scene is answered scaled by a power of two
     // to about 1, where no square or distance under- or overflows and the
@@ -115,13 +135,10 @@ pub fn toi_sphere_triangle<T: Real>(
     if let Some(k) = unit_scale(a.radius.abs().max(amax(&a.center)).max(amax(va)).max(amax(vb))) {
         let a2 = Sphere { center: scale2v(&a.center, k), radius: scale2(a.radius, k) };
         let b2 = Triangle { vertices: b.vertices.map(|p| scale2v(&p, k)) };
-        return toi_sphere_triangle(&a2, &scale2v(va, k), &b2, &scale2v(vb, k), t_max, rule).map(|mut r| {
+        return toi_clear(&a2, &scale2v(va, k), &b2, &scale2v(vb, k), t_max, rule).map(|mut r| {
             r.point = scale2v(&r.point, -k);
             r
         });
-    }
-    if let Some(k) = contact_sphere_triangle(a, b) {
-        return Some(Toi::penetrating(&k));
     }
     let v = va - vb;
     // The tolerance is the problem's own scale, not the triangle's: the
