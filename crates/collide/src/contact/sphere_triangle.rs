@@ -5,6 +5,7 @@ use super::closest_pt_triangle::{
     Closest, EDGE_TEST_ROUNDING, Region, closest_on_outer_edges, closest_pt_point_triangle_region_with_area,
     nearest_on_edges,
 };
+use super::exact_boundary::{Distance, nearest_on_boundary};
 use super::sphere_sphere::CONCENTRIC_FALLBACK_NORMAL;
 use crate::barycentric::barycentric_triangle_tight;
 use crate::exact::filter::Filtered;
@@ -79,20 +80,41 @@ use crate::shapes::{Sphere, Triangle};
 /// say) their cancellation in `f32` picked the wrong region, putting the point
 /// a whole unit off on a triangle of size 3.
 pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Option<Contact<T>> {
+    contact_ranked(a, b, false).map(|(k, _)| k)
+}
+
+/// [`contact_sphere_triangle`] with the distance from the centre to the
+/// triangle, accurate relative to itself (a few ulps on the boundary, `2^−40`
+/// in the face region, 0 for a centre on the triangle): what a mesh's faces
+/// are ranked by, where the depth `r − d` of a sphere far larger than the
+/// mesh is `r` for every face.
+pub(crate) fn contact_sphere_triangle_ranked<T: Real>(
+    a: &Sphere<T>,
+    b: &Triangle<T>,
+) -> Option<(Contact<T>, Distance)> {
+    contact_ranked(a, b, true)
+}
+
+/// [`contact_sphere_triangle`] and the distance of the contact; with `rank`,
+/// the face region's distance is made accurate relative to itself also when
+/// the sphere is far larger (without, it is accurate relative to the radius).
+fn contact_ranked<T: Real>(a: &Sphere<T>, b: &Triangle<T>, rank: bool) -> Option<(Contact<T>, Distance)> {
     if T::EPSILON.wide() > f64::EPSILON {
         let w = |v: &Vec3<T>| Vec3::new(v.x.wide(), v.y.wide(), v.z.wide());
         let n = |v: &Vec3<f64>| Vec3::new(T::of(v.x), T::of(v.y), T::of(v.z));
         let [v0, v1, v2] = b.vertices;
-        let wide = contact_sphere_triangle::<f64>(
+        let (wide, dist) = contact_ranked::<f64>(
             &Sphere::new(w(&a.center), a.radius.wide()),
             &Triangle::new(w(&v0), w(&v1), w(&v2)),
+            rank,
         )?;
-        return Some(Contact {
+        let k = Contact {
             point: n(&wide.point),
             normal: n(&wide.normal),
             depth: T::of(wide.depth),
             degenerate: wide.degenerate,
-        });
+        };
+        return Some((k, dist));
     }
     // Outside the plain range (a tiny or subnormal scene, or a huge one) the
     // scene is answered scaled by a power of two to about 1, where no square
@@ -113,10 +135,9 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
     if let Some(k) = unit_scale(size).filter(|k| safe(*k)) {
         let a2 = Sphere::new(scale2v(&a.center, k), scale2(a.radius, k));
         let b2 = Triangle { vertices: b.vertices.map(|p| scale2v(&p, k)) };
-        return contact_sphere_triangle(&a2, &b2).map(|r| Contact {
-            point: scale2v(&r.point, -k),
-            depth: scale2(r.depth, -k),
-            ..r
+        return contact_ranked(&a2, &b2, rank).map(|(r, d)| {
+            let back = Contact { point: scale2v(&r.point, -k), depth: scale2(r.depth, -k), ..r };
+            (back, d.scaled(-i64::from(k)))
         });
     }
     // Work in the frame of the centre: `M − q` is then computed as `−q'`, the
@@ -217,12 +238,18 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
             if !(dist <= a.radius) {
                 return None;
             }
-            return Some(Contact {
-                point: a.center - normal * dist,
-                normal,
-                depth: a.radius - dist,
-                degenerate: false,
-            });
+            let k = Contact { point: a.center - normal * dist, normal, depth: a.radius - dist, degenerate: false };
+            // Deep inside (the distance far below the radius) the distance
+            // is only known to 2^−40 of the radius: ranked, it is refined to
+            // 2^−40 of itself.
+            let ranked = if rank && d * DEEP_RATIO < a.radius.wide() {
+                let (p, v) = widened(a, b);
+                let face = compensated.flatten().or_else(|| FaceCompensated::new(p, v));
+                face_normal_and_distance(p, v, 0.0, face.as_ref()).map_or(d, |(_, d0)| d0)
+            } else {
+                d
+            };
+            return Some((k, Distance::of(ranked, 0)));
         }
         // No normal: the centre is in the plane, hence on the triangle (its
         // projection is inside), or farther from the plane than `f64` reaches.
@@ -235,7 +262,20 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
             let [x, y, z] = CONCENTRIC_FALLBACK_NORMAL;
             Vec3::new(c(x), c(y), c(z))
         });
-        return Some(Contact { point: a.center, normal, depth: a.radius, degenerate: true });
+        return Some((Contact { point: a.center, normal, depth: a.radius, degenerate: true }, Distance::ZERO));
+    }
+    // Numbers spanning so many magnitudes that the closest point's rounding
+    // (of the triangle's extent in the frame) may exceed the distance itself:
+    // the direction and distance of the boundary point decided exactly.
+    if boundary_unresolved(&delta, in_local, &local, b, &a.center)
+        && let Some(bp) = nearest_on_boundary(&a.center, b)
+    {
+        let d = bp.distance.to_f64();
+        if !(d <= a.radius.wide()) {
+            return None;
+        }
+        let depth = a.radius - T::of(d);
+        return Some((Contact { point: bp.point, normal: bp.normal, depth, degenerate: false }, bp.distance));
     }
     // A clear miss needs no root (see `CLEAR_MISS_EPS`).
     let nn = delta.norm_squared();
@@ -266,7 +306,7 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
             let [x, y, z] = CONCENTRIC_FALLBACK_NORMAL;
             Vec3::new(c(x), c(y), c(z))
         });
-        return Some(Contact { point: a.center, normal, depth: a.radius, degenerate: true });
+        return Some((Contact { point: a.center, normal, depth: a.radius, degenerate: true }, Distance::ZERO));
     }
     let normal = if plain { Some(delta * (T::one() / dist)) } else { try_normalize_stable(&delta) };
     let normal = match normal {
@@ -278,16 +318,44 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
             (OnTriangle::Side(s), Some(n)) if s != 0.0 => n * c::<T>(s),
             _ => {
                 let [x, y, z] = CONCENTRIC_FALLBACK_NORMAL;
-                return Some(Contact {
-                    point: q,
-                    normal: Vec3::new(c(x), c(y), c(z)),
-                    depth: a.radius - dist,
-                    degenerate: true,
-                });
+                let k =
+                    Contact { point: q, normal: Vec3::new(c(x), c(y), c(z)), depth: a.radius - dist, degenerate: true };
+                return Some((k, Distance::of(dist.wide(), 0)));
             }
         },
     };
-    Some(Contact { point: q, normal, depth: a.radius - dist, degenerate: false })
+    Some((Contact { point: q, normal, depth: a.radius - dist, degenerate: false }, Distance::of(dist.wide(), 0)))
+}
+
+/// Ratio of the radius to the face region's distance above which a ranked
+/// contact refines the distance (see [`contact_sphere_triangle_ranked`]):
+/// `2^20`, where 2^−40 of the radius is no longer 2^−20 of the distance.
+const DEEP_RATIO: f64 = 1048576.0;
+
+/// Ratio of the triangle's extent in the frame the closest point was
+/// computed in to the offset from the centre below which that offset's
+/// direction is recomputed exactly ([`nearest_on_boundary`]): `2^12`. The
+/// point's rounding is a few ulps of the extent, so the plain direction is
+/// within a few `2^−40` rad where the offset is larger.
+const UNRESOLVED_RATIO: f64 = 4096.0;
+
+/// Whether the boundary point's offset `delta` from the centre is below
+/// [`UNRESOLVED_RATIO`] of the extent it was computed at: the translated
+/// vertices in the centre's frame, else the vertices and the centre.
+#[inline]
+fn boundary_unresolved<T: Real>(
+    delta: &Vec3<T>,
+    in_local: bool,
+    local: &Triangle<T>,
+    b: &Triangle<T>,
+    centre: &Vec3<T>,
+) -> bool {
+    let extent = if in_local {
+        local.vertices.iter().fold(T::zero(), |m, v| m.max(v.amax()))
+    } else {
+        b.vertices.iter().fold(centre.amax(), |m, v| m.max(v.amax()))
+    };
+    delta.amax().wide() * UNRESOLVED_RATIO < extent.wide()
 }
 
 /// The centre and the vertices widened to `f64`.
