@@ -132,7 +132,8 @@ impl<'a, T: Real> Query<'a, T> {
 /// empty mesh is never hit. A sphere of zero radius gets the approach direction
 /// `−v/‖v‖` as its normal, flagged; a centre on a face at `t = 0` the static
 /// fallback, flagged. A negative or NaN `t_max` is read as 0. Never NaN, never
-/// a panic.
+/// a panic; a contact point beyond the type's range is `None`, as for one
+/// triangle.
 pub fn toi_sphere_mesh_brute<T: Real>(
     a: &Sphere<T>,
     va: &Vec3<T>,
@@ -144,7 +145,7 @@ pub fn toi_sphere_mesh_brute<T: Real>(
     if let Some(k) = contact_sphere_mesh_nearest(a, b, None) {
         return Some(MeshToi::penetrating(&k));
     }
-    brute_clear(a, va, b, vb, t_max, rule)
+    brute_clear(a, va, b, vb, t_max, rule).filter(|r| r.toi.in_range())
 }
 
 /// [`toi_sphere_mesh_brute`] for a sphere known to touch no face at `t = 0`.
@@ -209,7 +210,7 @@ pub fn toi_sphere_mesh<T: Real>(
     if let Some(k) = contact_sphere_mesh_nearest(a, b.mesh(), Some(b)) {
         return Some(MeshToi::penetrating(&k));
     }
-    bvh_clear(a, va, b, vb, t_max, rule)
+    bvh_clear(a, va, b, vb, t_max, rule).filter(|r| r.toi.in_range())
 }
 
 /// [`toi_sphere_mesh`] for a sphere known to touch no face at `t = 0`.

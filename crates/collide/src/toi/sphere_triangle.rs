@@ -95,6 +95,13 @@ impl Default for Advancement {
 /// `−v/‖v‖`, flagged. A centre on the triangle at `t = 0` gets the static test's
 /// fallback (flagged). Non-finite intermediate values end the search with `None`,
 /// never NaN. A negative or NaN `t_max` is read as 0.
+///
+/// **Beyond the range.** A contact whose point, moved with `b` to time `t`,
+/// lies beyond the type's range (the shapes have travelled past `MAX` by
+/// then) has no answer in the type: `None`, never an infinity. (Such an
+/// impact, if real, has no representable answer at all; in practice it is an
+/// advancement that converged on a distance its scene's rounding could not
+/// resolve — a huge `t_max` in a scene of wildly mixed magnitudes.)
 pub fn toi_sphere_triangle<T: Real>(
     a: &Sphere<T>,
     va: &Vec3<T>,
@@ -111,7 +118,7 @@ pub fn toi_sphere_triangle<T: Real>(
     if let Some(k) = contact_sphere_triangle(a, b) {
         return Some(Toi::penetrating(&k));
     }
-    toi_clear(a, va, b, vb, t_max, rule)
+    toi_clear(a, va, b, vb, t_max, rule).filter(Toi::in_range)
 }
 
 /// [`toi_sphere_triangle`] for a sphere known to be clear of the triangle at
