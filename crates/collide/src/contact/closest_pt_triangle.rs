@@ -247,7 +247,7 @@ pub fn closest_pt_point_segment<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) 
 /// `ε · 1e15`; and it is clamped at `b` by `t_b ≤ 0`, not by `t ≥ 1`
 /// (which rounds a foot `1e-16` of the length inside to the end). A segment whose squared length is outside the plain range
 /// (huge or tiny edges) takes [`segment_foot_scaled`].
-pub(crate) fn segment_foot<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) -> (Vec3<T>, bool) {
+fn segment_foot<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) -> (Vec3<T>, bool) {
     let ab = b - a;
     let len2 = ab.norm_squared();
     let (lo, hi) = crate::exact::norm::safe_squared_range::<T>();
@@ -263,6 +263,11 @@ pub(crate) fn segment_foot<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) -> (V
     let raw = num / len2;
     let half: T = crate::real::c(0.5);
     if !(raw > T::zero()) {
+        // A positive numerator whose parameter underflowed: the foot is
+        // still off `a` by `num / ‖ab‖`, which the scaled path forms.
+        if num > T::zero() {
+            return segment_foot_scaled(p, a, b);
+        }
         return (*a, false);
     }
     if raw <= half {
@@ -276,6 +281,9 @@ pub(crate) fn segment_foot<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) -> (V
     }
     let from_b = num_b / len2;
     if !(from_b > T::zero()) {
+        if num_b > T::zero() {
+            return segment_foot_scaled(p, a, b);
+        }
         return (*b, false);
     }
     (b - ab * from_b, true)
@@ -303,28 +311,28 @@ fn segment_foot_scaled<T: Real>(p: &Vec3<T>, a: &Vec3<T>, b: &Vec3<T>) -> (Vec3<
     let uu = (u[0] * u[0] + u[1] * u[1]) + u[2] * u[2];
     let dot = |x: [f64; 3], y: [f64; 3]| (x[0] * y[0] + x[1] * y[1]) + x[2] * y[2];
     // ab = 2 · 2^k u and p − a = 4 q: t = (q · u)/(u · u) · 2^(1 − k), and
-    // the foot a + t ab = a + 4 s u with s = (q · u)/(u · u). The foot is
-    // formed from `s`, never from `t`: on a huge edge the parameter of a
-    // foot near its end underflows (a foot 7e-55 from the end of an edge of
-    // 4e303 has t ≈ 2e-358) while its offset `4 s u` is representable. The
-    // side tests read the sign of `s`, which `t`'s underflow would lose.
-    let unit_param = |from: [f64; 3], dir: [f64; 3]| {
+    // the foot's offset from the end is ab · t = 4 u (q · u)/(u · u), formed
+    // from `c = (q · u)/(u · u)` directly: the parameter itself underflows
+    // for a foot near the end of an edge of 1e298 (an offset of 1e-63 is a
+    // parameter of 1e-361), and a foot formed through it landed on the end.
+    let param = |from: [f64; 3], dir: [f64; 3]| {
         let q = [0, 1, 2].map(|i| pw[i] * 0.25 - from[i] * 0.25);
-        dot(q, dir) / uu
+        let c = dot(q, dir) / uu;
+        (c, ldexp(c, 1 - k))
     };
-    let s = unit_param(aw, u);
-    if !(s > 0.0) {
+    let (c, raw) = param(aw, u);
+    if !(c > 0.0) {
         return (*a, false);
     }
     let back = |x: [f64; 3]| Vec3::new(T::of(x[0]), T::of(x[1]), T::of(x[2]));
-    if ldexp(s, 1 - k) <= 0.5 {
-        return (back([0, 1, 2].map(|i| aw[i] + (u[i] * s) * 4.0)), true);
+    if raw <= 0.5 {
+        return (back([0, 1, 2].map(|i| aw[i] + u[i] * (4.0 * c))), true);
     }
-    let s_b = unit_param(bw, u.map(|x| -x));
-    if !(s_b > 0.0) {
+    let (c_b, _) = param(bw, u.map(|x| -x));
+    if !(c_b > 0.0) {
         return (*b, false);
     }
-    (back([0, 1, 2].map(|i| bw[i] - (u[i] * s_b) * 4.0)), true)
+    (back([0, 1, 2].map(|i| bw[i] - u[i] * (4.0 * c_b))), true)
 }
 
 /// The point of the triangle's three edges nearest to `p` (each edge's
@@ -425,5 +433,23 @@ mod tests {
             let same = x.x == y.x && x.y == y.y && x.z == y.z;
             prop_assert!(same, "{:?} vs {:?}", x, y);
         }
+    }
+}
+
+#[cfg(test)]
+mod foot_tests {
+    use super::*;
+
+    /// The foot is formed once from the nearer end: within a few ulps of its
+    /// own offset (4 ε relative).
+    const FOOT_REL: f64 = 4.0 * f64::EPSILON;
+
+    #[test]
+    fn foot_near_the_end_of_a_huge_edge_is_not_the_end() {
+        // Edge from the origin to (0, 0, −3e298); the point (1, 0, −5e-63):
+        // the foot (0, 0, −5e-63) has the parameter 1.7e-361, below f64's.
+        let (a, b) = (Vec3::<f64>::new(0.0, 0.0, 0.0), Vec3::<f64>::new(0.0, 0.0, -3e298));
+        let q = closest_pt_point_segment(&Vec3::new(1.0, 0.0, -5e-63), &a, &b);
+        assert!((q.z / -5e-63 - 1.0).abs() <= FOOT_REL && q.x.abs() <= FOOT_REL * 5e-63, "{q:?}");
     }
 }

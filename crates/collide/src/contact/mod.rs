@@ -11,13 +11,16 @@ mod closest_pt_triangle;
     reason = "`contact::contact` holds the result type; users name it `contact::Contact`"
 )]
 mod contact;
+mod exact_boundary;
 mod sphere_plane;
 mod sphere_sphere;
 mod sphere_triangle;
 
 pub use closest_pt_triangle::{closest_pt_point_segment, closest_pt_point_triangle};
 pub use contact::Contact;
+pub(crate) use exact_boundary::Distance;
 pub(crate) use sphere_plane::clearly_apart;
 pub use sphere_plane::{contact_plane_sphere, contact_sphere_plane};
 pub use sphere_sphere::{CONCENTRIC_FALLBACK_NORMAL, contact_sphere_sphere, contact_sphere_sphere_lecture};
+pub(crate) use sphere_triangle::contact_sphere_triangle_ranked;
 pub use sphere_triangle::{contact_sphere_triangle, contact_triangle_sphere};

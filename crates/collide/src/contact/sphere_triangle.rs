@@ -5,6 +5,7 @@ use super::closest_pt_triangle::{
     Closest, EDGE_TEST_ROUNDING, Region, closest_on_outer_edges, closest_pt_point_triangle_region_with_area,
     nearest_on_edges,
 };
+use super::exact_boundary::{Distance, nearest_on_boundary};
 use super::sphere_sphere::CONCENTRIC_FALLBACK_NORMAL;
 use crate::barycentric::barycentric_triangle_tight;
 use crate::exact::filter::Filtered;
@@ -58,11 +59,7 @@ use crate::shapes::{Sphere, Triangle};
 /// from its edge's nearer end, without overflow or underflow, so a sphere
 /// of radius 4 beside a triangle with legs of `1e300` gets its closest
 /// point to the rounding of its own scale, not of the triangle's
-/// (`certified_region`, in the source, has the derivation). A foot far
-/// closer to the centre than the triangle's extent takes its normal and
-/// distance from the edge's cross products, not from `M − q`, whose rounding
-/// along the edge (of the edge's size) would otherwise point it along the
-/// edge. In the face region the normal and the distance `d` come
+/// (`certified_region`, in the source, has the derivation). In the face region the normal and the distance `d` come
 /// from the triangle's cross product and the centre's volume, certified by a
 /// static filter (else compensated, else exact arithmetic) to `2^−40`: the
 /// normal's direction, and `d` relative to the larger of itself and `r` — so
@@ -83,20 +80,41 @@ use crate::shapes::{Sphere, Triangle};
 /// say) their cancellation in `f32` picked the wrong region, putting the point
 /// a whole unit off on a triangle of size 3.
 pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Option<Contact<T>> {
+    contact_ranked(a, b, false).map(|(k, _)| k)
+}
+
+/// [`contact_sphere_triangle`] with the distance from the centre to the
+/// triangle, accurate relative to itself (a few ulps on the boundary, `2^−40`
+/// in the face region, 0 for a centre on the triangle): what a mesh's faces
+/// are ranked by, where the depth `r − d` of a sphere far larger than the
+/// mesh is `r` for every face.
+pub(crate) fn contact_sphere_triangle_ranked<T: Real>(
+    a: &Sphere<T>,
+    b: &Triangle<T>,
+) -> Option<(Contact<T>, Distance)> {
+    contact_ranked(a, b, true)
+}
+
+/// [`contact_sphere_triangle`] and the distance of the contact; with `rank`,
+/// the face region's distance is made accurate relative to itself also when
+/// the sphere is far larger (without, it is accurate relative to the radius).
+fn contact_ranked<T: Real>(a: &Sphere<T>, b: &Triangle<T>, rank: bool) -> Option<(Contact<T>, Distance)> {
     if T::EPSILON.wide() > f64::EPSILON {
         let w = |v: &Vec3<T>| Vec3::new(v.x.wide(), v.y.wide(), v.z.wide());
         let n = |v: &Vec3<f64>| Vec3::new(T::of(v.x), T::of(v.y), T::of(v.z));
         let [v0, v1, v2] = b.vertices;
-        let wide = contact_sphere_triangle::<f64>(
+        let (wide, dist) = contact_ranked::<f64>(
             &Sphere::new(w(&a.center), a.radius.wide()),
             &Triangle::new(w(&v0), w(&v1), w(&v2)),
+            rank,
         )?;
-        return Some(Contact {
+        let k = Contact {
             point: n(&wide.point),
             normal: n(&wide.normal),
             depth: T::of(wide.depth),
             degenerate: wide.degenerate,
-        });
+        };
+        return Some((k, dist));
     }
     // Outside the plain range (a tiny or subnormal scene, or a huge one) the
     // scene is answered scaled by a power of two to about 1, where no square
@@ -117,10 +135,9 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
     if let Some(k) = unit_scale(size).filter(|k| safe(*k)) {
         let a2 = Sphere::new(scale2v(&a.center, k), scale2(a.radius, k));
         let b2 = Triangle { vertices: b.vertices.map(|p| scale2v(&p, k)) };
-        return contact_sphere_triangle(&a2, &b2).map(|r| Contact {
-            point: scale2v(&r.point, -k),
-            depth: scale2(r.depth, -k),
-            ..r
+        return contact_ranked(&a2, &b2, rank).map(|(r, d)| {
+            let back = Contact { point: scale2v(&r.point, -k), depth: scale2(r.depth, -k), ..r };
+            (back, d.scaled(-i64::from(k)))
         });
     }
     // Work in the frame of the centre: `M − q` is then computed as `−q'`, the
@@ -201,26 +218,6 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
         }
     };
     let (q, delta) = if in_local { (a.center + q_raw, -q_raw) } else { (q_raw, a.center - q_raw) };
-    // A foot inside an edge far closer to the centre than the edge's ends
-    // carries its rounding, of the ends' size, along the edge: `M − q` is
-    // then that rounding, not the direction to the edge (a centre 1e26 from
-    // an edge whose foot is at 1.8e56 got a normal along the edge). Such a
-    // contact takes its normal and distance from the edge's line directly
-    // (`edge_line_normal`).
-    let refined = if region == Region::Boundary {
-        let (p, t) = frame();
-        let extent = t.vertices.iter().fold(T::zero(), |m, v| m.max(v.amax()));
-        let reach = delta.amax();
-        if reach.wide() * LOCAL_FEATURE_RATIO < extent.wide() { edge_line_normal(&p, &t, &q_raw) } else { None }
-    } else {
-        None
-    };
-    if let Some((normal, dist)) = refined {
-        if !(dist <= a.radius) {
-            return None;
-        }
-        return Some(Contact { point: q, normal, depth: a.radius - dist, degenerate: false });
-    }
     // In the face region the direction is the face normal and the distance the
     // plane distance; both come accurately from exact-filtered volumes, where
     // the closest point's own rounding would tilt the normal of a thin triangle
@@ -241,12 +238,18 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
             if !(dist <= a.radius) {
                 return None;
             }
-            return Some(Contact {
-                point: a.center - normal * dist,
-                normal,
-                depth: a.radius - dist,
-                degenerate: false,
-            });
+            let k = Contact { point: a.center - normal * dist, normal, depth: a.radius - dist, degenerate: false };
+            // Deep inside (the distance far below the radius) the distance
+            // is only known to 2^−40 of the radius: ranked, it is refined to
+            // 2^−40 of itself.
+            let ranked = if rank && d * DEEP_RATIO < a.radius.wide() {
+                let (p, v) = widened(a, b);
+                let face = compensated.flatten().or_else(|| FaceCompensated::new(p, v));
+                face_normal_and_distance(p, v, 0.0, face.as_ref()).map_or(d, |(_, d0)| d0)
+            } else {
+                d
+            };
+            return Some((k, Distance::of(ranked, 0)));
         }
         // No normal: the centre is in the plane, hence on the triangle (its
         // projection is inside), or farther from the plane than `f64` reaches.
@@ -259,7 +262,20 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
             let [x, y, z] = CONCENTRIC_FALLBACK_NORMAL;
             Vec3::new(c(x), c(y), c(z))
         });
-        return Some(Contact { point: a.center, normal, depth: a.radius, degenerate: true });
+        return Some((Contact { point: a.center, normal, depth: a.radius, degenerate: true }, Distance::ZERO));
+    }
+    // Numbers spanning so many magnitudes that the closest point's rounding
+    // (of the triangle's extent in the frame) may exceed the distance itself:
+    // the direction and distance of the boundary point decided exactly.
+    if boundary_unresolved(&delta, in_local, &local, b, &a.center)
+        && let Some(bp) = nearest_on_boundary(&a.center, b)
+    {
+        let d = bp.distance.to_f64();
+        if !(d <= a.radius.wide()) {
+            return None;
+        }
+        let depth = a.radius - T::of(d);
+        return Some((Contact { point: bp.point, normal: bp.normal, depth, degenerate: false }, bp.distance));
     }
     // A clear miss needs no root (see `CLEAR_MISS_EPS`).
     let nn = delta.norm_squared();
@@ -290,7 +306,7 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
             let [x, y, z] = CONCENTRIC_FALLBACK_NORMAL;
             Vec3::new(c(x), c(y), c(z))
         });
-        return Some(Contact { point: a.center, normal, depth: a.radius, degenerate: true });
+        return Some((Contact { point: a.center, normal, depth: a.radius, degenerate: true }, Distance::ZERO));
     }
     let normal = if plain { Some(delta * (T::one() / dist)) } else { try_normalize_stable(&delta) };
     let normal = match normal {
@@ -302,85 +318,44 @@ pub fn contact_sphere_triangle<T: Real>(a: &Sphere<T>, b: &Triangle<T>) -> Optio
             (OnTriangle::Side(s), Some(n)) if s != 0.0 => n * c::<T>(s),
             _ => {
                 let [x, y, z] = CONCENTRIC_FALLBACK_NORMAL;
-                return Some(Contact {
-                    point: q,
-                    normal: Vec3::new(c(x), c(y), c(z)),
-                    depth: a.radius - dist,
-                    degenerate: true,
-                });
+                let k =
+                    Contact { point: q, normal: Vec3::new(c(x), c(y), c(z)), depth: a.radius - dist, degenerate: true };
+                return Some((k, Distance::of(dist.wide(), 0)));
             }
         },
     };
-    Some(Contact { point: q, normal, depth: a.radius - dist, degenerate: false })
+    Some((Contact { point: q, normal, depth: a.radius - dist, degenerate: false }, Distance::of(dist.wide(), 0)))
 }
 
-/// For a closest point `q` of `tri` to `p` inside one of its edges: the
-/// direction from that edge's line to `p` and the distance, from the edge's
-/// two cross products (`e × ((p − u) × e)`, `‖(p − u) × e‖ / ‖e‖`) rather
-/// than from `p − q`. The foot `q` is rounded to its own size along the edge
-/// as well as across it; the cross products are not: each component of
-/// `(p − u) × e` is rounded relative to the products forming it, so the
-/// normal and distance are as accurate as the edge's line is. Every factor
-/// is scaled by a power of two first (exact): the offset from the edge's
-/// nearer end and the edge itself halved (no overflow) and scaled to a
-/// largest component of about 1, and so is the first product. `None` when
-/// `q` is a vertex, or no edge has its foot inside, or the scaled product
-/// underflows to zero (then `p − q` answers).
-#[cold]
-#[inline(never)]
-fn edge_line_normal<T: Real>(p: &Vec3<T>, tri: &Triangle<T>, q: &Vec3<T>) -> Option<(Vec3<T>, T)> {
-    use crate::exact::{frexp, ldexp};
-    let w = crate::real::to_f64_3::<T>;
-    let [a, b, c] = tri.vertices;
-    // Every path to `q` returns a vertex's closest point as that vertex,
-    // exactly.
-    if tri.vertices.contains(q) {
-        return None;
-    }
-    // The edge whose inside foot is `q` (the nearest to it: the paths differ
-    // in rounding only).
-    let mut best: Option<(T, Vec3<T>, Vec3<T>)> = None;
-    for (u, v) in [(a, b), (b, c), (c, a)] {
-        let (foot, inside) = super::closest_pt_triangle::segment_foot(p, &u, &v);
-        if !inside {
-            continue;
-        }
-        let gap = stable_norm(&(foot - q));
-        if best.as_ref().is_none_or(|(g, _, _)| gap < *g) {
-            best = Some((gap, u, v));
-        }
-    }
-    // From the edge's end nearer to `p`: the offset's rounding is then of
-    // the size of the distance to the edge, not of the edge's length.
-    let (_, u, v) = best?;
-    let (pw, u, v) = (w(p), w(&u), w(&v));
-    let reach = |e: [f64; 3]| (0..3).fold(0.0f64, |m, i| m.max((pw[i] * 0.5 - e[i] * 0.5).abs()));
-    let (uw, vw) = if reach(v) < reach(u) { (v, u) } else { (u, v) };
-    let unit = |x: [f64; 3]| {
-        let top = x.iter().fold(0.0f64, |m, c| m.max(c.abs()));
-        if !(top > 0.0 && top.is_finite()) {
-            return None;
-        }
-        let (_, k) = frexp(top);
-        Some((x.map(|c| ldexp(c, -k)), k))
+/// Ratio of the radius to the face region's distance above which a ranked
+/// contact refines the distance (see [`contact_sphere_triangle_ranked`]):
+/// `2^20`, where 2^−40 of the radius is no longer 2^−20 of the distance.
+const DEEP_RATIO: f64 = 1048576.0;
+
+/// Ratio of the triangle's extent in the frame the closest point was
+/// computed in to the offset from the centre below which that offset's
+/// direction is recomputed exactly ([`nearest_on_boundary`]): `2^12`. The
+/// point's rounding is a few ulps of the extent, so the plain direction is
+/// within a few `2^−40` rad where the offset is larger.
+const UNRESOLVED_RATIO: f64 = 4096.0;
+
+/// Whether the boundary point's offset `delta` from the centre is below
+/// [`UNRESOLVED_RATIO`] of the extent it was computed at: the translated
+/// vertices in the centre's frame, else the vertices and the centre.
+#[inline]
+fn boundary_unresolved<T: Real>(
+    delta: &Vec3<T>,
+    in_local: bool,
+    local: &Triangle<T>,
+    b: &Triangle<T>,
+    centre: &Vec3<T>,
+) -> bool {
+    let extent = if in_local {
+        local.vertices.iter().fold(T::zero(), |m, v| m.max(v.amax()))
+    } else {
+        b.vertices.iter().fold(centre.amax(), |m, v| m.max(v.amax()))
     };
-    let cross =
-        |x: [f64; 3], y: [f64; 3]| [x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]];
-    let norm = |x: [f64; 3]| ((x[0] * x[0] + x[1] * x[1]) + x[2] * x[2]).sqrt();
-    // x = (p − u)/2 and e = (v − u)/2, each scaled to a largest component
-    // in [1/2, 1).
-    let (x, kx) = unit([0, 1, 2].map(|i| pw[i] * 0.5 - uw[i] * 0.5))?;
-    let (e, _) = unit([0, 1, 2].map(|i| vw[i] * 0.5 - uw[i] * 0.5))?;
-    let (m, km) = unit(cross(x, e))?;
-    let perp = cross(e, m);
-    let size = norm(perp);
-    if !(size > 0.0) {
-        return None;
-    }
-    // ‖p − u‖ sin θ = 2 · 2^kx ‖x × e‖ / ‖e‖ = 2^(kx + km + 1) ‖m‖ / ‖e‖.
-    let dist = ldexp(norm(m) / norm(e), kx + km + 1);
-    let n = perp.map(|c| c / size);
-    Some((Vec3::new(T::of(n[0]), T::of(n[1]), T::of(n[2])), T::of(dist)))
+    delta.amax().wide() * UNRESOLVED_RATIO < extent.wide()
 }
 
 /// The centre and the vertices widened to `f64`.

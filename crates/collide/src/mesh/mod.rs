@@ -62,5 +62,6 @@ pub use segment_mesh::{
     intersect_segment_mesh_brute, intersect_segment_mesh_bvh, intersect_segment_mesh_culled,
     intersect_segment_mesh_lecture,
 };
+pub(crate) use sphere_mesh::contact_sphere_mesh_nearest;
 pub use sphere_mesh::{contact_sphere_mesh_brute, contact_sphere_mesh_bvh, contact_sphere_mesh_culled};
 pub use trimesh::{MeshError, TriMesh};

@@ -188,3 +188,77 @@ pub fn contact_sphere_mesh_bvh<T: Real>(a: &Sphere<T>, b: &MeshBvh<T>) -> Option
     }
     answer(best)
 }
+
+/// The static contact a time of impact reports for a sphere already touching
+/// the mesh at `t = 0`: the face nearest the centre (by each face's distance
+/// from [`contact_sphere_triangle`](crate::contact::contact_sphere_triangle)'s
+/// certified path, accurate relative to itself; the lowest index on a tie),
+/// answered as that one triangle — the referee's definition, where the
+/// lecture's deepest-contact order ([`contact_sphere_mesh_brute`]) ranks faces
+/// by a plain closest point whose rounding, for a sphere holding the whole
+/// mesh among numbers of wildly different magnitudes, can exceed the
+/// distances it compares (and whose normal then points anywhere).
+///
+/// With a hierarchy, a node is skipped when its box's distance lower bound
+/// exceeds the radius or (by a relative `2^−30`, more than the distances'
+/// error) the nearest distance so far. Faces with a non-finite vertex are
+/// skipped. `None`: no face touches.
+pub(crate) fn contact_sphere_mesh_nearest<T: Real>(
+    a: &Sphere<T>,
+    mesh: &TriMesh<T>,
+    bvh: Option<&MeshBvh<T>>,
+) -> Option<MeshContact<T>> {
+    use crate::contact::{Distance, contact_sphere_triangle_ranked};
+    if !well_posed(a) {
+        return None;
+    }
+    let mut best: Option<(Distance, usize, Contact<T>)> = None;
+    let consider = |best: &mut Option<(Distance, usize, Contact<T>)>, face: usize, tri: &Triangle<T>| {
+        if let Some((k, d)) = contact_sphere_triangle_ranked(a, tri)
+            && best.as_ref().is_none_or(|(bd, bf, _)| d.less(bd) || (!bd.less(&d) && face < *bf))
+        {
+            *best = Some((d, face, k));
+        }
+    };
+    let Some(bvh) = bvh else {
+        for face in 0..mesh.len() {
+            if !mesh.has_nonfinite_vertex(face) {
+                consider(&mut best, face, &mesh.triangle(face));
+            }
+        }
+        return best.map(|(_, face, contact)| MeshContact { contact, triangle: face });
+    };
+    const SLACK: f64 = 1.0 + 1.0 / (1u64 << 30) as f64;
+    let pruned = |best: &Option<(Distance, usize, Contact<T>)>, lb: T| {
+        lb > a.radius || best.as_ref().is_some_and(|(d, _, _)| lb.wide() > d.to_f64() * SLACK)
+    };
+    let nodes = bvh.nodes();
+    let root = nodes.first()?;
+    let mut stack = [0u32; STACK];
+    let mut sp = 0usize;
+    if !pruned(&best, box_distance_lower_bound(&a.center, &root.min, &root.max)) {
+        sp = 1;
+    }
+    while sp > 0 {
+        sp -= 1;
+        let i = stack[sp];
+        let node = &nodes[i as usize];
+        if pruned(&best, box_distance_lower_bound(&a.center, &node.min, &node.max)) {
+            continue;
+        }
+        if node.count > 0 {
+            for k in node.start..node.start + node.count {
+                let (tri, face) = bvh.leaf_face(k as usize);
+                consider(&mut best, face, tri);
+            }
+            continue;
+        }
+        for child in [node.start, i + 1] {
+            if sp < STACK {
+                stack[sp] = child;
+                sp += 1;
+            }
+        }
+    }
+    best.map(|(_, face, contact)| MeshContact { contact, triangle: face })
+}

@@ -19,6 +19,7 @@
 //! normal points from `b` toward `a`, the point lies on `b`'s surface at time
 //! `t`, and shapes already in contact at `t = 0` give `t = 0`.
 
+mod feature_roots;
 mod halving;
 mod sphere_mesh;
 mod sphere_mesh_halving;

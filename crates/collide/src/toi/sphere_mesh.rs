@@ -4,7 +4,7 @@
 use super::sphere_triangle::{Advanced, Advancement, advance, amax, scale};
 use super::sweep::{Sweep, sweep_faces};
 use super::time_of_impact::{Toi, clamp_t_max};
-use crate::mesh::{MeshBvh, MeshContact, TriMesh, contact_sphere_mesh_brute, contact_sphere_mesh_bvh};
+use crate::mesh::{MeshBvh, MeshContact, TriMesh, contact_sphere_mesh_nearest};
 use crate::real::{Real, Vec3, c, scale2, scale2v, unit_scale};
 use crate::shapes::{Sphere, Triangle};
 
@@ -114,10 +114,13 @@ impl<'a, T: Real> Query<'a, T> {
 /// best time found so far: its steps do not depend on that limit, so the
 /// winner is the same as if every face ran to `t_max`.
 ///
-/// **Answer.** Already in contact at `t = 0` (the static
-/// [`contact_sphere_mesh_brute`], touching counts): `t = 0`,
+/// **Answer.** Already in contact at `t = 0` (touching counts): `t = 0`,
 /// [`ToiStatus::Penetrating`](super::ToiStatus::Penetrating), the contact with
-/// the face nearest the centre. Otherwise the winning face's answer: its time,
+/// the face nearest the centre (each face's distance from the certified
+/// sphere–triangle contact, accurate relative to itself, the lowest index on
+/// a tie), answered as that triangle's
+/// [`contact_sphere_triangle`](crate::contact::contact_sphere_triangle) — on
+/// the scene as given, before any power-of-two scaling. Otherwise the winning face's answer: its time,
 /// its closest point moved to time `t` and the normal from it toward the
 /// centre; `iterations` counts that face's steps. When the winner ran out of
 /// steps ([`ToiStatus::OutOfIterations`](super::ToiStatus::OutOfIterations)),
@@ -129,7 +132,8 @@ impl<'a, T: Real> Query<'a, T> {
 /// empty mesh is never hit. A sphere of zero radius gets the approach direction
 /// `−v/‖v‖` as its normal, flagged; a centre on a face at `t = 0` the static
 /// fallback, flagged. A negative or NaN `t_max` is read as 0. Never NaN, never
-/// a panic.
+/// a panic; a contact point beyond the type's range is `None`, as for one
+/// triangle.
 pub fn toi_sphere_mesh_brute<T: Real>(
     a: &Sphere<T>,
     va: &Vec3<T>,
@@ -138,11 +142,23 @@ pub fn toi_sphere_mesh_brute<T: Real>(
     t_max: T,
     rule: &Advancement,
 ) -> Option<MeshToi<T>> {
-    if let Some((a2, va2, vb2, mesh, k)) = scaled_scene(a, va, b, vb) {
-        return toi_sphere_mesh_brute(&a2, &va2, &mesh, &vb2, t_max, rule).map(|r| r.scaled_back(k));
-    }
-    if let Some(k) = contact_sphere_mesh_brute(a, b) {
+    if let Some(k) = contact_sphere_mesh_nearest(a, b, None) {
         return Some(MeshToi::penetrating(&k));
+    }
+    brute_clear(a, va, b, vb, t_max, rule).filter(|r| r.toi.in_range())
+}
+
+/// [`toi_sphere_mesh_brute`] for a sphere known to touch no face at `t = 0`.
+fn brute_clear<T: Real>(
+    a: &Sphere<T>,
+    va: &Vec3<T>,
+    b: &TriMesh<T>,
+    vb: &Vec3<T>,
+    t_max: T,
+    rule: &Advancement,
+) -> Option<MeshToi<T>> {
+    if let Some((a2, va2, vb2, mesh, k)) = scaled_scene(a, va, b, vb) {
+        return brute_clear(&a2, &va2, &mesh, &vb2, t_max, rule).map(|r| r.scaled_back(k));
     }
     let q = Query::new(a, va, b, vb, t_max, rule);
     let mut best = None;
@@ -191,11 +207,23 @@ pub fn toi_sphere_mesh<T: Real>(
     t_max: T,
     rule: &Advancement,
 ) -> Option<MeshToi<T>> {
-    if let Some((a2, va2, vb2, mesh, k)) = scaled_scene(a, va, b.mesh(), vb) {
-        return toi_sphere_mesh(&a2, &va2, &MeshBvh::new(mesh), &vb2, t_max, rule).map(|r| r.scaled_back(k));
-    }
-    if let Some(k) = contact_sphere_mesh_bvh(a, b) {
+    if let Some(k) = contact_sphere_mesh_nearest(a, b.mesh(), Some(b)) {
         return Some(MeshToi::penetrating(&k));
+    }
+    bvh_clear(a, va, b, vb, t_max, rule).filter(|r| r.toi.in_range())
+}
+
+/// [`toi_sphere_mesh`] for a sphere known to touch no face at `t = 0`.
+fn bvh_clear<T: Real>(
+    a: &Sphere<T>,
+    va: &Vec3<T>,
+    b: &MeshBvh<T>,
+    vb: &Vec3<T>,
+    t_max: T,
+    rule: &Advancement,
+) -> Option<MeshToi<T>> {
+    if let Some((a2, va2, vb2, mesh, k)) = scaled_scene(a, va, b.mesh(), vb) {
+        return bvh_clear(&a2, &va2, &MeshBvh::new(mesh), &vb2, t_max, rule).map(|r| r.scaled_back(k));
     }
     let q = Query::new(a, va, b.mesh(), vb, t_max, rule);
     let sweep = Sweep::new(a, &q.v, q.tol, b.mesh().aabb());

@@ -95,6 +95,13 @@ impl Default for Advancement {
 /// `−v/‖v‖`, flagged. A centre on the triangle at `t = 0` gets the static test's
 /// fallback (flagged). Non-finite intermediate values end the search with `None`,
 /// never NaN. A negative or NaN `t_max` is read as 0.
+///
+/// **Beyond the range.** A contact whose point, moved with `b` to time `t`,
+/// lies beyond the type's range (the shapes have travelled past `MAX` by
+/// then) has no answer in the type: `None`, never an infinity. (Such an
+/// impact, if real, has no representable answer at all; in practice it is an
+/// advancement that converged on a distance its scene's rounding could not
+/// resolve — a huge `t_max` in a scene of wildly mixed magnitudes.)
 pub fn toi_sphere_triangle<T: Real>(
     a: &Sphere<T>,
     va: &Vec3<T>,
@@ -104,6 +111,26 @@ pub fn toi_sphere_triangle<T: Real>(
     rule: &Advancement,
 ) -> Option<Toi<T>> {
     let t_max = clamp_t_max(t_max);
+    // The static contact on the scene as given: it scales its own scene
+    // where that is safe, while the advancement's scaling below may push the
+    // smallest coordinates beside a huge sphere into the subnormals or to
+    // zero — a centre just off the triangle's plane would land in it.
+    if let Some(k) = contact_sphere_triangle(a, b) {
+        return Some(Toi::penetrating(&k));
+    }
+    toi_clear(a, va, b, vb, t_max, rule).filter(Toi::in_range)
+}
+
+/// [`toi_sphere_triangle`] for a sphere known to be clear of the triangle at
+/// `t = 0`.
+fn toi_clear<T: Real>(
+    a: &Sphere<T>,
+    va: &Vec3<T>,
+    b: &Triangle<T>,
+    vb: &Vec3<T>,
+    t_max: T,
+    rule: &Advancement,
+) -> Option<Toi<T>> {
     // Outside the plain range (huge, tiny or subnormal scenes, displacements
     // near the type's limits) the scene is answered scaled by a power of two
     // to about 1, where no square or distance under- or overflows and the
@@ -115,13 +142,10 @@ pub fn toi_sphere_triangle<T: Real>(
     if let Some(k) = unit_scale(a.radius.abs().max(amax(&a.center)).max(amax(va)).max(amax(vb))) {
         let a2 = Sphere { center: scale2v(&a.center, k), radius: scale2(a.radius, k) };
         let b2 = Triangle { vertices: b.vertices.map(|p| scale2v(&p, k)) };
-        return toi_sphere_triangle(&a2, &scale2v(va, k), &b2, &scale2v(vb, k), t_max, rule).map(|mut r| {
+        return toi_clear(&a2, &scale2v(va, k), &b2, &scale2v(vb, k), t_max, rule).map(|mut r| {
             r.point = scale2v(&r.point, -k);
             r
         });
-    }
-    if let Some(k) = contact_sphere_triangle(a, b) {
-        return Some(Toi::penetrating(&k));
     }
     let v = va - vb;
     // The tolerance is the problem's own scale, not the triangle's: the
@@ -199,7 +223,9 @@ pub(crate) fn advance<T: Real>(
         }
         let stop = |status| Some(Advanced { t, q, delta, status, steps });
         if gap <= tol {
-            return polish(a, v, &closest, t_max, Advanced { t, q, delta, status: ToiStatus::Converged, steps });
+            let polished =
+                polish(a, v, &closest, t_max, Advanced { t, q, delta, status: ToiStatus::Converged, steps })?;
+            return Some(grazing_root(a, v, b, &closest, t_max, tol, polished));
         }
         if steps >= max_steps {
             return stop(ToiStatus::OutOfIterations);
@@ -298,10 +324,18 @@ pub(crate) fn amax<T: Real>(p: &Vec3<T>) -> T {
 /// vertex of a triangle with legs of 1e70 missed its impact).
 const MULTI_SCALE_RATIO: f64 = 1_048_576.0;
 
+/// Growth of the nearest vertex's distance for the fallback probe of
+/// [`closest_for`]: `1 + 2^−20`, far above that distance's rounding, so the
+/// probe reaches the vertex (the triangle's distance is at most its).
+const PROBE_GROWTH: f64 = 1.0 + 1.0 / 1_048_576.0;
+
 /// The closest point of `b` to a point on the sphere's path: the plain one,
 /// or, for a small sphere beside a huge triangle (see [`MULTI_SCALE_RATIO`]),
 /// the static contact's, which is exact to the sphere's size there (asked of a
-/// sphere at that point large enough to touch the triangle).
+/// sphere at that point large enough to touch the triangle: twice the plain
+/// point's distance, or when the plain point's rounding put it nearer than
+/// the triangle — a sphere beside the small vertex of a triangle with legs
+/// of 1e100 got the origin — the nearest vertex's distance).
 fn closest_for<'a, T: Real>(
     a: &Sphere<T>,
     v: &Vec3<T>,
@@ -318,6 +352,68 @@ fn closest_for<'a, T: Real>(
         }
         let d = crate::real::stable_norm(&(p - q));
         let probe = Sphere::new(*p, d + d + T::of(f64::MIN_POSITIVE));
+        if let Some(k) = contact_sphere_triangle(&probe, b) {
+            return k.point;
+        }
+        // The plain point is nearer than the triangle (its rounding put it
+        // there): a probe reaching the nearest vertex certainly touches.
+        let reach = b.vertices.iter().map(|x| stable_norm(&(p - x))).fold(T::of(f64::MAX), |m, x| m.min(x));
+        let probe = Sphere::new(*p, reach * c::<T>(PROBE_GROWTH) + T::of(f64::MIN_POSITIVE));
         contact_sphere_triangle(&probe, b).map_or(q, |k| k.point)
     }
+}
+
+/// Closing speed, relative to the relative speed, below which a converged
+/// advancement is taken as grazing and its time re-solved by
+/// [`grazing_root`]: `2^−8`. A head-on or oblique approach converges in a
+/// few steps to rounding; a grazing one (an edge or vertex met nearly
+/// tangentially) only to about the square root of the tolerance.
+const GRAZING_CLOSING: f64 = 1.0 / 256.0;
+
+/// For a grazing contact (see [`GRAZING_CLOSING`]), the time re-solved from
+/// the features' own equations, whose coefficients are computed exactly:
+/// the first root of `‖w + t v‖² = r²` for each vertex (`w = M − V`) and of
+/// `‖u × (w + t v)‖² = r² ‖u‖²` for each edge (`w = M − P0`, `u = P1 − P0`,
+/// kept when the foot's parameter at the root is in `[0, 1]`), the earliest
+/// of them. Every feature is a part of the triangle, so none is met before
+/// the triangle is, and the one met first is; the face's contact is linear
+/// and already exact from the advancement. Where the distance is flat (a
+/// double root, or nearly) the advancement's time is off by the square root
+/// of its tolerance; the root is off by a rounding of the coefficients'
+/// estimates.
+///
+/// The root replaces the advancement's time only within the window a
+/// grazing advancement can be early by (four times `√(2 r tol)/‖v‖`), and at
+/// or before `t_max`; the point and direction are recomputed there.
+fn grazing_root<T: Real>(
+    a: &Sphere<T>,
+    v: &Vec3<T>,
+    b: &Triangle<T>,
+    closest: &impl Fn(&Vec3<T>) -> Vec3<T>,
+    t_max: T,
+    tol: T,
+    at: Advanced<T>,
+) -> Advanced<T> {
+    let speed = stable_norm(v);
+    let dist = stable_norm(&at.delta);
+    if !(dist > T::zero() && speed > T::zero()) {
+        return at;
+    }
+    let closing = -v.dot(&(at.delta / dist));
+    if !(closing.wide() < GRAZING_CLOSING * speed.wide()) {
+        return at;
+    }
+    let Some(root) = super::feature_roots::first_root_of_features(a, v, b) else {
+        return at;
+    };
+    let (r, tol, speed) = (a.radius.wide().max(0.0), tol.wide().max(0.0), speed.wide());
+    let window = 4.0 * (2.0 * r * tol).sqrt() / speed;
+    let t_adv = at.t.wide();
+    if !(root <= t_adv + window && root >= 0.0 && root <= t_max.wide()) {
+        return at;
+    }
+    let t = T::of(root);
+    let p = a.center + v * t;
+    let q = closest(&p);
+    Advanced { t, q, delta: p - q, ..at }
 }

@@ -1561,3 +1561,60 @@ fn sphere_triangle_and_mesh_toi_at_every_scale() {
     }
 }
 
+/// A grazing time re-solved from exact quadratic coefficients is off by a
+/// few roundings of the root's estimates; 1e-12 is far below the square root
+/// of the advancement's tolerance (~1e-5 here), which it was off by before.
+const GRAZING_T_TOL: f64 = 1e-12;
+
+#[test]
+fn grazing_the_end_of_a_segment_far_from_the_origin_is_exact() {
+    // A zero-area triangle: the segment from (X, 0, 0) to (X, −1, 0), X = 2^36.
+    // The centre (X + 1, 1, 0), r = 1, moves by (0, −2, 0): its distance to
+    // the end (X, 0, 0) is √(1 + (1 − 2t)²), which first equals r, tangentially,
+    // at t = 1/2.
+    let x = 68_719_476_736.0;
+    let b = Triangle::<f64>::new(v(x, 0.0, 0.0), v(x, 0.0, 0.0), v(x, -1.0, 0.0));
+    let a = Sphere::new(v(x + 1.0, 1.0, 0.0), 1.0);
+    let k = toi_sphere_triangle(&a, &v(0.0, -2.0, 0.0), &b, &v(0.0, 0.0, 0.0), 1.0, &Advancement::default())
+        .expect("tangent contact");
+    assert!((k.t - 0.5).abs() <= GRAZING_T_TOL, "t = {}", k.t);
+    assert!((k.normal.x - 1.0).abs() <= GRAZING_T_TOL.sqrt(), "normal {:?}", k.normal);
+}
+
+/// The certified closest point is exact to the sphere's size; the time is a
+/// converged advancement's: 1e-12 of the unit scene.
+const MULTI_SCALE_TOL: f64 = 1e-12;
+
+#[test]
+fn sphere_passing_the_small_vertex_of_a_triangle_with_legs_of_1e100() {
+    // Full-range case 61609: the plain closest point of the huge triangle
+    // rounds to the origin, nearer than the triangle; the impact is at the
+    // small vertex's edge region, t = 0.4794897734689258 (the referee's).
+    let b = Triangle::<f64>::new(
+        v(1.2247232339868208e100, 1.930958075812071e99, 1.23473441613501e100),
+        v(-1.3537605442703357e100, -5.718977263129081e98, 1.1071873318657984e100),
+        v(2.543077546438612, -2.8093157750652966, 1.7189421222228702),
+    );
+    let a = Sphere::new(v(1.172550992739977, 0.5156250990224049, 0.9332056496230662), 0.0884022750499404);
+    let va = v(2.7428780673318585, -6.765920956238661, 1.6452717675812158);
+    let k = toi_sphere_triangle(&a, &va, &b, &v(0.0, 0.0, 0.0), 1.0, &Advancement::default()).expect("impact");
+    assert!((k.t - 0.4794897734689258).abs() <= MULTI_SCALE_TOL, "t = {}", k.t);
+}
+
+#[test]
+fn a_contact_point_beyond_the_range_is_no_impact() {
+    // Full-range case 64455: the advancement converges at t ≈ 1.8e87 where
+    // the triangle, moving at 6.3e222, has left f64's range; the referee says
+    // no impact, and no infinity may be answered.
+    let a =
+        Sphere::new(v(3.6975474440865196e287, 1.0936436002927729e-246, 6.7566764527951155e224), 3.1008221294336146e90);
+    let va = v(-2.427895080685816e186, 3.0114054327554695e-130, -1.612595047390641e178);
+    let b = Triangle::<f64>::new(
+        v(5.204606424872607e289, 1.632423978625568e-56, -7.146929093282991e-241),
+        v(3.5544099052114995e-82, 1.9678139146846016e169, -1.0032804235859792e-48),
+        v(1.4202737097904292e279, 7.645496036940526e285, -3.573756167720576e-28),
+    );
+    let vb = v(2.402815805805563e166, 6.304101559602637e222, 9.703336361660802e92);
+    let k = toi_sphere_triangle(&a, &va, &b, &vb, 1.6983741757128117e115, &Advancement::default());
+    assert!(k.is_none(), "the referee: no impact; got {k:?}");
+}

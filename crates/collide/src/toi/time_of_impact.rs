@@ -1,7 +1,7 @@
 //! The result of a time-of-impact query and the halving method's stopping rule.
 
 use crate::contact::{CONCENTRIC_FALLBACK_NORMAL, Contact};
-use crate::real::{Real, Vec3, c, try_normalize_stable};
+use crate::real::{Real, Vec3, c, finite3, try_normalize_stable};
 
 /// How a time-of-impact answer was reached, and so which fields of [`Toi`] mean
 /// what (after parry's `ShapeCastStatus`).
@@ -61,6 +61,13 @@ pub struct Toi<T: Real> {
 }
 
 impl<T: Real> Toi<T> {
+    /// Whether every number of the answer is finite: a contact point beyond
+    /// the type's range (an impact so late that `b` has moved past `MAX`) is
+    /// no answer (see [`toi_sphere_triangle`](super::toi_sphere_triangle)).
+    pub(crate) fn in_range(&self) -> bool {
+        self.t.finite() && finite3(&self.point) && finite3(&self.normal)
+    }
+
     /// The answer for shapes already in contact at `t = 0`: the static contact.
     pub(crate) fn penetrating(k: &Contact<T>) -> Self {
         Self {
