@@ -209,12 +209,10 @@ const ROBUST_CASES: u64 = 300;
 /// wrong, each with what is wrong; asserted as they are, so that a fix shows
 /// (the test then fails until the entry goes).
 ///
-/// A raw bit pattern in which a sphere of radius 3e159 holds the whole mesh
-/// at `t = 0` and the static contact's normal is decided by coordinates some
-/// 10^250 times smaller than the radius: the mesh's contact path takes it from
-/// the wrong feature.
-const KNOWN_WRONG: [(&str, &str); 1] =
-    [("toi full range #220 (seed 11, raw bit patterns)", "normal off by 1.571e0 rad")];
+/// None at present: the last one (#220, a sphere of radius 3e159 holding the
+/// whole mesh at `t = 0`, its normal π/2 off) went when the mesh toi's static
+/// contact took the face nearest by certified distance.
+const KNOWN_WRONG: [(&str, &str); 0] = [];
 
 /// `collide/robust` (f64) over the full range: no disagreement, no failure, no
 /// non-finite number where the exact answer is finite — on every sub-family,
