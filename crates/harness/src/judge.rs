@@ -667,7 +667,11 @@ fn toi_allowance(lc: &LoadedCase, w: &oracle::geom::Toi, b: &Shape, tol: &Tolera
     let (v, k) = crate::local::diff(&va, &vb);
     let speed = norm(&v) * k;
     let closing = -(v[0] * w.normal[0] + v[1] * w.normal[1] + v[2] * w.normal[2]) * k;
-    let delta = crate::tolerance::TIME_CONDITION_ULPS * tol.eps * reach;
+    // `δ` itself underflows for a reach near the subnormals (64 ε · 1e-313 is
+    // below the smallest f64): every quotient by a speed or a length is
+    // formed from `reach` first, then multiplied by `64 ε`.
+    let c_eps = crate::tolerance::TIME_CONDITION_ULPS * tol.eps;
+    let delta = c_eps * reach;
     let radius = |s: &Shape| if let Shape::Sphere(s) = s { s.radius } else { 0.0 };
     let ra = radius(&lc.case.a);
     // (radius of curvature, distance the normal spans)
@@ -676,9 +680,9 @@ fn toi_allowance(lc: &LoadedCase, w: &oracle::geom::Toi, b: &Shape, tol: &Tolera
         Shape::Plane(_) => (f64::INFINITY, f64::INFINITY),
         _ => (ra, ra),
     };
-    let first = if closing > 0.0 { delta / closing } else { f64::INFINITY };
+    let first = if closing > 0.0 { c_eps * (reach / closing) } else { f64::INFINITY };
     let second = if curvature.is_finite() && speed > 0.0 {
-        (2.0 * curvature).sqrt() * delta.sqrt() / speed
+        (2.0 * curvature).sqrt() * (c_eps.sqrt() * reach.sqrt()) / speed
     } else {
         f64::INFINITY
     };
@@ -686,8 +690,11 @@ fn toi_allowance(lc: &LoadedCase, w: &oracle::geom::Toi, b: &Shape, tol: &Tolera
     // A speed of 0 moves nothing, however long the time (no 0 · ∞).
     let moved = |speed: f64| if speed > 0.0 && t > 0.0 { speed * t } else { 0.0 };
     let point = moved(norm(&va) + norm(&vb) + 2.0 * speed) + delta;
-    let normal =
-        if span.is_finite() { if span > 0.0 { (moved(speed) + delta) / span } else { f64::INFINITY } } else { 0.0 };
+    let normal = if span.is_finite() {
+        if span > 0.0 { moved(speed) / span + c_eps * (reach / span) } else { f64::INFINITY }
+    } else {
+        0.0
+    };
     let finite = |x: f64| if x.is_nan() { f64::MAX } else { x.min(f64::MAX) };
     ToiAllowance { t: finite(t), point: finite(point), normal: finite(normal) }
 }
