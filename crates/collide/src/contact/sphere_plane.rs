@@ -46,6 +46,21 @@ pub fn contact_sphere_plane<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<Cont
         // squares accurate (≥ lo), implies s' / ‖n‖ > r (1 + 6u), so the
         // computed s below would exceed r too.
         let sp = b.normal.dot(&a.center) - b.offset;
+        // Products near the subnormals keep only a few bits: a scene of tiny
+        // lengths (the centre, the radius and the offset in units of the
+        // normal) is answered scaled up by a power of two, which is exact.
+        if sp.abs() < lo {
+            if let Some(k) = tiny_scene_scale(a, b) {
+                use crate::real::{scale2, scale2v};
+                let up = Sphere::new(scale2v(&a.center, k), scale2(a.radius, k));
+                let plane = Plane::new(b.normal, scale2(b.offset, k));
+                return contact_sphere_plane(&up, &plane).map(|r| Contact {
+                    point: scale2v(&r.point, -k),
+                    depth: scale2(r.depth, -k),
+                    ..r
+                });
+            }
+        }
         if clearly_apart(sp, a.radius, nn) {
             return None;
         }
@@ -64,6 +79,15 @@ pub fn contact_sphere_plane<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<Cont
         }
     }
     contact_sphere_plane_scaled(a, b)
+}
+
+/// The power of two (`> 0`) that brings a scene of tiny lengths to about 1
+/// (the centre, the radius and the offset over the normal's largest
+/// component), or `None` for a scene of ordinary or large lengths.
+fn tiny_scene_scale<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<i32> {
+    let amax = |p: &Vec3<T>| p.x.abs().max(p.y.abs()).max(p.z.abs());
+    let size = amax(&a.center).max(a.radius.abs()).max(b.offset.abs() / amax(&b.normal));
+    crate::real::unit_scale(size).filter(|k| *k > 0)
 }
 
 /// The root-free "apart" test of [`contact_sphere_plane`]'s plain path, for

@@ -109,6 +109,21 @@ fn contact_sphere_sphere_scaled<T: Real>(a: &Sphere<T>, b: &Sphere<T>, delta: Ve
         let depth = (reach - dist) * c::<T>(2.0);
         return Some(Contact { point: b.center + normal * b.radius, normal, depth, degenerate: !depth.finite() });
     }
+    // A scene of tiny or subnormal lengths: answered scaled up by a power of
+    // two (exact), where the distance is formed to its own precision. On the
+    // subnormal grid it rounds to a few ulps: centres √10 ulps apart measured
+    // 3 ulps, equal to the radii's sum, a contact where they are apart.
+    let amax = |p: &Vec3<T>| p.x.abs().max(p.y.abs()).max(p.z.abs());
+    let size = amax(&a.center).max(amax(&b.center)).max(a.radius.abs()).max(b.radius.abs());
+    if let Some(k) = crate::real::unit_scale(size).filter(|k| *k > 0) {
+        use crate::real::{scale2, scale2v};
+        let up = |s: &Sphere<T>| Sphere::new(scale2v(&s.center, k), scale2(s.radius, k));
+        return contact_sphere_sphere(&up(a), &up(b)).map(|r| Contact {
+            point: scale2v(&r.point, -k),
+            depth: scale2(r.depth, -k),
+            ..r
+        });
+    }
     let reach = a.radius + b.radius;
     let Some(normal) = try_normalize_stable(&delta) else {
         // Exactly concentric.
