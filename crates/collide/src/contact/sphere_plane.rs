@@ -49,17 +49,17 @@ pub fn contact_sphere_plane<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<Cont
         // Products near the subnormals keep only a few bits: a scene of tiny
         // lengths (the centre, the radius and the offset in units of the
         // normal) is answered scaled up by a power of two, which is exact.
-        if sp.abs() < lo {
-            if let Some(k) = tiny_scene_scale(a, b) {
-                use crate::real::{scale2, scale2v};
-                let up = Sphere::new(scale2v(&a.center, k), scale2(a.radius, k));
-                let plane = Plane::new(b.normal, scale2(b.offset, k));
-                return contact_sphere_plane(&up, &plane).map(|r| Contact {
-                    point: scale2v(&r.point, -k),
-                    depth: scale2(r.depth, -k),
-                    ..r
-                });
-            }
+        if sp.abs() < lo
+            && let Some(k) = tiny_scene_scale(a, b)
+        {
+            use crate::real::{scale2, scale2v};
+            let up = Sphere::new(scale2v(&a.center, k), scale2(a.radius, k));
+            let plane = Plane::new(b.normal, scale2(b.offset, k));
+            return contact_sphere_plane(&up, &plane).map(|r| Contact {
+                point: scale2v(&r.point, -k),
+                depth: scale2(r.depth, -k),
+                ..r
+            });
         }
         if clearly_apart(sp, a.radius, nn) {
             return None;
