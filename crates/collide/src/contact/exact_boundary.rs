@@ -3,11 +3,10 @@
 //! scenes whose numbers span so many magnitudes that the plain closest
 //! point's rounding exceeds the distance itself.
 
+use crate::exact::bigfloat::{B3, cross3 as cross, dot3 as dot, sub3 as sub};
 use crate::exact::{BigFloat, Estimate, Sign, frexp, ldexp};
 use crate::real::{Real, Vec3};
 use crate::shapes::Triangle;
-
-type B3 = [BigFloat; 3];
 
 /// A distance as `mant · 2^exp` (`mant ∈ [0.5, 1)`, or `0` for zero), so that
 /// distances of any finite scene compare without overflow or underflow:
@@ -82,21 +81,6 @@ pub(crate) struct BoundaryPoint<T: Real> {
 
 fn big3(p: &[f64; 3]) -> B3 {
     p.map(BigFloat::from_f64)
-}
-
-fn sub(x: &B3, y: &B3) -> B3 {
-    [0, 1, 2].map(|i| &x[i] - &y[i])
-}
-
-fn dot(x: &B3, y: &B3) -> BigFloat {
-    &(&(&x[0] * &y[0]) + &(&x[1] * &y[1])) + &(&x[2] * &y[2])
-}
-
-fn cross(x: &B3, y: &B3) -> B3 {
-    [0, 1, 2].map(|i| {
-        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-        &(&x[j] * &y[k]) - &(&x[k] * &y[j])
-    })
 }
 
 /// The point of the edges of `tri` nearest to `p`, with its direction and

@@ -352,6 +352,27 @@ impl Neg for BigFloat {
     }
 }
 
+/// A vector of exact numbers: the exact paths' points and directions.
+pub(crate) type B3 = [BigFloat; 3];
+
+/// `x − y`, exactly.
+pub(crate) fn sub3(x: &B3, y: &B3) -> B3 {
+    [0, 1, 2].map(|i| &x[i] - &y[i])
+}
+
+/// `x · y`, exactly.
+pub(crate) fn dot3(x: &B3, y: &B3) -> BigFloat {
+    &(&(&x[0] * &y[0]) + &(&x[1] * &y[1])) + &(&x[2] * &y[2])
+}
+
+/// `x × y`, exactly.
+pub(crate) fn cross3(x: &B3, y: &B3) -> B3 {
+    [0, 1, 2].map(|i| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        &(&x[j] * &y[k]) - &(&x[k] * &y[j])
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

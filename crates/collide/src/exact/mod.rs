@@ -35,7 +35,7 @@
 //! `f32` inputs are exactly `f64` values ([`Real::wide`](crate::Real::wide)), so
 //! the same predicates serve both precisions.
 
-mod bigfloat;
+pub(crate) mod bigfloat;
 pub(crate) mod compensated;
 mod estimate;
 mod expansion;

@@ -2,29 +2,13 @@
 //! vertices and edges, from their quadratics with exactly computed
 //! coefficients (for grazing contacts, where the distance is flat).
 
+use crate::exact::bigfloat::{B3, cross3 as cross, dot3 as dot, sub3 as sub};
 use crate::exact::{BigFloat, Estimate, Sign, ldexp};
 use crate::real::{Real, Vec3};
 use crate::shapes::{Sphere, Triangle};
 
-type B3 = [BigFloat; 3];
-
 fn big3<T: Real>(p: &Vec3<T>) -> B3 {
     [p.x, p.y, p.z].map(|x| BigFloat::from_f64(x.wide()))
-}
-
-fn sub(x: &B3, y: &B3) -> B3 {
-    [0, 1, 2].map(|i| &x[i] - &y[i])
-}
-
-fn dot(x: &B3, y: &B3) -> BigFloat {
-    &(&(&x[0] * &y[0]) + &(&x[1] * &y[1])) + &(&x[2] * &y[2])
-}
-
-fn cross(x: &B3, y: &B3) -> B3 {
-    [0, 1, 2].map(|i| {
-        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-        &(&x[j] * &y[k]) - &(&x[k] * &y[j])
-    })
 }
 
 /// A positive value as `(mant, exp)`, `mant ∈ [0.5, 1)`.
