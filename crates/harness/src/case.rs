@@ -65,63 +65,18 @@ pub struct Case {
 }
 
 impl Case {
+    /// The case's row of the pair table, if the format has its kinds.
+    pub fn pair(&self) -> Option<Pair> {
+        Pair::find(self.query, self.a.shape_kind(), self.b.as_ref().map(Shape::shape_kind))
+    }
+
     /// The tolerance in force for this case.
     pub fn tol(&self) -> f64 {
         self.tol.unwrap_or(DEFAULT_TOL)
     }
 }
 
-/// The query kinds of the format.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "lowercase")]
-pub enum Query {
-    /// Sphere against sphere, plane or triangle: point, normal, depth.
-    Contact,
-    /// Segment against plane, triangle or mesh: first hit.
-    Intersect,
-    /// Signed barycentric coordinates of a point's projection on a triangle.
-    Barycentric,
-    /// AABB and minimal bounding sphere of points or a mesh.
-    Bounds,
-    /// AABB against AABB.
-    Overlap,
-    /// Time of impact of a moving sphere.
-    Toi,
-    /// Velocities after one frictionless impulse.
-    Response,
-}
-
-impl Query {
-    /// Every query kind, in the format's order.
-    pub const ALL: [Query; 7] = [
-        Query::Contact,
-        Query::Intersect,
-        Query::Barycentric,
-        Query::Bounds,
-        Query::Overlap,
-        Query::Toi,
-        Query::Response,
-    ];
-
-    /// The name used in fixture files.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Query::Contact => "contact",
-            Query::Intersect => "intersect",
-            Query::Barycentric => "barycentric",
-            Query::Bounds => "bounds",
-            Query::Overlap => "overlap",
-            Query::Toi => "toi",
-            Query::Response => "response",
-        }
-    }
-}
-
-impl std::fmt::Display for Query {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
+pub use crashtest_core::pair::{Pair, Query, ShapeKind};
 
 /// A shape, written `{"<kind>": {fields}}`.
 #[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
@@ -148,15 +103,20 @@ pub enum Shape {
 impl Shape {
     /// The shape's key in the format.
     pub fn kind(&self) -> &'static str {
+        self.shape_kind().as_str()
+    }
+
+    /// The shape's kind.
+    pub fn shape_kind(&self) -> ShapeKind {
         match self {
-            Shape::Sphere(_) => "sphere",
-            Shape::Plane(_) => "plane",
-            Shape::Segment(_) => "segment",
-            Shape::Triangle(_) => "triangle",
-            Shape::Point(_) => "point",
-            Shape::Points(_) => "points",
-            Shape::Mesh(_) => "mesh",
-            Shape::Aabb(_) => "aabb",
+            Shape::Sphere(_) => ShapeKind::Sphere,
+            Shape::Plane(_) => ShapeKind::Plane,
+            Shape::Segment(_) => ShapeKind::Segment,
+            Shape::Triangle(_) => ShapeKind::Triangle,
+            Shape::Point(_) => ShapeKind::Point,
+            Shape::Points(_) => ShapeKind::Points,
+            Shape::Mesh(_) => ShapeKind::Mesh,
+            Shape::Aabb(_) => ShapeKind::Aabb,
         }
     }
 }

@@ -6,153 +6,13 @@
 //! right call in one place for all engines. Adapters live in `engines/`, one per
 //! engine, and translate conventions there and nowhere else.
 
-use crate::case::{Query, Shape};
+use crate::case::{Pair, Shape};
 use crate::load::LoadedCase;
 use crate::mesh::Mesh;
-use oracle::geom::{
-    Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, ResponseAnswer, Segment, Sphere,
-    ToiAnswer, Triangle,
-};
+use oracle::geom::{Aabb, P3, Plane, Segment, Sphere, Triangle};
 use std::fmt;
 
-/// An engine's answer to one case.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Answer {
-    /// `contact`.
-    Contact(ContactAnswer),
-    /// `intersect`.
-    Intersect(IntersectAnswer),
-    /// `barycentric`.
-    Barycentric(BarycentricAnswer),
-    /// `bounds`.
-    Bounds(BoundsAnswer),
-    /// `overlap`.
-    Overlap(bool),
-    /// `toi`.
-    Toi(ToiAnswer),
-    /// `response`.
-    Response(ResponseAnswer),
-}
-
-/// The engine does not answer this kind of case, with the reason.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Unsupported(pub String);
-
-impl fmt::Display for Unsupported {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-/// What a query method returns.
-pub type Reply<T> = Result<T, Unsupported>;
-
-fn unsupported<T>(what: &str) -> Reply<T> {
-    Err(Unsupported(format!("{what} is not implemented by this engine")))
-}
-
-/// One method per shape pair of the fixture format. Each defaults to
-/// `Unsupported`, except the reverse orders of contact, which default to the
-/// format's own swap (normal negated, point moved to the deepest point of the
-/// other shape); an engine whose reverse order is a separate code path overrides
-/// them.
-#[allow(unused_variables)]
-pub trait Queries: Send + Sync {
-    /// `contact`, sphere `a`, sphere `b`.
-    fn contact_sphere_sphere(&self, a: &Sphere, b: &Sphere) -> Reply<ContactAnswer> {
-        unsupported("sphere–sphere contact")
-    }
-    /// `contact`, sphere `a`, plane `b`.
-    fn contact_sphere_plane(&self, a: &Sphere, b: &Plane) -> Reply<ContactAnswer> {
-        unsupported("sphere–plane contact")
-    }
-    /// `contact`, plane `a`, sphere `b`.
-    fn contact_plane_sphere(&self, a: &Plane, b: &Sphere) -> Reply<ContactAnswer> {
-        self.contact_sphere_plane(b, a).map(swap)
-    }
-    /// `contact`, sphere `a`, triangle `b`.
-    fn contact_sphere_triangle(&self, a: &Sphere, b: &Triangle) -> Reply<ContactAnswer> {
-        unsupported("sphere–triangle contact")
-    }
-    /// `contact`, triangle `a`, sphere `b`.
-    fn contact_triangle_sphere(&self, a: &Triangle, b: &Sphere) -> Reply<ContactAnswer> {
-        self.contact_sphere_triangle(b, a).map(swap)
-    }
-    /// `intersect`, segment and plane.
-    fn intersect_segment_plane(&self, s: &Segment, p: &Plane) -> Reply<IntersectAnswer> {
-        unsupported("segment–plane intersection")
-    }
-    /// `intersect`, segment and triangle.
-    fn intersect_segment_triangle(&self, s: &Segment, t: &Triangle) -> Reply<IntersectAnswer> {
-        unsupported("segment–triangle intersection")
-    }
-    /// `intersect`, segment and mesh.
-    fn intersect_segment_mesh(&self, s: &Segment, m: &Mesh) -> Reply<IntersectAnswer> {
-        unsupported("segment–mesh intersection")
-    }
-    /// `barycentric`, point and triangle.
-    fn barycentric_triangle(&self, p: &P3, t: &Triangle) -> Reply<BarycentricAnswer> {
-        unsupported("barycentric coordinates")
-    }
-    /// `bounds` of a point cloud (a mesh's vertices for a mesh).
-    fn bounds(&self, points: &[P3]) -> Reply<BoundsAnswer> {
-        unsupported("bounding volumes")
-    }
-    /// `overlap`, two boxes.
-    fn overlap(&self, a: &Aabb, b: &Aabb) -> Reply<bool> {
-        unsupported("AABB overlap")
-    }
-    /// `toi`, sphere `a` moving at `va` against sphere `b` moving at `vb`.
-    fn toi_sphere_sphere(&self, a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
-        unsupported("sphere–sphere time of impact")
-    }
-    /// `toi`, sphere against plane.
-    fn toi_sphere_plane(&self, a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
-        unsupported("sphere–plane time of impact")
-    }
-    /// `toi`, sphere against triangle.
-    fn toi_sphere_triangle(&self, a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
-        unsupported("sphere–triangle time of impact")
-    }
-    /// `toi`, sphere against mesh.
-    fn toi_sphere_mesh(&self, a: &Sphere, va: &P3, b: &Mesh, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
-        unsupported("sphere–mesh time of impact")
-    }
-    /// `response`, two spheres with velocities and masses, restitution `e`.
-    #[allow(clippy::too_many_arguments)]
-    fn response_sphere_sphere(
-        &self,
-        a: &Sphere,
-        va: &P3,
-        ma: f64,
-        b: &Sphere,
-        vb: &P3,
-        mb: f64,
-        e: f64,
-    ) -> Reply<ResponseAnswer> {
-        unsupported("sphere–sphere response")
-    }
-    /// `response`, a sphere with velocity against a static plane, restitution `e`.
-    fn response_sphere_plane(&self, a: &Sphere, va: &P3, b: &Plane, e: f64) -> Reply<ResponseAnswer> {
-        unsupported("sphere–plane response")
-    }
-}
-
-/// The format's reverse-order contact: `contact(b, a)` from `contact(a, b)`.
-pub fn swap(k: ContactAnswer) -> ContactAnswer {
-    ContactAnswer {
-        contact: k.contact.map(|c| oracle::geom::Contact {
-            point: [
-                c.point[0] - c.normal[0] * c.depth,
-                c.point[1] - c.normal[1] * c.depth,
-                c.point[2] - c.normal[2] * c.depth,
-            ],
-            normal: [-c.normal[0], -c.normal[1], -c.normal[2]],
-            depth: c.depth,
-        }),
-        degenerate: k.degenerate,
-    }
-}
+pub use crashtest_core::engine::{Answer, Queries, Reply, Unsupported, swap};
 
 /// A named engine.
 pub struct Engine {
@@ -170,87 +30,93 @@ impl Engine {
         Self { name: name.into(), precision, queries: Box::new(queries) }
     }
 
-    /// Answers one case.
+    /// Answers one case: its row of the pair table ([`crashtest_core::pair`])
+    /// decides the call.
     pub fn run(&self, lc: &LoadedCase) -> Reply<Answer> {
-        let q = self.queries.as_ref();
         let case = &lc.case;
-        let b = case.b.as_ref();
-        use Shape as S;
-        match (case.query, &case.a, b) {
-            (Query::Contact, S::Sphere(a), Some(S::Sphere(b))) => {
-                q.contact_sphere_sphere(&a.to_geom(), &b.to_geom()).map(Answer::Contact)
-            }
-            (Query::Contact, S::Sphere(a), Some(S::Plane(b))) => {
-                q.contact_sphere_plane(&a.to_geom(), &b.to_geom()).map(Answer::Contact)
-            }
-            (Query::Contact, S::Plane(a), Some(S::Sphere(b))) => {
-                q.contact_plane_sphere(&a.to_geom(), &b.to_geom()).map(Answer::Contact)
-            }
-            (Query::Contact, S::Sphere(a), Some(S::Triangle(b))) => {
-                q.contact_sphere_triangle(&a.to_geom(), &b.to_geom()).map(Answer::Contact)
-            }
-            (Query::Contact, S::Triangle(a), Some(S::Sphere(b))) => {
-                q.contact_triangle_sphere(&a.to_geom(), &b.to_geom()).map(Answer::Contact)
-            }
-            (Query::Intersect, S::Segment(s), Some(S::Plane(p))) => {
-                q.intersect_segment_plane(&s.to_geom(), &p.to_geom()).map(Answer::Intersect)
-            }
-            (Query::Intersect, S::Segment(s), Some(S::Triangle(t))) => {
-                q.intersect_segment_triangle(&s.to_geom(), &t.to_geom()).map(Answer::Intersect)
-            }
-            (Query::Intersect, S::Segment(s), Some(S::Mesh(_))) => match &lc.meshes[1] {
-                Some(m) => q.intersect_segment_mesh(&s.to_geom(), m).map(Answer::Intersect),
-                None => Err(Unsupported("mesh not loaded".into())),
-            },
-            (Query::Barycentric, S::Point(p), Some(S::Triangle(t))) => {
-                q.barycentric_triangle(&p.at, &t.to_geom()).map(Answer::Barycentric)
-            }
-            (Query::Bounds, S::Points(p), None) => q.bounds(&p.points).map(Answer::Bounds),
-            (Query::Bounds, S::Mesh(_), None) => match &lc.meshes[0] {
-                Some(m) => q.bounds(&m.vertices).map(Answer::Bounds),
-                None => Err(Unsupported("mesh not loaded".into())),
-            },
-            (Query::Overlap, S::Aabb(a), Some(S::Aabb(b))) => {
-                q.overlap(&a.to_geom(), &b.to_geom()).map(Answer::Overlap)
-            }
-            (Query::Toi, S::Sphere(a), Some(bs)) => {
-                let (va, vb, t_max) = (case.a.velocity(), bs.velocity(), case.t_max());
-                let a = a.to_geom();
-                match bs {
-                    S::Sphere(b) => q.toi_sphere_sphere(&a, &va, &b.to_geom(), &vb, t_max),
-                    S::Plane(b) => q.toi_sphere_plane(&a, &va, &b.to_geom(), &vb, t_max),
-                    S::Triangle(b) => q.toi_sphere_triangle(&a, &va, &b.to_geom(), &vb, t_max),
-                    S::Mesh(_) => match &lc.meshes[1] {
-                        Some(m) => q.toi_sphere_mesh(&a, &va, m, &vb, t_max),
-                        None => Err(Unsupported("mesh not loaded".into())),
-                    },
-                    other => Err(Unsupported(format!("toi against {}", other.kind()))),
-                }
-                .map(Answer::Toi)
-            }
-            // Masses and restitution are required of response cases when they are
-            // loaded; the defaults below only keep this function total.
-            (Query::Response, S::Sphere(a), Some(S::Sphere(b))) => q
-                .response_sphere_sphere(
-                    &a.to_geom(),
-                    &case.a.velocity(),
-                    a.mass.unwrap_or(1.0),
-                    &b.to_geom(),
-                    &case.b.as_ref().map(Shape::velocity).unwrap_or_default(),
-                    b.mass.unwrap_or(1.0),
-                    case.restitution.unwrap_or(1.0),
-                )
-                .map(Answer::Response),
-            (Query::Response, S::Sphere(a), Some(S::Plane(b))) => q
-                .response_sphere_plane(&a.to_geom(), &case.a.velocity(), &b.to_geom(), case.restitution.unwrap_or(1.0))
-                .map(Answer::Response),
-            (query, a, b) => Err(Unsupported(format!(
-                "{query} of {}{} is not implemented by the harness yet",
-                a.kind(),
-                b.map(|b| format!(" and {}", b.kind())).unwrap_or_default()
+        match case.pair() {
+            Some(pair) => dispatch(self.queries.as_ref(), pair, lc),
+            None => Err(Unsupported(format!(
+                "{} of {}{} is not in the pair table",
+                case.query,
+                case.a.kind(),
+                case.b.as_ref().map(|b| format!(" and {}", b.kind())).unwrap_or_default()
             ))),
         }
     }
+}
+
+/// The call for each pair. Loading checked the shapes against the table, so the
+/// kind errors below happen only for a case built by hand and never loaded.
+fn dispatch(q: &dyn Queries, pair: Pair, lc: &LoadedCase) -> Reply<Answer> {
+    let case = &lc.case;
+    let (a, b) = (Some(&case.a), case.b.as_ref());
+    let (va, vb) = (case.a.velocity(), b.map(Shape::velocity).unwrap_or_default());
+    let t_max = case.t_max();
+    // Masses and restitution are required of response cases when they are
+    // loaded; the defaults below only keep this function total.
+    let e = case.restitution.unwrap_or(1.0);
+    let mass = |s: Option<&Shape>| match s {
+        Some(Shape::Sphere(s)) => s.mass.unwrap_or(1.0),
+        _ => 1.0,
+    };
+    use Pair as P;
+    Ok(match pair {
+        P::ContactSphereSphere => Answer::Contact(q.contact_sphere_sphere(&sphere(a)?, &sphere(b)?)?),
+        P::ContactSpherePlane => Answer::Contact(q.contact_sphere_plane(&sphere(a)?, &plane(b)?)?),
+        P::ContactPlaneSphere => Answer::Contact(q.contact_plane_sphere(&plane(a)?, &sphere(b)?)?),
+        P::ContactSphereTriangle => Answer::Contact(q.contact_sphere_triangle(&sphere(a)?, &triangle(b)?)?),
+        P::ContactTriangleSphere => Answer::Contact(q.contact_triangle_sphere(&triangle(a)?, &sphere(b)?)?),
+        P::IntersectSegmentPlane => Answer::Intersect(q.intersect_segment_plane(&segment(a)?, &plane(b)?)?),
+        P::IntersectSegmentTriangle => Answer::Intersect(q.intersect_segment_triangle(&segment(a)?, &triangle(b)?)?),
+        P::IntersectSegmentMesh => Answer::Intersect(q.intersect_segment_mesh(&segment(a)?, mesh(lc, 1)?)?),
+        P::BarycentricPointTriangle => Answer::Barycentric(q.barycentric_triangle(&point(a)?, &triangle(b)?)?),
+        P::BoundsPoints => match &case.a {
+            Shape::Points(p) => Answer::Bounds(q.bounds(&p.points)?),
+            other => return Err(kind_error("points", other.kind())),
+        },
+        P::BoundsMesh => Answer::Bounds(q.bounds(&mesh(lc, 0)?.vertices)?),
+        P::OverlapAabbAabb => Answer::Overlap(q.overlap(&aabb(a)?, &aabb(b)?)?),
+        P::ToiSphereSphere => Answer::Toi(q.toi_sphere_sphere(&sphere(a)?, &va, &sphere(b)?, &vb, t_max)?),
+        P::ToiSpherePlane => Answer::Toi(q.toi_sphere_plane(&sphere(a)?, &va, &plane(b)?, &vb, t_max)?),
+        P::ToiSphereTriangle => Answer::Toi(q.toi_sphere_triangle(&sphere(a)?, &va, &triangle(b)?, &vb, t_max)?),
+        P::ToiSphereMesh => Answer::Toi(q.toi_sphere_mesh(&sphere(a)?, &va, mesh(lc, 1)?, &vb, t_max)?),
+        P::ResponseSphereSphere => {
+            Answer::Response(q.response_sphere_sphere(&sphere(a)?, &va, mass(a), &sphere(b)?, &vb, mass(b), e)?)
+        }
+        P::ResponseSpherePlane => Answer::Response(q.response_sphere_plane(&sphere(a)?, &va, &plane(b)?, e)?),
+    })
+}
+
+fn kind_error(want: &str, got: &str) -> Unsupported {
+    Unsupported(format!("expected a {want}, got a {got}"))
+}
+
+fn missing(want: &str) -> Unsupported {
+    Unsupported(format!("expected a {want}, got no shape"))
+}
+
+macro_rules! shape_of {
+    ($name:ident, $variant:ident, $want:literal, $out:ty, |$spec:ident| $conv:expr) => {
+        fn $name(s: Option<&Shape>) -> Reply<$out> {
+            match s {
+                Some(Shape::$variant($spec)) => Ok($conv),
+                Some(other) => Err(kind_error($want, other.kind())),
+                None => Err(missing($want)),
+            }
+        }
+    };
+}
+shape_of!(sphere, Sphere, "sphere", Sphere, |s| s.to_geom());
+shape_of!(plane, Plane, "plane", Plane, |s| s.to_geom());
+shape_of!(triangle, Triangle, "triangle", Triangle, |s| s.to_geom());
+shape_of!(segment, Segment, "segment", Segment, |s| s.to_geom());
+shape_of!(aabb, Aabb, "aabb", Aabb, |s| s.to_geom());
+shape_of!(point, Point, "point", P3, |s| s.at);
+
+/// Mesh `i` (0 for `a`, 1 for `b`) as loaded.
+fn mesh(lc: &LoadedCase, i: usize) -> Reply<&Mesh> {
+    lc.meshes[i].as_ref().ok_or_else(|| Unsupported("mesh not loaded".into()))
 }
 
 impl fmt::Debug for Engine {

@@ -526,21 +526,6 @@ fn validate_shape(key: &str, shape: &Shape, query: Query) -> FieldResult {
     Ok(())
 }
 
-/// The shape kinds the format allows for `a` and `b` of each query.
-fn fits(query: Query, a: &str, b: Option<&str>) -> bool {
-    matches!(
-        (query, a, b),
-        (Query::Contact, "sphere", Some("sphere" | "plane" | "triangle"))
-            | (Query::Contact, "plane" | "triangle", Some("sphere"))
-            | (Query::Intersect, "segment", Some("plane" | "triangle" | "mesh"))
-            | (Query::Barycentric, "point", Some("triangle"))
-            | (Query::Bounds, "points" | "mesh", None)
-            | (Query::Overlap, "aabb", Some("aabb"))
-            | (Query::Toi, "sphere", Some("sphere" | "plane" | "triangle" | "mesh"))
-            | (Query::Response, "sphere", Some("sphere" | "plane"))
-    )
-}
-
 /// The `expect` fields that belong to each query.
 fn expect_fields(query: Query) -> &'static [&'static str] {
     match query {
@@ -581,7 +566,7 @@ pub fn validate(case: &Case) -> FieldResult {
         return bad("name", "empty name");
     }
     let b_kind = case.b.as_ref().map(Shape::kind);
-    if !fits(case.query, case.a.kind(), b_kind) {
+    if case.pair().is_none() {
         let field = if case.query == Query::Bounds && case.b.is_some() { "b" } else { "query" };
         return bad(
             field,

@@ -16,7 +16,8 @@
 //! of [`geom`].
 #![deny(missing_docs)]
 
-pub mod geom;
+/// The neutral vocabulary, from `crashtest-core`.
+pub use crashtest_core::geom;
 pub mod parry;
 pub mod rapier;
 pub mod referee;

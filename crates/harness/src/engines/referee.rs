@@ -1,7 +1,7 @@
 //! The referee as an engine: the exact answer every other engine is judged
 //! against, and the margin of each case from its nearest decision boundary.
 
-use crate::case::{Query, Shape};
+use crate::case::{Pair, Shape};
 use crate::engine::{Queries, Reply, Unsupported};
 use crate::load::LoadedCase;
 use crate::mesh::Mesh;
@@ -96,39 +96,52 @@ fn length(s: &Segment) -> f64 {
 pub fn margin(lc: &LoadedCase) -> Option<f64> {
     let case = &lc.case;
     use Shape as S;
-    match (case.query, &case.a, case.b.as_ref()) {
-        (Query::Contact, S::Sphere(a), Some(S::Sphere(b))) => {
+    let (a, b) = (&case.a, case.b.as_ref());
+    let (va, vb, t_max) = (case.a.velocity(), b.map(Shape::velocity).unwrap_or_default(), case.t_max());
+    use Pair as P;
+    match (case.pair()?, a, b) {
+        (P::ContactSphereSphere, S::Sphere(a), Some(S::Sphere(b))) => {
             referee::contact_margin_sphere_sphere(&a.to_geom(), &b.to_geom()).ok()
         }
-        (Query::Contact, S::Sphere(a), Some(S::Plane(b))) | (Query::Contact, S::Plane(b), Some(S::Sphere(a))) => {
+        (P::ContactSpherePlane, S::Sphere(a), Some(S::Plane(b)))
+        | (P::ContactPlaneSphere, S::Plane(b), Some(S::Sphere(a))) => {
             referee::contact_margin_sphere_plane(&a.to_geom(), &b.to_geom()).ok()
         }
-        (Query::Contact, S::Sphere(a), Some(S::Triangle(b))) | (Query::Contact, S::Triangle(b), Some(S::Sphere(a))) => {
+        (P::ContactSphereTriangle, S::Sphere(a), Some(S::Triangle(b)))
+        | (P::ContactTriangleSphere, S::Triangle(b), Some(S::Sphere(a))) => {
             referee::contact_margin_sphere_triangle(&a.to_geom(), &b.to_geom()).ok()
         }
-        (Query::Intersect, S::Segment(s), Some(S::Plane(p))) => {
+        (P::IntersectSegmentPlane, S::Segment(s), Some(S::Plane(p))) => {
             let s = s.to_geom();
             referee::intersect_margin_segment_plane(&s, &p.to_geom()).ok().flatten().map(|m| m * length(&s))
         }
-        (Query::Intersect, S::Segment(s), Some(S::Triangle(t))) => {
+        (P::IntersectSegmentTriangle, S::Segment(s), Some(S::Triangle(t))) => {
             let s = s.to_geom();
             referee::intersect_margin_segment_triangle(&s, &t.to_geom()).ok().flatten().map(|m| m * length(&s))
         }
-        (Query::Overlap, S::Aabb(a), Some(S::Aabb(b))) => {
+        (P::OverlapAabbAabb, S::Aabb(a), Some(S::Aabb(b))) => {
             referee::overlap_margin_aabb_aabb(&a.to_geom(), &b.to_geom()).ok()
         }
-        (Query::Toi, S::Sphere(a), Some(bs)) => {
-            let (va, vb, t_max, a) = (case.a.velocity(), bs.velocity(), case.t_max(), a.to_geom());
-            match bs {
-                S::Sphere(b) => referee::toi_margin_sphere_sphere(&a, &va, &b.to_geom(), &vb, t_max).ok(),
-                S::Plane(b) => referee::toi_margin_sphere_plane(&a, &va, &b.to_geom(), &vb, t_max).ok(),
-                S::Triangle(b) => referee::toi_margin_sphere_triangle(&a, &va, &b.to_geom(), &vb, t_max).ok(),
-                S::Mesh(_) => lc.meshes[1]
-                    .as_ref()
-                    .and_then(|m| referee::toi_margin_sphere_mesh(&a, &va, &m.vertices, &m.triangles, &vb, t_max).ok()),
-                _ => None,
-            }
+        (P::ToiSphereSphere, S::Sphere(a), Some(S::Sphere(b))) => {
+            referee::toi_margin_sphere_sphere(&a.to_geom(), &va, &b.to_geom(), &vb, t_max).ok()
         }
+        (P::ToiSpherePlane, S::Sphere(a), Some(S::Plane(b))) => {
+            referee::toi_margin_sphere_plane(&a.to_geom(), &va, &b.to_geom(), &vb, t_max).ok()
+        }
+        (P::ToiSphereTriangle, S::Sphere(a), Some(S::Triangle(b))) => {
+            referee::toi_margin_sphere_triangle(&a.to_geom(), &va, &b.to_geom(), &vb, t_max).ok()
+        }
+        (P::ToiSphereMesh, S::Sphere(a), _) => lc.meshes[1].as_ref().and_then(|m| {
+            referee::toi_margin_sphere_mesh(&a.to_geom(), &va, &m.vertices, &m.triangles, &vb, t_max).ok()
+        }),
+        // No margin, with the reason: the segment–mesh hit is decided face by
+        // face (each face's margin is its own); a barycentric, a bound and a
+        // response have no yes/no predicate whose distance from flipping a
+        // margin would measure.
+        (P::IntersectSegmentMesh | P::BarycentricPointTriangle | P::BoundsPoints | P::BoundsMesh, _, _)
+        | (P::ResponseSphereSphere | P::ResponseSpherePlane, _, _) => None,
+        // The pair's shapes are not the kinds its row names: only a case built by
+        // hand and never loaded.
         _ => None,
     }
 }

@@ -8,15 +8,17 @@
 //! - a triangle's face normal is `(v1 − v0) × (v2 − v0)`, normalized;
 //! - a segment hit's `normal` is the surface's own normal, never flipped.
 
+#[cfg(feature = "serde")]
 use schemars::JsonSchema;
+#[cfg(feature = "serde")]
 use serde::{Deserialize, Serialize};
 
 /// A point or vector.
 pub type P3 = [f64; 3];
 
 /// A solid ball.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
 pub struct Sphere {
     /// Centre.
     pub center: P3,
@@ -25,8 +27,8 @@ pub struct Sphere {
 }
 
 /// The surface `normal · x = offset` (normal need not be unit).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
 pub struct Plane {
     /// Normal, non-zero.
     pub normal: P3,
@@ -35,8 +37,8 @@ pub struct Plane {
 }
 
 /// The points `start + t (end − start)`, `t ∈ [0, 1]`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
 pub struct Segment {
     /// `t = 0`.
     pub start: P3,
@@ -45,16 +47,16 @@ pub struct Segment {
 }
 
 /// A triangle `[v0, v1, v2]`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
 pub struct Triangle {
     /// The vertices.
     pub vertices: [P3; 3],
 }
 
 /// An axis-aligned box.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
 pub struct Aabb {
     /// Lower corner.
     pub min: P3,
@@ -63,8 +65,8 @@ pub struct Aabb {
 }
 
 /// A contact (see the module docs for the convention).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
 pub struct Contact {
     /// On `b`'s surface.
     pub point: P3,
@@ -84,8 +86,8 @@ pub struct ContactAnswer {
 }
 
 /// The first hit of a segment.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
 pub struct SegmentHit {
     /// Segment parameter in `[0, 1]`.
     pub t: f64,
@@ -94,10 +96,10 @@ pub struct SegmentHit {
     /// The surface's own unit normal.
     pub normal: P3,
     /// `[α, β, γ]` for triangles and meshes.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Option::is_none"))]
     pub barycentric: Option<[f64; 3]>,
     /// The face index, for meshes.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Option::is_none"))]
     pub triangle: Option<usize>,
 }
 
@@ -122,8 +124,8 @@ pub struct BarycentricAnswer {
 }
 
 /// A bounding sphere as an engine reports it.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
 pub struct Ball {
     /// Centre.
     pub center: P3,
@@ -141,8 +143,8 @@ pub struct BoundsAnswer {
 }
 
 /// A time of impact: the first touching time and the contact then.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
 pub struct Toi {
     /// First time in `[0, t_max]` at which the shapes touch.
     pub t: f64,

@@ -1,0 +1,153 @@
+//! The engine trait: every engine answers the same cases in the same neutral
+//! values ([`crate::geom`]), or says [`Unsupported`].
+//!
+//! An engine implements [`Queries`], one method per entry of the pair table
+//! ([`crate::pair::PAIRS`]), each defaulting to `Unsupported`. The harness turns a
+//! case into the right call in one place for all engines; an engine translates
+//! its own conventions inside its methods and nowhere else.
+
+use crate::geom::{
+    Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, ResponseAnswer, Segment, Sphere,
+    ToiAnswer, Triangle,
+};
+use crate::mesh::Mesh;
+use std::fmt;
+
+/// An engine's answer to one case.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Answer {
+    /// `contact`.
+    Contact(ContactAnswer),
+    /// `intersect`.
+    Intersect(IntersectAnswer),
+    /// `barycentric`.
+    Barycentric(BarycentricAnswer),
+    /// `bounds`.
+    Bounds(BoundsAnswer),
+    /// `overlap`.
+    Overlap(bool),
+    /// `toi`.
+    Toi(ToiAnswer),
+    /// `response`.
+    Response(ResponseAnswer),
+}
+
+/// The engine does not answer this kind of case, with the reason.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Unsupported(pub String);
+
+impl fmt::Display for Unsupported {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+/// What a query method returns.
+pub type Reply<T> = Result<T, Unsupported>;
+
+fn unsupported<T>(what: &str) -> Reply<T> {
+    Err(Unsupported(format!("{what} is not implemented by this engine")))
+}
+
+/// One method per shape pair of the fixture format. Each defaults to
+/// `Unsupported`, except the reverse orders of contact, which default to the
+/// format's own swap (normal negated, point moved to the deepest point of the
+/// other shape); an engine whose reverse order is a separate code path overrides
+/// them.
+#[allow(unused_variables)]
+pub trait Queries: Send + Sync {
+    /// `contact`, sphere `a`, sphere `b`.
+    fn contact_sphere_sphere(&self, a: &Sphere, b: &Sphere) -> Reply<ContactAnswer> {
+        unsupported("sphere–sphere contact")
+    }
+    /// `contact`, sphere `a`, plane `b`.
+    fn contact_sphere_plane(&self, a: &Sphere, b: &Plane) -> Reply<ContactAnswer> {
+        unsupported("sphere–plane contact")
+    }
+    /// `contact`, plane `a`, sphere `b`.
+    fn contact_plane_sphere(&self, a: &Plane, b: &Sphere) -> Reply<ContactAnswer> {
+        self.contact_sphere_plane(b, a).map(swap)
+    }
+    /// `contact`, sphere `a`, triangle `b`.
+    fn contact_sphere_triangle(&self, a: &Sphere, b: &Triangle) -> Reply<ContactAnswer> {
+        unsupported("sphere–triangle contact")
+    }
+    /// `contact`, triangle `a`, sphere `b`.
+    fn contact_triangle_sphere(&self, a: &Triangle, b: &Sphere) -> Reply<ContactAnswer> {
+        self.contact_sphere_triangle(b, a).map(swap)
+    }
+    /// `intersect`, segment and plane.
+    fn intersect_segment_plane(&self, s: &Segment, p: &Plane) -> Reply<IntersectAnswer> {
+        unsupported("segment–plane intersection")
+    }
+    /// `intersect`, segment and triangle.
+    fn intersect_segment_triangle(&self, s: &Segment, t: &Triangle) -> Reply<IntersectAnswer> {
+        unsupported("segment–triangle intersection")
+    }
+    /// `intersect`, segment and mesh.
+    fn intersect_segment_mesh(&self, s: &Segment, m: &Mesh) -> Reply<IntersectAnswer> {
+        unsupported("segment–mesh intersection")
+    }
+    /// `barycentric`, point and triangle.
+    fn barycentric_triangle(&self, p: &P3, t: &Triangle) -> Reply<BarycentricAnswer> {
+        unsupported("barycentric coordinates")
+    }
+    /// `bounds` of a point cloud (a mesh's vertices for a mesh).
+    fn bounds(&self, points: &[P3]) -> Reply<BoundsAnswer> {
+        unsupported("bounding volumes")
+    }
+    /// `overlap`, two boxes.
+    fn overlap(&self, a: &Aabb, b: &Aabb) -> Reply<bool> {
+        unsupported("AABB overlap")
+    }
+    /// `toi`, sphere `a` moving at `va` against sphere `b` moving at `vb`.
+    fn toi_sphere_sphere(&self, a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        unsupported("sphere–sphere time of impact")
+    }
+    /// `toi`, sphere against plane.
+    fn toi_sphere_plane(&self, a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        unsupported("sphere–plane time of impact")
+    }
+    /// `toi`, sphere against triangle.
+    fn toi_sphere_triangle(&self, a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        unsupported("sphere–triangle time of impact")
+    }
+    /// `toi`, sphere against mesh.
+    fn toi_sphere_mesh(&self, a: &Sphere, va: &P3, b: &Mesh, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        unsupported("sphere–mesh time of impact")
+    }
+    /// `response`, two spheres with velocities and masses, restitution `e`.
+    #[allow(clippy::too_many_arguments)]
+    fn response_sphere_sphere(
+        &self,
+        a: &Sphere,
+        va: &P3,
+        ma: f64,
+        b: &Sphere,
+        vb: &P3,
+        mb: f64,
+        e: f64,
+    ) -> Reply<ResponseAnswer> {
+        unsupported("sphere–sphere response")
+    }
+    /// `response`, a sphere with velocity against a static plane, restitution `e`.
+    fn response_sphere_plane(&self, a: &Sphere, va: &P3, b: &Plane, e: f64) -> Reply<ResponseAnswer> {
+        unsupported("sphere–plane response")
+    }
+}
+
+/// The format's reverse-order contact: `contact(b, a)` from `contact(a, b)`.
+pub fn swap(k: ContactAnswer) -> ContactAnswer {
+    ContactAnswer {
+        contact: k.contact.map(|c| crate::geom::Contact {
+            point: [
+                c.point[0] - c.normal[0] * c.depth,
+                c.point[1] - c.normal[1] * c.depth,
+                c.point[2] - c.normal[2] * c.depth,
+            ],
+            normal: [-c.normal[0], -c.normal[1], -c.normal[2]],
+            depth: c.depth,
+        }),
+        degenerate: k.degenerate,
+    }
+}
