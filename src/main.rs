@@ -18,9 +18,12 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Run fixture cases through every engine; compare with each case's `expect`
-    /// and with the exact referee. Exit 0 when the default engine (collide/robust)
-    /// passes every case, 1 when it fails one, 2 for bad input.
+    /// and with the exact referee. Exit 0 when the gate engine (collide/robust
+    /// unless --gate names another) passes every case, 1 when it fails one, 2
+    /// for bad input.
     Check {
+        #[command(flatten)]
+        engines: EngineArgs,
         /// Fixture files, or folders searched recursively for *.json.
         #[arg(required = true)]
         paths: Vec<PathBuf>,
@@ -33,6 +36,8 @@ enum Command {
     /// engine, timings) and write a report: reports/<id>/index.html, summary.md,
     /// summary.json, discrepancies.json, charts/*.svg; reports/latest names it.
     Report {
+        #[command(flatten)]
+        engines: EngineArgs,
         /// Random cases per query kind (one run, or one shard, holds at most
         /// harness::report::campaign::MAX_CASES of them: every case and its
         /// results stay in memory).
@@ -106,6 +111,8 @@ enum Command {
     /// engine against the referee), write its charts (SVG) and data (JSON) into
     /// --out, and print where each engine breaks. Exit 2 for an unknown name.
     Sweep {
+        #[command(flatten)]
+        engines: EngineArgs,
         /// The sweep (see --list).
         #[arg(required_unless_present = "list")]
         name: Option<String>,
@@ -127,6 +134,30 @@ enum Command {
         #[arg(long, value_name = "LABEL")]
         cases_at: Option<String>,
     },
+}
+
+/// Which engines a command judges.
+#[derive(clap::Args)]
+struct EngineArgs {
+    /// The engines to judge, comma-separated, in report order, or `all`:
+    /// collide/robust, collide/lecture, collide-f32/robust, collide-f32/lecture,
+    /// parry3d-f64, parry3d.
+    #[arg(long, default_value = "all")]
+    engines: String,
+    /// The gate engine, whose answers decide the exit code of `check`
+    /// (default collide/robust; with one engine selected, that engine).
+    #[arg(long)]
+    gate: Option<String>,
+}
+
+impl EngineArgs {
+    /// The engine set, or the error (printed) and exit code 2.
+    fn set(&self) -> Result<crashtest::EngineSet, ExitCode> {
+        crashtest::EngineSet::select(&self.engines, self.gate.as_deref()).map_err(|e| {
+            eprintln!("error: --engines {} --gate {}: {e}", self.engines, self.gate.as_deref().unwrap_or("(default)"));
+            ExitCode::from(2)
+        })
+    }
 }
 
 fn parse_query(s: &str) -> Result<harness::case::Query, String> {
@@ -179,21 +210,24 @@ macro_rules! outln {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Check { paths, json } => {
-            let loaded = harness::load::load_paths(&paths);
-            let result = harness::check::check(&loaded.cases, &loaded.errors);
+        Command::Check { engines, paths, json } => {
+            let set = match engines.set() {
+                Ok(set) => set,
+                Err(code) => return code,
+            };
+            let result = crashtest::check(&paths, &set);
             if json {
                 match serde_json::to_string_pretty(&result) {
                     Ok(s) => outln!("{s}"),
                     Err(e) => eprintln!("error: cannot write JSON: {e}"),
                 }
                 eprint!("{}", harness::check::render_errors(&result));
-                eprintln!("{} passed, {} failed", result.passed, result.failed);
+                eprintln!("{} passed, {} failed (gate: {})", result.passed, result.failed, result.gate);
             } else {
                 // The tables, then the errors (standard error), then the closing
                 // line: on a terminal it stays the last line.
                 let text = harness::check::render_text(&result);
-                let closing = format!("{} passed, {} failed\n", result.passed, result.failed);
+                let closing = format!("{} passed, {} failed (gate: {})\n", result.passed, result.failed, result.gate);
                 out!("{}", text.strip_suffix(&closing).unwrap_or(&text));
                 eprint!("{}", harness::check::render_errors(&result));
                 out!("{closing}");
@@ -201,6 +235,7 @@ fn main() -> ExitCode {
             ExitCode::from(result.exit_code() as u8)
         }
         Command::Report {
+            engines,
             cases,
             full_range,
             seed,
@@ -212,6 +247,10 @@ fn main() -> ExitCode {
             no_sections,
             bench_figures,
         } => {
+            let set = match engines.set() {
+                Ok(set) => set,
+                Err(code) => return code,
+            };
             // The run holds its random cases of both sets: the limit is on their sum.
             let held = cases.saturating_add(full_range);
             if let Err(e) = harness::report::campaign::check_cases(held, shard) {
@@ -232,6 +271,7 @@ fn main() -> ExitCode {
                 progress: true,
                 sections: !no_sections,
                 bench: Some(bench_figures),
+                engines: set,
             };
             let started = std::time::SystemTime::now();
             let outcome = harness::report::campaign::run(&config, harness::report::provenance::here());
@@ -304,7 +344,7 @@ fn main() -> ExitCode {
                 }
             }
         }
-        Command::Sweep { name, list, out, poses, seed, cases_at } => {
+        Command::Sweep { engines, name, list, out, poses, seed, cases_at } => {
             if list {
                 out!("{}", harness::sweep::list_text());
                 return ExitCode::SUCCESS;
@@ -331,8 +371,12 @@ fn main() -> ExitCode {
                 Some((label, Some(f))) => Some((label.to_string(), f)),
                 None => None,
             };
+            let set = match engines.set() {
+                Ok(set) => set,
+                Err(code) => return code,
+            };
             let started = std::time::Instant::now();
-            let result = harness::sweep::run(sweep, &settings);
+            let result = harness::sweep::run(sweep, &settings, &set);
             out!("{}", harness::sweep::table_text(std::slice::from_ref(&result)));
             match harness::sweep::write(&result, &out) {
                 Ok(mut files) => {
@@ -399,20 +443,10 @@ fn main() -> ExitCode {
     }
 }
 
-/// Checks, before any work, that reports can be written under `out` (the
-/// folder is created and a file written and removed in it), and removes the
-/// folders that killed runs left there. On failure the error is printed and
-/// the exit code (2) returned.
+/// [`crashtest::prepare_out`], its error printed with exit code 2.
 fn prepare_out(out: &std::path::Path) -> Result<(), ExitCode> {
-    if let Err(e) = harness::report::write::probe_writable(out) {
-        eprintln!("error: cannot write the report under {}: {e}", out.display());
-        return Err(ExitCode::from(2));
-    }
-    for (dir, result) in harness::report::write::remove_abandoned(out) {
-        match result {
-            Ok(()) => eprintln!("removed {}, left by a run that ended before it finished", dir.display()),
-            Err(e) => eprintln!("warning: cannot remove {}, left by a run that ended: {e}", dir.display()),
-        }
-    }
-    Ok(())
+    crashtest::prepare_out(out).map_err(|e| {
+        eprintln!("error: {e}");
+        ExitCode::from(2)
+    })
 }

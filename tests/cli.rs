@@ -43,7 +43,7 @@ fn last_line(text: &str) -> &str {
 fn the_shipped_fixtures_pass_with_exit_0() {
     let (code, out, err) = crashtest(&["check", "fixtures"]);
     assert_eq!(code, 0, "crashtest check fixtures:\n{out}{err}");
-    assert!(last_line(&out).ends_with(" 0 failed"), "closing line: {}", last_line(&out));
+    assert!(last_line(&out).ends_with(" 0 failed (gate: collide/robust)"), "closing line: {}", last_line(&out));
 }
 
 #[test]
@@ -52,7 +52,7 @@ fn a_good_file_passes_and_the_closing_line_counts_it() {
     std::fs::write(dir.join("good.json"), GOOD).unwrap();
     let (code, out, err) = crashtest(&["check", dir.join("good.json").to_str().unwrap()]);
     assert_eq!(code, 0, "{out}{err}");
-    assert_eq!(last_line(&out), "1 passed, 0 failed");
+    assert_eq!(last_line(&out), "1 passed, 0 failed (gate: collide/robust)");
 }
 
 #[test]
@@ -61,7 +61,7 @@ fn a_wrong_expectation_exits_1() {
     std::fs::write(dir.join("wrong.json"), GOOD.replace("\"depth\": 0.5", "\"depth\": 0.25")).unwrap();
     let (code, out, err) = crashtest(&["check", dir.to_str().unwrap()]);
     assert_eq!(code, 1, "{out}{err}");
-    assert_eq!(last_line(&out), "0 passed, 1 failed");
+    assert_eq!(last_line(&out), "0 passed, 1 failed (gate: collide/robust)");
     assert!(out.contains("expect.contact.depth"), "names the mismatching field:\n{out}");
 }
 
@@ -76,7 +76,7 @@ fn json_output_is_json_and_the_closing_line_follows() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("stdout is JSON");
     assert_eq!(v["passed"], 1);
     assert_eq!(v["cases"][0]["engines"][0]["engine"], "collide/robust");
-    assert_eq!(String::from_utf8_lossy(&out.stderr).lines().last(), Some("1 passed, 0 failed"));
+    assert_eq!(String::from_utf8_lossy(&out.stderr).lines().last(), Some("1 passed, 0 failed (gate: collide/robust)"));
 }
 
 /// Each broken file gets one line naming it (and the case and field), on
@@ -156,7 +156,7 @@ fn bad_input_is_named_and_the_rest_of_the_run_still_happens() {
         "{err}"
     );
     assert!(out.contains("PASS") && out.contains("ball sunk half a unit"), "the good file was still checked:\n{out}");
-    assert_eq!(last_line(&out), "1 passed, 0 failed");
+    assert_eq!(last_line(&out), "1 passed, 0 failed (gate: collide/robust)");
 }
 
 #[test]
@@ -173,7 +173,7 @@ fn one_bad_case_does_not_sink_its_neighbours() {
     let (code, out, err) = crashtest(&["check", dir.to_str().unwrap()]);
     assert_eq!(code, 2, "{out}{err}");
     assert!(err.contains("case \"huge\"") && err.contains("a.sphere.center"), "{err}");
-    assert_eq!(last_line(&out), "1 passed, 0 failed");
+    assert_eq!(last_line(&out), "1 passed, 0 failed (gate: collide/robust)");
 }
 
 #[test]
@@ -189,7 +189,7 @@ fn cases_writes_a_fixture_file_that_check_replays() {
     std::fs::write(&path, &out).unwrap();
     let (code, out, err) = crashtest(&["check", path.to_str().unwrap()]);
     assert_eq!(code, 0, "{out}{err}");
-    assert_eq!(last_line(&out), "5 passed, 0 failed");
+    assert_eq!(last_line(&out), "5 passed, 0 failed (gate: collide/robust)");
     // A range past the last index is bad input, named.
     let (code, _, err) = crashtest(&["cases", "--start", "18446744073709551615", "--count", "2"]);
     assert_eq!(code, 2);

@@ -22,7 +22,8 @@
 use harness::case::{Case, FixtureFile, Query, SCHEMA};
 use harness::check::{CaseResult, check_case};
 use harness::engine::Engine;
-use harness::engines::{DEFAULT_ENGINE, judged, referee};
+use harness::engines::EngineSet;
+use harness::engines::{DEFAULT_ENGINE, judged};
 use harness::generate::{GENERATED, generate, strategy};
 use harness::judge::{Verdict, scene_scale};
 use harness::load::LoadedCase;
@@ -110,13 +111,12 @@ fn verdict_detail(v: &Verdict) -> String {
 
 /// Runs the proptest of one query kind.
 fn differential(query: Query) {
-    let engines = engines();
-    let referee = referee();
+    let set = EngineSet::of(engines());
     let tally = Mutex::new(ParryTally::default());
     let mut runner = TestRunner::new(config());
     let outcome = runner.run(&strategy(query), |case| {
         let lc = loaded(case);
-        let result = check_case(&lc, &engines, &referee);
+        let result = check_case(&lc, &set);
         for r in &result.engines {
             if r.engine == DEFAULT_ENGINE {
                 if !acceptable(&r.verdict) {
@@ -146,7 +146,7 @@ fn differential(query: Query) {
     match outcome {
         Ok(()) => {}
         Err(TestError::Fail(why, case)) => {
-            let result = check_case(&loaded(case.clone()), &engines, &referee);
+            let result = check_case(&loaded(case.clone()), &set);
             let fixture = as_fixture(&case, &result);
             let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("differential");
             let path = dir.join(format!("{query}.json"));

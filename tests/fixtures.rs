@@ -4,6 +4,7 @@
 //! exact evaluation are independent, so each checks the other).
 
 use harness::check::{CaseResult, check, render_text};
+use harness::engines::EngineSet;
 use harness::load::load_paths;
 
 #[test]
@@ -16,7 +17,7 @@ fn every_fixture_loads_without_error() {
 #[test]
 fn the_default_engine_passes_every_fixture() {
     let loaded = load_paths(&["fixtures"]);
-    let result = check(&loaded.cases, &loaded.errors);
+    let result = check(&loaded.cases, &loaded.errors, &EngineSet::default());
     let failed: Vec<&CaseResult> = result.cases.iter().filter(|c| !c.passed).collect();
     assert!(failed.is_empty(), "{} cases failed:\n{}", failed.len(), render_text(&result));
 }
@@ -24,7 +25,7 @@ fn the_default_engine_passes_every_fixture() {
 #[test]
 fn the_referee_meets_every_fixture_expectation() {
     let loaded = load_paths(&["fixtures"]);
-    let result = check(&loaded.cases, &loaded.errors);
+    let result = check(&loaded.cases, &loaded.errors, &EngineSet::default());
     let off: Vec<String> = result
         .cases
         .iter()

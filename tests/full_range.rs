@@ -6,6 +6,7 @@
 use harness::case::{AabbSpec, Case, PlaneSpec, PointSpec, PointsSpec, Query, Shape, SphereSpec, TriangleSpec};
 use harness::check::{check_case, run_caught};
 use harness::engine::{Answer, Engine, Queries, Reply};
+use harness::engines::EngineSet;
 use harness::engines::{self, referee};
 use harness::generate::{full_range, try_generate_full_range};
 use harness::judge::{self, Verdict};
@@ -78,7 +79,7 @@ fn a_point_snapped_to_the_edge_of_a_huge_triangle_disagrees() {
     let lc = small_sphere_over_a_huge_triangle();
     let wrong = Engine::new("snaps to the edge", Some(53), SnapsToTheEdge);
     let exact = Engine::new("exact", Some(53), Exact);
-    let r = check_case(&lc, &[wrong, exact], &referee());
+    let r = check_case(&lc, &EngineSet::of(vec![wrong, exact]));
     match &r.engines[0].verdict {
         Verdict::Disagree { reasons } => {
             assert!(reasons.iter().any(|x| x.starts_with("point off by 2.250e0")), "{reasons:?}");
@@ -221,13 +222,13 @@ const KNOWN_WRONG: [(&str, &str); 0] = [];
 #[test]
 fn collide_robust_agrees_over_the_full_range() {
     let robust: Vec<Engine> = engines::judged().into_iter().filter(|e| e.name == engines::DEFAULT_ENGINE).collect();
-    let referee = referee();
+    let set = EngineSet::of(robust);
     let mut bad = Vec::new();
     let mut known_seen = Vec::new();
     for q in harness::report::campaign::CAMPAIGN_QUERIES {
         for i in 0..ROBUST_CASES {
             let lc = try_generate_full_range(q, 11, i).expect("a generator for every kind");
-            let r = check_case(&lc, &robust, &referee);
+            let r = check_case(&lc, &set);
             let v = &r.engines[0].verdict;
             let wrong = matches!(v, Verdict::Disagree { .. } | Verdict::Failed { .. });
             match KNOWN_WRONG.iter().find(|(name, _)| *name == lc.case.name) {
@@ -254,7 +255,7 @@ fn collide_robust_agrees_over_the_full_range() {
 #[test]
 fn an_exact_answer_beyond_f64_is_refused_and_nobody_is_graded() {
     let lc = loaded(Query::Contact, ball([0.0; 3], 1.5e308), Some(ball([1e308, 0.0, 0.0], 1.5e308)));
-    let r = check_case(&lc, &engines::judged(), &referee());
+    let r = check_case(&lc, &EngineSet::default());
     assert!(r.referee.is_none(), "the referee gives no answer");
     for e in &r.engines {
         assert_eq!(e.verdict, Verdict::Unsupported { reason: harness::check::OUT_OF_RANGE.into() }, "{}", e.engine);
@@ -286,7 +287,7 @@ fn a_wrong_point_on_a_collapsed_or_sliver_triangle_disagrees() {
             ball([1.0, 1.0, 0.0], 2.0),
             Some(Shape::Triangle(TriangleSpec { vertices: [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], third], velocity: None })),
         );
-        let r = check_case(&lc, &[wrong()], &referee());
+        let r = check_case(&lc, &EngineSet::of(vec![wrong()]));
         assert!(matches!(r.engines[0].verdict, Verdict::Disagree { .. }), "{third:?}: {:?}", r.engines[0].verdict);
     }
 }

@@ -215,7 +215,12 @@ fn unknown_keys_are_refused_at_every_level_with_file_case_field_and_position() {
         // shape key, at the shape's start).
         assert!(l == want_l && c >= want_c && c <= want_c + at.len(), "{name}: {line} (key at {want_l}:{want_c})");
     }
-    assert_eq!(run.last_stdout_line(), "1 passed, 0 failed", "only the good file's case ran:\n{}", run.both());
+    assert_eq!(
+        run.last_stdout_line(),
+        "1 passed, 0 failed (gate: collide/robust)",
+        "only the good file's case ran:\n{}",
+        run.both()
+    );
 }
 
 #[test]
@@ -230,7 +235,7 @@ fn a_top_level_array_is_refused() {
         let name = f.file_name().unwrap().to_str().unwrap();
         run.error_line(&[name, ":1:1:", "expected an object with `schema` and `cases`"]);
     }
-    assert_eq!(run.last_stdout_line(), "1 passed, 0 failed", "{}", run.both());
+    assert_eq!(run.last_stdout_line(), "1 passed, 0 failed (gate: collide/robust)", "{}", run.both());
 }
 
 #[cfg(unix)]
@@ -245,12 +250,12 @@ fn links_back_up_the_tree_end_the_walk_and_each_file_counts_once() {
     symlink("good.json", dir.path("tree/alias.json")).unwrap();
     let run = crashtest(&["check", &dir.s("tree")]);
     assert_eq!(run.code, 0, "{}", run.both());
-    assert_eq!(run.last_stdout_line(), "1 passed, 0 failed", "{}", run.both());
+    assert_eq!(run.last_stdout_line(), "1 passed, 0 failed (gate: collide/robust)", "{}", run.both());
     // The same file named twice, and through its folder and a link.
     let g = good.to_str().unwrap();
     let run = crashtest(&["check", g, g, &dir.s("tree"), &dir.s("tree/alias.json")]);
     assert_eq!(run.code, 0, "{}", run.both());
-    assert_eq!(run.last_stdout_line(), "1 passed, 0 failed", "{}", run.both());
+    assert_eq!(run.last_stdout_line(), "1 passed, 0 failed (gate: collide/robust)", "{}", run.both());
 }
 
 #[cfg(unix)]
@@ -265,7 +270,7 @@ fn a_fifo_or_a_device_is_refused_at_once_and_the_rest_is_checked() {
     assert_eq!(run.code, 2, "{}", run.both());
     run.error_line(&["p.json", "not a regular file (a FIFO)"]);
     run.error_line(&["/dev/zero", "not a regular file (a character device)"]);
-    assert_eq!(run.last_stdout_line(), "1 passed, 0 failed", "{}", run.both());
+    assert_eq!(run.last_stdout_line(), "1 passed, 0 failed (gate: collide/robust)", "{}", run.both());
 }
 
 #[test]
@@ -278,7 +283,7 @@ fn a_file_over_the_size_limit_is_refused_without_reading_it() {
     let run = crashtest(&["check", &dir.s("")]);
     assert_eq!(run.code, 2, "{}", run.both());
     run.error_line(&["big.json", &format!("{} bytes", harness::load::MAX_INPUT_BYTES + 1), "limit of 64 MiB"]);
-    assert_eq!(run.last_stdout_line(), "1 passed, 0 failed", "{}", run.both());
+    assert_eq!(run.last_stdout_line(), "1 passed, 0 failed (gate: collide/robust)", "{}", run.both());
 }
 
 #[test]
@@ -307,7 +312,7 @@ fn an_empty_selection_is_bad_input() {
         let run = crashtest(&["check", &dir.s(sel)]);
         assert_eq!(run.code, 2, "{sel}: {}", run.both());
         run.error_line(&[sel, words]);
-        assert_eq!(run.last_stdout_line(), "0 passed, 0 failed", "{}", run.both());
+        assert_eq!(run.last_stdout_line(), "0 passed, 0 failed (gate: collide/robust)", "{}", run.both());
     }
 }
 

@@ -7,6 +7,7 @@
 
 use harness::check::{PANIC_REASON_PREFIX, check_case, is_caught_panic};
 use harness::engine::{Engine, Queries, Reply};
+use harness::engines::EngineSet;
 use harness::judge::Verdict;
 use harness::load::{Loaded, load_str_into};
 use oracle::geom::Aabb;
@@ -62,19 +63,16 @@ fn cases() -> Loaded {
 /// reason on standard output, then panic once outside a caught call.
 fn child() {
     let loaded = cases();
-    let engine = Engine::new("breaks-left", Some(53), BreaksLeft);
-    let referee = harness::engines::referee();
+    let set = EngineSet::of(vec![Engine::new("breaks-left", Some(53), BreaksLeft)]);
     let chunk = CASES.div_ceil(THREADS);
     let verdicts: Vec<Verdict> = std::thread::scope(|s| {
         let handles: Vec<_> = loaded
             .cases
             .chunks(chunk)
             .map(|part| {
-                let (engine, referee) = (&engine, &referee);
+                let set = &set;
                 s.spawn(move || {
-                    part.iter()
-                        .map(|lc| check_case(lc, std::slice::from_ref(engine), referee).engines[0].verdict.clone())
-                        .collect::<Vec<_>>()
+                    part.iter().map(|lc| check_case(lc, set).engines[0].verdict.clone()).collect::<Vec<_>>()
                 })
             })
             .collect();

@@ -1,7 +1,8 @@
 //! The report: determinism, reproducible discrepancies, atomic writes.
 
 use harness::check::check_case;
-use harness::engines::{judged, referee};
+use harness::engines::EngineSet;
+use harness::engines::judged;
 use harness::load::{Loaded, LoadedCase, load_str_into};
 use harness::report::campaign::{Config, run};
 use harness::report::summary::Summary;
@@ -49,14 +50,14 @@ fn the_same_seed_gives_the_same_summary() {
 fn every_discrepancy_reproduces_from_its_fixture() {
     let outcome = run(&small(11), Default::default());
     assert!(!outcome.discrepancies.is_empty(), "a campaign with lecture and f32 engines finds some discrepancies");
-    let (engines, referee) = (judged(), referee());
+    let set = EngineSet::of(judged());
     for d in &outcome.discrepancies {
         let text = serde_json::to_string(&d.fixture).unwrap();
         let mut loaded = Loaded::default();
         load_str_into(Path::new("discrepancy.json"), &text, &mut loaded);
         assert!(loaded.errors.is_empty(), "{:?}", loaded.errors);
         let lc: &LoadedCase = &loaded.cases[0];
-        let again = check_case(lc, &engines, &referee);
+        let again = check_case(lc, &set);
         let r = again.engines.iter().find(|r| r.engine == d.engine).expect("same engines");
         assert_eq!(r.verdict.label(), d.verdict.label(), "{} on {}: {:?}", d.engine, d.origin, r.verdict);
     }
@@ -160,7 +161,7 @@ fn merged_shards_keep_the_sections_of_the_shard_that_ran_them() {
 fn the_peer_section_shows_every_engine_on_every_peer_case_and_collide_meets_them_all() {
     let loaded = harness::load::load_paths(&[PathBuf::from("fixtures")]);
     assert!(loaded.errors.is_empty(), "{:?}", loaded.errors);
-    let result = harness::check::check(&loaded.cases, &loaded.errors);
+    let result = harness::check::check(&loaded.cases, &loaded.errors, &Default::default());
     let rows = harness::report::peers::rows(&result.cases);
     for issue in ["issue 17:", "issue 76", "issue 123", "issue 171:", "issue 315", "issue 429", "issue 984"] {
         assert!(rows.iter().any(|r| r.name.contains(issue)), "no peer regression case for {issue}");

@@ -5,6 +5,7 @@
 //! `crashtest sweep` refuses an unknown sweep with the list of names.
 
 use harness::check::{check_case, run_caught};
+use harness::engines::EngineSet;
 use harness::engines::{self, judged, referee};
 use harness::judge::{Verdict, judge, scene_scale};
 use harness::sweep::{self, BreakWhy, Settings, SweepResult};
@@ -42,7 +43,7 @@ fn gap(sweep: &str, query: &str, engine: &str) -> bool {
 
 fn results() -> &'static [SweepResult] {
     static R: OnceLock<Vec<SweepResult>> = OnceLock::new();
-    R.get_or_init(|| sweep::run_all(&SETTINGS))
+    R.get_or_init(|| sweep::run_all(&SETTINGS, &Default::default()))
 }
 
 fn result(name: &str) -> &'static SweepResult {
@@ -185,7 +186,7 @@ fn pinned(sweep_name: &str, query: &str, label: &str, pose: usize) -> harness::l
 }
 
 fn robust_verdict(lc: &harness::load::LoadedCase) -> Verdict {
-    let r = check_case(lc, &judged(), &referee());
+    let r = check_case(lc, &EngineSet::default());
     r.engines.into_iter().find(|e| e.engine == "collide/robust").map(|e| e.verdict).expect("judged")
 }
 

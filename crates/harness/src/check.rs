@@ -1,7 +1,8 @@
 //! `crashtest check`: every case through every engine, each answer compared with
 //! the case's `expect` and with the referee.
 //!
-//! A case passes when the default engine ([`DEFAULT_ENGINE`]) meets every named
+//! A case passes when the gate engine ([`EngineSet::gate`], by default
+//! [`crate::engines::DEFAULT_ENGINE`]) meets every named
 //! expectation and does not disagree with the referee (borderline is not a
 //! disagreement). An engine that panics is caught and recorded as failing that
 //! case, the panic's message and location in the verdict's reason and nothing
@@ -9,7 +10,7 @@
 
 use crate::case::{Expect, Query};
 use crate::engine::{Answer, Engine};
-use crate::engines::{self, DEFAULT_ENGINE, REFEREE};
+use crate::engines::{self, EngineSet};
 use crate::judge::{self, Errors, Mismatch, Verdict};
 use crate::load::{InputError, LoadedCase};
 use crate::tolerance::Tolerance;
@@ -60,7 +61,7 @@ pub struct CaseResult {
     pub referee_meets_expect: Option<bool>,
     /// Each judged engine's result.
     pub engines: Vec<EngineResult>,
-    /// Whether the default engine passed.
+    /// Whether the gate engine passed.
     pub passed: bool,
 }
 
@@ -71,14 +72,16 @@ pub struct CheckResult {
     pub cases: Vec<CaseResult>,
     /// Refused input, one line each.
     pub errors: Vec<String>,
-    /// Cases the default engine passed.
+    /// The gate engine: its answers decide `passed`, `failed` and the exit code.
+    pub gate: String,
+    /// Cases the gate engine passed.
     pub passed: usize,
     /// Cases it failed.
     pub failed: usize,
 }
 
 impl CheckResult {
-    /// The process exit code: 2 for bad input, 1 when the default engine failed a
+    /// The process exit code: 2 for bad input, 1 when the gate engine failed a
     /// case, 0 otherwise.
     pub fn exit_code(&self) -> i32 {
         if !self.errors.is_empty() {
@@ -204,7 +207,8 @@ pub fn run_caught(engine: &Engine, lc: &LoadedCase) -> Result<Answer, Verdict> {
 }
 
 /// Judges one case with every engine.
-pub fn check_case(lc: &LoadedCase, judged: &[Engine], referee: &Engine) -> CaseResult {
+pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
+    let (judged, referee) = (&set.judged, &set.referee);
     // The truth, or why there is none: the referee refused the input, or the
     // exact answer lies beyond f64's range (its rounding would be ±∞, and no
     // engine is graded against an infinity).
@@ -231,7 +235,7 @@ pub fn check_case(lc: &LoadedCase, judged: &[Engine], referee: &Engine) -> CaseR
                         let (v, e) = judge::judge(lc, &a, t, &tol, margin);
                         match &v {
                             Verdict::Disagree { reasons } => {
-                                match crate::divergence::explain(&engine.name, lc, &a, t, reasons) {
+                                match crate::divergence::explain(engine, lc, &a, t, reasons) {
                                     Some(reason) => (Verdict::KnownDivergence { reason }, e),
                                     None => (v, e),
                                 }
@@ -245,7 +249,7 @@ pub fn check_case(lc: &LoadedCase, judged: &[Engine], referee: &Engine) -> CaseR
             }
             Err(v) => (None, v, Errors::default(), None),
         };
-        if engine.name == DEFAULT_ENGINE {
+        if engine.name == set.gate {
             let expect_ok = mism.as_ref().is_none_or(|m| m.is_empty());
             let referee_ok = matches!(verdict, Verdict::Agree | Verdict::Borderline { .. })
                 || (truth.is_none() && has_expect && answer.is_some());
@@ -271,13 +275,11 @@ pub fn check_case(lc: &LoadedCase, judged: &[Engine], referee: &Engine) -> CaseR
 }
 
 /// Checks every loaded case; `errors` are the input errors met while loading.
-pub fn check(cases: &[LoadedCase], errors: &[InputError]) -> CheckResult {
-    let judged = engines::judged();
-    let referee = engines::referee();
-    debug_assert_eq!(referee.name, REFEREE);
-    let results: Vec<CaseResult> = cases.iter().map(|lc| check_case(lc, &judged, &referee)).collect();
+pub fn check(cases: &[LoadedCase], errors: &[InputError], set: &EngineSet) -> CheckResult {
+    let results: Vec<CaseResult> = cases.iter().map(|lc| check_case(lc, set)).collect();
     let passed = results.iter().filter(|c| c.passed).count();
     CheckResult {
+        gate: set.gate.clone(),
         failed: results.len() - passed,
         passed,
         cases: results,
@@ -290,7 +292,7 @@ fn fmt_err(x: Option<f64>) -> String {
 }
 
 /// The human-readable report: a table per case, and last the line `N passed, M
-/// failed` (cases, default engine). The input errors are not in it: they are
+/// failed` (cases, gate engine). The input errors are not in it: they are
 /// for standard error ([`render_errors`]), so that a pipe of the results does
 /// not carry them.
 pub fn render_text(r: &CheckResult) -> String {
@@ -332,25 +334,25 @@ pub fn render_text(r: &CheckResult) -> String {
                 fmt_err(e.errors.t),
                 fmt_err(e.errors.barycentric)
             );
-            if e.engine == DEFAULT_ENGINE || !c.passed {
+            if e.engine == r.gate || !c.passed {
                 for m in e.expect_mismatches.iter().flatten() {
                     let _ = writeln!(s, "      expect.{}: want {}, got {}", m.field, m.expected, m.got);
                 }
             }
             match &e.verdict {
-                Verdict::Disagree { reasons } | Verdict::Borderline { reasons } if e.engine == DEFAULT_ENGINE => {
+                Verdict::Disagree { reasons } | Verdict::Borderline { reasons } if e.engine == r.gate => {
                     for why in reasons {
                         let _ = writeln!(s, "      {why}");
                     }
                 }
-                Verdict::Failed { reason } | Verdict::Unsupported { reason } if e.engine == DEFAULT_ENGINE => {
+                Verdict::Failed { reason } | Verdict::Unsupported { reason } if e.engine == r.gate => {
                     let _ = writeln!(s, "      {reason}");
                 }
                 _ => {}
             }
         }
     }
-    let _ = writeln!(s, "{} passed, {} failed", r.passed, r.failed);
+    let _ = writeln!(s, "{} passed, {} failed (gate: {})", r.passed, r.failed, r.gate);
     s
 }
 

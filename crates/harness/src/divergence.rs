@@ -10,7 +10,7 @@
 //! names an entry parry no longer lists fails the tests here.
 
 use crate::case::{Query, Shape};
-use crate::engine::Answer;
+use crate::engine::{Answer, Engine};
 use crate::load::LoadedCase;
 use oracle::parry::{KnownDivergence, cast_known_divergences, known_divergences};
 
@@ -18,26 +18,40 @@ use oracle::parry::{KnownDivergence, cast_known_divergences, known_divergences};
 /// referee's, and the disagreement's reasons.
 type Explains = fn(&LoadedCase, &Answer, &Answer, &[String]) -> bool;
 
-struct Rule {
-    /// Engine names this rule covers (exact).
-    engines: &'static [&'static str],
-    /// For parry: the start of the `what` of its entry in `known_divergences()`;
-    /// for collide: the reason itself.
-    parry_what: Option<&'static str>,
-    reason: &'static str,
-    explains: Explains,
+/// One known divergence: when it explains a disagreement, and why.
+pub struct Rule {
+    /// For parry: the start of the `what` of its entry in `known_divergences()`
+    /// (its reason is read from there); `None` for a rule that states its own.
+    pub parry_what: Option<&'static str>,
+    /// The reason, when `parry_what` is `None`.
+    pub reason: &'static str,
+    /// Whether it explains this disagreement.
+    pub explains: Explains,
 }
 
-const PARRY: &[&str] = &["parry3d-f64", "parry3d"];
-const LECTURE: &[&str] = &["collide/lecture", "collide-f32/lecture"];
+/// The known divergences an engine carries (each [`crate::engine::Engine`] has
+/// its own set; most have none).
+#[derive(Clone, Copy)]
+pub struct Known(pub &'static [Rule]);
+
+impl Known {
+    /// No known divergence: every disagreement stands.
+    pub const NONE: Known = Known(&[]);
+}
+
+impl std::fmt::Debug for Known {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Known({} rules)", self.0.len())
+    }
+}
 
 fn shapes(lc: &LoadedCase) -> (&'static str, Option<&'static str>) {
     (lc.case.a.kind(), lc.case.b.as_ref().map(Shape::kind))
 }
 
-const RULES: &[Rule] = &[
+/// parry3d-f64 and parry3d: the divergences `oracle::parry` documents.
+pub const PARRY: Known = Known(&[
     Rule {
-        engines: PARRY,
         parry_what: Some("sphere–sphere: exactly touching"),
         reason: "",
         explains: |lc, a, t, _| {
@@ -47,7 +61,6 @@ const RULES: &[Rule] = &[
         },
     },
     Rule {
-        engines: PARRY,
         parry_what: Some("sphere–sphere, concentric"),
         reason: "",
         explains: |lc, a, t, _| {
@@ -56,7 +69,6 @@ const RULES: &[Rule] = &[
         },
     },
     Rule {
-        engines: PARRY,
         parry_what: Some("sphere–triangle: a centre within"),
         reason: "",
         explains: |lc, a, t, _| {
@@ -67,7 +79,6 @@ const RULES: &[Rule] = &[
         },
     },
     Rule {
-        engines: PARRY,
         parry_what: Some("segment–triangle: a segment parallel"),
         reason: "",
         explains: |lc, a, t, _| {
@@ -76,7 +87,6 @@ const RULES: &[Rule] = &[
         },
     },
     Rule {
-        engines: PARRY,
         parry_what: Some("segment–plane: a missing segment"),
         reason: "",
         explains: |lc, a, t, _| {
@@ -86,19 +96,16 @@ const RULES: &[Rule] = &[
         },
     },
     Rule {
-        engines: PARRY,
         parry_what: Some("a point whose projection lies outside"),
         reason: "",
         explains: |_, _, t, _| matches!(t, Answer::Barycentric(t) if t.coords.iter().any(|x| *x < 0.0)),
     },
     Rule {
-        engines: PARRY,
         parry_what: Some("bounding sphere: centroid"),
         reason: "",
         explains: |lc, _, _, reasons| lc.case.query == Query::Bounds && only_radius(reasons),
     },
     Rule {
-        engines: PARRY,
         parry_what: Some("segment–mesh: a hit exactly at the segment's end"),
         reason: "",
         explains: |lc, a, t, _| {
@@ -107,7 +114,6 @@ const RULES: &[Rule] = &[
         },
     },
     Rule {
-        engines: PARRY,
         parry_what: Some("segment–mesh: a segment through an edge or vertex shared"),
         reason: "",
         explains: |lc, a, t, reasons| {
@@ -126,7 +132,6 @@ const RULES: &[Rule] = &[
         },
     },
     Rule {
-        engines: PARRY,
         parry_what: Some("segment–mesh: a segment parallel to every face"),
         reason: "",
         explains: |lc, a, t, _| {
@@ -135,7 +140,6 @@ const RULES: &[Rule] = &[
         },
     },
     Rule {
-        engines: PARRY,
         parry_what: Some("sphere–sphere cast, overlapping at t = 0"),
         reason: "",
         explains: |lc, a, t, _| {
@@ -145,7 +149,6 @@ const RULES: &[Rule] = &[
         },
     },
     Rule {
-        engines: PARRY,
         parry_what: Some("sphere–triangle cast hitting at 0 < t < 1e-4"),
         reason: "",
         explains: |lc, _, t, _| {
@@ -153,15 +156,18 @@ const RULES: &[Rule] = &[
                 if shapes(lc) == ("sphere", Some("triangle")) && t.toi.is_some_and(|x| x.t > 0.0 && x.t < 1e-4))
         },
     },
+]);
+
+/// collide's lecture methods (both precisions): where the lecture's definition is
+/// not the format's.
+pub const LECTURE: Known = Known(&[
     Rule {
-        engines: LECTURE,
         parry_what: None,
         reason: "the lecture's bounding sphere (centroid and largest distance) encloses the points \
                  but is not the minimal sphere the format's bounds query reports",
         explains: |lc, _, _, reasons| lc.case.query == Query::Bounds && only_radius(reasons),
     },
     Rule {
-        engines: LECTURE,
         parry_what: None,
         reason: "the lecture's barycentrics are unsigned area ratios of the point itself: outside \
                  the triangle (or off its plane) they are not the signed coordinates of the \
@@ -176,7 +182,7 @@ const RULES: &[Rule] = &[
                 }
         },
     },
-];
+]);
 
 fn only_radius(reasons: &[String]) -> bool {
     !reasons.is_empty() && reasons.iter().all(|r| r.starts_with("bounding radius"))
@@ -210,22 +216,27 @@ fn parry_entries() -> impl Iterator<Item = &'static KnownDivergence> {
 
 /// The known divergence that explains `engine`'s disagreement on this case, if
 /// any: its documented reason.
-pub fn explain(engine: &str, lc: &LoadedCase, answer: &Answer, truth: &Answer, reasons: &[String]) -> Option<String> {
-    RULES
-        .iter()
-        .filter(|r| r.engines.contains(&engine))
-        .find(|r| (r.explains)(lc, answer, truth, reasons))
-        .and_then(|r| reason_of(r, engine))
+pub fn explain(
+    engine: &Engine,
+    lc: &LoadedCase,
+    answer: &Answer,
+    truth: &Answer,
+    reasons: &[String],
+) -> Option<String> {
+    engine.known.0.iter().find(|r| (r.explains)(lc, answer, truth, reasons)).and_then(|r| reason_of(r, &engine.name))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use oracle::parry::{Parry32, Parry64};
+
+    const PARRY_NAMES: [&str; 2] = [Parry64::NAME, Parry32::NAME];
 
     #[test]
     fn every_parry_rule_names_an_entry_parry_still_lists_for_both_engines() {
-        for rule in RULES.iter().filter(|r| r.parry_what.is_some()) {
-            for engine in rule.engines {
+        for rule in PARRY.0.iter().filter(|r| r.parry_what.is_some()) {
+            for engine in PARRY_NAMES {
                 assert!(reason_of(rule, engine).is_some(), "{engine}: no known divergence {:?}", rule.parry_what);
             }
         }
@@ -234,10 +245,23 @@ mod tests {
     #[test]
     fn every_parry_entry_has_a_rule() {
         for d in parry_entries() {
-            let covered = RULES
-                .iter()
-                .any(|r| r.engines.contains(&d.engine) && r.parry_what.is_some_and(|w| d.what.starts_with(w)));
+            let covered = PARRY_NAMES.contains(&d.engine)
+                && PARRY.0.iter().any(|r| r.parry_what.is_some_and(|w| d.what.starts_with(w)));
             assert!(covered, "{}: no rule for {:?}", d.engine, d.what);
+        }
+    }
+
+    #[test]
+    fn the_rules_go_with_the_engines_that_have_them() {
+        for e in crate::engines::judged() {
+            let want = if PARRY_NAMES.contains(&e.name.as_str()) {
+                PARRY.0.len()
+            } else if e.name.ends_with("/lecture") {
+                LECTURE.0.len()
+            } else {
+                0
+            };
+            assert_eq!(e.known.0.len(), want, "{}", e.name);
         }
     }
 }

@@ -7,27 +7,37 @@
 //! engine, and translate conventions there and nowhere else.
 
 use crate::case::{Pair, Shape};
+use crate::divergence::Known;
 use crate::load::LoadedCase;
 use crate::mesh::Mesh;
 use oracle::geom::{Aabb, P3, Plane, Segment, Sphere, Triangle};
 use std::fmt;
+use std::sync::Arc;
 
 pub use crashtest_core::engine::{Answer, Queries, Reply, Unsupported, swap};
 
-/// A named engine.
+/// A named engine (cloning shares its queries).
+#[derive(Clone)]
 pub struct Engine {
     /// `collide/robust`, `collide-f32/lecture`, `parry3d-f64`, `referee`, …
     pub name: String,
     /// Floating-point precision of its arithmetic, in bits of mantissa (53, 24),
     /// or `None` for the referee.
     pub precision: Option<u32>,
-    queries: Box<dyn Queries>,
+    /// The known divergences this engine carries ([`crate::divergence`]).
+    pub known: Known,
+    queries: Arc<dyn Queries>,
 }
 
 impl Engine {
     /// An engine from its name, precision and queries.
     pub fn new(name: impl Into<String>, precision: Option<u32>, queries: impl Queries + 'static) -> Self {
-        Self { name: name.into(), precision, queries: Box::new(queries) }
+        Self { name: name.into(), precision, known: Known::NONE, queries: Arc::new(queries) }
+    }
+
+    /// The same engine carrying these known divergences.
+    pub fn with_known(self, known: Known) -> Self {
+        Self { known, ..self }
     }
 
     /// Answers one case: its row of the pair table ([`crashtest_core::pair`])

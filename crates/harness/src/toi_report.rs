@@ -20,12 +20,14 @@
 //! dynamics section's subject; here every case is one halving can solve, so
 //! the question is only how fast it gets there.
 
+use crate::engine::{Answer, Engine};
+use crate::engines::EngineSet;
+use crate::load::LoadedCase;
 use crate::report::markdown::{Table, table_md};
 use crate::report::plot::{Axis, Line, line_chart};
 use crate::report::section::{Section, SectionChart};
 use collide::Real;
 use oracle::geom::{P3, Plane, Sphere, Toi, Triangle};
-use oracle::parry::{Parry32, Parry64, ParryCast};
 use serde::Serialize;
 use std::fmt::Write;
 use std::hint::black_box;
@@ -166,6 +168,19 @@ pub struct ToiReport {
     pub methods: Vec<MethodRow>,
     /// Halving at every depth per pair.
     pub halving: Vec<HalvingPoint>,
+    /// Engines given that do not answer a pair, with the reason.
+    pub not_run: Vec<NotRun>,
+}
+
+/// An engine given to the section that it could not run on a pair.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NotRun {
+    /// The engine.
+    pub engine: String,
+    /// The pair.
+    pub pair: Pair,
+    /// Why: its verdict on the first impact it did not answer.
+    pub reason: String,
 }
 
 // ---------------------------------------------------------------- the cases
@@ -400,14 +415,37 @@ fn halving<T: Real>(p: &Prepared<T>, steps: u32) -> Option<T> {
     }
 }
 
-/// parry's cast on a case, through the oracle's adapter.
-fn parry<E: ParryCast>(e: &E, c: &Case) -> Option<f64> {
-    let toi: Option<Toi> = match &c.b {
-        Target::Sphere(s) => e.cast_sphere_sphere(c.a, c.va, *s, c.vb, c.t_max).answer.toi,
-        Target::Plane(p) => e.cast_sphere_plane(c.a, c.va, *p, c.vb, c.t_max).answer.toi,
-        Target::Triangle(t) => e.cast_sphere_triangle(c.a, c.va, *t, c.vb, c.t_max).answer.toi,
+/// A built impact as a fixture case, for an engine behind the seam.
+fn as_loaded(c: &Case) -> LoadedCase {
+    use crate::case::{PlaneSpec, Shape, SphereSpec, TriangleSpec};
+    let b = match &c.b {
+        Target::Sphere(s) => {
+            Shape::Sphere(SphereSpec { center: s.center, radius: s.radius, velocity: Some(c.vb), mass: None })
+        }
+        Target::Plane(p) => Shape::Plane(PlaneSpec { normal: p.normal, offset: p.offset, velocity: Some(c.vb) }),
+        Target::Triangle(t) => Shape::Triangle(TriangleSpec { vertices: t.vertices, velocity: Some(c.vb) }),
     };
-    toi.map(|k| k.t)
+    crate::generate::loaded(crate::case::Case {
+        name: "toi section impact".into(),
+        source: "generated: the toi section's built impacts".into(),
+        query: crate::case::Query::Toi,
+        a: Shape::Sphere(SphereSpec { center: c.a.center, radius: c.a.radius, velocity: Some(c.va), mass: None }),
+        b: Some(b),
+        expect: None,
+        tol: None,
+        t_max: Some(c.t_max),
+        restitution: None,
+    })
+}
+
+/// An engine's time of impact on a built impact, through the seam; `Err` when
+/// it does not answer this pair or fails on it.
+fn seam(e: &Engine, lc: &LoadedCase) -> Result<Option<f64>, String> {
+    match crate::check::run_caught(e, lc) {
+        Ok(Answer::Toi(a)) => Ok(a.toi.map(|k: Toi| k.t)),
+        Ok(_) => Err("answered something other than a time of impact".into()),
+        Err(v) => Err(v.label().to_string()),
+    }
 }
 
 /// Median nanoseconds per query of `reps` loops of `f` over `n` queries, or
@@ -453,26 +491,40 @@ fn fixed_methods<T: Real>(pair: Pair, cases: &[Case], settings: &Settings, preci
     method_row(pair, &format!("collide {} {precision}", pair.robust_method()), cases, &answers, ns)
 }
 
-fn parry_row<E: ParryCast>(pair: Pair, e: &E, name: &str, cases: &[Case], settings: &Settings) -> MethodRow {
-    let answers: Vec<Option<f64>> = cases.iter().map(|c| parry(e, c)).collect();
-    let ns = time_ns(settings, cases.len(), || {
-        for c in cases {
-            black_box(parry(e, black_box(c)));
+/// An engine's row, through the seam (parry's is its `cast_shapes`, through the
+/// oracle's adapter); `Err` with the reason when it does not answer the pair.
+fn seam_row(pair: Pair, e: &Engine, cases: &[Case], settings: &Settings) -> Result<MethodRow, String> {
+    let loaded: Vec<LoadedCase> = cases.iter().map(as_loaded).collect();
+    let answers = loaded.iter().map(|lc| seam(e, lc)).collect::<Result<Vec<Option<f64>>, String>>()?;
+    let ns = time_ns(settings, loaded.len(), || {
+        for lc in &loaded {
+            let _ = black_box(e.run(black_box(lc)));
         }
     });
-    method_row(pair, &format!("{name} cast_shapes"), cases, &answers, ns)
+    let method = if e.name.starts_with("parry3d") { format!("{} cast_shapes", e.name) } else { e.name.clone() };
+    Ok(method_row(pair, &method, cases, &answers, ns))
 }
 
 /// Runs the section's measurements.
-pub fn run(settings: &Settings) -> ToiReport {
+///
+/// collide's methods are measured through their own functions (the halving at
+/// every depth, the robust closed forms and advancement); every other engine of
+/// `engines` through the seam, and one that does not answer a pair is listed
+/// in `not_run` with the reason.
+pub fn run(settings: &Settings, engines: &EngineSet) -> ToiReport {
     let mut methods = Vec::new();
     let mut points = Vec::new();
+    let mut not_run = Vec::new();
     for pair in Pair::ALL {
         let cases = cases(pair, settings);
         methods.push(fixed_methods::<f64>(pair, &cases, settings, "f64"));
         methods.push(fixed_methods::<f32>(pair, &cases, settings, "f32"));
-        methods.push(parry_row(pair, &Parry64, Parry64::NAME, &cases, settings));
-        methods.push(parry_row(pair, &Parry32, Parry32::NAME, &cases, settings));
+        for e in engines.judged.iter().filter(|e| !crate::engines::is_collide(e)) {
+            match seam_row(pair, e, &cases, settings) {
+                Ok(row) => methods.push(row),
+                Err(why) => not_run.push(NotRun { engine: e.name.clone(), pair, reason: why }),
+            }
+        }
         let prepared: Vec<Prepared<f64>> = cases.iter().map(prepare).collect();
         for steps in 1..=MAX_HALVING_STEPS {
             let answers: Vec<Option<f64>> = prepared.iter().map(|p| halving(p, steps)).collect();
@@ -490,7 +542,7 @@ pub fn run(settings: &Settings) -> ToiReport {
             points.push(HalvingPoint { pair, steps, median_error, max_error, bound, misses, ns_per_query });
         }
     }
-    ToiReport { settings: *settings, design: DESIGN.into(), methods, halving: points }
+    ToiReport { settings: *settings, design: DESIGN.into(), methods, halving: points, not_run }
 }
 
 // ------------------------------------------------------------ the rendering
@@ -571,8 +623,19 @@ pub fn markdown(r: &ToiReport) -> String {
          rounding in one evaluation; conservative advancement in a few steps.\n"
     );
     s.push_str(&table_md(&table(r)));
+    s.push_str(&not_run_words(r));
     for c in charts(r) {
         let _ = writeln!(s, "\n![{}](charts/{})", c.title, c.file);
+    }
+    s
+}
+
+/// The engines given that the section did not run, with the reasons (empty
+/// when it ran them all).
+fn not_run_words(r: &ToiReport) -> String {
+    let mut s = String::new();
+    for n in &r.not_run {
+        let _ = writeln!(s, "\nNot run: {} on {} ({}).", n.engine, n.pair.label(), n.reason);
     }
     s
 }
@@ -619,14 +682,18 @@ pub fn charts(r: &ToiReport) -> Vec<SectionChart> {
     });
     for (style, prefix, label) in [
         (5, "collide", "collide robust f64 (median, worst pair)"),
-        (6, Parry64::NAME, "parry3d-f64 (median, worst pair)"),
+        (6, "parry3d-f64", "parry3d-f64 (median, worst pair)"),
     ] {
-        let worst = r
+        let rows: Vec<f64> = r
             .methods
             .iter()
             .filter(|m| m.method.starts_with(prefix) && (prefix != "collide" || m.method.ends_with("f64")))
             .map(|m| m.median_error)
-            .fold(0.0, f64::max);
+            .collect();
+        if rows.is_empty() {
+            continue;
+        }
+        let worst = rows.into_iter().fold(0.0, f64::max);
         series.push(Line {
             name: label.into(),
             style,
@@ -684,11 +751,16 @@ pub fn charts(r: &ToiReport) -> Vec<SectionChart> {
 /// The report's time-of-impact section (id `"toi"`): [`run`], then its
 /// Markdown, an HTML body (the table and the reading notes) and its charts; the
 /// data is the whole [`ToiReport`].
-pub fn section(settings: &Settings) -> Section {
-    let r = run(settings);
-    let md = markdown(&r);
+pub fn section(settings: &Settings, engines: &EngineSet) -> Section {
+    section_of(&run(settings, engines))
+}
+
+/// The section of measurements already made.
+pub fn section_of(r: &ToiReport) -> Section {
+    let md = markdown(r);
+    let not_run = not_run_words(r);
     let html = format!(
-        "<p>{}</p>\n<p>{}</p>\n{}",
+        "<p>{}</p>\n<p>{}</p>\n{}{}",
         crate::report::html::escape(&format!(
             "{} impacts per pair (seed {}); errors are |t − t*| / t_max against the referee's exact t*; {}",
             r.settings.cases,
@@ -696,15 +768,20 @@ pub fn section(settings: &Settings) -> Section {
             timing_words(&r.settings)
         )),
         crate::report::html::escape(&r.design),
-        crate::report::html::table_html(&table(&r))
+        crate::report::html::table_html(&table(r)),
+        not_run
+            .lines()
+            .filter(|l| !l.is_empty())
+            .map(|l| format!("<p>{}</p>\n", crate::report::html::escape(l)))
+            .collect::<String>()
     );
     Section {
         id: "toi".into(),
         title: "Time of impact: accuracy against speed".into(),
         html,
         markdown: md,
-        charts: charts(&r),
-        data: serde_json::to_value(&r).unwrap_or_else(|e| serde_json::Value::String(format!("unserializable: {e}"))),
+        charts: charts(r),
+        data: serde_json::to_value(r).unwrap_or_else(|e| serde_json::Value::String(format!("unserializable: {e}"))),
     }
 }
 
@@ -718,7 +795,7 @@ mod tests {
 
     #[test]
     fn toi_section_untimed_times_nothing_and_says_so() {
-        let s = section(&Settings { timing: false, ..small() });
+        let s = section(&Settings { timing: false, ..small() }, &Default::default());
         assert!(s.markdown.contains("nothing was timed"), "{}", s.markdown);
         assert!(s.html.contains("nothing was timed"), "{}", s.html);
         assert_eq!(s.charts.len(), 1, "only the error-against-bisections chart");
@@ -730,7 +807,7 @@ mod tests {
 
     #[test]
     fn toi_section_renders_its_table_and_charts() {
-        let s = section(&small());
+        let s = section(&small(), &Default::default());
         assert_eq!(s.id, "toi");
         assert!(s.markdown.starts_with("## Time of impact"), "{}", s.markdown);
         assert!(s.html.contains("<table>"), "the table is in the body");
@@ -744,7 +821,7 @@ mod tests {
 
     #[test]
     fn toi_halving_stays_within_its_bound_and_the_robust_methods_within_rounding() {
-        let r = run(&small());
+        let r = run(&small(), &Default::default());
         // Halving's bracket holds the first touch the static test sees, so its
         // error is under t_max / 2^k, plus the rounding of the static tests
         // and of t_max itself (a few ulps relative to the interval).

@@ -4,11 +4,13 @@ pub mod collide;
 pub mod parry;
 pub mod referee;
 
+use crate::divergence::{LECTURE, PARRY};
 use crate::engine::Engine;
 use collide::{CollideQueries, Method};
 use oracle::parry::{Parry32, Parry64};
 
-/// The engine whose answers decide `crashtest check`'s exit code.
+/// The gate engine by default: the one whose answers decide `crashtest check`'s
+/// exit code.
 pub const DEFAULT_ENGINE: &str = "collide/robust";
 
 /// The referee's name in reports.
@@ -19,15 +21,165 @@ pub const REFEREE: &str = "referee";
 pub fn judged() -> Vec<Engine> {
     vec![
         Engine::new("collide/robust", Some(53), CollideQueries::<f64>::new(Method::Robust)),
-        Engine::new("collide/lecture", Some(53), CollideQueries::<f64>::new(Method::Lecture)),
+        Engine::new("collide/lecture", Some(53), CollideQueries::<f64>::new(Method::Lecture)).with_known(LECTURE),
         Engine::new("collide-f32/robust", Some(24), CollideQueries::<f32>::new(Method::Robust)),
-        Engine::new("collide-f32/lecture", Some(24), CollideQueries::<f32>::new(Method::Lecture)),
-        Engine::new(Parry64::NAME, Some(53), parry::ParryQueries(Parry64)),
-        Engine::new(Parry32::NAME, Some(24), parry::ParryQueries(Parry32)),
+        Engine::new("collide-f32/lecture", Some(24), CollideQueries::<f32>::new(Method::Lecture)).with_known(LECTURE),
+        Engine::new(Parry64::NAME, Some(53), parry::ParryQueries(Parry64)).with_known(PARRY),
+        Engine::new(Parry32::NAME, Some(24), parry::ParryQueries(Parry32)).with_known(PARRY),
     ]
 }
+
+/// Whether `e` is one of collide's built-in engines: the sections that measure
+/// collide's methods through their own functions (halving depths, advancement
+/// steps) run those instead of the seam.
+pub fn is_collide(e: &Engine) -> bool {
+    judged().iter().take(COLLIDE_ENGINES).any(|c| c.name == e.name)
+}
+
+/// The first entries of [`judged`] that are collide's.
+const COLLIDE_ENGINES: usize = 4;
 
 /// The referee as an engine.
 pub fn referee() -> Engine {
     Engine::new(REFEREE, None, referee::RefereeQueries)
+}
+
+/// The engines a run judges, the referee they are judged against, and the gate:
+/// the engine whose answers decide `check`'s exit code. `check`, `report`,
+/// `sweep` and every section take the set they are given.
+#[derive(Clone, Debug)]
+pub struct EngineSet {
+    /// In report order.
+    pub judged: Vec<Engine>,
+    /// The truth.
+    pub referee: Engine,
+    /// The gate's name; one of `judged`.
+    pub gate: String,
+}
+
+impl Default for EngineSet {
+    /// Every built-in engine ([`judged`]), gated by [`DEFAULT_ENGINE`].
+    fn default() -> Self {
+        Self { judged: judged(), referee: referee(), gate: DEFAULT_ENGINE.into() }
+    }
+}
+
+impl EngineSet {
+    /// `judged` against the referee, gated by `gate`. The names must be unique
+    /// and the gate one of them; the error says which rule is broken.
+    pub fn new(judged: Vec<Engine>, gate: &str) -> Result<Self, String> {
+        if judged.is_empty() {
+            return Err("no engine to judge".into());
+        }
+        for (i, e) in judged.iter().enumerate() {
+            if e.name == REFEREE {
+                return Err(format!("`{REFEREE}` is the truth every engine is judged against, not an engine to judge"));
+            }
+            if judged[..i].iter().any(|o| o.name == e.name) {
+                return Err(format!("engine `{}` is named twice", e.name));
+            }
+        }
+        if !judged.iter().any(|e| e.name == gate) {
+            return Err(format!("the gate `{gate}` is not among the engines judged ({})", names(&judged)));
+        }
+        Ok(Self { judged, referee: referee(), gate: gate.into() })
+    }
+
+    /// The built-in engines named in `list` (comma-separated, or `all`), in that
+    /// order, gated by `gate` — [`DEFAULT_ENGINE`] when `None`, which then must
+    /// be selected; with one engine selected and no gate named, that engine.
+    pub fn select(list: &str, gate: Option<&str>) -> Result<Self, String> {
+        let chosen = pick(list)?;
+        let gate = match (gate, chosen.as_slice()) {
+            (Some(g), _) => g.to_string(),
+            (None, [only]) => only.name.clone(),
+            (None, _) => DEFAULT_ENGINE.to_string(),
+        };
+        Self::new(chosen, &gate)
+    }
+
+    /// `engine` as the gate, with the built-in engines named in `builtins`
+    /// beside it (`["all"]` for every one) — the way a user's own engine is
+    /// judged and shown next to collide and parry.
+    pub fn with_builtins(engine: Engine, builtins: &[&str]) -> Result<Self, String> {
+        let gate = engine.name.clone();
+        let mut judged = vec![engine];
+        if !builtins.is_empty() {
+            judged.extend(pick(&builtins.join(","))?);
+        }
+        Self::new(judged, &gate)
+    }
+
+    /// `judged` against the referee, gated by [`DEFAULT_ENGINE`] when it is
+    /// among them and by the first engine otherwise.
+    ///
+    /// # Panics
+    /// When `judged` is empty or names an engine twice.
+    pub fn of(judged: Vec<Engine>) -> Self {
+        let gate = match judged.iter().find(|e| e.name == DEFAULT_ENGINE).or(judged.first()) {
+            Some(e) => e.name.clone(),
+            None => panic!("EngineSet::of: no engine"),
+        };
+        Self::new(judged, &gate).unwrap_or_else(|e| panic!("EngineSet::of: {e}"))
+    }
+
+    /// The gate engine.
+    pub fn gate_engine(&self) -> &Engine {
+        self.judged.iter().find(|e| e.name == self.gate).unwrap_or(&self.judged[0])
+    }
+
+    /// The judged engine named `name`.
+    pub fn get(&self, name: &str) -> Option<&Engine> {
+        self.judged.iter().find(|e| e.name == name)
+    }
+}
+
+/// The built-in engines named in `list` (comma-separated, or `all`), in order.
+fn pick(list: &str) -> Result<Vec<Engine>, String> {
+    let all = judged();
+    if list.trim() == "all" {
+        return Ok(all);
+    }
+    let mut chosen = Vec::new();
+    for name in list.split(',').map(str::trim) {
+        match all.iter().find(|e| e.name == name) {
+            Some(e) => chosen.push(e.clone()),
+            None if name.is_empty() => return Err(format!("empty engine name in `{list}`")),
+            None => return Err(format!("unknown engine `{name}`; the engines are: {}, or `all`", names(&all))),
+        }
+    }
+    Ok(chosen)
+}
+
+fn names(engines: &[Engine]) -> String {
+    engines.iter().map(|e| e.name.as_str()).collect::<Vec<_>>().join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_set_is_every_engine_gated_by_collide_robust() {
+        let set = EngineSet::default();
+        assert_eq!(set.judged.len(), judged().len());
+        assert_eq!(set.gate_engine().name, DEFAULT_ENGINE);
+    }
+
+    #[test]
+    fn a_selection_keeps_its_order_and_checks_its_gate() {
+        let set = EngineSet::select("parry3d-f64, collide/robust", None).expect("valid");
+        let got: Vec<&str> = set.judged.iter().map(|e| e.name.as_str()).collect();
+        assert_eq!(got, ["parry3d-f64", "collide/robust"]);
+        assert_eq!(set.gate, DEFAULT_ENGINE);
+        assert_eq!(EngineSet::select("parry3d", None).expect("one engine").gate, "parry3d");
+        let err = EngineSet::select("parry3d,parry3d-f64", None).expect_err("no default gate among them");
+        assert!(err.contains("the gate `collide/robust` is not among"), "{err}");
+        let err = EngineSet::select("collide/robust,nope", None).expect_err("unknown");
+        assert!(err.contains("unknown engine `nope`") && err.contains("parry3d-f64"), "{err}");
+        let err = EngineSet::select("collide/robust,collide/robust", None).expect_err("twice");
+        assert!(err.contains("named twice"), "{err}");
+        assert!(EngineSet::select("all", Some("parry3d")).is_ok());
+        assert!(EngineSet::select("all", Some("referee")).is_err());
+    }
 }

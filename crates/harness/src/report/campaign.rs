@@ -9,7 +9,7 @@
 use crate::case::{Case, Expect, FixtureFile, Query, SCHEMA};
 use crate::check::{CaseResult, check_case, run_caught};
 use crate::engine::Engine;
-use crate::engines;
+use crate::engines::{self, EngineSet};
 use crate::judge::{Errors, Misclass, Verdict};
 use crate::load::{LoadedCase, load_paths};
 use crate::report::summary::{Dist, EngineInfo, EngineQueryStats, Provenance, Summary, Timing};
@@ -113,6 +113,9 @@ pub struct Config {
     /// The criterion benchmark's figures (`crashtest-bench.json`), read when
     /// the file exists: the accuracy–speed charts then use them.
     pub bench: Option<PathBuf>,
+    /// The engines judged, the referee and the gate ([`EngineSet::default`]:
+    /// every built-in engine, gated by `collide/robust`).
+    pub engines: EngineSet,
     /// Whether to run the extra sections (dynamics, stability sweeps, the
     /// scene's needs, time of impact) — with the whole campaign only.
     pub sections: bool,
@@ -131,6 +134,7 @@ impl Default for Config {
             progress: true,
             sections: true,
             bench: None,
+            engines: EngineSet::default(),
         }
     }
 }
@@ -439,14 +443,14 @@ pub fn time_engine(engine: &Engine, cases: &[&LoadedCase]) -> Option<Timing> {
 /// Runs the campaign.
 pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     let wall = Instant::now();
-    let judged = engines::judged();
-    let referee = engines::referee();
+    let set = &config.engines;
+    let (judged, referee) = (&set.judged, &set.referee);
     let (cases, input_errors) = cases(config);
     let bar = progress_bar(config.progress, cases.len() as u64);
     let results: Vec<CaseResult> = cases
         .par_iter()
         .map(|lc| {
-            let r = check_case(lc, &judged, &referee);
+            let r = check_case(lc, set);
             bar.inc(1);
             r
         })
@@ -492,13 +496,13 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
                     stats_for(&mut map, ix, &engine.name, q).timing = Some(t);
                 }
             }
-            if let Some(t) = time_engine(&referee, &qcases) {
+            if let Some(t) = time_engine(referee, &qcases) {
                 referee_seconds += t.median_ns * 1e-9 * qcases.len() as f64;
                 let ix = judged.len();
                 stats_for(&mut map, ix, &referee.name, q).timing = Some(t);
             }
         }
-        for engine in judged.iter().chain([&referee]) {
+        for engine in judged.iter().chain([referee]) {
             let ns: Vec<f64> = map
                 .values()
                 .filter(|s| s.engine == engine.name)
@@ -536,7 +540,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     }
     let fixture_cases = cases.iter().filter(|c| !c.case.source.starts_with("generated")).count() as u64;
     let mut provenance = provenance;
-    provenance.engines = engine_infos(&judged);
+    provenance.engines = engine_infos(judged);
     provenance.seed = config.seed;
     provenance.cases_per_query = config.cases_per_query;
     provenance.full_range_per_query = config.full_range_per_query;
@@ -567,20 +571,44 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
 
 /// The extra sections of a whole campaign, in report order.
 fn sections(config: &Config, results: &[CaseResult]) -> Vec<crate::report::section::Section> {
+    let set = &config.engines;
+    // The engines of the set a section does not run: all but collide's, and
+    // those it names.
+    let others = |also: &[&str]| -> Vec<&str> {
+        set.judged
+            .iter()
+            .filter(|e| !engines::is_collide(e) && !also.contains(&e.name.as_str()))
+            .map(|e| e.name.as_str())
+            .collect()
+    };
     let mut out = Vec::new();
-    out.push(crate::sweep::section(&crate::sweep::Settings { poses: crate::sweep::DEFAULT_POSES, seed: config.seed }));
-    out.push(crate::scene::section(&crate::scene::SceneSettings {
-        seed: config.seed,
-        timing: config.timing,
-        ..Default::default()
-    }));
-    out.push(crate::toi_report::section(&crate::toi_report::Settings {
-        seed: config.seed,
-        timing: config.timing,
-        ..Default::default()
-    }));
+    out.push(crate::sweep::section(
+        &crate::sweep::Settings { poses: crate::sweep::DEFAULT_POSES, seed: config.seed },
+        set,
+    ));
+    out.push(
+        crate::scene::section(&crate::scene::SceneSettings {
+            seed: config.seed,
+            timing: config.timing,
+            ..Default::default()
+        })
+        .with_not_run(
+            &others(&[oracle::parry::Parry64::NAME]),
+            "this section measures collide's scene structures (bounding-volume hierarchy, batched contacts, \
+             bounding spheres) and parry3d-f64's through their own functions, not one query at a time through \
+             the engine trait",
+        ),
+    );
+    out.push(crate::toi_report::section(
+        &crate::toi_report::Settings { seed: config.seed, timing: config.timing, ..Default::default() },
+        set,
+    ));
     out.extend(crate::report::peers::section(results));
-    out.push(crate::dynamics::section(&crate::dynamics::run()));
+    out.push(crate::dynamics::section(&crate::dynamics::run()).with_not_run(
+        &others(&[]),
+        "the dynamics experiments step worlds with collide's integrators and with rapier3d-f64; an engine \
+         behind the engine trait answers single queries and has no world to step",
+    ));
     out
 }
 

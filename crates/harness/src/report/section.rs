@@ -42,6 +42,17 @@ pub struct SectionChart {
 }
 
 impl Section {
+    /// The section saying which of the engines given it did not run, and why
+    /// (unchanged when `engines` is empty).
+    pub fn with_not_run(mut self, engines: &[&str], reason: &str) -> Self {
+        if !engines.is_empty() {
+            let line = format!("Not run here: {} — {reason}", engines.join(", "));
+            let _ = writeln!(self.html, "<p class=\"not-run\">{}</p>", escape(&line));
+            let _ = write!(self.markdown, "\n{line}\n");
+        }
+        self
+    }
+
     /// Its part of `index.html`: heading, body, charts as figures.
     pub fn to_html(&self) -> String {
         let mut out = String::new();

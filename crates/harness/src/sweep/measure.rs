@@ -5,7 +5,7 @@
 use super::{BREAK_REL, SWEEPS, Settings, Sweep, SweepPoint, cases};
 use crate::case::Query;
 use crate::check::{CaseResult, check_case};
-use crate::engines;
+use crate::engines::EngineSet;
 use crate::judge::{Misclass, Verdict};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -351,13 +351,11 @@ fn walk(stats: &[PointStats], points: &[SweepPoint], path: &[usize]) -> Walk {
 }
 
 /// Runs one sweep: every case judged (in parallel, folded in order).
-pub fn run(sweep: &Sweep, settings: &Settings) -> SweepResult {
-    let judged = engines::judged();
-    let referee = engines::referee();
+pub fn run(sweep: &Sweep, settings: &Settings, engines: &EngineSet) -> SweepResult {
+    let judged = &engines.judged;
     let points = sweep.points();
     let all = cases(sweep, settings);
-    let results: Vec<(bool, Vec<Outcome>)> =
-        all.par_iter().map(|c| outcomes(&check_case(&c.case, &judged, &referee))).collect();
+    let results: Vec<(bool, Vec<Outcome>)> = all.par_iter().map(|c| outcomes(&check_case(&c.case, engines))).collect();
 
     let walks = sweep.walks();
     let mut probes = Vec::new();
@@ -401,8 +399,8 @@ pub fn run(sweep: &Sweep, settings: &Settings) -> SweepResult {
 }
 
 /// Runs every sweep, in order.
-pub fn run_all(settings: &Settings) -> Vec<SweepResult> {
-    SWEEPS.iter().map(|s| run(s, settings)).collect()
+pub fn run_all(settings: &Settings, engines: &EngineSet) -> Vec<SweepResult> {
+    SWEEPS.iter().map(|s| run(s, settings, engines)).collect()
 }
 
 #[cfg(test)]

@@ -294,8 +294,8 @@ pub fn section_from(results: &[SweepResult], settings: &Settings) -> Section {
 }
 
 /// The stability section of a report: every sweep run with `settings`.
-pub fn section(settings: &Settings) -> Section {
-    section_from(&run_all(settings), settings)
+pub fn section(settings: &Settings, engines: &crate::engines::EngineSet) -> Section {
+    section_from(&run_all(settings, engines), settings)
 }
 
 /// The files `crashtest sweep` writes for one sweep: `<name>.json` (every

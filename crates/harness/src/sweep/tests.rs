@@ -251,7 +251,8 @@ fn an_unknown_name_is_refused_with_every_name() {
 #[test]
 fn the_section_opens_with_the_breaking_point_table_and_has_a_chart_per_sweep() {
     let settings = Settings { poses: 1, seed: 6 };
-    let results: Vec<SweepResult> = ["grazing", "concentric"].iter().map(|n| run(sweep(n), &settings)).collect();
+    let results: Vec<SweepResult> =
+        ["grazing", "concentric"].iter().map(|n| run(sweep(n), &settings, &Default::default())).collect();
     let s = section_from(&results, &settings);
     assert_eq!(s.id, SECTION_ID);
     assert!(s.html.starts_with("<div class=\"scroll\"><table>"), "opens with the table: {}", &s.html[..80]);
@@ -268,7 +269,7 @@ fn the_section_opens_with_the_breaking_point_table_and_has_a_chart_per_sweep() {
 #[test]
 fn a_failure_is_drawn_as_its_own_mark() {
     let settings = Settings { poses: 1, seed: 6 };
-    let mut r = run(sweep("grazing"), &settings);
+    let mut r = run(sweep("grazing"), &settings, &Default::default());
     for s in r.probes.iter_mut().flat_map(|p| p.engines.iter_mut()).flat_map(|e| e.points.iter_mut()) {
         (s.panics, s.non_finite, s.false_positives, s.false_negatives, s.flags) = (0, 0, 0, 0, 0);
     }
@@ -280,7 +281,7 @@ fn a_failure_is_drawn_as_its_own_mark() {
 #[test]
 fn the_table_cell_names_the_value_and_the_reason() {
     let settings = Settings { poses: 1, seed: 6 };
-    let mut r = run(sweep("concentric"), &settings);
+    let mut r = run(sweep("concentric"), &settings, &Default::default());
     let lecture = &mut r.probes[0].engines[1];
     lecture.walks[0].breaks_at = Some(Break {
         point: 5,

@@ -1,0 +1,219 @@
+//! # crashtest — judge your collision code against an exact referee
+//!
+//! Write an engine (implement [`Queries`] for the pairs you answer; the rest say
+//! [`Unsupported`]), name it with [`Engine::new`], and get:
+//!
+//! - verdicts on fixture files with your engine as the gate ([`check`]);
+//! - the full report — per-query accuracy and speed beside collide and parry,
+//!   the full-range family, the stability sweeps and every section that applies
+//!   ([`Campaign`]);
+//! - a test for your own `cargo test` that fails with the discrepancy table
+//!   when your engine disagrees with the referee ([`testing::assert_agrees`]).
+//!
+//! ```
+//! use crashtest::{Engine, EngineSet, Queries, Reply};
+//! use crashtest::geom::{Aabb, Query};
+//!
+//! /// Boxes overlap when they overlap on every axis (touching counts).
+//! struct Boxes;
+//! impl Queries for Boxes {
+//!     fn overlap(&self, a: &Aabb, b: &Aabb) -> Reply<bool> {
+//!         Ok((0..3).all(|i| a.min[i] <= b.max[i] && b.min[i] <= a.max[i]))
+//!     }
+//! }
+//!
+//! let mine = Engine::new("boxes", Some(53), Boxes);
+//! let set = EngineSet::with_builtins(mine, &["collide/robust"]).unwrap();
+//! let result = crashtest::testing::Judge::new(set).only(Query::Overlap).cases(200).run();
+//! assert_eq!(result.disagreements("boxes"), 0, "{}", result.table("boxes"));
+//! ```
+//!
+//! Everything an engine needs to be written is in the light crate
+//! `crashtest-core`, re-exported here; an engine crate can depend on that alone.
+#![deny(missing_docs)]
+
+pub mod testing;
+
+pub use crashtest_core::engine::{Answer, Queries, Reply, Unsupported};
+pub use crashtest_core::mesh::Mesh;
+pub use crashtest_core::pair::{Pair, Query, ShapeKind};
+pub use harness::check::{CheckResult, check_case};
+pub use harness::engine::Engine;
+pub use harness::engines::{DEFAULT_ENGINE, EngineSet};
+pub use harness::report::campaign::{DEFAULT_CASES, DEFAULT_FULL_RANGE_CASES, DEFAULT_SEED};
+
+/// The geometry values every engine speaks (plain `f64`, the fixture format's
+/// conventions), their vector operations, and the query kinds.
+pub mod geom {
+    pub use crashtest_core::geom::*;
+    pub use crashtest_core::pair::{Pair, Query, ShapeKind};
+    pub use crashtest_core::vec3;
+}
+
+/// The lower-level machinery (loading, judging, generators, report parts), for
+/// what the entry points here do not cover.
+pub use harness;
+
+use std::path::{Path, PathBuf};
+
+/// The fixture folder shipped with crashtest (the built-in cases).
+pub fn builtin_fixtures() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures")
+}
+
+/// Runs every case of the fixture files and folders `paths` through `engines`,
+/// judged against the referee and each case's `expect`. Its
+/// [`CheckResult::exit_code`] is 2 for bad input, 1 when the gate engine fails
+/// a case, 0 otherwise; [`harness::check::render_text`] prints it as `crashtest
+/// check` does.
+///
+/// ```
+/// let set = crashtest::EngineSet::default();
+/// let r = crashtest::check(&[crashtest::builtin_fixtures().join("contact.json")], &set);
+/// assert_eq!(r.exit_code(), 0, "{}", crashtest::harness::check::render_text(&r));
+/// ```
+pub fn check(paths: &[PathBuf], engines: &EngineSet) -> CheckResult {
+    let loaded = harness::load::load_paths(paths);
+    harness::check::check(&loaded.cases, &loaded.errors, engines)
+}
+
+/// A campaign: seeded random cases per query kind (and the full-range family),
+/// the fixtures, every engine of the set, and the extra sections; it writes
+/// the same report `crashtest report` writes.
+///
+/// ```no_run
+/// let written = crashtest::Campaign::new().cases(1000).out("reports").run().expect("report written");
+/// println!("{}", written.index.display());
+/// ```
+#[derive(Clone, Debug)]
+pub struct Campaign {
+    config: harness::report::campaign::Config,
+    out: PathBuf,
+}
+
+/// What [`Campaign::run`] wrote.
+#[derive(Debug)]
+pub struct Written {
+    /// The report's folder.
+    pub dir: PathBuf,
+    /// Its `index.html`.
+    pub index: PathBuf,
+    /// Everything it measured.
+    pub outcome: harness::report::campaign::Outcome,
+}
+
+impl Default for Campaign {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Campaign {
+    /// The CLI's defaults: every built-in engine gated by `collide/robust`,
+    /// [`DEFAULT_SEED`], [`DEFAULT_CASES`] cases and [`DEFAULT_FULL_RANGE_CASES`]
+    /// full-range cases per query kind, the built-in fixtures, timed, with the
+    /// extra sections, written under `reports/`.
+    pub fn new() -> Self {
+        let config = harness::report::campaign::Config {
+            fixtures: vec![builtin_fixtures()],
+            progress: false,
+            ..Default::default()
+        };
+        Self { config, out: PathBuf::from("reports") }
+    }
+
+    /// The engines (and gate) to judge.
+    pub fn engines(mut self, engines: EngineSet) -> Self {
+        self.config.engines = engines;
+        self
+    }
+
+    /// The seed of the random cases.
+    pub fn seed(mut self, seed: u64) -> Self {
+        self.config.seed = seed;
+        self
+    }
+
+    /// Random cases per query kind.
+    pub fn cases(mut self, n: u64) -> Self {
+        self.config.cases_per_query = n;
+        self
+    }
+
+    /// Full-range cases per query kind.
+    pub fn full_range(mut self, n: u64) -> Self {
+        self.config.full_range_per_query = n;
+        self
+    }
+
+    /// Only this query kind.
+    pub fn only(mut self, q: Query) -> Self {
+        self.config.only = Some(q);
+        self
+    }
+
+    /// The fixture files or folders (instead of the built-in ones).
+    pub fn fixtures(mut self, paths: Vec<PathBuf>) -> Self {
+        self.config.fixtures = paths;
+        self
+    }
+
+    /// Whether to run the extra sections (sweeps, scene, time of impact,
+    /// dynamics).
+    pub fn sections(mut self, on: bool) -> Self {
+        self.config.sections = on;
+        self
+    }
+
+    /// Whether to time the engines.
+    pub fn timing(mut self, on: bool) -> Self {
+        self.config.timing = on;
+        self
+    }
+
+    /// The folder the report folder goes in.
+    pub fn out(mut self, dir: impl Into<PathBuf>) -> Self {
+        self.out = dir.into();
+        self
+    }
+
+    /// The configuration as it stands.
+    pub fn config(&self) -> &harness::report::campaign::Config {
+        &self.config
+    }
+
+    /// Runs it and writes the report. Refused before anything runs: counts
+    /// beyond what a run holds, and an output folder that cannot be written.
+    pub fn run(&self) -> Result<Written, String> {
+        let c = &self.config;
+        let held = c.cases_per_query.saturating_add(c.full_range_per_query);
+        harness::report::campaign::check_cases(held, c.shard).map_err(|e| {
+            format!("{} cases with {} full-range cases: {e}", c.cases_per_query, c.full_range_per_query)
+        })?;
+        prepare_out(&self.out)?;
+        let started = std::time::SystemTime::now();
+        let outcome = harness::report::campaign::run(c, harness::report::provenance::here());
+        let mut id = format!("{}-seed{}", harness::report::provenance::stamp(started), c.seed);
+        if let Some((i, n)) = c.shard {
+            id.push_str(&format!("-shard{i}of{n}"));
+        }
+        let dir = harness::report::write::write_outcome(&self.out, &id, &outcome)
+            .map_err(|e| format!("cannot write the report under {}: {e}", self.out.display()))?;
+        Ok(Written { index: dir.join("index.html"), dir, outcome })
+    }
+}
+
+/// Checks, before any work, that reports can be written under `out` (the
+/// folder is created and a file written and removed in it), and removes the
+/// folders that killed runs left there (saying so on standard error).
+pub fn prepare_out(out: &Path) -> Result<(), String> {
+    harness::report::write::probe_writable(out)
+        .map_err(|e| format!("cannot write the report under {}: {e}", out.display()))?;
+    for (dir, result) in harness::report::write::remove_abandoned(out) {
+        match result {
+            Ok(()) => eprintln!("removed {}, left by a run that ended before it finished", dir.display()),
+            Err(e) => eprintln!("warning: cannot remove {}, left by a run that ended: {e}", dir.display()),
+        }
+    }
+    Ok(())
+}
