@@ -222,12 +222,12 @@ fn main() -> ExitCode {
                     Err(e) => eprintln!("error: cannot write JSON: {e}"),
                 }
                 eprint!("{}", harness::check::render_errors(&result));
-                eprintln!("{} passed, {} failed (gate: {})", result.passed, result.failed, result.gate);
+                eprint!("{}", harness::check::closing_line(&result));
             } else {
                 // The tables, then the errors (standard error), then the closing
                 // line: on a terminal it stays the last line.
                 let text = harness::check::render_text(&result);
-                let closing = format!("{} passed, {} failed (gate: {})\n", result.passed, result.failed, result.gate);
+                let closing = harness::check::closing_line(&result);
                 out!("{}", text.strip_suffix(&closing).unwrap_or(&text));
                 eprint!("{}", harness::check::render_errors(&result));
                 out!("{closing}");

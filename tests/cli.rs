@@ -217,3 +217,45 @@ fn a_reader_closing_the_pipe_early_is_not_a_panic() {
     assert!(!stderr.contains("panicked"), "stderr: {stderr}");
     assert!(String::from_utf8_lossy(&first).contains("crashtest-fixture/1"));
 }
+
+#[test]
+fn the_engines_and_the_gate_are_chosen_on_the_command_line() {
+    // parry3d-f64 as the gate: the documented parry defects and conventions
+    // (a known divergence is not a pass for the gate) fail it, exit 1.
+    let (code, out, err) = crashtest(&[
+        "check",
+        "--engines",
+        "collide/robust,parry3d-f64",
+        "--gate",
+        "parry3d-f64",
+        "fixtures/contact.json",
+    ]);
+    assert_eq!(code, 1, "{out}{err}");
+    assert!(last_line(&out).ends_with("(gate: parry3d-f64)"), "{}", last_line(&out));
+    let tables: Vec<&str> = out
+        .lines()
+        .filter(|l| l.starts_with("  collide") || l.starts_with("  parry") || l.starts_with("  referee"))
+        .collect();
+    assert!(tables.iter().all(|l| !l.contains("lecture") && !l.contains("f32")), "only the engines chosen: {tables:?}");
+    // One engine chosen and no gate named: that engine is the gate.
+    let (code, out, _) = crashtest(&["check", "--engines", "collide/robust", "fixtures/contact.json"]);
+    assert_eq!(code, 0);
+    assert!(last_line(&out).ends_with(" 0 failed (gate: collide/robust)"), "{}", last_line(&out));
+}
+
+#[test]
+fn an_unknown_engine_or_a_gate_not_chosen_is_refused_before_anything_runs() {
+    let (code, out, err) = crashtest(&["check", "--engines", "collide/robust,nope", "fixtures/contact.json"]);
+    assert_eq!(code, 2);
+    assert!(out.is_empty(), "nothing ran: {out}");
+    assert!(err.contains("unknown engine `nope`") && err.contains("parry3d-f64"), "names the engines: {err}");
+    let (code, _, err) =
+        crashtest(&["check", "--engines", "collide/robust", "--gate", "parry3d", "fixtures/contact.json"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("the gate `parry3d` is not among the engines judged"), "{err}");
+    let out_dir = scratch("bad-engines-report");
+    let (code, _, err) = crashtest(&["report", "--engines", "", "--out", out_dir.to_str().unwrap_or(".")]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("empty engine name"), "{err}");
+    assert!(std::fs::read_dir(&out_dir).map(|d| d.count()).unwrap_or(0) == 0, "no report folder was made");
+}

@@ -63,6 +63,9 @@ pub struct CaseResult {
     pub engines: Vec<EngineResult>,
     /// Whether the gate engine passed.
     pub passed: bool,
+    /// Whether the gate engine does not answer this kind of case (it neither
+    /// passes nor fails it).
+    pub unanswered: bool,
 }
 
 /// The whole check.
@@ -78,15 +81,18 @@ pub struct CheckResult {
     pub passed: usize,
     /// Cases it failed.
     pub failed: usize,
+    /// Cases it does not answer (their pair is not implemented by it): neither
+    /// passed nor failed.
+    pub unanswered: usize,
 }
 
 impl CheckResult {
     /// The process exit code: 2 for bad input, 1 when the gate engine failed a
-    /// case, 0 otherwise.
+    /// case or answered none, 0 otherwise.
     pub fn exit_code(&self) -> i32 {
         if !self.errors.is_empty() {
             2
-        } else if self.failed > 0 {
+        } else if self.failed > 0 || (self.passed == 0 && self.unanswered > 0) {
             1
         } else {
             0
@@ -225,6 +231,7 @@ pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
     let has_expect = lc.case.expect.is_some();
     let mut results = Vec::new();
     let mut passed = false;
+    let mut unanswered = false;
     for engine in judged {
         let tol = Tolerance::for_precision(engine.precision);
         let (answer, verdict, errors, mism) = match run_caught(engine, lc) {
@@ -254,6 +261,7 @@ pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
             let referee_ok = matches!(verdict, Verdict::Agree | Verdict::Borderline { .. })
                 || (truth.is_none() && has_expect && answer.is_some());
             passed = answer.is_some() && expect_ok && referee_ok;
+            unanswered = answer.is_none() && matches!(verdict, Verdict::Unsupported { .. });
         }
         results.push(EngineResult { engine: engine.name.clone(), answer, verdict, errors, expect_mismatches: mism });
     }
@@ -271,6 +279,7 @@ pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
         referee_meets_expect,
         engines: results,
         passed,
+        unanswered,
     }
 }
 
@@ -278,9 +287,11 @@ pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
 pub fn check(cases: &[LoadedCase], errors: &[InputError], set: &EngineSet) -> CheckResult {
     let results: Vec<CaseResult> = cases.iter().map(|lc| check_case(lc, set)).collect();
     let passed = results.iter().filter(|c| c.passed).count();
+    let unanswered = results.iter().filter(|c| c.unanswered).count();
     CheckResult {
         gate: set.gate.clone(),
-        failed: results.len() - passed,
+        unanswered,
+        failed: results.len() - passed - unanswered,
         passed,
         cases: results,
         errors: errors.iter().map(|e| e.to_string()).collect(),
@@ -352,8 +363,16 @@ pub fn render_text(r: &CheckResult) -> String {
             }
         }
     }
-    let _ = writeln!(s, "{} passed, {} failed (gate: {})", r.passed, r.failed, r.gate);
+    s.push_str(&closing_line(r));
     s
+}
+
+/// The closing line, `N passed, M failed (gate: E)`, with `K not answered by
+/// the gate` before the parenthesis when the gate does not answer some cases.
+pub fn closing_line(r: &CheckResult) -> String {
+    let unanswered =
+        if r.unanswered > 0 { format!(", {} not answered by the gate", r.unanswered) } else { String::new() };
+    format!("{} passed, {} failed{unanswered} (gate: {})\n", r.passed, r.failed, r.gate)
 }
 
 /// The input errors, one `error:` line each.

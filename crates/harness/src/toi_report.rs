@@ -438,13 +438,15 @@ fn as_loaded(c: &Case) -> LoadedCase {
     })
 }
 
-/// An engine's time of impact on a built impact, through the seam; `Err` when
-/// it does not answer this pair or fails on it.
+/// An engine's time of impact on a built impact, through the seam: `Err` with
+/// its reason when it does not answer this pair; a failure (a panic, a
+/// non-finite number) counts as a miss, as a wrong answer would.
 fn seam(e: &Engine, lc: &LoadedCase) -> Result<Option<f64>, String> {
     match crate::check::run_caught(e, lc) {
         Ok(Answer::Toi(a)) => Ok(a.toi.map(|k: Toi| k.t)),
-        Ok(_) => Err("answered something other than a time of impact".into()),
-        Err(v) => Err(v.label().to_string()),
+        Ok(_) => Ok(None),
+        Err(crate::judge::Verdict::Unsupported { reason }) => Err(reason),
+        Err(_) => Ok(None),
     }
 }
 

@@ -653,6 +653,7 @@ mod tests {
                 failed("nan", "non-finite depth".into()),
             ],
             passed: false,
+            unanswered: false,
         };
         let mut map = BTreeMap::new();
         fold(&mut map, &case, false);
