@@ -1,7 +1,8 @@
-//! The engines crashtest runs, each behind [`crate::engine::Queries`].
+//! The engines crashtest runs, each behind [`crate::engine::Queries`]: collide's
+//! adapter and the referee's here; parry implements the trait in the oracle
+//! (`oracle::parry`), where its conventions are translated.
 
 pub mod collide;
-pub mod parry;
 pub mod referee;
 
 use crate::divergence::{LECTURE, PARRY};
@@ -24,8 +25,8 @@ pub fn judged() -> Vec<Engine> {
         Engine::new("collide/lecture", Some(53), CollideQueries::<f64>::new(Method::Lecture)).with_known(LECTURE),
         Engine::new("collide-f32/robust", Some(24), CollideQueries::<f32>::new(Method::Robust)),
         Engine::new("collide-f32/lecture", Some(24), CollideQueries::<f32>::new(Method::Lecture)).with_known(LECTURE),
-        Engine::new(Parry64::NAME, Some(53), parry::ParryQueries(Parry64)).with_known(PARRY),
-        Engine::new(Parry32::NAME, Some(24), parry::ParryQueries(Parry32)).with_known(PARRY),
+        Engine::new(Parry64::NAME, Some(53), Parry64).with_known(PARRY),
+        Engine::new(Parry32::NAME, Some(24), Parry32).with_known(PARRY),
     ]
 }
 

@@ -62,6 +62,7 @@ use crate::geom::{P3, Plane, Segment, Sphere, Triangle};
 mod cast;
 mod parry32;
 mod parry64;
+mod queries;
 
 pub use cast::{CastAnswer, CastStatus, ParryCast, cast_known_divergences};
 pub use parry32::PreparedMesh as Parry32Mesh;
