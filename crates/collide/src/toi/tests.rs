@@ -1873,3 +1873,60 @@ fn ordinary_scenes_stay_with_advancement() {
     // of 2e6: its scale (its distance from the box is 0) is 2^20 below.
     assert!(gate(&ball::<f64>(0.0, 0.0, 1e-9, 1e-9), &lo, &(hi * 1e6)), "tiny sphere at a huge triangle");
 }
+
+#[test]
+fn full_range_mesh_beyond_advancement_is_solved_exactly() {
+    // Full-range case 14060: a sphere of radius 5e15 beside a tetrahedron
+    // with coordinates up to 4.6e291; advancement's tolerance, of the whole
+    // mesh's scale (6.5e278), covered face 0's gap of 1e117 and it answered
+    // t = 1.3e-137. The referee: t = 0.012926336387330432, normal +x.
+    let vertices = vec![
+        v(-1.0762187865266964e117, 6.733951532493839e-253, -4.587690671284115e-237),
+        v(-2.115046260218718e222, 1.6075734472687063e259, -2.4034141047148045e230),
+        v(7.850860497801241e108, -6.197368548078092e216, 3.912405536252257e-237),
+        v(3.2455033734729514e-158, -5.853980983252863e-185, 4.637460823707827e291),
+    ];
+    let mesh = crate::mesh::TriMesh::<f64>::new(vertices, vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+        .expect("valid mesh");
+    let a =
+        Sphere::new(v(-1.0478413146955777e-118, 3.6596234123796575e49, -3.6355508611700627e155), 4955232383572283.0);
+    let va = v(3.200630240847267e-73, -5.729256618967179e93, 2.836261759124713e292);
+    let vb = v(-6.088051845228061e85, 4.415343713640975e218, -5.609998311391226e-246);
+    let (k, _) = mesh_tois(&a, &va, &mesh, &vb, 1.0);
+    let k = k.expect("impact");
+    exact_close(k.toi.t, 0.012926336387330432, "t");
+    exact_normal_close(&k.toi.normal, [1.0, 1.736573815206311e-100, -2.320707014978551e-175], "normal");
+}
+
+fn exact_mesh_ties_and_order<T: Real>() {
+    // The tetrahedron scaled by 2^30 and a sphere of radius 2^−10 near its
+    // corner at the origin (the sphere's own scale, 1, is 2^30 below the
+    // mesh's: the exact path). From (−1, 1/4, 1/4) moving +x at 1 it meets
+    // face 2 (x = 0) at t = 1 − 2^−10, normal −x; brute force and the tree
+    // agree (checked by `mesh_tois`).
+    let k = 2f64.powi(30);
+    let vertices = vec![v(0.0, 0.0, 0.0), v(k, 0.0, 0.0), v(0.0, k, 0.0), v(0.0, 0.0, k)];
+    let m = crate::mesh::TriMesh::<T>::new(vertices, vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]).expect("mesh");
+    let r = 2f64.powi(-10);
+    let a = ball::<T>(-1.0, 0.25, 0.25, r);
+    let bb = m.aabb().expect("box");
+    assert!(super::sphere_triangle::beyond_advancement(&a, &bb.min, &bb.max), "the gate takes it");
+    let (got, _) = mesh_tois(&a, &v(1.0, 0.0, 0.0), &m, &still(), T::of(4.0));
+    let got = got.expect("face 2");
+    assert_eq!(got.triangle, 2);
+    close(got.toi.t, 1.0 - r, "t");
+    exact_normal_close(&got.toi.normal, [-1.0, 0.0, 0.0], "normal");
+    // The edge v0–v3 (the z axis, shared by faces 1: y = 0 and 2: x = 0)
+    // met from the outside corner: from (−1, −1, 1/2) moving (1, 1, 0) the
+    // axis is √2 (1 − t) away, r at t = 1 − r/√2 (face 1's plane is met
+    // earlier, at t = 1 − r, with the foot at x = −r, off the face). Both
+    // faces meet the edge at the same time, and the lower index (1) wins.
+    let a = ball::<T>(-1.0, -1.0, 0.5, r);
+    let (got, _) = mesh_tois(&a, &v(1.0, 1.0, 0.0), &m, &still(), T::of(4.0));
+    let got = got.expect("edge v0–v3");
+    assert_eq!(got.triangle, 1, "the lower of the faces sharing the edge");
+    close(got.toi.t, 1.0 - r * std::f64::consts::FRAC_1_SQRT_2, "edge t");
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    exact_normal_close(&got.toi.normal, [-h, -h, 0.0], "edge normal");
+}
+both!(exact_mesh_ties_and_order_case, exact_mesh_ties_and_order);
