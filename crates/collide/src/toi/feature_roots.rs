@@ -304,13 +304,16 @@ fn entering_root(a: &BigFloat, b: &BigFloat, c: &BigFloat) -> Option<(f64, BigFl
 /// time itself is rounded: a quotient of the coefficients' estimates,
 /// formed without cancellation (`C / (−B + √D)`, and for the face
 /// `((n·w)² − r² n·n) / ((|n·w| + r ‖n‖) |n·v|)`), within ~12 ε of the exact
-/// time. Two features whose times agree to that rounding are met at points
-/// that agree to it too, so which of them is reported does not matter.
+/// time. The closest point at the first contact is unique (the triangle is
+/// convex), and a feature met within that rounding of it touches inside the
+/// shallow cap the sphere has entered by then, so when two times agree to
+/// the rounding either feature answers to the contact's own conditioning.
 ///
 /// **Answer.** The earliest time (the face before the edges before the
-/// vertices on a tie), its feature and the normal at the rounded time: the
-/// face's unit normal on the centre's side, or the direction from the edge's
-/// foot or the vertex to the centre, each from exact components. A sphere
+/// vertices on a tie), its feature, and the normal and point at the exact
+/// time, each rounded from exact components (see `with_normal` and
+/// `with_point`): the face's unit normal on the centre's side, or the
+/// direction from the edge's foot or the vertex to the centre. A sphere
 /// already touching at `t = 0` (which the static test, accurate to 2^−38 of
 /// the distance, may call clear by a hair) gives `t = 0` with `at_start`.
 /// `None`: no contact in `[0, t_max]`, or a non-finite input. A zero radius
