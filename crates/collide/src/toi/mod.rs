@@ -13,7 +13,11 @@
 //! - **conservative advancement** for triangles and meshes: step forward by a
 //!   distance bound that can never step past the first contact, until the gap
 //!   is below a tolerance; against a mesh, per face, over the faces its
-//!   bounding volume hierarchy cannot rule out (or every face).
+//!   bounding volume hierarchy cannot rule out (or every face);
+//! - **exact feature roots** for triangles and meshes whose coordinates reach
+//!   far beyond the sphere's own scale, where advancement's rounding exceeds
+//!   the sphere: the first contact with the face's plane (linear), each edge
+//!   and each vertex (quadratics), with exact coefficients.
 //!
 //! Every function answers in the fixture format's convention (see [`Toi`]): the
 //! normal points from `b` toward `a`, the point lies on `b`'s surface at time

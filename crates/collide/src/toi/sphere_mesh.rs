@@ -1,7 +1,8 @@
 //! Sphere–mesh time of impact by conservative advancement, every face or the
 //! faces a bounding volume hierarchy cannot rule out.
 
-use super::sphere_triangle::{Advanced, Advancement, advance, amax, scale};
+use super::feature_roots::{FirstContact, first_contact};
+use super::sphere_triangle::{Advanced, Advancement, advance, amax, beyond_advancement, exact_answer, scale};
 use super::sweep::{Sweep, sweep_faces};
 use super::time_of_impact::{Toi, clamp_t_max};
 use crate::mesh::{MeshBvh, MeshContact, TriMesh, contact_sphere_mesh_nearest};
@@ -127,6 +128,16 @@ impl<'a, T: Real> Query<'a, T> {
 /// `t` is still a time before which the sphere touches no face: every other
 /// face's first contact is at or after its own reported time.
 ///
+/// **Scenes of widely mixed magnitudes.** Where the mesh's box reaches
+/// beyond [`EXACT_RANGE_RATIO`](super::sphere_triangle::EXACT_RANGE_RATIO)
+/// times the sphere's own scale (its radius, its centre, its distance from
+/// the box), the shared tolerance, of the whole mesh's scale, can exceed the
+/// gap to a face far smaller than the mesh, and each face is solved from its
+/// features' exact equations instead (as
+/// [`toi_sphere_triangle`](super::toi_sphere_triangle) does for one
+/// triangle); the earliest time wins, ties to the lowest face index
+/// (faces sharing an edge or a vertex round its time alike).
+///
 /// **Degenerate input.** A zero-area face is the segment or point it collapsed
 /// to (as for one triangle); a face with a non-finite vertex is skipped; an
 /// empty mesh is never hit. A sphere of zero radius gets the approach direction
@@ -145,7 +156,60 @@ pub fn toi_sphere_mesh_brute<T: Real>(
     if let Some(k) = contact_sphere_mesh_nearest(a, b, None) {
         return Some(MeshToi::penetrating(&k));
     }
+    if exact_scene(a, b) {
+        let x = Exact::new(a, va, vb, t_max);
+        let mut best = None;
+        for face in 0..b.len() {
+            if !b.has_nonfinite_vertex(face) {
+                x.face(&mut best, face, &b.triangle(face));
+            }
+        }
+        return x.answer(best);
+    }
     brute_clear(a, va, b, vb, t_max, rule).filter(|r| r.toi.in_range())
+}
+
+/// Whether the mesh reaches so far beyond the sphere's own scale that its
+/// faces are solved exactly (see
+/// [`EXACT_RANGE_RATIO`](super::sphere_triangle::EXACT_RANGE_RATIO)): the
+/// mesh's box decides, since advancement's tolerance here is of the whole
+/// mesh's scale, and the distance from the box bounds the travel to every
+/// face from below.
+fn exact_scene<T: Real>(a: &Sphere<T>, b: &TriMesh<T>) -> bool {
+    b.aabb().is_some_and(|x| beyond_advancement(a, &x.min, &x.max))
+}
+
+/// The exact per-face solve of a mesh query (see
+/// [`first_contact`](super::feature_roots::first_contact)): the sphere, the
+/// motion and the interval as given, the best face so far.
+struct Exact<'a, T: Real> {
+    a: &'a Sphere<T>,
+    va: &'a Vec3<T>,
+    vb: &'a Vec3<T>,
+    t_max: T,
+}
+
+impl<'a, T: Real> Exact<'a, T> {
+    fn new(a: &'a Sphere<T>, va: &'a Vec3<T>, vb: &'a Vec3<T>, t_max: T) -> Self {
+        Self { a, va, vb, t_max: clamp_t_max(t_max) }
+    }
+
+    /// Solves one face and records it when it is earlier than the best so
+    /// far, or as early with a lower index. Every face is solved over the
+    /// whole `[0, t_max]` (not up to the best time), so that a tie is seen
+    /// as a tie whatever order the faces come in.
+    fn face(&self, best: &mut Option<(usize, FirstContact)>, face: usize, tri: &Triangle<T>) {
+        if let Some(hit) = first_contact(self.a, self.va, tri, self.vb, self.t_max)
+            && best.as_ref().is_none_or(|(f, b)| hit.t.total_cmp(&b.t).then(face.cmp(f)).is_lt())
+        {
+            *best = Some((face, hit));
+        }
+    }
+
+    fn answer(&self, best: Option<(usize, FirstContact)>) -> Option<MeshToi<T>> {
+        best.map(|(face, hit)| MeshToi { toi: exact_answer(self.a, self.va, self.vb, &hit), triangle: face })
+            .filter(|r| r.toi.in_range())
+    }
 }
 
 /// [`toi_sphere_mesh_brute`] for a sphere known to touch no face at `t = 0`.
@@ -193,8 +257,10 @@ fn brute_clear<T: Real>(
 /// mesh advances against the faces whose boxes its path enters before the hit,
 /// typically a handful (see crashtest's report and `benches/toi.rs`).
 ///
-/// **Degenerate input:** as [`toi_sphere_mesh_brute`] (faces with a non-finite
-/// vertex are not in the tree).
+/// **Degenerate input and mixed magnitudes:** as [`toi_sphere_mesh_brute`]
+/// (faces with a non-finite vertex are not in the tree; a scene solved
+/// exactly per face is traversed the same way, with no gap tolerance in the
+/// boxes' growth).
 ///
 /// Source: Mirtich's conservative advancement per face; the swept-sphere box
 /// test is Ericson §5.5.7 (moving sphere against an AABB, here its conservative
@@ -210,7 +276,47 @@ pub fn toi_sphere_mesh<T: Real>(
     if let Some(k) = contact_sphere_mesh_nearest(a, b.mesh(), Some(b)) {
         return Some(MeshToi::penetrating(&k));
     }
+    if exact_scene(a, b.mesh()) {
+        return bvh_exact(a, va, b, vb, t_max);
+    }
     bvh_clear(a, va, b, vb, t_max, rule).filter(|r| r.toi.in_range())
+}
+
+/// `1 + 2^−20`: the factor taking an `f64` time above its rounding to a
+/// narrower type (`f32` rounds to 2^−24 relative), for the traversal's bound.
+const BOUND_ROUND_UP: f64 = 1.0 + 1.0 / 1_048_576.0;
+
+/// [`toi_sphere_mesh`] for a scene whose faces are solved exactly (see
+/// [`exact_scene`]). The traversal only prunes: it runs on the tree as given,
+/// or, for a scene outside the plain range, on a copy scaled by a power of
+/// two to about 1 (its slab tests would overflow or lose their margin
+/// otherwise). Scaling is exact but for what underflows, which lies within
+/// the sweep's rounding margin of the scaled scene's size, so the scaled
+/// boxes still bound every face's first contact from below; the faces
+/// themselves are solved on the scene as given.
+fn bvh_exact<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &MeshBvh<T>, vb: &Vec3<T>, t_max: T) -> Option<MeshToi<T>> {
+    let x = Exact::new(a, va, vb, t_max);
+    let mut best: Option<(usize, FirstContact)> = None;
+    // The best time in the type, never below the exact solve's: a type
+    // narrower than `f64` rounds it up by a margin above its rounding.
+    let bound = |best: &Option<(usize, FirstContact)>| {
+        best.as_ref().map(|(_, h)| {
+            let t = T::of(h.t);
+            if t.wide() >= h.t { t } else { T::of(h.t * BOUND_ROUND_UP) }
+        })
+    };
+    let visit = |best: &mut Option<(usize, FirstContact)>, face: usize, _: &Triangle<T>| {
+        x.face(best, face, &b.mesh().triangle(face));
+    };
+    if let Some((a2, va2, vb2, mesh, _)) = scaled_scene(a, va, b.mesh(), vb) {
+        let tree = MeshBvh::new(mesh);
+        let sweep = Sweep::new(&a2, &(va2 - vb2), T::zero(), tree.mesh().aabb());
+        sweep_faces(&tree, &sweep, x.t_max, bound, &mut best, visit);
+    } else {
+        let sweep = Sweep::new(a, &(va - vb), T::zero(), b.mesh().aabb());
+        sweep_faces(b, &sweep, x.t_max, bound, &mut best, visit);
+    }
+    x.answer(best)
 }
 
 /// [`toi_sphere_mesh`] for a sphere known to touch no face at `t = 0`.

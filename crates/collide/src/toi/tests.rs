@@ -1618,3 +1618,315 @@ fn a_contact_point_beyond_the_range_is_no_impact() {
     let k = toi_sphere_triangle(&a, &va, &b, &vb, 1.6983741757128117e115, &Advancement::default());
     assert!(k.is_none(), "the referee: no impact; got {k:?}");
 }
+
+// ------------------------------------------- sphere–triangle, exact features
+
+/// The exact feature solve's time is a quotient of a dozen roundings of exact
+/// coefficients (see `first_contact`): within ~12 ε of the exact time, so
+/// within 32 ε of a correctly rounded one. Units: ε relative to the time.
+const EXACT_TIME_REL_EPS: f64 = 32.0;
+
+/// The exact solve's normal components come from exact values rounded a few
+/// times and normalized (3 roundings each, plus the norm's): 32 ε absolute
+/// covers them. Units: ε, absolute on a unit vector's components.
+const EXACT_NORMAL_EPS: f64 = 32.0;
+
+fn exact_close(got: f64, want: f64, what: &str) {
+    assert!((got - want).abs() <= EXACT_TIME_REL_EPS * f64::EPSILON * want.abs(), "{what}: got {got:e}, want {want:e}");
+}
+
+fn exact_normal_close<T: Real>(got: &Vec3<T>, want: [f64; 3], what: &str) {
+    for (k, w) in want.iter().enumerate() {
+        let g = got[k].wide();
+        assert!((g - w).abs() <= EXACT_NORMAL_EPS * eps::<T>(), "{what}[{k}]: got {got:?}, want {want:?}");
+    }
+}
+
+/// The exact feature solve by itself (no static test first, no gate).
+fn exact<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Triangle<T>, vb: &Vec3<T>, t_max: f64) -> Option<Toi<T>> {
+    super::sphere_triangle::toi_exact(a, va, b, vb, T::of(t_max))
+}
+
+fn exact_solve_regions<T: Real>() {
+    // The advancement's hand-derived regions (r = 1, t = 2 each), plus a
+    // vertex met along the diagonal: from (−2, −2, 0) toward +x+y at speed
+    // √2 per unit t the centre is √2 (2 − t) from v0, 1 at t = 2 − 1/√2,
+    // normal (−1, −1, 0)/√2, point v0. The edges' lines are met earlier
+    // (|y| = 1 at t = 1) with their feet outside the edges.
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let cases = [
+        ([0.5, 0.5, 3.0], [0.0, 0.0, -1.0], 2.0, [0.5, 0.5, 0.0], [0.0, 0.0, 1.0], "face"),
+        ([1.0, -3.0, 0.0], [0.0, 1.0, 0.0], 2.0, [1.0, 0.0, 0.0], [0.0, -1.0, 0.0], "edge"),
+        ([5.0, 0.0, 0.0], [-1.0, 0.0, 0.0], 2.0, [2.0, 0.0, 0.0], [1.0, 0.0, 0.0], "vertex"),
+        ([-2.0, -2.0, 0.0], [1.0, 1.0, 0.0], 2.0 - h, [0.0, 0.0, 0.0], [-h, -h, 0.0], "diagonal vertex"),
+    ];
+    for (c, vel, t, point, normal, what) in cases {
+        let a = ball::<T>(c[0], c[1], c[2], 1.0);
+        let k = exact(&a, &vt(&vel), &tri(), &still(), 5.0).expect(what);
+        assert_eq!(k.status, ToiStatus::Converged, "{what}");
+        assert!(!k.degenerate, "{what}");
+        close(k.t, t, what);
+        close_v(&k.point, point, what);
+        close_v(&k.normal, normal, what);
+    }
+    // The triangle moving up at 1 toward a still sphere at z = 3: t = 2, the
+    // point on the moved triangle, (0.5, 0.5, 2).
+    let k = exact(&ball::<T>(0.5, 0.5, 3.0, 1.0), &still(), &tri(), &v(0.0, 0.0, 1.0), 5.0).expect("moving");
+    close(k.t, 2.0, "t");
+    close_v(&k.point, [0.5, 0.5, 2.0], "point");
+    // From below the face: the normal is on the centre's side, −z.
+    let k = exact(&ball::<T>(0.5, 0.5, -3.0, 1.0), &v(0.0, 0.0, 1.0), &tri(), &still(), 5.0).expect("below");
+    close(k.t, 2.0, "t below");
+    close_v(&k.normal, [0.0, 0.0, -1.0], "normal below");
+}
+both!(exact_solve_regions_case, exact_solve_regions);
+
+fn exact_solve_limits<T: Real>() {
+    let a = ball::<T>(0.5, 0.5, 3.0, 1.0);
+    let down = v::<T>(0.0, 0.0, -1.0);
+    // Moving away, passing beside, and arriving after t_max: nothing.
+    assert!(exact(&a, &v(0.0, 0.0, 1.0), &tri(), &still(), 5.0).is_none(), "moving away");
+    assert!(exact(&ball::<T>(5.0, 5.0, 3.0, 1.0), &down, &tri(), &still(), 10.0).is_none(), "beside");
+    assert!(exact(&a, &down, &tri(), &still(), 1.5).is_none(), "after t_max");
+    // t_max exactly at the contact (t = 2, decided exactly): found, at t_max.
+    let k = exact(&a, &down, &tri(), &still(), 2.0).expect("at t_max");
+    assert!(k.t.wide() <= 2.0, "never past t_max: {:?}", k.t);
+    close(k.t, 2.0, "t at t_max");
+    // Touching at t = 0 (distance exactly r): t = 0, in contact then.
+    let k = exact(&ball::<T>(0.5, 0.5, 1.0, 1.0), &down, &tri(), &still(), 5.0).expect("touching");
+    assert_eq!(k.status, ToiStatus::Penetrating);
+    assert!(k.t == T::zero(), "t {:?}", k.t);
+    close_v(&k.normal, [0.0, 0.0, 1.0], "touching normal");
+    // A sphere passing by an edge's line outside the edge, then the vertex
+    // beyond it: from (3, −3, 0) up y at 1, the line y = 0 is 1 away at t = 2
+    // with the foot at x = 3, off the edge; v1 = (2, 0, 0) is 1 away when
+    // (1, y) has y = 0: t = 3, normal +x.
+    let k = exact(&ball::<T>(3.0, -3.0, 0.0, 1.0), &v(0.0, 1.0, 0.0), &tri(), &still(), 5.0).expect("past the edge");
+    close(k.t, 3.0, "t past the edge");
+    close_v(&k.normal, [1.0, 0.0, 0.0], "normal past the edge");
+}
+both!(exact_solve_limits_case, exact_solve_limits);
+
+fn exact_solve_degenerate<T: Real>() {
+    // A zero-area triangle is its segment: (0,0,0)–(2,0,0) (the third vertex
+    // on it), met by a sphere from y = −3 moving +y at x = 1: t = 2, −y.
+    let seg = Triangle::new(v(0.0, 0.0, 0.0), v(2.0, 0.0, 0.0), v(1.0, 0.0, 0.0));
+    let k = exact(&ball::<T>(1.0, -3.0, 0.0, 1.0), &v(0.0, 1.0, 0.0), &seg, &still(), 5.0).expect("segment");
+    close(k.t, 2.0, "segment t");
+    close_v(&k.normal, [0.0, -1.0, 0.0], "segment normal");
+    // A point triangle: the vertex alone.
+    let p = Triangle::new(v(1.0, 1.0, 1.0), v(1.0, 1.0, 1.0), v(1.0, 1.0, 1.0));
+    let k = exact(&ball::<T>(1.0, 1.0, 5.0, 1.0), &v(0.0, 0.0, -2.0), &p, &still(), 5.0).expect("point");
+    close(k.t, 1.5, "point t");
+    close_v(&k.normal, [0.0, 0.0, 1.0], "point normal");
+    // A zero radius through the face at t = 3: no direction, the approach
+    // direction, flagged.
+    let k = exact(&ball::<T>(0.5, 0.5, 3.0, 0.0), &v(0.0, 0.0, -1.0), &tri(), &still(), 5.0).expect("zero radius");
+    close(k.t, 3.0, "zero radius t");
+    assert!(k.degenerate, "flagged");
+    close_v(&k.normal, [0.0, 0.0, 1.0], "approach direction");
+    // Non-finite input: no answer, no NaN.
+    let nan = v::<T>(f64::NAN, 0.0, 0.0);
+    assert!(exact(&ball::<T>(0.5, 0.5, 3.0, 1.0), &nan, &tri(), &still(), 5.0).is_none(), "NaN velocity");
+}
+both!(exact_solve_degenerate_case, exact_solve_degenerate);
+
+/// The exact solve passes the advancement's properties (no contact before
+/// `t`, touching at it, no impact missed) on the same scenes, with no
+/// stopping tolerance of its own.
+fn check_sphere_triangle_exact<T: Real>(s: &Scene) -> Result<(), TestCaseError> {
+    let p = Sheet {
+        a: Sphere::new(vt(&s.a.0), T::of(s.a.1)),
+        va: vt(&s.va),
+        b: Triangle::new(vt(&s.b[0]), vt(&s.b[1]), vt(&s.b[2])),
+        vb: vt(&s.vb),
+        t_max: T::of(s.t_max),
+    };
+    let got = match contact_sphere_triangle(&p.a, &p.b) {
+        Some(k) => Some(Toi::penetrating(&k)),
+        None => super::sphere_triangle::toi_exact(&p.a, &p.va, &p.b, &p.vb, p.t_max),
+    };
+    check_answer(&p, got, p.t_max, 0.0)
+}
+prop_both!(512, sphere_triangle_exact_no_contact_before_and_touching_at_t, scene(), check_sphere_triangle_exact);
+
+/// A full-range scene (seed 20261122) and the referee's correctly rounded
+/// time and normal.
+struct WideCase {
+    index: u32,
+    a: ([f64; 3], f64, [f64; 3]),
+    b: [[f64; 3]; 3],
+    vb: [f64; 3],
+    t_max: f64,
+    t: f64,
+    normal: [f64; 3],
+}
+
+fn wide_cases() -> [WideCase; 4] {
+    [
+        // Advancement answered t = 9.9e27, a contact elsewhere on the triangle.
+        WideCase {
+            index: 5675,
+            a: (
+                [-8.232758925001789e132, -4.6354936901074375e-273, 4.4433445510194656e-231],
+                1.3453888924984672e43,
+                [3.203738092358047e-145, 1.9908753820108818e40, 9.206274488048041e217],
+            ),
+            b: [
+                [-3.1594431804486874e265, -1.219009138012601e172, -4.472023670259307e44],
+                [1.1841206449501862e-10, 1.9624804392660418e68, 7.285485035100486e171],
+                [3.461219773612321e155, -6.476193840432218e68, 3.9331243243327835e228],
+            ],
+            vb: [4.2342673736379607e82, -1.6421201910413554e-24, 1.952399172705008e136],
+            t_max: 4.8340283532408984e141,
+            t: 9935387244.497242,
+            normal: [3.8583037212255984e-94, -1.0, -2.1455400133006252e-160],
+        },
+        // Advancement answered t = 4.5e143.
+        WideCase {
+            index: 90995,
+            a: (
+                [9.610147602987011e123, 8.63316628939562e-98, -1.197914020286456e23],
+                8.66252343220773e68,
+                [1.0502927872965213e-232, 5.122696475844037e-104, -1.429971091929259e-159],
+            ),
+            b: [
+                [-9.03267456405071e-169, 5.168223370833531e-222, 1.1620268474828958e-231],
+                [3.5361751732162945e294, 9.43987334097603e284, 9.7407453202299e249],
+                [2.93380598392471e237, -2.0314941836480496e209, -1.3783983842974048e259],
+            ],
+            vb: [1.6970389250388806e-203, -1.2897971661892292e-45, 3.5275804040416513e137],
+            t_max: 2.4589047531408172e300,
+            t: 127996030.73309836,
+            normal: [2.669515190445185e-10, -1.0, 5.681840409221046e-32],
+        },
+        // Advancement stalled at t = 0.
+        WideCase {
+            index: 92130,
+            a: (
+                [-1.4607011448789408e-49, 2.3327929115169704e29, -2.7319309818080033e135],
+                4.067844021501774e-49,
+                [3.3308999529853983e171, -1.6549603216615883e85, -3.5020571993171433e193],
+            ),
+            b: [
+                [8.008121215151326e110, -1.1229813895627805e-14, 2.976043932031716e-237],
+                [1.409502710311958e117, -1.1995060521636519e-269, 2.2459194086524913e25],
+                [3.369445379518641e155, -9.995996381765437e-20, -7.22781445024431e223],
+            ],
+            vb: [6.155235519295206e169, 1.6168453184721914e80, 1.819848351166833e21],
+            t_max: 7.876355551471945e-34,
+            t: 1.4095625680792545e-56,
+            normal: [-7.967221484370119e-132, 1.0, -3.7141403951238883e-200],
+        },
+        // Advancement answered t = 2.4e58.
+        WideCase {
+            index: 94360,
+            a: (
+                [-5.183936045028583e186, 1347811.2194795061, 4.187678875689188e60],
+                6.690123420504831e-88,
+                [-8.868352384178548e-121, -2.0470281953971315e59, 2.5011323745371413e56],
+            ),
+            b: [
+                [5.215697128843466e110, 4.046151315731294e115, 1.8641855296406785e-63],
+                [-7.568557690255225e201, 9.872439246181767e61, 2.7242891842376463e183],
+                [-1.5950824977966397e264, -1.4302835618539928e227, -8.392836095794702e64],
+            ],
+            vb: [-6.239588935046367e-282, 4.829494219646485e213, -1.105400689341161e-208],
+            t_max: 2.264615004067327e234,
+            t: 9.624916753832204e-65,
+            normal: [-8.966831269415274e-38, 1.0, -2.4911444847344767e-19],
+        },
+    ]
+}
+
+#[test]
+fn full_range_triangles_beyond_advancement_are_solved_exactly() {
+    for c in wide_cases() {
+        let what = format!("full-range case {}", c.index);
+        let a = Sphere::new(vt::<f64>(&c.a.0), c.a.1);
+        let b = Triangle::new(vt(&c.b[0]), vt(&c.b[1]), vt(&c.b[2]));
+        let [p, q, s] = b.vertices;
+        assert!(
+            super::sphere_triangle::beyond_advancement(&a, &p.inf(&q).inf(&s), &p.sup(&q).sup(&s)),
+            "{what}: the gate takes it"
+        );
+        let k = toi_sphere_triangle(&a, &vt(&c.a.2), &b, &vt(&c.vb), c.t_max, &Advancement::default()).expect(&what);
+        assert_eq!(k.status, ToiStatus::Converged, "{what}");
+        exact_close(k.t, c.t, &what);
+        exact_normal_close(&k.normal, c.normal, &what);
+    }
+}
+
+#[test]
+fn ordinary_scenes_stay_with_advancement() {
+    // The hand-derived scenes, a small sphere near a triangle a thousand
+    // times its size, and a large sphere over a small triangle: within
+    // EXACT_RANGE_RATIO of the sphere's own scale.
+    let t = tri::<f64>();
+    let [p, q, s] = t.vertices;
+    let (lo, hi) = (p.inf(&q).inf(&s), p.sup(&q).sup(&s));
+    let gate = super::sphere_triangle::beyond_advancement;
+    assert!(!gate(&ball::<f64>(0.5, 0.5, 3.0, 1.0), &lo, &hi), "hand scene");
+    assert!(!gate(&ball::<f64>(0.5, 0.5, 0.5, 0.001), &(lo * 1e3), &(hi * 1e3)), "small sphere, big triangle");
+    assert!(!gate(&ball::<f64>(1e6, 0.0, 0.0, 1e6), &lo, &hi), "big sphere, small triangle");
+    // A sphere of radius 1e-9 at the origin's corner of a triangle with legs
+    // of 2e6: its scale (its distance from the box is 0) is 2^20 below.
+    assert!(gate(&ball::<f64>(0.0, 0.0, 1e-9, 1e-9), &lo, &(hi * 1e6)), "tiny sphere at a huge triangle");
+}
+
+#[test]
+fn full_range_mesh_beyond_advancement_is_solved_exactly() {
+    // Full-range case 14060: a sphere of radius 5e15 beside a tetrahedron
+    // with coordinates up to 4.6e291; advancement's tolerance, of the whole
+    // mesh's scale (6.5e278), covered face 0's gap of 1e117 and it answered
+    // t = 1.3e-137. The referee: t = 0.012926336387330432, normal +x.
+    let vertices = vec![
+        v(-1.0762187865266964e117, 6.733951532493839e-253, -4.587690671284115e-237),
+        v(-2.115046260218718e222, 1.6075734472687063e259, -2.4034141047148045e230),
+        v(7.850860497801241e108, -6.197368548078092e216, 3.912405536252257e-237),
+        v(3.2455033734729514e-158, -5.853980983252863e-185, 4.637460823707827e291),
+    ];
+    let mesh = crate::mesh::TriMesh::<f64>::new(vertices, vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+        .expect("valid mesh");
+    let a =
+        Sphere::new(v(-1.0478413146955777e-118, 3.6596234123796575e49, -3.6355508611700627e155), 4955232383572283.0);
+    let va = v(3.200630240847267e-73, -5.729256618967179e93, 2.836261759124713e292);
+    let vb = v(-6.088051845228061e85, 4.415343713640975e218, -5.609998311391226e-246);
+    let (k, _) = mesh_tois(&a, &va, &mesh, &vb, 1.0);
+    let k = k.expect("impact");
+    exact_close(k.toi.t, 0.012926336387330432, "t");
+    exact_normal_close(&k.toi.normal, [1.0, 1.736573815206311e-100, -2.320707014978551e-175], "normal");
+}
+
+fn exact_mesh_ties_and_order<T: Real>() {
+    // The tetrahedron scaled by 2^30 and a sphere of radius 2^−10 near its
+    // corner at the origin (the sphere's own scale, 1, is 2^30 below the
+    // mesh's: the exact path). From (−1, 1/4, 1/4) moving +x at 1 it meets
+    // face 2 (x = 0) at t = 1 − 2^−10, normal −x; brute force and the tree
+    // agree (checked by `mesh_tois`).
+    let k = 2f64.powi(30);
+    let vertices = vec![v(0.0, 0.0, 0.0), v(k, 0.0, 0.0), v(0.0, k, 0.0), v(0.0, 0.0, k)];
+    let m = crate::mesh::TriMesh::<T>::new(vertices, vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]).expect("mesh");
+    let r = 2f64.powi(-10);
+    let a = ball::<T>(-1.0, 0.25, 0.25, r);
+    let bb = m.aabb().expect("box");
+    assert!(super::sphere_triangle::beyond_advancement(&a, &bb.min, &bb.max), "the gate takes it");
+    let (got, _) = mesh_tois(&a, &v(1.0, 0.0, 0.0), &m, &still(), T::of(4.0));
+    let got = got.expect("face 2");
+    assert_eq!(got.triangle, 2);
+    close(got.toi.t, 1.0 - r, "t");
+    exact_normal_close(&got.toi.normal, [-1.0, 0.0, 0.0], "normal");
+    // The edge v0–v3 (the z axis, shared by faces 1: y = 0 and 2: x = 0)
+    // met from the outside corner: from (−1, −1, 1/2) moving (1, 1, 0) the
+    // axis is √2 (1 − t) away, r at t = 1 − r/√2 (face 1's plane is met
+    // earlier, at t = 1 − r, with the foot at x = −r, off the face). Both
+    // faces meet the edge at the same time, and the lower index (1) wins.
+    let a = ball::<T>(-1.0, -1.0, 0.5, r);
+    let (got, _) = mesh_tois(&a, &v(1.0, 1.0, 0.0), &m, &still(), T::of(4.0));
+    let got = got.expect("edge v0–v3");
+    assert_eq!(got.triangle, 1, "the lower of the faces sharing the edge");
+    close(got.toi.t, 1.0 - r * std::f64::consts::FRAC_1_SQRT_2, "edge t");
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    exact_normal_close(&got.toi.normal, [-h, -h, 0.0], "edge normal");
+}
+both!(exact_mesh_ties_and_order_case, exact_mesh_ties_and_order);
