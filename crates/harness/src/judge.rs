@@ -5,7 +5,7 @@
 
 use crate::case::{Case, Expect, Shape};
 use crate::engine::Answer;
-use crate::load::LoadedCase;
+use crate::load::{LoadedCase, bounded_points};
 use crate::tolerance::Tolerance;
 use oracle::geom::P3;
 use serde::Serialize;
@@ -50,15 +50,6 @@ pub fn degenerate(answer: &Answer) -> bool {
         Answer::Toi(a) => a.degenerate,
         Answer::Response(a) => a.degenerate,
         Answer::Bounds(_) | Answer::Overlap(_) => false,
-    }
-}
-
-/// The points a `bounds` case bounds.
-pub fn bounded_points(lc: &LoadedCase) -> &[P3] {
-    match (&lc.case.a, &lc.meshes[0]) {
-        (Shape::Points(p), _) => &p.points,
-        (_, Some(m)) => &m.vertices,
-        _ => &[],
     }
 }
 
