@@ -5,7 +5,7 @@ use harness::engines::EngineSet;
 use harness::engines::judged;
 use harness::load::{Loaded, LoadedCase, load_str_into};
 use harness::report::campaign::{Config, run};
-use harness::report::summary::Summary;
+use harness::summary::Summary;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -80,7 +80,7 @@ fn a_report_folder_has_every_file_and_latest_names_it() {
     assert!(status.success());
     let latest = out.join("latest");
     // The sections (sweeps, scene, dynamics, …) take most of a report's time
-    // and have their own tests; `report::section`'s tests check how they land
+    // and have their own tests; `render::section`'s tests check how they land
     // in a report's files.
     for f in ["index.html", "summary.md", "summary.json", "discrepancies.json", "sections.json"] {
         assert!(latest.join(f).is_file(), "{f} missing");
@@ -133,7 +133,7 @@ fn shards_merge_into_the_whole_campaign() {
 
 #[test]
 fn merged_shards_keep_the_sections_of_the_shard_that_ran_them() {
-    use harness::report::section::{Section, SectionChart};
+    use harness::render::section::{Section, SectionChart};
     use harness::report::write::{ReadReport, merge_sections};
     let section = |id: &str, body: &str| Section {
         id: id.into(),

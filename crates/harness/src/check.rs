@@ -242,7 +242,7 @@ pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
                         let (v, e) = judge::judge(lc, &a, t, &tol, margin);
                         match &v {
                             Verdict::Disagree { reasons } => {
-                                match crate::divergence::explain(engine, lc, &a, t, reasons) {
+                                match engine.known.explain(&engine.name, lc, &a, t, reasons) {
                                     Some(reason) => (Verdict::KnownDivergence { reason }, e),
                                     None => (v, e),
                                 }

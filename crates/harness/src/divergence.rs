@@ -10,8 +10,8 @@
 //! names an entry parry no longer lists fails the tests here.
 
 use crate::case::{Query, Shape};
-use crate::engine::{Answer, Engine};
 use crate::load::LoadedCase;
+use crashtest_core::engine::Answer;
 use oracle::parry::{KnownDivergence, cast_known_divergences, known_divergences};
 
 /// When a rule explains a disagreement: the case, the engine's answer, the
@@ -214,16 +214,19 @@ fn parry_entries() -> impl Iterator<Item = &'static KnownDivergence> {
     known_divergences().iter().chain(cast_known_divergences())
 }
 
-/// The known divergence that explains `engine`'s disagreement on this case, if
-/// any: its documented reason.
-pub fn explain(
-    engine: &Engine,
-    lc: &LoadedCase,
-    answer: &Answer,
-    truth: &Answer,
-    reasons: &[String],
-) -> Option<String> {
-    engine.known.0.iter().find(|r| (r.explains)(lc, answer, truth, reasons)).and_then(|r| reason_of(r, &engine.name))
+impl Known {
+    /// The known divergence of these that explains the disagreement of the
+    /// engine called `engine` on this case, if any: its documented reason.
+    pub fn explain(
+        &self,
+        engine: &str,
+        lc: &LoadedCase,
+        answer: &Answer,
+        truth: &Answer,
+        reasons: &[String],
+    ) -> Option<String> {
+        self.0.iter().find(|r| (r.explains)(lc, answer, truth, reasons)).and_then(|r| reason_of(r, engine))
+    }
 }
 
 #[cfg(test)]

@@ -39,7 +39,7 @@
 //! Everything is deterministic: no clock, no randomness; the report's numbers
 //! and SVG are the same on every run.
 
-use crate::report::plot::{Axis, Line, line_chart};
+use crate::render::plot::{Axis, Line, line_chart};
 use collide::Vec3;
 use collide::contact::{Contact, contact_sphere_plane};
 use collide::response::{respond_sphere_plane, respond_sphere_sphere};
@@ -920,15 +920,15 @@ pub fn markdown(r: &DynamicsReport) -> String {
 
 /// The dynamics section of a report: its Markdown (also shown folded in the
 /// page), its charts, and the whole [`DynamicsReport`] as `dynamics.json`.
-pub fn section(r: &DynamicsReport) -> crate::report::section::Section {
-    use crate::report::section::{Section, SectionChart};
+pub fn section(r: &DynamicsReport) -> crate::render::section::Section {
+    use crate::render::section::{Section, SectionChart};
     let md = markdown(r);
     Section {
         id: "dynamics".into(),
         title: "Dynamics: bounces, tunneling, two balls".into(),
         html: format!(
             "<details><summary>Tables (as in summary.md)</summary><pre>{}</pre></details>\n",
-            crate::report::html::escape(&md)
+            crate::render::html::escape(&md)
         ),
         markdown: md,
         charts: charts(r).into_iter().map(|c| SectionChart { title: c.title, file: c.file, svg: c.svg }).collect(),

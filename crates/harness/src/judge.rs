@@ -5,7 +5,7 @@
 
 use crate::case::{Case, Expect, Shape};
 use crate::engine::Answer;
-use crate::load::LoadedCase;
+use crate::load::{LoadedCase, bounded_points};
 use crate::tolerance::Tolerance;
 use oracle::geom::P3;
 use serde::Serialize;
@@ -50,15 +50,6 @@ pub fn degenerate(answer: &Answer) -> bool {
         Answer::Toi(a) => a.degenerate,
         Answer::Response(a) => a.degenerate,
         Answer::Bounds(_) | Answer::Overlap(_) => false,
-    }
-}
-
-/// The points a `bounds` case bounds.
-pub fn bounded_points(lc: &LoadedCase) -> &[P3] {
-    match (&lc.case.a, &lc.meshes[0]) {
-        (Shape::Points(p), _) => &p.points,
-        (_, Some(m)) => &m.vertices,
-        _ => &[],
     }
 }
 
@@ -697,4 +688,16 @@ fn toi_allowance(lc: &LoadedCase, w: &oracle::geom::Toi, b: &Shape, tol: &Tolera
     };
     let finite = |x: f64| if x.is_nan() { f64::MAX } else { x.min(f64::MAX) };
     ToiAllowance { t: finite(t), point: finite(point), normal: finite(normal) }
+}
+
+/// The campaign's headline error of one answer: the largest of the point and
+/// depth errors relative to the answer's scale, the normal's angle (radians),
+/// and the segment parameter's and barycentrics' errors (unitless) — the
+/// measure of the report's accuracy tables and charts, and of the stability
+/// sweeps.
+pub fn headline(e: &Errors, scale: f64) -> f64 {
+    [e.point.map(|x| x / scale), e.depth.map(|x| x.abs() / scale), e.normal, e.t, e.barycentric]
+        .into_iter()
+        .flatten()
+        .fold(0.0, f64::max)
 }

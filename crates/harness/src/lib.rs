@@ -11,6 +11,21 @@
 //!   (`schema/crashtest-fixture-1.schema.json`, kept current by a test).
 //! - Conventions are translated once per engine, in that engine's adapter.
 //! - Every tolerance is a named constant with its reason ([`tolerance`]).
+//!
+//! Layers, each importing only from the ones above it in this list (checked by
+//! `tests/layering.rs`: no module imports one that imports it back):
+//! 1. vocabulary and machinery: [`case`], [`mesh`], [`rng`], [`tolerance`],
+//!    [`load`], [`divergence`], [`engine`], [`engines`], [`local`], [`judge`],
+//!    [`check`], [`generate`];
+//! 2. what a report measured ([`summary`]), the campaign's defaults
+//!    ([`defaults`]) and the one timing loop ([`timing`]);
+//! 3. rendering ([`render`]): pages, tables, charts and sections from measured
+//!    data, never running anything;
+//! 4. the experiments — [`sweep`], [`scene`], [`toi_report`], [`dynamics`] —
+//!    each a run and a rendering of what it measured;
+//! 5. the report ([`report`]): the campaign that runs the cases and the
+//!    experiments, the peers' section, the bench's timings, provenance, and
+//!    the report's files.
 #![deny(missing_docs)]
 // `!(x <= y)` is the judge's idiom for "not certainly within": it is true for a
 // NaN, so a NaN error or allowance never passes; `partial_cmp` would hide that
@@ -19,6 +34,7 @@
 
 pub mod case;
 pub mod check;
+pub mod defaults;
 pub mod divergence;
 pub mod dynamics;
 pub mod engine;
@@ -28,9 +44,12 @@ pub mod judge;
 pub mod load;
 pub mod local;
 pub mod mesh;
+pub mod render;
 pub mod report;
 pub mod rng;
 pub mod scene;
+pub mod summary;
 pub mod sweep;
+pub mod timing;
 pub mod toi_report;
 pub mod tolerance;

@@ -80,6 +80,15 @@ pub struct LoadedCase {
     pub meshes: [Option<Mesh>; 2],
 }
 
+/// The points a `bounds` case bounds.
+pub fn bounded_points(lc: &LoadedCase) -> &[P3] {
+    match (&lc.case.a, &lc.meshes[0]) {
+        (Shape::Points(p), _) => &p.points,
+        (_, Some(m)) => &m.vertices,
+        _ => &[],
+    }
+}
+
 /// What reading some paths gave: the good cases, and an error for each bad one.
 #[derive(Clone, Debug, Default)]
 pub struct Loaded {

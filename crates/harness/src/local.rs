@@ -272,7 +272,7 @@ pub fn local(lc: &LoadedCase, truth: &Answer) -> Local {
             barycentric(&p.at, &TriangleShape::new(&t.vertices), &w.coords)
         }
         (Query::Bounds, _, _, Answer::Bounds(w)) => {
-            let pts = crate::judge::bounded_points(lc);
+            let pts = crate::load::bounded_points(lc);
             let points = pts.iter().map(mag).fold(0.0, f64::max);
             let (center, radius) = w.sphere.map(|s| (mag(&s.center), s.radius)).unwrap_or((0.0, 0.0));
             let corners = w.aabb.map(|b| mag(&b.min).max(mag(&b.max))).unwrap_or(0.0);

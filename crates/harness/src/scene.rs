@@ -41,12 +41,12 @@
 //! triangles; a sphere stays a sphere (DESIGN: model no more than a scene
 //! needs).
 
-use crate::report::campaign::TIMING_REPS;
-use crate::report::html::{escape, table_html};
-use crate::report::markdown::{Table, table_md};
-use crate::report::plot::{Axis, Line, PALETTE, line_chart, px};
-use crate::report::section::{Section, SectionChart};
-use crate::report::summary::Timing;
+use crate::defaults::TIMING_REPS;
+use crate::render::html::{escape, table_html};
+use crate::render::markdown::{Table, table_md};
+use crate::render::plot::{Axis, Line, PALETTE, line_chart, px};
+use crate::render::section::{Section, SectionChart};
+use crate::summary::Timing;
 use collide::bounds::{
     BoundingSphere, aabb_of_segment, aabb_of_sphere, bounding_sphere_centroid, bounding_sphere_minimal,
     bounding_sphere_ritter, test_aabb_aabb,
@@ -58,9 +58,7 @@ use oracle::geom::P3;
 use oracle::parry::{Parry64, ParryEngine};
 use serde::Serialize;
 use std::fmt::Write;
-use std::hint::black_box;
 use std::path::PathBuf;
-use std::time::Instant;
 
 /// Radius of every scattered sphere (scene units).
 pub const SCATTER_RADIUS: f64 = 0.5;
@@ -335,25 +333,7 @@ pub fn cheapest_lossless(levels: &[LevelStats]) -> (Option<usize>, &'static str)
 /// Times `f` over `queries`: [`TIMING_REPS`] repetitions of one loop, each
 /// input and answer through `black_box`; median, fastest and slowest per query.
 fn time_loop<Q, R>(queries: &[Q], f: impl Fn(&Q) -> R) -> Option<Timing> {
-    if queries.is_empty() {
-        return None;
-    }
-    let mut per_query = Vec::with_capacity(TIMING_REPS as usize);
-    for _ in 0..TIMING_REPS {
-        let start = Instant::now();
-        for q in queries {
-            black_box(f(black_box(q)));
-        }
-        per_query.push(start.elapsed().as_nanos() as f64 / queries.len() as f64);
-    }
-    per_query.sort_by(f64::total_cmp);
-    Some(Timing {
-        median_ns: per_query[per_query.len() / 2],
-        min_ns: per_query[0],
-        max_ns: per_query[per_query.len() - 1],
-        reps: TIMING_REPS,
-        queries: queries.len() as u64,
-    })
+    crate::timing::time_each(TIMING_REPS, queries, f)
 }
 
 // ---------------------------------------------------------------------------
@@ -1147,16 +1127,22 @@ pub fn charts(r: &SceneReport) -> Vec<SectionChart> {
     out
 }
 
-/// The section "What the scene needs" (id `scene`), measured now.
+/// The section "What the scene needs" (id `scene`), measured now: [`run`],
+/// then [`section_of`].
 pub fn section(settings: &SceneSettings) -> Section {
-    let r = run(settings);
+    section_of(&run(settings))
+}
+
+/// The section "What the scene needs" of measurements already made: its
+/// Markdown, HTML and charts; the data is the whole [`SceneReport`].
+pub fn section_of(r: &SceneReport) -> Section {
     Section {
         id: "scene".into(),
         title: "What the scene needs".into(),
-        html: html(&r),
-        markdown: markdown(&r),
-        charts: charts(&r),
-        data: serde_json::to_value(&r).unwrap_or_else(|e| serde_json::Value::String(format!("unserializable: {e}"))),
+        html: html(r),
+        markdown: markdown(r),
+        charts: charts(r),
+        data: serde_json::to_value(r).unwrap_or_else(|e| serde_json::Value::String(format!("unserializable: {e}"))),
     }
 }
 

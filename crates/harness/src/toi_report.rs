@@ -23,15 +23,15 @@
 use crate::engine::{Answer, Engine};
 use crate::engines::EngineSet;
 use crate::load::LoadedCase;
-use crate::report::markdown::{Table, table_md};
-use crate::report::plot::{Axis, Line, line_chart};
-use crate::report::section::{Section, SectionChart};
+use crate::render::markdown::{Table, table_md};
+use crate::render::plot::{Axis, Line, line_chart};
+use crate::render::section::{Section, SectionChart};
+use crate::rng::SplitMix64;
 use collide::Real;
 use oracle::geom::{P3, Plane, Sphere, Toi, Triangle};
 use serde::Serialize;
 use std::fmt::Write;
 use std::hint::black_box;
-use std::time::Instant;
 
 /// What the section runs.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -51,7 +51,7 @@ impl Default for Settings {
     /// The campaign's seed, [`DEFAULT_CASES`] impacts per pair, [`DEFAULT_REPS`]
     /// repetitions, timed.
     fn default() -> Self {
-        Self { seed: crate::report::campaign::DEFAULT_SEED, cases: DEFAULT_CASES, reps: DEFAULT_REPS, timing: true }
+        Self { seed: crate::defaults::DEFAULT_SEED, cases: DEFAULT_CASES, reps: DEFAULT_REPS, timing: true }
     }
 }
 
@@ -185,22 +185,14 @@ pub struct NotRun {
 
 // ---------------------------------------------------------------- the cases
 
-/// SplitMix64: a small, portable, seeded generator (the cases depend on the
-/// seed alone).
-struct Rng(u64);
+/// The cases' draws: [`SplitMix64`] (the cases depend on the seed alone), with
+/// the points and directions the impacts are built from.
+struct Rng(SplitMix64);
 
 impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
     /// Uniform in `[lo, hi)`.
     fn in_range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
+        self.0.range(lo, hi)
     }
 
     fn point(&mut self, lim: f64) -> P3 {
@@ -339,7 +331,7 @@ fn build(pair: Pair, rng: &mut Rng) -> Option<Case> {
 }
 
 fn cases(pair: Pair, settings: &Settings) -> Vec<Case> {
-    let mut rng = Rng(settings.seed ^ (pair as u64 + 1).wrapping_mul(0xA076_1D64_78BD_642F));
+    let mut rng = Rng(SplitMix64(settings.seed ^ (pair as u64 + 1).wrapping_mul(0xA076_1D64_78BD_642F)));
     let mut out = Vec::with_capacity(settings.cases);
     // The construction always has an impact; the bound only guards the loop.
     for _ in 0..settings.cases.saturating_mul(4) {
@@ -453,18 +445,7 @@ fn seam(e: &Engine, lc: &LoadedCase) -> Result<Option<f64>, String> {
 /// Median nanoseconds per query of `reps` loops of `f` over `n` queries, or
 /// `None` without running `f` when the section is not timed.
 fn time_ns(settings: &Settings, n: usize, f: impl FnMut()) -> Option<f64> {
-    settings.timing.then(|| time_loops(settings.reps, n, f))
-}
-
-fn time_loops(reps: u32, n: usize, mut f: impl FnMut()) -> f64 {
-    let mut per = Vec::with_capacity(reps.max(1) as usize);
-    for _ in 0..reps.max(1) {
-        let start = Instant::now();
-        f();
-        per.push(start.elapsed().as_nanos() as f64 / n.max(1) as f64);
-    }
-    per.sort_by(f64::total_cmp);
-    per[per.len() / 2]
+    settings.timing.then(|| crate::timing::median_ns(settings.reps, n, f))
 }
 
 /// Median and largest of the errors, and the misses.
@@ -550,7 +531,7 @@ pub fn run(settings: &Settings, engines: &EngineSet) -> ToiReport {
 // ------------------------------------------------------------ the rendering
 
 fn sci(x: f64) -> String {
-    crate::report::markdown::sci(x)
+    crate::render::markdown::sci(x)
 }
 
 /// A time per query as a table cell: `—` where nothing was timed.
@@ -763,18 +744,18 @@ pub fn section_of(r: &ToiReport) -> Section {
     let not_run = not_run_words(r);
     let html = format!(
         "<p>{}</p>\n<p>{}</p>\n{}{}",
-        crate::report::html::escape(&format!(
+        crate::render::html::escape(&format!(
             "{} impacts per pair (seed {}); errors are |t − t*| / t_max against the referee's exact t*; {}",
             r.settings.cases,
             r.settings.seed,
             timing_words(&r.settings)
         )),
-        crate::report::html::escape(&r.design),
-        crate::report::html::table_html(&table(r)),
+        crate::render::html::escape(&r.design),
+        crate::render::html::table_html(&table(r)),
         not_run
             .lines()
             .filter(|l| !l.is_empty())
-            .map(|l| format!("<p>{}</p>\n", crate::report::html::escape(l)))
+            .map(|l| format!("<p>{}</p>\n", crate::render::html::escape(l)))
             .collect::<String>()
     );
     Section {

@@ -7,8 +7,8 @@
 //! triangles of exactly zero area (degenerate), far from the origin, tiny and
 //! huge, and an edge walker stepping a point on an edge `k ∈ [-8, 8]` ULPs.
 
-use super::Family;
 use super::build::*;
+use super::family::Family;
 use proptest::prelude::*;
 
 fn uniform_point_triangle() -> SBoxedStrategy<Scene> {

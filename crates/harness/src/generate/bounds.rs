@@ -7,8 +7,8 @@
 //! down to a thickness of 1e-15), one and two points, far from the origin, and
 //! tiny and huge.
 
-use super::Family;
 use super::build::*;
+use super::family::Family;
 use oracle::geom::P3;
 use proptest::prelude::*;
 use std::sync::OnceLock;

@@ -8,8 +8,8 @@
 //! borders of its edge and vertex regions, slivers, far from the origin, tiny
 //! and huge, and an edge walker that steps a few ULPs either side of exact touching.
 
-use super::Family;
 use super::build::*;
+use super::family::Family;
 use oracle::geom::P3;
 use proptest::prelude::*;
 

@@ -8,8 +8,8 @@
 //! origin, tiny and huge, and an edge walker that steps an endpoint on the plane,
 //! or a segment through an edge, `k ∈ [-8, 8]` ULPs either way.
 
-use super::Family;
 use super::build::*;
+use super::family::Family;
 use oracle::geom::P3;
 use proptest::prelude::*;
 

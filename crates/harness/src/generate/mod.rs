@@ -30,6 +30,7 @@ mod barycentric;
 mod bounds;
 pub(crate) mod build;
 mod contact;
+mod family;
 pub mod full_range;
 mod intersect;
 mod overlap;
@@ -38,7 +39,7 @@ mod toi;
 
 use crate::case::{Case, Query};
 use crate::load::LoadedCase;
-use build::Scene;
+use family::Family;
 use proptest::strategy::{BoxedStrategy, SBoxedStrategy, Strategy, Union, ValueTree};
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use std::path::PathBuf;
@@ -49,62 +50,6 @@ pub const GENERATED: [Query; 7] = Query::ALL;
 
 /// The `file` of every generated [`LoadedCase`].
 pub const GENERATED_FILE: &str = "generated";
-
-/// What a generated case carries beside its shapes: `t_max` for `toi` (`None`:
-/// the format's default, 1) and `restitution` for `response`.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct Params {
-    /// End of the time interval of a `toi` case.
-    pub(crate) t_max: Option<f64>,
-    /// Coefficient of restitution of a `response` case.
-    pub(crate) restitution: Option<f64>,
-}
-
-/// A generated scene with its case parameters.
-pub(crate) type Posed = (Scene, Params);
-
-/// How a family builds its strategy: shapes alone, or shapes with parameters.
-#[derive(Clone, Copy)]
-enum Build {
-    Scene(fn() -> SBoxedStrategy<Scene>),
-    Posed(fn() -> SBoxedStrategy<Posed>),
-}
-
-/// One named family of scenes.
-pub(crate) struct Family {
-    name: &'static str,
-    biased: bool,
-    build: Build,
-}
-
-impl Family {
-    /// A uniform family.
-    pub(crate) fn uniform(name: &'static str, build: fn() -> SBoxedStrategy<Scene>) -> Self {
-        Self { name, biased: false, build: Build::Scene(build) }
-    }
-
-    /// A family biased toward where methods fail.
-    pub(crate) fn biased(name: &'static str, build: fn() -> SBoxedStrategy<Scene>) -> Self {
-        Self { name, biased: true, build: Build::Scene(build) }
-    }
-
-    /// A uniform family whose cases carry parameters (`toi`, `response`).
-    pub(crate) fn uniform_posed(name: &'static str, build: fn() -> SBoxedStrategy<Posed>) -> Self {
-        Self { name, biased: false, build: Build::Posed(build) }
-    }
-
-    /// A biased family whose cases carry parameters (`toi`, `response`).
-    pub(crate) fn biased_posed(name: &'static str, build: fn() -> SBoxedStrategy<Posed>) -> Self {
-        Self { name, biased: true, build: Build::Posed(build) }
-    }
-
-    fn strategy(&self) -> SBoxedStrategy<Posed> {
-        match self.build {
-            Build::Scene(f) => f().prop_map(|s| (s, Params::default())).sboxed(),
-            Build::Posed(f) => f(),
-        }
-    }
-}
 
 /// A family's strategy, built once and shared.
 struct Entry {

@@ -6,8 +6,8 @@
 //! nested boxes, far from the origin, tiny and huge, and an edge walker that
 //! steps touching faces `k ∈ [-8, 8]` ULPs either way.
 
-use super::Family;
 use super::build::*;
+use super::family::Family;
 use oracle::geom::P3;
 use proptest::prelude::*;
 

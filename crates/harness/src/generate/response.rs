@@ -15,7 +15,7 @@
 //! far from the origin.
 
 use super::build::*;
-use super::{Family, Params, Posed};
+use super::family::{Family, Params, Posed};
 use crate::case::{Shape, SphereSpec};
 use oracle::geom::P3;
 use proptest::prelude::*;

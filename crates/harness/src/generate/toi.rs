@@ -16,7 +16,7 @@
 //! huge sizes.
 
 use super::build::*;
-use super::{Family, Params, Posed};
+use super::family::{Family, Params, Posed};
 use crate::case::{MeshSpec, Shape};
 use oracle::geom::P3;
 use proptest::prelude::*;

@@ -15,7 +15,7 @@
 
 use crate::case::{Query, Shape};
 use crate::load::LoadedCase;
-use crate::report::summary::EngineQueryStats;
+use crate::summary::EngineQueryStats;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -12,7 +12,7 @@ use crate::engine::Engine;
 use crate::engines::{self, EngineSet};
 use crate::judge::{Errors, Misclass, Verdict};
 use crate::load::{LoadedCase, load_paths};
-use crate::report::summary::{Dist, EngineInfo, EngineQueryStats, Provenance, Summary, Timing};
+use crate::summary::{Dist, EngineInfo, EngineQueryStats, Provenance, Summary, Timing};
 use crate::tolerance::Tolerance;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -20,20 +20,13 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
+pub use crate::defaults::{DEFAULT_CASES, DEFAULT_FULL_RANGE_CASES, DEFAULT_SEED, TIMING_CASES, TIMING_REPS};
+pub use crate::judge::headline;
+
 /// The query kinds the random campaign generates.
 pub const CAMPAIGN_QUERIES: [Query; 7] =
     [Query::Contact, Query::Intersect, Query::Barycentric, Query::Bounds, Query::Overlap, Query::Toi, Query::Response];
 
-/// The built-in campaign's random cases per query kind.
-pub const DEFAULT_CASES: u64 = 10_000;
-
-/// The built-in campaign's seed.
-pub const DEFAULT_SEED: u64 = 20_261_122;
-
-/// The built-in campaign's full-range cases per query kind (see
-/// `generate::full_range`), judged and scored apart from the ordinary mix: enough
-/// that each of its five sub-families gets a few hundred cases of every kind.
-pub const DEFAULT_FULL_RANGE_CASES: u64 = 1_000;
 /// The most random cases per query kind a campaign takes: [`CAMPAIGN_MEMORY_BYTES`]
 /// over [`BYTES_PER_CASE`] for each of the [`CAMPAIGN_QUERIES`]. It bounds one
 /// run's slice: a larger campaign is split with `--shard` (each shard holds
@@ -80,14 +73,6 @@ pub fn check_cases(n: u64, shard: Option<(u32, u32)>) -> Result<(), String> {
 /// full (the summary counts all of them): enough to study every failure family,
 /// few enough to keep `discrepancies.json` readable.
 pub const MAX_DISCREPANCIES_PER_GROUP: usize = 25;
-
-/// Timing loops run over at most this many generated cases per query kind:
-/// enough to mix the families as the campaign does, small enough that a
-/// repetition takes milliseconds.
-pub const TIMING_CASES: usize = 2_000;
-
-/// Repetitions of each timing loop; the median is reported with the spread.
-pub const TIMING_REPS: u32 = 7;
 
 /// What to run.
 #[derive(Clone, Debug)]
@@ -186,7 +171,7 @@ pub struct Outcome {
     pub input_errors: Vec<String>,
     /// The extra sections (dynamics: bounces, tunneling, two balls; …), run
     /// with the whole campaign (not with `--only`, and in shard 0 only).
-    pub sections: Vec<crate::report::section::Section>,
+    pub sections: Vec<crate::render::section::Section>,
 }
 
 /// The slice `[lo, hi)` of `0..n` that shard `i` of `count` takes.
@@ -262,18 +247,6 @@ fn precision_name(p: Option<u32>) -> &'static str {
         Some(24) => "f32",
         _ => "exact",
     }
-}
-
-/// The campaign's headline error of one answer: the largest of the point and
-/// depth errors relative to the answer's scale, the normal's angle (radians),
-/// and the segment parameter's and barycentrics' errors (unitless) — the
-/// measure of the report's accuracy tables and charts, and of the stability
-/// sweeps.
-pub fn headline(e: &Errors, scale: f64) -> f64 {
-    [e.point.map(|x| x / scale), e.depth.map(|x| x.abs() / scale), e.normal, e.t, e.barycentric]
-        .into_iter()
-        .flatten()
-        .fold(0.0, f64::max)
 }
 
 /// Whether a case is one of the full-range family's (scored apart).
@@ -419,25 +392,7 @@ fn inline_meshes(mut case: Case, lc: &LoadedCase) -> Case {
 pub fn time_engine(engine: &Engine, cases: &[&LoadedCase]) -> Option<Timing> {
     let answered: Vec<&LoadedCase> =
         cases.iter().copied().filter(|lc| run_caught(engine, lc).is_ok()).take(TIMING_CASES).collect();
-    if answered.is_empty() {
-        return None;
-    }
-    let mut per_query = Vec::with_capacity(TIMING_REPS as usize);
-    for _ in 0..TIMING_REPS {
-        let start = Instant::now();
-        for lc in &answered {
-            let _ = std::hint::black_box(engine.run(std::hint::black_box(lc)));
-        }
-        per_query.push(start.elapsed().as_nanos() as f64 / answered.len() as f64);
-    }
-    per_query.sort_by(f64::total_cmp);
-    Some(Timing {
-        median_ns: per_query[per_query.len() / 2],
-        min_ns: per_query[0],
-        max_ns: per_query[per_query.len() - 1],
-        reps: TIMING_REPS,
-        queries: answered.len() as u64,
-    })
+    crate::timing::time_each(TIMING_REPS, &answered, |lc| engine.run(lc))
 }
 
 /// Runs the campaign.
@@ -570,7 +525,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
 }
 
 /// The extra sections of a whole campaign, in report order.
-fn sections(config: &Config, results: &[CaseResult]) -> Vec<crate::report::section::Section> {
+fn sections(config: &Config, results: &[CaseResult]) -> Vec<crate::render::section::Section> {
     let set = &config.engines;
     // The engines of the set a section does not run: all but collide's, and
     // those it names.

@@ -6,10 +6,10 @@
 //! Decision: the section reads the campaign's own results for those cases —
 //! nothing is run twice — so it shows exactly what the report's tables count.
 
-use super::html::{escape, table_html};
-use super::markdown::{Table, table_md};
-use super::section::Section;
 use crate::check::CaseResult;
+use crate::render::html::{escape, table_html};
+use crate::render::markdown::{Table, table_md};
+use crate::render::section::Section;
 use serde::Serialize;
 use std::fmt::Write;
 

@@ -1,6 +1,6 @@
 //! Where and how a report was made: commit, compiler, profile, machine, time.
 
-use crate::report::summary::Provenance;
+use crate::summary::Provenance;
 use std::process::Command;
 use std::time::{SystemTime, UNIX_EPOCH};
 

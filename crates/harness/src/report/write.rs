@@ -8,9 +8,9 @@
 //! concurrent run is still writing, and remove only the first
 //! ([`remove_abandoned`]).
 
+use crate::render::section::Section;
 use crate::report::campaign::{MAX_DISCREPANCIES_PER_GROUP, Outcome};
-use crate::report::section::Section;
-use crate::report::summary::{EngineQueryStats, Summary};
+use crate::summary::{EngineQueryStats, Summary};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::io;
@@ -19,12 +19,12 @@ use std::path::{Path, PathBuf};
 /// The files of a report, as (path relative to the report folder, contents):
 /// the summary, the discrepancies, the pages and charts, and the extra
 /// sections (dynamics, stability, scene, time of impact) with their data files
-/// and `sections.json` ([`crate::report::section::add_sections`]).
+/// and `sections.json` ([`crate::render::section::add_sections`]).
 pub fn render_files(summary: &Summary, discrepancies: &[Value], sections: &[Section]) -> Vec<(PathBuf, String)> {
     let mut files =
         vec![("summary.json".into(), pretty(summary)), ("discrepancies.json".into(), pretty(&discrepancies))];
-    files.extend(crate::report::pages(summary));
-    crate::report::section::add_sections(&mut files, sections);
+    files.extend(crate::render::pages(summary));
+    crate::render::section::add_sections(&mut files, sections);
     files
 }
 

@@ -2,7 +2,7 @@
 //! campaign's [`check_case`]), folded per query, engine and point into
 //! [`PointStats`], and walked for breaking points.
 
-use super::{BREAK_REL, SWEEPS, Settings, Sweep, SweepPoint, cases};
+use super::catalog::{BREAK_REL, SWEEPS, Settings, Sweep, SweepPoint, cases};
 use crate::case::Query;
 use crate::check::{CaseResult, check_case};
 use crate::engines::EngineSet;
@@ -10,7 +10,7 @@ use crate::judge::{Misclass, Verdict};
 use rayon::prelude::*;
 use serde::Serialize;
 
-pub use crate::report::campaign::headline;
+pub use crate::judge::headline;
 
 /// What one engine did at one point of one query, over the poses.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]

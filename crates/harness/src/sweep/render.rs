@@ -4,13 +4,13 @@
 //!
 //! Every function here is pure: the same results give byte-identical text.
 
-use super::measure::{Series, SweepResult, run_all};
-use super::{BREAK_REL, SWEEPS, Settings};
-use crate::report::charts::zero_floor;
-use crate::report::html::{escape, table_html};
-use crate::report::markdown::{Table, escape_md, table_md};
-use crate::report::plot::{Axis, Line, line_chart};
-use crate::report::section::{Section, SectionChart};
+use super::catalog::{BREAK_REL, SWEEPS, Settings};
+use super::measure::{Series, SweepResult};
+use crate::render::charts::zero_floor;
+use crate::render::html::{escape, table_html};
+use crate::render::markdown::{Table, escape_md, table_md};
+use crate::render::plot::{Axis, Line, line_chart};
+use crate::render::section::{Section, SectionChart};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -37,7 +37,7 @@ fn cell(s: &Series) -> String {
     if s.measured() == 0 && failures == 0 {
         return "known divergence".into();
     }
-    let one = |w: &super::Walk| match &w.breaks_at {
+    let one = |w: &super::measure::Walk| match &w.breaks_at {
         None => "none".to_string(),
         Some(b) => format!("{} ({})", b.label, b.why.word()),
     };
@@ -291,11 +291,6 @@ pub fn section_from(results: &[SweepResult], settings: &Settings) -> Section {
         let _ = writeln!(md, "![{}](charts/{})\n", escape_md(&c.title), c.file);
     }
     Section { id: SECTION_ID.into(), title, html, markdown: md, charts, data: data(results, settings) }
-}
-
-/// The stability section of a report: every sweep run with `settings`.
-pub fn section(settings: &Settings, engines: &crate::engines::EngineSet) -> Section {
-    section_from(&run_all(settings, engines), settings)
 }
 
 /// The files `crashtest sweep` writes for one sweep: `<name>.json` (every

@@ -3,9 +3,11 @@
 //! referee, which takes the case's numbers as exact).
 
 use super::*;
+use crate::case::Query;
 use crate::engine::Answer;
 use crate::engines;
 use crate::judge::scene_scale;
+use crate::sweep::grid::PoseKind;
 
 fn sweep(name: &str) -> &'static Sweep {
     find(name).unwrap_or_else(|| panic!("{}", unknown_name(name)))

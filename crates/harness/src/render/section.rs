@@ -7,7 +7,7 @@
 //! section in `sections.json`, so that `crashtest merge` carries the sections
 //! of a sharded run into the merged report unchanged instead of dropping them.
 
-use super::html::escape;
+use super::xml::escape;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 use std::path::PathBuf;
@@ -139,7 +139,7 @@ pub fn add_sections(files: &mut Vec<(PathBuf, String)>, sections: &[Section]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::charts::fixture;
+    use crate::render::charts::fixture;
 
     fn sample() -> Section {
         Section {
@@ -158,7 +158,7 @@ mod tests {
 
     #[test]
     fn sections_land_in_every_page_and_file() {
-        let mut files = crate::report::pages(&fixture::summary());
+        let mut files = crate::render::pages(&fixture::summary());
         add_sections(&mut files, &[sample()]);
         let get = |name: &str| files.iter().find(|(p, _)| p.as_os_str() == name).map(|(_, c)| c.clone());
         let html = get("index.html").expect("index.html");

@@ -12,25 +12,10 @@ use super::markdown::{
     Table, detail_table, engines_table, provenance_lines, queries, query_table, query_title, reading_notes,
     throughput_table,
 };
-use super::summary::Summary;
+use crate::summary::Summary;
 use std::fmt::Write;
 
-/// Escapes text for HTML and XML content and attribute values (`&`, `<`, `>`,
-/// `"`, `'`).
-pub fn escape(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            _ => out.push(c),
-        }
-    }
-    out
-}
+pub use super::xml::escape;
 
 /// The page's style sheet: readable system typography, tables with aligned
 /// figures, charts scaled to the column.
@@ -166,8 +151,8 @@ pub fn index_html(summary: &Summary, charts: &[Chart]) -> String {
 
     if !summary.full_range.is_empty() {
         out.push_str("<h2 id=\"full-range\">Full range</h2>\n");
-        let _ = writeln!(out, "<p>{}</p>", escape(crate::report::markdown::FULL_RANGE_NOTE));
-        out.push_str(&table_html(&crate::report::markdown::full_range_table(summary)));
+        let _ = writeln!(out, "<p>{}</p>", escape(crate::render::markdown::FULL_RANGE_NOTE));
+        out.push_str(&table_html(&crate::render::markdown::full_range_table(summary)));
     }
 
     out.push_str("<h2 id=\"throughput\">Throughput</h2>\n");
@@ -206,7 +191,7 @@ pub fn index_html(summary: &Summary, charts: &[Chart]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::charts::{self, fixture};
+    use crate::render::charts::{self, fixture};
 
     #[test]
     fn escape_covers_markup_and_quotes() {

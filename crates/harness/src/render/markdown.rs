@@ -4,8 +4,8 @@
 //! them for its own syntax. Every function is pure: the same [`Summary`] gives
 //! byte-identical text.
 
-use super::summary::{BINS_PER_DECADE, Dist, EngineQueryStats, Summary, Timing};
 use crate::case::Query;
+use crate::summary::{BINS_PER_DECADE, Dist, EngineQueryStats, Summary, Timing};
 use std::fmt::Write;
 
 /// A table of plain-text cells (not yet escaped for any page).
@@ -395,7 +395,7 @@ pub fn summary_md(summary: &Summary) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::charts::fixture;
+    use crate::render::charts::fixture;
 
     #[test]
     fn sci_is_compact_and_total() {

@@ -12,9 +12,9 @@
 //! marked floor, and the markup carries no element ids, so any number of charts
 //! can be inlined in one HTML page without clashing.
 
-use super::html::escape;
-use super::summary::{BINS_PER_DECADE, Dist, EngineQueryStats, Summary};
+use super::xml::escape;
 use crate::case::Query;
+use crate::summary::{BINS_PER_DECADE, Dist, EngineQueryStats, Summary};
 use std::fmt::Write;
 
 /// A p99 error of exactly 0 cannot sit on a log axis: it is drawn at this floor
@@ -99,7 +99,7 @@ pub fn zero_floor(positives: &[f64]) -> f64 {
 
 /// Accuracy against speed for one query kind: x is nanoseconds per query (the
 /// criterion benchmark's figure when the report read one — see
-/// [`super::bench`] — else the median of the campaign's timing repetitions), y the p99 of the headline error, both on
+/// [`crate::report::bench`] — else the median of the campaign's timing repetitions), y the p99 of the headline error, both on
 /// log axes with decade ticks; one circle per engine, labelled with the engine's
 /// name (which carries its method and precision); the Pareto front (engines no
 /// other engine beats in both time and error, [`pareto_front`]) drawn as a step
@@ -763,7 +763,7 @@ pub(crate) mod fixture {
     //! A hand-built summary: two engines, two query kinds, known numbers.
 
     use crate::case::Query;
-    use crate::report::summary::{Dist, EngineInfo, EngineQueryStats, Provenance, Summary, Timing};
+    use crate::summary::{Dist, EngineInfo, EngineQueryStats, Provenance, Summary, Timing};
 
     /// A distribution of the given samples.
     pub(crate) fn dist(samples: &[f64]) -> Dist {
@@ -912,7 +912,7 @@ pub(crate) mod fixture {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::summary::Timing;
+    use crate::summary::Timing;
 
     /// Checks that every element opened is closed, in order (the SVG has no
     /// comments, CDATA or processing instructions), and returns the element names

@@ -4,7 +4,7 @@
 //! Pure: the same series give byte-identical SVG (coordinates printed with one
 //! decimal, no element ids, so any number of charts inline in one page).
 
-use super::html::escape;
+use super::xml::escape;
 use std::fmt::Write;
 
 /// One polyline of a chart.
