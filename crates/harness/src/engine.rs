@@ -26,13 +26,21 @@ pub struct Engine {
     pub precision: Option<u32>,
     /// The known divergences this engine carries ([`crate::divergence`]).
     pub known: Known,
+    /// What the report's provenance says it is (`collide 0.1.0`, `parry3d-f64
+    /// 0.31.1`); `None` for an engine that does not say.
+    pub version: Option<String>,
     queries: Arc<dyn Queries>,
 }
 
 impl Engine {
     /// An engine from its name, precision and queries.
     pub fn new(name: impl Into<String>, precision: Option<u32>, queries: impl Queries + 'static) -> Self {
-        Self { name: name.into(), precision, known: Known::NONE, queries: Arc::new(queries) }
+        Self { name: name.into(), precision, known: Known::NONE, version: None, queries: Arc::new(queries) }
+    }
+
+    /// The same engine with its version, as the report's provenance shows it.
+    pub fn with_version(self, version: impl Into<String>) -> Self {
+        Self { version: Some(version.into()), ..self }
     }
 
     /// The same engine carrying these known divergences.

@@ -20,13 +20,19 @@ pub const REFEREE: &str = "referee";
 /// Every engine judged, in report order: collide's methods and precisions, then
 /// parry in both precisions.
 pub fn judged() -> Vec<Engine> {
+    let collide = format!("collide {}", env!("CARGO_PKG_VERSION"));
+    let parry = |name: &str| format!("{name} {}", oracle::parry::PARRY_VERSION);
     vec![
-        Engine::new("collide/robust", Some(53), CollideQueries::<f64>::new(Method::Robust)),
-        Engine::new("collide/lecture", Some(53), CollideQueries::<f64>::new(Method::Lecture)).with_known(LECTURE),
-        Engine::new("collide-f32/robust", Some(24), CollideQueries::<f32>::new(Method::Robust)),
-        Engine::new("collide-f32/lecture", Some(24), CollideQueries::<f32>::new(Method::Lecture)).with_known(LECTURE),
-        Engine::new(Parry64::NAME, Some(53), Parry64).with_known(PARRY),
-        Engine::new(Parry32::NAME, Some(24), Parry32).with_known(PARRY),
+        Engine::new("collide/robust", Some(53), CollideQueries::<f64>::new(Method::Robust)).with_version(&collide),
+        Engine::new("collide/lecture", Some(53), CollideQueries::<f64>::new(Method::Lecture))
+            .with_known(LECTURE)
+            .with_version(&collide),
+        Engine::new("collide-f32/robust", Some(24), CollideQueries::<f32>::new(Method::Robust)).with_version(&collide),
+        Engine::new("collide-f32/lecture", Some(24), CollideQueries::<f32>::new(Method::Lecture))
+            .with_known(LECTURE)
+            .with_version(&collide),
+        Engine::new(Parry64::NAME, Some(53), Parry64).with_known(PARRY).with_version(parry(Parry64::NAME)),
+        Engine::new(Parry32::NAME, Some(24), Parry32).with_known(PARRY).with_version(parry(Parry32::NAME)),
     ]
 }
 

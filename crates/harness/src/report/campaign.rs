@@ -224,11 +224,11 @@ pub fn engine_infos(judged: &[Engine]) -> Vec<EngineInfo> {
         .iter()
         .map(|e| EngineInfo {
             name: e.name.clone(),
-            version: if e.name.starts_with("parry") {
-                format!("{} {} ({})", e.name, oracle::parry::PARRY_VERSION, precision_name(e.precision))
-            } else {
-                format!("collide {} ({})", env!("CARGO_PKG_VERSION"), precision_name(e.precision))
-            },
+            version: format!(
+                "{} ({})",
+                e.version.clone().unwrap_or_else(|| format!("{}, version not given", e.name)),
+                precision_name(e.precision)
+            ),
         })
         .collect();
     v.push(EngineInfo {
