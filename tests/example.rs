@@ -104,3 +104,15 @@ fn the_sections_run_the_users_engine_or_say_why_not() {
     );
     assert!(s.markdown.contains("parry3d-f64 cast\\_shapes"), "parry still has its rows: {}", s.markdown);
 }
+
+#[test]
+fn the_report_names_the_users_engine_as_it_is() {
+    let set = EngineSet::with_builtins(naive(), &["collide/robust"]).expect("set");
+    let infos = crashtest::harness::report::campaign::engine_infos(&set.judged);
+    let names: Vec<(&str, &str)> = infos.iter().map(|i| (i.name.as_str(), i.version.as_str())).collect();
+    assert_eq!(names[0], ("naive", "naive, version not given (f64)"), "not collide's version: {names:?}");
+    assert!(names[1].1.starts_with("collide "), "{names:?}");
+    let named = Engine::new("naive", Some(53), Naive).with_version("naive 1.2");
+    let infos = crashtest::harness::report::campaign::engine_infos(&[named]);
+    assert_eq!(infos[0].version, "naive 1.2 (f64)");
+}
