@@ -161,9 +161,7 @@ impl EngineArgs {
 }
 
 fn parse_query(s: &str) -> Result<harness::case::Query, String> {
-    harness::case::Query::ALL
-        .into_iter()
-        .find(|q| q.as_str() == s)
+    harness::case::Query::parse(s)
         .ok_or_else(|| format!("unknown query `{s}` (contact, intersect, barycentric, bounds, overlap, toi, response)"))
 }
 

@@ -23,12 +23,12 @@ pub fn judged() -> Vec<Engine> {
     let collide = format!("collide {}", env!("CARGO_PKG_VERSION"));
     let parry = |name: &str| format!("{name} {}", oracle::parry::PARRY_VERSION);
     vec![
-        Engine::new("collide/robust", Some(53), CollideQueries::<f64>::new(Method::Robust)).with_version(&collide),
-        Engine::new("collide/lecture", Some(53), CollideQueries::<f64>::new(Method::Lecture))
+        Engine::new(COLLIDE[0], Some(53), CollideQueries::<f64>::new(Method::Robust)).with_version(&collide),
+        Engine::new(COLLIDE[1], Some(53), CollideQueries::<f64>::new(Method::Lecture))
             .with_known(LECTURE)
             .with_version(&collide),
-        Engine::new("collide-f32/robust", Some(24), CollideQueries::<f32>::new(Method::Robust)).with_version(&collide),
-        Engine::new("collide-f32/lecture", Some(24), CollideQueries::<f32>::new(Method::Lecture))
+        Engine::new(COLLIDE[2], Some(24), CollideQueries::<f32>::new(Method::Robust)).with_version(&collide),
+        Engine::new(COLLIDE[3], Some(24), CollideQueries::<f32>::new(Method::Lecture))
             .with_known(LECTURE)
             .with_version(&collide),
         Engine::new(Parry64::NAME, Some(53), Parry64).with_known(PARRY).with_version(parry(Parry64::NAME)),
@@ -40,11 +40,11 @@ pub fn judged() -> Vec<Engine> {
 /// collide's methods through their own functions (halving depths, advancement
 /// steps) run those instead of the seam.
 pub fn is_collide(e: &Engine) -> bool {
-    judged().iter().take(COLLIDE_ENGINES).any(|c| c.name == e.name)
+    COLLIDE.contains(&e.name.as_str())
 }
 
-/// The first entries of [`judged`] that are collide's.
-const COLLIDE_ENGINES: usize = 4;
+/// collide's engines, the first entries of [`judged`].
+const COLLIDE: [&str; 4] = ["collide/robust", "collide/lecture", "collide-f32/robust", "collide-f32/lecture"];
 
 /// The referee as an engine.
 pub fn referee() -> Engine {
