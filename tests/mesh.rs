@@ -33,8 +33,7 @@ use collide::mesh::{
 };
 use oracle::geom::{P3, Segment, SegmentHit, Triangle};
 use oracle::parry::{Parry64, ParryEngine};
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
 /// Segment parameters (units: fractions of the segment's length), barycentrics
 /// and normal components (unitless) from collide and the referee may differ by
@@ -453,80 +452,4 @@ fn the_bunny_fixture_is_the_package_mesh() {
     let bb = mesh.aabb().expect("box");
     assert_eq!(bb.min, Vec3::new(-4.958475, -0.003149, -3.729833));
     assert_eq!(bb.max, Vec3::new(4.94885, 9.654748, 3.810639));
-}
-
-// --- malformed mesh files ----------------------------------------------------
-
-/// A scratch folder of this test binary, emptied first.
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("mesh").join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("scratch folder");
-    dir
-}
-
-const BAD_MESHES: [(&str, &str, &str); 4] = [
-    ("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "only triangles"),
-    ("out_of_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "index out of bounds"),
-    ("empty.obj", "# no faces\nv 0 0 0\nv 1 0 0\nv 0 1 0\n", "empty mesh"),
-    ("missing.obj", "", "cannot read mesh"),
-];
-
-#[test]
-fn malformed_mesh_files_are_refused_naming_the_file() {
-    let dir = scratch("load");
-    for (name, text, what) in BAD_MESHES {
-        let path = dir.join(name);
-        if !text.is_empty() {
-            std::fs::write(&path, text).expect("write");
-        }
-        let err = harness::mesh::load_mesh_file(&path).expect_err(name);
-        assert!(err.contains(&path.display().to_string()), "{name}: the message names the file: {err}");
-        assert!(err.contains(what), "{name}: the message says `{what}`: {err}");
-    }
-}
-
-#[test]
-fn crashtest_check_reports_a_malformed_mesh_file_with_exit_2() {
-    let dir = scratch("check");
-    let mut cases = Vec::new();
-    for (name, text, _) in BAD_MESHES {
-        if !text.is_empty() {
-            std::fs::write(dir.join(name), text).expect("write");
-        }
-        cases.push(format!(
-            r#"{{"name": "segment against {name}", "source": "a malformed mesh file", "query": "intersect",
-               "a": {{"segment": {{"start": [0.25, 0.25, 1], "end": [0.25, 0.25, -1]}}}},
-               "b": {{"mesh": {{"file": "{name}"}}}}}}"#
-        ));
-    }
-    // One good case beside them: it is still run and passes.
-    cases.push(
-        r#"{"name": "segment against the tetrahedron", "source": "hand-derived: from below, the base z=0 at t=1/2",
-            "query": "intersect",
-            "a": {"segment": {"start": [0.25, 0.25, -1], "end": [0.25, 0.25, 1]}},
-            "b": {"mesh": {"vertices": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]], "triangles": [[0,2,1],[0,1,3],[0,3,2],[1,2,3]]}},
-            "expect": {"hit": {"t": 0.5, "point": [0.25, 0.25, 0], "normal": [0, 0, -1], "triangle": 0}}}"#
-            .to_string(),
-    );
-    let fixture = dir.join("bad_meshes.json");
-    std::fs::write(&fixture, format!(r#"{{"schema": "crashtest-fixture/1", "cases": [{}]}}"#, cases.join(",\n")))
-        .expect("write");
-    let out = Command::new(env!("CARGO_BIN_EXE_crashtest"))
-        .args(["check", fixture.to_str().expect("utf-8 path")])
-        .output()
-        .expect("crashtest runs");
-    let text = String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "bad input exits 2:\n{text}");
-    for (name, _, what) in BAD_MESHES {
-        let line = text
-            .lines()
-            .find(|l| l.contains(&format!("segment against {name}")))
-            .unwrap_or_else(|| panic!("an error for {name}:\n{text}"));
-        assert!(line.contains("b.mesh.file"), "{name}: the field is named: {line}");
-        assert!(line.contains(&dir.join(name).display().to_string()), "{name}: the mesh file is named: {line}");
-        assert!(line.contains(what), "{name}: says `{what}`: {line}");
-        assert!(line.contains("bad_meshes.json"), "{name}: the fixture file is named: {line}");
-    }
-    assert!(text.lines().any(|l| l.contains("segment against the tetrahedron") && l.starts_with("PASS")), "{text}");
 }

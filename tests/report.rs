@@ -7,7 +7,6 @@ use harness::load::{Loaded, LoadedCase, load_str_into};
 use harness::report::campaign::{Config, run};
 use harness::summary::Summary;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// A campaign small enough for a test: 150 random cases per query kind, no timing.
 fn small(seed: u64) -> Config {
@@ -61,56 +60,6 @@ fn every_discrepancy_reproduces_from_its_fixture() {
         let r = again.engines.iter().find(|r| r.engine == d.engine).expect("same engines");
         assert_eq!(r.verdict.label(), d.verdict.label(), "{} on {}: {:?}", d.engine, d.origin, r.verdict);
     }
-}
-
-fn report_dir(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
-
-#[test]
-fn a_report_folder_has_every_file_and_latest_names_it() {
-    let out = report_dir("report-files");
-    let status = Command::new(env!("CARGO_BIN_EXE_crashtest"))
-        .args(["report", "--cases", "40", "--full-range", "10", "--no-timing", "--no-sections", "--out"])
-        .arg(&out)
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let latest = out.join("latest");
-    // The sections (sweeps, scene, dynamics, …) take most of a report's time
-    // and have their own tests; `render::section`'s tests check how they land
-    // in a report's files.
-    for f in ["index.html", "summary.md", "summary.json", "discrepancies.json", "sections.json"] {
-        assert!(latest.join(f).is_file(), "{f} missing");
-    }
-    let charts = std::fs::read_dir(latest.join("charts")).map(|d| d.count()).unwrap_or(0);
-    assert!(charts > 0, "no charts");
-}
-
-#[test]
-fn killing_a_run_leaves_the_previous_report_intact() {
-    let out = report_dir("report-killed");
-    let first = Command::new(env!("CARGO_BIN_EXE_crashtest"))
-        .args(["report", "--cases", "20", "--full-range", "10", "--no-timing", "--no-sections", "--out"])
-        .arg(&out)
-        .status()
-        .unwrap();
-    assert!(first.success());
-    let before = std::fs::read_link(out.join("latest")).expect("latest is a link");
-    let index = std::fs::read_to_string(out.join("latest/index.html")).unwrap();
-    // A run large enough to be killed mid-way (it judges 500,000 cases).
-    let mut child = Command::new(env!("CARGO_BIN_EXE_crashtest"))
-        .args(["report", "--cases", "100000", "--no-sections", "--out"])
-        .arg(&out)
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
-    child.kill().unwrap();
-    let _ = child.wait();
-    assert_eq!(std::fs::read_link(out.join("latest")).unwrap(), before, "latest moved");
-    assert_eq!(std::fs::read_to_string(out.join("latest/index.html")).unwrap(), index, "previous report changed");
 }
 
 #[test]

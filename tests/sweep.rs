@@ -10,7 +10,6 @@ use harness::engines::{self, judged, referee};
 use harness::judge::{Verdict, judge, scene_scale};
 use harness::sweep::{self, BreakWhy, Settings, SweepResult};
 use harness::tolerance::Tolerance;
-use std::process::Command;
 use std::sync::OnceLock;
 
 /// Poses per point here: 8 — four exact and four rotated where a sweep
@@ -234,41 +233,4 @@ fn f32_sphere_triangle_contact_agrees_under_a_sphere_1e4_times_the_triangle() {
     let tol = Tolerance::for_precision(f32_robust.precision);
     let (v, _) = judge(&rounded, &answer, &truth, &tol, None);
     assert!(matches!(v, Verdict::Agree), "collide-f32/robust on {}: {v:?}", lc.case.name);
-}
-
-fn crashtest(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_crashtest")).args(args).output().expect("crashtest runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).to_string(),
-        String::from_utf8_lossy(&out.stderr).to_string(),
-    )
-}
-
-#[test]
-fn an_unknown_sweep_exits_2_and_lists_the_sweeps() {
-    let (code, _, err) = crashtest(&["sweep", "tilt"]);
-    assert_eq!(code, 2, "{err}");
-    assert!(err.contains("unknown sweep `tilt`"), "{err}");
-    for name in sweep::names() {
-        assert!(err.contains(name), "the message names {name}: {err}");
-    }
-    let (code, out, _) = crashtest(&["sweep", "--list"]);
-    assert_eq!(code, 0);
-    assert_eq!(out.lines().count(), sweep::SWEEPS.len(), "{out}");
-}
-
-#[test]
-fn a_sweep_writes_its_chart_and_data_and_prints_its_breaking_points() {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("sweep-cli");
-    let _ = std::fs::remove_dir_all(&dir);
-    let (code, out, err) = crashtest(&["sweep", "concentric", "--poses", "1", "--out", dir.to_str().expect("utf-8")]);
-    assert_eq!(code, 0, "{out}{err}");
-    assert!(out.starts_with("sweep") && out.contains("concentric  sphere–sphere"), "the table: {out}");
-    let data: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("concentric.json")).expect("data written"))
-            .expect("data parses");
-    assert_eq!(data["sweeps"][0]["points"].as_array().map(Vec::len), Some(162), "161 grid points and concentric");
-    let svg = std::fs::read_to_string(dir.join("concentric.svg")).expect("chart written");
-    assert!(svg.starts_with("<svg") && svg.contains("collide/lecture"));
 }

@@ -13,6 +13,7 @@ use crate::engine::{Answer, Engine};
 use crate::engines::{self, EngineSet};
 use crate::judge::{self, Errors, Mismatch, Verdict};
 use crate::load::{InputError, LoadedCase};
+use crate::protocol::client::Outcome;
 use crate::tolerance::Tolerance;
 use serde::Serialize;
 use std::cell::{Cell, RefCell};
@@ -192,6 +193,15 @@ pub fn is_caught_panic(v: &Verdict) -> bool {
 /// [`Verdict::Failed`] whose reason is one line, `panicked at
 /// <file>:<line>:<column>: <message>`, and nothing is printed.
 pub fn run_caught(engine: &Engine, lc: &LoadedCase) -> Result<Answer, Verdict> {
+    if let Some(p) = engine.process() {
+        // A process engine's faults are contained by its client, which never
+        // panics: its failures arrive as failures.
+        return match p.answer(lc).outcome {
+            Outcome::Answer(a) => Ok(a),
+            Outcome::Unsupported(reason) => Err(Verdict::Unsupported { reason }),
+            Outcome::Failed(reason) => Err(Verdict::Failed { reason }),
+        };
+    }
     install_quiet_hook();
     let outer = CATCHING.with(|c| c.replace(true));
     let result = catch_unwind(AssertUnwindSafe(|| engine.run(lc)));
@@ -285,6 +295,7 @@ pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
 
 /// Checks every loaded case; `errors` are the input errors met while loading.
 pub fn check(cases: &[LoadedCase], errors: &[InputError], set: &EngineSet) -> CheckResult {
+    set.prefetch(cases);
     let results: Vec<CaseResult> = cases.iter().map(|lc| check_case(lc, set)).collect();
     let passed = results.iter().filter(|c| c.passed).count();
     let unanswered = results.iter().filter(|c| c.unanswered).count();

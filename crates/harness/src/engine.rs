@@ -10,6 +10,7 @@ use crate::case::{Pair, Shape};
 use crate::divergence::Known;
 use crate::load::LoadedCase;
 use crate::mesh::Mesh;
+use crate::protocol::client::{Outcome, ProcessEngine};
 use oracle::geom::{Aabb, P3, Plane, Segment, Sphere, Triangle};
 use std::fmt;
 use std::sync::Arc;
@@ -30,12 +31,59 @@ pub struct Engine {
     /// 0.31.1`); `None` for an engine that does not say.
     pub version: Option<String>,
     queries: Arc<dyn Queries>,
+    /// A process engine answers through the protocol instead of `queries`.
+    process: Option<Arc<ProcessEngine>>,
 }
+
+/// The queries of a process engine's [`Engine`]: it answers through the
+/// protocol, never through these.
+struct ThroughTheProtocol;
+impl Queries for ThroughTheProtocol {}
 
 impl Engine {
     /// An engine from its name, precision and queries.
     pub fn new(name: impl Into<String>, precision: Option<u32>, queries: impl Queries + 'static) -> Self {
-        Self { name: name.into(), precision, known: Known::NONE, version: None, queries: Arc::new(queries) }
+        Self {
+            name: name.into(),
+            precision,
+            known: Known::NONE,
+            version: None,
+            queries: Arc::new(queries),
+            process: None,
+        }
+    }
+
+    /// A process engine ([`crate::protocol`]) under its spec's name, with the
+    /// precision and version its hello gave (an engine that never shook hands
+    /// is judged as f64, and fails every case with the reason).
+    pub fn from_process(engine: ProcessEngine) -> Self {
+        let hello = engine.hello();
+        let precision = hello.as_ref().map_or(53, |h| h.precision);
+        let version = hello.as_ref().map(|h| match &h.version {
+            Some(v) => format!("{} {v} (process: {})", h.name, engine.spec().command_line()),
+            None => format!("{} (process: {})", h.name, engine.spec().command_line()),
+        });
+        Self {
+            name: engine.spec().name.clone(),
+            precision: Some(precision),
+            known: Known::NONE,
+            version: version.or_else(|| Some(format!("down (process: {})", engine.spec().command_line()))),
+            queries: Arc::new(ThroughTheProtocol),
+            process: Some(Arc::new(engine)),
+        }
+    }
+
+    /// The process behind a process engine.
+    pub fn process(&self) -> Option<&ProcessEngine> {
+        self.process.as_deref()
+    }
+
+    /// Lets a process engine answer `cases` in batches before they are judged
+    /// one by one (nothing for an in-process engine).
+    pub fn prefetch<'a>(&self, cases: impl IntoIterator<Item = &'a LoadedCase>) {
+        if let Some(p) = &self.process {
+            p.prefetch(cases);
+        }
     }
 
     /// The same engine with its version, as the report's provenance shows it.
@@ -51,6 +99,12 @@ impl Engine {
     /// Answers one case: its row of the pair table ([`crashtest_core::pair`])
     /// decides the call.
     pub fn run(&self, lc: &LoadedCase) -> Reply<Answer> {
+        if let Some(p) = &self.process {
+            return match p.answer(lc).outcome {
+                Outcome::Answer(a) => Ok(a),
+                Outcome::Unsupported(why) | Outcome::Failed(why) => Err(Unsupported(why)),
+            };
+        }
         let case = &lc.case;
         match case.pair() {
             Some(pair) => dispatch(self.queries.as_ref(), pair, lc),

@@ -15,8 +15,9 @@
 //! Layers, each importing only from the ones above it in this list (checked by
 //! `tests/layering.rs`: no module imports one that imports it back):
 //! 1. vocabulary and machinery: [`case`], [`mesh`], [`rng`], [`tolerance`],
-//!    [`load`], [`divergence`], [`engine`], [`engines`], [`local`], [`judge`],
-//!    [`check`], [`generate`];
+//!    [`load`], [`protocol`] (process engines), [`divergence`], [`engine`],
+//!    [`engines`], [`local`], [`judge`], [`check`], [`serve`] (an engine served
+//!    over the protocol), [`generate`];
 //! 2. what a report measured ([`summary`]), the campaign's defaults
 //!    ([`defaults`]) and the one timing loop ([`timing`]);
 //! 3. rendering ([`render`]): pages, tables, charts and sections from measured
@@ -36,6 +37,7 @@ pub mod case;
 pub mod check;
 pub mod defaults;
 pub mod divergence;
+#[cfg(feature = "dynamics")]
 pub mod dynamics;
 pub mod engine;
 pub mod engines;
@@ -44,10 +46,12 @@ pub mod judge;
 pub mod load;
 pub mod local;
 pub mod mesh;
+pub mod protocol;
 pub mod render;
 pub mod report;
 pub mod rng;
 pub mod scene;
+pub mod serve;
 pub mod summary;
 pub mod sweep;
 pub mod timing;

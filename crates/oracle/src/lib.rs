@@ -19,5 +19,6 @@
 /// The neutral vocabulary, from `crashtest-core`.
 pub use crashtest_core::geom;
 pub mod parry;
+#[cfg(feature = "rapier")]
 pub mod rapier;
 pub mod referee;

@@ -96,13 +96,7 @@ impl EngineSet {
     /// order, gated by `gate` — [`DEFAULT_ENGINE`] when `None`, which then must
     /// be selected; with one engine selected and no gate named, that engine.
     pub fn select(list: &str, gate: Option<&str>) -> Result<Self, String> {
-        let chosen = pick(list)?;
-        let gate = match (gate, chosen.as_slice()) {
-            (Some(g), _) => g.to_string(),
-            (None, [only]) => only.name.clone(),
-            (None, _) => DEFAULT_ENGINE.to_string(),
-        };
-        Self::new(chosen, &gate)
+        Self::select_with(list, gate, Vec::new())
     }
 
     /// `engine` as the gate, with the built-in engines named in `builtins`
@@ -130,6 +124,27 @@ impl EngineSet {
         Self::new(judged, &gate).unwrap_or_else(|e| panic!("EngineSet::of: {e}"))
     }
 
+    /// The built-in engines and the process engines `extra` (in that order
+    /// under `all`), those named in `list` (comma-separated, or `all`) chosen,
+    /// gated as [`EngineSet::select`] gates.
+    pub fn select_with(list: &str, gate: Option<&str>, extra: Vec<Engine>) -> Result<Self, String> {
+        let chosen = pick_from(list, judged().into_iter().chain(extra).collect())?;
+        let gate = match (gate, chosen.as_slice()) {
+            (Some(g), _) => g.to_string(),
+            (None, [only]) => only.name.clone(),
+            (None, _) => DEFAULT_ENGINE.to_string(),
+        };
+        Self::new(chosen, &gate)
+    }
+
+    /// Lets every process engine of the set answer `cases` in batches before
+    /// they are judged one by one.
+    pub fn prefetch(&self, cases: &[crate::load::LoadedCase]) {
+        for e in &self.judged {
+            e.prefetch(cases);
+        }
+    }
+
     /// The gate engine.
     pub fn gate_engine(&self) -> &Engine {
         self.judged.iter().find(|e| e.name == self.gate).unwrap_or(&self.judged[0])
@@ -143,7 +158,11 @@ impl EngineSet {
 
 /// The built-in engines named in `list` (comma-separated, or `all`), in order.
 fn pick(list: &str) -> Result<Vec<Engine>, String> {
-    let all = judged();
+    pick_from(list, judged())
+}
+
+/// The engines of `all` named in `list` (comma-separated, or `all`), in order.
+fn pick_from(list: &str, all: Vec<Engine>) -> Result<Vec<Engine>, String> {
     if list.trim() == "all" {
         return Ok(all);
     }

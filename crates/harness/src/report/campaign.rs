@@ -559,12 +559,34 @@ fn sections(config: &Config, results: &[CaseResult]) -> Vec<crate::render::secti
         set,
     ));
     out.extend(crate::report::peers::section(results));
-    out.push(crate::dynamics::section(&crate::dynamics::run()).with_not_run(
+    out.push(dynamics_section().with_not_run(
         &others(&[]),
         "the dynamics experiments step worlds with collide's integrators and with rapier3d-f64; an engine \
          behind the engine trait answers single queries and has no world to step",
     ));
     out
+}
+
+/// The dynamics section: stepped worlds of collide and rapier3d-f64.
+#[cfg(feature = "dynamics")]
+fn dynamics_section() -> crate::render::section::Section {
+    crate::dynamics::section(&crate::dynamics::run())
+}
+
+/// Without the `dynamics` feature there is no rapier to step: the section says
+/// so, and how to get it.
+#[cfg(not(feature = "dynamics"))]
+fn dynamics_section() -> crate::render::section::Section {
+    let why = "this build of crashtest has no dynamics: rapier3d-f64 is behind the `dynamics` feature of the \
+               `crashtest` library (the `crashtest` command line enables it)";
+    crate::render::section::Section {
+        id: "dynamics".into(),
+        title: "Dynamics: bounces, tunneling, two balls".into(),
+        html: format!("<p class=\"not-run\">Not run: {}</p>\n", crate::render::xml::escape(why)),
+        markdown: format!("## Dynamics\n\nNot run: {why}.\n"),
+        charts: Vec::new(),
+        data: serde_json::json!({ "not_run": why }),
+    }
 }
 
 fn progress_bar(wanted: bool, len: u64) -> indicatif::ProgressBar {

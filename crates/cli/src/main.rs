@@ -85,8 +85,13 @@ enum Command {
         #[arg(long, default_value = "reports")]
         out: PathBuf,
     },
-    /// Print the JSON Schema of the fixture format (crashtest-fixture/1).
-    Schema,
+    /// Print the JSON Schema of the fixture format (crashtest-fixture/1), or
+    /// with --protocol of the engine protocol's messages (crashtest-engine/1).
+    Schema {
+        /// The engine protocol's messages instead of the fixture format.
+        #[arg(long)]
+        protocol: bool,
+    },
     /// Write generated cases as a fixture file on standard output (no
     /// `expect`: `crashtest check` judges them against the referee), to replay
     /// a slice of a campaign or to run it through another build.
@@ -141,21 +146,44 @@ enum Command {
 struct EngineArgs {
     /// The engines to judge, comma-separated, in report order, or `all`:
     /// collide/robust, collide/lecture, collide-f32/robust, collide-f32/lecture,
-    /// parry3d-f64, parry3d.
+    /// parry3d-f64, parry3d, and the process engines of --engine and
+    /// --engines-file.
     #[arg(long, default_value = "all")]
     engines: String,
     /// The gate engine, whose answers decide the exit code of `check`
     /// (default collide/robust; with one engine selected, that engine).
     #[arg(long)]
     gate: Option<String>,
+    /// A process engine speaking crashtest-engine/1 (docs/PROTOCOL.md):
+    /// NAME=COMMAND, the command split on white space. Repeatable.
+    #[arg(long = "engine", value_name = "NAME=COMMAND")]
+    process: Vec<String>,
+    /// A JSON file of named process engines: {"engines": {"NAME": ["program", "arg", ...]}}.
+    #[arg(long, value_name = "FILE")]
+    engines_file: Option<PathBuf>,
+    /// The time limit for one batch of a process engine, in seconds.
+    #[arg(long, value_name = "SECONDS", default_value_t = harness::protocol::client::DEFAULT_TIMEOUT.as_secs_f64())]
+    engine_timeout: f64,
+    /// Cases per batch sent to a process engine.
+    #[arg(long, value_name = "N", default_value_t = harness::protocol::client::DEFAULT_BATCH as u64, value_parser = clap::value_parser!(u64).range(1..=1_000_000))]
+    engine_batch: u64,
 }
 
 impl EngineArgs {
     /// The engine set, or the error (printed) and exit code 2.
     fn set(&self) -> Result<crashtest::EngineSet, ExitCode> {
-        crashtest::EngineSet::select(&self.engines, self.gate.as_deref()).map_err(|e| {
-            eprintln!("error: --engines {} --gate {}: {e}", self.engines, self.gate.as_deref().unwrap_or("(default)"));
+        let fail = |e: String| {
+            eprintln!("error: {e}");
             ExitCode::from(2)
+        };
+        let mut specs =
+            crashtest::process_specs(&self.process, self.engines_file.as_deref(), self.engine_timeout).map_err(fail)?;
+        for s in &mut specs {
+            s.batch = self.engine_batch as usize;
+        }
+        let extra = specs.into_iter().map(crashtest::start_process).collect();
+        crashtest::EngineSet::select_with(&self.engines, self.gate.as_deref(), extra).map_err(|e| {
+            fail(format!("--engines {} --gate {}: {e}", self.engines, self.gate.as_deref().unwrap_or("(default)")))
         })
     }
 }
@@ -403,8 +431,12 @@ fn main() -> ExitCode {
                 }
             }
         }
-        Command::Schema => {
-            out!("{}", harness::case::json_schema());
+        Command::Schema { protocol } => {
+            if protocol {
+                out!("{}", harness::protocol::messages::json_schema());
+            } else {
+                out!("{}", harness::case::json_schema());
+            }
             ExitCode::SUCCESS
         }
         Command::Cases { only, count, start, full_range, seed } => {

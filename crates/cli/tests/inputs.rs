@@ -11,6 +11,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+/// The workspace root: the runs read `fixtures/` as a user at the root does.
+const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+
 /// Every run is killed, and its test failed, past this: far more than any of
 /// these runs takes (each is a second or two), far less than a hang.
 const TIME_LIMIT: Duration = Duration::from_secs(60);
@@ -45,6 +48,7 @@ impl Run {
 /// full pipe.
 fn crashtest_env(args: &[&str], envs: &[(&str, &str)]) -> Run {
     let mut child = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .current_dir(ROOT)
         .args(args)
         .envs(envs.iter().copied())
         .stdin(Stdio::null())

@@ -5,9 +5,13 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+/// The workspace root: the runs read `fixtures/` as a user at the root does.
+const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+
 /// Runs crashtest: its exit code, standard output and standard error.
 fn crashtest(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_crashtest")).args(args).output().expect("crashtest runs");
+    let out =
+        Command::new(env!("CARGO_BIN_EXE_crashtest")).current_dir(ROOT).args(args).output().expect("crashtest runs");
     let text = |b: &[u8]| String::from_utf8_lossy(b).to_string();
     (out.status.code().unwrap_or(-1), text(&out.stdout), text(&out.stderr))
 }
@@ -70,6 +74,7 @@ fn json_output_is_json_and_the_closing_line_follows() {
     let dir = scratch("json");
     std::fs::write(dir.join("good.json"), GOOD).unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .current_dir(ROOT)
         .args(["check", "--json", dir.to_str().unwrap()])
         .output()
         .unwrap();
@@ -203,6 +208,7 @@ fn a_reader_closing_the_pipe_early_is_not_a_panic() {
     use std::io::Read;
     use std::process::Stdio;
     let mut child = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .current_dir(ROOT)
         .args(["cases", "--count", "3000"])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -258,4 +264,156 @@ fn an_unknown_engine_or_a_gate_not_chosen_is_refused_before_anything_runs() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("empty engine name"), "{err}");
     assert!(std::fs::read_dir(&out_dir).map(|d| d.count()).unwrap_or(0) == 0, "no report folder was made");
+}
+
+// --- report, sweep and malformed mesh files through the binary ---------------
+
+fn report_dir(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[test]
+fn a_report_folder_has_every_file_and_latest_names_it() {
+    let out = report_dir("report-files");
+    let status = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .current_dir(ROOT)
+        .args(["report", "--cases", "40", "--full-range", "10", "--no-timing", "--no-sections", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let latest = out.join("latest");
+    // The sections (sweeps, scene, dynamics, …) take most of a report's time
+    // and have their own tests; `render::section`'s tests check how they land
+    // in a report's files.
+    for f in ["index.html", "summary.md", "summary.json", "discrepancies.json", "sections.json"] {
+        assert!(latest.join(f).is_file(), "{f} missing");
+    }
+    let charts = std::fs::read_dir(latest.join("charts")).map(|d| d.count()).unwrap_or(0);
+    assert!(charts > 0, "no charts");
+}
+
+#[test]
+fn killing_a_run_leaves_the_previous_report_intact() {
+    let out = report_dir("report-killed");
+    let first = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .current_dir(ROOT)
+        .args(["report", "--cases", "20", "--full-range", "10", "--no-timing", "--no-sections", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(first.success());
+    let before = std::fs::read_link(out.join("latest")).expect("latest is a link");
+    let index = std::fs::read_to_string(out.join("latest/index.html")).unwrap();
+    // A run large enough to be killed mid-way (it judges 500,000 cases).
+    let mut child = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .current_dir(ROOT)
+        .args(["report", "--cases", "100000", "--no-sections", "--out"])
+        .arg(&out)
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    child.kill().unwrap();
+    let _ = child.wait();
+    assert_eq!(std::fs::read_link(out.join("latest")).unwrap(), before, "latest moved");
+    assert_eq!(std::fs::read_to_string(out.join("latest/index.html")).unwrap(), index, "previous report changed");
+}
+
+#[test]
+fn an_unknown_sweep_exits_2_and_lists_the_sweeps() {
+    let (code, _, err) = crashtest(&["sweep", "tilt"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("unknown sweep `tilt`"), "{err}");
+    for name in harness::sweep::names() {
+        assert!(err.contains(name), "the message names {name}: {err}");
+    }
+    let (code, out, _) = crashtest(&["sweep", "--list"]);
+    assert_eq!(code, 0);
+    assert_eq!(out.lines().count(), harness::sweep::SWEEPS.len(), "{out}");
+}
+
+#[test]
+fn a_sweep_writes_its_chart_and_data_and_prints_its_breaking_points() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("sweep-cli");
+    let _ = std::fs::remove_dir_all(&dir);
+    let (code, out, err) = crashtest(&["sweep", "concentric", "--poses", "1", "--out", dir.to_str().expect("utf-8")]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.starts_with("sweep") && out.contains("concentric  sphere–sphere"), "the table: {out}");
+    let data: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("concentric.json")).expect("data written"))
+            .expect("data parses");
+    assert_eq!(data["sweeps"][0]["points"].as_array().map(Vec::len), Some(162), "161 grid points and concentric");
+    let svg = std::fs::read_to_string(dir.join("concentric.svg")).expect("chart written");
+    assert!(svg.starts_with("<svg") && svg.contains("collide/lecture"));
+}
+
+/// A scratch folder of this test binary, emptied first.
+
+const BAD_MESHES: [(&str, &str, &str); 4] = [
+    ("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "only triangles"),
+    ("out_of_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "index out of bounds"),
+    ("empty.obj", "# no faces\nv 0 0 0\nv 1 0 0\nv 0 1 0\n", "empty mesh"),
+    ("missing.obj", "", "cannot read mesh"),
+];
+
+#[test]
+fn malformed_mesh_files_are_refused_naming_the_file() {
+    let dir = scratch("mesh-load");
+    for (name, text, what) in BAD_MESHES {
+        let path = dir.join(name);
+        if !text.is_empty() {
+            std::fs::write(&path, text).expect("write");
+        }
+        let err = harness::mesh::load_mesh_file(&path).expect_err(name);
+        assert!(err.contains(&path.display().to_string()), "{name}: the message names the file: {err}");
+        assert!(err.contains(what), "{name}: the message says `{what}`: {err}");
+    }
+}
+
+#[test]
+fn crashtest_check_reports_a_malformed_mesh_file_with_exit_2() {
+    let dir = scratch("mesh-check");
+    let mut cases = Vec::new();
+    for (name, text, _) in BAD_MESHES {
+        if !text.is_empty() {
+            std::fs::write(dir.join(name), text).expect("write");
+        }
+        cases.push(format!(
+            r#"{{"name": "segment against {name}", "source": "a malformed mesh file", "query": "intersect",
+               "a": {{"segment": {{"start": [0.25, 0.25, 1], "end": [0.25, 0.25, -1]}}}},
+               "b": {{"mesh": {{"file": "{name}"}}}}}}"#
+        ));
+    }
+    // One good case beside them: it is still run and passes.
+    cases.push(
+        r#"{"name": "segment against the tetrahedron", "source": "hand-derived: from below, the base z=0 at t=1/2",
+            "query": "intersect",
+            "a": {"segment": {"start": [0.25, 0.25, -1], "end": [0.25, 0.25, 1]}},
+            "b": {"mesh": {"vertices": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]], "triangles": [[0,2,1],[0,1,3],[0,3,2],[1,2,3]]}},
+            "expect": {"hit": {"t": 0.5, "point": [0.25, 0.25, 0], "normal": [0, 0, -1], "triangle": 0}}}"#
+            .to_string(),
+    );
+    let fixture = dir.join("bad_meshes.json");
+    std::fs::write(&fixture, format!(r#"{{"schema": "crashtest-fixture/1", "cases": [{}]}}"#, cases.join(",\n")))
+        .expect("write");
+    let out = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .current_dir(ROOT)
+        .args(["check", fixture.to_str().expect("utf-8 path")])
+        .output()
+        .expect("crashtest runs");
+    let text = String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "bad input exits 2:\n{text}");
+    for (name, _, what) in BAD_MESHES {
+        let line = text
+            .lines()
+            .find(|l| l.contains(&format!("segment against {name}")))
+            .unwrap_or_else(|| panic!("an error for {name}:\n{text}"));
+        assert!(line.contains("b.mesh.file"), "{name}: the field is named: {line}");
+        assert!(line.contains(&dir.join(name).display().to_string()), "{name}: the mesh file is named: {line}");
+        assert!(line.contains(what), "{name}: says `{what}`: {line}");
+        assert!(line.contains("bad_meshes.json"), "{name}: the fixture file is named: {line}");
+    }
+    assert!(text.lines().any(|l| l.contains("segment against the tetrahedron") && l.starts_with("PASS")), "{text}");
 }

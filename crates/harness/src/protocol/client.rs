@@ -1,0 +1,569 @@
+//! A process engine: a command that speaks `crashtest-engine/1`, run behind the
+//! engine seam.
+//!
+//! Its faults are contained here (`docs/PROTOCOL.md`, "Faults"): an engine that
+//! exits, hangs, writes what is not a message, or answers the wrong cases gets
+//! the cases concerned `FAILED` with the reason, is restarted a bounded number of
+//! times and then marked down. Nothing here panics, and nothing waits without a
+//! deadline: lines are read on a thread and awaited with a time limit, and lines
+//! are written on a thread too, so an engine that stops reading cannot block the
+//! run either.
+
+use super::messages::{Capability, EngineHello, FromEngine, PROTOCOL, Said, ToEngine, WireCase};
+use crate::case::Query;
+use crate::load::LoadedCase;
+use crashtest_core::engine::Answer;
+use crashtest_core::pair::Pair;
+use std::collections::{HashMap, VecDeque};
+use std::io::{BufRead, BufReader, Write};
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::time::{Duration, Instant};
+
+/// The time limit for one batch (or the handshake), by default: generous for
+/// the batches crashtest sends (at most [`DEFAULT_BATCH`] cases), far below a
+/// hang anyone would wait for.
+pub const DEFAULT_TIMEOUT: Duration = Duration::from_secs(60);
+
+/// Cases per batch: large enough that the process and JSON costs per case are
+/// small (the protocol bench measures them against batch size), small enough
+/// that a fault fails few cases.
+pub const DEFAULT_BATCH: usize = 1024;
+
+/// Restarts of an engine in one run before it is marked down.
+pub const MAX_RESTARTS: u32 = 3;
+
+/// Lines of an engine's standard error kept for messages.
+const STDERR_LINES: usize = 20;
+
+/// The time a shut-down engine has to exit before it is killed.
+const EXIT_GRACE: Duration = Duration::from_secs(2);
+
+/// How to run a process engine.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ProcessSpec {
+    /// The name it is shown under (the command line's `NAME=`).
+    pub name: String,
+    /// The program.
+    pub program: String,
+    /// Its arguments.
+    pub args: Vec<String>,
+    /// The time limit per batch.
+    pub timeout: Duration,
+    /// Cases per batch.
+    pub batch: usize,
+}
+
+impl ProcessSpec {
+    /// `NAME=COMMAND`, the command split on white space (no shell).
+    pub fn parse(spec: &str) -> Result<Self, String> {
+        let (name, command) = spec
+            .split_once('=')
+            .ok_or_else(|| format!("`{spec}`: expected NAME=COMMAND, for example mine=./engine"))?;
+        let words: Vec<String> = command.split_whitespace().map(String::from).collect();
+        Self::new(name, words)
+    }
+
+    /// A named command: `words` is the program and its arguments.
+    pub fn new(name: &str, words: Vec<String>) -> Result<Self, String> {
+        let name = name.trim();
+        if name.is_empty() {
+            return Err("an engine needs a name (NAME=COMMAND)".into());
+        }
+        let mut words = words.into_iter();
+        let program = words.next().filter(|p| !p.is_empty()).ok_or_else(|| format!("engine `{name}`: no command"))?;
+        Ok(Self { name: name.into(), program, args: words.collect(), timeout: DEFAULT_TIMEOUT, batch: DEFAULT_BATCH })
+    }
+
+    /// The command as one line, for messages and provenance.
+    pub fn command_line(&self) -> String {
+        std::iter::once(self.program.as_str()).chain(self.args.iter().map(String::as_str)).collect::<Vec<_>>().join(" ")
+    }
+}
+
+/// What a process engine said of one case.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Outcome {
+    /// Its answer.
+    Answer(Answer),
+    /// It does not answer the case, and why.
+    Unsupported(String),
+    /// It failed on the case (its own error, or a fault of the process).
+    Failed(String),
+}
+
+/// An outcome and the engine's own time for the case.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reply {
+    /// What it said.
+    pub outcome: Outcome,
+    /// Nanoseconds, measured inside the engine (when it said).
+    pub ns: Option<f64>,
+}
+
+/// What the report's provenance says of a process engine.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ProcessInfo {
+    /// The command.
+    pub command: String,
+    /// Its hello (absent when it never gave one).
+    pub hello: Option<EngineHello>,
+    /// Restarts in this run.
+    pub restarts: u32,
+    /// Why it is down, if it is.
+    pub down: Option<String>,
+    /// The time limit per batch, in seconds.
+    pub timeout_seconds: f64,
+    /// Every fault met, in order (at most the first 100).
+    pub faults: Vec<String>,
+}
+
+/// A running engine process.
+struct Running {
+    child: Child,
+    to_engine: Sender<String>,
+    lines: Receiver<Line>,
+    stderr: Arc<Mutex<VecDeque<String>>>,
+    /// Lines of its standard output read so far (for messages).
+    line_no: u64,
+}
+
+enum Line {
+    Text(String),
+    End,
+    Unreadable(String),
+}
+
+struct State {
+    running: Option<Running>,
+    hello: Option<EngineHello>,
+    restarts: u32,
+    starts: u32,
+    down: Option<String>,
+    next_id: u64,
+    faults: Vec<String>,
+}
+
+/// A process engine. Calls are serialized (one process answers one batch at a
+/// time); answers are kept by case, so a campaign that asked for them in
+/// batches ([`ProcessEngine::prefetch`]) finds them when it judges case by case.
+pub struct ProcessEngine {
+    spec: ProcessSpec,
+    state: Mutex<State>,
+    memo: Mutex<HashMap<String, Reply>>,
+}
+
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|p| p.into_inner())
+}
+
+impl ProcessEngine {
+    /// Starts the engine and shakes hands. An engine that cannot start or
+    /// answers the handshake wrongly is returned marked down (every case
+    /// `FAILED` with the reason; [`ProcessEngine::down`] says it), so the rest of
+    /// the run still happens.
+    pub fn start(spec: ProcessSpec) -> Self {
+        let engine = ProcessEngine {
+            spec,
+            state: Mutex::new(State {
+                running: None,
+                hello: None,
+                restarts: 0,
+                starts: 0,
+                down: None,
+                next_id: 1,
+                faults: Vec::new(),
+            }),
+            memo: Mutex::new(HashMap::new()),
+        };
+        {
+            let mut st = lock(&engine.state);
+            if let Err(e) = engine.launch(&mut st) {
+                let why = format!("the handshake failed: {e}");
+                fault(&mut st, &why);
+                st.down = Some(why);
+            }
+        }
+        engine
+    }
+
+    /// Its spec.
+    pub fn spec(&self) -> &ProcessSpec {
+        &self.spec
+    }
+
+    /// Its hello, once it gave one.
+    pub fn hello(&self) -> Option<EngineHello> {
+        lock(&self.state).hello.clone()
+    }
+
+    /// Why it is down, if it is.
+    pub fn down(&self) -> Option<String> {
+        lock(&self.state).down.clone()
+    }
+
+    /// What the provenance shows.
+    pub fn info(&self) -> ProcessInfo {
+        let st = lock(&self.state);
+        ProcessInfo {
+            command: self.spec.command_line(),
+            hello: st.hello.clone(),
+            restarts: st.restarts,
+            down: st.down.clone(),
+            timeout_seconds: self.spec.timeout.as_secs_f64(),
+            faults: st.faults.clone(),
+        }
+    }
+
+    /// The pairs it said it answers.
+    pub fn supports(&self, pair: Pair) -> bool {
+        lock(&self.state).hello.as_ref().is_some_and(|h| h.capabilities.contains(&Capability::of(pair)))
+    }
+
+    /// Its answer to one case: kept from an earlier batch, or asked now.
+    pub fn answer(&self, lc: &LoadedCase) -> Reply {
+        let wire = WireCase::of(lc);
+        let key = case_key(&wire);
+        if let Some(r) = lock(&self.memo).get(&key) {
+            return r.clone();
+        }
+        self.ask(vec![(key, lc.case.query, lc.case.pair())])
+            .pop()
+            .unwrap_or(Reply { outcome: Outcome::Failed("no reply".into()), ns: None })
+    }
+
+    /// Asks for every case of `cases` it has not answered yet, in batches, and
+    /// keeps the answers for [`ProcessEngine::answer`].
+    pub fn prefetch<'a>(&self, cases: impl IntoIterator<Item = &'a LoadedCase>) {
+        let mut want = Vec::new();
+        {
+            let memo = lock(&self.memo);
+            let mut seen = std::collections::HashSet::new();
+            for lc in cases {
+                let key = case_key(&WireCase::of(lc));
+                if !memo.contains_key(&key) && seen.insert(key.clone()) {
+                    want.push((key, lc.case.query, lc.case.pair()));
+                }
+            }
+        }
+        self.ask(want);
+    }
+
+    /// Asks for `cases` (wire JSON, query, pair) in batches; every reply is kept.
+    fn ask(&self, cases: Vec<(String, Query, Option<Pair>)>) -> Vec<Reply> {
+        let mut st = lock(&self.state);
+        let mut replies: Vec<Option<Reply>> = vec![None; cases.len()];
+        let mut sent = Vec::new();
+        for (i, (_, _, pair)) in cases.iter().enumerate() {
+            let capable =
+                st.hello.as_ref().is_some_and(|h| pair.is_some_and(|p| h.capabilities.contains(&Capability::of(p))));
+            if st.down.is_none() && !capable {
+                replies[i] = Some(Reply {
+                    outcome: Outcome::Unsupported("not among the engine's capabilities".into()),
+                    ns: None,
+                });
+            } else {
+                sent.push(i);
+            }
+        }
+        for chunk in sent.chunks(self.spec.batch.max(1)) {
+            let batch: Vec<(&str, Query)> = chunk.iter().map(|&i| (cases[i].0.as_str(), cases[i].1)).collect();
+            let got = self.exchange(&mut st, &batch);
+            for (&i, r) in chunk.iter().zip(got) {
+                replies[i] = Some(r);
+            }
+        }
+        drop(st);
+        let replies: Vec<Reply> = replies
+            .into_iter()
+            .map(|r| r.unwrap_or(Reply { outcome: Outcome::Failed("no reply".into()), ns: None }))
+            .collect();
+        let mut memo = lock(&self.memo);
+        for ((key, _, _), r) in cases.into_iter().zip(&replies) {
+            memo.insert(key, r.clone());
+        }
+        replies
+    }
+
+    /// One batch: sent, answered or failed. A fault fails every case of the
+    /// batch, kills the process, and leaves the next batch to restart it.
+    fn exchange(&self, st: &mut State, batch: &[(&str, Query)]) -> Vec<Reply> {
+        let failed = |why: &str| {
+            batch.iter().map(|_| Reply { outcome: Outcome::Failed(why.to_string()), ns: None }).collect::<Vec<_>>()
+        };
+        if let Some(down) = &st.down {
+            return failed(&format!("the engine is down: {down}"));
+        }
+        if st.running.is_none() {
+            if st.restarts >= MAX_RESTARTS {
+                let why = format!(
+                    "restarted {MAX_RESTARTS} times; the last fault: {}",
+                    st.faults.last().map(String::as_str).unwrap_or("none")
+                );
+                st.down = Some(why.clone());
+                return failed(&format!("the engine is down: {why}"));
+            }
+            st.restarts += 1;
+            if let Err(e) = self.launch(st) {
+                let why = format!("restart {} failed: {e}", st.restarts);
+                fault(st, &why);
+                return failed(&why);
+            }
+        }
+        let id = st.next_id;
+        st.next_id += 1;
+        let mut line = format!("{{\"type\":\"batch\",\"id\":{id},\"cases\":[");
+        for (k, (json, _)) in batch.iter().enumerate() {
+            if k > 0 {
+                line.push(',');
+            }
+            line.push_str(json);
+        }
+        line.push_str("]}");
+        match self.round_trip(st, &line, batch, id) {
+            Ok(replies) => replies,
+            Err(why) => {
+                let why = format!("batch {id}: {why}");
+                fault(st, &why);
+                self.kill(st);
+                failed(&why)
+            }
+        }
+    }
+
+    /// Sends a batch line and reads its answers.
+    fn round_trip(&self, st: &mut State, line: &str, batch: &[(&str, Query)], id: u64) -> Result<Vec<Reply>, String> {
+        let timeout = self.spec.timeout;
+        let run = st.running.as_mut().ok_or("the engine is not running")?;
+        let deadline = Instant::now() + timeout;
+        if run.to_engine.send(format!("{line}\n")).is_err() {
+            return Err(gone(run, "before the batch was sent"));
+        }
+        let text = read_line(run, deadline, timeout)?;
+        let msg = parse(&text, run.line_no)?;
+        let FromEngine::Answers { id: got_id, answers, ns } = msg else {
+            return Err(format!("line {} of the engine's output: expected `answers`, got `hello`", run.line_no));
+        };
+        if got_id != id {
+            return Err(format!("line {}: answered batch {got_id}, expected {id}", run.line_no));
+        }
+        if answers.len() != batch.len() {
+            return Err(format!("line {}: answered {} cases of {}", run.line_no, answers.len(), batch.len()));
+        }
+        let per_case = ns.map(|t| t / batch.len().max(1) as f64);
+        Ok(answers
+            .iter()
+            .zip(batch)
+            .map(|(e, (_, q))| Reply {
+                outcome: match e.said(*q) {
+                    Said::Answer(a) => Outcome::Answer(a),
+                    Said::Unsupported(u) => Outcome::Unsupported(u),
+                    Said::Error(m) => Outcome::Failed(m),
+                },
+                ns: e.ns.or(per_case).filter(|t| t.is_finite() && *t >= 0.0),
+            })
+            .collect())
+    }
+
+    /// Starts the process and shakes hands.
+    fn launch(&self, st: &mut State) -> Result<(), String> {
+        st.starts += 1;
+        let mut child = Command::new(&self.spec.program)
+            .args(&self.spec.args)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .map_err(|e| format!("cannot start `{}`: {e}", self.spec.command_line()))?;
+        let (Some(stdin), Some(stdout), Some(stderr)) = (child.stdin.take(), child.stdout.take(), child.stderr.take())
+        else {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err("no pipes to the engine".into());
+        };
+        let (to_engine, outbox) = mpsc::channel::<String>();
+        std::thread::spawn(move || {
+            let mut stdin = stdin;
+            for line in outbox {
+                if stdin.write_all(line.as_bytes()).and_then(|()| stdin.flush()).is_err() {
+                    break;
+                }
+            }
+        });
+        let (tx, lines) = mpsc::channel();
+        std::thread::spawn(move || {
+            let mut r = BufReader::new(stdout);
+            loop {
+                let mut buf = Vec::new();
+                let line = match r.read_until(b'\n', &mut buf) {
+                    Ok(0) => Line::End,
+                    Ok(_) => match String::from_utf8(buf) {
+                        Ok(s) => Line::Text(s),
+                        Err(e) => Line::Unreadable(format!("not UTF-8: {e}")),
+                    },
+                    Err(e) => Line::Unreadable(e.to_string()),
+                };
+                let end = !matches!(line, Line::Text(_));
+                if tx.send(line).is_err() || end {
+                    break;
+                }
+            }
+        });
+        let tail = Arc::new(Mutex::new(VecDeque::new()));
+        let keep = Arc::clone(&tail);
+        std::thread::spawn(move || {
+            let mut r = BufReader::new(stderr);
+            let mut buf = Vec::new();
+            loop {
+                buf.clear();
+                match r.read_until(b'\n', &mut buf) {
+                    Ok(0) | Err(_) => break,
+                    Ok(_) => {
+                        let mut t = lock(&keep);
+                        if t.len() == STDERR_LINES {
+                            t.pop_front();
+                        }
+                        t.push_back(String::from_utf8_lossy(&buf).trim_end().to_string());
+                    }
+                }
+            }
+        });
+        let mut run = Running { child, to_engine, lines, stderr: tail, line_no: 0 };
+        let hello = serde_json::to_string(&ToEngine::Hello { protocol: PROTOCOL.into() }).unwrap_or_default();
+        let shake = (|| {
+            if run.to_engine.send(format!("{hello}\n")).is_err() {
+                return Err(gone(&mut run, "before the hello was sent"));
+            }
+            let text = read_line(&mut run, Instant::now() + self.spec.timeout, self.spec.timeout)?;
+            match parse(&text, run.line_no)? {
+                FromEngine::Hello(h) if h.protocol == PROTOCOL => Ok(h),
+                FromEngine::Hello(h) => {
+                    Err(format!("the engine speaks `{}`; crashtest speaks `{PROTOCOL}`", h.protocol))
+                }
+                FromEngine::Answers { .. } => Err("expected `hello`, got `answers`".into()),
+            }
+        })();
+        match shake {
+            Ok(h) => {
+                st.hello = Some(h);
+                st.running = Some(run);
+                Ok(())
+            }
+            Err(e) => {
+                let _ = run.child.kill();
+                let _ = run.child.wait();
+                Err(e)
+            }
+        }
+    }
+
+    /// Kills the running process (a fault ended its session).
+    fn kill(&self, st: &mut State) {
+        if let Some(mut run) = st.running.take() {
+            let _ = run.child.kill();
+            let _ = run.child.wait();
+        }
+    }
+
+    /// Asks the engine to exit, and kills it if it has not within
+    /// [`EXIT_GRACE`].
+    pub fn shutdown(&self) {
+        let mut st = lock(&self.state);
+        if let Some(mut run) = st.running.take() {
+            let bye = serde_json::to_string(&ToEngine::Shutdown).unwrap_or_default();
+            let _ = run.to_engine.send(format!("{bye}\n"));
+            drop(run.to_engine);
+            let until = Instant::now() + EXIT_GRACE;
+            loop {
+                match run.child.try_wait() {
+                    Ok(Some(_)) => break,
+                    Ok(None) if Instant::now() < until => std::thread::sleep(Duration::from_millis(10)),
+                    _ => {
+                        let _ = run.child.kill();
+                        let _ = run.child.wait();
+                        break;
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl Drop for ProcessEngine {
+    fn drop(&mut self) {
+        self.shutdown();
+    }
+}
+
+impl std::fmt::Debug for ProcessEngine {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ProcessEngine").field("spec", &self.spec).finish_non_exhaustive()
+    }
+}
+
+/// A case's key in the kept answers: its wire form.
+fn case_key(w: &WireCase) -> String {
+    serde_json::to_string(w).unwrap_or_default()
+}
+
+fn fault(st: &mut State, why: &str) {
+    if st.faults.len() < 100 {
+        st.faults.push(why.to_string());
+    }
+}
+
+/// The next line of the engine's output, by `deadline`.
+fn read_line(run: &mut Running, deadline: Instant, timeout: Duration) -> Result<String, String> {
+    let wait = deadline.saturating_duration_since(Instant::now());
+    match run.lines.recv_timeout(wait) {
+        Ok(Line::Text(t)) => {
+            run.line_no += 1;
+            Ok(t)
+        }
+        Ok(Line::Unreadable(e)) => {
+            run.line_no += 1;
+            Err(format!("line {} of the engine's output is unreadable: {e}", run.line_no))
+        }
+        Ok(Line::End) | Err(RecvTimeoutError::Disconnected) => Err(gone(run, "before it answered")),
+        Err(RecvTimeoutError::Timeout) => Err(format!("no answer within {} s", timeout.as_secs_f64())),
+    }
+}
+
+/// The message of an engine whose output ended: its exit status (waited for
+/// briefly) and its last lines of standard error.
+fn gone(run: &mut Running, when: &str) -> String {
+    let until = Instant::now() + Duration::from_millis(500);
+    let status = loop {
+        match run.child.try_wait() {
+            Ok(Some(s)) => break s.to_string(),
+            Ok(None) if Instant::now() < until => std::thread::sleep(Duration::from_millis(5)),
+            _ => break "still running, output closed".to_string(),
+        }
+    };
+    // Give the standard error reader a moment to take the last lines.
+    std::thread::sleep(Duration::from_millis(20));
+    let tail = lock(&run.stderr).iter().cloned().collect::<Vec<_>>().join(" | ");
+    let tail = if tail.is_empty() { String::new() } else { format!("; its standard error ends: {tail}") };
+    format!("the engine exited ({status}) {when}{tail}")
+}
+
+/// A line of the engine's output as a message; the error names the line, and
+/// the field (or the column, for JSON syntax).
+fn parse(text: &str, line_no: u64) -> Result<FromEngine, String> {
+    let de = &mut serde_json::Deserializer::from_str(text.trim_end());
+    serde_path_to_error::deserialize::<_, FromEngine>(de).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        let preview: String = text.trim_end().chars().take(120).collect();
+        if inner.is_syntax() || inner.is_eof() || path == "." {
+            // serde's position counts lines within this one line: say the column.
+            let text = inner.to_string();
+            let what = text.rsplit_once(" at line ").map_or(text.as_str(), |(w, _)| w);
+            let column = inner.column();
+            format!("line {line_no} of the engine's output, column {column}, is not a message: {what} (`{preview}`)")
+        } else {
+            format!("line {line_no} of the engine's output, field `{path}`: {inner}")
+        }
+    })
+}

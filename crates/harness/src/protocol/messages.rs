@@ -1,0 +1,424 @@
+//! The messages of `crashtest-engine/1` (`docs/PROTOCOL.md`), as types: the
+//! JSON Schema of every message is generated from them
+//! ([`json_schema`]), and the conversions between a case or an answer and its
+//! wire form live here and nowhere else.
+
+use crate::case::{Case, MeshSpec, Query, Shape};
+use crate::engine::Answer;
+use crate::load::LoadedCase;
+use crashtest_core::geom::{
+    Aabb, Ball, BarycentricAnswer, BoundsAnswer, Contact, ContactAnswer, IntersectAnswer, P3, ResponseAnswer,
+    SegmentHit, Toi, ToiAnswer,
+};
+use crashtest_core::pair::{Pair, ShapeKind};
+use schemars::JsonSchema;
+use serde::{Deserialize, Deserializer, Serialize};
+use std::collections::BTreeMap;
+
+/// The protocol's name and version, as the handshake spells it.
+pub const PROTOCOL: &str = "crashtest-engine/1";
+
+/// A line crashtest writes to an engine.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+pub enum ToEngine {
+    /// The first line: the protocol crashtest speaks.
+    Hello {
+        /// [`PROTOCOL`].
+        protocol: String,
+    },
+    /// Cases to answer, one entry each in the reply.
+    Batch {
+        /// Counts batches from 1; the reply repeats it.
+        id: u64,
+        /// The cases, in the fixture format without `expect`, `tol` and `source`.
+        cases: Vec<WireCase>,
+    },
+    /// The engine exits.
+    Shutdown,
+}
+
+/// A line an engine writes to crashtest.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+pub enum FromEngine {
+    /// The engine's answer to crashtest's hello.
+    Hello(EngineHello),
+    /// The answers to one batch.
+    Answers {
+        /// The batch's `id`.
+        id: u64,
+        /// One entry per case, in the batch's order.
+        answers: Vec<Entry>,
+        /// The engine's own time for the whole batch, in nanoseconds.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        ns: Option<f64>,
+    },
+}
+
+/// What an engine says of itself.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct EngineHello {
+    /// [`PROTOCOL`].
+    pub protocol: String,
+    /// Its name in reports.
+    pub name: String,
+    /// Its version, for the report's provenance.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub version: Option<String>,
+    /// Bits of mantissa of the arithmetic it uses (53 for f64, 24 for f32).
+    pub precision: u32,
+    /// The query pairs it answers.
+    pub capabilities: Vec<Capability>,
+    /// What the report's provenance should echo (library versions, settings).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub provenance: BTreeMap<String, String>,
+}
+
+/// One query pair of the pair table, by its kinds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Capability {
+    /// The query.
+    pub query: Query,
+    /// Shape `a`'s kind.
+    pub a: WireKind,
+    /// Shape `b`'s kind (absent for `bounds`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub b: Option<WireKind>,
+}
+
+/// A shape kind, as the fixture format spells it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+#[allow(missing_docs, reason = "each is the shape of the fixture format with that key")]
+pub enum WireKind {
+    Sphere,
+    Plane,
+    Segment,
+    Triangle,
+    Point,
+    Points,
+    Mesh,
+    Aabb,
+}
+
+impl From<ShapeKind> for WireKind {
+    fn from(k: ShapeKind) -> Self {
+        match k {
+            ShapeKind::Sphere => WireKind::Sphere,
+            ShapeKind::Plane => WireKind::Plane,
+            ShapeKind::Segment => WireKind::Segment,
+            ShapeKind::Triangle => WireKind::Triangle,
+            ShapeKind::Point => WireKind::Point,
+            ShapeKind::Points => WireKind::Points,
+            ShapeKind::Mesh => WireKind::Mesh,
+            ShapeKind::Aabb => WireKind::Aabb,
+        }
+    }
+}
+
+impl Capability {
+    /// The capability of answering `pair`.
+    pub fn of(pair: Pair) -> Self {
+        let row = pair.row();
+        Capability { query: row.query, a: row.a.into(), b: row.b.map(Into::into) }
+    }
+
+    /// The pair it names, if the pair table has it.
+    pub fn pair(&self) -> Option<Pair> {
+        Pair::ALL.into_iter().find(|p| Capability::of(*p) == *self)
+    }
+}
+
+/// A case on the wire: the fixture format's case without `expect`, `tol` and
+/// `source`, its meshes inline.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WireCase {
+    /// The case's name.
+    pub name: String,
+    /// What is asked.
+    pub query: Query,
+    /// The first shape.
+    pub a: Shape,
+    /// The second shape (absent for `bounds`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub b: Option<Shape>,
+    /// End of the time interval (`toi`: always written).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t_max: Option<f64>,
+    /// Coefficient of restitution (`response`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restitution: Option<f64>,
+}
+
+impl WireCase {
+    /// The wire form of a loaded case: mesh files replaced by their vertices
+    /// and faces, `t_max` written out for `toi`.
+    pub fn of(lc: &LoadedCase) -> Self {
+        let c = &lc.case;
+        let inline = |s: &Shape, m: &Option<crate::mesh::Mesh>| match (s, m) {
+            (Shape::Mesh(spec), Some(mesh)) => Shape::Mesh(MeshSpec {
+                vertices: Some(mesh.vertices.clone()),
+                triangles: Some(mesh.triangles.clone()),
+                file: None,
+                velocity: spec.velocity,
+            }),
+            _ => s.clone(),
+        };
+        WireCase {
+            name: c.name.clone(),
+            query: c.query,
+            a: inline(&c.a, &lc.meshes[0]),
+            b: c.b.as_ref().map(|b| inline(b, &lc.meshes[1])),
+            t_max: (c.query == Query::Toi).then(|| c.t_max()),
+            restitution: c.restitution,
+        }
+    }
+
+    /// The case it carries (no `expect`), for an engine that reads the wire.
+    pub fn to_case(&self) -> Case {
+        Case {
+            name: self.name.clone(),
+            source: String::new(),
+            query: self.query,
+            a: self.a.clone(),
+            b: self.b.clone(),
+            expect: None,
+            tol: None,
+            t_max: self.t_max,
+            restitution: self.restitution,
+        }
+    }
+}
+
+/// One entry of an `answers` message: exactly one of `answer`, `unsupported`
+/// and `error`, and the engine's own time for the case.
+#[derive(Clone, Debug, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Entry {
+    /// The answer, in the `expect` vocabulary of the case's query.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub answer: Option<WireAnswer>,
+    /// The engine does not answer this case, and why.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unsupported: Option<String>,
+    /// The engine failed on this case, and how.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+    /// The engine's own time for this case, in nanoseconds.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ns: Option<f64>,
+}
+
+/// What an entry says of its case.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Said {
+    /// An answer that fits the case's query.
+    Answer(Answer),
+    /// `unsupported`, with the reason.
+    Unsupported(String),
+    /// `error`, with the message; or an entry that breaks the protocol, with
+    /// what is wrong.
+    Error(String),
+}
+
+impl Entry {
+    /// What the entry says about a case of `query`; an entry that does not fit
+    /// (none or several of its fields, an answer that does not fit the query) is
+    /// an error naming the field.
+    pub fn said(&self, query: Query) -> Said {
+        match (&self.answer, &self.unsupported, &self.error) {
+            (Some(a), None, None) => match a.to_answer(query) {
+                Ok(a) => Said::Answer(a),
+                Err(e) => Said::Error(format!("protocol violation: answer.{e}")),
+            },
+            (None, Some(u), None) => Said::Unsupported(u.clone()),
+            (None, None, Some(e)) => Said::Error(e.clone()),
+            _ => Said::Error(
+                "protocol violation: an entry holds exactly one of `answer`, `unsupported` and `error`".into(),
+            ),
+        }
+    }
+
+    /// The entry of an answer.
+    pub fn answer(a: &Answer, ns: Option<f64>) -> Self {
+        Entry { answer: Some(WireAnswer::of(a)), ns, ..Default::default() }
+    }
+}
+
+/// An answer on the wire: the fixture format's `expect` vocabulary, with the
+/// engine's bounding sphere (`sphere`) for `bounds`. Only the fields of the
+/// case's query may be present.
+#[derive(Clone, Debug, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WireAnswer {
+    /// `contact`: the contact, or `null`.
+    #[serde(default, deserialize_with = "present", skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<Contact>")]
+    pub contact: Option<Option<Contact>>,
+    /// `intersect`: the first hit, or `null`.
+    #[serde(default, deserialize_with = "present", skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<SegmentHit>")]
+    pub hit: Option<Option<SegmentHit>>,
+    /// `intersect`: the segment is parallel to the surface.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parallel: Option<bool>,
+    /// The answer is a documented fallback for input the rules do not define.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub degenerate: Option<bool>,
+    /// `barycentric`: `[α, β, γ]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub barycentric: Option<[f64; 3]>,
+    /// `bounds`: the AABB.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub aabb: Option<Aabb>,
+    /// `bounds`: the engine's bounding sphere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sphere: Option<Ball>,
+    /// `overlap`: whether the boxes overlap.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub overlap: Option<bool>,
+    /// `toi`: the first contact, or `null`.
+    #[serde(default, deserialize_with = "present", skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<Toi>")]
+    pub toi: Option<Option<Toi>>,
+    /// `response`: `a`'s velocity after the impulse.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity_a: Option<P3>,
+    /// `response`: `b`'s velocity after the impulse.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity_b: Option<P3>,
+}
+
+/// A field present, `null` kept apart from absence.
+fn present<'de, D: Deserializer<'de>, T: Deserialize<'de>>(d: D) -> Result<Option<Option<T>>, D::Error> {
+    Option::<T>::deserialize(d).map(Some)
+}
+
+impl WireAnswer {
+    /// The wire form of an answer (every field it has, so that reading it back
+    /// gives the same answer bit for bit).
+    pub fn of(a: &Answer) -> Self {
+        let mut w = WireAnswer::default();
+        match a {
+            Answer::Contact(c) => {
+                w.contact = Some(c.contact);
+                w.degenerate = Some(c.degenerate);
+            }
+            Answer::Intersect(i) => {
+                w.hit = Some(i.hit);
+                w.parallel = Some(i.parallel);
+                w.degenerate = Some(i.degenerate);
+            }
+            Answer::Barycentric(b) => {
+                w.barycentric = Some(b.coords);
+                w.degenerate = Some(b.degenerate);
+            }
+            Answer::Bounds(b) => {
+                w.aabb = b.aabb;
+                w.sphere = b.sphere;
+            }
+            Answer::Overlap(o) => w.overlap = Some(*o),
+            Answer::Toi(t) => {
+                w.toi = Some(t.toi);
+                w.degenerate = Some(t.degenerate);
+            }
+            Answer::Response(r) => {
+                w.velocity_a = Some(r.velocity_a);
+                w.velocity_b = Some(r.velocity_b);
+                w.degenerate = Some(r.degenerate);
+            }
+        }
+        w
+    }
+
+    /// The fields present, by name.
+    fn present(&self) -> Vec<&'static str> {
+        let mut out = Vec::new();
+        let mut has = |on: bool, name| {
+            if on {
+                out.push(name)
+            }
+        };
+        has(self.contact.is_some(), "contact");
+        has(self.hit.is_some(), "hit");
+        has(self.parallel.is_some(), "parallel");
+        has(self.degenerate.is_some(), "degenerate");
+        has(self.barycentric.is_some(), "barycentric");
+        has(self.aabb.is_some(), "aabb");
+        has(self.sphere.is_some(), "sphere");
+        has(self.overlap.is_some(), "overlap");
+        has(self.toi.is_some(), "toi");
+        has(self.velocity_a.is_some(), "velocity_a");
+        has(self.velocity_b.is_some(), "velocity_b");
+        out
+    }
+
+    /// The answer to a case of `query`; the error names the field that is
+    /// missing or does not belong to the query.
+    pub fn to_answer(&self, query: Query) -> Result<Answer, String> {
+        let allowed: &[&str] = match query {
+            Query::Contact => &["contact", "degenerate"],
+            Query::Intersect => &["hit", "parallel", "degenerate"],
+            Query::Barycentric => &["barycentric", "degenerate"],
+            Query::Bounds => &["aabb", "sphere"],
+            Query::Overlap => &["overlap"],
+            Query::Toi => &["toi", "degenerate"],
+            Query::Response => &["velocity_a", "velocity_b", "degenerate"],
+        };
+        if let Some(f) = self.present().into_iter().find(|f| !allowed.contains(f)) {
+            return Err(format!("{f}: not a field of a {query} answer (its fields: {})", allowed.join(", ")));
+        }
+        let need = |name: &str| format!("{name}: missing (a {query} answer has it)");
+        let degenerate = self.degenerate.unwrap_or(false);
+        let answer = match query {
+            Query::Contact => {
+                Answer::Contact(ContactAnswer { contact: self.contact.ok_or_else(|| need("contact"))?, degenerate })
+            }
+            Query::Intersect => Answer::Intersect(IntersectAnswer {
+                hit: self.hit.ok_or_else(|| need("hit"))?,
+                parallel: self.parallel.unwrap_or(false),
+                degenerate,
+            }),
+            Query::Barycentric => Answer::Barycentric(BarycentricAnswer {
+                coords: self.barycentric.ok_or_else(|| need("barycentric"))?,
+                degenerate,
+            }),
+            Query::Bounds => {
+                if self.aabb.is_none() && self.sphere.is_none() {
+                    return Err("aabb: missing (a bounds answer has `aabb`, `sphere` or both)".into());
+                }
+                Answer::Bounds(BoundsAnswer { aabb: self.aabb, sphere: self.sphere })
+            }
+            Query::Overlap => Answer::Overlap(self.overlap.ok_or_else(|| need("overlap"))?),
+            Query::Toi => Answer::Toi(ToiAnswer { toi: self.toi.ok_or_else(|| need("toi"))?, degenerate }),
+            Query::Response => Answer::Response(ResponseAnswer {
+                velocity_a: self.velocity_a.ok_or_else(|| need("velocity_a"))?,
+                velocity_b: self.velocity_b.ok_or_else(|| need("velocity_b"))?,
+                degenerate,
+            }),
+        };
+        Ok(answer)
+    }
+}
+
+/// Every message of the protocol, for the schema.
+#[derive(JsonSchema)]
+#[serde(untagged)]
+#[allow(dead_code, reason = "a type for the schema generator only")]
+enum Message {
+    /// crashtest → engine.
+    ToEngine(ToEngine),
+    /// engine → crashtest.
+    FromEngine(FromEngine),
+}
+
+/// The JSON Schema of every message of `crashtest-engine/1` (committed as
+/// `schema/crashtest-engine-1.schema.json`; a test keeps it current).
+pub fn json_schema() -> String {
+    let schema = schemars::schema_for!(Message);
+    serde_json::to_string_pretty(&schema).unwrap_or_default() + "\n"
+}

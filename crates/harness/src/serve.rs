@@ -1,0 +1,113 @@
+//! An in-process engine served over `crashtest-engine/1` (`docs/PROTOCOL.md`):
+//! what `crashtest-engine-collide` runs, and what a Rust engine's author can run
+//! to put their engine behind the protocol.
+//!
+//! Each answer is written in the shortest form that reads back to the same f64,
+//! so an engine judged through the protocol is judged on exactly the bits it
+//! computed (a test compares collide through the protocol with collide in
+//! process, bit for bit).
+
+use crate::case::Shape;
+use crate::check::run_caught;
+use crate::engine::Engine;
+use crate::judge::Verdict;
+use crate::load::LoadedCase;
+use crate::mesh::Mesh;
+use crate::protocol::messages::{Capability, EngineHello, Entry, FromEngine, PROTOCOL, ToEngine, WireCase};
+use crashtest_core::pair::Pair;
+use std::collections::BTreeMap;
+use std::io::{BufRead, Write};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// What a served engine says of itself beyond its name and precision.
+#[derive(Clone, Debug, Default)]
+pub struct Served {
+    /// Its version.
+    pub version: Option<String>,
+    /// The pairs it answers.
+    pub capabilities: Vec<Pair>,
+    /// What the report's provenance should echo.
+    pub provenance: BTreeMap<String, String>,
+}
+
+/// Serves `engine` on `input` and `output` until `shutdown` or the end of
+/// the input. A line that is not a message is answered on standard error and
+/// skipped (crashtest never sends one). Returns the output's error, if writing
+/// failed.
+pub fn serve(engine: &Engine, served: &Served, input: impl BufRead, mut output: impl Write) -> std::io::Result<()> {
+    for line in input.lines() {
+        let line = line?;
+        if line.trim().is_empty() {
+            continue;
+        }
+        let msg: ToEngine = match serde_json::from_str(&line) {
+            Ok(m) => m,
+            Err(e) => {
+                eprintln!("{}: not a message: {e}", engine.name);
+                continue;
+            }
+        };
+        let reply = match msg {
+            ToEngine::Hello { .. } => FromEngine::Hello(hello_of(engine, served)),
+            ToEngine::Batch { id, cases } => {
+                FromEngine::Answers { id, answers: cases.iter().map(|c| answer(engine, c)).collect(), ns: None }
+            }
+            ToEngine::Shutdown => return Ok(()),
+        };
+        let text = serde_json::to_string(&reply).map_err(std::io::Error::other)?;
+        writeln!(output, "{text}")?;
+        output.flush()?;
+    }
+    Ok(())
+}
+
+/// The hello a served engine gives (for tests and the conformance run).
+pub fn hello_of(engine: &Engine, served: &Served) -> EngineHello {
+    EngineHello {
+        protocol: PROTOCOL.into(),
+        name: engine.name.clone(),
+        version: served.version.clone(),
+        precision: engine.precision.unwrap_or(53),
+        capabilities: served.capabilities.iter().map(|p| Capability::of(*p)).collect(),
+        provenance: served.provenance.clone(),
+    }
+}
+
+/// One case's entry: the answer, `unsupported`, or the error (a caught panic,
+/// a non-finite number, a mesh that does not hold together).
+fn answer(engine: &Engine, wire: &WireCase) -> Entry {
+    let lc = match loaded(wire) {
+        Ok(lc) => lc,
+        Err(e) => return Entry { error: Some(e), ..Default::default() },
+    };
+    let start = Instant::now();
+    let result = run_caught(engine, &lc);
+    let ns = Some(start.elapsed().as_nanos() as f64);
+    match result {
+        Ok(a) if crate::judge::all_finite(&a) => Entry::answer(&a, ns),
+        Ok(_) => Entry { error: Some("non-finite number in the answer".into()), ns, ..Default::default() },
+        Err(Verdict::Unsupported { reason }) => Entry { unsupported: Some(reason), ns, ..Default::default() },
+        Err(v) => Entry { error: Some(format!("{v:?}")), ns, ..Default::default() },
+    }
+}
+
+/// A wire case as a loaded case: its inline meshes built.
+fn loaded(wire: &WireCase) -> Result<LoadedCase, String> {
+    let mesh = |s: Option<&Shape>, field: &str| -> Result<Option<Mesh>, String> {
+        match s {
+            Some(Shape::Mesh(m)) => match (&m.vertices, &m.triangles) {
+                (Some(v), Some(t)) => {
+                    Mesh::new(v.clone(), t.clone()).map(Some).map_err(|(f, msg)| format!("{field}.mesh.{f}: {msg}"))
+                }
+                _ => Err(format!("{field}.mesh: a mesh on the wire is inline (vertices and triangles)")),
+            },
+            _ => Ok(None),
+        }
+    };
+    Ok(LoadedCase {
+        file: PathBuf::from("<protocol>"),
+        case: wire.to_case(),
+        meshes: [mesh(Some(&wire.a), "a")?, mesh(wire.b.as_ref(), "b")?],
+    })
+}
