@@ -85,6 +85,11 @@ enum Command {
         #[arg(long, default_value = "reports")]
         out: PathBuf,
     },
+    /// Process engines (docs/PROTOCOL.md).
+    Engine {
+        #[command(subcommand)]
+        action: EngineCommand,
+    },
     /// Print the JSON Schema of the fixture format (crashtest-fixture/1), or
     /// with --protocol of the engine protocol's messages (crashtest-engine/1).
     Schema {
@@ -138,6 +143,29 @@ enum Command {
         /// exact point's label) as a fixture file for `crashtest check`.
         #[arg(long, value_name = "LABEL")]
         cases_at: Option<String>,
+    },
+}
+
+/// What `crashtest engine` does.
+#[derive(Subcommand)]
+enum EngineCommand {
+    /// The conformance run of a command speaking crashtest-engine/1: the
+    /// handshake, the fixture corpus judged against the referee, malformed-case
+    /// probes. Prints what it supports, its scores and every protocol violation;
+    /// exit 1 when there was one.
+    Test {
+        /// Fixture files or folders to send.
+        #[arg(long, default_value = "fixtures")]
+        fixtures: Vec<PathBuf>,
+        /// The time limit for one batch, in seconds.
+        #[arg(long, value_name = "SECONDS", default_value_t = harness::protocol::client::DEFAULT_TIMEOUT.as_secs_f64())]
+        engine_timeout: f64,
+        /// Print the result as JSON.
+        #[arg(long)]
+        json: bool,
+        /// The engine's command and its arguments.
+        #[arg(required = true, trailing_var_arg = true, allow_hyphen_values = true)]
+        command: Vec<String>,
     },
 }
 
@@ -430,6 +458,35 @@ fn main() -> ExitCode {
                     ExitCode::from(1)
                 }
             }
+        }
+        Command::Engine { action: EngineCommand::Test { fixtures, engine_timeout, json, command } } => {
+            let name = command.first().map(|p| p.rsplit('/').next().unwrap_or(p).to_string()).unwrap_or_default();
+            let mut spec = match crashtest::ProcessSpec::new(&name, command) {
+                Ok(s) => s,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            if !(engine_timeout.is_finite() && engine_timeout > 0.0 && engine_timeout <= 1e6) {
+                eprintln!("error: --engine-timeout {engine_timeout}: a number of seconds above 0 and at most 1e6");
+                return ExitCode::from(2);
+            }
+            spec.timeout = std::time::Duration::from_secs_f64(engine_timeout);
+            let loaded = harness::load::load_paths(&fixtures);
+            for e in &loaded.errors {
+                eprintln!("error: {e}");
+            }
+            let result = harness::conformance::run(spec, &loaded);
+            if json {
+                match serde_json::to_string_pretty(&result) {
+                    Ok(s) => outln!("{s}"),
+                    Err(e) => eprintln!("error: cannot write JSON: {e}"),
+                }
+            } else {
+                out!("{}", harness::conformance::render(&result));
+            }
+            ExitCode::from(if loaded.errors.is_empty() { result.exit_code() as u8 } else { 2 })
         }
         Command::Schema { protocol } => {
             if protocol {

@@ -17,7 +17,8 @@
 //! 1. vocabulary and machinery: [`case`], [`mesh`], [`rng`], [`tolerance`],
 //!    [`load`], [`protocol`] (process engines), [`divergence`], [`engine`],
 //!    [`engines`], [`local`], [`judge`], [`check`], [`serve`] (an engine served
-//!    over the protocol), [`generate`];
+//!    over the protocol), [`conformance`] (a process engine's conformance
+//!    run), [`generate`];
 //! 2. what a report measured ([`summary`]), the campaign's defaults
 //!    ([`defaults`]) and the one timing loop ([`timing`]);
 //! 3. rendering ([`render`]): pages, tables, charts and sections from measured
@@ -35,6 +36,7 @@
 
 pub mod case;
 pub mod check;
+pub mod conformance;
 pub mod defaults;
 pub mod divergence;
 #[cfg(feature = "dynamics")]

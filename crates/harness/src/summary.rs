@@ -183,6 +183,10 @@ pub struct EngineInfo {
     pub name: String,
     /// What it is and its version (`parry3d-f64 0.31.1`, `collide (this commit), f32`).
     pub version: String,
+    /// A process engine's command, hello (with what it asked the provenance
+    /// to echo), restarts, time limit and faults.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub process: Option<crate::protocol::client::ProcessInfo>,
 }
 
 /// Where and how a report was made.

@@ -139,9 +139,12 @@ impl EngineSet {
 
     /// Lets every process engine of the set answer `cases` in batches before
     /// they are judged one by one.
-    pub fn prefetch(&self, cases: &[crate::load::LoadedCase]) {
+    pub fn prefetch<'a, I>(&self, cases: I)
+    where
+        I: IntoIterator<Item = &'a crate::load::LoadedCase> + Clone,
+    {
         for e in &self.judged {
-            e.prefetch(cases);
+            e.prefetch(cases.clone());
         }
     }
 

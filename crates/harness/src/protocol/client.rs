@@ -233,6 +233,18 @@ impl ProcessEngine {
             .unwrap_or(Reply { outcome: Outcome::Failed("no reply".into()), ns: None })
     }
 
+    /// The engine's own mean time per case over the cases of `cases` it
+    /// answered (and timed), with their count; `None` when it timed none.
+    pub fn mean_ns<'a>(&self, cases: impl IntoIterator<Item = &'a LoadedCase>) -> Option<(f64, usize)> {
+        let ns: Vec<f64> = cases
+            .into_iter()
+            .map(|lc| self.answer(lc))
+            .filter(|r| matches!(r.outcome, Outcome::Answer(_)))
+            .filter_map(|r| r.ns)
+            .collect();
+        (!ns.is_empty()).then(|| (ns.iter().sum::<f64>() / ns.len() as f64, ns.len()))
+    }
+
     /// Asks for every case of `cases` it has not answered yet, in batches, and
     /// keeps the answers for [`ProcessEngine::answer`].
     pub fn prefetch<'a>(&self, cases: impl IntoIterator<Item = &'a LoadedCase>) {
@@ -248,6 +260,22 @@ impl ProcessEngine {
             }
         }
         self.ask(want);
+    }
+
+    /// Sends one case written as raw JSON (for the conformance run's
+    /// malformed-case probes; a run sends only loaded cases) and returns what
+    /// the engine said, and whether it was a fault of the process. The answer
+    /// is not kept.
+    pub fn ask_raw(&self, json: &str) -> (Reply, bool) {
+        let query = serde_json::from_str::<serde_json::Value>(json)
+            .ok()
+            .and_then(|v| v.get("query").and_then(|q| q.as_str()).and_then(Query::parse))
+            .unwrap_or(Query::Contact);
+        let mut st = lock(&self.state);
+        let before = st.faults.len();
+        let reply = self.exchange(&mut st, &[(json, query)]).pop();
+        let fault = st.faults.len() > before || st.down.is_some();
+        (reply.unwrap_or(Reply { outcome: Outcome::Failed("no reply".into()), ns: None }), fault)
     }
 
     /// Asks for `cases` (wire JSON, query, pair) in batches; every reply is kept.

@@ -816,8 +816,12 @@ pub(crate) mod fixture {
                 profile: "release".into(),
                 machine: "linux x86_64, 2 cores".into(),
                 engines: vec![
-                    EngineInfo { name: "fast<f32>".into(), version: "collide (this commit), f32".into() },
-                    EngineInfo { name: "exact".into(), version: "referee".into() },
+                    EngineInfo {
+                        name: "fast<f32>".into(),
+                        version: "collide (this commit), f32".into(),
+                        process: None,
+                    },
+                    EngineInfo { name: "exact".into(), version: "referee".into(), process: None },
                 ],
                 seed: 42,
                 cases_per_query: 100,
@@ -901,8 +905,10 @@ pub(crate) mod fixture {
             }
         }
         let mut s = summary();
-        s.provenance.engines =
-            engines.iter().map(|e| EngineInfo { name: e.0.into(), version: format!("{} (sample)", e.0) }).collect();
+        s.provenance.engines = engines
+            .iter()
+            .map(|e| EngineInfo { name: e.0.into(), version: format!("{} (sample)", e.0), process: None })
+            .collect();
         s.stats = stats;
         s.throughput = engines.iter().map(|e| (e.0.to_string(), 1e9 / e.1)).collect();
         s

@@ -253,9 +253,34 @@ pub fn throughput_table(summary: &Summary) -> Table {
 pub fn engines_table(summary: &Summary) -> Table {
     let mut t = Table::new(&[("engine", false), ("version", false)]);
     for e in &summary.provenance.engines {
-        t.rows.push(vec![e.name.clone(), e.version.clone()]);
+        let mut version = e.version.clone();
+        if let Some(p) = &e.process {
+            version.push_str(&process_line(p));
+        }
+        t.rows.push(vec![e.name.clone(), version]);
     }
     t
+}
+
+/// What the provenance says of a process engine beyond its version: what it
+/// asked to be echoed, the time limit, restarts, and whether it went down.
+fn process_line(p: &crate::protocol::client::ProcessInfo) -> String {
+    let mut out = String::new();
+    if let Some(h) = &p.hello {
+        for (k, v) in &h.provenance {
+            out.push_str(&format!("; {k}: {v}"));
+        }
+    }
+    out.push_str(&format!(
+        "; times measured inside the engine; time limit {} s per batch; {} restart{}",
+        p.timeout_seconds,
+        p.restarts,
+        if p.restarts == 1 { "" } else { "s" }
+    ));
+    if let Some(d) = &p.down {
+        out.push_str(&format!("; DOWN: {d}"));
+    }
+    out
 }
 
 /// The provenance as `(field, value)` lines, in the order a report shows them.

@@ -229,6 +229,7 @@ pub fn engine_infos(judged: &[Engine]) -> Vec<EngineInfo> {
                 e.version.clone().unwrap_or_else(|| format!("{}, version not given", e.name)),
                 precision_name(e.precision)
             ),
+            process: e.process().map(|p| p.info()),
         })
         .collect();
     v.push(EngineInfo {
@@ -237,6 +238,7 @@ pub fn engine_infos(judged: &[Engine]) -> Vec<EngineInfo> {
             "exact rationals, {}-bit floats for square roots (dashu 0.6)",
             oracle::referee::PRECISION_BITS
         ),
+        process: None,
     });
     v
 }
@@ -387,9 +389,20 @@ fn inline_meshes(mut case: Case, lc: &LoadedCase) -> Case {
     case
 }
 
+/// A process engine's own times for the cases it answered (measured inside the
+/// engine, so the process and JSON costs are not charged to it): their mean,
+/// as one pass; `None` when it gave no time.
+fn engine_side(p: &crate::protocol::ProcessEngine, cases: &[&LoadedCase]) -> Option<Timing> {
+    let (mean, n) = p.mean_ns(cases.iter().copied())?;
+    Some(Timing { median_ns: mean, min_ns: mean, max_ns: mean, reps: 1, queries: n as u64 })
+}
+
 /// Times `engine` on `cases`: [`TIMING_REPS`] repetitions of a loop over them;
 /// `None` when it answers none of them.
 pub fn time_engine(engine: &Engine, cases: &[&LoadedCase]) -> Option<Timing> {
+    if let Some(p) = engine.process() {
+        return engine_side(p, cases);
+    }
     let answered: Vec<&LoadedCase> =
         cases.iter().copied().filter(|lc| run_caught(engine, lc).is_ok()).take(TIMING_CASES).collect();
     crate::timing::time_each(TIMING_REPS, &answered, |lc| engine.run(lc))
@@ -401,6 +414,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     let set = &config.engines;
     let (judged, referee) = (&set.judged, &set.referee);
     let (cases, input_errors) = cases(config);
+    set.prefetch(&cases);
     let bar = progress_bar(config.progress, cases.len() as u64);
     let results: Vec<CaseResult> = cases
         .par_iter()

@@ -355,6 +355,7 @@ pub fn run(sweep: &Sweep, settings: &Settings, engines: &EngineSet) -> SweepResu
     let judged = &engines.judged;
     let points = sweep.points();
     let all = cases(sweep, settings);
+    engines.prefetch(all.iter().map(|c| &c.case));
     let results: Vec<(bool, Vec<Outcome>)> = all.par_iter().map(|c| outcomes(&check_case(&c.case, engines))).collect();
 
     let walks = sweep.walks();
