@@ -10,6 +10,7 @@ use collide::Vec3;
 use collide::contact::{Contact, contact_sphere_plane};
 use collide::response::{respond_sphere_plane, respond_sphere_sphere};
 use collide::toi::{Halving, toi_halving, toi_sphere_plane, toi_sphere_sphere, toi_sphere_sphere_halving};
+use crashtest_core::vec3::{norm_sqrt_dot, sub};
 use oracle::geom::{P3, Sphere as GSphere};
 use oracle::rapier::{
     self, APEX_FLOOR, BounceRun, BounceScene, Ccd, PairRun, PairScene, RAPIER_NAME, RAPIER_VERSION, Settings,
@@ -32,10 +33,6 @@ fn v3(p: P3) -> Vec3<f64> {
 
 fn p3(v: &Vec3<f64>) -> P3 {
     [v.x, v.y, v.z]
-}
-
-fn norm(p: &P3) -> f64 {
-    (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt()
 }
 
 // ---------------------------------------------------------------------------
@@ -180,7 +177,7 @@ pub fn bounce_stepped(scene: &BounceScene, dt: f64, gravity: P3, sweep: Sweep) -
         step_ball(&mut ball, &ground, &g, scene.restitution, dt, sweep);
         heights.push(ball.c.z - scene.radius);
     }
-    BounceRun { apexes: apexes(&heights, dt, norm(&gravity), APEX_FLOOR), heights }
+    BounceRun { apexes: apexes(&heights, dt, norm_sqrt_dot(gravity), APEX_FLOOR), heights }
 }
 
 /// The analytic apexes of a [`BounceScene`]: Newton's restitution law returns
@@ -275,7 +272,7 @@ pub fn pair_analytic(scene: &PairScene) -> PairRun {
 
 /// Kinetic energy `½ m_a ‖v_a‖² + ½ m_b ‖v_b‖²` of a pair's velocities (J).
 pub fn kinetic_energy(ma: f64, va: &P3, mb: f64, vb: &P3) -> f64 {
-    0.5 * ma * norm(va).powi(2) + 0.5 * mb * norm(vb).powi(2)
+    0.5 * ma * norm_sqrt_dot(*va).powi(2) + 0.5 * mb * norm_sqrt_dot(*vb).powi(2)
 }
 
 /// The two-ball scenes: radii 0.5 m, impact at t = 0.5 s, run for 1 s.
@@ -447,7 +444,7 @@ pub fn run() -> DynamicsReport {
     let weightless = base.weightless();
     for scene in pair_scenes() {
         let analytic = pair_analytic(&scene);
-        let speed = norm(&scene.va).max(norm(&scene.vb)).max(f64::MIN_POSITIVE);
+        let speed = norm_sqrt_dot(scene.va).max(norm_sqrt_dot(scene.vb)).max(f64::MIN_POSITIVE);
         let before = kinetic_energy(scene.ma, &scene.va, scene.mb, &scene.vb);
         let runs = [
             (ANALYTIC_NAME.to_string(), analytic),
@@ -457,7 +454,7 @@ pub fn run() -> DynamicsReport {
             (SWEEP_NAME.into(), pair_sweep(&scene)),
         ];
         for (i, (engine, run)) in runs.into_iter().enumerate() {
-            let d = |g: &P3, w: &P3| norm(&[g[0] - w[0], g[1] - w[1], g[2] - w[2]]);
+            let d = |g: &P3, w: &P3| norm_sqrt_dot(sub(*g, *w));
             let error = d(&run.velocity_a, &analytic.velocity_a).max(d(&run.velocity_b, &analytic.velocity_b)) / speed;
             let after = kinetic_energy(scene.ma, &run.velocity_a, scene.mb, &run.velocity_b);
             if i == 1 && error > PAIR_REPORT_FLOOR {
