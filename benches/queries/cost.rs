@@ -17,6 +17,7 @@
 //! queries (AABB overlap: six compares on 96 bytes) that, not the arithmetic,
 //! is the floor.
 
+use crashtest_core::vec3::{dot, sub};
 use oracle::geom::{P3, Sphere, Triangle};
 
 /// One query's arithmetic.
@@ -144,8 +145,6 @@ pub const BOUNDING_SPHERE_ONCE: Cost = Cost::new(0, 1, 0);
 /// (1 sub).
 pub fn sphere_triangle(s: &Sphere, t: &Triangle) -> Cost {
     let [a, b, c] = t.vertices;
-    let sub = |x: P3, y: P3| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
-    let dot = |x: P3, y: P3| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
     let p = s.center;
     let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
     let (d1, d2) = (dot(ab, ap), dot(ac, ap));

@@ -39,6 +39,14 @@ pub fn norm(a: P3) -> f64 {
     a[0].hypot(a[1]).hypot(a[2])
 }
 
+/// `√(a · a)`: the square root of [`dot`]`(a, a)`, one rounding per operation
+/// as written. Not [`norm`]: the squares overflow above about `1e154` and
+/// underflow below about `1e-154`, and the two may differ in the last bit;
+/// for the callers whose numbers were defined by this formula.
+pub fn norm_sqrt_dot(a: P3) -> f64 {
+    dot(a, a).sqrt()
+}
+
 /// `‖a − b‖`, as [`norm`].
 pub fn dist(a: P3, b: P3) -> f64 {
     norm(sub(a, b))
@@ -67,6 +75,15 @@ mod tests {
         // Subnormal inputs carry only a few significant bits: 5e-320 to within
         // one unit of the subnormal grid.
         assert!((tiny - 5e-320).abs() <= f64::from_bits(1), "{tiny}");
+    }
+
+    #[test]
+    fn norm_sqrt_dot_is_the_plain_formula_where_norm_is_not() {
+        let a = [1.5, -2.0, 0.25];
+        assert_eq!(norm_sqrt_dot(a).to_bits(), (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt().to_bits());
+        // The square overflows: ∞ where `norm` is the length.
+        assert!(norm_sqrt_dot([1e200, 0.0, 0.0]).is_infinite());
+        assert_eq!(norm([1e200, 0.0, 0.0]).to_bits(), 1e200f64.to_bits());
     }
 
     #[test]

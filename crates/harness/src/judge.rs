@@ -314,7 +314,7 @@ impl Verdict {
 /// any other). A zero vector is no direction: π from everything, never an
 /// agreement.
 pub fn angle(a: &P3, b: &P3) -> f64 {
-    let (ma, mb) = (crate::local::mag(a), crate::local::mag(b));
+    let (ma, mb) = (crashtest_core::vec3::max_abs(*a), crashtest_core::vec3::max_abs(*b));
     if !(ma > 0.0 && mb > 0.0 && ma.is_finite() && mb.is_finite()) {
         return std::f64::consts::PI;
     }

@@ -27,6 +27,7 @@
 use crate::case::{Query, Shape};
 use crate::engine::Answer;
 use crate::load::LoadedCase;
+use crashtest_core::vec3::{cross, dot, max_abs, sub};
 use oracle::geom::P3;
 
 /// How nearly a contact normal must be the triangle's face normal (the cosine
@@ -81,21 +82,12 @@ fn clean(x: f64) -> f64 {
     if x.is_nan() { f64::MAX } else { x.clamp(0.0, f64::MAX) }
 }
 
-/// Largest absolute coordinate.
-pub fn mag(p: &P3) -> f64 {
-    p[0].abs().max(p[1].abs()).max(p[2].abs())
-}
-
-fn sub(a: &P3, b: &P3) -> P3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
 /// The Euclidean norm, scaled first by the largest coordinate, so that no
 /// square under- or overflows. The norm itself can exceed `f64::MAX` (up to
 /// `√3` times it) for coordinates near the top of the range: then it is `∞`,
 /// which the callers clean to `f64::MAX`.
 pub fn norm(v: &P3) -> f64 {
-    let m = mag(v);
+    let m = max_abs(*v);
     if m == 0.0 || !m.is_finite() {
         return m;
     }
@@ -106,7 +98,7 @@ pub fn norm(v: &P3) -> f64 {
 /// A difference whose coordinates do not overflow: `a − b` halved when a
 /// coordinate of it would (the caller gets the factor back as `scale`).
 pub(crate) fn diff(a: &P3, b: &P3) -> (P3, f64) {
-    let d = sub(a, b);
+    let d = sub(*a, *b);
     if d.iter().all(|x| x.is_finite()) {
         (d, 1.0)
     } else {
@@ -122,21 +114,13 @@ pub fn distance(a: &P3, b: &P3) -> f64 {
 
 /// A unit vector along `v` (scaled first), or zero for a zero vector.
 fn unit(v: &P3) -> P3 {
-    let m = mag(v);
+    let m = max_abs(*v);
     if m == 0.0 || !m.is_finite() {
         return [0.0; 3];
     }
     let s = [v[0] / m, v[1] / m, v[2] / m];
     let n = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
     [s[0] / n, s[1] / n, s[2] / n]
-}
-
-fn dot(a: &P3, b: &P3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: &P3, b: &P3) -> P3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 /// The triangle's shape in sizes that do not overflow: the vertices scaled by
@@ -154,15 +138,15 @@ struct TriangleShape {
 
 impl TriangleShape {
     fn new(v: &[P3; 3]) -> Self {
-        let m = mag(&v[0]).max(mag(&v[1])).max(mag(&v[2]));
+        let m = max_abs(v[0]).max(max_abs(v[1])).max(max_abs(v[2]));
         // A power of two near the largest coordinate: dividing by it is exact
         // unless a coordinate far below it falls into the subnormals (its loss
         // is far below the ε of the sizes computed here).
         let k = if m > 0.0 && m.is_finite() { 2f64.powi(m.log2().floor() as i32) } else { 1.0 };
         let s = v.map(|p| [p[0] / k, p[1] / k, p[2] / k]);
-        let n = cross(&sub(&s[1], &s[0]), &sub(&s[2], &s[0]));
+        let n = cross(sub(s[1], s[0]), sub(s[2], s[0]));
         let twice_area = norm(&n);
-        let edge = |i: usize, j: usize| norm(&sub(&s[i], &s[j]));
+        let edge = |i: usize, j: usize| norm(&sub(s[i], s[j]));
         let alt_of = |opposite: f64| if opposite > 0.0 { twice_area / opposite * k } else { 0.0 };
         TriangleShape { verts: *v, normal: unit(&n), alt: [alt_of(edge(1, 2)), alt_of(edge(2, 0)), alt_of(edge(0, 1))] }
     }
@@ -176,7 +160,7 @@ impl TriangleShape {
         if self.normal == [0.0; 3] {
             return 0.0;
         }
-        clean((0..3).map(|i| if self.alt[i] > 0.0 { mag(&self.verts[i]) / self.alt[i] } else { f64::MAX }).sum())
+        clean((0..3).map(|i| if self.alt[i] > 0.0 { max_abs(self.verts[i]) / self.alt[i] } else { f64::MAX }).sum())
     }
 
     /// The smallest altitude.
@@ -190,16 +174,16 @@ impl TriangleShape {
     /// which is infinite there).
     fn weights(&self, p: &P3) -> [f64; 3] {
         let [a, b, c] = self.verts;
-        let m = mag(&a).max(mag(&b)).max(mag(&c)).max(mag(p));
+        let m = max_abs(a).max(max_abs(b)).max(max_abs(c)).max(max_abs(*p));
         let k = if m > 0.0 && m.is_finite() { 2f64.powi(m.log2().floor() as i32) } else { 1.0 };
         let sc = |q: &P3| [q[0] / k, q[1] / k, q[2] / k];
         let (a, b, c, p) = (sc(&a), sc(&b), sc(&c), sc(p));
-        let n = cross(&sub(&b, &a), &sub(&c, &a));
-        let nn = dot(&n, &n);
+        let n = cross(sub(b, a), sub(c, a));
+        let nn = dot(n, n);
         if !(nn > 0.0) {
             return [1.0 / 3.0; 3];
         }
-        let area = |x: &P3, y: &P3, z: &P3| (dot(&cross(&sub(y, x), &sub(z, x)), &n) / nn).max(0.0);
+        let area = |x: &P3, y: &P3, z: &P3| (dot(cross(sub(*y, *x), sub(*z, *x)), n) / nn).max(0.0);
         let w = [area(&p, &b, &c), area(&a, &p, &c), area(&a, &b, &p)];
         let sum = w[0] + w[1] + w[2];
         if sum > 0.0 { w.map(|x| x / sum) } else { [1.0 / 3.0; 3] }
@@ -209,25 +193,25 @@ impl TriangleShape {
     /// each.
     fn weighted_size(&self, p: &P3) -> f64 {
         let w = self.weights(p);
-        (0..3).map(|i| w[i] * mag(&self.verts[i])).sum()
+        (0..3).map(|i| w[i] * max_abs(self.verts[i])).sum()
     }
 
     /// `Σ |λ_i| ‖v_i‖` for signed coordinates `λ` (a barycentric answer).
     fn coords_size(&self, l: &P3) -> f64 {
-        (0..3).map(|i| l[i].abs() * mag(&self.verts[i])).sum()
+        (0..3).map(|i| l[i].abs() * max_abs(self.verts[i])).sum()
     }
 
     /// The distance of `p` from the triangle's plane.
     fn height(&self, p: &P3) -> f64 {
         let (d, k) = diff(p, &self.verts[0]);
-        clean(dot(&d, &self.normal).abs() * k)
+        clean(dot(d, self.normal).abs() * k)
     }
 }
 
 /// A plane's offset in lengths, `|d|/‖n‖`, and its unit normal, without
 /// overflow or underflow for normals of any finite length.
 fn plane_offset(normal: &P3, offset: f64) -> (f64, P3) {
-    let m = mag(normal);
+    let m = max_abs(*normal);
     if m == 0.0 {
         return (0.0, [0.0; 3]);
     }
@@ -265,7 +249,7 @@ pub fn local(lc: &LoadedCase, truth: &Answer) -> Local {
                 }),
                 _ => None,
             };
-            let mesh_size = lc.meshes[1].as_ref().map(|m| m.vertices.iter().map(mag).fold(0.0, f64::max));
+            let mesh_size = lc.meshes[1].as_ref().map(|m| m.vertices.iter().copied().map(max_abs).fold(0.0, f64::max));
             intersect(&s.start, &s.end, b, tri.as_ref(), mesh_size, w.hit.as_ref())
         }
         (Query::Barycentric, Shape::Point(p), Some(Shape::Triangle(t)), Answer::Barycentric(w)) => {
@@ -273,9 +257,9 @@ pub fn local(lc: &LoadedCase, truth: &Answer) -> Local {
         }
         (Query::Bounds, _, _, Answer::Bounds(w)) => {
             let pts = crate::load::bounded_points(lc);
-            let points = pts.iter().map(mag).fold(0.0, f64::max);
-            let (center, radius) = w.sphere.map(|s| (mag(&s.center), s.radius)).unwrap_or((0.0, 0.0));
-            let corners = w.aabb.map(|b| mag(&b.min).max(mag(&b.max))).unwrap_or(0.0);
+            let points = pts.iter().copied().map(max_abs).fold(0.0, f64::max);
+            let (center, radius) = w.sphere.map(|s| (max_abs(s.center), s.radius)).unwrap_or((0.0, 0.0));
+            let corners = w.aabb.map(|b| max_abs(b.min).max(max_abs(b.max))).unwrap_or(0.0);
             Local {
                 // The AABB's coordinates are judged each by its own size (see
                 // `judge`); the sphere's centre by the points' sizes.
@@ -285,7 +269,7 @@ pub fn local(lc: &LoadedCase, truth: &Answer) -> Local {
             }
         }
         (Query::Overlap, Shape::Aabb(a), Some(Shape::Aabb(b)), _) => {
-            let m = mag(&a.min).max(mag(&a.max)).max(mag(&b.min)).max(mag(&b.max));
+            let m = max_abs(a.min).max(max_abs(a.max)).max(max_abs(b.min)).max(max_abs(b.max));
             Local { margin: Size::new(m, 0.0), ..Local::default() }
         }
         (Query::Toi, Shape::Sphere(a), Some(b), Answer::Toi(w)) => toi(lc, a, b, w),
@@ -301,11 +285,11 @@ fn contact(a: &Shape, b: &Shape, w: Option<&oracle::geom::Contact>) -> Local {
         let m = contact_margin_size(a, b);
         return Local { margin: m, ..Local::default() };
     };
-    let pm = mag(&w.point);
+    let pm = max_abs(w.point);
     let dm = w.depth.abs();
     match (a, b) {
         (Shape::Sphere(sa), Shape::Sphere(sb)) => {
-            let (ca, cb) = (mag(&sa.center), mag(&sb.center));
+            let (ca, cb) = (max_abs(sa.center), max_abs(sb.center));
             // The centres' distance (scaled: no overflow near f64's limits).
             let d = distance(&sa.center, &sb.center);
             let spread = ca + cb;
@@ -320,7 +304,7 @@ fn contact(a: &Shape, b: &Shape, w: Option<&oracle::geom::Contact>) -> Local {
             }
         }
         (Shape::Sphere(s), Shape::Plane(p)) | (Shape::Plane(p), Shape::Sphere(s)) => {
-            let c = mag(&s.center);
+            let c = max_abs(s.center);
             let (dn, _) = plane_offset(&p.normal, p.offset);
             let depth = Size::new(s.radius + 2.0 * c + 2.0 * dn + dm, 0.0);
             // The point is the centre's projection (on the plane) or the
@@ -331,7 +315,7 @@ fn contact(a: &Shape, b: &Shape, w: Option<&oracle::geom::Contact>) -> Local {
         }
         (Shape::Sphere(s), Shape::Triangle(t)) | (Shape::Triangle(t), Shape::Sphere(s)) => {
             let tri = TriangleShape::new(&t.vertices);
-            let c = mag(&s.center);
+            let c = max_abs(s.center);
             let h = (s.radius - w.depth).abs();
             let sphere_first = matches!(a, Shape::Sphere(_));
             // The triangle's closest point: the answer's point when the
@@ -346,10 +330,10 @@ fn contact(a: &Shape, b: &Shape, w: Option<&oracle::geom::Contact>) -> Local {
             // where the normal is the face's: at an edge or a vertex the point
             // depends on that feature's own vertices alone (the weights), and a
             // zero-area triangle has no face.
-            let across = dot(&unit(&w.normal), &tri.normal).abs();
+            let across = dot(unit(&w.normal), tri.normal).abs();
             let in_face = across >= FACE_REGION_COSINE;
             let tilt = if in_face && h > 0.0 { h * tri.tilt() } else { 0.0 };
-            let q_size = c + wq + mag(&q);
+            let q_size = c + wq + max_abs(q);
             let turn = ratio(q_size + tilt, h).min(std::f64::consts::PI / f64::EPSILON);
             let depth = Size::new(s.radius + q_size + dm, tilt);
             let point =
@@ -364,9 +348,9 @@ fn contact(a: &Shape, b: &Shape, w: Option<&oracle::geom::Contact>) -> Local {
 /// apart: the sizes of the shapes the distance is measured between.
 fn contact_margin_size(a: &Shape, b: &Shape) -> Size {
     let size = |s: &Shape| match s {
-        Shape::Sphere(s) => mag(&s.center) + s.radius,
+        Shape::Sphere(s) => max_abs(s.center) + s.radius,
         Shape::Plane(p) => plane_offset(&p.normal, p.offset).0,
-        Shape::Triangle(t) => t.vertices.iter().map(mag).fold(0.0, f64::max),
+        Shape::Triangle(t) => t.vertices.iter().copied().map(max_abs).fold(0.0, f64::max),
         _ => 0.0,
     };
     let tilt = match (a, b) {
@@ -387,7 +371,7 @@ fn intersect(
     mesh_size: Option<f64>,
     w: Option<&oracle::geom::SegmentHit>,
 ) -> Local {
-    let (m0, m1) = (mag(s0), mag(s1));
+    let (m0, m1) = (max_abs(*s0), max_abs(*s1));
     let len = distance(s0, s1);
     // The surface's unit normal, its offset's size at the hit, and its tilt.
     let (normal, surface, tilt) = match (b, tri) {
@@ -416,11 +400,11 @@ fn intersect(
     // the whole length counts as across: no near-parallel allowance is given
     // that the data cannot show.
     #[allow(clippy::float_cmp, reason = "exactly zero marks a hit without a reported face")]
-    let across = if normal == [0.0; 3] { len } else { clean(dot(&dir, &normal).abs() * k) };
+    let across = if normal == [0.0; 3] { len } else { clean(dot(dir, normal).abs() * k) };
     // t = h0/(h0 − h1): moved by (δh0 + δh1)/|h0 − h1|, |h0 − h1| the
     // segment's extent across the surface.
     let t_cond = ratio(h_cond, across).min(1.0 / f64::EPSILON);
-    let pm = mag(&w.point);
+    let pm = max_abs(w.point);
     let point = Size::new(m0 + m1 + pm + surface, (t_cond * len).min(f64::MAX));
     let mut out = Local {
         point,
@@ -443,7 +427,7 @@ fn barycentric(p: &P3, t: &TriangleShape, l: &P3) -> Local {
     // point at height D off the plane moves its projection by D times the
     // plane's tilt.
     let height = t.height(p);
-    let moved = mag(p) + t.coords_size(l) + height * t.tilt();
+    let moved = max_abs(*p) + t.coords_size(l) + height * t.tilt();
     let size = l.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
     Local { barycentric: Size::new(size, ratio(moved, t.min_alt())), ..Local::default() }
 }
@@ -453,28 +437,30 @@ fn toi(lc: &LoadedCase, a: &crate::case::SphereSpec, b: &Shape, w: &oracle::geom
     let vb = b.velocity();
     let t_max = lc.case.t_max();
     let b_size = match b {
-        Shape::Sphere(s) => mag(&s.center) + s.radius,
+        Shape::Sphere(s) => max_abs(s.center) + s.radius,
         Shape::Plane(p) => plane_offset(&p.normal, p.offset).0,
         Shape::Triangle(t) => match w.toi {
             // The triangle's share at the impact point, taken back to t = 0.
             Some(h) => {
                 let s = h.t;
                 let at = [h.point[0] - vb[0] * s, h.point[1] - vb[1] * s, h.point[2] - vb[2] * s];
-                TriangleShape::new(&t.vertices).weighted_size(&at) + mag(&at)
+                TriangleShape::new(&t.vertices).weighted_size(&at) + max_abs(at)
             }
-            None => t.vertices.iter().map(mag).fold(0.0, f64::max),
+            None => t.vertices.iter().copied().map(max_abs).fold(0.0, f64::max),
         },
-        Shape::Mesh(_) => lc.meshes[1].as_ref().map(|m| m.vertices.iter().map(mag).fold(0.0, f64::max)).unwrap_or(0.0),
+        Shape::Mesh(_) => {
+            lc.meshes[1].as_ref().map(|m| m.vertices.iter().copied().map(max_abs).fold(0.0, f64::max)).unwrap_or(0.0)
+        }
         _ => 0.0,
     };
-    let moving = mag(&va) + mag(&vb);
+    let moving = max_abs(va) + max_abs(vb);
     // The sizes at the impact (or, without one, over the whole interval): the
     // shapes have moved by then.
     let (until, at) = match w.toi {
-        Some(h) => (h.t.abs(), mag(&h.point)),
+        Some(h) => (h.t.abs(), max_abs(h.point)),
         None => (t_max, 0.0),
     };
-    let reach = Size::new(mag(&a.center) + a.radius + b_size + at + moving * until, 0.0);
+    let reach = Size::new(max_abs(a.center) + a.radius + b_size + at + moving * until, 0.0);
     Local { point: reach, margin: reach, t: Size::new(t_max, 0.0), normal: Size::new(1.0, 0.0), ..Local::default() }
 }
 
@@ -483,12 +469,12 @@ fn response(a: &crate::case::SphereSpec, b: &Shape, w: &oracle::geom::ResponseAn
     let vb = b.velocity();
     let (v, k) = diff(&va, &vb);
     let rel = clean(norm(&v) * k);
-    let size = mag(&va) + mag(&vb) + mag(&w.velocity_a) + mag(&w.velocity_b);
+    let size = max_abs(va) + max_abs(vb) + max_abs(w.velocity_a) + max_abs(w.velocity_b);
     // The impulse acts along the normal; a normal from two centres turns by
     // (‖ca‖ + ‖cb‖)/‖ca − cb‖ per ε, and the change of velocity (up to twice
     // the relative one) turns with it. A plane's normal is an input.
     let turn = match b {
-        Shape::Sphere(sb) => ratio(mag(&a.center) + mag(&sb.center), distance(&a.center, &sb.center))
+        Shape::Sphere(sb) => ratio(max_abs(a.center) + max_abs(sb.center), distance(&a.center, &sb.center))
             .min(std::f64::consts::PI / f64::EPSILON),
         _ => 1.0,
     };

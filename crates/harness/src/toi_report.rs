@@ -28,6 +28,7 @@ use crate::render::plot::{Axis, Line, line_chart};
 use crate::render::section::{Section, SectionChart};
 use crate::rng::SplitMix64;
 use collide::Real;
+use crashtest_core::vec3::{add, cross, dot, norm_sqrt_dot, scale, sub};
 use oracle::geom::{P3, Plane, Sphere, Toi, Triangle};
 use serde::Serialize;
 use std::fmt::Write;
@@ -203,36 +204,12 @@ impl Rng {
     fn unit(&mut self) -> P3 {
         loop {
             let p = self.point(1.0);
-            let n = norm(&p);
+            let n = norm_sqrt_dot(p);
             if n > 0.1 {
-                return scale(&p, 1.0 / n);
+                return scale(p, 1.0 / n);
             }
         }
     }
-}
-
-fn add(a: &P3, b: &P3) -> P3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-fn sub(a: &P3, b: &P3) -> P3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn scale(a: &P3, s: f64) -> P3 {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-fn dot(a: &P3, b: &P3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn norm(a: &P3) -> f64 {
-    dot(a, a).sqrt()
-}
-
-fn cross(a: &P3, b: &P3) -> P3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 /// The target of one built impact.
@@ -269,26 +246,26 @@ const DESIGN: &str = "Each impact is built backwards from its answer: a contact 
 fn approach(rng: &mut Rng) -> (P3, P3, P3, f64, f64) {
     let n = rng.unit();
     let w = rng.unit();
-    let across = sub(&w, &scale(&n, dot(&n, &w)));
-    let m = if norm(&across) > 1e-3 {
-        scale(&across, 1.0 / norm(&across))
+    let across = sub(w, scale(n, dot(n, w)));
+    let m = if norm_sqrt_dot(across) > 1e-3 {
+        scale(across, 1.0 / norm_sqrt_dot(across))
     } else {
         // w along n: any perpendicular, from the axis least aligned with n.
         let axis = if n[0].abs() < 0.5 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
-        let c = cross(&n, &axis);
-        scale(&c, 1.0 / norm(&c))
+        let c = cross(n, axis);
+        scale(c, 1.0 / norm_sqrt_dot(c))
     };
     let cos = rng.in_range(0.2, 1.0);
     let sin = (1.0 - cos * cos).sqrt();
     let speed = rng.in_range(0.5, 8.0);
-    let v = scale(&add(&scale(&n, -cos), &scale(&m, sin)), speed);
+    let v = scale(add(scale(n, -cos), scale(m, sin)), speed);
     (n, m, v, speed, cos)
 }
 
 fn build(pair: Pair, rng: &mut Rng) -> Option<Case> {
     let (n, m, v, speed, cos) = approach(rng);
     let vb = rng.point(4.0);
-    let va = add(&vb, &v);
+    let va = add(vb, v);
     let t_star = rng.in_range(0.05, 1.0);
     let frac = rng.in_range(0.1, 0.9);
     let q = rng.point(4.0);
@@ -298,22 +275,22 @@ fn build(pair: Pair, rng: &mut Rng) -> Option<Case> {
             let r = ra + rb;
             // a − b = n R at t*; the path's chord through the sphere of radius
             // R is 2 R cos long, so the overlap lasts 2 R cos / speed.
-            let ca = sub(&add(&q, &scale(&n, r)), &scale(&v, t_star));
+            let ca = sub(add(q, scale(n, r)), scale(v, t_star));
             (Sphere { center: ca, radius: ra }, Target::Sphere(Sphere { center: q, radius: rb }), 2.0 * r * cos / speed)
         }
         Pair::SpherePlane => {
             let r = rng.in_range(0.1, 2.0);
             let len = rng.in_range(0.5, 3.0);
-            let normal = scale(&n, len);
-            let ca = sub(&add(&q, &scale(&n, r)), &scale(&v, t_star));
-            (Sphere { center: ca, radius: r }, Target::Plane(Plane { normal, offset: dot(&normal, &q) }), 1.0)
+            let normal = scale(n, len);
+            let ca = sub(add(q, scale(n, r)), scale(v, t_star));
+            (Sphere { center: ca, radius: r }, Target::Plane(Plane { normal, offset: dot(normal, q) }), 1.0)
         }
         Pair::SphereTriangle => {
             let r = rng.in_range(0.1, 1.0);
-            let e = cross(&n, &m);
-            let corner = |s: f64, t: f64| add(&q, &scale(&add(&scale(&m, s), &scale(&e, t)), 40.0));
+            let e = cross(n, m);
+            let corner = |s: f64, t: f64| add(q, scale(add(scale(m, s), scale(e, t)), 40.0));
             let tri = Triangle { vertices: [corner(1.0, 0.0), corner(-0.5, 0.9), corner(-0.5, -0.9)] };
-            let ca = sub(&add(&q, &scale(&n, r)), &scale(&v, t_star));
+            let ca = sub(add(q, scale(n, r)), scale(v, t_star));
             // The sheet's reach, 2r thick, is crossed in 2 r / (speed cos).
             (Sphere { center: ca, radius: r }, Target::Triangle(tri), 2.0 * r / (speed * cos))
         }

@@ -5,6 +5,7 @@ use crate::case::{Pair, Shape};
 use crate::engine::{Queries, Reply, Unsupported};
 use crate::load::LoadedCase;
 use crate::mesh::Mesh;
+use crashtest_core::vec3::{norm_sqrt_dot, sub};
 use oracle::geom::{
     Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, ResponseAnswer, Segment, Sphere,
     ToiAnswer, Triangle,
@@ -85,10 +86,6 @@ impl Queries for RefereeQueries {
     }
 }
 
-fn length(s: &Segment) -> f64 {
-    (0..3).map(|i| (s.end[i] - s.start[i]).powi(2)).sum::<f64>().sqrt()
-}
-
 /// The referee's signed distance of a case from its nearest decision boundary
 /// (touching, the segment's ends and the triangle's edges, the boxes' faces), as
 /// a length; `None` where a case has no such boundary or the referee gives none.
@@ -113,11 +110,17 @@ pub fn margin(lc: &LoadedCase) -> Option<f64> {
         }
         (P::IntersectSegmentPlane, S::Segment(s), Some(S::Plane(p))) => {
             let s = s.to_geom();
-            referee::intersect_margin_segment_plane(&s, &p.to_geom()).ok().flatten().map(|m| m * length(&s))
+            referee::intersect_margin_segment_plane(&s, &p.to_geom())
+                .ok()
+                .flatten()
+                .map(|m| m * norm_sqrt_dot(sub(s.end, s.start)))
         }
         (P::IntersectSegmentTriangle, S::Segment(s), Some(S::Triangle(t))) => {
             let s = s.to_geom();
-            referee::intersect_margin_segment_triangle(&s, &t.to_geom()).ok().flatten().map(|m| m * length(&s))
+            referee::intersect_margin_segment_triangle(&s, &t.to_geom())
+                .ok()
+                .flatten()
+                .map(|m| m * norm_sqrt_dot(sub(s.end, s.start)))
         }
         (P::OverlapAabbAabb, S::Aabb(a), Some(S::Aabb(b))) => {
             referee::overlap_margin_aabb_aabb(&a.to_geom(), &b.to_geom()).ok()

@@ -9,6 +9,7 @@
 
 use super::build::*;
 use super::family::Family;
+use crashtest_core::vec3::{add, scale, sub};
 use proptest::prelude::*;
 
 fn uniform_point_triangle() -> SBoxedStrategy<Scene> {
@@ -29,8 +30,8 @@ fn near_edge_or_vertex() -> SBoxedStrategy<Scene> {
     )
         .prop_map(|((v, edge, j), (w, delta, exact), (h, lift), (sp, shift, rot, rotate))| {
             let (a, b) = (v[edge], v[(edge + 1) % 3]);
-            let x = add(a, mul(sub(b, a), j as f64 / 16.0));
-            let x = if exact == 0 { x } else { add(x, mul(normalize_or([w[0], w[1], 0.0], [1.0, 0.0, 0.0]), delta)) };
+            let x = add(a, scale(sub(b, a), j as f64 / 16.0));
+            let x = if exact == 0 { x } else { add(x, scale(normalize_or([w[0], w[1], 0.0], [1.0, 0.0, 0.0]), delta)) };
             let x = if lift { [x[0], x[1], h] } else { x };
             let scene = (point(x), Some(triangle(v)));
             if rotate == 0 {
@@ -52,7 +53,7 @@ fn in_and_off_plane() -> SBoxedStrategy<Scene> {
         .prop_map(|(v, s, t, h, lift)| {
             let (s, t) = (s / 2.0 + 0.5, t / 2.0 + 0.5);
             let x = at_barycentric(&v, s, t);
-            let x = if lift { add(x, mul(unit_normal(&v), h)) } else { x };
+            let x = if lift { add(x, scale(unit_normal(&v), h)) } else { x };
             (point(x), Some(triangle(v)))
         })
         .sboxed()
@@ -65,7 +66,7 @@ fn point_and_sliver() -> SBoxedStrategy<Scene> {
     (sliver_triangle(), -0.25..1.25f64, -0.25..1.25f64, signed_magnitude(-30, 1), any::<bool>())
         .prop_map(|(v, s, t, h, lift)| {
             let x = at_barycentric(&v, s, t);
-            let x = if lift { add(x, mul(unit_normal(&v), h)) } else { x };
+            let x = if lift { add(x, scale(unit_normal(&v), h)) } else { x };
             (point(x), Some(triangle(v)))
         })
         .sboxed()

@@ -9,6 +9,7 @@
 
 use super::build::*;
 use super::family::Family;
+use crashtest_core::vec3::{add, scale};
 use oracle::geom::P3;
 use proptest::prelude::*;
 use std::sync::OnceLock;
@@ -60,7 +61,7 @@ fn exactly_cospherical() -> SBoxedStrategy<Scene> {
         .prop_map(|(r, picks, j, shift)| {
             let sphere_pts = &lattice()[r];
             let s = pow2(j);
-            let pts = picks.iter().map(|i| add(mul(*i.get(sphere_pts), s), shift)).collect();
+            let pts = picks.iter().map(|i| add(scale(*i.get(sphere_pts), s), shift)).collect();
             (points(pts), None)
         })
         .sboxed()
@@ -71,7 +72,7 @@ fn exactly_cospherical() -> SBoxedStrategy<Scene> {
 /// little off it).
 fn nearly_cospherical() -> SBoxedStrategy<Scene> {
     (vec3(BOX), 0.1..BOX, prop::collection::vec((unit(), signed_magnitude(-55, -10)), 2..=MAX_POINTS))
-        .prop_map(|(c, r, dirs)| (points(dirs.iter().map(|&(u, g)| add(c, mul(u, r * (1.0 + g)))).collect()), None))
+        .prop_map(|(c, r, dirs)| (points(dirs.iter().map(|&(u, g)| add(c, scale(u, r * (1.0 + g)))).collect()), None))
         .sboxed()
 }
 
@@ -96,8 +97,8 @@ fn collinear_or_coplanar() -> SBoxedStrategy<Scene> {
             let pts = raw
                 .iter()
                 .map(|&(q, jitter)| {
-                    let exact = if line { add(p, mul(v, q[0] / 4.0)) } else { add(p, sp.apply([q[0], q[1], 0.0])) };
-                    if thicken { add(exact, mul(jitter, thick)) } else { exact }
+                    let exact = if line { add(p, scale(v, q[0] / 4.0)) } else { add(p, sp.apply([q[0], q[1], 0.0])) };
+                    if thicken { add(exact, scale(jitter, thick)) } else { exact }
                 })
                 .collect();
             (points(pts), None)

@@ -1,6 +1,7 @@
 //! The pieces every generator is built from: shape constructors, a little vector
-//! arithmetic, exact number tools (powers of two, dyadic grids, ULP steps,
-//! Pythagorean directions) and whole-scene transforms.
+//! arithmetic beyond [`crashtest_core::vec3`]'s, exact number tools (powers of
+//! two, dyadic grids, ULP steps, Pythagorean directions) and whole-scene
+//! transforms.
 //!
 //! Portability: nothing here calls a transcendental function (`powf`, `sin`,
 //! `exp`), whose last bit differs between C libraries. Magnitudes are drawn as
@@ -9,6 +10,7 @@
 //! is the same everywhere for the same `(seed, index)`.
 
 use crate::case::{AabbSpec, PlaneSpec, PointSpec, PointsSpec, SegmentSpec, Shape, SphereSpec, TriangleSpec};
+use crashtest_core::vec3::{add, cross, dot, norm_sqrt_dot, scale, sub};
 use oracle::geom::P3;
 use proptest::prelude::*;
 
@@ -50,44 +52,14 @@ pub(crate) fn aabb(min: P3, max: P3) -> Shape {
     Shape::Aabb(AabbSpec { min, max })
 }
 
-/// `a + b`.
-pub(crate) fn add(a: P3, b: P3) -> P3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-/// `a − b`.
-pub(crate) fn sub(a: P3, b: P3) -> P3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// `s · a`.
-pub(crate) fn mul(a: P3, s: f64) -> P3 {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-/// `a · b`.
-pub(crate) fn dot(a: P3, b: P3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// `a × b`.
-pub(crate) fn cross(a: P3, b: P3) -> P3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-/// `‖a‖`.
-pub(crate) fn norm(a: P3) -> f64 {
-    dot(a, a).sqrt()
-}
-
 /// Below this length a random vector is too short to give a direction (its
 /// normalization would amplify rounding); the fallback direction is used instead.
 const SHORTEST_DIRECTION: f64 = 1e-3;
 
 /// `a / ‖a‖`, or `fallback` when `a` is shorter than [`SHORTEST_DIRECTION`].
 pub(crate) fn normalize_or(a: P3, fallback: P3) -> P3 {
-    let n = norm(a);
-    if n >= SHORTEST_DIRECTION { mul(a, 1.0 / n) } else { fallback }
+    let n = norm_sqrt_dot(a);
+    if n >= SHORTEST_DIRECTION { scale(a, 1.0 / n) } else { fallback }
 }
 
 /// A unit vector perpendicular to the unit vector `u` (the cross product with the
@@ -101,7 +73,7 @@ pub(crate) fn perpendicular(u: P3) -> P3 {
         [0.0, 0.0, 1.0]
     };
     let c = cross(u, axis);
-    mul(c, 1.0 / norm(c))
+    scale(c, 1.0 / norm_sqrt_dot(c))
 }
 
 /// `2^k`, exactly, for `k` in the normal range `[-1022, 1023]` (clamped to it).
@@ -242,7 +214,7 @@ pub(crate) fn pythagorean_pair() -> impl Strategy<Value = (f64, f64, f64)> + Clo
 /// orientation of a near-degenerate scene is for.
 pub(crate) fn rotation() -> impl Strategy<Value = [P3; 3]> + Clone {
     (unit(), unit()).prop_map(|(u, w)| {
-        let v = normalize_or(sub(w, mul(u, dot(u, w))), perpendicular(u));
+        let v = normalize_or(sub(w, scale(u, dot(u, w))), perpendicular(u));
         [u, v, cross(u, v)]
     })
 }
@@ -283,7 +255,7 @@ impl Similarity {
 
     /// The image of a point (`s · R p + t`; a scale of 1 multiplies exactly).
     pub(crate) fn point(&self, p: P3) -> P3 {
-        add(mul(self.linear(p), self.scale), self.shift)
+        add(scale(self.linear(p), self.scale), self.shift)
     }
 
     /// The image of a shape. A plane `n · x = d` becomes `n' · x = s d + n' · t`
@@ -318,7 +290,7 @@ impl Similarity {
 /// A translation far from the origin: a random direction times `2^k`,
 /// `k ∈ [10, 49]` — offsets from about 1e3 up to about 1.1e15.
 pub(crate) fn far_shift() -> impl Strategy<Value = P3> + Clone {
-    (unit(), magnitude(10, 49)).prop_map(|(u, m)| mul(u, m))
+    (unit(), magnitude(10, 49)).prop_map(|(u, m)| scale(u, m))
 }
 
 /// A scale factor from about 1e-6 to 1e6 (`2^-20 … 2^20`).
@@ -340,7 +312,7 @@ pub(crate) fn resized(base: SBoxedStrategy<Scene>) -> SBoxedStrategy<Scene> {
 /// A non-zero normal of length in `[1/4, 4)` and an offset that puts the plane
 /// within `BOX` of the origin.
 pub(crate) fn random_plane() -> impl Strategy<Value = (P3, f64)> + Clone {
-    (unit(), 0.25..4.0f64, coord(BOX)).prop_map(|(u, len, d)| (mul(u, len), d * len))
+    (unit(), 0.25..4.0f64, coord(BOX)).prop_map(|(u, len, d)| (scale(u, len), d * len))
 }
 
 /// Three vertices in the cube `[-BOX, BOX)³`.
@@ -360,7 +332,7 @@ pub(crate) fn flat_grid_triangle() -> impl Strategy<Value = [P3; 3]> + Clone {
 pub(crate) fn zero_area_triangle() -> impl Strategy<Value = [P3; 3]> + Clone {
     (grid_point(), grid_point(), -8..=24i64, any::<bool>()).prop_map(|(v0, v1, j, all_same)| {
         let v1 = if all_same { v0 } else { v1 };
-        [v0, v1, add(v0, mul(sub(v1, v0), j as f64 / 16.0))]
+        [v0, v1, add(v0, scale(sub(v1, v0), j as f64 / 16.0))]
     })
 }
 
@@ -374,23 +346,23 @@ pub(crate) fn sliver_triangle() -> impl Strategy<Value = [P3; 3]> + Clone {
             if pick == 0 {
                 return flat;
             }
-            let f = normalize_or(sub(w, mul(e, dot(e, w))), perpendicular(e));
-            let v1 = add(v0, mul(e, len));
-            let v2 = add(add(v0, mul(e, along * len)), mul(f, aspect * len));
+            let f = normalize_or(sub(w, scale(e, dot(e, w))), perpendicular(e));
+            let v1 = add(v0, scale(e, len));
+            let v2 = add(add(v0, scale(e, along * len)), scale(f, aspect * len));
             [v0, v1, v2]
         })
 }
 
 /// A point of the triangle from barycentric weights `(1 − s − t, s, t)`.
 pub(crate) fn at_barycentric(v: &[P3; 3], s: f64, t: f64) -> P3 {
-    add(v[0], add(mul(sub(v[1], v[0]), s), mul(sub(v[2], v[0]), t)))
+    add(v[0], add(scale(sub(v[1], v[0]), s), scale(sub(v[2], v[0]), t)))
 }
 
 /// The triangle's unit normal, or `+z` for a zero-area triangle.
 pub(crate) fn unit_normal(v: &[P3; 3]) -> P3 {
     let n = cross(sub(v[1], v[0]), sub(v[2], v[0]));
-    let len = norm(n);
-    if len > 0.0 && len.is_finite() { mul(n, 1.0 / len) } else { [0.0, 0.0, 1.0] }
+    let len = norm_sqrt_dot(n);
+    if len > 0.0 && len.is_finite() { scale(n, 1.0 / len) } else { [0.0, 0.0, 1.0] }
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@
 
 use super::build::*;
 use super::family::Family;
+use crashtest_core::vec3::{add, dot, norm_sqrt_dot, scale, sub};
 use oracle::geom::P3;
 use proptest::prelude::*;
 
@@ -59,7 +60,7 @@ fn touching_spheres() -> SBoxedStrategy<Scene> {
             let k = k as f64 / 64.0;
             let total = k * d;
             let ra = total * j as f64 / 16.0;
-            (sphere(add(cb, mul(v, k)), ra), Some(sphere(cb, total - ra)))
+            (sphere(add(cb, scale(v, k)), ra), Some(sphere(cb, total - ra)))
         })
         .sboxed()
 }
@@ -70,7 +71,7 @@ fn grazing_spheres() -> SBoxedStrategy<Scene> {
     (vec3(BOX), unit(), RADIUS, RADIUS, signed_magnitude(-60, -3))
         .prop_map(|(cb, u, ra, rb, g)| {
             let dist = (ra + rb) * (1.0 + g);
-            (sphere(add(cb, mul(u, dist)), ra), Some(sphere(cb, rb)))
+            (sphere(add(cb, scale(u, dist)), ra), Some(sphere(cb, rb)))
         })
         .sboxed()
 }
@@ -80,7 +81,7 @@ fn grazing_spheres() -> SBoxedStrategy<Scene> {
 fn near_concentric_spheres() -> SBoxedStrategy<Scene> {
     (vec3(BOX), unit(), RADIUS, RADIUS, magnitude(-60, 0), 0..8u8)
         .prop_map(|(cb, u, ra, rb, m, pick)| {
-            let ca = if pick == 0 { cb } else { add(cb, mul(u, rb * m)) };
+            let ca = if pick == 0 { cb } else { add(cb, scale(u, rb * m)) };
             (sphere(ca, ra), Some(sphere(cb, rb)))
         })
         .sboxed()
@@ -95,8 +96,8 @@ fn touching_sphere_plane() -> SBoxedStrategy<Scene> {
         .prop_map(|(q, (v, d), k, s, flip)| {
             let s = [0.5, 1.0, 2.0, 3.0][s];
             let k = k as f64 / 64.0;
-            let n = mul(v, s);
-            order((sphere(add(q, mul(v, k)), k * d), Some(plane(n, dot(n, q)))), flip)
+            let n = scale(v, s);
+            order((sphere(add(q, scale(v, k)), k * d), Some(plane(n, dot(n, q)))), flip)
         })
         .sboxed()
 }
@@ -106,11 +107,11 @@ fn touching_sphere_plane() -> SBoxedStrategy<Scene> {
 fn grazing_sphere_plane() -> SBoxedStrategy<Scene> {
     (random_plane(), vec3(BOX), RADIUS, signed_magnitude(-60, -3), any::<bool>())
         .prop_map(|((n, d), w, r, g, flip)| {
-            let len = norm(n);
-            let u = mul(n, 1.0 / len);
+            let len = norm_sqrt_dot(n);
+            let u = scale(n, 1.0 / len);
             // The foot: the plane's point nearest the origin, moved in the plane.
-            let foot = add(mul(u, d / len), sub(w, mul(u, dot(u, w))));
-            let c = add(foot, mul(u, r * (1.0 + g)));
+            let foot = add(scale(u, d / len), sub(w, scale(u, dot(u, w))));
+            let c = add(foot, scale(u, r * (1.0 + g)));
             order((sphere(c, r), Some(plane(n, d))), flip)
         })
         .sboxed()
@@ -183,7 +184,7 @@ fn touching_sphere_triangle() -> SBoxedStrategy<Scene> {
                 Feature::Edge => ([0.0, -a, z * b], c),
                 Feature::Vertex => ([-v[0].abs(), -v[1].abs(), z * v[2].abs()], d),
             };
-            let scene = (sphere(add(q, mul(w, k)), k * len), Some(triangle(tri)));
+            let scene = (sphere(add(q, scale(w, k)), k * len), Some(triangle(tri)));
             order(Similarity::perm_shift(&sp, shift).scene(&scene), flip)
         })
         .sboxed()
@@ -208,7 +209,7 @@ fn sphere_near_triangle_border() -> SBoxedStrategy<Scene> {
                 Feature::Vertex => [delta * h, -h / 2.0, h],
                 _ => [q[0], delta * h, h],
             };
-            let r = norm(sub(c, q)) * (1.0 + g);
+            let r = norm_sqrt_dot(sub(c, q)) * (1.0 + g);
             let scene = (sphere(c, r), Some(triangle(tri)));
             order(Similarity::rotate_shift(rot, shift).scene(&scene), flip)
         })
@@ -246,7 +247,7 @@ fn centre_on_or_near_plane() -> SBoxedStrategy<Scene> {
                 let scene = (sphere(c, r), Some(triangle(gt)));
                 Similarity::perm_shift(&sp, shift).scene(&scene)
             } else {
-                let c = add(at_barycentric(&rt, s, t), mul(unit_normal(&rt), h));
+                let c = add(at_barycentric(&rt, s, t), scale(unit_normal(&rt), h));
                 (sphere(c, r), Some(triangle(rt)))
             };
             order(scene, flip)

@@ -25,6 +25,7 @@
 
 use super::build::*;
 use crate::case::{Case, Query, Shape};
+use crashtest_core::vec3::{add, dot, scale, sub};
 use oracle::geom::P3;
 use proptest::prelude::*;
 
@@ -244,15 +245,15 @@ fn huge_triangle_and_near_point() -> impl Strategy<Value = ([P3; 3], P3)> + Clon
     (vec3(BOX), unit(), unit(), 40..=996i32, vec3(1.0), -8..=4i32, 0..3usize, 0..6usize).prop_map(
         |(p0, u1, u2, k, off, j, near, order)| {
             let l = pow2(k);
-            let v1 = add(p0, mul(u1, l));
-            let v2 = add(p0, mul(u2, l));
+            let v1 = add(p0, scale(u1, l));
+            let v2 = add(p0, scale(u2, l));
             let small = pow2(j);
             // Near the vertex, a point along a leg at a small distance, or a
             // point a little inside the face.
             let at = match near {
-                0 => add(p0, mul(off, small)),
-                1 => add(add(p0, mul(u1, small * 3.0)), mul(off, small)),
-                _ => add(add(p0, mul(add(u1, u2), small * 2.0)), mul(off, small)),
+                0 => add(p0, scale(off, small)),
+                1 => add(add(p0, scale(u1, small * 3.0)), scale(off, small)),
+                _ => add(add(p0, scale(add(u1, u2), small * 2.0)), scale(off, small)),
             };
             let v = [p0, v1, v2];
             let perms = [[0, 1, 2], [1, 2, 0], [2, 0, 1], [0, 2, 1], [2, 1, 0], [1, 0, 2]];
@@ -266,7 +267,7 @@ fn huge_triangle_and_near_point() -> impl Strategy<Value = ([P3; 3], P3)> + Clon
 /// `k ∈ [-600, 600]`, and its matching offset.
 fn scaled_plane() -> impl Strategy<Value = (P3, f64)> + Clone {
     (unit(), -600..=600i32, vec3(BOX)).prop_map(|(u, k, p)| {
-        let n = mul(u, pow2(k));
+        let n = scale(u, pow2(k));
         (n, dot(n, p))
     })
 }
@@ -295,14 +296,14 @@ fn multi_scale(query: Query) -> SBoxedStrategy<Case> {
             }),
             (vec3(BOX), magnitude(-8, 3), unit(), magnitude(40, 1000)).prop_map(move |(c, r, u, big)| {
                 // A small sphere against a huge one whose surface passes near it.
-                let cb = sub(c, mul(u, big));
+                let cb = sub(c, scale(u, big));
                 case((sphere(c, r), Some(sphere(cb, big))), None, None)
             }),
         ]
         .sboxed(),
         Query::Intersect => prop_oneof![
             (huge_triangle_and_near_point(), unit(), magnitude(-8, 4)).prop_map(move |((v, at), u, len)| {
-                case((segment(sub(at, mul(u, len)), add(at, mul(u, len))), Some(triangle(v))), None, None)
+                case((segment(sub(at, scale(u, len)), add(at, scale(u, len))), Some(triangle(v))), None, None)
             }),
             (scaled_plane(), vec3(BOX), vec3(BOX))
                 .prop_map(move |((n, d), s0, s1)| { case((segment(s0, s1), Some(plane(n, d))), None, None) }),
@@ -313,7 +314,7 @@ fn multi_scale(query: Query) -> SBoxedStrategy<Case> {
             .sboxed(),
         Query::Bounds => prop::collection::vec((signed_magnitude(-1074, 1000), vec3(1.0)), 1..8)
             .prop_map(move |ps| {
-                let pts = ps.into_iter().map(|(m, u)| mul(u, m)).collect();
+                let pts = ps.into_iter().map(|(m, u)| scale(u, m)).collect();
                 case((points(pts), None), None, None)
             })
             .sboxed(),
@@ -337,10 +338,10 @@ fn multi_scale(query: Query) -> SBoxedStrategy<Case> {
             (huge_triangle_and_near_point(), magnitude(-8, 4), unit(), magnitude(-8, 6)).prop_map(
                 move |((v, c), r, u, speed)| {
                     // The sphere starts a little off and moves through the spot.
-                    let start = sub(c, mul(u, speed / 2.0));
+                    let start = sub(c, scale(u, speed / 2.0));
                     let mut s = sphere(start, r);
                     if let Shape::Sphere(sp) = &mut s {
-                        sp.velocity = Some(mul(u, speed));
+                        sp.velocity = Some(scale(u, speed));
                     }
                     case((s, Some(triangle(v))), None, None)
                 }
@@ -349,7 +350,7 @@ fn multi_scale(query: Query) -> SBoxedStrategy<Case> {
                 move |((n, d), c, r, v, speed)| {
                     let mut s = sphere(c, r);
                     if let Shape::Sphere(sp) = &mut s {
-                        sp.velocity = Some(mul(v, speed));
+                        sp.velocity = Some(scale(v, speed));
                     }
                     case((s, Some(plane(n, d))), None, None)
                 }
@@ -367,21 +368,21 @@ fn multi_scale(query: Query) -> SBoxedStrategy<Case> {
             any::<bool>(),
         )
             .prop_map(move |(ca, u, ra, rb, (speed, wa, wb), (ma, mb), e, with_plane)| {
-                let cb = sub(ca, mul(u, ra + rb));
+                let cb = sub(ca, scale(u, ra + rb));
                 let mut a = sphere(ca, ra);
                 if let Shape::Sphere(s) = &mut a {
-                    s.velocity = Some(mul(wa, speed));
+                    s.velocity = Some(scale(wa, speed));
                     s.mass = Some(ma);
                 }
                 let b = if with_plane {
                     // The plane tangent to a at its lowest point along −u, its
                     // normal of length 2^k.
-                    let n = mul(u, speed.abs().max(f64::MIN_POSITIVE));
-                    plane(n, dot(n, sub(ca, mul(u, ra))))
+                    let n = scale(u, speed.abs().max(f64::MIN_POSITIVE));
+                    plane(n, dot(n, sub(ca, scale(u, ra))))
                 } else {
                     let mut b = sphere(cb, rb);
                     if let Shape::Sphere(s) = &mut b {
-                        s.velocity = Some(mul(wb, speed));
+                        s.velocity = Some(scale(wb, speed));
                         s.mass = Some(mb);
                     }
                     b

@@ -10,6 +10,7 @@
 
 use super::build::*;
 use super::family::Family;
+use crashtest_core::vec3::{add, cross, dot, norm_sqrt_dot, scale, sub};
 use oracle::geom::P3;
 use proptest::prelude::*;
 
@@ -24,15 +25,15 @@ fn uniform_segment_triangle() -> SBoxedStrategy<Scene> {
 /// A direction at a small angle `θ` to a surface with unit normal `u`: a unit
 /// in-plane vector `e` (from `w`) plus `θ u`.
 fn tilted(u: P3, w: P3, theta: f64) -> P3 {
-    let e = normalize_or(sub(w, mul(u, dot(u, w))), perpendicular(u));
-    add(e, mul(u, theta))
+    let e = normalize_or(sub(w, scale(u, dot(u, w))), perpendicular(u));
+    add(e, scale(u, theta))
 }
 
 /// The segment of length `len` along `d` that passes through `x` at parameter
 /// `tau` (so it crosses there when `tau ∈ [0, 1]`, and misses otherwise).
 fn through(x: P3, d: P3, len: f64, tau: f64) -> (P3, P3) {
-    let p0 = sub(x, mul(d, len * tau));
-    (p0, add(p0, mul(d, len)))
+    let p0 = sub(x, scale(d, len * tau));
+    (p0, add(p0, scale(d, len)))
 }
 
 /// The angle of a near-parallel segment: `|θ|` from `2^-54 ≈ 6e-17` to `2^-3`.
@@ -70,8 +71,8 @@ fn near_parallel_plane() -> SBoxedStrategy<Scene> {
             if pick == 0 {
                 return exact;
             }
-            let u = mul(n, 1.0 / norm(n));
-            let foot = add(mul(u, d / norm(n)), sub(w, mul(u, dot(u, w))));
+            let u = scale(n, 1.0 / norm_sqrt_dot(n));
+            let foot = add(scale(u, d / norm_sqrt_dot(n)), sub(w, scale(u, dot(u, w))));
             let (p0, p1) = through(foot, tilted(u, dir, theta), len, tau);
             (segment(p0, p1), Some(plane(n, d)))
         })
@@ -126,9 +127,9 @@ fn endpoint_on_or_near_plane() -> SBoxedStrategy<Scene> {
     )
         .prop_map(|(q, (v, d), (k, s), other, (h, pick), flip)| {
             let s = [0.5, 1.0, 2.0, 3.0][s];
-            let n = mul(v, s);
-            let on = add(q, mul(integer_perpendicular(v), k));
-            let end = if pick == 0 { on } else { add(on, mul(v, h / d)) };
+            let n = scale(v, s);
+            let on = add(q, scale(integer_perpendicular(v), k));
+            let end = if pick == 0 { on } else { add(on, scale(v, h / d)) };
             let (p0, p1) = if flip { (other, end) } else { (end, other) };
             (segment(p0, p1), Some(plane(n, dot(n, q))))
         })
@@ -151,11 +152,11 @@ fn crossing_near_edge_or_vertex() -> SBoxedStrategy<Scene> {
         .prop_map(|((v, edge, j), (w, delta, exact), ([dx, dy], dz, down), ((s0, s1), sp, shift, (rot, rotate)))| {
             // j = 0 or 16 is a vertex, else a point inside the edge.
             let (a, b) = (v[edge], v[(edge + 1) % 3]);
-            let x = add(a, mul(sub(b, a), j as f64 / 16.0));
-            let x = if exact == 0 { x } else { add(x, mul(normalize_or([w[0], w[1], 0.0], [1.0, 0.0, 0.0]), delta)) };
+            let x = add(a, scale(sub(b, a), j as f64 / 16.0));
+            let x = if exact == 0 { x } else { add(x, scale(normalize_or([w[0], w[1], 0.0], [1.0, 0.0, 0.0]), delta)) };
             let dir = [dx, dy, if down { -dz } else { dz }];
-            let p0 = add(x, mul(dir, s0 as f64 / 16.0));
-            let p1 = sub(x, mul(dir, s1 as f64 / 16.0));
+            let p0 = add(x, scale(dir, s0 as f64 / 16.0));
+            let p1 = sub(x, scale(dir, s1 as f64 / 16.0));
             let scene = (segment(p0, p1), Some(triangle(v)));
             if rotate == 0 {
                 Similarity::rotate_shift(rot, shift).scene(&scene)

@@ -8,6 +8,7 @@
 
 use super::build::*;
 use super::family::Family;
+use crashtest_core::vec3::{add, scale};
 use oracle::geom::P3;
 use proptest::prelude::*;
 
@@ -88,7 +89,7 @@ fn few_ulps_apart() -> SBoxedStrategy<Scene> {
     (touching_boxes(), -30..=50i32, 1..=8i32)
         .prop_map(|(((lo, hi), (blo, bhi), how), j, k)| {
             let s = pow2(j);
-            let (lo, hi, mut blo, mut bhi) = (mul(lo, s), mul(hi, s), mul(blo, s), mul(bhi, s));
+            let (lo, hi, mut blo, mut bhi) = (scale(lo, s), scale(hi, s), scale(blo, s), scale(bhi, s));
             if let Some(i) = how.iter().position(|h| !matches!(h, Contact::Across)) {
                 match how[i] {
                     Contact::Above => blo[i] = step_ulps(blo[i], k),
@@ -107,7 +108,7 @@ fn walk_box_faces() -> SBoxedStrategy<Scene> {
     (touching_boxes(), -30..=50i32, prop::array::uniform3(ulps()))
         .prop_map(|(((lo, hi), (blo, bhi), how), j, ks)| {
             let s = pow2(j);
-            let (lo, hi, mut blo, mut bhi) = (mul(lo, s), mul(hi, s), mul(blo, s), mul(bhi, s));
+            let (lo, hi, mut blo, mut bhi) = (scale(lo, s), scale(hi, s), scale(blo, s), scale(bhi, s));
             for i in 0..3 {
                 match how[i] {
                     Contact::Above => blo[i] = step_ulps(blo[i], ks[i]),

@@ -17,6 +17,7 @@
 use super::build::*;
 use super::family::{Family, Params, Posed};
 use crate::case::{Shape, SphereSpec};
+use crashtest_core::vec3::{add, dot, norm_sqrt_dot, scale, sub};
 use oracle::geom::P3;
 use proptest::prelude::*;
 
@@ -99,7 +100,7 @@ fn glancing_exact() -> SBoxedStrategy<Posed> {
         .prop_map(|((cb, (w, d), k, j), (va, vb), (ma, mb, e))| {
             let k = k as f64 / 64.0;
             let ra = k * d * j as f64 / 16.0;
-            posed(body(add(cb, mul(w, k)), ra, va, ma), body(cb, k * d - ra, vb, mb), e)
+            posed(body(add(cb, scale(w, k)), ra, va, ma), body(cb, k * d - ra, vb, mb), e)
         })
         .sboxed()
 }
@@ -142,9 +143,9 @@ fn near_separating() -> SBoxedStrategy<Posed> {
                 slide[axis] = 0.0;
                 return posed(body(ca, ra, add(vb, slide), ma), body(cb, rb, vb, mb), e);
             }
-            let t = normalize_or(sub(w, mul(u, dot(u, w))), perpendicular(u));
-            let v_rel = add(mul(t, speed), mul(u, delta * speed));
-            let ca = add(cb, mul(u, ra + rb));
+            let t = normalize_or(sub(w, scale(u, dot(u, w))), perpendicular(u));
+            let v_rel = add(scale(t, speed), scale(u, delta * speed));
+            let ca = add(cb, scale(u, ra + rb));
             posed(body(ca, ra, add(vb, v_rel), ma), body(cb, rb, vb, mb), e)
         })
         .sboxed()
@@ -158,7 +159,7 @@ fn near_concentric() -> SBoxedStrategy<Posed> {
         (vec3(SPEED), vec3(SPEED), MASS, MASS, restitution()),
     )
         .prop_map(|((cb, u, ra, rb, m, pick), (va, vb, ma, mb, e))| {
-            let ca = if pick == 0 { cb } else { add(cb, mul(u, rb * m)) };
+            let ca = if pick == 0 { cb } else { add(cb, scale(u, rb * m)) };
             posed(body(ca, ra, va, ma), body(cb, rb, vb, mb), e)
         })
         .sboxed()
@@ -170,9 +171,9 @@ fn near_concentric() -> SBoxedStrategy<Posed> {
 fn grazing_plane() -> SBoxedStrategy<Posed> {
     (random_plane(), vec3(BOX), unit(), RADIUS, (signed_magnitude(-60, -3), 0.5..8.0f64, MASS, restitution()))
         .prop_map(|((n, d), c, dir, r, (theta, speed, m, e))| {
-            let u = mul(n, 1.0 / norm(n));
-            let along = normalize_or(sub(dir, mul(u, dot(u, dir))), perpendicular(u));
-            let v = mul(add(along, mul(u, theta)), speed);
+            let u = scale(n, 1.0 / norm_sqrt_dot(n));
+            let along = normalize_or(sub(dir, scale(u, dot(u, dir))), perpendicular(u));
+            let v = scale(add(along, scale(u, theta)), speed);
             posed(body(c, r, v, m), plane(n, d), e)
         })
         .sboxed()
@@ -187,7 +188,7 @@ fn scaled() -> SBoxedStrategy<Posed> {
         .prop_map(|(((a, b), p), k, j, shift, move_far)| {
             let f = |s: Shape| match s {
                 Shape::Sphere(mut s) => {
-                    s.velocity = s.velocity.map(|v| mul(v, pow2(k)));
+                    s.velocity = s.velocity.map(|v| scale(v, pow2(k)));
                     s.mass = s.mass.map(|m| m * pow2(j));
                     if move_far {
                         s.center = add(s.center, shift);

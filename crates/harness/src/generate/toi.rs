@@ -18,6 +18,7 @@
 use super::build::*;
 use super::family::{Family, Params, Posed};
 use crate::case::{MeshSpec, Shape};
+use crashtest_core::vec3::{add, dot, norm_sqrt_dot, scale, sub};
 use oracle::geom::P3;
 use proptest::prelude::*;
 
@@ -97,7 +98,7 @@ fn transformed(sim: &Similarity, ((a, b), p): &Posed) -> Posed {
             other => sim.shape(other),
         };
         match velocity_of(shape) {
-            Some(u) => moving(moved, mul([dot(sim.rot[0], u), dot(sim.rot[1], u), dot(sim.rot[2], u)], sim.scale)),
+            Some(u) => moving(moved, scale([dot(sim.rot[0], u), dot(sim.rot[1], u), dot(sim.rot[2], u)], sim.scale)),
             None => moved,
         }
     };
@@ -172,9 +173,9 @@ fn approaching(v: P3, w: P3) -> P3 {
     if d < 0.0 {
         v
     } else if d > 0.0 {
-        mul(v, -1.0)
+        scale(v, -1.0)
     } else {
-        mul(w, -1.0)
+        scale(w, -1.0)
     }
 }
 
@@ -213,7 +214,7 @@ fn exact_spheres() -> impl Strategy<Value = (Posed, f64)> + Clone {
             let v = approaching(v, w);
             let va = add(vb, v);
             // a's centre at t*: cb + vb t* + k w; at 0: that minus va t*.
-            let ca = sub(add(add(cb, mul(vb, ts)), mul(w, k)), mul(va, ts));
+            let ca = sub(add(add(cb, scale(vb, ts)), scale(w, k)), scale(va, ts));
             (posed(sphere(ca, ra), va, sphere(cb, total - ra), vb, Some(end_around(ts, pick, m))), ts)
         })
 }
@@ -231,9 +232,9 @@ fn exact_sphere_plane() -> impl Strategy<Value = (Posed, f64)> + Clone {
         .prop_map(|((q, (w, d), k, s), (vb, v, ts), (pick, m))| {
             let s = [0.5, 1.0, 2.0, 3.0][s];
             let k = k as f64 / 64.0;
-            let n = mul(w, s);
+            let n = scale(w, s);
             let va = add(vb, approaching(v, w));
-            let c = sub(add(add(q, mul(vb, ts)), mul(w, k)), mul(va, ts));
+            let c = sub(add(add(q, scale(vb, ts)), scale(w, k)), scale(va, ts));
             let scene = posed(sphere(c, k * d), va, plane(n, dot(n, q)), vb, Some(end_around(ts, pick, m)));
             (scene, ts)
         })
@@ -291,7 +292,7 @@ fn exact_sphere_triangle() -> impl Strategy<Value = (Posed, f64)> + Clone {
                 };
                 let k = k as f64 / 64.0;
                 let va = add(vb, approaching(v, w));
-                let c0 = sub(add(add(q, mul(vb, ts)), mul(w, k)), mul(va, ts));
+                let c0 = sub(add(add(q, scale(vb, ts)), scale(w, k)), scale(va, ts));
                 let scene = posed(sphere(c0, k * wl), va, triangle(tri), vb, Some(end_around(ts, pick, m)));
                 (transformed(&Similarity::perm_shift(&sp, shift), &scene), ts)
             },
@@ -320,10 +321,10 @@ fn walk_t_max() -> SBoxedStrategy<Posed> {
 fn grazing_spheres() -> SBoxedStrategy<Posed> {
     (vec3(BOX), unit(), unit(), (RADIUS, RADIUS), signed_magnitude(-60, -3), (0.5..8.0f64, 0.1..0.9f64), velocity())
         .prop_map(|(cb, u, w, (ra, rb), g, (speed, tc), vb)| {
-            let across = normalize_or(sub(w, mul(u, dot(u, w))), perpendicular(u));
+            let across = normalize_or(sub(w, scale(u, dot(u, w))), perpendicular(u));
             let h = (ra + rb) * (1.0 + g);
-            let v = mul(u, speed);
-            let ca = sub(add(cb, mul(across, h)), mul(v, tc));
+            let v = scale(u, speed);
+            let ca = sub(add(cb, scale(across, h)), scale(v, tc));
             posed(sphere(ca, ra), add(vb, v), sphere(cb, rb), vb, None)
         })
         .sboxed()
@@ -348,7 +349,7 @@ fn grazing_triangle() -> SBoxedStrategy<Posed> {
             let h = r * (1.0 + g);
             let at = if edge { [x0 + len * i as f64 / 16.0, y0 - h, 0.0] } else { [x0 - h, y0, 0.0] };
             let v = [0.0, 0.0, if up { speed } else { -speed }];
-            let c = sub(at, mul(v, tc));
+            let c = sub(at, scale(v, tc));
             let scene = posed(sphere(c, r), add(vb, v), triangle(tri), vb, None);
             transformed(&Similarity::rotate_shift(rot, shift), &scene)
         })
@@ -379,13 +380,13 @@ fn near_parallel_plane() -> SBoxedStrategy<Posed> {
                 slide[axis] = 0.0;
                 return posed(sphere(c, r), add(vb, slide), plane(normal, q[axis]), vb, tm);
             }
-            let len = norm(n);
-            let u = mul(n, 1.0 / len);
-            let foot = add(mul(u, d / len), sub(w, mul(u, dot(u, w))));
+            let len = norm_sqrt_dot(n);
+            let u = scale(n, 1.0 / len);
+            let foot = add(scale(u, d / len), sub(w, scale(u, dot(u, w))));
             // The gap closes at θ·speed: at tc, inside or beyond the interval.
-            let c = add(foot, mul(u, r + theta * speed * tc));
-            let along = normalize_or(sub(dir, mul(u, dot(u, dir))), perpendicular(u));
-            let v = mul(sub(along, mul(u, theta)), speed);
+            let c = add(foot, scale(u, r + theta * speed * tc));
+            let along = normalize_or(sub(dir, scale(u, dot(u, dir))), perpendicular(u));
+            let v = scale(sub(along, scale(u, theta)), speed);
             posed(sphere(c, r), add(vb, v), plane(n, d), vb, tm)
         })
         .sboxed()
@@ -406,18 +407,18 @@ fn overlapping_at_start() -> SBoxedStrategy<Posed> {
             let sink = if exact == 0 { 0.0 } else { depth };
             match which {
                 0 => {
-                    let ca = add(cb, mul(u, (ra + rb) * (1.0 - sink)));
+                    let ca = add(cb, scale(u, (ra + rb) * (1.0 - sink)));
                     posed(sphere(ca, ra), va, sphere(cb, rb), vb, None)
                 }
                 1 => {
-                    let len = norm(n);
-                    let un = mul(n, 1.0 / len);
-                    let c = add(mul(un, d / len + ra * (1.0 - sink)), sub(cb, mul(un, dot(un, cb))));
+                    let len = norm_sqrt_dot(n);
+                    let un = scale(n, 1.0 / len);
+                    let c = add(scale(un, d / len + ra * (1.0 - sink)), sub(cb, scale(un, dot(un, cb))));
                     posed(sphere(c, ra), va, plane(n, d), vb, None)
                 }
                 _ => {
                     let p = at_barycentric(&tri, s * (1.0 - tt), tt * (1.0 - s));
-                    let c = add(p, mul(unit_normal(&tri), ra * (1.0 - sink)));
+                    let c = add(p, scale(unit_normal(&tri), ra * (1.0 - sink)));
                     posed(sphere(c, ra), va, triangle(tri), vb, None)
                 }
             }
@@ -437,8 +438,8 @@ fn tunneling() -> SBoxedStrategy<Posed> {
         (small_mesh(), 0..3u8),
     )
         .prop_map(|((r, speed, u, th), (tri, s, t, rb, cb), (m, which))| {
-            let v = mul(u, speed);
-            let through = |x: P3| sub(x, mul(v, th));
+            let v = scale(u, speed);
+            let through = |x: P3| sub(x, scale(v, th));
             match which {
                 0 => {
                     let x = at_barycentric(&tri, s * (1.0 - t), t * (1.0 - s));
@@ -449,7 +450,7 @@ fn tunneling() -> SBoxedStrategy<Posed> {
                     let x = match &m {
                         Shape::Mesh(spec) => spec.vertices.as_ref().map_or([0.0; 3], |vs| {
                             let n = vs.len() as f64;
-                            vs.iter().fold([0.0; 3], |acc, &p| add(acc, mul(p, 1.0 / n)))
+                            vs.iter().fold([0.0; 3], |acc, &p| add(acc, scale(p, 1.0 / n)))
                         }),
                         _ => [0.0; 3],
                     };
@@ -468,18 +469,18 @@ fn not_closing() -> SBoxedStrategy<Posed> {
     ((vec3(BOX), unit(), RADIUS, RADIUS, magnitude(-40, 0)), (velocity(), 0.1..8.0f64, random_plane(), unit(), 0..3u8))
         .prop_map(|((cb, u, ra, rb, gap), (vb, speed, (n, d), dir, which))| match which {
             0 => {
-                let ca = add(cb, mul(u, (ra + rb) * (1.0 + gap)));
+                let ca = add(cb, scale(u, (ra + rb) * (1.0 + gap)));
                 posed(sphere(ca, ra), vb, sphere(cb, rb), vb, None)
             }
             1 => {
-                let ca = add(cb, mul(u, (ra + rb) * (1.0 + gap)));
-                posed(sphere(ca, ra), add(vb, mul(u, speed)), sphere(cb, rb), vb, None)
+                let ca = add(cb, scale(u, (ra + rb) * (1.0 + gap)));
+                posed(sphere(ca, ra), add(vb, scale(u, speed)), sphere(cb, rb), vb, None)
             }
             _ => {
-                let len = norm(n);
-                let un = mul(n, 1.0 / len);
-                let c = add(mul(un, d / len + ra * (1.0 + gap)), sub(cb, mul(un, dot(un, cb))));
-                let side = mul(normalize_or(sub(dir, mul(un, dot(un, dir))), perpendicular(un)), speed);
+                let len = norm_sqrt_dot(n);
+                let un = scale(n, 1.0 / len);
+                let c = add(scale(un, d / len + ra * (1.0 + gap)), sub(cb, scale(un, dot(un, cb))));
+                let side = scale(normalize_or(sub(dir, scale(un, dot(un, dir))), perpendicular(un)), speed);
                 posed(sphere(c, ra), add(vb, side), plane(n, d), vb, None)
             }
         })
@@ -495,14 +496,14 @@ fn mesh_features() -> SBoxedStrategy<Posed> {
             let target = match &m {
                 Shape::Mesh(MeshSpec { vertices: Some(vs), triangles: Some(ts), .. }) => {
                     let f = ts[pick % ts.len()];
-                    if edge { mul(add(vs[f[0]], vs[f[1]]), 0.5) } else { vs[f[pick % 3]] }
+                    if edge { scale(add(vs[f[0]], vs[f[1]]), 0.5) } else { vs[f[pick % 3]] }
                 }
                 _ => [0.0; 3],
             };
             let aim = add(target, jitter);
             // Relative velocity reaching the target at th (the centre would be
             // on it): the first touch is earlier, within the interval.
-            let v = mul(sub(aim, c), 1.0 / th);
+            let v = scale(sub(aim, c), 1.0 / th);
             posed(sphere(c, r), add(vb, v), m, vb, None)
         })
         .sboxed()

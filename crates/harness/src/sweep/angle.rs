@@ -16,7 +16,8 @@
 
 use super::grid::{Pose, PoseKind, Rng};
 use super::scene::{through, tilted, triangle_round};
-use crate::generate::build::{Scene, add, plane, triangle};
+use crate::generate::build::{Scene, plane, triangle};
+use crashtest_core::vec3::add;
 use oracle::geom::P3;
 
 struct Draws {

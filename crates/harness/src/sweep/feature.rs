@@ -22,7 +22,8 @@
 
 use super::grid::{Pose, PoseKind, Rng};
 use super::scene::{reorder, through};
-use crate::generate::build::{Scene, add, mul, normalize_or, segment, triangle};
+use crate::generate::build::{Scene, normalize_or, segment, triangle};
+use crashtest_core::vec3::{add, scale};
 use oracle::geom::P3;
 
 /// A unit direction in `z = 0` snapped to multiples of 1/64 (length within 2 %
@@ -74,8 +75,8 @@ pub(super) fn near_edge(rng: &mut Rng, delta: f64, pose: &Pose) -> Scene {
     let c = rng.uniform(4.0, 6.0);
     let inside = rng.coin();
     let s = draw_segment(rng);
-    let tri = reorder(rng, [mul(u, -a), mul(u, b), add(mul(u, w), mul(m, c))]);
-    let x = mul(m, if inside { delta } else { -delta });
+    let tri = reorder(rng, [scale(u, -a), scale(u, b), add(scale(u, w), scale(m, c))]);
+    let x = scale(m, if inside { delta } else { -delta });
     crossing(tri, x, &s, pose)
 }
 
@@ -83,10 +84,10 @@ pub(super) fn near_edge(rng: &mut Rng, delta: f64, pose: &Pose) -> Scene {
 pub(super) fn near_vertex(rng: &mut Rng, delta: f64, pose: &Pose) -> Scene {
     let u = snapped_unit_xy(rng);
     let (alpha, beta) = (rng.uniform(-0.8, 0.8), rng.uniform(0.5, 1.0));
-    let v = normalize_or(add(mul(u, alpha), mul(perp_unit(u), beta)), perp_unit(u));
+    let v = normalize_or(add(scale(u, alpha), scale(perp_unit(u), beta)), perp_unit(u));
     let (b, c) = (rng.uniform(2.0, 4.0), rng.uniform(2.0, 4.0));
     let dir = rng.unit_xy();
     let s = draw_segment(rng);
-    let tri = reorder(rng, [[0.0; 3], mul(u, b), mul(v, c)]);
-    crossing(tri, mul(dir, delta), &s, pose)
+    let tri = reorder(rng, [[0.0; 3], scale(u, b), scale(v, c)]);
+    crossing(tri, scale(dir, delta), &s, pose)
 }

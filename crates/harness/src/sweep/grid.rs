@@ -8,8 +8,9 @@
 //! operations, square roots are IEEE's (correctly rounded). The same seed gives
 //! the same cases on every machine.
 
-use crate::generate::build::{Scene, Similarity, cross, dot, mul, normalize_or, perpendicular, sub};
+use crate::generate::build::{Scene, Similarity, normalize_or, perpendicular};
 use crate::rng::SplitMix64;
+use crashtest_core::vec3::{cross, dot, scale, sub};
 use oracle::geom::P3;
 
 /// The ten preferred numbers of a decade (Renard's R10 series, ISO 3): each
@@ -170,7 +171,7 @@ impl Pose {
                 Pose { kind, rot, shift: [0.0; 3] }
             }
             PoseKind::Rotated => {
-                let v = normalize_or(sub(w, mul(u, dot(u, w))), perpendicular(u));
+                let v = normalize_or(sub(w, scale(u, dot(u, w))), perpendicular(u));
                 Pose { kind, rot: [u, v, cross(u, v)], shift }
             }
         }

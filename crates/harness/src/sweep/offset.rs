@@ -21,13 +21,14 @@
 
 use super::grid::{Pose, Rng};
 use super::scene::{combine, inside_weights, moving_sphere, posed_with_velocity, through, tilted, triangle_round};
-use crate::generate::build::{Scene, aabb, add, mul, plane, point, points, sphere, sub, triangle};
+use crate::generate::build::{Scene, aabb, plane, point, points, sphere, triangle};
+use crashtest_core::vec3::{add, dot, scale, sub};
 use oracle::geom::P3;
 
 /// The pose moved `o` along a random direction (drawn first).
 fn far(rng: &mut Rng, o: f64, pose: &Pose) -> Pose {
     let dir = rng.unit();
-    pose.shifted(mul(dir, o))
+    pose.shifted(scale(dir, o))
 }
 
 /// Sphere–sphere contact.
@@ -36,7 +37,7 @@ pub(super) fn contact_sphere_sphere(rng: &mut Rng, o: f64, pose: &Pose) -> Scene
     let (r1, r2) = (rng.uniform(0.5, 1.0), rng.uniform(0.5, 1.0));
     let d = (r1 + r2) * rng.uniform(0.5, 0.95);
     let u = rng.unit();
-    pose.scene(&(sphere(mul(u, -d / 2.0), r1), Some(sphere(mul(u, d / 2.0), r2))))
+    pose.scene(&(sphere(scale(u, -d / 2.0), r1), Some(sphere(scale(u, d / 2.0), r2))))
 }
 
 /// Sphere–plane contact.
@@ -138,8 +139,8 @@ pub(super) fn toi_sphere_sphere(rng: &mut Rng, o: f64, pose: &Pose) -> Scene {
     let gap = rng.uniform(0.2, 0.6);
     let u = rng.unit();
     let speed = rng.uniform(0.8, 1.5);
-    let side = mul(rng.unit(), 0.2 * speed);
-    let v = add(mul(u, speed), sub(side, mul(u, crate::generate::build::dot(side, u))));
+    let side = scale(rng.unit(), 0.2 * speed);
+    let v = add(scale(u, speed), sub(side, scale(u, dot(side, u))));
     let a = moving_sphere([0.0; 3], r1, v);
-    posed_with_velocity(&pose, (a, Some(sphere(mul(u, r1 + r2 + gap), r2))), v)
+    posed_with_velocity(&pose, (a, Some(sphere(scale(u, r1 + r2 + gap), r2))), v)
 }

@@ -4,7 +4,8 @@
 
 use super::grid::{Pose, Rng, sin_cos};
 use crate::case::{Shape, SphereSpec};
-use crate::generate::build::{add, mul, sub};
+use crashtest_core::vec3::{add, scale, sub};
+
 use oracle::geom::P3;
 
 /// `√3 / 2`, for the directions 120° apart (IEEE square root: the same bits
@@ -26,7 +27,7 @@ pub fn triangle_round(rng: &mut Rng, c: P3, rmin: f64, rmax: f64) -> [P3; 3] {
     let v = [0, 1, 2].map(|k| {
         let [dx, dy] = dirs[k];
         let d = [turn[0] * dx - turn[1] * dy, turn[1] * dx + turn[0] * dy, 0.0];
-        add(c, mul(d, radii[k]))
+        add(c, scale(d, radii[k]))
     });
     reorder(rng, v)
 }
@@ -48,7 +49,7 @@ pub fn inside_weights(rng: &mut Rng) -> [f64; 3] {
 
 /// `λ0 v0 + λ1 v1 + λ2 v2`.
 pub fn combine(v: &[P3; 3], l: [f64; 3]) -> P3 {
-    add(add(mul(v[0], l[0]), mul(v[1], l[1])), mul(v[2], l[2]))
+    add(add(scale(v[0], l[0]), scale(v[1], l[1])), scale(v[2], l[2]))
 }
 
 /// A direction at the angle `theta` (radians, `|theta| ≤ 2`) above the plane
@@ -61,7 +62,7 @@ pub fn tilted(e: P3, theta: f64) -> P3 {
 /// The segment from `x − a·d` to `x + b·d`: it passes through `x` at
 /// `t = a / (a + b)`.
 pub fn through(x: P3, d: P3, a: f64, b: f64) -> Shape {
-    crate::generate::build::segment(sub(x, mul(d, a)), add(x, mul(d, b)))
+    crate::generate::build::segment(sub(x, scale(d, a)), add(x, scale(d, b)))
 }
 
 /// A sphere with a velocity (the generators' `sphere` has none).

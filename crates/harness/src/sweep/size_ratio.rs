@@ -14,7 +14,8 @@
 
 use super::grid::{Pose, Rng};
 use super::scene::{combine, inside_weights, through, tilted, triangle_round};
-use crate::generate::build::{Scene, add, mul, plane, sphere, triangle};
+use crate::generate::build::{Scene, plane, sphere, triangle};
+use crashtest_core::vec3::{add, scale};
 
 /// Spheres of radii about 1 and ρ.
 pub(super) fn sphere_sphere(rng: &mut Rng, rho: f64, pose: &Pose) -> Scene {
@@ -22,7 +23,7 @@ pub(super) fn sphere_sphere(rng: &mut Rng, rho: f64, pose: &Pose) -> Scene {
     let r2 = rho * rng.uniform(0.5, 1.0);
     let u = rng.unit();
     let d = r1 + r2 - 0.25 * r1.min(r2);
-    pose.scene(&(sphere([0.0; 3], r1), Some(sphere(mul(u, d), r2))))
+    pose.scene(&(sphere([0.0; 3], r1), Some(sphere(scale(u, d), r2))))
 }
 
 /// A sphere of radius about ρ on a plane.

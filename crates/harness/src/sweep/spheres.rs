@@ -19,13 +19,14 @@
 //! every coordinate at the scene's scale.
 
 use super::grid::{Pose, Rng};
-use crate::generate::build::{Scene, mul, sphere};
+use crate::generate::build::{Scene, sphere};
+use crashtest_core::vec3::scale;
 
 /// Centres `d` apart.
 pub(super) fn concentric(rng: &mut Rng, d: f64, pose: &Pose) -> Scene {
     let (r1, r2) = (rng.uniform(0.5, 2.0), rng.uniform(0.5, 2.0));
     let u = rng.unit();
-    pose.scene(&(sphere(mul(u, d), r1), Some(sphere([0.0; 3], r2))))
+    pose.scene(&(sphere(scale(u, d), r1), Some(sphere([0.0; 3], r2))))
 }
 
 fn radii(rng: &mut Rng) -> (f64, f64) {

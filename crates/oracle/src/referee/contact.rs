@@ -620,6 +620,7 @@ mod tests {
 mod properties {
     use super::*;
     use crate::referee::exact::ulps;
+    use crashtest_core::vec3::neg;
     use proptest::prelude::*;
 
     fn coord() -> impl Strategy<Value = f64> {
@@ -633,10 +634,6 @@ mod properties {
 
     fn radius() -> impl Strategy<Value = f64> {
         prop_oneof![(0u8..=3).prop_map(f64::from), 0.0..4.0f64]
-    }
-
-    fn neg(v: P3) -> P3 {
-        [-v[0], -v[1], -v[2]]
     }
 
     /// Component-wise ulp distances (`+0` and `−0` are 0 apart: an exact zero

@@ -1,91 +1,22 @@
-//! Dynamics: the time of impact and the response put to work in stepped worlds,
-//! against the laws of mechanics and against rapier.
-//!
-//! Three experiments, each answered four ways:
-//!
-//! | experiment | (i) analytic law | (ii) rapier | (iii) stepped worlds on collide | (iv) closed-form sweep |
-//! | --- | --- | --- | --- | --- |
-//! | a ball dropped on a plane, restitution 0, 0.25, 0.5, 0.8, 1: apex heights bounce by bounce | `h_k = e^{2k} h_0` | [`oracle::rapier::bounce`] | closed-form toi + response; halving + response | — (gravity bends the path; collide's sweeps are linear) |
-//! | tunnelling: a small fast ball at a thin wall, speeds over four decades | never passes | CCD off, on, soft | closed form; halving (misses a wall crossed within a step) | the whole run as one sweep |
-//! | two balls, head-on and glancing: velocities after the impact | the response formula at the exact contact normal (the referee) | [`oracle::rapier::pair`] | closed form; halving | the whole run as one sweep |
-//!
-//! # Our stepped worlds
-//!
-//! A world of our own is a fixed-step loop built only on collide: every step of
-//! `dt`, the body's motion over the step is a straight line (the chord of the
-//! ballistic arc under gravity: start and end positions exact, velocity
-//! `u = v + g τ/2` over the remaining `τ`), collide finds the first contact on
-//! it ([`Sweep::ClosedForm`]: `toi_sphere_plane`/`toi_sphere_sphere`;
-//! [`Sweep::Halving`]: the lecture's `toi_halving`, [`WORLD_HALVING_STEPS`]
-//! bisections), the bodies are moved to that time, one impulse is applied
-//! (`respond_sphere_plane`/`respond_sphere_sphere`) and the rest of the step
-//! goes on, up to [`MAX_EVENTS_PER_STEP`] impacts per step. Between impacts the
-//! motion is exact ballistic flight. Contact at the start of an interval is
-//! resolved by its normal velocity: approaching — an impact; leaving — free
-//! flight; neither (a ball at rest on the ground pressed by gravity) — a
-//! **resting contact**, the one rule beyond the lecture: the normal components
-//! of the velocity and of the rest of the step's motion are removed.
-//!
-//! Obstacles are intersections of half-spaces with parallel faces: the ground
-//! (`z ≤ 0`) or a wall (the slab `|x| ≤ w/2`). A ball touches such an obstacle
-//! exactly when it touches every face's half-space (in the direction across the
-//! faces the condition is an interval), so the closed form is the **latest**
-//! of the faces' first-touch times — each a half-line of touching times, so the
-//! latest start is where they first all hold — and the halving's static test
-//! asks for contact with every face. The halving method tests only the ends of
-//! its interval: a wall crossed entirely within one step is never seen — the
-//! tunnelling this module shows, not patches.
-//!
-//! Everything is deterministic: no clock, no randomness; the report's numbers
-//! and SVG are the same on every run.
+//! The dynamics experiments' run: our stepped worlds on collide, the analytic
+//! answers, rapier's runs, and the report they make.
 
-use crate::render::plot::{Axis, Line, line_chart};
+use super::data::{
+    ANALYTIC_NAME, ApexSeries, BOUNCE_DURATION, BOUNCE_RADIUS, BOUNCES, BounceDesign, DROP_HEIGHT, Deviation,
+    DynamicsReport, Echo, PHASES, PairRow, PassRow, RESTITUTIONS, SPEEDS, SWEEP_NAME, Sweep, THICKNESSES,
+    TUNNEL_RADIUS, TUNNEL_RESTITUTION, TUNNEL_STEPS, ccd_modes, rapier_method, vec_str,
+};
 use collide::Vec3;
 use collide::contact::{Contact, contact_sphere_plane};
 use collide::response::{respond_sphere_plane, respond_sphere_sphere};
 use collide::toi::{Halving, toi_halving, toi_sphere_plane, toi_sphere_sphere, toi_sphere_sphere_halving};
+use crashtest_core::vec3::{norm_sqrt_dot, sub};
 use oracle::geom::{P3, Sphere as GSphere};
 use oracle::rapier::{
     self, APEX_FLOOR, BounceRun, BounceScene, Ccd, PairRun, PairScene, RAPIER_NAME, RAPIER_VERSION, Settings,
     TunnelRun, TunnelScene, apexes,
 };
 use oracle::referee;
-use serde::Serialize;
-use std::fmt::Write;
-
-// ---------------------------------------------------------------------------
-// The experiments' design.
-
-/// Ball radius of the bounce experiment (m).
-pub const BOUNCE_RADIUS: f64 = 0.1;
-/// Height of the ball's lowest point at release, at rest (m).
-pub const DROP_HEIGHT: f64 = 1.0;
-/// Restitutions of the bounce experiment.
-pub const RESTITUTIONS: [f64; 5] = [0.0, 0.25, 0.5, 0.8, 1.0];
-/// Bounces tabulated by the analytic law.
-pub const BOUNCES: usize = 8;
-/// Simulated time of each bounce run (s): eight bounces of the elastic ball
-/// (`√(2h₀/g) · 17` ≈ 7.7 s).
-pub const BOUNCE_DURATION: f64 = 8.0;
-
-/// Ball radius of the tunnelling experiment (m): a small ball.
-pub const TUNNEL_RADIUS: f64 = 0.05;
-/// Wall thicknesses (m).
-pub const THICKNESSES: [f64; 3] = [0.001, 0.01, 0.1];
-/// Ball speeds (m/s): four decades, 1 to 10⁴ (at `dt = 1/60`, 1.7 cm to 167 m
-/// per step against obstacles 0.1 to 0.2 m across).
-pub const SPEEDS: [f64; 9] = [1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0, 10000.0];
-/// Start phases per speed and thickness: the unobstructed first touch falls at
-/// `2 + (j + ½)/PHASES` steps, `j = 0 … PHASES − 1`, spread over one step.
-pub const PHASES: usize = 8;
-/// Steps per tunnelling run: the ball would be well past the wall by then.
-pub const TUNNEL_STEPS: usize = 12;
-/// Restitution of the ball–wall contact: 0, so a stopped ball stays on the
-/// near side and the side it ends on says whether it went through.
-pub const TUNNEL_RESTITUTION: f64 = 0.0;
-/// rapier's soft-CCD prediction distance (m): 1 m, twenty radii of the
-/// tunnelling ball, covering a whole step's travel up to 60 m/s at `dt = 1/60`.
-pub const SOFT_CCD_PREDICTION: f64 = 1.0;
 
 /// Bisections per halving search in our halving world: 40, as the collide
 /// engine's lecture method (`engines::collide::HALVING_STEPS`), so the impact
@@ -96,41 +27,12 @@ pub const WORLD_HALVING_STEPS: u32 = 40;
 /// model bounces infinitely often in finite time).
 pub const MAX_EVENTS_PER_STEP: usize = 8;
 
-/// How our stepped worlds find the impact within a step.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-pub enum Sweep {
-    /// collide's closed forms (`toi_sphere_plane`, `toi_sphere_sphere`): every
-    /// touching time in the step is seen.
-    ClosedForm,
-    /// collide's interval halving (the lecture's): only a contact at the end of
-    /// the interval is seen.
-    Halving,
-}
-
-impl Sweep {
-    fn name(self) -> &'static str {
-        match self {
-            Sweep::ClosedForm => "collide closed form, stepped",
-            Sweep::Halving => "collide halving, stepped",
-        }
-    }
-}
-
-/// The name of the closed-form sweep (the whole run as one step).
-pub const SWEEP_NAME: &str = "collide closed-form sweep";
-/// The name of the analytic answers.
-pub const ANALYTIC_NAME: &str = "analytic";
-
 fn v3(p: P3) -> Vec3<f64> {
     Vec3::new(p[0], p[1], p[2])
 }
 
 fn p3(v: &Vec3<f64>) -> P3 {
     [v.x, v.y, v.z]
-}
-
-fn norm(p: &P3) -> f64 {
-    (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt()
 }
 
 // ---------------------------------------------------------------------------
@@ -275,7 +177,7 @@ pub fn bounce_stepped(scene: &BounceScene, dt: f64, gravity: P3, sweep: Sweep) -
         step_ball(&mut ball, &ground, &g, scene.restitution, dt, sweep);
         heights.push(ball.c.z - scene.radius);
     }
-    BounceRun { apexes: apexes(&heights, dt, norm(&gravity), APEX_FLOOR), heights }
+    BounceRun { apexes: apexes(&heights, dt, norm_sqrt_dot(gravity), APEX_FLOOR), heights }
 }
 
 /// The analytic apexes of a [`BounceScene`]: Newton's restitution law returns
@@ -370,7 +272,7 @@ pub fn pair_analytic(scene: &PairScene) -> PairRun {
 
 /// Kinetic energy `½ m_a ‖v_a‖² + ½ m_b ‖v_b‖²` of a pair's velocities (J).
 pub fn kinetic_energy(ma: f64, va: &P3, mb: f64, vb: &P3) -> f64 {
-    0.5 * ma * norm(va).powi(2) + 0.5 * mb * norm(vb).powi(2)
+    0.5 * ma * norm_sqrt_dot(*va).powi(2) + 0.5 * mb * norm_sqrt_dot(*vb).powi(2)
 }
 
 /// The two-ball scenes: radii 0.5 m, impact at t = 0.5 s, run for 1 s.
@@ -435,136 +337,6 @@ pub fn pair_scenes() -> Vec<PairScene> {
             0.5,
         ),
     ]
-}
-
-// ---------------------------------------------------------------------------
-// The report.
-
-/// One engine's apex series for one restitution.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct ApexSeries {
-    /// The engine or method.
-    pub engine: String,
-    /// Coefficient of restitution.
-    pub restitution: f64,
-    /// Apex heights after the 1st, 2nd, … impact (m), at most [`BOUNCES`]; for
-    /// the stepped engines as far as the samples resolve them.
-    pub apexes: Vec<f64>,
-    /// The highest sampled height after the first landing (m): for `e = 0`, any
-    /// rebound at all (the analytic answer is 0). Absent for the analytic law.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub highest_after_landing: Option<f64>,
-}
-
-/// Pass-through count of one method at one speed and thickness.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct PassRow {
-    /// The method.
-    pub method: String,
-    /// Wall thickness (m).
-    pub thickness: f64,
-    /// Ball speed (m/s).
-    pub speed: f64,
-    /// Runs (start phases) in which the ball ended beyond the wall.
-    pub passed: usize,
-    /// Runs.
-    pub runs: usize,
-}
-
-/// One engine's velocities after a two-ball impact.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct PairRow {
-    /// The scene's name.
-    pub scene: String,
-    /// The engine or method.
-    pub engine: String,
-    /// `a`'s velocity afterwards (m/s).
-    pub velocity_a: P3,
-    /// `b`'s velocity afterwards (m/s).
-    pub velocity_b: P3,
-    /// Largest distance of either velocity from the analytic one, divided by the
-    /// largest initial speed (dimensionless).
-    pub error: f64,
-    /// Relative change of the kinetic energy over the run (after − before) /
-    /// before.
-    pub energy_change: f64,
-}
-
-/// Where rapier's answer differs from the analytic law, reported as it is.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Deviation {
-    /// `bounce`, `tunnel` or `pair`.
-    pub experiment: String,
-    /// The case (restitution and bounce, method and thickness, scene).
-    pub case: String,
-    /// The analytic answer.
-    pub analytic: String,
-    /// rapier's answer.
-    pub rapier: String,
-    /// The difference, in words and numbers.
-    pub difference: String,
-}
-
-/// A setting and its value, as echoed.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Echo {
-    /// The setting's name.
-    pub name: String,
-    /// Its value.
-    pub value: String,
-}
-
-/// The bounce experiment's fixed parameters, as reported.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct BounceDesign {
-    /// Ball radius (m).
-    pub radius: f64,
-    /// Height of the ball's lowest point at release (m).
-    pub drop_height: f64,
-    /// Simulated time per run (s).
-    pub duration: f64,
-    /// Bounces tabulated.
-    pub bounces: usize,
-}
-
-/// Everything the dynamics experiments measured: plain data, serializable.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct DynamicsReport {
-    /// `rapier3d-f64 0.36.1`.
-    pub rapier: String,
-    /// rapier's settings, every one ([`Settings::echo`]); the CCD mode varies
-    /// per tunnelling method, as its name says.
-    pub settings: Vec<Echo>,
-    /// The bounce experiment's design (the restitution varies per series).
-    pub bounce_design: BounceDesign,
-    /// Apex series per restitution and engine.
-    pub bounces: Vec<ApexSeries>,
-    /// Pass-through counts per method, thickness and speed.
-    pub tunnel: Vec<PassRow>,
-    /// Velocities after two-ball impacts per scene and engine.
-    pub pairs: Vec<PairRow>,
-    /// rapier's deviations from the analytic answers.
-    pub deviations: Vec<Deviation>,
-}
-
-/// The tunnelling methods, in report order.
-pub fn tunnel_methods() -> Vec<String> {
-    let mut m: Vec<String> = ccd_modes().iter().map(rapier_method).collect();
-    m.push(Sweep::Halving.name().into());
-    m.push(Sweep::ClosedForm.name().into());
-    m.push(SWEEP_NAME.into());
-    m
-}
-
-fn ccd_modes() -> [Ccd; 3] {
-    [Ccd::Off, Ccd::On, Ccd::Soft { prediction: SOFT_CCD_PREDICTION }]
-}
-
-fn rapier_method(c: &Ccd) -> String {
-    match c {
-        Ccd::Soft { prediction } => format!("{RAPIER_NAME}, soft CCD ({prediction} m)"),
-        c => format!("{RAPIER_NAME}, CCD {}", c.name()),
-    }
 }
 
 /// The tunnelling scene at one thickness, speed and phase.
@@ -672,7 +444,7 @@ pub fn run() -> DynamicsReport {
     let weightless = base.weightless();
     for scene in pair_scenes() {
         let analytic = pair_analytic(&scene);
-        let speed = norm(&scene.va).max(norm(&scene.vb)).max(f64::MIN_POSITIVE);
+        let speed = norm_sqrt_dot(scene.va).max(norm_sqrt_dot(scene.vb)).max(f64::MIN_POSITIVE);
         let before = kinetic_energy(scene.ma, &scene.va, scene.mb, &scene.vb);
         let runs = [
             (ANALYTIC_NAME.to_string(), analytic),
@@ -682,7 +454,7 @@ pub fn run() -> DynamicsReport {
             (SWEEP_NAME.into(), pair_sweep(&scene)),
         ];
         for (i, (engine, run)) in runs.into_iter().enumerate() {
-            let d = |g: &P3, w: &P3| norm(&[g[0] - w[0], g[1] - w[1], g[2] - w[2]]);
+            let d = |g: &P3, w: &P3| norm_sqrt_dot(sub(*g, *w));
             let error = d(&run.velocity_a, &analytic.velocity_a).max(d(&run.velocity_b, &analytic.velocity_b)) / speed;
             let after = kinetic_energy(scene.ma, &run.velocity_a, scene.mb, &run.velocity_b);
             if i == 1 && error > PAIR_REPORT_FLOOR {
@@ -765,247 +537,3 @@ fn bounce_deviations(out: &mut Vec<Deviation>, e: f64, analytic: &[f64], apexes:
         });
     }
 }
-
-fn vec_str(p: &P3) -> String {
-    format!("({:.6}, {:.6}, {:.6})", p[0], p[1], p[2])
-}
-
-// ---------------------------------------------------------------------------
-// Markdown and charts.
-
-/// One chart of the dynamics section.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DynamicsChart {
-    /// Its caption.
-    pub title: String,
-    /// Its file name inside the report's `charts/` folder.
-    pub file: String,
-    /// The SVG document (no XML declaration, no element ids).
-    pub svg: String,
-}
-
-fn file_number(x: f64) -> String {
-    format!("{x}").replace('.', "_")
-}
-
-/// The section's Markdown: settings, apex tables, pass-through tables, the
-/// two-ball velocities and rapier's deviations; charts are linked as
-/// `charts/<file>` ([`charts`]).
-pub fn markdown(r: &DynamicsReport) -> String {
-    let mut s = String::new();
-    let _ = writeln!(s, "## Dynamics\n");
-    let _ = writeln!(
-        s,
-        "Stepped worlds at a fixed dt: {} and worlds of our own built on collide (time of impact + one \
-         impulse per impact), against the analytic laws. rapier's settings, every one:\n",
-        r.rapier
-    );
-    let _ = writeln!(s, "| setting | value |\n| --- | --- |");
-    for e in &r.settings {
-        let _ = writeln!(s, "| {} | {} |", e.name, e.value);
-    }
-    let b = &r.bounce_design;
-    let _ = writeln!(
-        s,
-        "\n### Bounces\n\nA ball of radius {} m released at rest {} m above the ground, {} s simulated. Apex \
-         heights of the ball's lowest point (m) after each impact; `—` where the samples no longer resolve a \
-         flight (shorter than about two steps, or at rest). The analytic law is h_k = e^(2k) h_0.\n",
-        b.radius, b.drop_height, b.duration
-    );
-    for &e in &RESTITUTIONS {
-        let series: Vec<&ApexSeries> = r.bounces.iter().filter(|a| a.restitution.total_cmp(&e).is_eq()).collect();
-        let _ = writeln!(s, "**e = {e}**\n");
-        let _ = write!(s, "| bounce |");
-        for a in &series {
-            let _ = write!(s, " {} |", a.engine);
-        }
-        let _ = write!(s, "\n| --- |");
-        for _ in &series {
-            let _ = write!(s, " ---: |");
-        }
-        let _ = writeln!(s);
-        for k in 0..BOUNCES {
-            let _ = write!(s, "| {} |", k + 1);
-            for a in &series {
-                match a.apexes.get(k) {
-                    Some(h) => {
-                        let _ = write!(s, " {h:.6} |");
-                    }
-                    None => {
-                        let _ = write!(s, " — |");
-                    }
-                }
-            }
-            let _ = writeln!(s);
-        }
-        if e == 0.0 {
-            let _ = write!(s, "| highest after landing |");
-            for a in &series {
-                match a.highest_after_landing {
-                    Some(h) => {
-                        let _ = write!(s, " {h:.3e} |");
-                    }
-                    None => {
-                        let _ = write!(s, " 0 |");
-                    }
-                }
-            }
-            let _ = writeln!(s);
-        } else {
-            let _ = writeln!(s, "\n![apex heights, e = {e}](charts/dynamics-apex-e{}.svg)", file_number(e));
-        }
-        let _ = writeln!(s);
-    }
-    let _ = writeln!(
-        s,
-        "### Tunnelling\n\nA ball of radius {TUNNEL_RADIUS} m shot along x at a wall, restitution \
-         {TUNNEL_RESTITUTION}, {PHASES} start phases per speed (the unobstructed touch falls at 2 + (j + ½)/{PHASES} \
-         steps), {TUNNEL_STEPS} steps; a run passes when the ball ends beyond the wall's mid-plane. Passes out of \
-         {PHASES}:\n"
-    );
-    let methods = tunnel_methods();
-    for &w in &THICKNESSES {
-        let _ = writeln!(s, "**wall {w} m**\n");
-        let _ = write!(s, "| speed (m/s) |");
-        for m in &methods {
-            let _ = write!(s, " {m} |");
-        }
-        let _ = write!(s, "\n| ---: |");
-        for _ in &methods {
-            let _ = write!(s, " ---: |");
-        }
-        let _ = writeln!(s);
-        for &v in &SPEEDS {
-            let _ = write!(s, "| {v} |");
-            for m in &methods {
-                let row = r
-                    .tunnel
-                    .iter()
-                    .find(|p| &p.method == m && p.thickness.total_cmp(&w).is_eq() && p.speed.total_cmp(&v).is_eq());
-                let _ = write!(s, " {} |", row.map_or("—".to_string(), |p| p.passed.to_string()));
-            }
-            let _ = writeln!(s);
-        }
-        let _ = writeln!(s, "\n![pass-through, wall {w} m](charts/dynamics-tunnel-w{}.svg)\n", file_number(w));
-    }
-    let _ = writeln!(
-        s,
-        "### Two balls\n\nVelocities after the impact (m/s); error: largest velocity difference from the analytic \
-         answer over the largest initial speed; energy: relative change of the kinetic energy.\n"
-    );
-    let _ = writeln!(s, "| scene | engine | a | b | error | energy |\n| --- | --- | --- | --- | ---: | ---: |");
-    for p in &r.pairs {
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {} | {:.3e} | {:+.3e} |",
-            p.scene,
-            p.engine,
-            vec_str(&p.velocity_a),
-            vec_str(&p.velocity_b),
-            p.error,
-            p.energy_change
-        );
-    }
-    let _ = writeln!(s, "\n### rapier against the laws\n\nReported as they are, not corrected:\n");
-    if r.deviations.is_empty() {
-        let _ = writeln!(s, "None.");
-    } else {
-        let _ = writeln!(s, "| experiment | case | analytic | rapier | difference |\n| --- | --- | --- | --- | --- |");
-        for d in &r.deviations {
-            let _ = writeln!(s, "| {} | {} | {} | {} | {} |", d.experiment, d.case, d.analytic, d.rapier, d.difference);
-        }
-    }
-    s
-}
-
-/// The dynamics section of a report: its Markdown (also shown folded in the
-/// page), its charts, and the whole [`DynamicsReport`] as `dynamics.json`.
-pub fn section(r: &DynamicsReport) -> crate::render::section::Section {
-    use crate::render::section::{Section, SectionChart};
-    let md = markdown(r);
-    Section {
-        id: "dynamics".into(),
-        title: "Dynamics: bounces, tunneling, two balls".into(),
-        html: format!(
-            "<details><summary>Tables (as in summary.md)</summary><pre>{}</pre></details>\n",
-            crate::render::html::escape(&md)
-        ),
-        markdown: md,
-        charts: charts(r).into_iter().map(|c| SectionChart { title: c.title, file: c.file, svg: c.svg }).collect(),
-        data: serde_json::to_value(r).unwrap_or_else(|e| serde_json::Value::String(format!("unserializable: {e}"))),
-    }
-}
-
-/// The section's charts: apex heights per bounce per engine for each
-/// restitution above 0 (log y), and pass-throughs against speed per method for
-/// each wall thickness (log x).
-pub fn charts(r: &DynamicsReport) -> Vec<DynamicsChart> {
-    let mut out = Vec::new();
-    for &e in RESTITUTIONS.iter().filter(|e| **e > 0.0) {
-        let series: Vec<Line> = r
-            .bounces
-            .iter()
-            .filter(|a| a.restitution.total_cmp(&e).is_eq())
-            .enumerate()
-            .map(|(i, a)| Line {
-                name: a.engine.clone(),
-                style: i,
-                points: std::iter::once((0.0, r.bounce_design.drop_height))
-                    .chain(a.apexes.iter().enumerate().map(|(k, h)| ((k + 1) as f64, *h)))
-                    .collect(),
-                failures: Vec::new(),
-            })
-            .collect();
-        let title = format!("Apex height per bounce, e = {e}");
-        out.push(DynamicsChart {
-            svg: line_chart(
-                &title,
-                "bounce",
-                "apex height (m)",
-                Axis::Linear { min: 0.0, max: BOUNCES as f64, step: 1.0 },
-                Axis::log_covering(series.iter().flat_map(|l| l.points.iter().map(|p| p.1))),
-                &series,
-                0.0,
-            ),
-            file: format!("dynamics-apex-e{}.svg", file_number(e)),
-            title,
-        });
-    }
-    for &w in &THICKNESSES {
-        let series: Vec<Line> = tunnel_methods()
-            .into_iter()
-            .enumerate()
-            .map(|(i, m)| Line {
-                points: r
-                    .tunnel
-                    .iter()
-                    .filter(|p| p.method == m && p.thickness.total_cmp(&w).is_eq())
-                    .map(|p| (p.speed, p.passed as f64 / p.runs.max(1) as f64))
-                    .collect(),
-                name: m,
-                style: i,
-                failures: Vec::new(),
-            })
-            .collect();
-        let title = format!("Pass-through against speed, wall {w} m");
-        out.push(DynamicsChart {
-            svg: line_chart(
-                &title,
-                "speed (m/s)",
-                "fraction of runs passing through",
-                Axis::log_covering(SPEEDS.iter().copied()),
-                Axis::Linear { min: 0.0, max: 1.0, step: 0.25 },
-                &series,
-                LINE_OFFSET_PX,
-            ),
-            file: format!("dynamics-tunnel-w{}.svg", file_number(w)),
-            title,
-        });
-    }
-    out
-}
-
-/// Vertical offset between the lines of a pass-through chart, px: lines at the
-/// same value (most sit at 0 or 1) would hide each other, so each is shifted by
-/// `(i − (n − 1)/2) ·` this; the caption says so. Under 1 % of the axis.
-const LINE_OFFSET_PX: f64 = 2.5;
