@@ -579,19 +579,8 @@ fn gone(run: &mut Running, when: &str) -> String {
 /// A line of the engine's output as a message; the error names the line, and
 /// the field (or the column, for JSON syntax).
 fn parse(text: &str, line_no: u64) -> Result<FromEngine, String> {
-    let de = &mut serde_json::Deserializer::from_str(text.trim_end());
-    serde_path_to_error::deserialize::<_, FromEngine>(de).map_err(|e| {
-        let path = e.path().to_string();
-        let inner = e.into_inner();
+    super::messages::read_from_engine(text.trim_end()).map_err(|e| {
         let preview: String = text.trim_end().chars().take(120).collect();
-        if inner.is_syntax() || inner.is_eof() || path == "." {
-            // serde's position counts lines within this one line: say the column.
-            let text = inner.to_string();
-            let what = text.rsplit_once(" at line ").map_or(text.as_str(), |(w, _)| w);
-            let column = inner.column();
-            format!("line {line_no} of the engine's output, column {column}, is not a message: {what} (`{preview}`)")
-        } else {
-            format!("line {line_no} of the engine's output, field `{path}`: {inner}")
-        }
+        format!("line {line_no} of the engine's output is not a message: {e} (`{preview}`)")
     })
 }

@@ -56,6 +56,47 @@ pub enum FromEngine {
     },
 }
 
+/// An `answers` message without its `type`: what [`read_from_engine`] reads it
+/// as, so that an error names the field's whole path.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AnswersBody {
+    id: u64,
+    answers: Vec<Entry>,
+    #[serde(default)]
+    ns: Option<f64>,
+}
+
+/// Reads one line of an engine's output as a message. The error says what is
+/// wrong: the column, for JSON syntax; the field's path (`answers[3].answer.hit`)
+/// otherwise.
+pub fn read_from_engine(line: &str) -> Result<FromEngine, String> {
+    let mut v: serde_json::Value = serde_json::from_str(line).map_err(|e| {
+        // serde's position counts lines within this one line: say the column.
+        let text = e.to_string();
+        let what = text.rsplit_once(" at line ").map_or(text.as_str(), |(w, _)| w).to_string();
+        format!("column {}: {what}", e.column())
+    })?;
+    let obj = v.as_object_mut().ok_or("not a JSON object")?;
+    let kind = match obj.remove("type") {
+        Some(serde_json::Value::String(t)) => t,
+        Some(other) => return Err(format!("field `type`: expected \"hello\" or \"answers\", got {other}")),
+        None => return Err("field `type`: missing".into()),
+    };
+    fn body<T: serde::de::DeserializeOwned>(v: serde_json::Value) -> Result<T, String> {
+        serde_path_to_error::deserialize(v).map_err(|e| {
+            let path = e.path().to_string();
+            let inner = e.into_inner();
+            if path == "." { inner.to_string() } else { format!("field `{path}`: {inner}") }
+        })
+    }
+    match kind.as_str() {
+        "hello" => body(v).map(FromEngine::Hello),
+        "answers" => body::<AnswersBody>(v).map(|b| FromEngine::Answers { id: b.id, answers: b.answers, ns: b.ns }),
+        other => Err(format!("field `type`: `{other}` is not a message an engine sends (hello, answers)")),
+    }
+}
+
 /// What an engine says of itself.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
