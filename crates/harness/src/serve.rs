@@ -13,7 +13,9 @@ use crate::engine::Engine;
 use crate::judge::Verdict;
 use crate::load::LoadedCase;
 use crate::mesh::Mesh;
-use crate::protocol::messages::{Capability, EngineHello, Entry, FromEngine, PROTOCOL, ToEngine, WireCase};
+use crate::protocol::messages::{
+    Capability, EngineHello, Entry, FromEngine, PROTOCOL, ToEngine, WireCase, read_to_engine,
+};
 use crashtest_core::pair::Pair;
 use std::collections::BTreeMap;
 use std::io::{BufRead, Write};
@@ -41,10 +43,10 @@ pub fn serve(engine: &Engine, served: &Served, input: impl BufRead, mut output: 
         if line.trim().is_empty() {
             continue;
         }
-        let reply = match serde_json::from_str::<ToEngine>(&line) {
+        let reply = match read_to_engine(&line) {
             Ok(ToEngine::Hello { .. }) => FromEngine::Hello(hello_of(engine, served)),
             Ok(ToEngine::Batch { id, cases }) => {
-                FromEngine::Answers { id, answers: cases.iter().map(|c| answer(engine, c)).collect(), ns: None }
+                FromEngine::Answers { id, answers: cases.into_iter().map(|c| answer(engine, c)).collect(), ns: None }
             }
             Ok(ToEngine::Shutdown) => return Ok(()),
             // A batch with a case this engine cannot read (crashtest sends none:
@@ -78,7 +80,7 @@ fn case_by_case(engine: &Engine, line: &str) -> Option<FromEngine> {
         .as_array()?
         .iter()
         .map(|c| match serde_json::from_value::<WireCase>(c.clone()) {
-            Ok(w) => answer(engine, &w),
+            Ok(w) => answer(engine, w),
             Err(e) => Entry { error: Some(format!("the case does not read: {e}")), ..Default::default() },
         })
         .collect();
@@ -99,7 +101,7 @@ pub fn hello_of(engine: &Engine, served: &Served) -> EngineHello {
 
 /// One case's entry: the answer, `unsupported`, or the error (a caught panic,
 /// a non-finite number, a mesh that does not hold together).
-fn answer(engine: &Engine, wire: &WireCase) -> Entry {
+fn answer(engine: &Engine, wire: WireCase) -> Entry {
     let lc = match loaded(wire) {
         Ok(lc) => lc,
         Err(e) => return Entry { error: Some(e), ..Default::default() },
@@ -116,7 +118,7 @@ fn answer(engine: &Engine, wire: &WireCase) -> Entry {
 }
 
 /// A wire case as a loaded case: its inline meshes built.
-fn loaded(wire: &WireCase) -> Result<LoadedCase, String> {
+fn loaded(wire: WireCase) -> Result<LoadedCase, String> {
     let mesh = |s: Option<&Shape>, field: &str| -> Result<Option<Mesh>, String> {
         match s {
             Some(Shape::Mesh(m)) => match (&m.vertices, &m.triangles) {
@@ -128,9 +130,6 @@ fn loaded(wire: &WireCase) -> Result<LoadedCase, String> {
             _ => Ok(None),
         }
     };
-    Ok(LoadedCase {
-        file: PathBuf::from("<protocol>"),
-        case: wire.to_case(),
-        meshes: [mesh(Some(&wire.a), "a")?, mesh(wire.b.as_ref(), "b")?],
-    })
+    let meshes = [mesh(Some(&wire.a), "a")?, mesh(wire.b.as_ref(), "b")?];
+    Ok(LoadedCase { file: PathBuf::from("<protocol>"), case: wire.into_case(), meshes })
 }

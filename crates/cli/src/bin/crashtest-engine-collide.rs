@@ -21,7 +21,9 @@ fn main() -> ExitCode {
         capabilities: crashtest::Pair::ALL.to_vec(),
         provenance: [("served by".to_string(), "crashtest-engine-collide".to_string())].into(),
     };
-    match harness::serve::serve(&engine, &served, std::io::stdin().lock(), std::io::stdout().lock()) {
+    // A large read buffer: a batch arrives in a few reads, not hundreds.
+    let input = std::io::BufReader::with_capacity(harness::protocol::client::PIPE_BUFFER, std::io::stdin());
+    match harness::serve::serve(&engine, &served, input, std::io::stdout().lock()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
