@@ -102,6 +102,13 @@ pub fn process_specs(specs: &[String], file: Option<&Path>, timeout_seconds: f64
 /// Starts a process engine and shakes hands; an engine that cannot start is
 /// still returned, marked down, so that the run shows its failure on every
 /// case instead of stopping.
+///
+/// ```
+/// let spec = crashtest::ProcessSpec::parse("gone=/nonexistent/engine").unwrap();
+/// let engine = crashtest::start_process(spec);
+/// let why = engine.process().and_then(|p| p.down()).unwrap();
+/// assert!(why.contains("cannot start `/nonexistent/engine`"), "{why}");
+/// ```
 pub fn start_process(spec: ProcessSpec) -> Engine {
     Engine::from_process(harness::protocol::ProcessEngine::start(spec))
 }

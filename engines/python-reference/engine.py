@@ -15,7 +15,7 @@ def closest_on_segment(p, a, b):
     t = 0.0 if l2 == 0 else min(1.0, max(0.0, dot(sub(p, a), ab) / l2))
     return add(a, mul(ab, t))
 
-def closest_on_triangle(p, a, b, c):  # Ericson, Real-Time Collision Detection, 5.1.5
+def closest_on_triangle(p, a, b, c):  # by the regions of its vertices, edges and face
     if norm(cross(sub(b, a), sub(c, a))) == 0:  # zero area: the closest of its edges (well defined)
         return min((closest_on_segment(p, u, v) for u, v in ((a, b), (b, c), (c, a))), key=lambda q: norm(sub(p, q)))
     ab, ac, ap = sub(b, a), sub(c, a), sub(p, a)

@@ -460,6 +460,11 @@ fn main() -> ExitCode {
             }
         }
         Command::Engine { action: EngineCommand::Test { fixtures, engine_timeout, json, command } } => {
+            // One argument is a whole command line (`engine test "python3 e.py"`).
+            let command: Vec<String> = match command.as_slice() {
+                [one] => one.split_whitespace().map(String::from).collect(),
+                _ => command,
+            };
             let name = command.first().map(|p| p.rsplit('/').next().unwrap_or(p).to_string()).unwrap_or_default();
             let mut spec = match crashtest::ProcessSpec::new(&name, command) {
                 Ok(s) => s,

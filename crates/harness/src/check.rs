@@ -223,6 +223,18 @@ pub fn run_caught(engine: &Engine, lc: &LoadedCase) -> Result<Answer, Verdict> {
 }
 
 /// Judges one case with every engine.
+///
+/// ```
+/// use harness::load::{Loaded, load_str_into};
+/// let text = r#"{"schema": "crashtest-fixture/1", "cases": [{"name": "touching boxes", "query": "overlap",
+///     "a": {"aabb": {"min": [0, 0, 0], "max": [1, 1, 1]}}, "b": {"aabb": {"min": [1, 0, 0], "max": [2, 1, 1]}},
+///     "expect": {"overlap": true}}]}"#;
+/// let mut loaded = Loaded::default();
+/// load_str_into(std::path::Path::new("boxes.json"), text, &mut loaded);
+/// let r = harness::check::check_case(&loaded.cases[0], &Default::default());
+/// assert!(r.passed);
+/// assert_eq!(r.engines[0].verdict.label(), "agree");
+/// ```
 pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
     let (judged, referee) = (&set.judged, &set.referee);
     // The truth, or why there is none: the referee refused the input, or the

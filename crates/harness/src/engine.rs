@@ -41,7 +41,21 @@ struct ThroughTheProtocol;
 impl Queries for ThroughTheProtocol {}
 
 impl Engine {
-    /// An engine from its name, precision and queries.
+    /// An engine from its name, precision (bits of mantissa: 53 for f64, 24
+    /// for f32; `None` for exact arithmetic) and queries.
+    ///
+    /// ```
+    /// use harness::engine::{Engine, Queries, Reply};
+    /// use crashtest_core::geom::Aabb;
+    /// struct Boxes;
+    /// impl Queries for Boxes {
+    ///     fn overlap(&self, a: &Aabb, b: &Aabb) -> Reply<bool> {
+    ///         Ok((0..3).all(|i| a.min[i] <= b.max[i] && b.min[i] <= a.max[i]))
+    ///     }
+    /// }
+    /// let e = Engine::new("boxes", Some(53), Boxes).with_version("boxes 1.0");
+    /// assert_eq!((e.name.as_str(), e.version.as_deref()), ("boxes", Some("boxes 1.0")));
+    /// ```
     pub fn new(name: impl Into<String>, precision: Option<u32>, queries: impl Queries + 'static) -> Self {
         Self {
             name: name.into(),

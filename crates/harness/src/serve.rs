@@ -37,6 +37,21 @@ pub struct Served {
 /// the input. A line that is not a message is answered on standard error and
 /// skipped (crashtest never sends one). Returns the output's error, if writing
 /// failed.
+///
+/// ```
+/// use harness::serve::{Served, serve};
+/// let engine = harness::engines::judged().remove(0);
+/// let served = Served { capabilities: crashtest_core::pair::Pair::ALL.to_vec(), ..Default::default() };
+/// let input = concat!(
+///     r#"{"type":"hello","protocol":"crashtest-engine/1"}"#, "\n",
+///     r#"{"type":"batch","id":1,"cases":[{"name":"c","query":"overlap","a":{"aabb":{"min":[0,0,0],"max":[1,1,1]}},"b":{"aabb":{"min":[2,0,0],"max":[3,1,1]}}}]}"#, "\n",
+///     r#"{"type":"shutdown"}"#, "\n",
+/// );
+/// let mut out = Vec::new();
+/// serve(&engine, &served, input.as_bytes(), &mut out).unwrap();
+/// let out = String::from_utf8(out).unwrap();
+/// assert!(out.lines().nth(1).unwrap().contains(r#""answer":{"overlap":false}"#), "{out}");
+/// ```
 pub fn serve(engine: &Engine, served: &Served, input: impl BufRead, mut output: impl Write) -> std::io::Result<()> {
     for line in input.lines() {
         let line = line?;

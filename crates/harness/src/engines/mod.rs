@@ -95,6 +95,13 @@ impl EngineSet {
     /// The built-in engines named in `list` (comma-separated, or `all`), in that
     /// order, gated by `gate` — [`DEFAULT_ENGINE`] when `None`, which then must
     /// be selected; with one engine selected and no gate named, that engine.
+    ///
+    /// ```
+    /// use harness::engines::EngineSet;
+    /// let set = EngineSet::select("parry3d-f64, collide/robust", None).unwrap();
+    /// assert_eq!(set.gate, "collide/robust");
+    /// assert!(EngineSet::select("collide/robust,nope", None).unwrap_err().contains("unknown engine `nope`"));
+    /// ```
     pub fn select(list: &str, gate: Option<&str>) -> Result<Self, String> {
         Self::select_with(list, gate, Vec::new())
     }
@@ -102,6 +109,16 @@ impl EngineSet {
     /// `engine` as the gate, with the built-in engines named in `builtins`
     /// beside it (`["all"]` for every one) — the way a user's own engine is
     /// judged and shown next to collide and parry.
+    ///
+    /// ```
+    /// use harness::engine::{Engine, Queries};
+    /// use harness::engines::EngineSet;
+    /// struct Nothing;
+    /// impl Queries for Nothing {}
+    /// let set = EngineSet::with_builtins(Engine::new("mine", Some(53), Nothing), &["parry3d-f64"]).unwrap();
+    /// let names: Vec<&str> = set.judged.iter().map(|e| e.name.as_str()).collect();
+    /// assert_eq!((names, set.gate.as_str()), (vec!["mine", "parry3d-f64"], "mine"));
+    /// ```
     pub fn with_builtins(engine: Engine, builtins: &[&str]) -> Result<Self, String> {
         let gate = engine.name.clone();
         let mut judged = vec![engine];

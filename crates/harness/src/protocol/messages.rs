@@ -4,8 +4,8 @@
 //! wire form live here and nowhere else.
 
 use crate::case::{Case, MeshSpec, Query, Shape};
-use crate::engine::Answer;
 use crate::load::LoadedCase;
+use crashtest_core::engine::Answer;
 use crashtest_core::geom::{
     Aabb, Ball, BarycentricAnswer, BoundsAnswer, Contact, ContactAnswer, IntersectAnswer, P3, ResponseAnswer,
     SegmentHit, Toi, ToiAnswer,
@@ -115,6 +115,16 @@ pub fn read_to_engine(line: &str) -> Result<ToEngine, serde_json::Error> {
 /// Reads one line of an engine's output as a message. The error says what is
 /// wrong: the column, for JSON syntax; the field's path (`answers[3].answer.hit`)
 /// otherwise.
+///
+/// ```
+/// use harness::protocol::messages::{FromEngine, read_from_engine};
+/// let m = read_from_engine(r#"{"type":"answers","id":1,"answers":[{"answer":{"overlap":true},"ns":12}]}"#).unwrap();
+/// assert!(matches!(m, FromEngine::Answers { id: 1, .. }));
+/// let e = read_from_engine(r#"{"type":"answers","id":1,"answers":[{"answer":{"overlapp":true}}]}"#).unwrap_err();
+/// assert!(e.starts_with("field `answers[0].answer.overlapp`"), "{e}");
+/// let e = read_from_engine(r#"{"type":"answers","#).unwrap_err();
+/// assert!(e.starts_with("column 18: EOF while parsing"), "{e}");
+/// ```
 pub fn read_from_engine(line: &str) -> Result<FromEngine, String> {
     // The common case read straight into its fields (an internally tagged
     // enum buffers the whole line first, which costs more than the rest of
