@@ -349,8 +349,8 @@ fn a_sweep_writes_its_chart_and_data_and_prints_its_breaking_points() {
     assert!(svg.starts_with("<svg") && svg.contains("collide/lecture"));
 }
 
-/// A scratch folder of this test binary, emptied first.
-
+/// Malformed mesh files: name, contents (empty: the file is missing), and what
+/// the message says.
 const BAD_MESHES: [(&str, &str, &str); 4] = [
     ("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "only triangles"),
     ("out_of_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "index out of bounds"),
