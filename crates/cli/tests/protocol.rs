@@ -183,11 +183,17 @@ fn output_that_is_not_a_message_names_the_line_and_the_column() {
     assert_eq!(x.len(), 18);
     assert_eq!(code, 1);
     collide_unaffected(&v);
-    // Three batches, three restarts (the hello is line 1 of each process):
-    // the engine is not yet down, but a fourth fault would mark it.
+    // Six batches of three, two in flight: each fault fails the batch awaited
+    // and sends the one behind it again to the restarted engine (the hello is
+    // line 1 of each process); after the third restart's fault the engine is
+    // down, and the last two batches fail saying so.
     let (_, v) = check_with(&script("malformed"), &["--engine-batch", "3"], &["fixtures/overlap.json"]);
     let x = verdicts(&v, "x");
-    assert_eq!(count(&x, "failed", "the engine is down: restarted 3 times; the last fault: batch 4"), 6, "{x:?}");
+    assert_eq!(
+        count(&x, "failed", "the engine is down: restarted 3 times; the last fault: batch 7: line 2"),
+        6,
+        "{x:?}"
+    );
 }
 
 #[test]

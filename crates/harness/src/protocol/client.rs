@@ -31,6 +31,10 @@ pub const DEFAULT_TIMEOUT: Duration = Duration::from_secs(60);
 /// that a fault fails few cases.
 pub const DEFAULT_BATCH: usize = 1024;
 
+/// Batches sent ahead of the answer awaited: two, so that crashtest's writing
+/// of one batch overlaps the engine's answering of the other.
+pub const IN_FLIGHT: usize = 2;
+
 /// Restarts of an engine in one run before it is marked down.
 pub const MAX_RESTARTS: u32 = 3;
 
@@ -306,12 +310,13 @@ impl ProcessEngine {
                 sent.push(i);
             }
         }
-        for chunk in sent.chunks(self.spec.batch.max(1)) {
-            let batch: Vec<(&str, Query)> = chunk.iter().map(|&i| (cases[i].0.as_str(), cases[i].1)).collect();
-            let got = self.exchange(&mut st, &batch);
-            for (&i, r) in chunk.iter().zip(got) {
-                replies[i] = Some(r);
-            }
+        let chunks: Vec<Vec<(&str, Query)>> = sent
+            .chunks(self.spec.batch.max(1))
+            .map(|c| c.iter().map(|&i| (cases[i].0.as_str(), cases[i].1)).collect())
+            .collect();
+        let got = self.exchange_all(&mut st, &chunks);
+        for (&i, r) in sent.iter().zip(got) {
+            replies[i] = Some(r);
         }
         drop(st);
         let replies: Vec<Reply> = replies
@@ -325,61 +330,118 @@ impl ProcessEngine {
         replies
     }
 
-    /// One batch: sent, answered or failed. A fault fails every case of the
-    /// batch, kills the process, and leaves the next batch to restart it.
+    /// One batch: sent, answered or failed ([`ProcessEngine::exchange_all`]).
     fn exchange(&self, st: &mut State, batch: &[(&str, Query)]) -> Vec<Reply> {
-        let failed = |why: &str| {
+        self.exchange_all(st, &[batch.to_vec()])
+    }
+
+    /// Batches, in order, with up to [`IN_FLIGHT`] of them sent ahead of the
+    /// answer awaited, so that crashtest writes the next batch while the engine
+    /// answers this one. A fault fails every case of the batch whose answer it
+    /// spoiled, kills the process, and sends the batches that were in flight
+    /// again to the restarted engine. The replies, one per case, in order.
+    fn exchange_all(&self, st: &mut State, batches: &[Vec<(&str, Query)>]) -> Vec<Reply> {
+        let mut out: Vec<Vec<Reply>> = vec![Vec::new(); batches.len()];
+        let failed = |batch: &[(&str, Query)], why: &str| {
             batch.iter().map(|_| Reply { outcome: Outcome::Failed(why.to_string()), ns: None }).collect::<Vec<_>>()
         };
+        // Batches sent and not yet answered: (id, index), oldest first.
+        let mut in_flight: VecDeque<(u64, usize)> = VecDeque::new();
+        let mut next = 0;
+        while next < batches.len() || !in_flight.is_empty() {
+            while next < batches.len() && in_flight.len() < IN_FLIGHT {
+                if let Err(why) = self.ensure_running(st) {
+                    if in_flight.is_empty() {
+                        out[next] = failed(&batches[next], &why);
+                        next += 1;
+                        continue;
+                    }
+                    break;
+                }
+                let id = st.next_id;
+                st.next_id += 1;
+                match self.send(st, &batches[next], id) {
+                    Ok(()) => {
+                        in_flight.push_back((id, next));
+                        next += 1;
+                    }
+                    // The engine is gone: the answer awaited says how (or, with
+                    // nothing awaited, the next round restarts it).
+                    Err(why) if in_flight.is_empty() => {
+                        let why = format!("batch {id}: {why}");
+                        fault(st, &why);
+                        self.kill(st);
+                        out[next] = failed(&batches[next], &why);
+                        next += 1;
+                    }
+                    Err(_) => break,
+                }
+            }
+            let Some((id, ix)) = in_flight.pop_front() else { continue };
+            match self.receive(st, &batches[ix], id) {
+                Ok(replies) => out[ix] = replies,
+                Err(why) => {
+                    let why = format!("batch {id}: {why}");
+                    fault(st, &why);
+                    self.kill(st);
+                    out[ix] = failed(&batches[ix], &why);
+                    // The batches in flight behind it go again, to the restarted engine.
+                    if let Some(&(_, first)) = in_flight.front() {
+                        next = first;
+                    }
+                    in_flight.clear();
+                }
+            }
+        }
+        out.into_iter().flatten().collect()
+    }
+
+    /// A running engine: restarted if a fault ended it (at most
+    /// [`MAX_RESTARTS`] times, then marked down). The error is what every case
+    /// sent now fails with.
+    fn ensure_running(&self, st: &mut State) -> Result<(), String> {
         if let Some(down) = &st.down {
-            return failed(&format!("the engine is down: {down}"));
+            return Err(format!("the engine is down: {down}"));
         }
-        if st.running.is_none() {
-            if st.restarts >= MAX_RESTARTS {
-                let why = format!(
-                    "restarted {MAX_RESTARTS} times; the last fault: {}",
-                    st.faults.last().map(String::as_str).unwrap_or("none")
-                );
-                st.down = Some(why.clone());
-                return failed(&format!("the engine is down: {why}"));
-            }
-            st.restarts += 1;
-            if let Err(e) = self.launch(st) {
-                let why = format!("restart {} failed: {e}", st.restarts);
-                fault(st, &why);
-                return failed(&why);
-            }
+        if st.running.is_some() {
+            return Ok(());
         }
-        let id = st.next_id;
-        st.next_id += 1;
-        let mut line = format!("{{\"type\":\"batch\",\"id\":{id},\"cases\":[");
+        if st.restarts >= MAX_RESTARTS {
+            let why = format!(
+                "restarted {MAX_RESTARTS} times; the last fault: {}",
+                st.faults.last().map(String::as_str).unwrap_or("none")
+            );
+            st.down = Some(why.clone());
+            return Err(format!("the engine is down: {why}"));
+        }
+        st.restarts += 1;
+        self.launch(st).map_err(|e| {
+            let why = format!("restart {} failed: {e}", st.restarts);
+            fault(st, &why);
+            why
+        })
+    }
+
+    /// Writes one batch line (through the writer thread: never blocks).
+    fn send(&self, st: &mut State, batch: &[(&str, Query)], id: u64) -> Result<(), String> {
+        let run = st.running.as_mut().ok_or("the engine is not running")?;
+        let mut line = String::with_capacity(32 + batch.iter().map(|(j, _)| j.len() + 1).sum::<usize>());
+        line.push_str(&format!("{{\"type\":\"batch\",\"id\":{id},\"cases\":["));
         for (k, (json, _)) in batch.iter().enumerate() {
             if k > 0 {
                 line.push(',');
             }
             line.push_str(json);
         }
-        line.push_str("]}");
-        match self.round_trip(st, &line, batch, id) {
-            Ok(replies) => replies,
-            Err(why) => {
-                let why = format!("batch {id}: {why}");
-                fault(st, &why);
-                self.kill(st);
-                failed(&why)
-            }
-        }
+        line.push_str("]}\n");
+        run.to_engine.send(line).map_err(|_| gone(run, "before the batch was sent"))
     }
 
-    /// Sends a batch line and reads its answers.
-    fn round_trip(&self, st: &mut State, line: &str, batch: &[(&str, Query)], id: u64) -> Result<Vec<Reply>, String> {
+    /// Reads the answers to batch `id`, within the time limit.
+    fn receive(&self, st: &mut State, batch: &[(&str, Query)], id: u64) -> Result<Vec<Reply>, String> {
         let timeout = self.spec.timeout;
         let run = st.running.as_mut().ok_or("the engine is not running")?;
-        let deadline = Instant::now() + timeout;
-        if run.to_engine.send(format!("{line}\n")).is_err() {
-            return Err(gone(run, "before the batch was sent"));
-        }
-        let text = read_line(run, deadline, timeout)?;
+        let text = read_line(run, Instant::now() + timeout, timeout)?;
         let msg = parse(&text, run.line_no)?;
         let FromEngine::Answers { id: got_id, answers, ns } = msg else {
             return Err(format!("line {} of the engine's output: expected `answers`, got `hello`", run.line_no));
