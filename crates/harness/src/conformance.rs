@@ -85,7 +85,12 @@ impl Conformance {
 pub fn run(spec: ProcessSpec, loaded: &Loaded) -> Conformance {
     let command = spec.command_line();
     let engine = Engine::from_process(ProcessEngine::start(spec));
-    let Some(p) = engine.process() else { unreachable!("from_process makes a process engine") };
+    let Some(p) = engine.process() else {
+        // `from_process` always makes a process engine; said, not panicked.
+        let violations = vec!["the engine is not a process engine".to_string()];
+        let (supports, scores, probes) = (Vec::new(), BTreeMap::new(), Vec::new());
+        return Conformance { command, hello: None, supports, scores, cases: 0, probes, violations };
+    };
     let hello = p.hello();
     let mut violations = Vec::new();
     let mut supports = Vec::new();
