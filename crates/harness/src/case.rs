@@ -261,7 +261,7 @@ pub struct Expect {
 
 /// A field that is present, with `null` kept apart from absence: absent →
 /// `None` (through `#[serde(default)]`), `null` → `Some(None)`.
-fn present<'de, D, T>(d: D) -> Result<Option<Option<T>>, D::Error>
+pub(crate) fn present<'de, D, T>(d: D) -> Result<Option<Option<T>>, D::Error>
 where
     D: Deserializer<'de>,
     T: Deserialize<'de>,

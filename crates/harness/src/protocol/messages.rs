@@ -12,7 +12,7 @@ use crashtest_core::geom::{
 };
 use crashtest_core::pair::{Pair, ShapeKind};
 use schemars::JsonSchema;
-use serde::{Deserialize, Deserializer, Serialize};
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// The protocol's name and version, as the handshake spells it.
@@ -352,17 +352,18 @@ impl Entry {
 }
 
 /// An answer on the wire: the fixture format's `expect` vocabulary, with the
-/// engine's bounding sphere (`sphere`) for `bounds`. Only the fields of the
-/// case's query may be present.
+/// engine's bounding sphere (`sphere`) for `bounds` where a fixture's `expect`
+/// has only the minimal radius — which is why it is a type of its own and not
+/// [`crate::case::Expect`]. Only the fields of the case's query may be present.
 #[derive(Clone, Debug, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct WireAnswer {
     /// `contact`: the contact, or `null`.
-    #[serde(default, deserialize_with = "present", skip_serializing_if = "Option::is_none")]
+    #[serde(default, deserialize_with = "crate::case::present", skip_serializing_if = "Option::is_none")]
     #[schemars(with = "Option<Contact>")]
     pub contact: Option<Option<Contact>>,
     /// `intersect`: the first hit, or `null`.
-    #[serde(default, deserialize_with = "present", skip_serializing_if = "Option::is_none")]
+    #[serde(default, deserialize_with = "crate::case::present", skip_serializing_if = "Option::is_none")]
     #[schemars(with = "Option<SegmentHit>")]
     pub hit: Option<Option<SegmentHit>>,
     /// `intersect`: the segment is parallel to the surface.
@@ -384,7 +385,7 @@ pub struct WireAnswer {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub overlap: Option<bool>,
     /// `toi`: the first contact, or `null`.
-    #[serde(default, deserialize_with = "present", skip_serializing_if = "Option::is_none")]
+    #[serde(default, deserialize_with = "crate::case::present", skip_serializing_if = "Option::is_none")]
     #[schemars(with = "Option<Toi>")]
     pub toi: Option<Option<Toi>>,
     /// `response`: `a`'s velocity after the impulse.
@@ -393,11 +394,6 @@ pub struct WireAnswer {
     /// `response`: `b`'s velocity after the impulse.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub velocity_b: Option<P3>,
-}
-
-/// A field present, `null` kept apart from absence.
-fn present<'de, D: Deserializer<'de>, T: Deserialize<'de>>(d: D) -> Result<Option<Option<T>>, D::Error> {
-    Option::<T>::deserialize(d).map(Some)
 }
 
 impl WireAnswer {
@@ -523,4 +519,43 @@ enum Message {
 pub fn json_schema() -> String {
     let schema = schemars::schema_for!(Message);
     serde_json::to_string_pretty(&schema).unwrap_or_default() + "\n"
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_pair_is_a_capability_and_back() {
+        for p in Pair::ALL {
+            assert_eq!(Capability::of(p).pair(), Some(p), "{p:?}");
+        }
+        let not_a_pair = Capability { query: Query::Overlap, a: WireKind::Sphere, b: Some(WireKind::Sphere) };
+        assert_eq!(not_a_pair.pair(), None);
+    }
+
+    #[test]
+    fn an_answer_has_its_querys_fields_and_no_other() {
+        let read = |json: &str, q: Query| serde_json::from_str::<WireAnswer>(json).expect("reads").to_answer(q);
+        assert_eq!(read(r#"{"overlap": true}"#, Query::Overlap), Ok(Answer::Overlap(true)));
+        assert!(matches!(read(r#"{"contact": null}"#, Query::Contact), Ok(Answer::Contact(c)) if c.contact.is_none()));
+        let e = read(r#"{"overlap": true}"#, Query::Contact).expect_err("not a contact field");
+        assert!(e.starts_with("overlap: not a field of a contact answer"), "{e}");
+        let e = read(r#"{"degenerate": true}"#, Query::Contact).expect_err("no contact");
+        assert!(e.starts_with("contact: missing"), "{e}");
+        let e = read(r#"{}"#, Query::Bounds).expect_err("neither box nor sphere");
+        assert!(e.starts_with("aabb: missing"), "{e}");
+        assert!(serde_json::from_str::<WireAnswer>(r#"{"overlapp": true}"#).is_err(), "unknown keys are refused");
+    }
+
+    #[test]
+    fn an_entry_holds_exactly_one_of_answer_unsupported_and_error() {
+        let entry = |json: &str| serde_json::from_str::<Entry>(json).expect("reads").said(Query::Overlap);
+        assert_eq!(entry(r#"{"unsupported": "no boxes here"}"#), Said::Unsupported("no boxes here".into()));
+        assert_eq!(entry(r#"{"error": "boom", "ns": 3}"#), Said::Error("boom".into()));
+        assert!(
+            matches!(entry(r#"{"error": "boom", "unsupported": "no"}"#), Said::Error(m) if m.contains("exactly one"))
+        );
+        assert!(matches!(entry(r#"{"ns": 3}"#), Said::Error(m) if m.contains("exactly one")));
+    }
 }
