@@ -297,3 +297,50 @@ fn the_conformance_run_reports_support_scores_probes_and_violations() {
     assert_eq!(code, 1, "{out}");
     assert!(out.contains("is not a message") && out.contains("the engine is down"), "{out}");
 }
+
+#[test]
+fn an_engines_file_names_commands_and_its_errors_name_the_file_and_field() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("protocol-engines-file");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch");
+    let good = dir.join("engines.json");
+    let py = format!("{ROOT}/engines/python-reference/engine.py");
+    std::fs::write(&good, serde_json::json!({ "engines": { "py": ["python3", py] } }).to_string()).expect("write");
+    let (code, out, err) = crashtest(&[
+        "check",
+        "--engines-file",
+        good.to_str().expect("utf-8"),
+        "--engines",
+        "py",
+        "fixtures/overlap.json",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert_eq!(out.lines().last(), Some("18 passed, 0 failed (gate: py)"), "{out}");
+    let bad = dir.join("bad.json");
+    std::fs::write(&bad, r#"{"engines": {"py": "python3 engine.py"}}"#).expect("write");
+    let (code, _, err) = crashtest(&["check", "--engines-file", bad.to_str().expect("utf-8"), "fixtures/overlap.json"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("bad.json: field `engines.py`: invalid type: string"), "{err}");
+}
+
+#[test]
+fn a_sweep_judges_a_process_engine_beside_collide() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("protocol-sweep");
+    let _ = std::fs::remove_dir_all(&dir);
+    let py = format!("py=python3 {ROOT}/engines/python-reference/engine.py");
+    let (code, out, err) = crashtest(&[
+        "sweep",
+        "concentric",
+        "--poses",
+        "1",
+        "--engines",
+        "collide/robust,py",
+        "--engine",
+        &py,
+        "--out",
+        dir.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let data = std::fs::read_to_string(dir.join("concentric.json")).expect("data written");
+    assert!(data.contains("\"py\""), "the sweep's data has the process engine's series");
+}
