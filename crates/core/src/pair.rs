@@ -81,6 +81,11 @@ impl fmt::Display for Query {
 
 /// The shape kinds of the format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize, schemars::JsonSchema),
+    serde(rename_all = "lowercase")
+)]
 pub enum ShapeKind {
     /// `sphere`.
     Sphere,

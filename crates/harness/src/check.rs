@@ -101,39 +101,10 @@ impl CheckResult {
     }
 }
 
-/// Writes an answer as a fixture's `expect`.
+/// Writes an answer as a fixture's `expect` (its wire form's fields, the
+/// bounding sphere as its radius).
 pub fn answer_as_expect(a: &Answer) -> Expect {
-    let mut e = Expect::default();
-    match a {
-        Answer::Contact(c) => {
-            e.contact = Some(c.contact);
-            e.degenerate = Some(c.degenerate);
-        }
-        Answer::Intersect(i) => {
-            e.hit = Some(i.hit);
-            e.parallel = Some(i.parallel);
-            e.degenerate = Some(i.degenerate);
-        }
-        Answer::Barycentric(b) => {
-            e.barycentric = Some(b.coords);
-            e.degenerate = Some(b.degenerate);
-        }
-        Answer::Bounds(b) => {
-            e.aabb = b.aabb;
-            e.min_radius = b.sphere.map(|s| s.radius);
-        }
-        Answer::Overlap(o) => e.overlap = Some(*o),
-        Answer::Toi(t) => {
-            e.toi = Some(t.toi);
-            e.degenerate = Some(t.degenerate);
-        }
-        Answer::Response(r) => {
-            e.velocity_a = Some(r.velocity_a);
-            e.velocity_b = Some(r.velocity_b);
-            e.degenerate = Some(r.degenerate);
-        }
-    }
-    e
+    crate::protocol::messages::WireAnswer::of(a).into_expect()
 }
 
 /// The reason given to every engine for a case whose exact answer lies beyond

@@ -3,7 +3,7 @@
 //! ([`json_schema`]), and the conversions between a case or an answer and its
 //! wire form live here and nowhere else.
 
-use crate::case::{Case, MeshSpec, Query, Shape};
+use crate::case::{Case, Expect, MeshSpec, Query, Shape};
 use crate::load::LoadedCase;
 use crashtest_core::engine::Answer;
 use crashtest_core::geom::{
@@ -185,47 +185,17 @@ pub struct Capability {
     /// The query.
     pub query: Query,
     /// Shape `a`'s kind.
-    pub a: WireKind,
+    pub a: ShapeKind,
     /// Shape `b`'s kind (absent for `bounds`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub b: Option<WireKind>,
-}
-
-/// A shape kind, as the fixture format spells it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "lowercase")]
-#[allow(missing_docs, reason = "each is the shape of the fixture format with that key")]
-pub enum WireKind {
-    Sphere,
-    Plane,
-    Segment,
-    Triangle,
-    Point,
-    Points,
-    Mesh,
-    Aabb,
-}
-
-impl From<ShapeKind> for WireKind {
-    fn from(k: ShapeKind) -> Self {
-        match k {
-            ShapeKind::Sphere => WireKind::Sphere,
-            ShapeKind::Plane => WireKind::Plane,
-            ShapeKind::Segment => WireKind::Segment,
-            ShapeKind::Triangle => WireKind::Triangle,
-            ShapeKind::Point => WireKind::Point,
-            ShapeKind::Points => WireKind::Points,
-            ShapeKind::Mesh => WireKind::Mesh,
-            ShapeKind::Aabb => WireKind::Aabb,
-        }
-    }
+    pub b: Option<ShapeKind>,
 }
 
 impl Capability {
     /// The capability of answering `pair`.
     pub fn of(pair: Pair) -> Self {
         let row = pair.row();
-        Capability { query: row.query, a: row.a.into(), b: row.b.map(Into::into) }
+        Capability { query: row.query, a: row.a, b: row.b }
     }
 
     /// The pair it names, if the pair table has it.
@@ -433,6 +403,24 @@ impl WireAnswer {
         w
     }
 
+    /// The answer as a fixture's `expect` (the bounding sphere as its radius,
+    /// which is what `expect` holds of it).
+    pub fn into_expect(self) -> Expect {
+        Expect {
+            contact: self.contact,
+            hit: self.hit,
+            parallel: self.parallel,
+            degenerate: self.degenerate,
+            barycentric: self.barycentric,
+            aabb: self.aabb,
+            min_radius: self.sphere.map(|s| s.radius),
+            overlap: self.overlap,
+            toi: self.toi,
+            velocity_a: self.velocity_a,
+            velocity_b: self.velocity_b,
+        }
+    }
+
     /// The fields present, by name.
     fn present(&self) -> Vec<&'static str> {
         let mut out = Vec::new();
@@ -530,7 +518,7 @@ mod tests {
         for p in Pair::ALL {
             assert_eq!(Capability::of(p).pair(), Some(p), "{p:?}");
         }
-        let not_a_pair = Capability { query: Query::Overlap, a: WireKind::Sphere, b: Some(WireKind::Sphere) };
+        let not_a_pair = Capability { query: Query::Overlap, a: ShapeKind::Sphere, b: Some(ShapeKind::Sphere) };
         assert_eq!(not_a_pair.pair(), None);
     }
 
