@@ -148,7 +148,6 @@ struct State {
     running: Option<Running>,
     hello: Option<EngineHello>,
     restarts: u32,
-    starts: u32,
     down: Option<String>,
     next_id: u64,
     faults: Vec<String>,
@@ -179,7 +178,6 @@ impl ProcessEngine {
                 running: None,
                 hello: None,
                 restarts: 0,
-                starts: 0,
                 down: None,
                 next_id: 1,
                 faults: Vec::new(),
@@ -223,11 +221,6 @@ impl ProcessEngine {
             timeout_seconds: self.spec.timeout.as_secs_f64(),
             faults: st.faults.clone(),
         }
-    }
-
-    /// The pairs it said it answers.
-    pub fn supports(&self, pair: Pair) -> bool {
-        lock(&self.state).hello.as_ref().is_some_and(|h| h.capabilities.contains(&Capability::of(pair)))
     }
 
     /// Its answer to one case: kept from an earlier batch, or asked now.
@@ -288,7 +281,7 @@ impl ProcessEngine {
             .unwrap_or(Query::Contact);
         let mut st = lock(&self.state);
         let before = st.faults.len();
-        let reply = self.exchange(&mut st, &[(json, query)]).pop();
+        let reply = self.exchange_all(&mut st, &[vec![(json, query)]]).pop();
         let fault = st.faults.len() > before || st.down.is_some();
         (reply.unwrap_or(Reply { outcome: Outcome::Failed("no reply".into()), ns: None }), fault)
     }
@@ -328,11 +321,6 @@ impl ProcessEngine {
             memo.insert(key, r.clone());
         }
         replies
-    }
-
-    /// One batch: sent, answered or failed ([`ProcessEngine::exchange_all`]).
-    fn exchange(&self, st: &mut State, batch: &[(&str, Query)]) -> Vec<Reply> {
-        self.exchange_all(st, &[batch.to_vec()])
     }
 
     /// Batches, in order, with up to [`IN_FLIGHT`] of them sent ahead of the
@@ -469,7 +457,6 @@ impl ProcessEngine {
 
     /// Starts the process and shakes hands.
     fn launch(&self, st: &mut State) -> Result<(), String> {
-        st.starts += 1;
         let mut child = Command::new(&self.spec.program)
             .args(&self.spec.args)
             .stdin(Stdio::piped())
