@@ -52,13 +52,21 @@ pub struct Served {
 /// let out = String::from_utf8(out).unwrap();
 /// assert!(out.lines().nth(1).unwrap().contains(r#""answer":{"overlap":false}"#), "{out}");
 /// ```
-pub fn serve(engine: &Engine, served: &Served, input: impl BufRead, mut output: impl Write) -> std::io::Result<()> {
-    for line in input.lines() {
-        let line = line?;
+pub fn serve(engine: &Engine, served: &Served, mut input: impl BufRead, mut output: impl Write) -> std::io::Result<()> {
+    // One line buffer and one output buffer for the whole session: a batch's
+    // line is hundreds of kilobytes, and a fresh one each time costs page
+    // faults.
+    let mut line = String::new();
+    let mut text = Vec::new();
+    loop {
+        line.clear();
+        if input.read_line(&mut line)? == 0 {
+            return Ok(());
+        }
         if line.trim().is_empty() {
             continue;
         }
-        let reply = match read_to_engine(&line) {
+        let reply = match read_to_engine(line.trim_end()) {
             Ok(ToEngine::Hello { .. }) => FromEngine::Hello(hello_of(engine, served)),
             Ok(ToEngine::Batch { id, cases }) => {
                 FromEngine::Answers { id, answers: cases.into_iter().map(|c| answer(engine, c)).collect(), ns: None }
@@ -75,11 +83,12 @@ pub fn serve(engine: &Engine, served: &Served, input: impl BufRead, mut output: 
                 }
             },
         };
-        let text = serde_json::to_string(&reply).map_err(std::io::Error::other)?;
-        writeln!(output, "{text}")?;
+        text.clear();
+        serde_json::to_writer(&mut text, &reply).map_err(std::io::Error::other)?;
+        text.push(b'\n');
+        output.write_all(&text)?;
         output.flush()?;
     }
-    Ok(())
 }
 
 /// A batch read case by case: each case that does not read is answered with

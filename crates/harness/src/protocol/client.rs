@@ -14,7 +14,7 @@ use crate::case::Query;
 use crate::load::LoadedCase;
 use crashtest_core::engine::Answer;
 use crashtest_core::pair::Pair;
-use std::collections::{HashMap, VecDeque};
+use std::collections::{HashMap, HashSet, VecDeque};
 use std::io::{BufRead, BufReader, Write};
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
@@ -159,7 +159,7 @@ struct State {
 pub struct ProcessEngine {
     spec: ProcessSpec,
     state: Mutex<State>,
-    memo: Mutex<HashMap<String, Reply>>,
+    memo: Mutex<HashMap<String, Reply, KeyHasher>>,
 }
 
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
@@ -182,7 +182,7 @@ impl ProcessEngine {
                 next_id: 1,
                 faults: Vec::new(),
             }),
-            memo: Mutex::new(HashMap::new()),
+            memo: Mutex::new(HashMap::with_hasher(KeyHasher::default())),
         };
         {
             let mut st = lock(&engine.state);
@@ -225,20 +225,21 @@ impl ProcessEngine {
 
     /// Its answer to one case: kept from an earlier batch, or asked now.
     pub fn answer(&self, lc: &LoadedCase) -> Reply {
-        let wire = WireCase::of(lc);
-        let key = case_key(&wire);
+        let key = case_key(lc);
         if let Some(r) = lock(&self.memo).get(&key) {
             return r.clone();
         }
-        self.ask(vec![(key, lc.case.query, lc.case.pair())])
+        self.ask(vec![Pending::written(key, lc)], true)
             .pop()
             .unwrap_or(Reply { outcome: Outcome::Failed("no reply".into()), ns: None })
     }
 
-    /// Asks for `cases` now, in batches, whether or not it answered them before
-    /// (the protocol bench times this); the answers are kept.
+    /// Asks for `cases` now, in batches, whether or not it answered them
+    /// before, and keeps nothing: the protocol's exchange alone, which the
+    /// protocol bench times (a run asks through [`ProcessEngine::prefetch`],
+    /// which also keeps the answers).
     pub fn run_batches(&self, cases: &[&LoadedCase]) -> Vec<Reply> {
-        self.ask(cases.iter().map(|lc| (case_key(&WireCase::of(lc)), lc.case.query, lc.case.pair())).collect())
+        self.ask(cases.iter().map(|lc| Pending::unwritten(lc)).collect(), false)
     }
 
     /// The engine's own mean time per case over the cases of `cases` it
@@ -259,15 +260,15 @@ impl ProcessEngine {
         let mut want = Vec::new();
         {
             let memo = lock(&self.memo);
-            let mut seen = std::collections::HashSet::new();
+            let mut seen = HashSet::with_hasher(KeyHasher::default());
             for lc in cases {
-                let key = case_key(&WireCase::of(lc));
+                let key = case_key(lc);
                 if !memo.contains_key(&key) && seen.insert(key.clone()) {
-                    want.push((key, lc.case.query, lc.case.pair()));
+                    want.push(Pending::written(key, lc));
                 }
             }
         }
-        self.ask(want);
+        self.ask(want, true);
     }
 
     /// Sends one case written as raw JSON (for the conformance run's
@@ -281,56 +282,73 @@ impl ProcessEngine {
             .unwrap_or(Query::Contact);
         let mut st = lock(&self.state);
         let before = st.faults.len();
-        let reply = self.exchange_all(&mut st, &[vec![(json, query)]]).pop();
+        let raw = Pending { text: Some(json.to_string()), case: None, query, pair: None };
+        let reply = self.exchange_all(&mut st, vec![vec![raw]], |_, _| {}).pop();
         let fault = st.faults.len() > before || st.down.is_some();
         (reply.unwrap_or(Reply { outcome: Outcome::Failed("no reply".into()), ns: None }), fault)
     }
 
-    /// Asks for `cases` (wire JSON, query, pair) in batches; every reply is kept.
-    fn ask(&self, cases: Vec<(String, Query, Option<Pair>)>) -> Vec<Reply> {
+    /// Asks for `cases` in batches, and keeps every reply when `keep`.
+    fn ask(&self, cases: Vec<Pending<'_>>, keep: bool) -> Vec<Reply> {
         let mut st = lock(&self.state);
-        let mut replies: Vec<Option<Reply>> = vec![None; cases.len()];
+        let n = cases.len();
+        let mut replies: Vec<Option<Reply>> = vec![None; n];
         let mut sent = Vec::new();
-        for (i, (_, _, pair)) in cases.iter().enumerate() {
-            let capable =
-                st.hello.as_ref().is_some_and(|h| pair.is_some_and(|p| h.capabilities.contains(&Capability::of(p))));
+        let mut batches: Vec<Vec<Pending>> = Vec::new();
+        for (i, case) in cases.into_iter().enumerate() {
+            let capable = st
+                .hello
+                .as_ref()
+                .is_some_and(|h| case.pair.is_some_and(|p| h.capabilities.contains(&Capability::of(p))));
             if st.down.is_none() && !capable {
                 replies[i] = Some(Reply {
                     outcome: Outcome::Unsupported("not among the engine's capabilities".into()),
                     ns: None,
                 });
             } else {
+                match batches.last_mut() {
+                    Some(b) if b.len() < self.spec.batch.max(1) => b.push(case),
+                    _ => batches.push(vec![case]),
+                }
                 sent.push(i);
             }
         }
-        let chunks: Vec<Vec<(&str, Query)>> = sent
-            .chunks(self.spec.batch.max(1))
-            .map(|c| c.iter().map(|&i| (cases[i].0.as_str(), cases[i].1)).collect())
-            .collect();
-        let got = self.exchange_all(&mut st, &chunks);
+        // Each batch's answers are kept as they come, while the engine answers
+        // the next one.
+        let got = self.exchange_all(&mut st, batches, |batch, answers| {
+            if keep {
+                let mut memo = lock(&self.memo);
+                for (case, r) in batch.iter_mut().zip(answers) {
+                    if let Some(key) = case.text.take() {
+                        memo.insert(key, r.clone());
+                    }
+                }
+            }
+        });
+        drop(st);
         for (&i, r) in sent.iter().zip(got) {
             replies[i] = Some(r);
         }
-        drop(st);
-        let replies: Vec<Reply> = replies
+        replies
             .into_iter()
             .map(|r| r.unwrap_or(Reply { outcome: Outcome::Failed("no reply".into()), ns: None }))
-            .collect();
-        let mut memo = lock(&self.memo);
-        for ((key, _, _), r) in cases.into_iter().zip(&replies) {
-            memo.insert(key, r.clone());
-        }
-        replies
+            .collect()
     }
 
     /// Batches, in order, with up to [`IN_FLIGHT`] of them sent ahead of the
-    /// answer awaited, so that crashtest writes the next batch while the engine
-    /// answers this one. A fault fails every case of the batch whose answer it
-    /// spoiled, kills the process, and sends the batches that were in flight
-    /// again to the restarted engine. The replies, one per case, in order.
-    fn exchange_all(&self, st: &mut State, batches: &[Vec<(&str, Query)>]) -> Vec<Reply> {
+    /// answer awaited, so that the engine answers one batch while crashtest
+    /// writes the next and reads the last. A fault fails every case of the
+    /// batch whose answer it spoiled, kills the process, and sends the batches
+    /// that were in flight again to the restarted engine. `done` is given each
+    /// batch with its replies as they come; the replies, one per case, in order.
+    fn exchange_all(
+        &self,
+        st: &mut State,
+        mut batches: Vec<Vec<Pending<'_>>>,
+        mut done: impl FnMut(&mut [Pending<'_>], &[Reply]),
+    ) -> Vec<Reply> {
         let mut out: Vec<Vec<Reply>> = vec![Vec::new(); batches.len()];
-        let failed = |batch: &[(&str, Query)], why: &str| {
+        let failed = |batch: &[Pending], why: &str| {
             batch.iter().map(|_| Reply { outcome: Outcome::Failed(why.to_string()), ns: None }).collect::<Vec<_>>()
         };
         // Batches sent and not yet answered: (id, index), oldest first.
@@ -341,6 +359,7 @@ impl ProcessEngine {
                 if let Err(why) = self.ensure_running(st) {
                     if in_flight.is_empty() {
                         out[next] = failed(&batches[next], &why);
+                        done(&mut batches[next], &out[next]);
                         next += 1;
                         continue;
                     }
@@ -348,7 +367,7 @@ impl ProcessEngine {
                 }
                 let id = st.next_id;
                 st.next_id += 1;
-                match self.send(st, &batches[next], id) {
+                match self.send(st, &mut batches[next], id) {
                     Ok(()) => {
                         in_flight.push_back((id, next));
                         next += 1;
@@ -360,6 +379,7 @@ impl ProcessEngine {
                         fault(st, &why);
                         self.kill(st);
                         out[next] = failed(&batches[next], &why);
+                        done(&mut batches[next], &out[next]);
                         next += 1;
                     }
                     Err(_) => break,
@@ -380,6 +400,7 @@ impl ProcessEngine {
                     in_flight.clear();
                 }
             }
+            done(&mut batches[ix], &out[ix]);
         }
         out.into_iter().flatten().collect()
     }
@@ -410,23 +431,24 @@ impl ProcessEngine {
         })
     }
 
-    /// Writes one batch line (through the writer thread: never blocks).
-    fn send(&self, st: &mut State, batch: &[(&str, Query)], id: u64) -> Result<(), String> {
+    /// Writes one batch line (through the writer thread: never blocks); each
+    /// case's wire text is written now if it was not before.
+    fn send(&self, st: &mut State, batch: &mut [Pending<'_>], id: u64) -> Result<(), String> {
         let run = st.running.as_mut().ok_or("the engine is not running")?;
-        let mut line = String::with_capacity(32 + batch.iter().map(|(j, _)| j.len() + 1).sum::<usize>());
+        let mut line = String::with_capacity(32 + batch.len() * TEXT_CAPACITY);
         line.push_str(&format!("{{\"type\":\"batch\",\"id\":{id},\"cases\":["));
-        for (k, (json, _)) in batch.iter().enumerate() {
+        for (k, case) in batch.iter_mut().enumerate() {
             if k > 0 {
                 line.push(',');
             }
-            line.push_str(json);
+            line.push_str(case.text());
         }
         line.push_str("]}\n");
         run.to_engine.send(line).map_err(|_| gone(run, "before the batch was sent"))
     }
 
     /// Reads the answers to batch `id`, within the time limit.
-    fn receive(&self, st: &mut State, batch: &[(&str, Query)], id: u64) -> Result<Vec<Reply>, String> {
+    fn receive(&self, st: &mut State, batch: &[Pending<'_>], id: u64) -> Result<Vec<Reply>, String> {
         let timeout = self.spec.timeout;
         let run = st.running.as_mut().ok_or("the engine is not running")?;
         let text = read_line(run, Instant::now() + timeout, timeout)?;
@@ -444,8 +466,8 @@ impl ProcessEngine {
         Ok(answers
             .iter()
             .zip(batch)
-            .map(|(e, (_, q))| Reply {
-                outcome: match e.said(*q) {
+            .map(|(e, case)| Reply {
+                outcome: match e.said(case.query) {
                     Said::Answer(a) => Outcome::Answer(a),
                     Said::Unsupported(u) => Outcome::Unsupported(u),
                     Said::Error(m) => Outcome::Failed(m),
@@ -590,9 +612,51 @@ impl std::fmt::Debug for ProcessEngine {
     }
 }
 
-/// A case's key in the kept answers: its wire form.
-fn case_key(w: &WireCase) -> String {
-    serde_json::to_string(w).unwrap_or_default()
+/// A case's key in the kept answers: its wire form (what is sent).
+fn case_key(lc: &LoadedCase) -> String {
+    let mut text = Vec::with_capacity(TEXT_CAPACITY);
+    match serde_json::to_writer(&mut text, &WireCase::of(lc)) {
+        // serde_json writes UTF-8 only.
+        Ok(()) => String::from_utf8(text).unwrap_or_default(),
+        Err(_) => String::new(),
+    }
+}
+
+/// Room for a case's wire text: most cases' fit (a primitive pair's is a few
+/// hundred bytes), so writing one rarely grows its buffer.
+const TEXT_CAPACITY: usize = 512;
+
+/// The hasher of the kept answers' keys (wire texts of a few hundred bytes:
+/// the standard library's hasher takes longer over them than the rest of a
+/// lookup; no key here comes from an adversary).
+type KeyHasher = foldhash::fast::RandomState;
+
+/// A case waiting for its batch.
+struct Pending<'a> {
+    /// Its wire text, once written (the key its answer is kept under).
+    text: Option<String>,
+    /// The case, to write the text from when its batch is sent.
+    case: Option<&'a LoadedCase>,
+    query: Query,
+    pair: Option<Pair>,
+}
+
+impl<'a> Pending<'a> {
+    /// A case whose wire text is `key`.
+    fn written(key: String, lc: &'a LoadedCase) -> Self {
+        Pending { text: Some(key), case: Some(lc), query: lc.case.query, pair: lc.case.pair() }
+    }
+
+    /// A case whose wire text is written when its batch is sent (while the
+    /// engine answers the batch before).
+    fn unwritten(lc: &'a LoadedCase) -> Self {
+        Pending { text: None, case: Some(lc), query: lc.case.query, pair: lc.case.pair() }
+    }
+
+    fn text(&mut self) -> &str {
+        let case = self.case;
+        self.text.get_or_insert_with(|| case.map(case_key).unwrap_or_default())
+    }
 }
 
 fn fault(st: &mut State, why: &str) {
