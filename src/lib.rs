@@ -56,47 +56,44 @@ pub use harness;
 
 use std::path::{Path, PathBuf};
 
+pub use harness::engines::listed::Listed;
 pub use harness::protocol::ProcessSpec;
 
 /// The process engines of the command line: `NAME=COMMAND` specs and an engines
-/// file (`{"engines": {"NAME": ["program", "arg", …]}}`), each with the time
-/// limit `timeout_seconds` per batch. The error names the spec, or the file and
-/// the field.
+/// file ([`harness::engines::listed`]: `{"engines": {"NAME": ["program", "arg",
+/// …]}}`, or an entry `{"command": […], "known": "file"}` that carries known
+/// divergences), each with the time limit `timeout_seconds` per batch. The
+/// error names the spec, or the file and the field.
 ///
 /// ```
-/// let specs = crashtest::process_specs(&["mine=python3 engine.py".into()], None, 30.0).unwrap();
-/// assert_eq!((specs[0].name.as_str(), specs[0].args.as_slice()), ("mine", &["engine.py".to_string()][..]));
-/// assert!(crashtest::process_specs(&["no command".into()], None, 30.0).is_err());
+/// let listed = crashtest::process_engines(&["mine=python3 engine.py".into()], None, 30.0).unwrap();
+/// let spec = &listed[0].spec;
+/// assert_eq!((spec.name.as_str(), spec.args.as_slice()), ("mine", &["engine.py".to_string()][..]));
+/// assert!(crashtest::process_engines(&["no command".into()], None, 30.0).is_err());
 /// ```
-pub fn process_specs(specs: &[String], file: Option<&Path>, timeout_seconds: f64) -> Result<Vec<ProcessSpec>, String> {
+pub fn process_engines(specs: &[String], file: Option<&Path>, timeout_seconds: f64) -> Result<Vec<Listed>, String> {
     if !(timeout_seconds.is_finite() && timeout_seconds > 0.0 && timeout_seconds <= 1e6) {
         return Err(format!("--engine-timeout {timeout_seconds}: a number of seconds above 0 and at most 1e6"));
     }
     let mut out = Vec::new();
     for s in specs {
-        out.push(ProcessSpec::parse(s).map_err(|e| format!("--engine {e}"))?);
+        let spec = ProcessSpec::parse(s).map_err(|e| format!("--engine {e}"))?;
+        out.push(Listed { spec, known: Vec::new(), missing: None, known_file: None });
     }
     if let Some(path) = file {
-        #[derive(serde::Deserialize)]
-        #[serde(deny_unknown_fields)]
-        struct EnginesFile {
-            engines: std::collections::BTreeMap<String, Vec<String>>,
-        }
-        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-        let de = &mut serde_json::Deserializer::from_str(&text);
-        let parsed: EnginesFile = serde_path_to_error::deserialize(de).map_err(|e| {
-            let at = e.path().to_string();
-            let inner = e.into_inner();
-            format!("{}: field `{at}`: {inner}", path.display())
-        })?;
-        for (name, words) in parsed.engines {
-            out.push(ProcessSpec::new(&name, words).map_err(|e| format!("{}: engines.{name}: {e}", path.display()))?);
-        }
+        out.extend(harness::engines::listed::read(path)?);
     }
-    for s in &mut out {
-        s.timeout = std::time::Duration::from_secs_f64(timeout_seconds);
+    for l in &mut out {
+        l.spec.timeout = std::time::Duration::from_secs_f64(timeout_seconds);
     }
     Ok(out)
+}
+
+/// The list of the peer engines crashtest ships adapters for
+/// (`engines/engines.json`: FCL, Coal, MuJoCo and Bullet through their Python
+/// packages, installed by `engines/install`).
+pub fn peer_engines_file() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("engines").join("engines.json")
 }
 
 /// Starts a process engine and shakes hands; an engine that cannot start is

@@ -204,13 +204,17 @@ impl EngineArgs {
             eprintln!("error: {e}");
             ExitCode::from(2)
         };
-        let mut specs =
-            crashtest::process_specs(&self.process, self.engines_file.as_deref(), self.engine_timeout).map_err(fail)?;
-        for s in &mut specs {
-            s.batch = self.engine_batch as usize;
+        // The peer engines crashtest ships adapters for first, then the user's.
+        let mut listed = crashtest::process_engines(&[], Some(&crashtest::peer_engines_file()), self.engine_timeout)
+            .map_err(fail)?;
+        listed.extend(
+            crashtest::process_engines(&self.process, self.engines_file.as_deref(), self.engine_timeout)
+                .map_err(fail)?,
+        );
+        for l in &mut listed {
+            l.spec.batch = self.engine_batch as usize;
         }
-        let extra = specs.into_iter().map(crashtest::start_process).collect();
-        crashtest::EngineSet::select_with(&self.engines, self.gate.as_deref(), extra).map_err(|e| {
+        crashtest::EngineSet::select_with(&self.engines, self.gate.as_deref(), listed).map_err(|e| {
             fail(format!("--engines {} --gate {}: {e}", self.engines, self.gate.as_deref().unwrap_or("(default)")))
         })
     }
@@ -270,6 +274,9 @@ fn main() -> ExitCode {
                 Err(code) => return code,
             };
             let result = crashtest::check(&paths, &set);
+            for (name, why) in &set.missing {
+                eprintln!("note: engine `{name}` not run: {why}");
+            }
             if json {
                 match serde_json::to_string_pretty(&result) {
                     Ok(s) => outln!("{s}"),

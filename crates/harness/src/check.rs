@@ -226,7 +226,7 @@ pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
     let mut passed = false;
     let mut unanswered = false;
     for engine in judged {
-        let tol = Tolerance::for_precision(engine.precision);
+        let tol = Tolerance::for_precision(engine.precision_for(lc));
         let (answer, verdict, errors, mism) = match run_caught(engine, lc) {
             Ok(a) => {
                 let mism = has_expect.then(|| judge::check_expect(lc, &a));

@@ -87,6 +87,17 @@ impl Engine {
         }
     }
 
+    /// The precision this engine answers `lc` in: its own, or, for a process
+    /// engine, the one its hello gives for the case's pair when it gives one.
+    pub fn precision_for(&self, lc: &LoadedCase) -> Option<u32> {
+        let pair = lc.case.pair();
+        self.process
+            .as_ref()
+            .and_then(|p| p.hello())
+            .and_then(|h| h.capabilities.iter().find(|c| pair.is_some() && c.pair() == pair).and_then(|c| c.precision))
+            .or(self.precision)
+    }
+
     /// The process behind a process engine.
     pub fn process(&self) -> Option<&ProcessEngine> {
         self.process.as_deref()

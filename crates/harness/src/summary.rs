@@ -204,6 +204,10 @@ pub struct Provenance {
     pub machine: String,
     /// The engines and their versions.
     pub engines: Vec<EngineInfo>,
+    /// Engines the run would have judged but that are not installed: each
+    /// name, and why (with how to install it).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub missing_engines: Vec<(String, String)>,
     /// The campaign's seed.
     pub seed: u64,
     /// Random cases per query kind (before sharding).

@@ -3,6 +3,7 @@
 //! (`oracle::parry`), where its conventions are translated.
 
 pub mod collide;
+pub mod listed;
 pub mod referee;
 
 use crate::divergence::{LECTURE, PARRY};
@@ -62,12 +63,16 @@ pub struct EngineSet {
     pub referee: Engine,
     /// The gate's name; one of `judged`.
     pub gate: String,
+    /// Engines that `all` would have judged but that are not installed: each
+    /// name, and why (with how to install it). The report's provenance lists
+    /// them.
+    pub missing: Vec<(String, String)>,
 }
 
 impl Default for EngineSet {
     /// Every built-in engine ([`judged`]), gated by [`DEFAULT_ENGINE`].
     fn default() -> Self {
-        Self { judged: judged(), referee: referee(), gate: DEFAULT_ENGINE.into() }
+        Self { judged: judged(), referee: referee(), gate: DEFAULT_ENGINE.into(), missing: Vec::new() }
     }
 }
 
@@ -89,7 +94,7 @@ impl EngineSet {
         if !judged.iter().any(|e| e.name == gate) {
             return Err(format!("the gate `{gate}` is not among the engines judged ({})", names(&judged)));
         }
-        Ok(Self { judged, referee: referee(), gate: gate.into() })
+        Ok(Self { judged, referee: referee(), gate: gate.into(), missing: Vec::new() })
     }
 
     /// The built-in engines named in `list` (comma-separated, or `all`), in that
@@ -141,17 +146,34 @@ impl EngineSet {
         Self::new(judged, &gate).unwrap_or_else(|e| panic!("EngineSet::of: {e}"))
     }
 
-    /// The built-in engines and the process engines `extra` (in that order
-    /// under `all`), those named in `list` (comma-separated, or `all`) chosen,
-    /// gated as [`EngineSet::select`] gates.
-    pub fn select_with(list: &str, gate: Option<&str>, extra: Vec<Engine>) -> Result<Self, String> {
-        let chosen = pick_from(list, judged().into_iter().chain(extra).collect())?;
+    /// The built-in engines and the listed process engines `listed` (in that
+    /// order under `all`), those named in `list` (comma-separated, or `all`)
+    /// chosen, gated as [`EngineSet::select`] gates. Only the listed engines
+    /// chosen are started. Under `all`, a listed engine that is not installed
+    /// is left out and recorded in [`EngineSet::missing`]; named, it is an
+    /// error that says how to install it.
+    pub fn select_with(list: &str, gate: Option<&str>, listed: Vec<listed::Listed>) -> Result<Self, String> {
+        let all = list.trim() == "all";
+        let named: Vec<&str> = list.split(',').map(str::trim).collect();
+        let mut started = Vec::new();
+        let mut missing = Vec::new();
+        for l in listed {
+            if !all && !named.contains(&l.spec.name.as_str()) {
+                continue;
+            }
+            match &l.missing {
+                Some(why) if all => missing.push((l.spec.name.clone(), why.clone())),
+                Some(why) => return Err(format!("engine `{}`: {why}", l.spec.name)),
+                None => started.push(l.start()),
+            }
+        }
+        let chosen = pick_from(list, judged().into_iter().chain(started).collect())?;
         let gate = match (gate, chosen.as_slice()) {
             (Some(g), _) => g.to_string(),
             (None, [only]) => only.name.clone(),
             (None, _) => DEFAULT_ENGINE.to_string(),
         };
-        Self::new(chosen, &gate)
+        Ok(Self { missing, ..Self::new(chosen, &gate)? })
     }
 
     /// Lets every process engine of the set answer `cases` in batches before

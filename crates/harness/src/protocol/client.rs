@@ -9,7 +9,7 @@
 //! are written on a thread too, so an engine that stops reading cannot block the
 //! run either.
 
-use super::messages::{Capability, EngineHello, FromEngine, PROTOCOL, Said, ToEngine, WireCase};
+use super::messages::{EngineHello, FromEngine, PROTOCOL, Said, ToEngine, WireCase};
 use crate::case::Query;
 use crate::load::LoadedCase;
 use crashtest_core::engine::Answer;
@@ -299,7 +299,7 @@ impl ProcessEngine {
             let capable = st
                 .hello
                 .as_ref()
-                .is_some_and(|h| case.pair.is_some_and(|p| h.capabilities.contains(&Capability::of(p))));
+                .is_some_and(|h| case.pair.is_some_and(|p| h.capabilities.iter().any(|c| c.pair() == Some(p))));
             if st.down.is_none() && !capable {
                 replies[i] = Some(Reply {
                     outcome: Outcome::Unsupported("not among the engine's capabilities".into()),

@@ -189,18 +189,23 @@ pub struct Capability {
     /// Shape `b`'s kind (absent for `bounds`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub b: Option<ShapeKind>,
+    /// The precision this pair is answered in, in bits of mantissa, where it
+    /// is not the engine's (an f64 engine that stores meshes in f32 says 24
+    /// for its mesh pairs); its answers are judged at that precision.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub precision: Option<u32>,
 }
 
 impl Capability {
-    /// The capability of answering `pair`.
+    /// The capability of answering `pair` (at the engine's precision).
     pub fn of(pair: Pair) -> Self {
         let row = pair.row();
-        Capability { query: row.query, a: row.a, b: row.b }
+        Capability { query: row.query, a: row.a, b: row.b, precision: None }
     }
 
     /// The pair it names, if the pair table has it.
     pub fn pair(&self) -> Option<Pair> {
-        Pair::ALL.into_iter().find(|p| Capability::of(*p) == *self)
+        Pair::find(self.query, self.a, self.b)
     }
 }
 
@@ -518,7 +523,8 @@ mod tests {
         for p in Pair::ALL {
             assert_eq!(Capability::of(p).pair(), Some(p), "{p:?}");
         }
-        let not_a_pair = Capability { query: Query::Overlap, a: ShapeKind::Sphere, b: Some(ShapeKind::Sphere) };
+        let not_a_pair =
+            Capability { query: Query::Overlap, a: ShapeKind::Sphere, b: Some(ShapeKind::Sphere), precision: None };
         assert_eq!(not_a_pair.pair(), None);
     }
 

@@ -823,6 +823,7 @@ pub(crate) mod fixture {
                     },
                     EngineInfo { name: "exact".into(), version: "referee".into(), process: None },
                 ],
+                missing_engines: vec![("absent<peer>".into(), "not installed; install it with `x & y`".into())],
                 seed: 42,
                 cases_per_query: 100,
                 full_range_per_query: 0,

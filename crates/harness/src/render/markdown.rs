@@ -259,6 +259,9 @@ pub fn engines_table(summary: &Summary) -> Table {
         }
         t.rows.push(vec![e.name.clone(), version]);
     }
+    for (name, why) in &summary.provenance.missing_engines {
+        t.rows.push(vec![name.clone(), format!("NOT RUN: {why}")]);
+    }
     t
 }
 

@@ -439,7 +439,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
                 let n = per_group.entry((ix, c.query, full)).or_default();
                 if *n < MAX_DISCREPANCIES_PER_GROUP {
                     *n += 1;
-                    discrepancies.push(discrepancy(c, lc, ix, Tolerance::for_precision(judged[ix].precision)));
+                    discrepancies.push(discrepancy(c, lc, ix, Tolerance::for_precision(judged[ix].precision_for(lc))));
                 }
             }
         }
@@ -510,6 +510,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     let fixture_cases = cases.iter().filter(|c| !c.case.source.starts_with("generated")).count() as u64;
     let mut provenance = provenance;
     provenance.engines = engine_infos(judged);
+    provenance.missing_engines = set.missing.clone();
     provenance.seed = config.seed;
     provenance.cases_per_query = config.cases_per_query;
     provenance.full_range_per_query = config.full_range_per_query;

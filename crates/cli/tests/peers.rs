@@ -1,0 +1,176 @@
+//! The peer engines crashtest ships adapters for (`engines/engines.json`: FCL,
+//! Coal, MuJoCo, Bullet), each through `crashtest-engine/1`, on a fresh machine
+//! after `engines/install` (the README's test command runs it first; a peer
+//! that is not installed fails these tests, it is never skipped):
+//!
+//! - the conformance run (handshake, the fixture corpus against the referee,
+//!   the malformed-case probes) finds no protocol violation;
+//! - every case of the adapter's `divergences.json` gets the verdict its
+//!   `source` records — `known divergence:` the known divergence that pins it
+//!   (from the adapter's `known.json`), `engine error:` DISAGREE or FAILED,
+//!   `borderline:` borderline — so a known divergence that stops happening, or
+//!   an engine error that is fixed, fails here;
+//! - `--engines all` runs every installed peer and says which are not
+//!   installed and how to install them.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+/// The workspace root: the runs read `fixtures/` and `engines/` from here.
+const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+
+/// Every run here is killed, and its test failed, past this: far more than
+/// any of them takes (a Python peer answers the fixture corpus in seconds).
+const TIME_LIMIT: Duration = Duration::from_secs(300);
+
+fn crashtest(args: &[&str]) -> (i32, String, String) {
+    let start = Instant::now();
+    let out = Command::new(env!("CARGO_BIN_EXE_crashtest")).current_dir(ROOT).args(args).output().expect("runs");
+    assert!(start.elapsed() < TIME_LIMIT, "crashtest {args:?} took {:?}", start.elapsed());
+    let text = |b: &[u8]| String::from_utf8_lossy(b).to_string();
+    (out.status.code().unwrap_or(-1), text(&out.stdout), text(&out.stderr))
+}
+
+fn peers_file() -> PathBuf {
+    Path::new(ROOT).join("engines/engines.json")
+}
+
+/// The peer `name` from the shipped list, installed (or the test fails saying
+/// how to install it).
+fn peer(name: &str) -> harness::engines::listed::Listed {
+    let listed = harness::engines::listed::read(&peers_file()).expect("engines/engines.json reads");
+    let p = listed.into_iter().find(|l| l.spec.name == name).unwrap_or_else(|| panic!("{name} is not listed"));
+    assert!(
+        p.missing.is_none(),
+        "{name}: {} (the README's test command runs engines/install first)",
+        p.missing.as_deref().unwrap_or("")
+    );
+    p
+}
+
+/// The conformance run and the adapter's divergences, for one peer.
+fn judged_as_recorded(name: &str) {
+    let p = peer(name);
+    let mut command = vec!["engine", "test", p.spec.program.as_str()];
+    command.extend(p.spec.args.iter().map(String::as_str));
+    let (code, out, err) = crashtest(&command);
+    assert_eq!(code, 0, "{name}: the conformance run found a violation or could not run:\n{out}\n{err}");
+    assert!(out.contains("protocol violations: none"), "{name}:\n{out}");
+
+    let divergences = format!("engines/{name}/divergences.json");
+    let (code, out, err) =
+        crashtest(&["check", "--json", "--engines", &format!("collide/robust,{name}"), &divergences]);
+    assert!(code == 0 || code == 1, "{name}: check on {divergences} exited {code}:\n{err}");
+    let report: serde_json::Value = serde_json::from_str(&out).expect("check --json");
+    let cases = report["cases"].as_array().expect("cases");
+    let text = std::fs::read_to_string(Path::new(ROOT).join(&divergences)).expect("reads");
+    let file: serde_json::Value = serde_json::from_str(&text).expect("json");
+    let sources: Vec<(&str, &str)> = file["cases"]
+        .as_array()
+        .expect("cases")
+        .iter()
+        .map(|c| (c["name"].as_str().unwrap_or(""), c["source"].as_str().unwrap_or("")))
+        .collect();
+    assert_eq!(cases.len(), sources.len(), "{name}: every case of {divergences} is judged");
+    let mut wrong = Vec::new();
+    for (case_name, source) in &sources {
+        let Some(c) = cases.iter().find(|c| c["name"] == *case_name) else {
+            wrong.push(format!("{case_name}: not judged"));
+            continue;
+        };
+        let Some(r) = c["engines"].as_array().and_then(|es| es.iter().find(|e| e["engine"] == name)) else {
+            wrong.push(format!("{case_name}: no verdict of {name}"));
+            continue;
+        };
+        let verdict = r["verdict"].as_str().unwrap_or("");
+        let reason = r["reason"].as_str().unwrap_or("");
+        let pins: Vec<&str> =
+            p.known.iter().filter(|k| k.pinned_by.iter().any(|n| n == case_name)).map(|k| k.what.as_str()).collect();
+        let ok = if source.starts_with("known divergence:") {
+            verdict == "known_divergence" && pins.iter().any(|what| reason.starts_with(what))
+        } else if source.starts_with("engine error:") {
+            pins.is_empty() && (verdict == "disagree" || verdict == "failed")
+        } else if source.starts_with("borderline:") {
+            pins.is_empty() && verdict == "borderline"
+        } else {
+            false
+        };
+        if !ok {
+            wrong.push(format!("{case_name}: recorded `{source:.40}…`, pinned by {pins:?}; judged {verdict} {reason}"));
+        }
+    }
+    for k in &p.known {
+        for pin in &k.pinned_by {
+            if !sources.iter().any(|(n, _)| n == pin) {
+                wrong.push(format!("known divergence `{}`: its case `{pin}` is not in {divergences}", k.what));
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{name}: {} case(s) not judged as recorded:\n{}", wrong.len(), wrong.join("\n"));
+}
+
+#[test]
+fn fcl_is_judged_as_recorded() {
+    judged_as_recorded("fcl");
+}
+
+#[test]
+fn coal_is_judged_as_recorded() {
+    judged_as_recorded("coal");
+}
+
+#[test]
+fn mujoco_is_judged_as_recorded() {
+    judged_as_recorded("mujoco");
+}
+
+#[test]
+fn bullet_is_judged_as_recorded() {
+    judged_as_recorded("bullet");
+}
+
+#[test]
+fn all_runs_every_installed_peer_and_names_the_missing_with_how_to_install() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("peers-missing");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let file = dir.join("engines.json");
+    std::fs::write(&file, r#"{"install": "make install-ghost", "engines": {"ghost": ["{here}/no/such/engine"]}}"#)
+        .expect("write");
+    let file = file.to_str().expect("utf-8");
+    let (code, out, err) = crashtest(&["check", "--engines-file", file, "fixtures/overlap.json"]);
+    assert_eq!(code, 0, "{out}\n{err}");
+    for name in ["fcl", "coal", "mujoco", "bullet"] {
+        assert!(out.contains(&format!("\n  {name} ")), "{name} runs under `all`:\n{out}");
+    }
+    assert!(
+        err.contains("note: engine `ghost` not run: not installed")
+            && err.contains("install it with `make install-ghost`"),
+        "{err}"
+    );
+    let (code, _, err) =
+        crashtest(&["check", "--engines-file", file, "--engines", "collide/robust,ghost", "fixtures/overlap.json"]);
+    assert_eq!(code, 2, "naming a missing engine is an error: {err}");
+    assert!(err.contains("engine `ghost`: not installed") && err.contains("make install-ghost"), "{err}");
+
+    // The report's provenance says so too.
+    let out_dir = dir.join("report");
+    let out_dir = out_dir.to_str().expect("utf-8");
+    let args = ["report", "--engines-file", file, "--cases", "20", "--full-range", "0", "--no-sections", "--no-timing"];
+    let (code, _, err) = crashtest(&[&args[..], &["--out", out_dir]].concat());
+    assert_eq!(code, 0, "{err}");
+    let summary = std::fs::read_to_string(Path::new(out_dir).join("latest/summary.json")).expect("summary");
+    let summary: serde_json::Value = serde_json::from_str(&summary).expect("json");
+    let engines: Vec<&str> = summary["provenance"]["engines"]
+        .as_array()
+        .expect("engines")
+        .iter()
+        .filter_map(|e| e["name"].as_str())
+        .collect();
+    for name in ["collide/robust", "parry3d-f64", "fcl", "coal", "mujoco", "bullet"] {
+        assert!(engines.contains(&name), "{name} in {engines:?}");
+    }
+    let missing = &summary["provenance"]["missing_engines"];
+    assert_eq!(missing[0][0], "ghost", "{missing}");
+    assert!(missing[0][1].as_str().is_some_and(|w| w.contains("make install-ghost")), "{missing}");
+}

@@ -1,0 +1,114 @@
+"""crashtest-engine/1 for Python adapters: the read loop, the hello, per-case
+timing and error containment (docs/PROTOCOL.md). An adapter gives its name,
+version, precision, provenance and one handler per pair it answers; a handler
+takes the case (a dict in the fixture format's vocabulary) and returns the
+answer (a dict in the `expect` vocabulary), or raises `Unsupported`.
+
+Timing: a handler that wraps its engine's call in `timed(...)` is charged for
+that call alone (the conversion of the case into the engine's types and of its
+result back is the adapter's, not the engine's); otherwise the whole handler
+is timed.
+"""
+import json
+import math
+import sys
+import time
+
+PROTOCOL = "crashtest-engine/1"
+
+
+class Unsupported(Exception):
+    """The engine cannot answer this case; the message says why."""
+
+
+_charged = []  # ns of the engine calls made for the current case
+
+
+def timed(fn, *args, **kwargs):
+    """Calls `fn(*args, **kwargs)` and charges its time to the current case."""
+    start = time.perf_counter_ns()
+    out = fn(*args, **kwargs)
+    _charged.append(time.perf_counter_ns() - start)
+    return out
+
+
+def finite(x):
+    """Whether every number in `x` is finite."""
+    if isinstance(x, float):
+        return math.isfinite(x)
+    if isinstance(x, dict):
+        return all(finite(v) for v in x.values())
+    if isinstance(x, (list, tuple)):
+        return all(finite(v) for v in x)
+    return True
+
+
+def pair_of(case):
+    """The case's (query, kind of a, kind of b or None)."""
+    return (case["query"], next(iter(case["a"])), next(iter(case["b"])) if "b" in case else None)
+
+
+def answer(handlers, case):
+    """One case's entry: its answer, `unsupported`, or the error; with its time."""
+    _charged.clear()
+    start = time.perf_counter_ns()
+    try:
+        key = pair_of(case)
+        if key not in handlers:
+            entry = {"unsupported": "not among the engine's capabilities"}
+        else:
+            ans = handlers[key](case)
+            entry = {"answer": ans} if finite(ans) else {"error": "non-finite number in the answer"}
+    except Unsupported as why:
+        entry = {"unsupported": str(why)}
+    except Exception as exc:  # the engine's own failure on this case, shown as it is
+        entry = {"error": f"{type(exc).__name__}: {exc}"}
+    whole = time.perf_counter_ns() - start
+    entry["ns"] = float(sum(_charged)) if _charged else float(whole)
+    return entry
+
+
+def send(msg):
+    sys.stdout.write(json.dumps(msg, allow_nan=False, separators=(",", ":")) + "\n")
+    sys.stdout.flush()
+
+
+def serve(name, version, precision, handlers, provenance, pair_precision=None):
+    """Answers crashtest on standard input and output until `shutdown`.
+    `pair_precision` maps a pair, (query, a, b), to the bits of mantissa it is
+    answered in where that is not `precision` (a mesh stored in f32: 24)."""
+    pair_precision = pair_precision or {}
+    for line in sys.stdin:
+        if not line.strip():
+            continue
+        try:
+            msg = json.loads(line, parse_int=float)  # every input number is an f64
+        except ValueError as exc:
+            print(f"{name}: not a message: {exc}", file=sys.stderr)
+            continue
+        kind = msg.get("type") if isinstance(msg, dict) else None
+        if kind == "hello":
+            caps = [{"query": q, "a": a, **({"b": b} if b else {}),
+                     **({"precision": pair_precision[(q, a, b)]} if (q, a, b) in pair_precision else {})}
+                    for q, a, b in handlers]
+            send({"type": "hello", "protocol": PROTOCOL, "name": name, "version": version,
+                  "precision": precision, "capabilities": caps, "provenance": provenance})
+        elif kind == "batch":
+            answers = []
+            for c in msg.get("cases", []):
+                answers.append(answer(handlers, c) if isinstance(c, dict) else {"error": "a case is a JSON object"})
+            send({"type": "answers", "id": int(msg["id"]), "answers": answers})
+        elif kind == "shutdown":
+            return 0
+        else:
+            print(f"{name}: ignoring a message of type {kind!r}", file=sys.stderr)
+    return 0
+
+
+def package_version(dist):
+    """The installed version of distribution `dist`, or 'not installed'."""
+    from importlib import metadata
+    try:
+        return metadata.version(dist)
+    except metadata.PackageNotFoundError:
+        return "not installed"
