@@ -25,6 +25,16 @@ from crashtest_engine import Unsupported, package_version, serve, timed  # noqa:
 import numpy as np  # noqa: E402
 import mujoco  # noqa: E402
 
+# MuJoCo appends its errors and warnings to MUJOCO_LOG.TXT in the working
+# directory; work in a private temporary one so that a run leaves nothing in the
+# user's folder (cases arrive inline: no path is read relative to it).
+import atexit  # noqa: E402
+import shutil  # noqa: E402
+import tempfile  # noqa: E402
+_workdir = tempfile.mkdtemp(prefix="crashtest-mujoco-")
+os.chdir(_workdir)
+atexit.register(shutil.rmtree, _workdir, True)
+
 MARGIN = 0.0  # geom/flex margin, set explicitly on every geom and flex
 GAP = 0.0  # geom/flex gap, set explicitly on every geom and flex
 FLEX_RADIUS = 0.0  # a triangle is a dim-2 flex element of radius 0
