@@ -5,6 +5,8 @@ Every answer is pybullet's own: getClosestPoints (btCollisionWorld::contactPairT
 for `contact` and `overlap`, rayTest (btCollisionWorld::rayTest, ClosestRayResultCallback)
 for `intersect`. The conventions Bullet uses are translated in ONE place, the section
 "CONVENTION TRANSLATION" below; README.md has the table and the sources.
+`world` messages are stepped by step_world (section "WORLDS"): Bullet rigid bodies,
+stepSimulation; the restitution translation (sqrt(e) per body) is its one convention.
 """
 import math
 import os
@@ -203,6 +205,138 @@ def overlap(case):
     return {"overlap": len(points) > 0}
 
 
+# ======================= WORLDS (rigid-body dynamics) =======================
+# One `world` message (docs/PROTOCOL.md, "Worlds"): Bullet's own btDiscreteDynamicsWorld
+# step (pybullet's btMultiBodyDynamicsWorld, whose rigid bodies go through
+# btDiscreteDynamicsWorld and btSequentialImpulseConstraintSolver), one set of settings
+# for every world. All bodies are btRigidBody (createMultiBody(useMaximalCoordinates=1)):
+# pybullet's changeDynamics applies ccdSweptSphereRadius, and the sleeping switch
+# (forceActivationState), only to btRigidBody, not to a btMultiBody base.
+W_SOLVER_ITERATIONS = 50          # pybullet's default, set explicitly
+W_SUBSTEPS = 0                    # stepSimulation(dt, 0): one internal step of exactly dt
+W_BREAKING_THRESHOLD = 0.02       # gContactBreakingThreshold, Bullet's default, set explicitly
+W_RESTITUTION_THRESHOLD = 0.0     # m_restitutionVelocityThreshold (Bullet default 0.2)
+W_SPLIT_IMPULSE = 1               # Bullet's default (m_splitImpulse = true), set explicitly
+W_SPLIT_THRESHOLD = 0.0           # m_splitImpulsePenetrationThreshold (Bullet default -0.04): every penetration split
+W_CONTACT_ERP = 0.08              # m_erp2, pybullet's default, set explicitly
+W_CONTACT_SLOP = 0.00001          # m_linearSlop, pybullet's default, set explicitly
+W_ALLOWED_CCD_PENETRATION = 0.04  # btDispatcherInfo::m_allowedCcdPenetration, Bullet's default
+
+
+# ---- CONVENTION TRANSLATION (worlds): restitution -----------------------------------
+# Bullet combines the restitution of two colliding objects by multiplication
+# (btManifoldResult::calculateCombinedRestitution: body0->getRestitution() *
+# body1->getRestitution()). Each body therefore gets sqrt(e_i): the contact's restitution
+# is sqrt(e_i * e_j), the geometric mean, which is e for every pair (sphere-plane,
+# sphere-box, sphere-sphere) when the world's bodies share e, as crashtest's worlds do.
+# (Giving static bodies 1 and spheres e would make sphere-sphere contacts e^2.)
+def bullet_restitution(e):
+    return math.sqrt(e)
+
+
+def _world_body(shape, mass, position):
+    return p.createMultiBody(baseMass=mass, baseCollisionShapeIndex=shape, basePosition=position,
+                             useMaximalCoordinates=1)
+
+
+def _world_dynamics(body, e, ccd_radius):
+    p.changeDynamics(body, -1, restitution=bullet_restitution(e), lateralFriction=0.0,
+                     spinningFriction=0.0, rollingFriction=0.0, linearDamping=0.0,
+                     angularDamping=0.0, activationState=p.ACTIVATION_STATE_DISABLE_SLEEPING,
+                     ccdSweptSphereRadius=ccd_radius)
+
+
+def world_settings(ccd):
+    return {
+        "bullet": "pybullet " + package_version("pybullet") + " (Bullet 3, f64), p.DIRECT",
+        "world": "resetSimulation per world; btMultiBodyDynamicsWorld with btRigidBody bodies "
+                 "(createMultiBody(useMaximalCoordinates=1)), btMultiBodyConstraintSolver "
+                 "(sequential impulse for rigid contacts)",
+        "time_step": "setTimeStep(dt); numSubSteps=0 -> stepSimulation(dt, 0): one internal step of dt, "
+                     "no interpolation",
+        "solver_iterations": str(W_SOLVER_ITERATIONS),
+        "solver_residual_threshold": "1e-7 (pybullet default)",
+        "split_impulse": f"{W_SPLIT_IMPULSE} (penetration threshold {W_SPLIT_THRESHOLD})",
+        "contact_erp": f"{W_CONTACT_ERP} (m_erp2, position recovery)",
+        "contact_slop": f"{W_CONTACT_SLOP} (m_linearSlop)",
+        "warm_starting": "on, factor 0.1 (pybullet default)",
+        "restitution_velocity_threshold": f"{W_RESTITUTION_THRESHOLD} (Bullet default 0.2)",
+        "restitution_mapping": "each body restitution sqrt(e); Bullet multiplies the two "
+                               "(btManifoldResult::calculateCombinedRestitution) -> contact restitution e",
+        "friction": "lateral, spinning, rolling 0 on every body (combined by product -> 0)",
+        "damping": "linear 0, angular 0 on every sphere and static body",
+        "sleeping": "disabled (activationState DISABLE_SLEEPING -> DISABLE_DEACTIVATION)",
+        "margins": "plane and box collisionMargin 0; sphere margin = its radius (btSphereShape, by definition)",
+        "contact_breaking_threshold": f"{W_BREAKING_THRESHOLD} (Bullet default; contacts are created up to "
+                                      "this gap and act as speculative contacts: separation/dt is allowed)",
+        "ccd": ("on: ccdSweptSphereRadius = radius, ccdMotionThreshold = radius/2 (pybullet sets it), "
+                f"allowedCcdPenetration {W_ALLOWED_CCD_PENETRATION}; Bullet clamps the motion at the swept "
+                "sphere's first hit (integrateTransforms) and adds a predictive contact with restitution 0")
+               if ccd else "off: ccdSweptSphereRadius 0 (ccdMotionThreshold 0)",
+        "spheres": "GEOM_SPHERE, mass m, inertia of a solid ball (Bullet computes 2/5 m r^2)",
+        "plane": "GEOM_PLANE btStaticPlaneShape(n, 0) at (d/|n|) n/|n|, mass 0 (static)",
+        "box": "GEOM_BOX btBoxShape(half extents) at the centre, mass 0 (static)",
+    }
+
+
+def step_world(msg):
+    global _created
+    p.resetSimulation()
+    _created = 0
+    dt = float(msg["dt"])
+    steps = int(msg["steps"])
+    ccd = bool(msg.get("ccd", False))
+    p.setGravity(*[float(g) for g in msg["gravity"]])
+    p.setTimeStep(dt)
+    p.setPhysicsEngineParameter(fixedTimeStep=dt, numSubSteps=W_SUBSTEPS,
+                                numSolverIterations=W_SOLVER_ITERATIONS,
+                                contactBreakingThreshold=W_BREAKING_THRESHOLD,
+                                restitutionVelocityThreshold=W_RESTITUTION_THRESHOLD,
+                                useSplitImpulse=W_SPLIT_IMPULSE,
+                                splitImpulsePenetrationThreshold=W_SPLIT_THRESHOLD,
+                                contactERP=W_CONTACT_ERP, contactSlop=W_CONTACT_SLOP,
+                                allowedCcdPenetration=W_ALLOWED_CCD_PENETRATION)
+    spheres = []
+    for b in msg["bodies"]:
+        e = float(b.get("restitution", 0.0))
+        if not 0.0 <= e <= 1.0:
+            raise ValueError(f"restitution {e} outside [0, 1]")
+        if "sphere" in b:
+            s = b["sphere"]
+            r = float(s["radius"])
+            body = _world_body(p.createCollisionShape(p.GEOM_SPHERE, radius=r), float(b["mass"]), s["center"])
+            _world_dynamics(body, e, r if ccd else 0.0)
+            p.resetBaseVelocity(body, linearVelocity=b.get("velocity", [0.0, 0.0, 0.0]), angularVelocity=[0.0, 0.0, 0.0])
+            spheres.append(body)
+        elif "plane" in b:
+            n = b["plane"]["normal"]
+            ln = math.hypot(*n)
+            k = b["plane"]["offset"] / ln
+            body = _world_body(p.createCollisionShape(p.GEOM_PLANE, planeNormal=n), 0.0,
+                               [n[0] / ln * k, n[1] / ln * k, n[2] / ln * k])
+            _world_dynamics(body, e, 0.0)
+            p.changeDynamics(body, -1, collisionMargin=MARGIN)
+        elif "box" in b:
+            bx = b["box"]
+            body = _world_body(p.createCollisionShape(p.GEOM_BOX, halfExtents=bx["half_extents"]), 0.0, bx["center"])
+            _world_dynamics(body, e, 0.0)
+            p.changeDynamics(body, -1, collisionMargin=MARGIN)
+        else:
+            raise Unsupported(f"no Bullet body for {next(iter(b))}")
+
+    def centres():
+        return [list(p.getBasePositionAndOrientation(s)[0]) for s in spheres]
+
+    positions = [centres()]
+    for _ in range(steps):
+        timed(p.stepSimulation)   # only Bullet's step is charged, not the position reads
+        positions.append(centres())
+    velocities = [list(p.getBaseVelocity(s)[0]) for s in spheres]
+    p.resetSimulation()           # leave an empty world for the collision queries
+    return {"positions": positions, "velocities": velocities, "settings": world_settings(ccd)}
+# =====================================================================================
+
+
 HANDLERS = {
     ("contact", "sphere", "sphere"): contact,
     ("contact", "sphere", "plane"): contact,
@@ -232,4 +366,4 @@ PROVENANCE = {
 }
 
 if __name__ == "__main__":
-    sys.exit(serve("bullet", package_version("pybullet"), 53, HANDLERS, PROVENANCE))
+    sys.exit(serve("bullet", package_version("pybullet"), 53, HANDLERS, PROVENANCE, world=step_world))

@@ -73,10 +73,29 @@ def send(msg):
     sys.stdout.flush()
 
 
-def serve(name, version, precision, handlers, provenance, pair_precision=None):
+def run_world(world, msg):
+    """One `world` message's reply: the engine's `world(msg)` (a dict with
+    `positions`, `velocities` and `settings`), timed, or the error."""
+    reply = {"type": "world", "id": int(msg.get("id", 0))}
+    _charged.clear()
+    start = time.perf_counter_ns()
+    try:
+        out = world(msg)
+        if not finite([out.get("positions"), out.get("velocities")]):
+            raise ValueError("non-finite number in the trajectory")
+        reply.update(out)
+    except Exception as exc:  # the engine's own failure on this world, shown as it is
+        reply = {"type": "world", "id": reply["id"], "error": f"{type(exc).__name__}: {exc}"}
+    whole = time.perf_counter_ns() - start
+    reply["ns"] = float(sum(_charged)) if _charged else float(whole)
+    return reply
+
+
+def serve(name, version, precision, handlers, provenance, pair_precision=None, world=None):
     """Answers crashtest on standard input and output until `shutdown`.
     `pair_precision` maps a pair, (query, a, b), to the bits of mantissa it is
-    answered in where that is not `precision` (a mesh stored in f32: 24)."""
+    answered in where that is not `precision` (a mesh stored in f32: 24).
+    `world`, when given, steps a `world` message (docs/PROTOCOL.md, "`world`")."""
     pair_precision = pair_precision or {}
     for line in sys.stdin:
         if not line.strip():
@@ -92,12 +111,17 @@ def serve(name, version, precision, handlers, provenance, pair_precision=None):
                      **({"precision": pair_precision[(q, a, b)]} if (q, a, b) in pair_precision else {})}
                     for q, a, b in handlers]
             send({"type": "hello", "protocol": PROTOCOL, "name": name, "version": version,
-                  "precision": precision, "capabilities": caps, "provenance": provenance})
+                  "precision": precision, "capabilities": caps, "provenance": provenance,
+                  **({"worlds": True} if world else {})})
         elif kind == "batch":
             answers = []
             for c in msg.get("cases", []):
                 answers.append(answer(handlers, c) if isinstance(c, dict) else {"error": "a case is a JSON object"})
             send({"type": "answers", "id": int(msg["id"]), "answers": answers})
+        elif kind == "world" and world:
+            send(run_world(world, msg))
+        elif kind == "world":
+            send({"type": "world", "id": int(msg.get("id", 0)), "error": f"{name} does not step worlds"})
         elif kind == "shutdown":
             return 0
         else:

@@ -277,6 +277,156 @@ HANDLERS = {
     ("intersect", "segment", "mesh"): intersect_mesh,
 }
 
+# ================================================================ WORLDS (dynamics)
+# A `world` message (docs/PROTOCOL.md, "Worlds") becomes one MJCF model: each sphere a
+# body with a free joint and one sphere geom of the given mass (solid ball: MuJoCo's
+# compiler computes the inertia 2/5 m r^2 from the geom), each plane and box a geom of
+# the world body (static). Every geom: condim 1 (frictionless normal contact only),
+# margin 0, gap 0, and the contact parameters of `contact_params` below. The model is
+# compiled per world; stepping is mj_step with the integrator below.
+WORLD_INTEGRATOR = "Euler"  # MuJoCo's default: semi-implicit (symplectic) Euler,
+#                             v += a*dt then q += v_new*dt; nothing for implicitfast to
+#                             add here (no joint damping, no actuators), and RK4 would
+#                             re-evaluate the contacts inside one step.
+WORLD_IMPEDANCE = 0.9999  # solimp d0 = d_width = mjMAXIMP: a constant impedance d
+
+
+# ---------------------------------------------------------------- THE RESTITUTION MAPPING
+# The only place where a coefficient of restitution e becomes MuJoCo's contact
+# parameters (README, "Worlds (dynamics)").
+#
+# MuJoCo's soft contact (engine_core_constraint.c, mj_makeImpedance and the efc_aref
+# line): the constraint asks for the reference acceleration
+#     aref = -B*v - K*imp*r        (r = contact distance, < 0 in penetration; v = its rate)
+# and the solver gives the normal acceleration a = (1-imp)*a0 + imp*aref while the
+# contact pushes (force >= 0; a0 = the unconstrained acceleration). solref in the
+# DIRECT form (-k, -b) gives K = k/d_width^2, B = b/d_width; with a constant impedance
+# (solimp[0] = solimp[1] = d) this is exactly
+#     a = -b*v - k*r  (+ (1-d)*a0, 1e-4 of gravity with d = 0.9999)
+# i.e. a linear spring-damper per unit of effective mass: x'' + 2*zeta*w*x' + w^2*x = 0
+# with k = w^2, b = 2*zeta*w. Its restitution (half a damped period, force not
+# clamped) is e = exp(-zeta*pi/sqrt(1-zeta^2)), so
+#     zeta = -ln(e) / sqrt(pi^2 + ln(e)^2)     (zeta = 1 for e = 0, zeta = 0 for e = 1).
+# The stiffness is the one MuJoCo's "timeconst" form gives for a critically damped
+# contact at its smallest safe time constant: timeconst = 2*dt (MuJoCo clamps a
+# positive timeconst to >= 2*timestep, "refsafe"), w = 1/timeconst. For e = 0 this is
+# exactly solref = (2*dt, 1).
+# Why the direct form: the (timeconst, dampratio) form sets K = 1/(timeconst*zeta)^2,
+# so the stiffness grows without bound as zeta -> 0 (w*dt = 0.5/zeta: explicit
+# integration unstable for zeta < 0.25, i.e. e > 0.44 at timeconst = 2*dt), and
+# dampratio 0 is refused (a positive timeconst with a non-positive dampratio is a
+# "mixed solref format" that MuJoCo replaces with its default). (-k, 0) is accepted.
+def contact_params(e, dt):
+    """(solref, solimp, note) for restitution e at time step dt."""
+    e = min(1.0, max(0.0, float(e)))
+    if e <= 0.0:
+        zeta = 1.0
+    else:
+        le = math.log(e)
+        zeta = -le / math.sqrt(math.pi ** 2 + le * le)
+    timeconst = 2.0 * dt
+    w = 1.0 / timeconst
+    k, b = w * w, 2.0 * zeta * w
+    solref = [-k, -b]
+    d = WORLD_IMPEDANCE
+    solimp = [d, d, 0.001, 0.5, 2.0]  # width/midpoint/power unused when d0 = d_width
+    note = (f"direct solref = (-k, -b) = ({-k!r}, {-b!r}): k = w^2, b = 2*zeta*w, w = 1/timeconst, "
+            f"timeconst = 2*dt = {timeconst!r}, zeta = -ln e/sqrt(pi^2+ln^2 e) = {zeta!r} (e = {e!r})")
+    return solref, solimp, note
+# ---------------------------------------------------------------- end of the mapping
+
+
+def _v(xs):
+    return " ".join(repr(float(x)) for x in xs)
+
+
+def world_model(msg):
+    """The MJCF of a world message, and the settings it applies."""
+    dt = float(msg["dt"])
+    bodies = msg["bodies"]
+    es = sorted({float(b.get("restitution", 0.0)) for b in bodies})
+    if len(es) > 1:
+        raise ValueError(f"bodies have different restitutions {es}; one per world is expected")
+    e = es[0] if es else 0.0
+    solref, solimp, note = contact_params(e, dt)
+    geom = (f'condim="1" margin="{MARGIN!r}" gap="{GAP!r}" solref="{_v(solref)}" '
+            f'solimp="{_v(solimp)}" friction="0 0 0"')
+    parts, spheres = [], []
+    for i, body in enumerate(bodies):
+        kind = next(k for k in ("sphere", "plane", "box") if k in body)
+        if kind == "sphere":
+            s = body["sphere"]
+            parts.append(f'<body name="s{i}" pos="{_v(s["center"])}"><freejoint name="j{i}"/>'
+                         f'<geom type="sphere" size="{float(s["radius"])!r}" mass="{float(body["mass"])!r}" {geom}/></body>')
+            spheres.append((i, body))
+        elif kind == "plane":
+            p = body["plane"]
+            n = np.array([float(x) for x in p["normal"]])
+            ln = float(np.linalg.norm(n))
+            q = np.zeros(4)
+            mujoco.mju_quatZ2Vec(q, n)
+            pos = n / ln * (float(p["offset"]) / ln)
+            parts.append(f'<geom type="plane" size="0 0 1" pos="{_v(pos)}" quat="{_v(q)}" {geom}/>')
+        else:
+            bx = body["box"]
+            parts.append(f'<geom type="box" size="{_v(bx["half_extents"])}" pos="{_v(bx["center"])}" {geom}/>')
+    xml = (f'<mujoco><option timestep="{dt!r}" gravity="{_v(msg.get("gravity", [0, 0, 0]))}" '
+           f'integrator="{WORLD_INTEGRATOR}" density="0" viscosity="0"/>'
+           '<worldbody>' + "".join(parts) + '</worldbody></mujoco>')
+    settings = {
+        "integrator": f"{WORLD_INTEGRATOR} (MuJoCo's semi-implicit Euler), mj_step",
+        "timestep": repr(dt),
+        "solref": f"{_v(solref)} (direct form: -stiffness, -damping)",
+        "solimp": _v(solimp),
+        "restitution mapping": note,
+        "condim": "1 (frictionless), friction 0",
+        "margin / gap": f"{MARGIN!r} / {GAP!r}",
+        "ccd": "not available (ignored): MuJoCo has no continuous collision for geoms "
+               "(nativeccd/multiccd are its convex-convex narrow phase, not sweeping)"
+               + (f" (asked: {msg.get('ccd')})" if "ccd" in msg else ""),
+        "solver": "Newton (default), iterations 100, tolerance 1e-8, cone pyramidal (irrelevant with condim 1)",
+        "damping / sleep": "no joint damping, density 0, viscosity 0; sleep off (default)",
+        "plane": 'geom type="plane" size="0 0 1" (infinite half-space), quat = mju_quatZ2Vec(normal)',
+        "box": "fixed box geom in the world body",
+        "model": "MJCF compiled per world (not timed); only the mj_step calls are timed",
+    }
+    return xml, spheres, settings
+
+
+def step_world(msg):
+    xml, spheres, settings = world_model(msg)
+    m = mujoco.MjModel.from_xml_string(xml)
+    d = mujoco.MjData(m)
+    adr = []
+    for i, body in spheres:
+        j = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, f"j{i}")
+        qa, va = int(m.jnt_qposadr[j]), int(m.jnt_dofadr[j])
+        d.qvel[va:va + 3] = [float(x) for x in body.get("velocity", [0, 0, 0])]  # world frame
+        adr.append((qa, va))
+    steps = int(msg["steps"])
+    positions = [[d.qpos[qa:qa + 3].tolist() for qa, _ in adr]]
+    for _ in range(steps):
+        timed(mujoco.mj_step, m, d)  # only the engine's step is charged
+        positions.append([d.qpos[qa:qa + 3].tolist() for qa, _ in adr])
+    # MuJoCo does not raise on a diverging simulation: mj_checkPos/Vel/Acc warn and RESET
+    # mjData to the model's initial state (autoreset, on by default). Such a trajectory is
+    # not the engine's physics; say so as the world's error instead of returning it.
+    bad = {int(mujoco.mjtWarning.mjWARN_BADQPOS): "BADQPOS", int(mujoco.mjtWarning.mjWARN_BADQVEL): "BADQVEL",
+           int(mujoco.mjtWarning.mjWARN_BADQACC): "BADQACC"}
+    hit = [f"{name} x{int(d.warning[w].number)} (last info: index {int(d.warning[w].lastinfo)})"
+           for w, name in bad.items() if d.warning[w].number > 0]
+    if hit:
+        raise RuntimeError("MuJoCo found the simulation unstable and reset it: " + ", ".join(hit))
+    other = [f"{mujoco.mjtWarning(w).name} x{int(d.warning[w].number)}" for w in range(int(mujoco.mjtWarning.mjNWARNING))
+             if w not in bad and d.warning[w].number > 0]
+    if other:
+        settings["warnings"] = ", ".join(other)
+    # a free joint's qvel: linear velocity in the world frame, then angular in the body frame
+    velocities = [d.qvel[va:va + 3].tolist() for _, va in adr]
+    return {"positions": positions, "velocities": velocities, "settings": settings}
+# ================================================================ end of worlds
+
+
 PROVENANCE = {
     "mujoco (package)": package_version("mujoco"),
     "mujoco (library)": mujoco.mj_versionString(),
@@ -294,4 +444,4 @@ PROVENANCE = {
 if __name__ == "__main__":
     # mjModel.mesh_vert is float: segment–mesh is answered on f32 vertices.
     sys.exit(serve("mujoco", package_version("mujoco"), 53, HANDLERS, PROVENANCE,
-                   pair_precision={("intersect", "segment", "mesh"): 24}))
+                   pair_precision={("intersect", "segment", "mesh"): 24}, world=step_world))

@@ -174,3 +174,60 @@ fn all_runs_every_installed_peer_and_names_the_missing_with_how_to_install() {
     assert_eq!(missing[0][0], "ghost", "{missing}");
     assert!(missing[0][1].as_str().is_some_and(|w| w.contains("make install-ghost")), "{missing}");
 }
+
+/// Momentum is conserved in a two-ball impact whatever the contact model:
+/// `|Δ(m_a v_a + m_b v_b)|` over the initial momentum's scale may be no more
+/// than this (dimensionless). A soft contact's internal forces cancel to the
+/// solver's tolerance; a velocity read in the wrong frame or of the wrong
+/// body breaks it by order 1.
+const MOMENTUM_REL: f64 = 1e-6;
+
+#[test]
+fn mujoco_and_bullet_step_the_dynamics_worlds() {
+    for name in ["mujoco", "bullet"] {
+        peer(name);
+    }
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("peers-worlds");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.to_str().expect("utf-8");
+    let (code, stdout, err) = crashtest(&[
+        "report",
+        "--engines",
+        "collide/robust,mujoco,bullet",
+        "--cases",
+        "3",
+        "--full-range",
+        "0",
+        "--no-timing",
+        "--out",
+        out,
+    ]);
+    assert_eq!(code, 0, "{stdout}{err}");
+    let text = std::fs::read_to_string(dir.join("latest/dynamics.json")).expect("dynamics.json");
+    let d: serde_json::Value = serde_json::from_str(&text).expect("json");
+    assert!(d.get("world_failures").is_none(), "every world stepped: {}", d["world_failures"]);
+    for name in ["mujoco", "bullet"] {
+        let bounces = d["bounces"].as_array().expect("bounces").iter().filter(|b| b["engine"] == name).count();
+        assert_eq!(bounces, 5, "{name}: a series per restitution");
+        for method in [format!("{name}, CCD off"), format!("{name}, CCD requested")] {
+            let rows: Vec<&serde_json::Value> =
+                d["tunnel"].as_array().expect("tunnel").iter().filter(|r| r["method"] == method.as_str()).collect();
+            assert_eq!(rows.len(), 27, "{method}: every thickness and speed");
+            assert!(rows.iter().all(|r| r["runs"] == 8), "{method}: every start phase stepped");
+        }
+        let settings = d["engine_settings"].as_array().expect("settings").iter().find(|s| s["engine"] == name);
+        assert!(
+            settings.is_some_and(|s| !s["settings"].as_array().expect("list").is_empty()),
+            "{name} echoes its settings"
+        );
+        let pairs: Vec<&serde_json::Value> =
+            d["pairs"].as_array().expect("pairs").iter().filter(|p| p["engine"] == name).collect();
+        assert_eq!(pairs.len(), 5, "{name}: every two-ball scene");
+        // Head-on, masses 1 and 3: a at 4 m/s, b at rest.
+        let p = pairs.iter().find(|p| p["scene"] == "head-on, masses 1 and 3, e = 0.5").expect("scene");
+        let v = |k: &str| -> Vec<f64> { p[k].as_array().expect("v").iter().filter_map(|x| x.as_f64()).collect() };
+        let (va, vb) = (v("velocity_a"), v("velocity_b"));
+        let momentum = (0..3).map(|i| (va[i] + 3.0 * vb[i] - if i == 0 { 4.0 } else { 0.0 }).abs()).fold(0.0, f64::max);
+        assert!(momentum <= MOMENTUM_REL * 4.0, "{name}: momentum changed by {momentum}: a {va:?}, b {vb:?}");
+    }
+}

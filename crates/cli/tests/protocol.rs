@@ -320,7 +320,7 @@ fn an_engines_file_names_commands_and_its_errors_name_the_file_and_field() {
     std::fs::write(&bad, r#"{"engines": {"py": "python3 engine.py"}}"#).expect("write");
     let (code, _, err) = crashtest(&["check", "--engines-file", bad.to_str().expect("utf-8"), "fixtures/overlap.json"]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("bad.json: field `engines.py`: invalid type: string"), "{err}");
+    assert!(err.contains("bad.json: field `engines.py`: expected a command ([\"program\", \"arg\", …])"), "{err}");
 }
 
 #[test]
@@ -343,4 +343,44 @@ fn a_sweep_judges_a_process_engine_beside_collide() {
     assert_eq!(code, 0, "{out}{err}");
     let data = std::fs::read_to_string(dir.join("concentric.json")).expect("data written");
     assert!(data.contains("\"py\""), "the sweep's data has the process engine's series");
+}
+
+/// The dynamics section of a report made with `engines` (plus `extra`
+/// arguments), as its `dynamics.json`.
+fn dynamics_of(dir_name: &str, engines: &str, extra: &[&str]) -> Value {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(dir_name);
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.to_str().expect("utf-8");
+    let args = ["report", "--engines", engines, "--cases", "3", "--full-range", "0", "--no-timing", "--out", out];
+    let (code, stdout, err) = crashtest(&[&args[..], extra].concat());
+    assert_eq!(code, 0, "{stdout}{err}");
+    let text = std::fs::read_to_string(dir.join("latest/dynamics.json")).expect("dynamics.json");
+    serde_json::from_str(&text).expect("json")
+}
+
+#[test]
+fn a_world_that_fails_is_listed_with_its_reason_and_the_rest_of_the_dynamics_still_runs() {
+    let wf = format!("wf={}", script("world_faults"));
+    let d = dynamics_of("protocol-world-faults", "collide/robust,wf", &["--engine", &wf]);
+    let failures = d["world_failures"].as_array().expect("failures listed");
+    let reason = |world: &str| {
+        failures.iter().find(|f| f["world"] == world).and_then(|f| f["reason"].as_str()).unwrap_or("").to_string()
+    };
+    assert!(reason("bounce, e = 0").contains("a trajectory of 1 samples"), "{failures:?}");
+    assert_eq!(reason("bounce, e = 0.25"), "the engine's error: simulated solver failure");
+    let crash = reason("bounce, e = 0.5");
+    assert!(crash.contains("exited (exit status: 4)") && crash.contains("simulated crash in a world"), "{crash}");
+    assert_eq!(failures.len(), 3, "only the three faulty worlds fail: {failures:?}");
+    // After the crash the engine is restarted: the later worlds are stepped.
+    let wf_bounces: Vec<f64> = d["bounces"]
+        .as_array()
+        .expect("bounces")
+        .iter()
+        .filter(|b| b["engine"] == "wf")
+        .filter_map(|b| b["restitution"].as_f64())
+        .collect();
+    assert_eq!(wf_bounces.len(), 2, "e = 0.8 and 1 stepped: {wf_bounces:?}");
+    let rows = d["tunnel"].as_array().expect("tunnel").iter().filter(|r| r["method"] == "wf, CCD off").count();
+    assert_eq!(rows, 27, "every thickness and speed");
+    assert_eq!(d["engine_settings"][0]["engine"], "wf");
 }

@@ -71,6 +71,11 @@ pub fn serve(engine: &Engine, served: &Served, mut input: impl BufRead, mut outp
             Ok(ToEngine::Batch { id, cases }) => {
                 FromEngine::Answers { id, answers: cases.into_iter().map(|c| answer(engine, c)).collect(), ns: None }
             }
+            Ok(ToEngine::World(w)) => FromEngine::World(crate::protocol::messages::WorldReply {
+                id: w.id,
+                error: Some(format!("{} answers queries and does not step worlds", engine.name)),
+                ..Default::default()
+            }),
             Ok(ToEngine::Shutdown) => return Ok(()),
             // A batch with a case this engine cannot read (crashtest sends none:
             // the conformance run's probes do): an error for that case, an
@@ -120,6 +125,7 @@ pub fn hello_of(engine: &Engine, served: &Served) -> EngineHello {
         precision: engine.precision.unwrap_or(53),
         capabilities: served.capabilities.iter().map(|p| Capability::of(*p)).collect(),
         provenance: served.provenance.clone(),
+        worlds: false,
     }
 }
 

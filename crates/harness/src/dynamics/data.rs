@@ -168,14 +168,54 @@ pub struct DynamicsReport {
     pub pairs: Vec<PairRow>,
     /// rapier's deviations from the analytic answers.
     pub deviations: Vec<Deviation>,
+    /// The settings each process engine that steps worlds used (its reply's
+    /// `settings`, from its first world), in report order.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub engine_settings: Vec<EngineSettings>,
+    /// Worlds a process engine did not step, and why (its error, or a fault).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub world_failures: Vec<WorldFailure>,
 }
 
-/// The tunnelling methods, in report order.
+/// A process engine's world settings, as it echoed them.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct EngineSettings {
+    /// The engine.
+    pub engine: String,
+    /// Its settings, every one it named.
+    pub settings: Vec<Echo>,
+}
+
+/// A world a process engine did not step.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WorldFailure {
+    /// The engine.
+    pub engine: String,
+    /// The world (`bounce, e = 0.5`, `tunnel, wall 0.01 m, 100 m/s, phase 3, CCD on`).
+    pub world: String,
+    /// Why.
+    pub reason: String,
+}
+
+/// The tunnelling methods of crashtest's own runs, in report order (a process
+/// engine's follow them: [`methods_of`]).
 pub fn tunnel_methods() -> Vec<String> {
     let mut m: Vec<String> = ccd_modes().iter().map(rapier_method).collect();
     m.push(Sweep::Halving.name().into());
     m.push(Sweep::ClosedForm.name().into());
     m.push(SWEEP_NAME.into());
+    m
+}
+
+/// The tunnelling methods of a report: [`tunnel_methods`], then those of the
+/// process engines, in the order they appear.
+pub fn methods_of(r: &DynamicsReport) -> Vec<String> {
+    let mut m = tunnel_methods();
+    for row in &r.tunnel {
+        if !m.contains(&row.method) {
+            m.push(row.method.clone());
+        }
+    }
     m
 }
 

@@ -50,12 +50,13 @@ mod run;
 
 pub use data::{
     ANALYTIC_NAME, ApexSeries, BOUNCE_DURATION, BOUNCE_RADIUS, BOUNCES, BounceDesign, DROP_HEIGHT, Deviation,
-    DynamicsReport, Echo, PHASES, PairRow, PassRow, RESTITUTIONS, SOFT_CCD_PREDICTION, SPEEDS, SWEEP_NAME, Sweep,
-    THICKNESSES, TUNNEL_RADIUS, TUNNEL_RESTITUTION, TUNNEL_STEPS, tunnel_methods,
+    DynamicsReport, Echo, EngineSettings, PHASES, PairRow, PassRow, RESTITUTIONS, SOFT_CCD_PREDICTION, SPEEDS,
+    SWEEP_NAME, Sweep, THICKNESSES, TUNNEL_RADIUS, TUNNEL_RESTITUTION, TUNNEL_STEPS, WorldFailure, methods_of,
+    tunnel_methods,
 };
 pub use render::{DynamicsChart, charts, markdown, section};
 pub use run::{
     APEX_REPORT_FLOOR, MAX_EVENTS_PER_STEP, PAIR_REPORT_FLOOR, WORLD_HALVING_STEPS, bounce_analytic, bounce_scene,
-    bounce_stepped, kinetic_energy, pair_analytic, pair_scenes, pair_stepped, pair_sweep, run, tunnel_scene,
-    tunnel_stepped, tunnel_sweep,
+    bounce_stepped, kinetic_energy, pair_analytic, pair_scenes, pair_stepped, pair_sweep, run, run_with, steps_worlds,
+    tunnel_scene, tunnel_stepped, tunnel_sweep,
 };

@@ -3,7 +3,7 @@
 
 use super::data::{
     ApexSeries, BOUNCES, DynamicsReport, PHASES, RESTITUTIONS, SPEEDS, THICKNESSES, TUNNEL_RADIUS, TUNNEL_RESTITUTION,
-    TUNNEL_STEPS, tunnel_methods, vec_str,
+    TUNNEL_STEPS, methods_of, vec_str,
 };
 use crate::render::plot::{Axis, Line, line_chart};
 use std::fmt::Write;
@@ -98,7 +98,7 @@ pub fn markdown(r: &DynamicsReport) -> String {
          steps), {TUNNEL_STEPS} steps; a run passes when the ball ends beyond the wall's mid-plane. Passes out of \
          {PHASES}:\n"
     );
-    let methods = tunnel_methods();
+    let methods = methods_of(r);
     for &w in &THICKNESSES {
         let _ = writeln!(s, "**wall {w} m**\n");
         let _ = write!(s, "| speed (m/s) |");
@@ -140,6 +140,24 @@ pub fn markdown(r: &DynamicsReport) -> String {
             p.error,
             p.energy_change
         );
+    }
+    for e in &r.engine_settings {
+        let _ = writeln!(
+            s,
+            "\n### {}: its worlds\n\nStepped through the engine protocol (`world` messages); the settings it used, \
+             as it echoed them:\n",
+            e.engine
+        );
+        let _ = writeln!(s, "| setting | value |\n| --- | --- |");
+        for x in &e.settings {
+            let _ = writeln!(s, "| {} | {} |", x.name, x.value);
+        }
+    }
+    if !r.world_failures.is_empty() {
+        let _ = writeln!(s, "\n### Worlds not stepped\n\n| engine | world | why |\n| --- | --- | --- |");
+        for f in &r.world_failures {
+            let _ = writeln!(s, "| {} | {} | {} |", f.engine, f.world, f.reason);
+        }
     }
     let _ = writeln!(s, "\n### rapier against the laws\n\nReported as they are, not corrected:\n");
     if r.deviations.is_empty() {
@@ -207,7 +225,7 @@ pub fn charts(r: &DynamicsReport) -> Vec<DynamicsChart> {
         });
     }
     for &w in &THICKNESSES {
-        let series: Vec<Line> = tunnel_methods()
+        let series: Vec<Line> = methods_of(r)
             .into_iter()
             .enumerate()
             .map(|(i, m)| Line {

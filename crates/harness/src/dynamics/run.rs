@@ -3,9 +3,10 @@
 
 use super::data::{
     ANALYTIC_NAME, ApexSeries, BOUNCE_DURATION, BOUNCE_RADIUS, BOUNCES, BounceDesign, DROP_HEIGHT, Deviation,
-    DynamicsReport, Echo, PHASES, PairRow, PassRow, RESTITUTIONS, SPEEDS, SWEEP_NAME, Sweep, THICKNESSES,
-    TUNNEL_RADIUS, TUNNEL_RESTITUTION, TUNNEL_STEPS, ccd_modes, rapier_method, vec_str,
+    DynamicsReport, Echo, EngineSettings, PHASES, PairRow, PassRow, RESTITUTIONS, SPEEDS, SWEEP_NAME, Sweep,
+    THICKNESSES, TUNNEL_RADIUS, TUNNEL_RESTITUTION, TUNNEL_STEPS, WorldFailure, ccd_modes, rapier_method, vec_str,
 };
+use crate::protocol::messages::{Body, Cuboid, World, WorldReply};
 use collide::Vec3;
 use collide::contact::{Contact, contact_sphere_plane};
 use collide::response::{respond_sphere_plane, respond_sphere_sphere};
@@ -490,6 +491,187 @@ pub fn run() -> DynamicsReport {
         tunnel,
         pairs,
         deviations,
+        engine_settings: Vec::new(),
+        world_failures: Vec::new(),
+    }
+}
+
+/// [`run`], and the same experiments stepped by every engine of `engines`
+/// that steps worlds (a process engine whose hello says `worlds`), through the
+/// protocol: its apexes, pass-throughs and two-ball velocities beside rapier's
+/// and collide's, its settings as it echoed them, and every world it did not
+/// step with the reason.
+pub fn run_with(engines: &[crate::engine::Engine]) -> DynamicsReport {
+    let mut r = run();
+    for e in engines {
+        if let Some(p) = e.process().filter(|p| p.hello().is_some_and(|h| h.worlds)) {
+            process_worlds(&mut r, &e.name, p);
+        }
+    }
+    r
+}
+
+/// Whether `e` steps worlds: the dynamics section runs it.
+pub fn steps_worlds(e: &crate::engine::Engine) -> bool {
+    e.process().and_then(|p| p.hello()).is_some_and(|h| h.worlds)
+}
+
+fn ball_body(center: P3, radius: f64, velocity: P3, mass: f64, restitution: f64) -> Body {
+    Body {
+        sphere: Some(crashtest_core::geom::Ball { center, radius }),
+        velocity: Some(velocity),
+        mass: Some(mass),
+        restitution,
+        ..Default::default()
+    }
+}
+
+/// One engine's runs of the three experiments, added to `r`.
+fn process_worlds(r: &mut DynamicsReport, name: &str, p: &crate::protocol::ProcessEngine) {
+    let base = Settings::validation(Ccd::Off);
+    let (dt, gravity) = (base.dt, base.gravity);
+    let g = norm_sqrt_dot(gravity);
+    let mut settings_seen = false;
+    let mut step = |r: &mut DynamicsReport, world: World| -> Option<WorldReply> {
+        match p.world(&world) {
+            Ok(reply)
+                if reply.positions.len() as u64 == world.steps + 1
+                    && reply
+                        .positions
+                        .iter()
+                        .all(|at| at.len() == world.bodies.iter().filter(|b| b.sphere.is_some()).count())
+                    && reply.velocities.len() == world.bodies.iter().filter(|b| b.sphere.is_some()).count() =>
+            {
+                if !settings_seen {
+                    settings_seen = true;
+                    r.engine_settings.push(EngineSettings {
+                        engine: name.into(),
+                        settings: reply
+                            .settings
+                            .iter()
+                            .map(|(k, v)| Echo { name: k.clone(), value: v.clone() })
+                            .collect(),
+                    });
+                }
+                Some(reply)
+            }
+            Ok(reply) => {
+                r.world_failures.push(WorldFailure {
+                    engine: name.into(),
+                    world: world.name.clone(),
+                    reason: format!(
+                        "a trajectory of {} samples and {} velocities, expected {} samples of every sphere",
+                        reply.positions.len(),
+                        reply.velocities.len(),
+                        world.steps + 1
+                    ),
+                });
+                None
+            }
+            Err(why) => {
+                r.world_failures.push(WorldFailure { engine: name.into(), world: world.name.clone(), reason: why });
+                None
+            }
+        }
+    };
+    for &e in &RESTITUTIONS {
+        let scene = bounce_scene(e);
+        let world = World {
+            id: 0,
+            name: format!("bounce, e = {e}"),
+            dt,
+            steps: (scene.duration / dt).ceil() as u64,
+            gravity,
+            ccd: false,
+            bodies: vec![
+                ball_body([0.0, 0.0, scene.radius + scene.drop_height], scene.radius, [0.0; 3], scene.mass, e),
+                Body {
+                    plane: Some(crashtest_core::geom::Plane { normal: [0.0, 0.0, 1.0], offset: 0.0 }),
+                    restitution: e,
+                    ..Default::default()
+                },
+            ],
+        };
+        if let Some(reply) = step(r, world) {
+            let heights: Vec<f64> = reply.positions.iter().map(|at| at[0][2] - scene.radius).collect();
+            let mut apexes = rapier::apexes(&heights, dt, g, APEX_FLOOR);
+            apexes.truncate(BOUNCES);
+            r.bounces.push(ApexSeries {
+                engine: name.into(),
+                restitution: e,
+                apexes,
+                highest_after_landing: Some(highest_after_landing(&heights)),
+            });
+        }
+    }
+    for ccd in [false, true] {
+        let method = format!("{name}, CCD {}", if ccd { "requested" } else { "off" });
+        for &w in &THICKNESSES {
+            for &speed in &SPEEDS {
+                let (mut passed, mut runs) = (0, 0);
+                for j in 0..PHASES {
+                    let scene = tunnel_scene(w, speed, j);
+                    let world = World {
+                        id: 0,
+                        name: format!(
+                            "tunnel, wall {w} m, {speed} m/s, phase {j}, CCD {}",
+                            if ccd { "requested" } else { "off" }
+                        ),
+                        dt,
+                        steps: scene.steps as u64,
+                        gravity: [0.0; 3],
+                        ccd,
+                        bodies: vec![
+                            ball_body(scene.start(dt), scene.radius, [speed, 0.0, 0.0], scene.mass, scene.restitution),
+                            Body {
+                                cuboid: Some(Cuboid {
+                                    center: [0.0; 3],
+                                    half_extents: [w / 2.0, rapier::WALL_HALF_SPAN, rapier::WALL_HALF_SPAN],
+                                }),
+                                restitution: scene.restitution,
+                                ..Default::default()
+                            },
+                        ],
+                    };
+                    if let Some(reply) = step(r, world) {
+                        runs += 1;
+                        if reply.positions.last().is_some_and(|at| at[0][0] > 0.0) {
+                            passed += 1;
+                        }
+                    }
+                }
+                r.tunnel.push(PassRow { method: method.clone(), thickness: w, speed, passed, runs });
+            }
+        }
+    }
+    for scene in pair_scenes() {
+        let world = World {
+            id: 0,
+            name: format!("two balls, {}", scene.name),
+            dt,
+            steps: (scene.duration / dt).ceil() as u64,
+            gravity: [0.0; 3],
+            ccd: false,
+            bodies: vec![
+                ball_body(scene.a.center, scene.a.radius, scene.va, scene.ma, scene.restitution),
+                ball_body(scene.b.center, scene.b.radius, scene.vb, scene.mb, scene.restitution),
+            ],
+        };
+        let Some(reply) = step(r, world) else { continue };
+        let analytic = pair_analytic(&scene);
+        let speed = norm_sqrt_dot(scene.va).max(norm_sqrt_dot(scene.vb)).max(f64::MIN_POSITIVE);
+        let (va, vb) = (reply.velocities[0], reply.velocities[1]);
+        let d = |g: &P3, w: &P3| norm_sqrt_dot(sub(*g, *w));
+        let before = kinetic_energy(scene.ma, &scene.va, scene.mb, &scene.vb);
+        let after = kinetic_energy(scene.ma, &va, scene.mb, &vb);
+        r.pairs.push(PairRow {
+            scene: scene.name.into(),
+            engine: name.into(),
+            velocity_a: va,
+            velocity_b: vb,
+            error: d(&va, &analytic.velocity_a).max(d(&vb, &analytic.velocity_b)) / speed,
+            energy_change: (after - before) / before,
+        });
     }
 }
 

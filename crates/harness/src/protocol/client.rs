@@ -9,7 +9,7 @@
 //! are written on a thread too, so an engine that stops reading cannot block the
 //! run either.
 
-use super::messages::{EngineHello, FromEngine, PROTOCOL, Said, ToEngine, WireCase};
+use super::messages::{EngineHello, FromEngine, PROTOCOL, Said, ToEngine, WireCase, World, WorldReply};
 use crate::case::Query;
 use crate::load::LoadedCase;
 use crashtest_core::engine::Answer;
@@ -271,6 +271,49 @@ impl ProcessEngine {
         self.ask(want, true);
     }
 
+    /// Steps one world ([`World`]; its `id` is set here) and returns what the
+    /// engine did, or why it did not: its own error for the world, or a fault of
+    /// the process (which is then restarted for the next message, as after a
+    /// batch's fault).
+    pub fn world(&self, world: &World) -> Result<WorldReply, String> {
+        let mut st = lock(&self.state);
+        if !st.hello.as_ref().is_some_and(|h| h.worlds) && st.down.is_none() {
+            return Err("the engine does not step worlds (its hello has no `worlds`)".into());
+        }
+        self.ensure_running(&mut st)?;
+        let id = st.next_id;
+        st.next_id += 1;
+        let fault_of = |this: &Self, st: &mut State, why: String| {
+            let why = format!("world {id} ({}): {why}", world.name);
+            fault(st, &why);
+            this.kill(st);
+            why
+        };
+        let line = match serde_json::to_string(&ToEngine::World(World { id, ..world.clone() })) {
+            Ok(l) => l + "\n",
+            Err(e) => return Err(format!("world {id}: cannot write it: {e}")),
+        };
+        let timeout = self.spec.timeout;
+        let Some(run) = st.running.as_mut() else { return Err("the engine is not running".into()) };
+        if run.to_engine.send(line).is_err() {
+            let why = gone(run, "before the world was sent");
+            return Err(fault_of(self, &mut st, why));
+        }
+        let got = read_line(run, Instant::now() + timeout, timeout).and_then(|text| parse(&text, run.line_no));
+        let line_no = run.line_no;
+        match got {
+            Ok(FromEngine::World(r)) if r.id == id => match r.error {
+                Some(e) => Err(format!("the engine's error: {e}")),
+                None => Ok(r),
+            },
+            Ok(FromEngine::World(r)) => {
+                Err(fault_of(self, &mut st, format!("line {line_no}: answered world {}, expected {id}", r.id)))
+            }
+            Ok(_) => Err(fault_of(self, &mut st, format!("line {line_no}: expected `world`, got another message"))),
+            Err(why) => Err(fault_of(self, &mut st, why)),
+        }
+    }
+
     /// Sends one case written as raw JSON (for the conformance run's
     /// malformed-case probes; a run sends only loaded cases) and returns what
     /// the engine said, and whether it was a fault of the process. The answer
@@ -454,7 +497,10 @@ impl ProcessEngine {
         let text = read_line(run, Instant::now() + timeout, timeout)?;
         let msg = parse(&text, run.line_no)?;
         let FromEngine::Answers { id: got_id, answers, ns } = msg else {
-            return Err(format!("line {} of the engine's output: expected `answers`, got `hello`", run.line_no));
+            return Err(format!(
+                "line {} of the engine's output: expected `answers`, got another message",
+                run.line_no
+            ));
         };
         if got_id != id {
             return Err(format!("line {}: answered batch {got_id}, expected {id}", run.line_no));
@@ -551,7 +597,9 @@ impl ProcessEngine {
                 FromEngine::Hello(h) => {
                     Err(format!("the engine speaks `{}`; crashtest speaks `{PROTOCOL}`", h.protocol))
                 }
-                FromEngine::Answers { .. } => Err("expected `hello`, got `answers`".into()),
+                FromEngine::Answers { .. } | FromEngine::World(_) => {
+                    Err("expected `hello`, got another message".into())
+                }
             }
         })();
         match shake {

@@ -34,8 +34,90 @@ pub enum ToEngine {
         /// The cases, in the fixture format without `expect`, `tol` and `source`.
         cases: Vec<WireCase>,
     },
+    /// A world to step (engines whose hello says `worlds`): one reply.
+    World(World),
     /// The engine exits.
     Shutdown,
+}
+
+/// A rigid-body world to step (`docs/PROTOCOL.md`, "Worlds"): spheres moving
+/// under gravity among fixed planes and boxes, frictionless, undamped.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct World {
+    /// Counts messages with the batches; the reply repeats it.
+    pub id: u64,
+    /// What it is, for messages (`bounce, e = 0.5`).
+    pub name: String,
+    /// The fixed time step (s).
+    pub dt: f64,
+    /// Steps to take.
+    pub steps: u64,
+    /// Gravity (m/s²).
+    pub gravity: P3,
+    /// Whether the spheres use the engine's continuous collision detection.
+    pub ccd: bool,
+    /// The bodies, in order; the reply lists the spheres in this order.
+    pub bodies: Vec<Body>,
+}
+
+/// A body of a [`World`]: exactly one of `sphere` (dynamic, with `velocity`
+/// and `mass`), `plane` (a fixed half-space `n · x ≤ d`) and `box` (fixed).
+#[derive(Clone, Debug, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Body {
+    /// A dynamic ball.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sphere: Option<Ball>,
+    /// A fixed half-space.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plane: Option<crashtest_core::geom::Plane>,
+    /// A fixed axis-aligned box.
+    #[serde(default, rename = "box", skip_serializing_if = "Option::is_none")]
+    pub cuboid: Option<Cuboid>,
+    /// A sphere's initial velocity (m/s).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<P3>,
+    /// A sphere's mass (kg).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f64>,
+    /// Coefficient of restitution (every body of a world has the same).
+    pub restitution: f64,
+}
+
+/// A fixed axis-aligned box.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Cuboid {
+    /// Its centre.
+    pub center: P3,
+    /// Half its extent along each axis.
+    pub half_extents: P3,
+}
+
+/// What an engine did with a [`World`]: the spheres' centres after every
+/// step, and their final velocities; or its error.
+#[derive(Clone, Debug, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WorldReply {
+    /// The world's `id`.
+    pub id: u64,
+    /// `steps + 1` entries (the first is the start), each one centre per
+    /// sphere in body order.
+    #[serde(default)]
+    pub positions: Vec<Vec<P3>>,
+    /// Each sphere's velocity after the last step.
+    #[serde(default)]
+    pub velocities: Vec<P3>,
+    /// Every setting that mattered for this world, as the report echoes it.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub settings: BTreeMap<String, String>,
+    /// The engine's own time for the run, in nanoseconds.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ns: Option<f64>,
+    /// The engine failed on this world, and why.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
 }
 
 /// A line an engine writes to crashtest.
@@ -54,6 +136,8 @@ pub enum FromEngine {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         ns: Option<f64>,
     },
+    /// What it did with a world.
+    World(WorldReply),
 }
 
 /// An `answers` message without its `type`: what [`read_from_engine`] reads it
@@ -154,7 +238,8 @@ pub fn read_from_engine(line: &str) -> Result<FromEngine, String> {
     match kind.as_str() {
         "hello" => body(v).map(FromEngine::Hello),
         "answers" => body::<AnswersBody>(v).map(|b| FromEngine::Answers { id: b.id, answers: b.answers, ns: b.ns }),
-        other => Err(format!("field `type`: `{other}` is not a message an engine sends (hello, answers)")),
+        "world" => body(v).map(FromEngine::World),
+        other => Err(format!("field `type`: `{other}` is not a message an engine sends (hello, answers, world)")),
     }
 }
 
@@ -176,6 +261,9 @@ pub struct EngineHello {
     /// What the report's provenance should echo (library versions, settings).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub provenance: BTreeMap<String, String>,
+    /// Whether it steps worlds (`world` messages: the report's dynamics).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub worlds: bool,
 }
 
 /// One query pair of the pair table, by its kinds.

@@ -574,25 +574,32 @@ fn sections(config: &Config, results: &[CaseResult]) -> Vec<crate::render::secti
         set,
     ));
     out.extend(crate::report::peers::section(results));
-    out.push(dynamics_section(&others(&[])));
+    out.push(dynamics_section(set));
     out
 }
 
-/// The dynamics section: stepped worlds of collide and rapier3d-f64; the
-/// engines `others` are not run there, and it says why.
+/// The dynamics section: stepped worlds of collide and rapier3d-f64, and of
+/// the process engines that step worlds; the other engines are not run there,
+/// and it says why.
 #[cfg(feature = "dynamics")]
-fn dynamics_section(others: &[&str]) -> crate::render::section::Section {
-    crate::dynamics::section(&crate::dynamics::run()).with_not_run(
-        others,
-        "the dynamics experiments step worlds with collide's integrators and with rapier3d-f64; an engine \
-         behind the engine trait answers single queries and has no world to step",
+fn dynamics_section(set: &EngineSet) -> crate::render::section::Section {
+    let others: Vec<&str> = set
+        .judged
+        .iter()
+        .filter(|e| !engines::is_collide(e) && !crate::dynamics::steps_worlds(e))
+        .map(|e| e.name.as_str())
+        .collect();
+    crate::dynamics::section(&crate::dynamics::run_with(&set.judged)).with_not_run(
+        &others,
+        "the dynamics experiments step worlds with collide's integrators, with rapier3d-f64 and with the \
+         process engines whose hello says `worlds`; this engine answers single queries and has no world to step",
     )
 }
 
 /// Without the `dynamics` feature there is no rapier to step: the section says
 /// so, and how to get it.
 #[cfg(not(feature = "dynamics"))]
-fn dynamics_section(_others: &[&str]) -> crate::render::section::Section {
+fn dynamics_section(_set: &EngineSet) -> crate::render::section::Section {
     let why = "this build of crashtest has no dynamics: rapier3d-f64 is behind the `dynamics` feature of the \
                `crashtest` library (the `crashtest` command line enables it)";
     crate::render::section::Section {
