@@ -375,6 +375,42 @@ pub fn table_md(t: &Table) -> String {
     out
 }
 
+/// Each engine against the referee, one row per engine and one column per
+/// query kind: `agree · disagree · known · unsupported`, and the borderline
+/// and failed verdicts in brackets where there are any (the campaign's
+/// cases, fixtures included; the full range is apart).
+pub fn overview_table(summary: &Summary) -> Table {
+    let queries = queries(summary);
+    let titles: Vec<String> = queries.iter().map(|q| query_title(*q)).collect();
+    let mut columns: Vec<(&str, bool)> = vec![("engine", false)];
+    columns.extend(titles.iter().map(|t| (t.as_str(), false)));
+    let mut t = Table::new(&columns);
+    let mut engines: Vec<&str> = Vec::new();
+    for s in &summary.stats {
+        if !engines.contains(&s.engine.as_str()) {
+            engines.push(&s.engine);
+        }
+    }
+    for e in engines {
+        let mut row = vec![e.to_string()];
+        for q in &queries {
+            let cell = match summary.stats.iter().find(|s| s.engine == e && s.query == *q) {
+                Some(s) => {
+                    let mut c = format!("{} · {} · {} · {}", s.agree, s.disagree, s.known, s.unsupported);
+                    if s.borderline + s.failed > 0 {
+                        c.push_str(&format!(" ({} borderline, {} failed)", s.borderline, s.failed));
+                    }
+                    c
+                }
+                None => "—".into(),
+            };
+            row.push(cell);
+        }
+        t.rows.push(row);
+    }
+    t
+}
+
 /// The whole of `summary.md`: provenance (commit, rustc, profile, machine,
 /// engine versions, seed, case counts, wall time), then per query kind its main
 /// table and its error details, then throughput, then how to read it all.
@@ -386,6 +422,15 @@ pub fn summary_md(summary: &Summary) -> String {
     out.push('\n');
     if !summary.provenance.engines.is_empty() {
         out.push_str(&table_md(&engines_table(summary)));
+        out.push('\n');
+    }
+    if !summary.stats.is_empty() {
+        out.push_str("## Each engine against the referee\n\n");
+        out.push_str(
+            "Per query kind: agree · disagree · known divergence · unsupported (borderline and failed in \
+             brackets); the tables below have the errors.\n\n",
+        );
+        out.push_str(&table_md(&overview_table(summary)));
         out.push('\n');
     }
     let queries = queries(summary);
@@ -464,6 +509,12 @@ mod tests {
         assert!(md.contains("20.0 (18.0–24.0)"), "timing with spread: {md}");
         assert!(!md.contains("bary p99"), "no barycentric column without samples");
         assert!(md.find("## Throughput").expect("throughput") > intersect);
+        // The overview: fast<f32> on contact, 97 agree, 1 disagree, 1 known, 1 borderline.
+        let overview = md.find("## Each engine against the referee").expect("overview");
+        assert!(prov < overview && overview < contact, "the overview comes before the query tables");
+        assert!(md.contains("| fast\\<f32\\> | 97 · 1 · 1 · 0 (1 borderline, 0 failed) |"), "{md}");
+        // The provenance names an engine that was not installed.
+        assert!(md.contains("NOT RUN: not installed; install it with \\`x \\& y\\`"), "{md}");
     }
 
     #[test]
