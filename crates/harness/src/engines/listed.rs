@@ -24,7 +24,6 @@ use crate::divergence::{DataRule, Known, load_known};
 use crate::engine::Engine;
 use crate::protocol::client::{ProcessEngine, ProcessSpec};
 use serde::Deserialize;
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// One engine of an engines file.
@@ -54,7 +53,27 @@ impl Listed {
 struct EnginesFile {
     #[serde(default)]
     install: Option<String>,
-    engines: BTreeMap<String, Entry>,
+    #[serde(deserialize_with = "in_file_order")]
+    engines: Vec<(String, Entry)>,
+}
+
+/// The engines of the file, in the file's order (the report's order).
+fn in_file_order<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<(String, Entry)>, D::Error> {
+    struct Named;
+    impl<'de> serde::de::Visitor<'de> for Named {
+        type Value = Vec<(String, Entry)>;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("an object of named engines")
+        }
+        fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
+            let mut out = Vec::new();
+            while let Some(entry) = map.next_entry::<String, Entry>()? {
+                out.push(entry);
+            }
+            Ok(out)
+        }
+    }
+    d.deserialize_map(Named)
 }
 
 #[derive(Deserialize)]
@@ -159,5 +178,12 @@ mod tests {
         let path = write("bad3.json", "{\"engines\": {\"x\": [\"p\"]}");
         let err = read(&path).expect_err("syntax");
         assert!(err.contains("bad3.json: line 1 column"), "{err}");
+    }
+
+    #[test]
+    fn the_engines_keep_the_order_of_the_file() {
+        let path = write("order.json", r#"{"engines": {"zeta": ["z"], "alpha": ["a"], "mid": ["m"]}}"#);
+        let names: Vec<String> = read(&path).expect("reads").into_iter().map(|l| l.spec.name).collect();
+        assert_eq!(names, ["zeta", "alpha", "mid"]);
     }
 }

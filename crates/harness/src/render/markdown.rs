@@ -385,9 +385,11 @@ pub fn overview_table(summary: &Summary) -> Table {
     let mut columns: Vec<(&str, bool)> = vec![("engine", false)];
     columns.extend(titles.iter().map(|t| (t.as_str(), false)));
     let mut t = Table::new(&columns);
+    // Engines with a verdict (the referee, timed beside them, has none).
     let mut engines: Vec<&str> = Vec::new();
     for s in &summary.stats {
-        if !engines.contains(&s.engine.as_str()) {
+        let judged = s.agree + s.disagree + s.borderline + s.known + s.unsupported + s.failed > 0;
+        if judged && !engines.contains(&s.engine.as_str()) {
             engines.push(&s.engine);
         }
     }
