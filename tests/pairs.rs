@@ -22,6 +22,11 @@ const NO_GENERATOR: &[(Pair, &str)] = &[
          and the mesh tests' seeded soups (tests/mesh.rs)",
     ),
     (Pair::BoundsMesh, "as intersect segment–mesh: a mesh's bounds are those of its vertices, drawn as points"),
+    (
+        Pair::ContactSphereMesh,
+        "as intersect segment–mesh: meshes come from fixtures (fixtures/mesh.json); a mesh's contact is its nearest \
+         face's sphere–triangle contact, which the campaign draws",
+    ),
 ];
 
 /// Pairs without a stability sweep, with the reason.
@@ -33,6 +38,10 @@ const NO_SWEEP: &[(Pair, &str)] = &[
         "a mesh's hit is its faces' segment–triangle hits, which the angle, edge and vertex sweeps cover",
     ),
     (Pair::BoundsMesh, "a mesh's bounds are those of its vertices, swept as points"),
+    (
+        Pair::ContactSphereMesh,
+        "a mesh's contact is its nearest face's sphere–triangle contact, which the sphere–triangle sweeps cover",
+    ),
     (
         Pair::ToiSphereTriangle,
         "sweeps hold one degeneracy parameter; the triangle's own (sliver, edge) are swept by contact sphere–triangle",

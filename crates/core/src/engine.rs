@@ -76,6 +76,10 @@ pub trait Queries: Send + Sync {
     fn contact_triangle_sphere(&self, a: &Triangle, b: &Sphere) -> Reply<ContactAnswer> {
         self.contact_sphere_triangle(b, a).map(swap)
     }
+    /// `contact`, sphere `a`, mesh `b`: the contact with the nearest face.
+    fn contact_sphere_mesh(&self, a: &Sphere, b: &Mesh) -> Reply<ContactAnswer> {
+        unsupported("sphere–mesh contact")
+    }
     /// `intersect`, segment and plane.
     fn intersect_segment_plane(&self, s: &Segment, p: &Plane) -> Reply<IntersectAnswer> {
         unsupported("segment–plane intersection")

@@ -136,6 +136,7 @@ pub enum Pair {
     ContactPlaneSphere,
     ContactSphereTriangle,
     ContactTriangleSphere,
+    ContactSphereMesh,
     IntersectSegmentPlane,
     IntersectSegmentTriangle,
     IntersectSegmentMesh,
@@ -173,12 +174,13 @@ use Query as Q;
 use ShapeKind as K;
 
 /// The pair table, in report order (query by query, as the format lists them).
-pub const PAIRS: [PairRow; 18] = [
+pub const PAIRS: [PairRow; 19] = [
     row(P::ContactSphereSphere, Q::Contact, K::Sphere, Some(K::Sphere)),
     row(P::ContactSpherePlane, Q::Contact, K::Sphere, Some(K::Plane)),
     row(P::ContactPlaneSphere, Q::Contact, K::Plane, Some(K::Sphere)),
     row(P::ContactSphereTriangle, Q::Contact, K::Sphere, Some(K::Triangle)),
     row(P::ContactTriangleSphere, Q::Contact, K::Triangle, Some(K::Sphere)),
+    row(P::ContactSphereMesh, Q::Contact, K::Sphere, Some(K::Mesh)),
     row(P::IntersectSegmentPlane, Q::Intersect, K::Segment, Some(K::Plane)),
     row(P::IntersectSegmentTriangle, Q::Intersect, K::Segment, Some(K::Triangle)),
     row(P::IntersectSegmentMesh, Q::Intersect, K::Segment, Some(K::Mesh)),

@@ -163,6 +163,7 @@ fn dispatch(q: &dyn Queries, pair: Pair, lc: &LoadedCase) -> Reply<Answer> {
         P::ContactSpherePlane => Answer::Contact(q.contact_sphere_plane(&sphere(a)?, &plane(b)?)?),
         P::ContactPlaneSphere => Answer::Contact(q.contact_plane_sphere(&plane(a)?, &sphere(b)?)?),
         P::ContactSphereTriangle => Answer::Contact(q.contact_sphere_triangle(&sphere(a)?, &triangle(b)?)?),
+        P::ContactSphereMesh => Answer::Contact(q.contact_sphere_mesh(&sphere(a)?, mesh(lc, 1)?)?),
         P::ContactTriangleSphere => Answer::Contact(q.contact_triangle_sphere(&triangle(a)?, &sphere(b)?)?),
         P::IntersectSegmentPlane => Answer::Intersect(q.intersect_segment_plane(&segment(a)?, &plane(b)?)?),
         P::IntersectSegmentTriangle => Answer::Intersect(q.intersect_segment_triangle(&segment(a)?, &triangle(b)?)?),

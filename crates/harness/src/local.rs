@@ -233,11 +233,35 @@ fn ratio(num: f64, den: f64) -> f64 {
     }
 }
 
+/// The face of the case's mesh nearest the sphere's centre (in f64, by
+/// collide's certified per-face distances; the lowest index on a tie), as a
+/// triangle. `None` for an empty mesh.
+fn nearest_face(lc: &LoadedCase, s: &crate::case::SphereSpec) -> Option<Shape> {
+    let m = lc.meshes[1].as_ref()?;
+    let vertices = m.vertices.iter().map(|p| collide::Vec3::new(p[0], p[1], p[2])).collect();
+    let mesh = collide::mesh::TriMesh::new(vertices, m.triangles.clone()).ok()?;
+    let c = collide::Vec3::new(s.center[0], s.center[1], s.center[2]);
+    // Every face within reach: the nearest one is the contact's face.
+    let all = collide::Sphere::new(c, f64::MAX);
+    let k = collide::mesh::contact_sphere_mesh_nearest_bvh(&all, &collide::mesh::MeshBvh::new(mesh))?;
+    let [i, j, l] = *m.triangles.get(k.triangle)?;
+    Some(Shape::Triangle(crate::case::TriangleSpec {
+        vertices: [m.vertices[i], m.vertices[j], m.vertices[l]],
+        velocity: None,
+    }))
+}
+
 /// The sizes of the case's answer fields, from the case and the referee's
 /// answer `truth`.
 pub fn local(lc: &LoadedCase, truth: &Answer) -> Local {
     let case = &lc.case;
     match (case.query, &case.a, case.b.as_ref(), truth) {
+        // A mesh: the sizes of its face nearest the centre (the face the
+        // contact is with), never the whole mesh's.
+        (Query::Contact, Shape::Sphere(sp), Some(Shape::Mesh(_)), Answer::Contact(w)) => match nearest_face(lc, sp) {
+            Some(face) => contact(&case.a, &face, w.contact.as_ref()),
+            None => Local::default(),
+        },
         (Query::Contact, a, Some(b), Answer::Contact(w)) => contact(a, b, w.contact.as_ref()),
         (Query::Intersect, Shape::Segment(s), Some(b), Answer::Intersect(w)) => {
             let tri = match b {

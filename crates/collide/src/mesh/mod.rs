@@ -63,5 +63,7 @@ pub use segment_mesh::{
     intersect_segment_mesh_lecture,
 };
 pub(crate) use sphere_mesh::contact_sphere_mesh_nearest;
-pub use sphere_mesh::{contact_sphere_mesh_brute, contact_sphere_mesh_bvh, contact_sphere_mesh_culled};
+pub use sphere_mesh::{
+    contact_sphere_mesh_brute, contact_sphere_mesh_bvh, contact_sphere_mesh_culled, contact_sphere_mesh_nearest_bvh,
+};
 pub use trimesh::{MeshError, TriMesh};

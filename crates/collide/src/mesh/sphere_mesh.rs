@@ -189,6 +189,20 @@ pub fn contact_sphere_mesh_bvh<T: Real>(a: &Sphere<T>, b: &MeshBvh<T>) -> Option
     answer(best)
 }
 
+/// Contact between sphere `a` and a mesh, by its hierarchy, with the faces
+/// ranked as the referee ranks them: the face **nearest** the centre by each
+/// face's certified distance (accurate relative to itself), the lowest index
+/// on a tie, answered as that one triangle's
+/// [`contact_sphere_triangle`](crate::contact::contact_sphere_triangle). Where
+/// [`contact_sphere_mesh_bvh`] (the lecture's deepest-contact order) ranks faces
+/// by a plain closest point whose rounding can exceed the distances it
+/// compares, this one does not.
+///
+/// **Degenerate input:** as [`contact_sphere_mesh_brute`].
+pub fn contact_sphere_mesh_nearest_bvh<T: Real>(a: &Sphere<T>, b: &MeshBvh<T>) -> Option<MeshContact<T>> {
+    contact_sphere_mesh_nearest(a, b.mesh(), Some(b))
+}
+
 /// The static contact a time of impact reports for a sphere already touching
 /// the mesh at `t = 0`: the face nearest the centre (by each face's distance
 /// from [`contact_sphere_triangle`](crate::contact::contact_sphere_triangle)'s

@@ -140,6 +140,22 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
         Ok(contact(collide::contact::contact_triangle_sphere(&triangle::<T>(a), &sphere(b))))
     }
 
+    fn contact_sphere_mesh(&self, a: &Sphere, b: &Mesh) -> Reply<ContactAnswer> {
+        // The format's mesh rule for contact: the nearest face's contact, ties
+        // to the lowest face index. The lecture tests every face and keeps the
+        // deepest by its plain closest point; the robust method ranks the faces
+        // by their certified distances, through the mesh's BVH.
+        let vertices = b.vertices.iter().map(v::<T>).collect();
+        let mesh = collide::mesh::TriMesh::new(vertices, b.triangles.clone())
+            .map_err(|e| Unsupported(format!("mesh refused by collide: {e}")))?;
+        let a = sphere::<T>(a);
+        let k = match self.method {
+            Method::Lecture => collide::mesh::contact_sphere_mesh_brute(&a, &mesh),
+            Method::Robust => collide::mesh::contact_sphere_mesh_nearest_bvh(&a, &collide::mesh::MeshBvh::new(mesh)),
+        };
+        Ok(contact(k.map(|m| m.contact)))
+    }
+
     fn intersect_segment_plane(&self, s: &Segment, p: &Plane) -> Reply<IntersectAnswer> {
         let (s, p) = (segment::<T>(s), plane::<T>(p));
         Ok(intersection(match self.method {

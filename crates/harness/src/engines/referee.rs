@@ -36,6 +36,9 @@ impl Queries for RefereeQueries {
     fn contact_triangle_sphere(&self, a: &Triangle, b: &Sphere) -> Reply<ContactAnswer> {
         r(referee::contact_triangle_sphere(a, b))
     }
+    fn contact_sphere_mesh(&self, a: &Sphere, b: &Mesh) -> Reply<ContactAnswer> {
+        r(referee::contact_sphere_mesh(a, &b.vertices, &b.triangles))
+    }
     fn intersect_segment_plane(&self, s: &Segment, p: &Plane) -> Reply<IntersectAnswer> {
         r(referee::intersect_segment_plane(s, p))
     }
@@ -108,6 +111,9 @@ pub fn margin(lc: &LoadedCase) -> Option<f64> {
         | (P::ContactTriangleSphere, S::Triangle(b), Some(S::Sphere(a))) => {
             referee::contact_margin_sphere_triangle(&a.to_geom(), &b.to_geom()).ok()
         }
+        (P::ContactSphereMesh, S::Sphere(a), _) => lc.meshes[1]
+            .as_ref()
+            .and_then(|m| referee::contact_margin_sphere_mesh(&a.to_geom(), &m.vertices, &m.triangles).ok()),
         (P::IntersectSegmentPlane, S::Segment(s), Some(S::Plane(p))) => {
             let s = s.to_geom();
             referee::intersect_margin_segment_plane(&s, &p.to_geom())

@@ -280,6 +280,19 @@ impl ParryEngine for Engine {
         contact_answer(result, degenerate)
     }
 
+    fn contact_sphere_mesh(&self, a: Sphere, vertices: &[P3], triangles: &[[usize; 3]]) -> ContactAnswer {
+        let (Some((pa, ba)), Some(mesh)) = (ball(&a), self.mesh(vertices, triangles)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        let Some(trimesh) = &mesh.trimesh else {
+            return ContactAnswer { contact: None, degenerate: mesh.degenerate };
+        };
+        let fallback = (0..trimesh.num_triangles() as u32)
+            .any(|i| triangle_contact_fallback(&trimesh.triangle(i), pa.translation));
+        let result = query::contact(&pa, &ba, &Pose::IDENTITY, trimesh, PREDICTION);
+        contact_answer(result, fallback || mesh.degenerate)
+    }
+
     fn intersect_segment_plane(&self, s: Segment, b: Plane) -> IntersectAnswer {
         let (Some(ray), Some((pose, hs))) = (ray(&s), half_space(&b)) else {
             return NO_HIT_DEGENERATE;

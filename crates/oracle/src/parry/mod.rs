@@ -182,6 +182,18 @@ pub trait ParryEngine {
     /// fallback normal is then the negated face normal).
     fn contact_triangle_sphere(&self, a: Triangle, b: Sphere) -> ContactAnswer;
 
+    /// Contact between sphere `a` and a triangle mesh (`vertices`, `triangles`):
+    /// parry's `contact` of a ball against its `TriMesh`
+    /// (`query::details::contact_shape_composite_shape`: the deepest of the
+    /// faces' contacts, each face as in [`ParryEngine::contact_sphere_triangle`]),
+    /// translated as that pair is.
+    ///
+    /// **Degenerate input:** flagged when the centre is within parry's fallback
+    /// distance of a face (as for one triangle), or a face has zero area; an
+    /// empty mesh touches nothing. A mesh parry refuses, non-finite input or a
+    /// radius ≤ 0: no contact, flagged.
+    fn contact_sphere_mesh(&self, a: Sphere, vertices: &[P3], triangles: &[[usize; 3]]) -> ContactAnswer;
+
     /// First hit of a segment with the plane `n · x = d` (a surface: a segment
     /// starting on the solid side hits the plane where it crosses it).
     ///

@@ -29,6 +29,9 @@ macro_rules! parry_queries {
             fn contact_triangle_sphere(&self, a: &Triangle, b: &Sphere) -> Reply<ContactAnswer> {
                 Ok(ParryEngine::contact_triangle_sphere(self, *a, *b))
             }
+            fn contact_sphere_mesh(&self, a: &Sphere, m: &Mesh) -> Reply<ContactAnswer> {
+                Ok(ParryEngine::contact_sphere_mesh(self, *a, &m.vertices, &m.triangles))
+            }
             fn intersect_segment_plane(&self, s: &Segment, p: &Plane) -> Reply<IntersectAnswer> {
                 Ok(ParryEngine::intersect_segment_plane(self, *s, *p))
             }

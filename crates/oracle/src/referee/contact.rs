@@ -309,10 +309,107 @@ pub fn contact_margin_sphere_triangle(a: &Sphere, b: &Triangle) -> Result<f64, R
     Ok(sphere_triangle(a, b, ["a.center", "a.radius"], "b.vertices")?.depth())
 }
 
+/// The face of a mesh nearest the sphere's centre (smallest exact squared
+/// distance, the lowest index on ties), as a [`SphereTriangle`], and its index.
+/// `None` for an empty mesh. A face naming a vertex out of range is refused.
+fn nearest_face(
+    a: &Sphere,
+    vertices: &[P3],
+    triangles: &[[usize; 3]],
+) -> Result<Option<(usize, SphereTriangle)>, RefereeError> {
+    let mut best: Option<(usize, SphereTriangle)> = None;
+    for (face, tri) in triangles.iter().enumerate() {
+        if tri.iter().any(|&i| i >= vertices.len()) {
+            return Err(RefereeError::IndexOutOfRange { field: "b.triangles", face });
+        }
+        let t = Triangle { vertices: [vertices[tri[0]], vertices[tri[1]], vertices[tri[2]]] };
+        let st = sphere_triangle(a, &t, ["a.center", "a.radius"], "b.vertices")?;
+        if best.as_ref().is_none_or(|(_, b)| st.root.square() < b.root.square()) {
+            best = Some((face, st));
+        }
+    }
+    Ok(best)
+}
+
+/// Contact between a sphere `a` and a triangle mesh `b` (`vertices`,
+/// `triangles` as 0-based index triples).
+///
+/// **Definition.** Each face is a two-sided sheet, as in
+/// [`contact_sphere_triangle`]. The mesh's contact is the contact with the face
+/// nearest the centre — the smallest exact distance `‖c − q‖`, which is the
+/// deepest contact — and on a tie (a closest point on an edge or vertex that
+/// faces share) the lowest face index. Apart from every face: no contact.
+///
+/// **Degenerate input.** As [`contact_sphere_triangle`] for the nearest face (a
+/// centre exactly on the mesh: that face's normal as fallback, depth `r`,
+/// `degenerate: true`). An empty mesh touches nothing. A face naming a vertex
+/// out of range is refused with [`RefereeError::IndexOutOfRange`].
+pub fn contact_sphere_mesh(
+    a: &Sphere,
+    vertices: &[P3],
+    triangles: &[[usize; 3]],
+) -> Result<ContactAnswer, RefereeError> {
+    let Some((_, st)) = nearest_face(a, vertices, triangles)? else {
+        return Ok(ContactAnswer { contact: None, degenerate: false });
+    };
+    if !st.touches() {
+        return Ok(ContactAnswer { contact: None, degenerate: false });
+    }
+    let (dir, degenerate) = st.direction();
+    Ok(ContactAnswer {
+        contact: Some(Contact { point: round_v(&st.q), normal: round_unit(&dir), depth: st.depth() }),
+        degenerate,
+    })
+}
+
+/// The signed depth `r − min ‖c − q‖` over the faces behind the sphere–mesh
+/// decision, correctly rounded: ≥ 0 exactly when in contact. An empty mesh has
+/// no margin (an error: nothing to decide).
+pub fn contact_margin_sphere_mesh(a: &Sphere, vertices: &[P3], triangles: &[[usize; 3]]) -> Result<f64, RefereeError> {
+    match nearest_face(a, vertices, triangles)? {
+        Some((_, st)) => Ok(st.depth()),
+        None => Err(RefereeError::IndexOutOfRange { field: "b.triangles", face: 0 }),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::referee::exact::within_ulps;
+
+    #[test]
+    fn referee_contact_sphere_mesh_is_the_nearest_face() {
+        // Two faces: the unit square at z = 0 (two triangles sharing the
+        // diagonal) and a face at z = 3 far above.
+        let vertices = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 2.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [0.0, 0.0, 3.0],
+            [2.0, 0.0, 3.0],
+            [0.0, 2.0, 3.0],
+        ];
+        let faces = [[4, 5, 6], [0, 1, 2], [0, 2, 3]];
+        let s = |c: P3, r: f64| Sphere { center: c, radius: r };
+        // Above face 2 at height 0.5, radius 1: contact at (0.5, 1.5, 0), depth 0.5, normal +z.
+        let k = contact_sphere_mesh(&s([0.5, 1.5, 0.5], 1.0), &vertices, &faces).unwrap();
+        let c = k.contact.unwrap();
+        assert_eq!((c.point, c.normal, c.depth, k.degenerate), ([0.5, 1.5, 0.0], [0.0, 0.0, 1.0], 0.5, false));
+        // Nearer the top face (distance 0.5 from z = 3): that one, normal −z.
+        let k = contact_sphere_mesh(&s([0.25, 0.25, 2.5], 1.0), &vertices, &faces).unwrap();
+        assert_eq!(k.contact.unwrap().normal, [0.0, 0.0, -1.0]);
+        // Apart from every face; an empty mesh.
+        assert_eq!(contact_sphere_mesh(&s([5.0, 5.0, 5.0], 1.0), &vertices, &faces).unwrap().contact, None);
+        assert_eq!(contact_sphere_mesh(&s([0.0; 3], 1.0), &vertices, &[]).unwrap().contact, None);
+        // A centre on the shared diagonal: degenerate, the lower face's (1) normal.
+        let k = contact_sphere_mesh(&s([1.0, 1.0, 0.0], 0.5), &vertices, &faces).unwrap();
+        assert!(k.degenerate);
+        assert_eq!(k.contact.unwrap().normal, [0.0, 0.0, 1.0]);
+        // The margin: 0.5 deep above face 2, 3.0 − ... apart.
+        assert_eq!(contact_margin_sphere_mesh(&s([0.5, 1.5, 0.5], 1.0), &vertices, &faces).unwrap(), 0.5);
+        assert!(contact_sphere_mesh(&s([0.0; 3], 1.0), &vertices, &[[0, 1, 9]]).is_err());
+    }
 
     /// The referee is correctly rounded and the expectations below are either exact
     /// (small dyadic numbers, exact f64 operations) or correctly rounded literals

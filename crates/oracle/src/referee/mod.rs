@@ -47,9 +47,9 @@ pub mod toi;
 pub use barycentric::barycentric_triangle;
 pub use bounds::{aabb_of_points, enclosure_margin, min_ball};
 pub use contact::{
-    CONCENTRIC_FALLBACK_NORMAL, contact_margin_sphere_plane, contact_margin_sphere_sphere,
-    contact_margin_sphere_triangle, contact_plane_sphere, contact_sphere_plane, contact_sphere_sphere,
-    contact_sphere_triangle, contact_triangle_sphere,
+    CONCENTRIC_FALLBACK_NORMAL, contact_margin_sphere_mesh, contact_margin_sphere_plane, contact_margin_sphere_sphere,
+    contact_margin_sphere_triangle, contact_plane_sphere, contact_sphere_mesh, contact_sphere_plane,
+    contact_sphere_sphere, contact_sphere_triangle, contact_triangle_sphere,
 };
 pub use intersect::{
     intersect_margin_segment_plane, intersect_margin_segment_triangle, intersect_segment_mesh, intersect_segment_plane,
