@@ -133,7 +133,11 @@ def _cross(u, v):
 # surface, contactDistance < 0 is penetration. pybullet reorders Bullet's manifold into
 # (A, B) itself (isSwapped in PhysicsServerCommandProcessor.cpp), so for every order:
 #   point = positionOnB, normal = contactNormalOnB, depth = -contactDistance.
-# Several points (not seen for these pairs): the one with the smallest contactDistance.
+# Several points: the one with the smallest contactDistance. Seen for sphere-mesh, where
+# btConvexConcaveCollisionAlgorithm runs btSphereTriangleCollisionAlgorithm on every face
+# whose AABB meets the sphere's and reports one point per touching face; the smallest
+# contactDistance is the face nearest the centre (depth = r - distance). On a tie the
+# first of them in Bullet's order (its BVH traversal, not the face index) is taken.
 def contact_from_points(points):
     if not points:
         return {"contact": None}
@@ -343,6 +347,7 @@ HANDLERS = {
     ("contact", "plane", "sphere"): contact,
     ("contact", "sphere", "triangle"): contact,
     ("contact", "triangle", "sphere"): contact,
+    ("contact", "sphere", "mesh"): contact,
     ("intersect", "segment", "plane"): intersect,
     ("intersect", "segment", "triangle"): intersect,
     ("intersect", "segment", "mesh"): intersect,
@@ -362,6 +367,9 @@ PROVENANCE = {
     "ray_query": "rayTest(from, to): ClosestRayResultCallback, flags kF_UseGjkConvexCastRaytest, "
                  "normal flipped back to the face's own for plane and triangle",
     "triangle_shape": "GEOM_MESH vertices+indices -> btBvhTriangleMeshShape in a btCompoundShape (two-sided)",
+    "mesh_shape": "GEOM_MESH vertices+indices, GEOM_FORCE_CONCAVE_TRIMESH -> static btBvhTriangleMeshShape "
+                  "(concave: every face, two-sided); sphere-mesh contact: getClosestPoints, the point "
+                  "with the smallest contactDistance",
     "plane_shape": "GEOM_PLANE -> btStaticPlaneShape(n, 0), body at (d/|n|) n/|n|",
 }
 

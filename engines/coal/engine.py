@@ -64,7 +64,40 @@ def coal_shape(shape):
     if kind == "triangle":
         v = [np.array(p, dtype=np.float64) for p in s["vertices"]]
         return coal.TriangleP(v[0], v[1], v[2]), _identity()
+    if kind == "mesh":  # always inline on the wire; every face, each a two-sided triangle
+        return mesh_model(s), _identity()
     raise Unsupported(f"no Coal shape for {kind}")
+
+
+def mesh_model(s):
+    """A BVHModelOBBRSS of the mesh's vertices and faces (the wire's numbers are floats;
+    the indices are made integers)."""
+    verts = np.array(s["vertices"], dtype=np.float64).reshape(-1, 3)
+    tris = np.array([[int(i) for i in t] for t in s["triangles"]], dtype=np.int64).reshape(-1, 3)
+    # Coal does not check indices (one past the vertices is read from beyond the array and
+    # the process dies): malformed input, never sent by crashtest, refused here.
+    if tris.size and (tris.min() < 0 or tris.max() >= len(verts)):
+        raise ValueError("mesh index out of range (Coal would read past its vertex array)")
+    model = coal.BVHModelOBBRSS()
+    model.beginModel(len(tris), len(verts))
+    model.addVertices(verts)
+    model.addTriangles(tris)
+    status = model.endModel()
+    if status != 0:
+        raise RuntimeError(f"BVHModel endModel returned {status}")
+    return model
+
+
+def mesh_request(faces):
+    """REQUEST's settings with room for one contact per face: Coal's mesh-shape traversal
+    (MeshShapeCollisionTraversalNode) adds one Contact per touching face, in its BVH
+    order, and stops at num_max_contacts, so with 1 it answers the first face it meets,
+    not the nearest."""
+    r = coal.CollisionRequest()
+    r.security_margin = REQUEST.security_margin
+    r.enable_contact = REQUEST.enable_contact
+    r.num_max_contacts = max(1, faces)
+    return r
 
 
 # ---------------------------------------------------------------------------------
@@ -80,7 +113,16 @@ def coal_shape(shape):
 # The format: normal from b toward a, point on b's surface, depth >= 0 the penetration.
 # So: normal = -Coal normal, point = Coal's witness point on o2 = b, depth = -signed
 # distance. Same rule for every pair and both orders (Coal handles the order itself).
+# Sphere-mesh: the same rule (checked on the tetrahedron fixtures: o1 = the sphere,
+# b1 = -1; o2 = the mesh, b2 = the face index; witness point 2 the face's closest point).
+# Coal gives one Contact per touching face; `pick_contact` takes the deepest (smallest
+# signed distance, Coal's own number), on a tie the lowest face index (b2).
 # ---------------------------------------------------------------------------------
+def pick_contact(result):
+    contacts = [result.getContact(i) for i in range(result.numContacts())]
+    return min(contacts, key=lambda c: (float(c.penetration_depth), int(c.b2)))
+
+
 def to_format_contact(c):
     n = c.normal
     p = c.getNearestPoint2()
@@ -94,11 +136,13 @@ def to_format_contact(c):
 def contact(case):
     ga, ta = coal_shape(case["a"])
     gb, tb = coal_shape(case["b"])
+    kb = next(iter(case["b"]))
+    request = mesh_request(len(case["b"]["mesh"]["triangles"])) if kb == "mesh" else REQUEST
     result = coal.CollisionResult()
-    timed(coal.collide, ga, ta, gb, tb, REQUEST, result)
+    timed(coal.collide, ga, ta, gb, tb, request, result)
     if not result.isCollision():
         return {"contact": None}
-    return {"contact": to_format_contact(result.getContact(0))}
+    return {"contact": to_format_contact(pick_contact(result))}
 
 
 def overlap(case):
@@ -139,6 +183,7 @@ HANDLERS = {
     ("contact", "plane", "sphere"): contact,
     ("contact", "sphere", "triangle"): contact,
     ("contact", "triangle", "sphere"): contact,
+    ("contact", "sphere", "mesh"): contact,
     ("overlap", "aabb", "aabb"): overlap,
     ("bounds", "points", None): bounds,
     ("bounds", "mesh", None): bounds,
@@ -158,11 +203,13 @@ def provenance():
         "contact call": "coal.collide(geom_a, tf_a, geom_b, tf_b, CollisionRequest, CollisionResult)",
         "plane as": "coal.Halfspace(n, d) (solid n.x <= d)",
         "triangle as": "coal.TriangleP (two-sided)",
+        "mesh as": "coal.BVHModelOBBRSS of every face (contact: num_max_contacts = the number of faces, "
+                   "the deepest contact taken, ties to the lowest face index)",
         "security_margin": repr(r.security_margin),
         "collision_distance_threshold": COLLISION_DISTANCE_THRESHOLD,
         "break_distance": repr(r.break_distance) + " (default; BVH traversal only, unused by these pairs)",
         "distance_upper_bound": repr(r.distance_upper_bound) + " (default)",
-        "num_max_contacts": str(r.num_max_contacts),
+        "num_max_contacts": str(r.num_max_contacts) + " (sphere-mesh: the number of faces)",
         "enable_contact": str(r.enable_contact),
         "swept_sphere_radius": "0 (default on every shape)",
         "gjk": f"variant={r.gjk_variant}, tolerance={r.gjk_tolerance!r}, max_iterations={r.gjk_max_iterations}, "

@@ -37,10 +37,14 @@ PROVENANCE = {
     "numpy": package_version("numpy"),
     "precision": "f64 (FCL instantiated with double, libccd built with ENABLE_DOUBLE_PRECISION)",
     "gjk_solver_type": "GST_LIBCCD",
-    "collision_request": "enable_contact=True, num_max_contacts=1",
+    "collision_request": "enable_contact=True, num_max_contacts=1 (sphere-mesh: one per face; the deepest "
+                         "taken, ties to the lowest face index)",
     "margins": "none (FCL shapes have no margin or envelope)",
     "plane": "fcl.Halfspace(n, d): solid n.x <= d (FCL normalizes n and d)",
     "triangle": "fcl.BVHModel (OBBRSS) holding the one triangle: FCL has no sphere-TriangleP collision",
+    "mesh": "fcl.BVHModel (OBBRSS) holding every face; sphere-mesh: num_max_contacts = the number of "
+            "faces (FCL's mesh-shape traversal, one contact per touching face), the deepest taken, "
+            "ties to the lowest face index",
     "aabb": "fcl.Box(max - min) at translation 0.5*min + 0.5*max",
     "stdout": "fd 1 redirected to stderr before import; protocol on a duplicate of fd 1",
 }
@@ -78,11 +82,27 @@ def box_obj(b):
     return g, fcl.CollisionObject(g, fcl.Transform(0.5 * lo + 0.5 * hi))
 
 
-BUILD = {"sphere": sphere_obj, "plane": halfspace_obj, "triangle": triangle_obj}
+def mesh_obj(m):
+    # every face of the mesh in one BVHModel (OBBRSS), as for the triangle; the wire's
+    # indices arrive as JSON numbers (floats), hence int()
+    verts = [vec(v) for v in m["vertices"]]
+    tris = [[int(i) for i in t] for t in m["triangles"]]
+    # FCL does not check indices (one past the vertices is read from beyond the array and
+    # the process dies): malformed input, never sent by crashtest, refused here.
+    if any(i < 0 or i >= len(verts) for t in tris for i in t):
+        raise ValueError("mesh index out of range (FCL would read past its vertex array)")
+    g = fcl.BVHModel()
+    g.beginModel(len(tris), len(verts))
+    g.addSubModel(verts, tris)
+    g.endModel()
+    return g, fcl.CollisionObject(g, fcl.Transform())
 
 
-def fcl_collide(o1, o2):
-    req = fcl.CollisionRequest(**REQUEST)
+BUILD = {"sphere": sphere_obj, "plane": halfspace_obj, "triangle": triangle_obj, "mesh": mesh_obj}
+
+
+def fcl_collide(o1, o2, max_contacts=1):
+    req = fcl.CollisionRequest(**{**REQUEST, "num_max_contacts": max_contacts})
     res = fcl.CollisionResult()
     fcl.collide(o1, o2, req, res)
     return res
@@ -107,8 +127,18 @@ def fcl_collide(o1, o2):
 #      sphere-triangle: pos is the closest point of the triangle (on b) -> W = 0
 #      triangle-sphere: pos is on the triangle (a); the sphere's deepest point is
 #        depth further along n -> W = 1
+#  - sphere-mesh: FCL's mesh-shape traversal runs the same per-face sphere-triangle
+#    routine as the one-triangle BVHModel of the triangle pairs, so the same convention:
+#    o1 is the mesh (= b, normal kept; b1 = the face index, b2 = -1), depth negated, pos
+#    the face's closest point (W = 0) (checked on the tetrahedron fixtures: all agree).
+#    FCL reports one contact per touching face, in its BVH traversal order, and stops at
+#    num_max_contacts; so the mesh pair asks for one per face and `pick_contact` takes
+#    the deepest by FCL's own depth, on a tie the lowest face index (FCL's primitive id,
+#    Contact.b1 or b2 on the mesh's side). With num_max_contacts=1 FCL answers the first
+#    face its traversal meets, which need not be the nearest.
 DEPTH_SIGN = {("sphere", "sphere"): 1.0, ("sphere", "plane"): 1.0, ("plane", "sphere"): 1.0,
-              ("sphere", "triangle"): -1.0, ("triangle", "sphere"): -1.0}
+              ("sphere", "triangle"): -1.0, ("triangle", "sphere"): -1.0,
+              ("sphere", "mesh"): -1.0}
 
 
 def point_weight(ka, kb, a, b):
@@ -117,7 +147,19 @@ def point_weight(ka, kb, a, b):
         return rb / (ra + rb)
     if "plane" in (ka, kb):
         return 0.5
-    return 0.0 if kb == "triangle" else 1.0
+    return 0.0 if kb in ("triangle", "mesh") else 1.0
+
+
+def pick_contact(case, contacts, geom_b):
+    """The contact the format asks for among FCL's (one per touching face for a mesh):
+    the deepest by FCL's depth, ties to the lowest face index."""
+    ka, kb = next(iter(case["a"])), next(iter(case["b"]))
+    sign = DEPTH_SIGN[(ka, kb)]
+
+    def key(c):
+        face = c.b1 if c.o1 is geom_b else c.b2
+        return (-sign * float(c.penetration_depth), face)
+    return min(contacts, key=key)
 
 
 def to_format_contact(case, contact, geom_b):
@@ -135,10 +177,11 @@ def contact(case):
     (kb, sb), = case["b"].items()
     _, oa = BUILD[ka](sa)
     gb, ob = BUILD[kb](sb)
-    res = timed(fcl_collide, oa, ob)
+    # a mesh: room for one contact per face (see the translation's sphere-mesh note)
+    res = timed(fcl_collide, oa, ob, max(1, len(sb["triangles"])) if kb == "mesh" else 1)
     if not res.contacts:
         return {"contact": None}
-    return to_format_contact(case, res.contacts[0], gb)
+    return to_format_contact(case, pick_contact(case, res.contacts, gb), gb)
 
 
 def overlap(case):
@@ -156,6 +199,7 @@ HANDLERS = {
     ("contact", "plane", "sphere"): contact,
     ("contact", "sphere", "triangle"): contact,
     ("contact", "triangle", "sphere"): contact,
+    ("contact", "sphere", "mesh"): contact,
     ("overlap", "aabb", "aabb"): overlap,
 }
 

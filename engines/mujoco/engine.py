@@ -99,15 +99,18 @@ def set_sphere(sc, name, s):
 
 def set_plane(sc, name, p):
     """A plane geom: its z axis is the outward normal (MuJoCo's convention), its
-    position a point of the plane. The quaternion is MuJoCo's own mju_quatZ2Vec(n);
-    the point is n/|n| * (d/|n|) (the only input conversion done here)."""
+    position a point of the plane. The normal is made unit here (math.hypot: no
+    overflow or underflow at any finite length) and given to MuJoCo's own
+    mju_quatZ2Vec, which takes a direction (a raw normal shorter than mjMINVAL or
+    whose square overflows would be read as no direction); the point is
+    u * (d/|n|). These are the only input conversions done here."""
     g = sc.gid[name]
     n = [float(x) for x in p["normal"]]
     ln = math.hypot(*n)
     u = [x / ln for x in n]
     s = p["offset"] / ln
     q = np.zeros(4)
-    mujoco.mju_quatZ2Vec(q, np.array(n))
+    mujoco.mju_quatZ2Vec(q, np.array(u))
     sc.m.geom_pos[g] = [u[0] * s, u[1] * s, u[2] * s]
     sc.m.geom_quat[g] = q
 
@@ -198,6 +201,53 @@ def contact_sphere_shape(sphere_a, b, reversed_pair):
     return {"contact": translate_contact(con, b_is_geom1)}
 
 
+def contact_sphere_mesh(case):
+    """Sphere a (in a free body) against mesh b (a mesh geom of the world body), both
+    collidable (contype = conaffinity = 1, MuJoCo's default), margin 0, gap 0; a model
+    compiled per case (not timed), then mj_collision (timed).
+
+    CONVENTION (README): MuJoCo collides a mesh geom as the CONVEX HULL of its vertices
+    (the compiler builds it with qhull; the narrow phase is its convex-convex routine on
+    the hull, to its ccd tolerance), a solid. The format's mesh is a soup of two-sided
+    faces. So:
+      - a non-convex mesh: MuJoCo's contact is with the hull, not with the nearest face;
+      - a vertex no face uses still spans the hull;
+      - a centre inside the hull: MuJoCo pushes the sphere out of the solid (depth
+        r + distance to the hull's surface, normal outward), where the format's face
+        contact is r - distance with the normal from the face toward the centre;
+      - a mesh with fewer than 4 vertices, or all coplanar, has no hull: the compiler
+        refuses it ("at least 4 vertices required" / "has coplanar vertices, cannot
+        compute convex hull") -> `unsupported`, with MuJoCo's message; any other
+        compiler refusal is shown as the engine's error.
+    Vertices are stored as f32 (mjModel.mesh_vert), re-expressed in the mesh's inertial
+    frame (the geom's pos/quat carry it back): the hello gives this pair precision 24."""
+    sph, mesh = case["a"]["sphere"], case["b"]["mesh"]
+    verts, faces = mesh["vertices"], mesh["triangles"]
+    if len(verts) < 4:
+        # user_mesh.cc, CheckInitialMesh: "at least 4 vertices required"
+        raise Unsupported("MuJoCo refuses a mesh with fewer than 4 vertices (compiler: 'at least 4 vertices required')")
+    c = sph["center"]
+    xml = (f'<mujoco><asset><mesh name="m" inertia="{MESH_INERTIA}" vertex="'
+           + " ".join(fmt(x) for v in verts for x in v) + '" face="'
+           + " ".join(str(int(i)) for f in faces for i in f) + '"/></asset><worldbody>'
+           f'<geom name="b" type="mesh" mesh="m" contype="1" conaffinity="1" {_GEOM}/>'
+           f'<body name="a" pos="{fmt(c[0])} {fmt(c[1])} {fmt(c[2])}"><freejoint/>'
+           f'<geom name="a" type="sphere" size="{fmt(sph["radius"])}" contype="1" conaffinity="1" {_GEOM}/></body>'
+           '</worldbody></mujoco>')
+    try:
+        sc = Scene(xml)
+    except ValueError as exc:
+        if "coplanar" in str(exc):  # the compiler has no convex hull for a flat mesh
+            raise Unsupported("MuJoCo collides a mesh as its convex hull and refuses a flat one: "
+                              + " ".join(str(exc).split()))
+        raise
+    con = one_contact(collide(sc))
+    if con is None:
+        return {"contact": None}
+    b_is_geom1 = int(con.geom[0]) == sc.gid["b"]
+    return {"contact": translate_contact(con, b_is_geom1)}
+
+
 def ray_guard(vec):
     """mj_ray calls mjERROR("vector length is too small") when mju_norm3(vec) < mjMINVAL
     (engine_ray.c, mj_ray), and in the Python package mjERROR ends the process (exit 1)
@@ -272,6 +322,7 @@ HANDLERS = {
     ("contact", "plane", "sphere"): lambda c: contact_sphere_shape(c["b"]["sphere"], c["a"], True),
     ("contact", "sphere", "triangle"): lambda c: contact_sphere_shape(c["a"]["sphere"], c["b"], False),
     ("contact", "triangle", "sphere"): lambda c: contact_sphere_shape(c["b"]["sphere"], c["a"], True),
+    ("contact", "sphere", "mesh"): contact_sphere_mesh,
     ("intersect", "segment", "plane"): intersect_plane,
     ("intersect", "segment", "triangle"): intersect_triangle,
     ("intersect", "segment", "mesh"): intersect_mesh,
@@ -438,10 +489,14 @@ PROVENANCE = {
     "plane": 'geom type="plane" size="0 0 1" (size 0: infinite for rays), quat = mju_quatZ2Vec(normal)',
     "triangle": "a dim-2 flex of one element, vertices in the world body, radius 0 (sphere-triangle: mjraw_SphereTriangle; ray: mj_rayFlex faces only)",
     "mesh": f'mesh geom, inertia="{MESH_INERTIA}", contype=0 conaffinity=0 (no hull needed); ray: mj_ray(geomgroup=NULL, flg_static=1, bodyexclude=-1)',
+    "sphere-mesh": f'model per case: mesh geom (inertia="{MESH_INERTIA}", contype=conaffinity=1: collided as its '
+                   'CONVEX HULL) in the world body, sphere geom in a free body at the centre; margin 0, gap 0; '
+                   'mj_collision (convex-convex narrow phase, default mjOption ccd settings)',
     "stdout": "fd 1 redirected to stderr; the protocol uses a duplicate of the original fd 1",
 }
 
 if __name__ == "__main__":
-    # mjModel.mesh_vert is float: segment–mesh is answered on f32 vertices.
+    # mjModel.mesh_vert is float: segment–mesh and sphere–mesh are answered on f32 vertices.
     sys.exit(serve("mujoco", package_version("mujoco"), 53, HANDLERS, PROVENANCE,
-                   pair_precision={("intersect", "segment", "mesh"): 24}, world=step_world))
+                   pair_precision={("intersect", "segment", "mesh"): 24, ("contact", "sphere", "mesh"): 24},
+                   world=step_world))

@@ -135,6 +135,12 @@ pub enum Given {
     /// triangle by at most this fraction: each of its signed barycentric
     /// coordinates (in f64) is at least minus it.
     EngineHitOutsideByAtMost(f64),
+    /// A mesh `b` that is not the surface of its convex hull — open (an edge
+    /// not shared by exactly two faces), not convex (a vertex strictly on both
+    /// sides of a face's plane), with a vertex no face uses, or with a
+    /// zero-area face — or a sphere whose centre lies strictly inside it: an
+    /// engine that takes a mesh as its convex hull answers another shape there.
+    MeshNotItsConvexHull,
 }
 
 impl Given {
@@ -165,6 +171,11 @@ impl Given {
             Given::EngineNormalFacesTheStart => {
                 matches!((segment, engine_hit), (Some(d), Some(h)) if dot(h.normal, d) < 0.0)
             }
+            Given::MeshNotItsConvexHull => match (lc.meshes[1].as_ref(), &lc.case.a) {
+                (Some(m), Shape::Sphere(s)) => !convex_closed(m) || strictly_inside(m, &s.center),
+                (Some(m), _) => !convex_closed(m),
+                _ => false,
+            },
             Given::EngineHitOutsideByAtMost(x) => {
                 let (Some(Shape::Triangle(t)), Some(h)) = (&lc.case.b, engine_hit) else { return false };
                 let [v0, v1, v2] = t.vertices;
@@ -181,6 +192,52 @@ impl Given {
             }
         }
     }
+}
+
+/// The signed side of `p` from face `f`'s plane, `((v1 − v0) × (v2 − v0)) ·
+/// (p − v0)`, in f64.
+fn side(m: &crate::mesh::Mesh, f: &[usize; 3], p: &crashtest_core::geom::P3) -> f64 {
+    use crashtest_core::vec3::{cross, dot, sub};
+    let [v0, v1, v2] = f.map(|i| m.vertices[i]);
+    dot(cross(sub(v1, v0), sub(v2, v0)), sub(*p, v0))
+}
+
+/// Whether a mesh is the closed surface of a convex solid: every edge shared by
+/// exactly two faces, every vertex used, no zero-area face, and no vertex
+/// strictly on both sides of any face's plane.
+fn convex_closed(m: &crate::mesh::Mesh) -> bool {
+    use crashtest_core::vec3::{cross, dot, sub};
+    let mut edges: BTreeMap<(usize, usize), usize> = BTreeMap::new();
+    let mut used = vec![false; m.vertices.len()];
+    for f in &m.triangles {
+        let [v0, v1, v2] = f.map(|i| m.vertices[i]);
+        let n = cross(sub(v1, v0), sub(v2, v0));
+        if dot(n, n) == 0.0 {
+            return false;
+        }
+        for k in 0..3 {
+            used[f[k]] = true;
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            *edges.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    if m.triangles.is_empty() || used.contains(&false) || edges.values().any(|&n| n != 2) {
+        return false;
+    }
+    m.triangles.iter().all(|f| {
+        let sides: Vec<f64> = m.vertices.iter().map(|p| side(m, f, p)).collect();
+        !(sides.iter().any(|s| *s > 0.0) && sides.iter().any(|s| *s < 0.0))
+    })
+}
+
+/// Whether `p` lies strictly inside a closed convex mesh: strictly on the side
+/// of every face's plane that the rest of the mesh is on.
+fn strictly_inside(m: &crate::mesh::Mesh, p: &crashtest_core::geom::P3) -> bool {
+    m.triangles.iter().all(|f| {
+        let inner = m.vertices.iter().map(|v| side(m, f, v)).find(|s| *s != 0.0).unwrap_or(0.0);
+        let s = side(m, f, p);
+        inner != 0.0 && s != 0.0 && (s > 0.0) == (inner > 0.0)
+    })
 }
 
 /// A `crashtest-known/1` file.

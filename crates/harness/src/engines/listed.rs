@@ -92,7 +92,8 @@ struct Full {
 }
 
 /// Reads an engines file. The error names the file and the field (line and
-/// column for JSON syntax), or the known-divergences file and its field.
+/// column for JSON syntax). An engine whose known-divergences file does not
+/// read is returned with that as the reason it is [`Listed::missing`].
 pub fn read(path: &Path) -> Result<Vec<Listed>, String> {
     let at = path.display();
     let text = std::fs::read_to_string(path).map_err(|e| format!("{at}: cannot read: {e}"))?;
@@ -120,15 +121,25 @@ pub fn read(path: &Path) -> Result<Vec<Listed>, String> {
         let words: Vec<String> = command.iter().map(|w| fill(w)).collect();
         let spec = ProcessSpec::new(&name, words).map_err(|e| format!("{at}: engines.{name}: {e}"))?;
         let known_file = known.map(|k| PathBuf::from(fill(&k)));
-        let rules = match &known_file {
-            Some(k) => load_known(k).map_err(|e| format!("{at}: engines.{name}.known: {e}"))?,
-            None => Vec::new(),
+        // Known divergences that do not read leave the engine out (named, it is
+        // an error that says why; under `all` the report says so), and the rest
+        // of the run goes on.
+        let (rules, unreadable) = match &known_file {
+            Some(k) => match load_known(k) {
+                Ok(r) => (r, None),
+                Err(e) => {
+                    (Vec::new(), Some(format!("its known divergences do not read: {at}: engines.{name}.known: {e}")))
+                }
+            },
+            None => (Vec::new(), None),
         };
         let program = Path::new(&spec.program);
-        let missing = (program.components().count() > 1 && !program.exists()).then(|| {
-            let how = file.install.as_deref().map(|i| format!("; install it with `{i}`")).unwrap_or_default();
-            format!("not installed (`{}` does not exist){how}", spec.program)
-        });
+        let missing = (program.components().count() > 1 && !program.exists())
+            .then(|| {
+                let how = file.install.as_deref().map(|i| format!("; install it with `{i}`")).unwrap_or_default();
+                format!("not installed (`{}` does not exist){how}", spec.program)
+            })
+            .or(unreadable);
         out.push(Listed { spec, known: rules, missing, known_file });
     }
     Ok(out)
@@ -173,8 +184,9 @@ mod tests {
         let err = read(&path).expect_err("unknown key");
         assert!(err.contains("bad1.json") && err.contains("engines.x"), "{err}");
         let path = write("bad2.json", r#"{"engines": {"x": {"command": ["p"], "known": "{here}/none.json"}}}"#);
-        let err = read(&path).expect_err("no known file");
-        assert!(err.contains("engines.x.known") && err.contains("none.json: cannot read"), "{err}");
+        let listed = read(&path).expect("the file reads; its engine is left out");
+        let why = listed[0].missing.as_deref().unwrap_or("");
+        assert!(why.contains("engines.x.known") && why.contains("none.json: cannot read"), "{why}");
         let path = write("bad3.json", "{\"engines\": {\"x\": [\"p\"]}");
         let err = read(&path).expect_err("syntax");
         assert!(err.contains("bad3.json: line 1 column"), "{err}");
