@@ -395,19 +395,22 @@ mod tests {
         // Above face 2 at height 0.5, radius 1: contact at (0.5, 1.5, 0), depth 0.5, normal +z.
         let k = contact_sphere_mesh(&s([0.5, 1.5, 0.5], 1.0), &vertices, &faces).unwrap();
         let c = k.contact.unwrap();
-        assert_eq!((c.point, c.normal, c.depth, k.degenerate), ([0.5, 1.5, 0.0], [0.0, 0.0, 1.0], 0.5, false));
+        close_v(c.point, [0.5, 1.5, 0.0], "point");
+        close_v(c.normal, [0.0, 0.0, 1.0], "normal");
+        close(c.depth, 0.5, "depth");
+        assert!(!k.degenerate);
         // Nearer the top face (distance 0.5 from z = 3): that one, normal −z.
         let k = contact_sphere_mesh(&s([0.25, 0.25, 2.5], 1.0), &vertices, &faces).unwrap();
-        assert_eq!(k.contact.unwrap().normal, [0.0, 0.0, -1.0]);
+        close_v(k.contact.unwrap().normal, [0.0, 0.0, -1.0], "top face's normal");
         // Apart from every face; an empty mesh.
-        assert_eq!(contact_sphere_mesh(&s([5.0, 5.0, 5.0], 1.0), &vertices, &faces).unwrap().contact, None);
-        assert_eq!(contact_sphere_mesh(&s([0.0; 3], 1.0), &vertices, &[]).unwrap().contact, None);
+        assert!(contact_sphere_mesh(&s([5.0, 5.0, 5.0], 1.0), &vertices, &faces).unwrap().contact.is_none());
+        assert!(contact_sphere_mesh(&s([0.0; 3], 1.0), &vertices, &[]).unwrap().contact.is_none());
         // A centre on the shared diagonal: degenerate, the lower face's (1) normal.
         let k = contact_sphere_mesh(&s([1.0, 1.0, 0.0], 0.5), &vertices, &faces).unwrap();
         assert!(k.degenerate);
-        assert_eq!(k.contact.unwrap().normal, [0.0, 0.0, 1.0]);
-        // The margin: 0.5 deep above face 2, 3.0 − ... apart.
-        assert_eq!(contact_margin_sphere_mesh(&s([0.5, 1.5, 0.5], 1.0), &vertices, &faces).unwrap(), 0.5);
+        close_v(k.contact.unwrap().normal, [0.0, 0.0, 1.0], "face 1's normal");
+        // The margin: 0.5 deep above face 2.
+        close(contact_margin_sphere_mesh(&s([0.5, 1.5, 0.5], 1.0), &vertices, &faces).unwrap(), 0.5, "margin");
         assert!(contact_sphere_mesh(&s([0.0; 3], 1.0), &vertices, &[[0, 1, 9]]).is_err());
     }
 
