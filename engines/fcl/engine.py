@@ -7,8 +7,14 @@ Every number in an answer is FCL's; the adapter only builds FCL's shapes from
 the case and translates FCL's conventions into the format's, in ONE place:
 `to_format_contact` below.
 """
+import json
+import math
 import os
+import resource
+import select
+import signal
 import sys
+import time
 
 # --- protect the protocol -------------------------------------------------------
 # FCL writes warnings to std::cerr, but a native library may also print to fd 1.
@@ -19,6 +25,7 @@ os.dup2(2, 1)
 sys.stdout = os.fdopen(_PROTO_FD, "w", encoding="utf-8", newline="\n")
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import crashtest_engine  # noqa: E402
 from crashtest_engine import Unsupported, package_version, serve, timed  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -28,6 +35,19 @@ import fcl  # noqa: E402
 GJK_SOLVER = fcl.GJKSolverType.GST_LIBCCD  # FCL's default; every pair answered has a
 #                                            dedicated (non-GJK) routine under it
 REQUEST = dict(enable_contact=True, num_max_contacts=1, gjk_solver_type=GJK_SOLVER)
+
+# toi: FCL's continuous collision, chosen once (see README.md, "toi"). In FCL 0.7.0 the
+# conservative-advancement solver ignores the request's num_max_iterations and toc_err
+# (FCL_UNUSED(request) in conservative_advancement_func_matrix-inl.h; its traversal
+# nodes stop when a step falls below their own t_err = 1e-4 of the motion); they are
+# given FCL's defaults. GST_INDEP: with GST_LIBCCD, sphere-halfspace advancement
+# crashes the process (SIGSEGV) on every moving case; sphere-sphere and
+# sphere-triangle have dedicated distance routines under both solvers.
+CCD_REQUEST = dict(num_max_iterations=10, toc_err=1e-4,
+                   ccd_motion_type=fcl.CCDMotionType.CCDM_TRANS,
+                   gjk_solver_type=fcl.GJKSolverType.GST_INDEP,
+                   ccd_solver_type=fcl.CCDSolverType.CCDC_CONSERVATIVE_ADVANCEMENT)
+DISTANCE_REQUEST = dict(enable_nearest_points=True, gjk_solver_type=fcl.GJKSolverType.GST_INDEP)
 
 PROVENANCE = {
     "python-fcl": package_version("python-fcl"),
@@ -46,6 +66,18 @@ PROVENANCE = {
             "faces (FCL's mesh-shape traversal, one contact per touching face), the deepest taken, "
             "ties to the lowest face index",
     "aabb": "fcl.Box(max - min) at translation 0.5*min + 0.5*max",
+    "toi": "fcl.continuousCollide(a, a's pose at t_max, b, b's pose at t_max) from the poses at 0 (each shape "
+           "translated by velocity*t_max); t = time_of_contact * t_max when is_collide, else null; the "
+           "contact at t from FCL's static queries with both shapes moved by velocity*t: fcl.collide's "
+           "contact (as for contact) if they touch, else fcl.distance's nearest points",
+    "toi ccd_request": "ccd_solver_type=CCDC_CONSERVATIVE_ADVANCEMENT, ccd_motion_type=CCDM_TRANS, "
+                       "gjk_solver_type=GST_INDEP, num_max_iterations=10, toc_err=1e-4 (the last two are "
+                       "ignored by FCL 0.7.0's conservative advancement: it stops at a step below t_err = 1e-4, "
+                       "hard-coded in its traversal nodes)",
+    "toi distance_request": "enable_nearest_points=True, gjk_solver_type=GST_INDEP",
+    "toi crash containment": "each toi case runs in a forked child (os.fork), which returns its answer and "
+                             "the ns of its FCL calls through a pipe; a child killed by a signal is that "
+                             "case's error, naming the FCL call",
     "stdout": "fd 1 redirected to stderr before import; protocol on a duplicate of fd 1",
 }
 
@@ -136,6 +168,20 @@ def fcl_collide(o1, o2, max_contacts=1):
 #    the deepest by FCL's own depth, on a tie the lowest face index (FCL's primitive id,
 #    Contact.b1 or b2 on the mesh's side). With num_max_contacts=1 FCL answers the first
 #    face its traversal meets, which need not be the nearest.
+#  - toi (fcl.distance, for a pair apart at FCL's time of contact): FCL's DistanceResult
+#    holds nearest_points[0] on its o1 and [1] on its o2. Shape-BVH calls are swapped to
+#    BVH-shape (distance-inl.h) without swapping back, so b's point is read from the
+#    result's own o1/o2. Frames: shape-shape distance answers in world coordinates;
+#    BVH-shape distance (the triangle and mesh pairs) answers each point in its own
+#    object's frame (checked: a triangle at translation (0,0,0.5) gives its point at z = 0,
+#    the sphere's as centre-relative), so those points are mapped to world by the
+#    object's own translation (every object here has the identity rotation).
+#    point = b's nearest point. normal: FCL puts the sphere's (a's) nearest point at
+#    centre - r n (sphere_sphere / sphere_triangle distance), so n = (a's centre - a's
+#    nearest point) / its length (math.hypot): FCL's own direction, read at the length r.
+#    (The difference of the two nearest points says the same, but at FCL's time of contact
+#    the gap is tiny and that difference cancels: 1e-4 rad off on fast small spheres.)
+#    depth = -distance (a gap; the toi answer drops it).
 DEPTH_SIGN = {("sphere", "sphere"): 1.0, ("sphere", "plane"): 1.0, ("plane", "sphere"): 1.0,
               ("sphere", "triangle"): -1.0, ("triangle", "sphere"): -1.0,
               ("sphere", "mesh"): -1.0}
@@ -162,8 +208,25 @@ def pick_contact(case, contacts, geom_b):
     return min(contacts, key=key)
 
 
-def to_format_contact(case, contact, geom_b):
+def to_format_contact(case, contact, geom_b, frames=None):
+    """FCL's answer -> the format's contact. `contact` is an fcl.Contact (from collide),
+    or an fcl.DistanceResult (from distance, toi only) with `frames` = (translation of
+    a's object, translation of b's object) for the BVH-shape local frames."""
     ka, kb = next(iter(case["a"])), next(iter(case["b"]))
+    if isinstance(contact, fcl.DistanceResult):
+        ib = 0 if contact.o1 is geom_b else 1
+        p_b = np.array(contact.nearest_points[ib], dtype=np.float64)
+        p_a = np.array(contact.nearest_points[1 - ib], dtype=np.float64)
+        if kb in ("triangle", "mesh"):  # BVH-shape: each point in its own object's frame
+            p_a, p_b = p_a + frames[0], p_b + frames[1]
+        d = frames[0] - p_a  # a is the sphere, centred at frames[0]: FCL's p_a = centre - r n
+        length = math.hypot(*d)
+        if not length > 0:
+            raise ValueError(f"fcl.distance: a's nearest point at its centre (distance "
+                             f"{contact.min_distance!r}): no normal")
+        n = d / length
+        return {"contact": {"point": [float(x) for x in p_b], "normal": [float(x) + 0.0 for x in n],
+                            "depth": -float(contact.min_distance)}}
     nf = np.array(contact.normal, dtype=np.float64)
     n = nf if contact.o1 is geom_b else -nf  # contact.o1: the geometry FCL put first
     depth = DEPTH_SIGN[(ka, kb)] * float(contact.penetration_depth)
@@ -193,6 +256,171 @@ def overlap(case):
     return {"overlap": bool(res.is_collision)}
 
 
+# --- toi: FCL's CCD in a forked child -----------------------------------------------
+# The toi worker: a child forked from this process (os.fork) that runs FCL's calls for
+# one toi case at a time, so that a crash of FCL (SIGSEGV) ends the child and not the
+# engine. It is kept for the next case while it lives (forking here costs ~2-4 ms a case,
+# which over a campaign would be most of the time) and forked again after a crash.
+CHILD_STACK = 1 << 20  # bytes: FCL's shape-mesh advancement can recurse without end
+#                        (distanceRecurse); 1 MiB ends it in ms rather than the tens of ms
+#                        the default 8 MiB takes (a balanced BVH needs a few KiB)
+CHILD_TIMEOUT = 20.0   # s per case: a worker that does not answer is killed, the case failed
+
+
+class EngineCrash(Exception):
+    """The forked child running FCL was killed by a signal (or did not answer)."""
+
+
+def charge(ns):
+    """Charges `ns` (FCL's time, measured in the child) to the current case
+    (crashtest_engine's `timed` charges only calls made in this process)."""
+    crashtest_engine._charged.append(float(ns))
+
+
+def toi_in_child(case, emit):
+    """Runs in the worker: builds FCL's objects, FCL's CCD, then FCL's contact at that
+    time. `emit(obj)` sends one line to the parent; {"stage": name} before every FCL call
+    names the call if the worker dies in it."""
+    (ka, sa), = case["a"].items()
+    (kb, sb), = case["b"].items()
+    ga, oa = BUILD[ka](sa)
+    gb, ob = BUILD[kb](sb)
+    t_max = float(case.get("t_max", 1.0))
+    start_a, start_b = oa.getTranslation(), ob.getTranslation()
+    va, vb = vec(sa.get("velocity", [0, 0, 0])), vec(sb.get("velocity", [0, 0, 0]))
+    ns = 0
+
+    def call(stage, fn, *args):
+        nonlocal ns
+        emit({"stage": stage})
+        t0 = time.perf_counter_ns()
+        out = fn(*args)
+        ns += time.perf_counter_ns() - t0
+        return out
+
+    req = fcl.ContinuousCollisionRequest(**CCD_REQUEST)
+    res = fcl.ContinuousCollisionResult()
+    call("continuousCollide", fcl.continuousCollide, oa, fcl.Transform(start_a + t_max * va),
+         ob, fcl.Transform(start_b + t_max * vb), req, res)
+    if not res.is_collide:
+        return {"answer": {"toi": None}, "ns": ns}
+    t = float(res.time_of_contact) * t_max  # FCL's time is a fraction of the motion
+    ta, tb = start_a + t * va, start_b + t * vb  # both shapes moved by velocity * t
+    oa.setTranslation(ta)
+    ob.setTranslation(tb)
+    cres = call("collide", fcl_collide, oa, ob, max(1, len(sb["triangles"])) if kb == "mesh" else 1)
+    if cres.contacts:
+        c = to_format_contact(case, pick_contact(case, cres.contacts, gb), gb)["contact"]
+    else:
+        dres = fcl.DistanceResult()
+        call("distance", fcl.distance, oa, ob, fcl.DistanceRequest(**DISTANCE_REQUEST), dres)
+        c = to_format_contact(case, dres, gb, frames=(ta, tb))["contact"]
+    return {"answer": {"toi": {"t": t, "point": c["point"], "normal": c["normal"]}}, "ns": ns}
+
+
+def worker_loop(rfd, wfd):
+    """The worker's life: one case a line on `rfd`, its lines on `wfd`; ends at EOF."""
+    os.close(_PROTO_FD)  # the protocol is the parent's alone
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))  # a crash leaves no core file
+    hard = resource.getrlimit(resource.RLIMIT_STACK)[1]
+    stack = CHILD_STACK if hard == resource.RLIM_INFINITY else min(CHILD_STACK, hard)
+    resource.setrlimit(resource.RLIMIT_STACK, (stack, hard))
+
+    def emit(obj):
+        os.write(wfd, (json.dumps(obj, allow_nan=True) + "\n").encode())
+    with os.fdopen(rfd, "rb") as cases:
+        for line in cases:
+            try:
+                emit({"result": toi_in_child(json.loads(line), emit)})
+            except Exception as exc:
+                emit({"exception": [type(exc).__name__, str(exc)]})
+
+
+_worker = None  # (pid, the write end of its case pipe, a reader of its answers)
+
+
+def start_worker():
+    to_r, to_w = os.pipe()
+    from_r, from_w = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the worker: never returns
+        status = 0
+        try:
+            os.close(to_w)
+            os.close(from_r)
+            worker_loop(to_r, from_w)
+        except BaseException:
+            status = 1
+        finally:
+            os._exit(status)
+    os.close(to_r)
+    os.close(from_w)
+    return pid, to_w, LineReader(from_r)
+
+
+def stop_worker(kill):
+    global _worker
+    pid, to_w, reader = _worker
+    _worker = None
+    if kill:
+        os.kill(pid, signal.SIGKILL)
+    os.close(to_w)
+    reader.close()
+    return os.waitpid(pid, 0)[1]
+
+
+class LineReader:
+    """The worker's answers, a line at a time, with a time limit (select on the fd)."""
+
+    def __init__(self, fd):
+        self.fd, self.buf = fd, b""
+
+    def line(self, timeout):
+        """The next line as JSON, or None at EOF; TimeoutError after `timeout` s of silence."""
+        while b"\n" not in self.buf:
+            ready, _, _ = select.select([self.fd], [], [], timeout)
+            if not ready:
+                raise TimeoutError
+            chunk = os.read(self.fd, 65536)
+            if not chunk:
+                return None
+            self.buf += chunk
+        line, self.buf = self.buf.split(b"\n", 1)
+        return json.loads(line)
+
+    def close(self):
+        os.close(self.fd)
+
+
+def toi(case):
+    global _worker
+    if _worker is None:
+        _worker = start_worker()
+    pid, to_w, reader = _worker
+    os.write(to_w, (json.dumps(case, allow_nan=False) + "\n").encode())
+    stage = "the adapter"
+    while True:
+        try:
+            msg = reader.line(CHILD_TIMEOUT)
+        except TimeoutError:
+            stop_worker(kill=True)
+            raise EngineCrash(f"FCL did not answer within {CHILD_TIMEOUT:g} s in {stage} (the worker was killed)")
+        if msg is None:  # EOF: the worker died in this case
+            status = stop_worker(kill=False)
+            if os.WIFSIGNALED(status):
+                sig = os.WTERMSIG(status)
+                raise EngineCrash(f"FCL crashed (signal {sig}, {signal.Signals(sig).name}) in {stage}")
+            raise EngineCrash(f"the FCL worker exited (status {os.waitstatus_to_exitcode(status)}) in {stage}")
+        if "stage" in msg:
+            stage = msg["stage"]
+        elif "exception" in msg:
+            name, text = msg["exception"]
+            raise type(name, (Exception,), {})(text)  # shown as it would be in-process
+        else:
+            charge(msg["result"]["ns"])
+            return msg["result"]["answer"]
+
+
 HANDLERS = {
     ("contact", "sphere", "sphere"): contact,
     ("contact", "sphere", "plane"): contact,
@@ -201,6 +429,10 @@ HANDLERS = {
     ("contact", "triangle", "sphere"): contact,
     ("contact", "sphere", "mesh"): contact,
     ("overlap", "aabb", "aabb"): overlap,
+    ("toi", "sphere", "sphere"): toi,
+    ("toi", "sphere", "plane"): toi,
+    ("toi", "sphere", "triangle"): toi,
+    ("toi", "sphere", "mesh"): toi,
 }
 
 if __name__ == "__main__":

@@ -141,6 +141,11 @@ pub enum Given {
     /// zero-area face — or a sphere whose centre lies strictly inside it: an
     /// engine that takes a mesh as its convex hull answers another shape there.
     MeshNotItsConvexHull,
+    /// `toi`: both found an impact, and the engine's time is early by at most
+    /// this fraction of `t_max`: `t_referee − x · t_max ≤ t_engine ≤
+    /// t_referee` (a conservative advancement that stops within a tolerance of
+    /// the contact, never past it).
+    EngineTimeEarlyByAtMost(f64),
 }
 
 impl Given {
@@ -174,6 +179,13 @@ impl Given {
             Given::MeshNotItsConvexHull => match (lc.meshes[1].as_ref(), &lc.case.a) {
                 (Some(m), Shape::Sphere(s)) => !convex_closed(m) || strictly_inside(m, &s.center),
                 (Some(m), _) => !convex_closed(m),
+                _ => false,
+            },
+            Given::EngineTimeEarlyByAtMost(x) => match (answer, truth) {
+                (Answer::Toi(a), Answer::Toi(t)) => match (a.toi, t.toi) {
+                    (Some(a), Some(t)) => a.t <= t.t && t.t - a.t <= x * lc.case.t_max(),
+                    _ => false,
+                },
                 _ => false,
             },
             Given::EngineHitOutsideByAtMost(x) => {
