@@ -65,6 +65,13 @@ XML_PLANE_ONLY = f"""<mujoco><worldbody>
   <geom name="b" type="plane" size="0 0 1" {_GEOM}/>
 </worldbody></mujoco>"""
 MESH_INERTIA = "shell"  # a flat or open mesh has no volume; "shell" lets it compile
+# aabb-aabb overlap: two box geoms, b in the world body, a in a free body (identity
+# orientation: no quat, the free joint at qpos0), both collidable (contype = conaffinity
+# = 1, MuJoCo's default); mj_collision -> mjc_BoxBox (engine_collision_box.c).
+XML_BOX_BOX = f"""<mujoco><worldbody>
+  <geom name="b" type="box" size="1 1 1" contype="1" conaffinity="1" {_GEOM}/>
+  <body name="a"><freejoint/><geom name="a" type="box" size="1 1 1" contype="1" conaffinity="1" {_GEOM}/></body>
+</worldbody></mujoco>"""
 
 
 class Scene:
@@ -95,6 +102,30 @@ def set_sphere(sc, name, s):
     sc.m.geom_size[g] = [r, 0.0, 0.0]
     sc.m.geom_rbound[g] = r
     sc.m.geom_aabb[g] = [0.0, 0.0, 0.0, r, r, r]
+
+
+def set_box(sc, name, box):
+    """Places a box geom from an aabb: geom_pos = the centre, geom_size = the half
+    extents (MuJoCo's box: size = half-sizes), identity orientation; and the bounding
+    data MuJoCo's compiler gives a box (user_objects.cc, mjCGeom::GetRBound:
+    geom_rbound = sqrt(hx*hx + hy*hy + hz*hz); geom_aabb = [0,0,0, hx,hy,hz]).
+    Input conversion: centre = min/2 + max/2, half = max/2 - min/2 (never overflows;
+    each rounded once, so a box is represented to within rounding of its corners).
+    MuJoCo's compiler refuses a box with a half-size <= 0 (checksize: "size %d must be
+    positive in geom"), so a zero extent is `unsupported` with that reason."""
+    g = sc.gid[name]
+    lo = [float(x) for x in box["min"]]
+    hi = [float(x) for x in box["max"]]
+    c = [0.5 * lo[i] + 0.5 * hi[i] for i in range(3)]
+    h = [0.5 * hi[i] - 0.5 * lo[i] for i in range(3)]
+    for i in range(3):
+        if not h[i] > 0:
+            raise Unsupported(f"MuJoCo cannot represent a box with a zero extent (axis {i}: half-size {h[i]!r}): "
+                              f"its compiler refuses it ('size {i} must be positive in geom', checksize in user_objects.cc)")
+    sc.m.geom_pos[g] = c
+    sc.m.geom_size[g] = h
+    sc.m.geom_rbound[g] = math.sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2])
+    sc.m.geom_aabb[g] = [0.0, 0.0, 0.0, h[0], h[1], h[2]]
 
 
 def set_plane(sc, name, p):
@@ -248,6 +279,22 @@ def contact_sphere_mesh(case):
     return {"contact": translate_contact(con, b_is_geom1)}
 
 
+def overlap_aabb(case):
+    """aabb-aabb overlap through MuJoCo's box-box collision: b a box geom of the world
+    body, a a box geom of a free body (identity orientation), margin 0, gap 0;
+    mj_kinematics, then mj_collision (timed) -> bounding-sphere filter (geom_rbound) ->
+    mjc_BoxBox. THE RULE: overlap = at least one contact with dist <= 0. Touching boxes
+    get contacts with dist = 0 (face, edge, or corner contact) when they pass the
+    bounding-sphere filter; mjc_BoxBox's separation tests carry a slack (septol =
+    1e-13 x the summed half-sizes), and its edge-edge path can return a contact with
+    0 < dist <= septol: such a contact is not an overlap."""
+    sc = scene("box-box", XML_BOX_BOX)
+    set_box(sc, "a", case["a"]["aabb"])
+    set_box(sc, "b", case["b"]["aabb"])
+    cons = collide(sc)
+    return {"overlap": any(float(c.dist) <= 0.0 for c in cons)}
+
+
 def ray_guard(vec):
     """mj_ray calls mjERROR("vector length is too small") when mju_norm3(vec) < mjMINVAL
     (engine_ray.c, mj_ray), and in the Python package mjERROR ends the process (exit 1)
@@ -326,6 +373,7 @@ HANDLERS = {
     ("intersect", "segment", "plane"): intersect_plane,
     ("intersect", "segment", "triangle"): intersect_triangle,
     ("intersect", "segment", "mesh"): intersect_mesh,
+    ("overlap", "aabb", "aabb"): overlap_aabb,
 }
 
 # ================================================================ WORLDS (dynamics)
@@ -492,6 +540,10 @@ PROVENANCE = {
     "sphere-mesh": f'model per case: mesh geom (inertia="{MESH_INERTIA}", contype=conaffinity=1: collided as its '
                    'CONVEX HULL) in the world body, sphere geom in a free body at the centre; margin 0, gap 0; '
                    'mj_collision (convex-convex narrow phase, default mjOption ccd settings)',
+    "aabb-aabb": "two box geoms (size = half extents = max/2 - min/2, pos = centre = min/2 + max/2, identity "
+                 "orientation; b in the world body, a in a free body), rbound/aabb as the compiler sets them, margin 0, "
+                 "gap 0; mj_kinematics then mj_collision (bounding-sphere filter, mjc_BoxBox); overlap = any contact "
+                 "with dist <= 0; a zero extent: unsupported (the compiler refuses size <= 0)",
     "stdout": "fd 1 redirected to stderr; the protocol uses a duplicate of the original fd 1",
 }
 
