@@ -165,15 +165,20 @@ def hit_from_ray(result, face_normal):
 # =====================================================================================
 
 
-def contact(case):
+def closest_points(case):
+    """Bullet's closest points of the case's two shapes (getClosestPoints, distance 0),
+    each made a body for the call and removed after it."""
     _housekeeping()
     a, b = make(case["a"]), make(case["b"])
     try:
-        points = timed(p.getClosestPoints, a, b, DISTANCE)
+        return timed(p.getClosestPoints, a, b, DISTANCE)
     finally:
         p.removeBody(a)
         p.removeBody(b)
-    return contact_from_points(points)
+
+
+def contact(case):
+    return contact_from_points(closest_points(case))
 
 
 def intersect(case):
@@ -199,14 +204,7 @@ def overlap(case):
     # Two btBoxShape bodies with margin 0; getClosestPoints(distance 0) runs Bullet's
     # convex-convex closest-point algorithm (GJK, EPA when penetrating). Any point with
     # contactDistance <= 0 means the boxes overlap (touching included).
-    _housekeeping()
-    a, b = make(case["a"]), make(case["b"])
-    try:
-        points = timed(p.getClosestPoints, a, b, DISTANCE)
-    finally:
-        p.removeBody(a)
-        p.removeBody(b)
-    return {"overlap": len(points) > 0}
+    return {"overlap": len(closest_points(case)) > 0}
 
 
 # ======================= WORLDS (rigid-body dynamics) =======================

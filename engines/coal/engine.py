@@ -154,20 +154,16 @@ def overlap(case):
 
 def bounds(case):
     kind, s = next(iter(case["a"].items()))
-    model = coal.BVHModelOBBRSS()
     if kind == "points":
+        model = coal.BVHModelOBBRSS()
         verts = np.array(s["points"], dtype=np.float64).reshape(-1, 3)
         model.beginModel(0, len(verts))
         model.addVertices(verts)
+        status = model.endModel()
+        if status != 0:
+            raise RuntimeError(f"BVHModel endModel returned {status}")
     else:  # mesh (always inline on the wire)
-        verts = np.array(s["vertices"], dtype=np.float64).reshape(-1, 3)
-        tris = np.array([[int(i) for i in t] for t in s["triangles"]], dtype=np.int64).reshape(-1, 3)
-        model.beginModel(len(tris), len(verts))
-        model.addVertices(verts)
-        model.addTriangles(tris)
-    status = model.endModel()
-    if status != 0:
-        raise RuntimeError(f"BVHModel endModel returned {status}")
+        model = mesh_model(s)
     timed(model.computeLocalAABB)
     box = model.aabb_local
     lo, hi, c = box.min_, box.max_, model.aabb_center

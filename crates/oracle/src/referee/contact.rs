@@ -242,6 +242,18 @@ impl SphereTriangle {
     fn depth(&self) -> f64 {
         self.root.round_affine(&self.r, &Q::NEG_ONE)
     }
+
+    /// The forward-order answer: the contact at `q` when touching, else none.
+    fn answer(&self) -> ContactAnswer {
+        if !self.touches() {
+            return ContactAnswer { contact: None, degenerate: false };
+        }
+        let (dir, degenerate) = self.direction();
+        ContactAnswer {
+            contact: Some(Contact { point: round_v(&self.q), normal: round_unit(&dir), depth: self.depth() }),
+            degenerate,
+        }
+    }
 }
 
 /// Contact between a sphere `a` (centre `c`, radius `r`) and a triangle `b`.
@@ -263,15 +275,7 @@ impl SphereTriangle {
 /// segment or point (its closest point), with `degenerate: false`: the answer is
 /// fully defined.
 pub fn contact_sphere_triangle(a: &Sphere, b: &Triangle) -> Result<ContactAnswer, RefereeError> {
-    let st = sphere_triangle(a, b, ["a.center", "a.radius"], "b.vertices")?;
-    if !st.touches() {
-        return Ok(ContactAnswer { contact: None, degenerate: false });
-    }
-    let (dir, degenerate) = st.direction();
-    Ok(ContactAnswer {
-        contact: Some(Contact { point: round_v(&st.q), normal: round_unit(&dir), depth: st.depth() }),
-        degenerate,
-    })
+    Ok(sphere_triangle(a, b, ["a.center", "a.radius"], "b.vertices")?.answer())
 }
 
 /// Contact between a triangle `a` and a sphere `b` (centre `c`, radius `r`): the
@@ -349,16 +353,9 @@ pub fn contact_sphere_mesh(
     vertices: &[P3],
     triangles: &[[usize; 3]],
 ) -> Result<ContactAnswer, RefereeError> {
-    let Some((_, st)) = nearest_face(a, vertices, triangles)? else {
-        return Ok(ContactAnswer { contact: None, degenerate: false });
-    };
-    if !st.touches() {
-        return Ok(ContactAnswer { contact: None, degenerate: false });
-    }
-    let (dir, degenerate) = st.direction();
-    Ok(ContactAnswer {
-        contact: Some(Contact { point: round_v(&st.q), normal: round_unit(&dir), depth: st.depth() }),
-        degenerate,
+    Ok(match nearest_face(a, vertices, triangles)? {
+        Some((_, st)) => st.answer(),
+        None => ContactAnswer { contact: None, degenerate: false },
     })
 }
 
