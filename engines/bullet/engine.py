@@ -24,6 +24,7 @@ sys.stdout = os.fdopen(_PROTOCOL_FD, "w", encoding="utf-8", newline="\n")
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from crashtest_engine import Unsupported, package_version, serve, timed  # noqa: E402
+from reproduce import reproductions  # noqa: E402  (this folder's reproduce.py)
 
 import pybullet as p  # noqa: E402  (prints its build time to fd 1 = standard error)
 
@@ -372,4 +373,5 @@ PROVENANCE = {
 }
 
 if __name__ == "__main__":
-    sys.exit(serve("bullet", package_version("pybullet"), 53, HANDLERS, PROVENANCE, world=step_world))
+    sys.exit(serve("bullet", package_version("pybullet"), 53, HANDLERS, PROVENANCE, world=step_world,
+                   reproductions=reproductions(HANDLERS)))

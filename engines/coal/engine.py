@@ -20,6 +20,7 @@ sys.stdout = os.fdopen(_PROTOCOL_FD, "w", encoding="utf-8", newline="\n")
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from crashtest_engine import Unsupported, package_version, serve, timed  # noqa: E402
+from reproduce import reproductions  # noqa: E402  (this folder's reproduce.py)
 
 import numpy as np  # noqa: E402
 import coal  # noqa: E402
@@ -219,4 +220,5 @@ def provenance():
 
 
 if __name__ == "__main__":
-    sys.exit(serve(NAME, package_version("coal"), 53, HANDLERS, provenance()))
+    sys.exit(serve(NAME, package_version("coal"), 53, HANDLERS, provenance(),
+                   reproductions=reproductions(HANDLERS)))

@@ -8,9 +8,17 @@ Timing: a handler that wraps its engine's call in `timed(...)` is charged for
 that call alone (the conversion of the case into the engine's types and of its
 result back is the adapter's, not the engine's); otherwise the whole handler
 is timed.
+
+Reproductions: `serve(..., reproductions={(query, a, b): script})` (b None for
+bounds) puts standalone Python programs in the hello (`"reproductions"`, docs/
+PROTOCOL.md): each asks the engine one case of its pair through the engine's own
+package, exactly as the handler does, and prints the engine's raw answer.
+Placeholders such as `{{a.center}}`, `{{b.vertices}}`, `{{t_max}}` become the
+case's values as JSON literals when crashtest fills a finding's draft.
 """
 import json
 import math
+import os
 import sys
 import time
 
@@ -91,12 +99,17 @@ def run_world(world, msg):
     return reply
 
 
-def serve(name, version, precision, handlers, provenance, pair_precision=None, world=None):
+def serve(name, version, precision, handlers, provenance, pair_precision=None, world=None,
+          reproductions=None):
     """Answers crashtest on standard input and output until `shutdown`.
     `pair_precision` maps a pair, (query, a, b), to the bits of mantissa it is
     answered in where that is not `precision` (a mesh stored in f32: 24).
-    `world`, when given, steps a `world` message (docs/PROTOCOL.md, "`world`")."""
+    `world`, when given, steps a `world` message (docs/PROTOCOL.md, "`world`").
+    `reproductions` maps a pair (b None for bounds) to a Python script with
+    placeholders (the module's docstring), sent in the hello."""
     pair_precision = pair_precision or {}
+    repros = [{"query": q, "a": a, **({"b": b} if b else {}), "language": "python", "script": script}
+              for (q, a, b), script in (reproductions or {}).items()]
     for line in sys.stdin:
         if not line.strip():
             continue
@@ -112,7 +125,8 @@ def serve(name, version, precision, handlers, provenance, pair_precision=None, w
                     for q, a, b in handlers]
             send({"type": "hello", "protocol": PROTOCOL, "name": name, "version": version,
                   "precision": precision, "capabilities": caps, "provenance": provenance,
-                  **({"worlds": True} if world else {})})
+                  **({"worlds": True} if world else {}),
+                  **({"reproductions": repros} if repros else {})})
         elif kind == "batch":
             answers = []
             for c in msg.get("cases", []):
@@ -127,6 +141,21 @@ def serve(name, version, precision, handlers, provenance, pair_precision=None, w
         else:
             print(f"{name}: ignoring a message of type {kind!r}", file=sys.stderr)
     return 0
+
+
+def pinned(*dists):
+    """'dist==version, ...' as engines/requirements.txt pins them (the installed
+    version where it pins none): the first line of a reproduction."""
+    pins = {}
+    try:
+        with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "requirements.txt")) as f:
+            for line in f:
+                name, sep, version = line.split("#")[0].strip().partition("==")
+                if sep:
+                    pins[name.lower()] = version.strip()
+    except OSError:
+        pass
+    return ", ".join(f"{d}=={pins.get(d.lower()) or package_version(d)}" for d in dists)
 
 
 def package_version(dist):

@@ -27,6 +27,7 @@ sys.stdout = os.fdopen(_PROTO_FD, "w", encoding="utf-8", newline="\n")
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 import crashtest_engine  # noqa: E402
 from crashtest_engine import Unsupported, package_version, serve, timed  # noqa: E402
+from reproduce import reproductions  # noqa: E402  (this folder's reproduce.py)
 
 import numpy as np  # noqa: E402
 import fcl  # noqa: E402
@@ -436,4 +437,5 @@ HANDLERS = {
 }
 
 if __name__ == "__main__":
-    sys.exit(serve("fcl", package_version("python-fcl"), 53, HANDLERS, PROVENANCE))
+    sys.exit(serve("fcl", package_version("python-fcl"), 53, HANDLERS, PROVENANCE,
+                   reproductions=reproductions(HANDLERS)))

@@ -21,6 +21,7 @@ sys.stdout = os.fdopen(_proto_fd, "w", buffering=1 << 16, encoding="utf-8", newl
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from crashtest_engine import Unsupported, package_version, serve, timed  # noqa: E402
+from reproduce import reproductions  # noqa: E402  (this folder's reproduce.py)
 
 import numpy as np  # noqa: E402
 import mujoco  # noqa: E402
@@ -74,6 +75,11 @@ XML_BOX_BOX = f"""<mujoco><worldbody>
 </worldbody></mujoco>"""
 
 
+# the fixed models by scene name (also the MJCF of the hello's reproductions)
+MODELS = {"sphere-sphere": XML_SPHERE_SPHERE, "plane-sphere": XML_PLANE_SPHERE, "flex-sphere": XML_FLEX_SPHERE,
+          "plane-only": XML_PLANE_ONLY, "box-box": XML_BOX_BOX}
+
+
 class Scene:
     def __init__(self, xml):
         self.m = mujoco.MjModel.from_xml_string(xml)
@@ -87,9 +93,9 @@ class Scene:
 _scenes = {}
 
 
-def scene(key, xml):
+def scene(key):
     if key not in _scenes:
-        _scenes[key] = Scene(xml)
+        _scenes[key] = Scene(MODELS[key])
     return _scenes[key]
 
 
@@ -205,17 +211,17 @@ def contact_sphere_shape(sphere_a, b, reversed_pair):
     reversed_pair, the case is (b, sphere): the roles of a and b are the case's."""
     kind = next(iter(b))
     if kind == "sphere":
-        sc = scene("sphere-sphere", XML_SPHERE_SPHERE)
+        sc = scene("sphere-sphere")
         set_sphere(sc, "a", sphere_a)
         set_sphere(sc, "b", b["sphere"])
         world = sc.gid["b"]
     elif kind == "plane":
-        sc = scene("plane-sphere", XML_PLANE_SPHERE)
+        sc = scene("plane-sphere")
         set_sphere(sc, "a", sphere_a)
         set_plane(sc, "b", b["plane"])
         world = sc.gid["b"]
     else:  # triangle: the vertices of the one flex element (f64, mjData.flexvert_xpos)
-        sc = scene("flex-sphere", XML_FLEX_SPHERE)
+        sc = scene("flex-sphere")
         set_sphere(sc, "a", sphere_a)
         sc.m.flex_vert[:] = b["triangle"]["vertices"]
         world = None
@@ -288,7 +294,7 @@ def overlap_aabb(case):
     bounding-sphere filter; mjc_BoxBox's separation tests carry a slack (septol =
     1e-13 x the summed half-sizes), and its edge-edge path can return a contact with
     0 < dist <= septol: such a contact is not an overlap."""
-    sc = scene("box-box", XML_BOX_BOX)
+    sc = scene("box-box")
     set_box(sc, "a", case["a"]["aabb"])
     set_box(sc, "b", case["b"]["aabb"])
     cons = collide(sc)
@@ -307,7 +313,7 @@ def ray_guard(vec):
 
 def intersect_plane(case):
     seg, p = case["a"]["segment"], case["b"]["plane"]
-    sc = scene("plane-only", XML_PLANE_ONLY)
+    sc = scene("plane-only")
     set_plane(sc, "b", p)
     mujoco.mj_kinematics(sc.m, sc.d)
     start = np.array(seg["start"])
@@ -321,7 +327,7 @@ def intersect_plane(case):
 
 def intersect_triangle(case):
     seg, tri = case["a"]["segment"], case["b"]["triangle"]
-    sc = scene("flex-sphere", XML_FLEX_SPHERE)  # the same one-triangle flex
+    sc = scene("flex-sphere")  # the same one-triangle flex
     sc.m.flex_vert[:] = tri["vertices"]
     mujoco.mj_kinematics(sc.m, sc.d)
     mujoco.mj_flex(sc.m, sc.d)
@@ -551,4 +557,4 @@ if __name__ == "__main__":
     # mjModel.mesh_vert is float: segment–mesh and sphere–mesh are answered on f32 vertices.
     sys.exit(serve("mujoco", package_version("mujoco"), 53, HANDLERS, PROVENANCE,
                    pair_precision={("intersect", "segment", "mesh"): 24, ("contact", "sphere", "mesh"): 24},
-                   world=step_world))
+                   world=step_world, reproductions=reproductions(HANDLERS, MODELS, _GEOM, MESH_INERTIA)))

@@ -85,6 +85,35 @@ enum Command {
         #[arg(long, default_value = "reports")]
         out: PathBuf,
     },
+    /// Print a report's findings: each root cause with its engine, pair,
+    /// what is wrong, how often, how badly, and the command that replays it.
+    Findings {
+        /// The report folder (`reports/latest` is the newest).
+        #[arg(default_value = "reports/latest")]
+        report: PathBuf,
+        /// Print findings.json instead.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Compare two reports: new, fixed and changed findings, and each
+    /// engine's score per query kind, telling noise from change. Exit 1 when
+    /// an engine named with --engine got worse, 2 for bad input, else 0.
+    Diff {
+        /// The older report folder.
+        old: PathBuf,
+        /// The newer report folder.
+        new: PathBuf,
+        /// An engine whose getting worse fails the diff (exit 1). Repeatable.
+        #[arg(long = "engine", value_name = "NAME")]
+        gate: Vec<String>,
+        /// Compare engine OLD of the older report with engine NEW of the
+        /// newer (two versions of one engine under two names). Repeatable.
+        #[arg(long = "as", value_name = "OLD=NEW")]
+        renames: Vec<String>,
+        /// Print the comparison as JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Process engines (docs/PROTOCOL.md).
     Engine {
         #[command(subcommand)]
@@ -401,7 +430,7 @@ fn main() -> ExitCode {
                 summary.provenance.seed
             );
             let sections = harness::report::write::merge_sections(&read);
-            let files = harness::report::write::render_files(&summary, &discrepancies, &sections);
+            let files = harness::report::write::render_files(&summary, &discrepancies, &sections, None, "");
             match harness::report::write::write_report(&out, &id, &files) {
                 Ok(dir) => {
                     outln!("merged {} shards: {}", reports.len(), dir.join("index.html").display());
@@ -507,6 +536,74 @@ fn main() -> ExitCode {
                 out!("{}", harness::conformance::render(&result));
             }
             ExitCode::from(if loaded.errors.is_empty() { result.exit_code() as u8 } else { 2 })
+        }
+        Command::Findings { report, json } => {
+            let file = match harness::findings::read(&report) {
+                Ok(f) => f,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            if json {
+                match serde_json::to_string_pretty(&file) {
+                    Ok(s) => outln!("{s}"),
+                    Err(e) => eprintln!("error: cannot write JSON: {e}"),
+                }
+            } else {
+                out!("{}", harness::findings::render::text(&file, &report.display().to_string()));
+            }
+            ExitCode::SUCCESS
+        }
+        Command::Diff { old, new, gate, renames, json } => {
+            let mut pairs = Vec::new();
+            for r in &renames {
+                match r.split_once('=') {
+                    Some((a, b)) if !a.trim().is_empty() && !b.trim().is_empty() => {
+                        pairs.push((a.trim().to_string(), b.trim().to_string()))
+                    }
+                    _ => {
+                        eprintln!("error: --as {r}: expected OLD=NEW, two engine names");
+                        return ExitCode::from(2);
+                    }
+                }
+            }
+            let read = |dir: &std::path::Path| -> Result<(harness::summary::Summary, harness::findings::FindingsFile), String> {
+                let r = harness::report::write::read_report(dir)?;
+                Ok((r.summary, harness::findings::read(dir)?))
+            };
+            let (o, n) = match (read(&old), read(&new)) {
+                (Ok(o), Ok(n)) => (o, n),
+                (Err(e), _) | (_, Err(e)) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            // A gated engine that is not in both reports would pass unseen.
+            for g in &gate {
+                let old_name = pairs.iter().find(|(_, b)| b == g).map_or(g.as_str(), |(a, _)| a.as_str());
+                let has = |s: &harness::summary::Summary, name: &str| s.provenance.engines.iter().any(|e| e.name == name);
+                if !has(&o.0, old_name) || !has(&n.0, g) {
+                    eprintln!("error: --engine {g}: not judged in both reports ({} and {})", old.display(), new.display());
+                    return ExitCode::from(2);
+                }
+            }
+            let d = harness::findings::diff::diff((&o.0, &o.1), (&n.0, &n.1), &pairs);
+            if json {
+                match serde_json::to_string_pretty(&d) {
+                    Ok(s) => outln!("{s}"),
+                    Err(e) => eprintln!("error: cannot write JSON: {e}"),
+                }
+            } else {
+                out!("{}", d.text());
+            }
+            let worse = d.worse(&gate);
+            if worse.is_empty() {
+                ExitCode::SUCCESS
+            } else {
+                eprintln!("worse: {}", worse.join(", "));
+                ExitCode::from(1)
+            }
         }
         Command::Schema { protocol } => {
             if protocol {

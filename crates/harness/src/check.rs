@@ -208,57 +208,23 @@ pub fn run_caught(engine: &Engine, lc: &LoadedCase) -> Result<Answer, Verdict> {
 /// ```
 pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
     let (judged, referee) = (&set.judged, &set.referee);
-    // The truth, or why there is none: the referee refused the input, or the
-    // exact answer lies beyond f64's range (its rounding would be ±∞, and no
-    // engine is graded against an infinity).
-    let (truth, no_truth) = match run_caught(referee, lc) {
-        Ok(a) if judge::all_finite(&a) => (Some(a), String::new()),
-        Ok(_) => (None, OUT_OF_RANGE.to_string()),
-        Err(Verdict::Unsupported { reason }) | Err(Verdict::Failed { reason }) => (None, reason),
-        Err(_) => (None, "the referee gave no answer".to_string()),
-    };
-    // The answer's own length scale (relative errors in reports divide by it);
-    // the scene's when the referee gave no answer.
-    let scale = truth.as_ref().map_or_else(|| judge::scene_scale(lc), |t| judge::answer_scale(lc, t));
-    let margin = engines::referee::margin(lc);
+    let truth = Truth::of(referee, lc);
     let has_expect = lc.case.expect.is_some();
     let mut results = Vec::new();
     let mut passed = false;
     let mut unanswered = false;
     for engine in judged {
-        let tol = Tolerance::for_precision(engine.precision_for(lc));
-        let (answer, verdict, errors, mism) = match run_caught(engine, lc) {
-            Ok(a) => {
-                let mism = has_expect.then(|| judge::check_expect(lc, &a));
-                let (v, e) = match &truth {
-                    Some(t) => {
-                        let (v, e) = judge::judge(lc, &a, t, &tol, margin);
-                        match &v {
-                            Verdict::Disagree { reasons } => {
-                                match engine.known.explain(&engine.name, lc, &a, t, reasons) {
-                                    Some(reason) => (Verdict::KnownDivergence { reason }, e),
-                                    None => (v, e),
-                                }
-                            }
-                            _ => (v, e),
-                        }
-                    }
-                    None => (Verdict::Unsupported { reason: no_truth.clone() }, Errors::default()),
-                };
-                (Some(answer_as_expect(&a)), v, e, mism)
-            }
-            Err(v) => (None, v, Errors::default(), None),
-        };
+        let r = judge_engine(engine, lc, &truth);
         if engine.name == set.gate {
-            let expect_ok = mism.as_ref().is_none_or(|m| m.is_empty());
-            let referee_ok = matches!(verdict, Verdict::Agree | Verdict::Borderline { .. })
-                || (truth.is_none() && has_expect && answer.is_some());
-            passed = answer.is_some() && expect_ok && referee_ok;
-            unanswered = answer.is_none() && matches!(verdict, Verdict::Unsupported { .. });
+            let expect_ok = r.expect_mismatches.as_ref().is_none_or(|m| m.is_empty());
+            let referee_ok = matches!(r.verdict, Verdict::Agree | Verdict::Borderline { .. })
+                || (truth.answer.is_none() && has_expect && r.answer.is_some());
+            passed = r.answer.is_some() && expect_ok && referee_ok;
+            unanswered = r.answer.is_none() && matches!(r.verdict, Verdict::Unsupported { .. });
         }
-        results.push(EngineResult { engine: engine.name.clone(), answer, verdict, errors, expect_mismatches: mism });
+        results.push(r);
     }
-    let referee_meets_expect = match (&truth, has_expect) {
+    let referee_meets_expect = match (&truth.answer, has_expect) {
         (Some(t), true) => Some(judge::check_expect(lc, t).is_empty()),
         _ => None,
     };
@@ -266,14 +232,74 @@ pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
         file: lc.file.display().to_string(),
         name: lc.case.name.clone(),
         query: lc.case.query,
-        scale,
-        margin,
-        referee: truth.as_ref().map(answer_as_expect),
+        scale: truth.scale,
+        margin: truth.margin,
+        referee: truth.answer.as_ref().map(answer_as_expect),
         referee_meets_expect,
         engines: results,
         passed,
         unanswered,
     }
+}
+
+/// The referee's side of one case: its answer (or why there is none), the
+/// answer's length scale and the case's margin from its decision boundary.
+#[derive(Clone, Debug)]
+pub struct Truth {
+    /// The referee's answer; `None` when it refused the input or the exact
+    /// answer lies beyond `f64`'s range (its rounding would be ±∞, and no
+    /// engine is graded against an infinity).
+    pub answer: Option<Answer>,
+    /// Why there is no answer.
+    pub missing: String,
+    /// The answer's own length scale (relative errors divide by it); the
+    /// scene's when the referee gave no answer.
+    pub scale: f64,
+    /// The referee's signed margin from the nearest decision boundary.
+    pub margin: Option<f64>,
+}
+
+impl Truth {
+    /// The referee's answer to `lc`.
+    pub fn of(referee: &Engine, lc: &LoadedCase) -> Truth {
+        let (answer, missing) = match run_caught(referee, lc) {
+            Ok(a) if judge::all_finite(&a) => (Some(a), String::new()),
+            Ok(_) => (None, OUT_OF_RANGE.to_string()),
+            Err(Verdict::Unsupported { reason }) | Err(Verdict::Failed { reason }) => (None, reason),
+            Err(_) => (None, "the referee gave no answer".to_string()),
+        };
+        let scale = answer.as_ref().map_or_else(|| judge::scene_scale(lc), |t| judge::answer_scale(lc, t));
+        Truth { answer, missing, scale, margin: engines::referee::margin(lc) }
+    }
+}
+
+/// One engine's answer to `lc`, judged against the referee's `truth` (and
+/// the case's `expect`, when it has one); a disagreement the engine's known
+/// divergences explain is a known divergence.
+pub fn judge_engine(engine: &Engine, lc: &LoadedCase, truth: &Truth) -> EngineResult {
+    let has_expect = lc.case.expect.is_some();
+    let tol = Tolerance::for_precision(engine.precision_for(lc));
+    let (answer, verdict, errors, mism) = match run_caught(engine, lc) {
+        Ok(a) => {
+            let mism = has_expect.then(|| judge::check_expect(lc, &a));
+            let (v, e) = match &truth.answer {
+                Some(t) => {
+                    let (v, e) = judge::judge(lc, &a, t, &tol, truth.margin);
+                    match &v {
+                        Verdict::Disagree { reasons } => match engine.known.explain(&engine.name, lc, &a, t, reasons) {
+                            Some(reason) => (Verdict::KnownDivergence { reason }, e),
+                            None => (v, e),
+                        },
+                        _ => (v, e),
+                    }
+                }
+                None => (Verdict::Unsupported { reason: truth.missing.clone() }, Errors::default()),
+            };
+            (Some(answer_as_expect(&a)), v, e, mism)
+        }
+        Err(v) => (None, v, Errors::default(), None),
+    };
+    EngineResult { engine: engine.name.clone(), answer, verdict, errors, expect_mismatches: mism }
 }
 
 /// Checks every loaded case; `errors` are the input errors met while loading.

@@ -19,7 +19,8 @@
 //!    [`engines`], [`local`], [`judge`], [`check`], [`serve`] (an engine served
 //!    over the protocol), [`conformance`] (a process engine's conformance
 //!    run), [`generate`];
-//! 2. what a report measured ([`summary`]), the campaign's defaults
+//! 2. what a report measured ([`summary`]), its findings ([`findings`]:
+//!    discrepancies grouped by signature, shrunk, drafted, compared), the campaign's defaults
 //!    ([`defaults`]) and the one timing loop ([`timing`]);
 //! 3. rendering ([`render`]): pages, tables, charts and sections from measured
 //!    data, never running anything;
@@ -43,6 +44,7 @@ pub mod divergence;
 pub mod dynamics;
 pub mod engine;
 pub mod engines;
+pub mod findings;
 pub mod generate;
 pub mod judge;
 pub mod load;

@@ -126,6 +126,7 @@ pub fn hello_of(engine: &Engine, served: &Served) -> EngineHello {
         capabilities: served.capabilities.iter().map(|p| Capability::of(*p)).collect(),
         provenance: served.provenance.clone(),
         worlds: false,
+        reproductions: Vec::new(),
     }
 }
 

@@ -264,6 +264,32 @@ pub struct EngineHello {
     /// Whether it steps worlds (`world` messages: the report's dynamics).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub worlds: bool,
+    /// Standalone reproductions in the engine's own API, one per pair at most:
+    /// a finding's bug-report draft fills one with its shrunk case
+    /// (`crashtest findings`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub reproductions: Vec<Reproduction>,
+}
+
+/// A standalone program that asks the engine one case of a pair through the
+/// engine's own API and prints its raw answer. `{{a.center}}`, `{{b.vertices}}`,
+/// `{{t_max}}`, … (a shape's field, or the case's) stand for the case's values,
+/// written as JSON literals (numbers as the shortest decimals that round-trip;
+/// an absent velocity as `[0.0, 0.0, 0.0]`, an absent `t_max` as its default).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Reproduction {
+    /// The query.
+    pub query: Query,
+    /// Shape `a`'s kind.
+    pub a: ShapeKind,
+    /// Shape `b`'s kind (absent for `bounds`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub b: Option<ShapeKind>,
+    /// The program's language, for the draft's code block (`python`).
+    pub language: String,
+    /// The program, with its placeholders.
+    pub script: String,
 }
 
 /// One query pair of the pair table, by its kinds.

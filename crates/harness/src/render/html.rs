@@ -81,6 +81,12 @@ fn anchor(title: &str) -> String {
 /// inline under its query kind's table and linked as `charts/<file>` at the end,
 /// beside `summary.md`, `summary.json` and `discrepancies.json`.
 pub fn index_html(summary: &Summary, charts: &[Chart]) -> String {
+    index_html_with(summary, charts, &super::Opening::default())
+}
+
+/// [`index_html`] opening with `opening` (the findings) after its title; its
+/// script, inline, closes the page.
+pub fn index_html_with(summary: &Summary, charts: &[Chart], opening: &super::Opening) -> String {
     let p = &summary.provenance;
     let commit = p.commit.clone().unwrap_or_else(|| "unknown commit".into());
     let mut out = String::new();
@@ -88,9 +94,10 @@ pub fn index_html(summary: &Summary, charts: &[Chart]) -> String {
         out,
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
-         <title>crashtest report — {}</title>\n<style>\n{}</style>\n</head>\n<body>\n<main>\n",
+         <title>crashtest report — {}</title>\n<style>\n{}{}</style>\n</head>\n<body>\n<main>\n",
         escape(&commit),
-        STYLE
+        STYLE,
+        opening.style
     );
     let _ = writeln!(out, "<h1>crashtest report</h1>");
     let _ = writeln!(
@@ -102,6 +109,7 @@ pub fn index_html(summary: &Summary, charts: &[Chart]) -> String {
         p.fixture_cases,
         summary.discrepancies
     );
+    out.push_str(&opening.html);
 
     out.push_str("<h2 id=\"provenance\">Provenance</h2>\n<dl class=\"prov\">\n");
     for (k, v) in provenance_lines(summary) {
@@ -184,7 +192,11 @@ pub fn index_html(summary: &Summary, charts: &[Chart]) -> String {
             f = escape(&c.file)
         );
     }
-    out.push_str("</ul>\n</main>\n</body>\n</html>\n");
+    out.push_str("</ul>\n</main>\n");
+    if !opening.script.is_empty() {
+        let _ = writeln!(out, "<script>{}</script>", opening.script);
+    }
+    out.push_str("</body>\n</html>\n");
     out
 }
 

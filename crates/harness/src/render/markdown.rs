@@ -417,7 +417,14 @@ pub fn overview_table(summary: &Summary) -> Table {
 /// engine versions, seed, case counts, wall time), then per query kind its main
 /// table and its error details, then throughput, then how to read it all.
 pub fn summary_md(summary: &Summary) -> String {
-    let mut out = String::from("# crashtest report\n\n## Provenance\n\n");
+    summary_md_with(summary, "")
+}
+
+/// [`summary_md`] opening with `opening` (the findings, Markdown) after its title.
+pub fn summary_md_with(summary: &Summary, opening: &str) -> String {
+    let mut out = String::from("# crashtest report\n\n");
+    out.push_str(opening);
+    out.push_str("## Provenance\n\n");
     for (k, v) in provenance_lines(summary) {
         let _ = writeln!(out, "- **{}**: {}", escape_md(&k), escape_md(&v));
     }

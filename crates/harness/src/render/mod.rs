@@ -16,10 +16,29 @@ use std::path::PathBuf;
 /// The rendered files of a report besides its JSON: `index.html`, `summary.md`
 /// and `charts/*.svg`, as (path relative to the report folder, contents).
 pub fn pages(summary: &Summary) -> Vec<(PathBuf, String)> {
+    pages_with(summary, &Opening::default())
+}
+
+/// What a report opens with, before its provenance: its findings, already
+/// rendered (the page's part may carry its own style and script).
+#[derive(Clone, Debug, Default)]
+pub struct Opening {
+    /// HTML, placed after the page's title.
+    pub html: String,
+    /// Extra style sheet for it.
+    pub style: String,
+    /// Its inline script (placed at the end of the page).
+    pub script: String,
+    /// Markdown, placed after `summary.md`'s title.
+    pub markdown: String,
+}
+
+/// [`pages`] opening with `opening`.
+pub fn pages_with(summary: &Summary, opening: &Opening) -> Vec<(PathBuf, String)> {
     let charts = charts::all(summary);
     let mut files = vec![
-        (PathBuf::from("index.html"), html::index_html(summary, &charts)),
-        (PathBuf::from("summary.md"), markdown::summary_md(summary)),
+        (PathBuf::from("index.html"), html::index_html_with(summary, &charts, opening)),
+        (PathBuf::from("summary.md"), markdown::summary_md_with(summary, &opening.markdown)),
     ];
     files.extend(charts.into_iter().map(|c| (PathBuf::from("charts").join(c.file), c.svg)));
     files

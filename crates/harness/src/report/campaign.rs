@@ -172,6 +172,9 @@ pub struct Outcome {
     /// The extra sections (dynamics: bounces, tunneling, two balls; …), run
     /// with the whole campaign (not with `--only`, and in shard 0 only).
     pub sections: Vec<crate::render::section::Section>,
+    /// The discrepancies grouped into findings, each shrunk, with drafts for
+    /// peer engines (`findings.json`, `findings/`).
+    pub findings: crate::findings::FindingsFile,
 }
 
 /// The slice `[lo, hi)` of `0..n` that shard `i` of `count` takes.
@@ -359,7 +362,7 @@ fn discrepancy(c: &CaseResult, lc: &LoadedCase, ix: usize, tol: Tolerance) -> Di
         }),
         ..lc.case.clone()
     };
-    let case = inline_meshes(case, lc);
+    let case = crate::findings::inline_meshes(case, lc);
     Discrepancy {
         engine: r.engine.clone(),
         query: c.query,
@@ -371,22 +374,6 @@ fn discrepancy(c: &CaseResult, lc: &LoadedCase, ix: usize, tol: Tolerance) -> Di
         answers,
         fixture: FixtureFile { schema: SCHEMA.into(), cases: vec![case] },
     }
-}
-
-/// The case with every mesh that names a file written inline instead (from
-/// the mesh as loaded), so that its fixture reproduces wherever it is saved —
-/// the file was named relative to the fixture it came from.
-fn inline_meshes(mut case: Case, lc: &LoadedCase) -> Case {
-    let shapes = [Some(&mut case.a), case.b.as_mut()];
-    for (shape, mesh) in shapes.into_iter().zip(&lc.meshes) {
-        if let (Some(crate::case::Shape::Mesh(spec)), Some(m)) = (shape, mesh)
-            && spec.file.take().is_some()
-        {
-            spec.vertices = Some(m.vertices.clone());
-            spec.triangles = Some(m.triangles.clone());
-        }
-    }
-    case
 }
 
 /// A process engine's own times for the cases it answered (measured inside the
@@ -430,9 +417,11 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     let mut discrepancies = Vec::new();
     let mut per_group: BTreeMap<StatsKey, usize> = BTreeMap::new();
     let mut total_discrepancies = 0u64;
+    let mut collector = crate::findings::Collector::default();
     for (c, lc) in results.iter().zip(&cases) {
         let full = is_full_range(lc);
         fold(&mut map, c, full);
+        collector.add(c, lc, judged);
         for (ix, r) in c.engines.iter().enumerate() {
             if matches!(r.verdict, Verdict::Disagree { .. } | Verdict::Failed { .. }) {
                 total_discrepancies += 1;
@@ -445,6 +434,9 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
         }
     }
     let judge_seconds = wall.elapsed().as_secs_f64();
+    let versions = engine_infos(judged).into_iter().map(|e| (e.name, e.version)).collect();
+    let mut findings = collector.finish(&versions);
+    crate::findings::shrink_and_draft(&mut findings, set);
 
     let mut throughput = Vec::new();
     let mut referee_seconds = 0.0;
@@ -531,6 +523,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
         },
         discrepancies,
         input_errors,
+        findings,
         sections: if config.sections && config.only.is_none() && config.shard.is_none_or(|(i, _)| i == 0) {
             sections(config, &results)
         } else {

@@ -8,6 +8,8 @@
 //! concurrent run is still writing, and remove only the first
 //! ([`remove_abandoned`]).
 
+use crate::case::{FixtureFile, SCHEMA};
+use crate::findings::FindingsFile;
 use crate::render::section::Section;
 use crate::report::campaign::{MAX_DISCREPANCIES_PER_GROUP, Outcome};
 use crate::summary::{EngineQueryStats, Summary};
@@ -20,10 +22,31 @@ use std::path::{Path, PathBuf};
 /// the summary, the discrepancies, the pages and charts, and the extra
 /// sections (dynamics, stability, scene, time of impact) with their data files
 /// and `sections.json` ([`crate::render::section::add_sections`]).
-pub fn render_files(summary: &Summary, discrepancies: &[Value], sections: &[Section]) -> Vec<(PathBuf, String)> {
+pub fn render_files(
+    summary: &Summary,
+    discrepancies: &[Value],
+    sections: &[Section],
+    findings: Option<&FindingsFile>,
+    dir: &str,
+) -> Vec<(PathBuf, String)> {
     let mut files =
         vec![("summary.json".into(), pretty(summary)), ("discrepancies.json".into(), pretty(&discrepancies))];
-    files.extend(crate::render::pages(summary));
+    match findings {
+        Some(f) => {
+            files.push(("findings.json".into(), pretty(f)));
+            for x in &f.findings {
+                if let Some(s) = &x.shrunk {
+                    let fixture = FixtureFile { schema: SCHEMA.into(), cases: vec![s.case.clone()] };
+                    files.push((PathBuf::from(&s.file), pretty(&fixture)));
+                }
+                if let (Some(d), Some(file)) = (&x.draft, x.draft_file()) {
+                    files.push((PathBuf::from(file), d.clone()));
+                }
+            }
+            files.extend(crate::render::pages_with(summary, &crate::findings::render::opening(f, discrepancies, dir)));
+        }
+        None => files.extend(crate::render::pages(summary)),
+    }
     crate::render::section::add_sections(&mut files, sections);
     files
 }
@@ -158,7 +181,8 @@ fn point_latest(root: &Path, id: &str) -> io::Result<()> {
 /// Writes a campaign's outcome as a report.
 pub fn write_outcome(root: &Path, id: &str, outcome: &Outcome) -> io::Result<PathBuf> {
     let discrepancies: Vec<Value> = outcome.discrepancies.iter().filter_map(|d| serde_json::to_value(d).ok()).collect();
-    let files = render_files(&outcome.summary, &discrepancies, &outcome.sections);
+    let dir = format!("{}/{id}", root.display());
+    let files = render_files(&outcome.summary, &discrepancies, &outcome.sections, Some(&outcome.findings), &dir);
     write_report(root, id, &files)
 }
 

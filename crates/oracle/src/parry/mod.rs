@@ -63,6 +63,7 @@ mod cast;
 mod parry32;
 mod parry64;
 mod queries;
+pub mod reproduce;
 
 pub use cast::{CastAnswer, CastStatus, ParryCast, cast_known_divergences};
 pub use parry32::PreparedMesh as Parry32Mesh;

@@ -1,0 +1,411 @@
+//! Shrinking a finding's case: the simplest case that still shows the same
+//! defect.
+//!
+//! A candidate replaces the case by a simpler one — a number by 0, by a small
+//! integer, by a short dyadic fraction (fewer significant bits), or by
+//! another number already in the case (fewer distinct values); every length
+//! scaled by a power of two (exact: the geometry is the same, smaller); the
+//! scene moved toward the origin; half of a mesh's faces or of a point
+//! cloud's points dropped — and is kept when it is simpler by [`cost`] and
+//! the referee still gives the finding's signature ([`Signature::same_defect`])
+//! for the engine's answer. Candidates are tried in a fixed order, so
+//! shrinking is deterministic; it stops when a whole pass keeps nothing, or
+//! after [`MAX_EVALUATIONS`] candidates. Every kept candidate lowers the cost,
+//! a non-negative integer, so it ends.
+
+use super::signature::{Signature, signature};
+use crate::case::SCHEMA;
+use crate::check::{EngineResult, Truth, judge_engine};
+use crate::engine::Engine;
+use crate::load::{Loaded, LoadedCase, load_str_into};
+use serde_json::Value;
+
+/// Candidates judged per finding at most: a sphere–triangle case has 13
+/// numbers and about ten candidates each, so this allows three full passes;
+/// the referee's slowest queries (a time of impact against a mesh) take a few
+/// milliseconds, so one finding costs at most a few seconds.
+pub const MAX_EVALUATIONS: u32 = 400;
+
+/// The numbers a case is shrunk over: JSON pointers into the case.
+fn slots(v: &Value) -> Vec<String> {
+    let mut out = Vec::new();
+    fn walk(v: &Value, path: String, out: &mut Vec<String>) {
+        match v {
+            Value::Number(_) => out.push(path),
+            Value::Array(a) => a.iter().enumerate().for_each(|(i, x)| walk(x, format!("{path}/{i}"), out)),
+            Value::Object(o) => {
+                for (k, x) in o {
+                    // Face indices are not numbers to shrink (faces are
+                    // dropped whole).
+                    if k != "triangles" {
+                        walk(x, format!("{path}/{k}"), out);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    for key in ["a", "b"] {
+        if let Some(s) = v.get(key) {
+            walk(s, format!("/{key}"), &mut out);
+        }
+    }
+    for key in ["t_max", "restitution"] {
+        if v.get(key).is_some_and(Value::is_number) {
+            out.push(format!("/{key}"));
+        }
+    }
+    out
+}
+
+fn num(v: &Value, p: &str) -> Option<f64> {
+    v.pointer(p).and_then(Value::as_f64)
+}
+
+fn set(v: &mut Value, p: &str, x: f64) -> bool {
+    match (v.pointer_mut(p), serde_json::Number::from_f64(x)) {
+        (Some(slot), Some(n)) => {
+            *slot = Value::Number(n);
+            true
+        }
+        _ => false,
+    }
+}
+
+/// How complicated one number is: 0 for +0 (1 for −0); otherwise one, plus its
+/// significant bits, plus how far its binary exponent is from 0 (1 and 0.5
+/// are simple, 1e300 and 3.14159… are not).
+pub fn number_cost(x: f64) -> u64 {
+    if x == 0.0 {
+        // −0 reads as a question about signed zeros: +0 is simpler.
+        return u64::from(x.is_sign_negative());
+    }
+    if !x.is_finite() {
+        return 2000;
+    }
+    let bits = x.abs().to_bits();
+    let (exp, mant) = ((bits >> 52) as i64, bits & ((1u64 << 52) - 1));
+    let (e, m) = if exp == 0 { (-1074 + 63 - mant.leading_zeros() as i64, mant) } else { (exp - 1023, mant | (1 << 52)) };
+    let significant = 64 - m.leading_zeros() as u64 - m.trailing_zeros() as u64;
+    1 + significant + e.unsigned_abs()
+}
+
+/// The case's cost: each number's [`number_cost`], plus 8 per distinct
+/// magnitude (fewer distinct values read faster) and 16 per number (fewer
+/// faces and points are simpler). Lower is simpler.
+pub fn cost(v: &Value) -> u64 {
+    let xs: Vec<f64> = slots(v).iter().filter_map(|p| num(v, p)).collect();
+    let mut distinct: Vec<u64> = xs.iter().filter(|x| **x != 0.0).map(|x| x.abs().to_bits()).collect();
+    distinct.sort_unstable();
+    distinct.dedup();
+    xs.iter().map(|&x| number_cost(x)).sum::<u64>() + 8 * distinct.len() as u64 + 16 * xs.len() as u64
+}
+
+/// `x` rounded to `k` significant bits.
+fn round_bits(x: f64, k: u32) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let e = x.abs().log2().floor() as i32;
+    let q = 2f64.powi(e - k as i32 + 1);
+    if !(q.is_finite() && q > 0.0) {
+        return x;
+    }
+    let r = (x / q).round() * q;
+    if r.is_finite() { r } else { x }
+}
+
+/// Simpler numbers for `x`, simplest first: 0, numbers already in the case,
+/// the nearest integer, and `x` with fewer significant bits.
+fn number_candidates(x: f64, present: &[f64]) -> Vec<f64> {
+    let mut c = vec![0.0];
+    c.extend(present.iter().copied());
+    if x.abs() < 9.0e15 {
+        c.push(x.round());
+    }
+    for k in [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 40] {
+        c.push(round_bits(x, k));
+    }
+    let base = number_cost(x);
+    c.retain(|y| y.is_finite() && y.to_bits() != x.to_bits() && number_cost(*y) < base);
+    c.sort_by(|a, b| number_cost(*a).cmp(&number_cost(*b)).then(a.total_cmp(b)));
+    c.dedup_by(|a, b| a.to_bits() == b.to_bits());
+    c
+}
+
+/// The keys of a shape's fields that are lengths (scaled with the scene) and
+/// positions (moved with it).
+const LENGTH_KEYS: [&str; 11] =
+    ["center", "radius", "velocity", "offset", "start", "end", "vertices", "at", "points", "min", "max"];
+const POSITION_KEYS: [&str; 8] = ["center", "start", "end", "vertices", "at", "points", "min", "max"];
+
+/// Whether the pointer goes through one of `keys` (a shape's field).
+fn under(p: &str, keys: &[&str]) -> bool {
+    p.split('/').nth(3).is_some_and(|k| keys.contains(&k))
+}
+
+/// The case with every length multiplied by `f` (a power of two: exact
+/// unless it leaves the range).
+fn scaled(v: &Value, f: f64) -> Option<Value> {
+    let mut out = v.clone();
+    for p in slots(v).iter().filter(|p| under(p, &LENGTH_KEYS)) {
+        let x = num(v, p)? * f;
+        if !x.is_finite() || !set(&mut out, p, x) {
+            return None;
+        }
+    }
+    Some(out)
+}
+
+/// The case moved by `-t` (positions, and a plane's offset by `n · t`).
+fn moved(v: &Value, t: [f64; 3]) -> Option<Value> {
+    let mut out = v.clone();
+    for p in slots(v).iter().filter(|p| under(p, &POSITION_KEYS)) {
+        let i: usize = p.rsplit('/').next()?.parse().ok()?;
+        if !set(&mut out, p, num(v, p)? - t[i % 3]) {
+            return None;
+        }
+    }
+    for key in ["a", "b"] {
+        if let Some(n) = v.pointer(&format!("/{key}/plane/normal")).and_then(Value::as_array) {
+            let n: Vec<f64> = n.iter().filter_map(Value::as_f64).collect();
+            let p = format!("/{key}/plane/offset");
+            let d = num(v, &p)? - (n.first()? * t[0] + n.get(1)? * t[1] + n.get(2)? * t[2]);
+            if !set(&mut out, &p, d) {
+                return None;
+            }
+        }
+    }
+    Some(out)
+}
+
+/// The first position in the case (a sphere's centre, a segment's start, …).
+fn first_position(v: &Value) -> Option<[f64; 3]> {
+    let p = slots(v).into_iter().find(|p| under(p, &POSITION_KEYS))?;
+    let base = p.rsplit_once('/')?.0.to_string();
+    Some([num(v, &format!("{base}/0"))?, num(v, &format!("{base}/1"))?, num(v, &format!("{base}/2"))?])
+}
+
+/// A mesh keeping only the faces in `keep` (and their vertices, renumbered).
+fn mesh_subset(mesh: &Value, keep: std::ops::Range<usize>) -> Option<Value> {
+    let tris = mesh.get("triangles")?.as_array()?;
+    let verts = mesh.get("vertices")?.as_array()?;
+    let mut map = std::collections::BTreeMap::new();
+    let mut new_tris = Vec::new();
+    let mut new_verts = Vec::new();
+    for t in tris.get(keep)? {
+        let mut nt = Vec::new();
+        for i in t.as_array()? {
+            let i = i.as_u64()? as usize;
+            let j = *map.entry(i).or_insert_with(|| {
+                new_verts.push(verts.get(i).cloned().unwrap_or(Value::Null));
+                new_verts.len() - 1
+            });
+            nt.push(Value::from(j));
+        }
+        new_tris.push(Value::Array(nt));
+    }
+    let mut out = mesh.clone();
+    out["triangles"] = Value::Array(new_tris);
+    out["vertices"] = Value::Array(new_verts);
+    Some(out)
+}
+
+/// Whole-case candidates: halves of a mesh's faces or a cloud's points, the
+/// scene scaled toward unit size, moved toward the origin.
+fn case_candidates(v: &Value) -> Vec<Value> {
+    let mut out = Vec::new();
+    for key in ["a", "b"] {
+        if let Some(mesh) = v.pointer(&format!("/{key}/mesh")) {
+            let n = mesh.get("triangles").and_then(Value::as_array).map_or(0, Vec::len);
+            if n > 1 {
+                for r in [0..n / 2, n / 2..n] {
+                    if let Some(m) = mesh_subset(mesh, r) {
+                        let mut c = v.clone();
+                        c[key]["mesh"] = m;
+                        out.push(c);
+                    }
+                }
+            }
+        }
+        if let Some(points) = v.pointer(&format!("/{key}/points/points")).and_then(Value::as_array) {
+            let n = points.len();
+            if n > 1 {
+                for r in [0..n / 2, n / 2..n] {
+                    let mut c = v.clone();
+                    c[key]["points"]["points"] = Value::Array(points[r].to_vec());
+                    out.push(c);
+                }
+            }
+        }
+    }
+    let largest = slots(v)
+        .iter()
+        .filter(|p| under(p, &LENGTH_KEYS))
+        .filter_map(|p| num(v, p))
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    if largest > 0.0 && largest.is_finite() {
+        let e = largest.log2().floor() as i32;
+        for k in [e, 1, -1] {
+            if k != 0
+                && let Some(c) = scaled(v, 2f64.powi(-k))
+            {
+                out.push(c);
+            }
+        }
+    }
+    if let Some(t) = first_position(v) {
+        for bits in [1, 4, 16] {
+            let t = t.map(|x| round_bits(x, bits));
+            if t.iter().any(|x| *x != 0.0)
+                && let Some(c) = moved(v, t)
+            {
+                out.push(c);
+            }
+        }
+    }
+    out
+}
+
+/// The case a JSON value denotes, loaded as a fixture would be (its checks
+/// applied); `None` when it is no valid case.
+fn load(v: &Value, file: &std::path::Path) -> Option<LoadedCase> {
+    let text = serde_json::to_string(&serde_json::json!({ "schema": SCHEMA, "cases": [v] })).ok()?;
+    let mut loaded = Loaded::default();
+    load_str_into(file, &text, &mut loaded);
+    if !loaded.errors.is_empty() {
+        return None;
+    }
+    loaded.cases.pop()
+}
+
+/// One engine's result on a case and its signature.
+pub fn judge_one(engine: &Engine, referee: &Engine, lc: &LoadedCase) -> (Option<Signature>, EngineResult, Truth) {
+    let truth = Truth::of(referee, lc);
+    let r = judge_engine(engine, lc, &truth);
+    let misclassified = r.errors.misclass.is_some() || matches!(r.verdict, crate::judge::Verdict::Failed { .. });
+    let headline = if misclassified { 1.0 } else { crate::judge::headline(&r.errors, truth.scale) };
+    (signature(lc, &r, headline), r, truth)
+}
+
+/// What shrinking gave.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    /// The simplest case found (the original when nothing simpler kept the signature).
+    pub case: LoadedCase,
+    /// Numbers before and after.
+    pub numbers: (usize, usize),
+    /// [`cost`] before and after.
+    pub cost: (u64, u64),
+    /// Candidates judged.
+    pub evaluations: u32,
+}
+
+/// Shrinks `lc` while `engine`'s answer, judged against `referee`, keeps the
+/// defect of `sig`. The case keeps its name; its source says it was shrunk
+/// and from what (so its family stays the original's).
+pub fn shrink(lc: &LoadedCase, sig: &Signature, engine: &Engine, referee: &Engine) -> Outcome {
+    let Ok(mut best) = serde_json::to_value(&lc.case) else {
+        return Outcome { case: lc.clone(), numbers: (0, 0), cost: (0, 0), evaluations: 0 };
+    };
+    if let Some(o) = best.as_object_mut() {
+        o.remove("expect");
+        o.remove("tol");
+    }
+    let start_cost = cost(&best);
+    let start_numbers = slots(&best).len();
+    let mut best_cost = start_cost;
+    let mut best_case = lc.clone();
+    let mut evaluations = 0u32;
+    let keeps = |c: &Value, evaluations: &mut u32| -> Option<LoadedCase> {
+        *evaluations += 1;
+        let cand = load(c, &lc.file)?;
+        let (s, _, _) = judge_one(engine, referee, &cand);
+        s.filter(|s| s.same_defect(sig)).map(|_| cand)
+    };
+    'passes: loop {
+        let mut kept = false;
+        for c in case_candidates(&best) {
+            if evaluations >= MAX_EVALUATIONS {
+                break 'passes;
+            }
+            let k = cost(&c);
+            if k < best_cost
+                && let Some(lc) = keeps(&c, &mut evaluations)
+            {
+                (best, best_cost, best_case, kept) = (c, k, lc, true);
+            }
+        }
+        for p in slots(&best) {
+            let Some(x) = num(&best, &p) else { continue };
+            let mut present: Vec<f64> = slots(&best).iter().filter_map(|q| num(&best, q)).collect();
+            present.sort_by(f64::total_cmp);
+            present.dedup();
+            for y in number_candidates(x, &present) {
+                if evaluations >= MAX_EVALUATIONS {
+                    break 'passes;
+                }
+                let mut c = best.clone();
+                if !set(&mut c, &p, y) {
+                    continue;
+                }
+                let k = cost(&c);
+                if k >= best_cost {
+                    continue;
+                }
+                if let Some(lc) = keeps(&c, &mut evaluations) {
+                    (best, best_cost, best_case, kept) = (c, k, lc, true);
+                    break;
+                }
+            }
+        }
+        if !kept {
+            break;
+        }
+    }
+    if best_cost < start_cost {
+        best_case.case.source = format!("shrunk by `crashtest report` from {}", lc.case.source);
+    }
+    Outcome { case: best_case, numbers: (start_numbers, slots(&best).len()), cost: (start_cost, best_cost), evaluations }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn simple_numbers_cost_less() {
+        assert_eq!(number_cost(0.0), 0);
+        assert!(number_cost(-0.0) > number_cost(0.0));
+        assert!(number_cost(1.0) < number_cost(3.0));
+        assert!(number_cost(3.0) < number_cost(3.14159));
+        assert!(number_cost(0.5) < number_cost(0.1));
+        assert!(number_cost(1.0) < number_cost(1e300));
+        assert!(number_cost(1.0) < number_cost(5e-324));
+        assert!(number_cost(f64::MIN_POSITIVE) > number_cost(1.0));
+    }
+
+    #[test]
+    fn candidates_are_simpler_and_simplest_first() {
+        let c = number_candidates(3.14159, &[1.0, 7.25]);
+        assert_eq!(c[0].to_bits(), 0.0f64.to_bits());
+        assert!(c.iter().all(|y| number_cost(*y) < number_cost(3.14159)));
+        assert!(c.windows(2).all(|w| number_cost(w[0]) <= number_cost(w[1])));
+        assert!(c.contains(&3.0) && c.contains(&1.0));
+    }
+
+    #[test]
+    fn rounding_to_few_bits_gives_short_dyadic_fractions() {
+        assert_eq!(round_bits(3.14159, 2).to_bits(), 3.0f64.to_bits());
+        assert_eq!(round_bits(3.14159, 4).to_bits(), 3.25f64.to_bits());
+        assert_eq!(round_bits(-0.3, 1).to_bits(), (-0.25f64).to_bits());
+    }
+
+    #[test]
+    fn a_mesh_subset_renumbers_its_vertices() {
+        let m = serde_json::json!({"vertices": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]], "triangles": [[0,1,2],[1,2,3]]});
+        let s = mesh_subset(&m, 1..2).unwrap();
+        assert_eq!(s["triangles"], serde_json::json!([[0, 1, 2]]));
+        assert_eq!(s["vertices"], serde_json::json!([[1, 0, 0], [0, 1, 0], [0, 0, 1]]));
+    }
+}

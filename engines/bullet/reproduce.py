@@ -1,0 +1,86 @@
+"""bullet's reproductions: for every pair engine.py answers, a standalone program
+that asks Bullet (pybullet) one case the way engine.py does (the same shapes,
+bodies, margins and calls) and prints pybullet's raw answer, before engine.py's
+convention translation. engine.py passes `reproductions(HANDLERS)` to `serve`,
+which puts them in the hello; crashtest fills the placeholders (`{{a.radius}}`,
+...) with a finding's shrunk case (docs/PROTOCOL.md, hello, `reproductions`).
+
+Keep them in step with engine.py: a change to `make_*`, `_body`, the margins or a
+call there is a change here.
+"""
+from crashtest_engine import pinned
+
+HEAD = """\
+# <pins>: crashtest `<query>` <pair>, asked as crashtest's bullet adapter asks it
+<imports>import pybullet as p
+p.connect(p.DIRECT)
+"""
+
+# --- Bullet's bodies, as engine.py's make_* build them (`@` is a or b): static
+# (mass 0), identity orientation; collisionMargin 0 on every shape but the sphere,
+# whose margin is its radius in Bullet
+SHAPE = {
+    "sphere": """\
+@ = p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=p.createCollisionShape(p.GEOM_SPHERE, radius={{@.radius}}),
+                      basePosition={{@.center}})
+""",
+    # btStaticPlaneShape(n, 0), the body moved to the plane's point (d/|n|) n/|n|
+    "plane": """\
+n = {{@.normal}}
+ln = math.hypot(*n)
+s = {{@.offset}} / ln
+@ = p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=p.createCollisionShape(p.GEOM_PLANE, planeNormal=n),
+                      basePosition=[n[0] / ln * s, n[1] / ln * s, n[2] / ln * s])
+p.changeDynamics(@, -1, collisionMargin=0.0)
+""",
+    # vertices + indices: a static btBvhTriangleMeshShape
+    "triangle": """\
+shape = p.createCollisionShape(p.GEOM_MESH, vertices={{@.vertices}}, indices=[0, 1, 2], flags=p.GEOM_FORCE_CONCAVE_TRIMESH)
+@ = p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=shape, basePosition=[0.0, 0.0, 0.0])
+p.changeDynamics(@, -1, collisionMargin=0.0)
+""",
+    "mesh": """\
+indices = [i for t in {{@.triangles}} for i in t]
+shape = p.createCollisionShape(p.GEOM_MESH, vertices={{@.vertices}}, indices=indices, flags=p.GEOM_FORCE_CONCAVE_TRIMESH)
+@ = p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=shape, basePosition=[0.0, 0.0, 0.0])
+p.changeDynamics(@, -1, collisionMargin=0.0)
+""",
+    # btBoxShape(half extents) at the box's centre
+    "aabb": """\
+lo, hi = {{@.min}}, {{@.max}}
+shape = p.createCollisionShape(p.GEOM_BOX, halfExtents=[0.5 * hi[i] - 0.5 * lo[i] for i in range(3)])
+@ = p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=shape, basePosition=[0.5 * lo[i] + 0.5 * hi[i] for i in range(3)])
+p.changeDynamics(@, -1, collisionMargin=0.0)
+""",
+}
+
+# getClosestPoints(A, B, distance): contactNormalOnB points from B toward A,
+# contactDistance < 0 is penetration
+CLOSEST = """\
+points = p.getClosestPoints(a, b, 0.0)
+print("points:", len(points))
+for q in points:  # contactNormalOnB: from B toward A; contactDistance < 0: penetration
+    print("positionOnA", list(q[5]), "positionOnB", list(q[6]), "contactNormalOnB", list(q[7]), "contactDistance", repr(q[8]))
+"""
+
+# rayTest(from, to): the closest hit; objectUniqueId -1 is none. For a triangle mesh (and
+# the plane's two triangles) Bullet turns the face normal toward the ray's start.
+RAY = """\
+obj, link, fraction, position, normal = p.rayTest({{a.start}}, {{a.end}})[0]
+print("objectUniqueId", obj, "linkIndex", link, "hitFraction", repr(fraction), "hitPosition", list(position),
+      "hitNormal", list(normal))
+"""
+
+
+def script(query, ka, kb):
+    if query == "intersect":
+        body = SHAPE[kb].replace("@", "b") + RAY
+    else:  # contact; overlap (the adapter: overlap = at least one point)
+        body = SHAPE[ka].replace("@", "a") + SHAPE[kb].replace("@", "b") + CLOSEST
+    return (HEAD.replace("<pins>", pinned("pybullet")).replace("<query>", query).replace("<pair>", f"{ka}-{kb}")
+            .replace("<imports>", "import math\n" if "math." in body else "")) + body
+
+
+def reproductions(handlers):
+    """One script for every pair in `handlers` (engine.py's HANDLERS)."""
+    return {(q, a, b): script(q, a, b) for q, a, b in handlers}

@@ -1,0 +1,98 @@
+"""coal's reproductions: for every pair engine.py answers, a standalone program
+that asks Coal one case the way engine.py does (the same shapes, request and
+calls) and prints the engine's raw answer, before engine.py's convention
+translation. engine.py passes `reproductions(HANDLERS)` to `serve`, which puts
+them in the hello; crashtest fills the placeholders (`{{a.radius}}`, ...) with a
+finding's shrunk case (docs/PROTOCOL.md, hello, `reproductions`).
+
+Keep them in step with engine.py: a change to `coal_shape`, `mesh_model`, the
+request or a call there is a change here.
+"""
+from crashtest_engine import pinned
+
+HEAD = """\
+# <pins>: crashtest `<query>` <pair>, asked as crashtest's coal adapter asks it
+import numpy as np
+import coal
+"""
+
+# --- Coal's geometry and placement, as engine.py's coal_shape does (`@` is a or b) ---
+SHAPE = {
+    "sphere": """\
+g@, t@ = coal.Sphere({{@.radius}}), coal.Transform3s()
+t@.setTranslation(np.array({{@.center}}, dtype=np.float64))
+""",
+    "plane": """\
+g@, t@ = coal.Halfspace(np.array({{@.normal}}, dtype=np.float64), {{@.offset}}), coal.Transform3s()  # solid n.x <= d
+""",
+    "triangle": """\
+v = [np.array(p, dtype=np.float64) for p in {{@.vertices}}]
+g@, t@ = coal.TriangleP(v[0], v[1], v[2]), coal.Transform3s()
+""",
+}
+
+# a BVHModelOBBRSS of a mesh's vertices and faces, or (bounds of points) of vertices only
+MODEL = """\
+verts = np.array({{@.<field>}}, dtype=np.float64).reshape(-1, 3)
+<tris>g@ = coal.BVHModelOBBRSS()
+g@.beginModel(<faces>, len(verts))
+g@.addVertices(verts)
+<add>print("endModel:", g@.endModel())
+"""
+
+
+def model(role, field, mesh):
+    return (MODEL.replace("<field>", field)
+            .replace("<tris>", "tris = np.array({{@.triangles}}, dtype=np.int64).reshape(-1, 3)\n" if mesh else "")
+            .replace("<faces>", "len(tris)" if mesh else "0")
+            .replace("<add>", "g@.addTriangles(tris)\n" if mesh else "")
+            .replace("@", role))
+
+
+# Coal's Contact: normal from o1 (= a) toward o2 (= b); nearest points on o1 and o2;
+# penetration_depth is the SIGNED distance (negative when overlapping)
+CONTACT = """\
+L = lambda v: [float(x) for x in v]
+req = coal.CollisionRequest()
+req.security_margin, req.num_max_contacts, req.enable_contact = 0.0, <max_contacts>, True
+res = coal.CollisionResult()
+coal.collide(ga, ta, gb, tb, req, res)
+print("isCollision:", res.isCollision())
+for i in range(res.numContacts()):
+    c = res.getContact(i)  # normal from a toward b; penetration_depth = signed distance
+    print(f"contact {i}: normal {L(c.normal)} nearest_point1 {L(c.getNearestPoint1())} "
+          f"nearest_point2 {L(c.getNearestPoint2())} penetration_depth {c.penetration_depth!r} b1 {c.b1} b2 {c.b2}")
+"""
+
+OVERLAP = """\
+box_a = coal.AABB(np.array({{a.min}}, dtype=np.float64), np.array({{a.max}}, dtype=np.float64))
+box_b = coal.AABB(np.array({{b.min}}, dtype=np.float64), np.array({{b.max}}, dtype=np.float64))
+print("overlap:", box_a.overlap(box_b))
+"""
+
+BOUNDS = """\
+L = lambda v: [float(x) for x in v]
+ga.computeLocalAABB()
+print("aabb_local: min_", L(ga.aabb_local.min_), "max_", L(ga.aabb_local.max_))
+print("aabb_center:", L(ga.aabb_center), "aabb_radius:", repr(ga.aabb_radius))
+"""
+
+
+def script(query, ka, kb):
+    head = (HEAD.replace("<pins>", pinned("coal", "libcoal", "numpy"))
+            .replace("<query>", query).replace("<pair>", f"{ka}-{kb}" if kb else ka))
+    if query == "overlap":
+        return head + OVERLAP
+    if query == "bounds":
+        return head + model("a", "points" if ka == "points" else "vertices", ka == "mesh") + BOUNDS
+    shapes = "".join(model(r, "vertices", True) + f"t{r} = coal.Transform3s()\n" if k == "mesh"
+                     else SHAPE[k].replace("@", r)
+                     for r, k in (("a", ka), ("b", kb)))
+    # one contact, or for a mesh one per face (the adapter takes the deepest, ties to
+    # the lowest face index)
+    return head + shapes + CONTACT.replace("<max_contacts>", "max(1, len(tris))" if kb == "mesh" else "1")
+
+
+def reproductions(handlers):
+    """One script for every pair in `handlers` (engine.py's HANDLERS)."""
+    return {(q, a, b): script(q, a, b) for q, a, b in handlers}
