@@ -94,6 +94,11 @@ enum Command {
         /// Print findings.json instead.
         #[arg(long)]
         json: bool,
+        /// Write the sample a repository keeps instead (`reports/sample`):
+        /// findings.md, findings.json without the examples, each finding's
+        /// shrunk case and draft, and the overview table.
+        #[arg(long, value_name = "DIR")]
+        sample: Option<PathBuf>,
     },
     /// Compare two reports: new, fixed and changed findings, and each
     /// engine's score per query kind, telling noise from change. Exit 1 when
@@ -537,7 +542,7 @@ fn main() -> ExitCode {
             }
             ExitCode::from(if loaded.errors.is_empty() { result.exit_code() as u8 } else { 2 })
         }
-        Command::Findings { report, json } => {
+        Command::Findings { report, json, sample } => {
             let file = match harness::findings::read(&report) {
                 Ok(f) => f,
                 Err(e) => {
@@ -545,6 +550,20 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             };
+            if let Some(dir) = sample {
+                let written = harness::report::write::read_report(&report)
+                    .and_then(|r| harness::findings::write_sample(&report, &r.summary, &dir));
+                return match written {
+                    Ok(files) => {
+                        outln!("{} files under {}", files.len(), dir.display());
+                        ExitCode::SUCCESS
+                    }
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        ExitCode::from(2)
+                    }
+                };
+            }
             if json {
                 match serde_json::to_string_pretty(&file) {
                     Ok(s) => outln!("{s}"),

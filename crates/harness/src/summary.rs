@@ -23,11 +23,40 @@ pub struct Dist {
     pub n: u64,
     /// Samples exactly 0.
     pub zeros: u64,
-    /// Largest sample.
+    /// Largest sample; an infinite one (an error beyond f64's range, such as
+    /// a point error over a subnormal scale) is written `"Infinity"`, since
+    /// JSON has no number for it (a `null` from an earlier report reads as
+    /// infinity too).
+    #[serde(with = "max_json")]
     pub max: f64,
     /// Counts per bin, sparse: `(bin, count)` with bin `k` covering
     /// `[10^(k/B), 10^((k+1)/B))`, `B` = [`BINS_PER_DECADE`], sorted by bin.
     pub bins: Vec<(i32, u64)>,
+}
+
+/// [`Dist::max`] in JSON: a number, or `"Infinity"` for +∞.
+mod max_json {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if x.is_finite() { s.serialize_f64(*x) } else { s.serialize_str("Infinity") }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Max {
+            Number(f64),
+            Text(String),
+            Null(()),
+        }
+        match Max::deserialize(d)? {
+            Max::Number(x) => Ok(x),
+            Max::Text(t) if t == "Infinity" => Ok(f64::INFINITY),
+            Max::Text(t) => Err(serde::de::Error::custom(format!("`{t}`: expected a number or \"Infinity\""))),
+            Max::Null(()) => Ok(f64::INFINITY),
+        }
+    }
 }
 
 impl Dist {
@@ -254,4 +283,24 @@ pub struct Summary {
     /// Campaign throughput, cases per second, per engine (referee included) and
     /// for the whole run with and without the referee's share.
     pub throughput: Vec<(String, f64)>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_infinite_maximum_reads_back_from_json() {
+        let mut d = Dist::default();
+        d.add(1e-3);
+        d.add(f64::INFINITY);
+        let text = serde_json::to_string(&d).unwrap();
+        assert!(text.contains("\"max\":\"Infinity\""), "{text}");
+        let back: Dist = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, d);
+        // A report written before: `null`.
+        let old: Dist = serde_json::from_str(r#"{"n":1,"zeros":0,"max":null,"bins":[]}"#).unwrap();
+        assert!(old.max.is_infinite());
+        assert!(serde_json::from_str::<Dist>(r#"{"n":1,"zeros":0,"max":"big","bins":[]}"#).is_err());
+    }
 }

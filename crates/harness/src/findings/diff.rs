@@ -141,7 +141,12 @@ fn classify(z: f64, entered: usize, left: usize) -> Change {
 /// The engine names of NEW mapped to OLD's (`--as OLD=NEW` renames, to
 /// compare two engines of one report or two names of one engine).
 fn renamed(name: &str, renames: &[(String, String)]) -> String {
-    renames.iter().find(|(_, new)| new == name).map_or_else(|| name.to_string(), |(old, _)| old.clone())
+    match renames.iter().find(|(_, new)| new == name) {
+        Some((old, _)) => old.clone(),
+        // NEW's own engine of a name another engine now stands for is kept apart.
+        None if renames.iter().any(|(old, _)| old == name) => format!("{name} (in NEW)"),
+        None => name.to_string(),
+    }
 }
 
 /// Compares two reports: their summaries and findings. `renames` maps

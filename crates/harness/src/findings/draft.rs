@@ -19,7 +19,7 @@ use serde_json::Value;
 use std::fmt::Write;
 
 /// A standalone reproduction: its language (for the code block) and program.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Reproduction {
     /// `rust`, `python`, …
     pub language: String,
@@ -198,12 +198,18 @@ pub fn markdown(f: &Finding, repro: Option<&Reproduction>) -> String {
         let mut inputs = case.clone();
         let exact = inputs.expect.take();
         let _ = writeln!(out, "## Inputs\n");
-        if let Some(sh) = &f.shrunk {
-            let _ = writeln!(
-                out,
-                "Shrunk from a case of {} numbers to {} while the defect stayed the same.\n",
-                sh.numbers.0, sh.numbers.1
-            );
+        match &f.shrunk {
+            Some(sh) if sh.cost.1 < sh.cost.0 => {
+                let _ = writeln!(
+                    out,
+                    "Shrunk while the defect stayed the same: {} numbers to {}, simpler by crashtest's measure \
+                     ({} → {}: fewer significant bits, exponents nearer 0, fewer distinct values).\n",
+                    sh.numbers.0, sh.numbers.1, sh.cost.0, sh.cost.1
+                );
+            }
+            _ => {
+                let _ = writeln!(out, "The case as found (nothing simpler kept the defect).\n");
+            }
         }
         let _ = writeln!(out, "```json\n{}\n```\n", serde_json::to_string_pretty(&inputs).unwrap_or_default());
         let _ = writeln!(out, "## What {} answers\n", s.engine);

@@ -117,6 +117,10 @@ pub struct Finding {
     /// The engine's version, from the report's provenance.
     #[serde(default)]
     pub engine_version: String,
+    /// A peer engine's standalone reproduction of the shrunk case, when it
+    /// gives one for the pair.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reproduction: Option<draft::Reproduction>,
     /// A peer engine's bug-report draft (Markdown; `findings/<name>.md`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub draft: Option<String>,
@@ -274,6 +278,7 @@ impl Collector {
                 fixture_cases: Vec::new(),
                 shrunk: None,
                 engine_version: String::new(),
+                reproduction: None,
                 draft: None,
                 representative: None,
             });
@@ -439,8 +444,8 @@ pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet
             evaluations: out.evaluations,
         });
         if draft::is_peer(engine) {
-            let repro = draft::reproduction(engine, &out.case, &truth);
-            f.draft = Some(draft::markdown(f, repro.as_ref()));
+            f.reproduction = draft::reproduction(engine, &out.case, &truth);
+            f.draft = Some(draft::markdown(f, f.reproduction.as_ref()));
         }
     });
 }
@@ -461,4 +466,70 @@ pub fn read(dir: &std::path::Path) -> Result<FindingsFile, String> {
         return Err(format!("{}: field `format`: `{}`, expected `{FORMAT}`", p.display(), f.format));
     }
     Ok(f)
+}
+
+/// Writes the sample a repository keeps of a report (`reports/sample`): its
+/// findings (`findings.md`, and `findings.json` without the examples'
+/// cases), each finding's shrunk case and draft (`findings/`), and the
+/// report's overview table (`summary.md`). The folder's other files are
+/// left as they are; its old `findings/` is replaced. Returns the files
+/// written.
+pub fn write_sample(
+    report: &std::path::Path,
+    summary: &crate::summary::Summary,
+    out: &std::path::Path,
+) -> Result<Vec<std::path::PathBuf>, String> {
+    let mut file = read(report)?;
+    let drafts: Vec<(Option<String>, Option<String>)> = file.findings.iter().map(|f| (f.draft.clone(), f.draft_file())).collect();
+    for f in &mut file.findings {
+        // The examples' cases, and the drafts (their own files), stay in the report.
+        f.examples.clear();
+        f.draft = None;
+        f.reproduction = None;
+    }
+    let dir_name = "reports/sample";
+    let mut files: Vec<(std::path::PathBuf, String)> = Vec::new();
+    files.push(("findings.md".into(), render::markdown(&file, dir_name)));
+    files.push(("findings.json".into(), pretty(&file)));
+    let overview = crate::render::markdown::table_md(&crate::render::markdown::overview_table(summary));
+    let p = &summary.provenance;
+    files.push((
+        "summary.md".into(),
+        format!(
+            "# Each engine against the referee\n\nThe default report's overview (seed {}, {} random and {} fixture \
+             cases): per query kind, agree · disagree · known divergence · unsupported (borderline and failed in \
+             brackets).\n\n{overview}",
+            p.seed, p.random_cases, p.fixture_cases
+        ),
+    ));
+    for (f, (draft, name)) in file.findings.iter().zip(drafts) {
+        if let Some(s) = &f.shrunk {
+            let fixture = crate::case::FixtureFile { schema: crate::case::SCHEMA.into(), cases: vec![s.case.clone()] };
+            files.push((s.file.clone().into(), pretty(&fixture)));
+        }
+        if let (Some(d), Some(name)) = (draft, name) {
+            files.push((name.into(), d));
+        }
+    }
+    let old = out.join("findings");
+    if old.is_dir() {
+        std::fs::remove_dir_all(&old).map_err(|e| format!("{}: cannot remove: {e}", old.display()))?;
+    }
+    let mut written = Vec::new();
+    for (rel, text) in files {
+        let path = out.join(&rel);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent).map_err(|e| format!("{}: cannot create: {e}", parent.display()))?;
+        }
+        std::fs::write(&path, text).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+/// Pretty JSON, newline-terminated.
+fn pretty<T: serde::Serialize>(v: &T) -> String {
+    let mut s = serde_json::to_string_pretty(v).unwrap_or_default();
+    s.push('\n');
+    s
 }

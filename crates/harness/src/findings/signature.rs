@@ -129,11 +129,25 @@ pub fn failure_kind(reason: &str) -> String {
         // `src/x.rs:12:5: message` → `src/x.rs:12`.
         let mut parts = rest.splitn(3, ':');
         let (file, line) = (parts.next().unwrap_or(""), parts.next().unwrap_or(""));
-        return format!("failed: panic at {file}:{line}");
+        return format!("failed: panic at {}:{line}", crate_relative(file));
     }
     let text = words(first_sentence(reason));
     let text: String = text.chars().take(MAX_FAILURE_CHARS).collect();
     format!("failed: {text}")
+}
+
+/// A source path from a crate's root: a dependency's file under cargo's
+/// registry (`…/registry/src/<index>/parry3d-f64-0.31.1/src/x.rs`) is named
+/// from its crate's folder (`parry3d-f64-0.31.1/src/x.rs`), the same on every
+/// machine.
+fn crate_relative(file: &str) -> &str {
+    match file.find("/registry/src/") {
+        Some(i) => {
+            let rest = &file[i + "/registry/src/".len()..];
+            rest.split_once('/').map_or(rest, |(_, r)| r)
+        }
+        None => file,
+    }
 }
 
 /// A failure message is cut to this many characters in a signature: enough
@@ -352,6 +366,12 @@ mod tests {
     fn failures_keep_their_kind_not_their_numbers() {
         let p = Verdict::Failed { reason: format!("{PANIC_REASON_PREFIX}src/a.rs:12:5: index 7 out of range") };
         assert_eq!(wrong_of(&p).unwrap(), "failed: panic at src/a.rs:12");
+        let dep = Verdict::Failed {
+            reason: format!(
+                "{PANIC_REASON_PREFIX}/root/.cargo/registry/src/index.crates.io-1949cf8c6b5b557f/parry3d-0.31.1/src/q.rs:100:9: x"
+            ),
+        };
+        assert_eq!(wrong_of(&dep).unwrap(), "failed: panic at parry3d-0.31.1/src/q.rs:100");
         let e = Verdict::Failed { reason: "ValueError: point 3 at 1e300 is outside. More text".into() };
         assert_eq!(wrong_of(&e).unwrap(), "failed: ValueError: point at is outside");
         assert_eq!(wrong_of(&Verdict::Failed { reason: NON_FINITE.into() }).unwrap(), "failed: non-finite answer");

@@ -95,7 +95,7 @@ pub fn contact(krate: &str, version: &str, a: &Shape, b: &Shape, exact: Option<&
     match exact {
         None => l.push("assert!(c.is_none(), \"exact: no contact (the shapes are apart)\");".into()),
         Some(e) => {
-            let (dist, normal1) = (0.0 - e.depth, e.normal.map(|x| -x));
+            let (dist, normal1) = (0.0 - e.depth, e.normal.map(|x| 0.0 - x));
             l.push(format!(
                 "let c = c.expect(\"exact: a contact, dist {}\");",
                 lit(dist)

@@ -1,0 +1,179 @@
+//! Findings: one root cause per finding, shrunk cases that replay with their
+//! signature, a standalone parry reproduction that fails on the pinned parry,
+//! and `diff` telling noise from change.
+
+use harness::engines::EngineSet;
+use harness::findings::diff::{Change, diff};
+use harness::findings::shrink::judge_one;
+use harness::findings::signature::{Cause, WRONG_ANSWERS};
+use harness::findings::{Finding, FindingsFile};
+use harness::load::load_paths;
+use harness::report::campaign::{Config, Outcome, run};
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A campaign of the built-in engines: `cases` random cases per query kind
+/// (a tenth as many of the full-range family), the fixtures, no timing.
+fn campaign(seed: u64, cases: u64, fixtures: Vec<PathBuf>) -> Outcome {
+    run(
+        &Config {
+            seed,
+            cases_per_query: cases,
+            full_range_per_query: cases / 10,
+            fixtures,
+            timing: false,
+            progress: false,
+            sections: false,
+            engines: EngineSet::default(),
+            ..Config::default()
+        },
+        Default::default(),
+    )
+}
+
+/// The finding of a cause.
+fn find<'a>(f: &'a FindingsFile, engine: &str, pair: &str, class: &str) -> Vec<&'a Finding> {
+    f.findings.iter().filter(|x| x.cause.engine == engine && x.cause.pair == pair && x.cause.class == class).collect()
+}
+
+/// Where the parry reproduction is kept: the test compares the generated
+/// program with it, compiles it (below, `include!`) and runs it.
+const PARRY_REPRODUCTION: &str = "tests/reproductions/parry_ball_half_space.rs";
+
+mod parry_ball_half_space {
+    include!("reproductions/parry_ball_half_space.rs");
+    pub fn run() {
+        main()
+    }
+}
+
+#[test]
+fn parrys_ball_half_space_defect_is_one_finding_with_a_failing_reproduction_of_at_most_15_lines() {
+    let out = campaign(11, 300, vec![root().join("fixtures/contact.json")]);
+    let f = &out.findings;
+    // Every way the defect shows — false contacts, missed contacts, wrong
+    // depths and points, in every family — is one finding.
+    let found = find(f, "parry3d-f64", "contact sphere–plane", WRONG_ANSWERS);
+    assert_eq!(found.len(), 1, "{:#?}", f.findings.iter().map(|x| &x.title).collect::<Vec<_>>());
+    let finding = found[0];
+    let ways: Vec<&str> = finding.variants.iter().map(|(s, _)| s.wrong.as_str()).collect();
+    assert!(
+        ways.contains(&"false contact") && ways.contains(&"missed contact") && ways.iter().any(|w| w.ends_with(" off")),
+        "{ways:?}"
+    );
+    // Its ball-second sibling has no such finding: the defect is the ball-first order's.
+    assert!(find(f, "parry3d-f64", "contact plane–sphere", WRONG_ANSWERS).is_empty());
+    let repro = finding.reproduction.as_ref().expect("parry gives a reproduction for contact sphere–plane");
+    assert_eq!(repro.language, "rust");
+    let lines = repro.code.lines().count();
+    assert!(lines <= 15, "{lines} lines:\n{}", repro.code);
+    let kept = root().join(PARRY_REPRODUCTION);
+    if std::env::var_os("CRASHTEST_BLESS").is_some() {
+        std::fs::write(&kept, &repro.code).unwrap();
+    }
+    let text = std::fs::read_to_string(&kept).unwrap();
+    assert_eq!(
+        text, repro.code,
+        "{PARRY_REPRODUCTION} is not the generated reproduction; run with CRASHTEST_BLESS=1 to write it"
+    );
+    // Compiled into this test against the pinned parry (the module above):
+    // it must fail, as parry 0.31.1 answers the ball-first contact wrong.
+    let failed = std::panic::catch_unwind(parry_ball_half_space::run).is_err();
+    assert!(failed, "the reproduction passed: parry's answer is right now");
+}
+
+/// Replays every shrunk case of `file` from the report folder `dir` with its
+/// engine of `set` and checks that it shows its finding's defect and cause.
+/// Returns how many were replayed.
+fn replay_all(file: &FindingsFile, dir: &Path, set: &EngineSet) -> usize {
+    let mut n = 0;
+    for f in file.findings.iter().filter(|f| f.is_discrepancy()) {
+        let Some(s) = &f.shrunk else { continue };
+        let loaded = load_paths(&[dir.join(&s.file)]);
+        assert!(loaded.errors.is_empty(), "{}: {:?}", s.file, loaded.errors);
+        let lc = &loaded.cases[0];
+        let engine = set.judged.iter().find(|e| e.name == f.cause.engine).expect("the finding's engine");
+        let (sig, _, _) = judge_one(engine, &set.referee, lc);
+        let sig = sig.unwrap_or_else(|| panic!("{}: the shrunk case no longer shows a discrepancy", s.file));
+        assert!(f.signature.same_defect(&sig), "{}: {:?} replays as {:?}", s.file, f.signature, sig);
+        let precision = engine.precision_for(lc).unwrap_or(53);
+        let cause: Cause = harness::findings::signature::cause_of(&sig, lc, precision, false);
+        assert_eq!(cause, f.cause, "{}", s.file);
+        n += 1;
+    }
+    n
+}
+
+#[test]
+fn every_shrunk_case_replays_from_its_file_with_its_findings_signature() {
+    let out = campaign(5, 400, vec![root().join("fixtures")]);
+    let dir = std::env::temp_dir().join(format!("crashtest-findings-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let written = harness::report::write::write_outcome(&dir, "r", &out).unwrap();
+    let file = harness::findings::read(&written).unwrap();
+    let discrepancy_findings = file.findings.iter().filter(|f| f.is_discrepancy()).count();
+    assert!(discrepancy_findings > 10, "a campaign of the built-in engines has findings");
+    // Every discrepancy is in exactly one finding.
+    let covered: u64 = file.findings.iter().filter(|f| f.is_discrepancy()).map(|f| f.count).sum();
+    assert_eq!(covered, out.summary.discrepancies);
+    let n = replay_all(&file, &written, &EngineSet::default());
+    assert_eq!(n, discrepancy_findings, "every finding was shrunk");
+    // The report opens with the findings, and `crashtest findings` prints them.
+    let md = std::fs::read_to_string(written.join("summary.md")).unwrap();
+    assert!(md.find("## Findings").unwrap() < md.find("## Provenance").unwrap());
+    let html = std::fs::read_to_string(written.join("index.html")).unwrap();
+    assert!(html.find("id=\"findings\"").unwrap() < html.find("id=\"provenance\"").unwrap());
+    assert!(html.contains("class=\"sortable\"") && html.contains("<script>") && !html.contains("<script src"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn every_shrunk_case_of_the_sample_report_replays_with_its_signature() {
+    // `reports/sample` holds the default report's findings (README there says
+    // how it is regenerated); the peers are judged when installed, and their
+    // findings are skipped otherwise, with the count printed.
+    let dir = root().join("reports/sample");
+    let file = harness::findings::read(&dir).unwrap();
+    let peers = crashtest::process_engines(&[], Some(&crashtest::peer_engines_file()), 60.0).unwrap();
+    let set = EngineSet::select_with("all", None, peers).unwrap();
+    let mut replayable = file.clone();
+    replayable.findings.retain(|f| set.judged.iter().any(|e| e.name == f.cause.engine));
+    let skipped = file.findings.len() - replayable.findings.len();
+    assert!(
+        set.missing.is_empty() || skipped > 0,
+        "engines missing ({:?}) but every finding replayable",
+        set.missing
+    );
+    eprintln!("{skipped} findings of engines not installed here: {:?}", set.missing);
+    let n = replay_all(&replayable, &dir, &set);
+    assert!(n > 0);
+}
+
+#[test]
+fn diff_of_two_seeds_has_no_false_change_and_sees_a_real_one() {
+    let a = campaign(1, 2000, vec![root().join("fixtures")]);
+    let b = campaign(2, 2000, vec![root().join("fixtures")]);
+    let d = diff((&a.summary, &a.findings), (&b.summary, &b.findings), &[]);
+    let changed: Vec<String> = d
+        .findings
+        .iter()
+        .filter(|f| !matches!(f.change, Change::Noise | Change::Same))
+        .map(|f| format!("{:?} {} {:?} {:?} z {:.1}", f.change, f.title, f.old, f.new, f.z))
+        .collect();
+    assert!(changed.is_empty(), "the engines did not change, yet:\n{}", changed.join("\n"));
+    let scores: Vec<String> = d
+        .scores
+        .iter()
+        .filter(|s| s.change != Change::Same)
+        .map(|s| format!("{} {} {:?} {:?} z {:.1}", s.engine, s.query, s.old, s.new, s.z))
+        .collect();
+    assert!(scores.is_empty(), "{}", scores.join("\n"));
+    assert!(d.worse(&["collide/robust".into(), "parry3d-f64".into()]).is_empty());
+    // The lecture's methods in place of the robust ones: worse, and said so.
+    let d = diff((&a.summary, &a.findings), (&b.summary, &b.findings), &[("collide/robust".into(), "collide/lecture".into())]);
+    assert_eq!(d.worse(&["collide/robust".into()]), vec!["collide/robust".to_string()]);
+    assert!(d.findings.iter().any(|f| f.change == Change::New && f.signature.engine == "collide/robust"));
+}
