@@ -142,11 +142,7 @@ fn every_shrunk_case_of_the_sample_report_replays_with_its_signature() {
     let mut replayable = file.clone();
     replayable.findings.retain(|f| set.judged.iter().any(|e| e.name == f.cause.engine));
     let skipped = file.findings.len() - replayable.findings.len();
-    assert!(
-        set.missing.is_empty() || skipped > 0,
-        "engines missing ({:?}) but every finding replayable",
-        set.missing
-    );
+    assert!(set.missing.is_empty() || skipped > 0, "engines missing ({:?}) but every finding replayable", set.missing);
     eprintln!("{skipped} findings of engines not installed here: {:?}", set.missing);
     let n = replay_all(&replayable, &dir, &set);
     assert!(n > 0);
@@ -173,7 +169,11 @@ fn diff_of_two_seeds_has_no_false_change_and_sees_a_real_one() {
     assert!(scores.is_empty(), "{}", scores.join("\n"));
     assert!(d.worse(&["collide/robust".into(), "parry3d-f64".into()]).is_empty());
     // The lecture's methods in place of the robust ones: worse, and said so.
-    let d = diff((&a.summary, &a.findings), (&b.summary, &b.findings), &[("collide/robust".into(), "collide/lecture".into())]);
+    let d = diff(
+        (&a.summary, &a.findings),
+        (&b.summary, &b.findings),
+        &[("collide/robust".into(), "collide/lecture".into())],
+    );
     assert_eq!(d.worse(&["collide/robust".into()]), vec!["collide/robust".to_string()]);
     assert!(d.findings.iter().any(|f| f.change == Change::New && f.signature.engine == "collide/robust"));
 }

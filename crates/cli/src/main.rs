@@ -601,9 +601,14 @@ fn main() -> ExitCode {
             // A gated engine that is not in both reports would pass unseen.
             for g in &gate {
                 let old_name = pairs.iter().find(|(_, b)| b == g).map_or(g.as_str(), |(a, _)| a.as_str());
-                let has = |s: &harness::summary::Summary, name: &str| s.provenance.engines.iter().any(|e| e.name == name);
+                let has =
+                    |s: &harness::summary::Summary, name: &str| s.provenance.engines.iter().any(|e| e.name == name);
                 if !has(&o.0, old_name) || !has(&n.0, g) {
-                    eprintln!("error: --engine {g}: not judged in both reports ({} and {})", old.display(), new.display());
+                    eprintln!(
+                        "error: --engine {g}: not judged in both reports ({} and {})",
+                        old.display(),
+                        new.display()
+                    );
                     return ExitCode::from(2);
                 }
             }

@@ -11,7 +11,7 @@
 //! only when its count alone is that far from 0; otherwise it is listed as
 //! within noise.
 
-use super::FindingsFile;
+use super::model::FindingsFile;
 use super::signature::Cause as Signature;
 use crate::case::Query;
 use crate::summary::Summary;
@@ -151,25 +151,20 @@ fn renamed(name: &str, renames: &[(String, String)]) -> String {
 
 /// Compares two reports: their summaries and findings. `renames` maps
 /// engine names of OLD to NEW's where they differ.
-pub fn diff(
-    old: (&Summary, &FindingsFile),
-    new: (&Summary, &FindingsFile),
-    renames: &[(String, String)],
-) -> Diff {
+pub fn diff(old: (&Summary, &FindingsFile), new: (&Summary, &FindingsFile), renames: &[(String, String)]) -> Diff {
     let rename_sig = |s: &Signature| Signature { engine: renamed(&s.engine, renames), ..s.clone() };
-    let old_cases: BTreeMap<(String, Query), u64> =
-        old.1.cases.iter().map(|(e, q, n)| ((e.clone(), *q), *n)).collect();
+    let old_cases: BTreeMap<(String, Query), u64> = old.1.cases.iter().map(|(e, q, n)| ((e.clone(), *q), *n)).collect();
     let new_cases: BTreeMap<(String, Query), u64> =
         new.1.cases.iter().map(|(e, q, n)| ((renamed(e, renames), *q), *n)).collect();
-    let old_f: BTreeMap<Signature, &super::Finding> =
+    let old_f: BTreeMap<Signature, &super::model::Finding> =
         old.1.findings.iter().filter(|f| f.is_discrepancy()).map(|f| (f.cause.clone(), f)).collect();
-    let new_f: BTreeMap<Signature, &super::Finding> =
+    let new_f: BTreeMap<Signature, &super::model::Finding> =
         new.1.findings.iter().filter(|f| f.is_discrepancy()).map(|f| (rename_sig(&f.cause), f)).collect();
     let keys: BTreeSet<&Signature> = old_f.keys().chain(new_f.keys()).collect();
     let mut findings = Vec::new();
     for sig in keys {
-        let n_old = super::of_cases(&old_cases, sig);
-        let n_new = super::of_cases(&new_cases, sig);
+        let n_old = super::model::of_cases(&old_cases, sig);
+        let n_new = super::model::of_cases(&new_cases, sig);
         if n_old == 0 || n_new == 0 {
             // The engine or the query kind ran in one report only: nothing to compare.
             continue;
@@ -177,11 +172,13 @@ pub fn diff(
         let (fo, fnew) = (old_f.get(sig), new_f.get(sig));
         let k_old = fo.map_or(0, |f| f.count);
         let k_new = fnew.map_or(0, |f| f.count);
-        let set = |f: Option<&&super::Finding>| -> BTreeSet<String> {
+        let set = |f: Option<&&super::model::Finding>| -> BTreeSet<String> {
             f.map(|f| f.fixture_cases.iter().cloned().collect()).unwrap_or_default()
         };
         let (so, sn) = (set(fo), set(fnew));
-        let capped = |f: Option<&&super::Finding>| f.is_some_and(|f| f.fixture_cases.len() >= super::MAX_FIXTURE_NAMES);
+        let capped = |f: Option<&&super::model::Finding>| {
+            f.is_some_and(|f| f.fixture_cases.len() >= super::model::MAX_FIXTURE_NAMES)
+        };
         let (entered, left): (Vec<String>, Vec<String>) = if capped(fo) || capped(fnew) {
             (Vec::new(), Vec::new())
         } else {
@@ -285,10 +282,9 @@ impl Diff {
         let noise = self.findings.len() - real.len();
         let _ = writeln!(
             out,
-            "\nFindings: {} changed beyond noise ({} = |z| > {Z_CHANGE}, or fixture cases moved); {noise} seen in one \
-             report only within noise",
-            real.len(),
-            "two-proportion z score"
+            "\nFindings: {} changed beyond noise (two-proportion z score |z| > {Z_CHANGE}, or fixture cases moved); \
+             {noise} seen in one report only within noise",
+            real.len()
         );
         for f in &real {
             let _ = writeln!(
@@ -336,8 +332,8 @@ mod tests {
         assert!(z_score(100, 10_000, 104, 10_000).abs() < 1.0);
         assert!(z_score(100, 10_000, 200, 10_000) > Z_CHANGE);
         assert!(z_score(200, 10_000, 100, 10_000) < -Z_CHANGE);
-        assert_eq!(z_score(0, 10_000, 0, 10_000), 0.0);
-        assert_eq!(z_score(0, 0, 5, 10), 0.0);
+        assert_eq!(z_score(0, 10_000, 0, 10_000).to_bits(), 0.0f64.to_bits(), "no cases either side: no change");
+        assert_eq!(z_score(0, 0, 5, 10).to_bits(), 0.0f64.to_bits(), "an empty side: nothing to compare");
         // Three cases against none in 10,000 is within noise; thirty is not.
         assert!(z_score(0, 10_000, 3, 10_000) < Z_CHANGE);
         assert!(z_score(0, 10_000, 30, 10_000) > Z_CHANGE);

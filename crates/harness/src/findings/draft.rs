@@ -8,7 +8,7 @@
 //! the shrunk case by [`fill`]. collide is crashtest's own library: its
 //! findings get no upstream draft.
 
-use super::Finding;
+use super::model::Finding;
 use crate::case::{Case, Query, Shape};
 use crate::check::Truth;
 use crate::engine::{Answer, Engine};
@@ -18,14 +18,7 @@ use oracle::parry::reproduce as parry;
 use serde_json::Value;
 use std::fmt::Write;
 
-/// A standalone reproduction: its language (for the code block) and program.
-#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub struct Reproduction {
-    /// `rust`, `python`, …
-    pub language: String,
-    /// The program.
-    pub code: String,
-}
+pub use super::model::Reproduction;
 
 /// A number list or number as a JSON literal, numbers in their shortest
 /// round-trip form, with spaces after commas.
@@ -118,7 +111,9 @@ fn parry_program(engine: &Engine, lc: &LoadedCase, truth: &Answer, tol: &Toleran
     let allow = parry::Allowed { point: allowed.point, depth: allowed.depth, normal: allowed.normal, t: allowed.t };
     let shape = |s: &Shape| -> Option<parry::Shape> {
         Some(match s {
-            Shape::Sphere(s) => parry::Shape::Sphere(crashtest_core::geom::Sphere { center: s.center, radius: s.radius }),
+            Shape::Sphere(s) => {
+                parry::Shape::Sphere(crashtest_core::geom::Sphere { center: s.center, radius: s.radius })
+            }
             Shape::Plane(p) => parry::Shape::Plane(crashtest_core::geom::Plane { normal: p.normal, offset: p.offset }),
             Shape::Triangle(t) => parry::Shape::Triangle(crashtest_core::geom::Triangle { vertices: t.vertices }),
             _ => return None,
@@ -234,7 +229,8 @@ pub fn markdown(f: &Finding, repro: Option<&Reproduction>) -> String {
             let _ = writeln!(out, "```{}\n{}```\n", r.language, r.code);
         }
         None => {
-            let _ = writeln!(out, "{} gives no standalone program for {}; the replay below runs it.\n", s.engine, s.pair);
+            let _ =
+                writeln!(out, "{} gives no standalone program for {}; the replay below runs it.\n", s.engine, s.pair);
         }
     }
     let _ = writeln!(out, "With crashtest, from the report's folder:\n\n```sh\n{}\n```", f.replay_command("."));

@@ -7,7 +7,7 @@
 //! detail row below it (the case and every engine's answer). Nothing is
 //! fetched: the page stays readable offline.
 
-use super::{Finding, FindingsFile};
+use super::model::{Finding, FindingsFile};
 use crate::render::markdown::escape_md;
 use crate::render::xml::escape;
 use std::fmt::Write;
@@ -209,7 +209,11 @@ fn detail(f: &Finding, dir: &str) -> String {
     let _ = write!(out, "<p><b>{}</b></p>", escape(&f.title));
     let _ = write!(out, "<p>Replay: <code>{}</code>", escape(&f.replay_command(dir)));
     if f.draft_file().is_some() {
-        let _ = write!(out, " · bug-report draft: <a href=\"findings/{0}.md\"><code>findings/{0}.md</code></a>", escape(&f.name));
+        let _ = write!(
+            out,
+            " · bug-report draft: <a href=\"findings/{0}.md\"><code>findings/{0}.md</code></a>",
+            escape(&f.name)
+        );
     }
     out.push_str("</p>");
     out.push_str("<p>Variants (signature: what is wrong; family; magnitude class):</p><ul>");
@@ -284,7 +288,12 @@ pub fn html(file: &FindingsFile, dir: &str) -> String {
                 };
                 let _ = write!(out, "<td{class}{v}>{}</td>", escape(c));
             }
-            let _ = writeln!(out, "</tr>\n<tr class=\"more\" hidden><td colspan=\"{}\">{}</td></tr>", COLUMNS.len(), detail(f, dir));
+            let _ = writeln!(
+                out,
+                "</tr>\n<tr class=\"more\" hidden><td colspan=\"{}\">{}</td></tr>",
+                COLUMNS.len(),
+                detail(f, dir)
+            );
         }
         out.push_str("</tbody></table></div>\n");
     }
@@ -332,7 +341,11 @@ pub fn text(file: &FindingsFile, dir: &str) -> String {
         let _ = writeln!(out, "     as: {}", ways_line(f));
         let _ = writeln!(out, "     families: {}", families_line(f));
         if let Some(s) = &f.shrunk {
-            let _ = writeln!(out, "     shrunk: {} → {} numbers (simplicity {} → {})", s.numbers.0, s.numbers.1, s.cost.0, s.cost.1);
+            let _ = writeln!(
+                out,
+                "     shrunk: {} → {} numbers (simplicity {} → {})",
+                s.numbers.0, s.numbers.1, s.cost.0, s.cost.1
+            );
         }
         let _ = writeln!(out, "     replay: {}", f.replay_command(dir));
         if let Some(d) = f.draft_file() {
@@ -397,8 +410,12 @@ pub fn discrepancies_html(discrepancies: &[serde_json::Value]) -> String {
             escape(&reasons.join("; ")),
             escape(case),
             escape(&s(d, "origin")),
-            escape(&serde_json::to_string_pretty(d.get("fixture").unwrap_or(&serde_json::Value::Null)).unwrap_or_default()),
-            escape(&serde_json::to_string_pretty(d.get("answers").unwrap_or(&serde_json::Value::Null)).unwrap_or_default())
+            escape(
+                &serde_json::to_string_pretty(d.get("fixture").unwrap_or(&serde_json::Value::Null)).unwrap_or_default()
+            ),
+            escape(
+                &serde_json::to_string_pretty(d.get("answers").unwrap_or(&serde_json::Value::Null)).unwrap_or_default()
+            )
         );
     }
     out.push_str("</tbody></table></div>\n");
@@ -407,8 +424,8 @@ pub fn discrepancies_html(discrepancies: &[serde_json::Value]) -> String {
 
 /// The report's opening: the findings (HTML with the discrepancies' table,
 /// and Markdown), with the tables' style and script.
-pub fn opening(file: &FindingsFile, discrepancies: &[serde_json::Value], dir: &str) -> crate::render::Opening {
-    crate::render::Opening {
+pub fn opening(file: &FindingsFile, discrepancies: &[serde_json::Value], dir: &str) -> crate::render::opening::Opening {
+    crate::render::opening::Opening {
         html: format!("{}{}", html(file, dir), discrepancies_html(discrepancies)),
         style: TABLE_STYLE.into(),
         script: TABLE_SCRIPT.into(),

@@ -286,7 +286,12 @@ pub fn beyond_precision(lc: &LoadedCase, bits: u32) -> bool {
 /// `precision` bits.
 pub fn cause_of(sig: &Signature, lc: &LoadedCase, precision: u32, known: bool) -> Cause {
     if !known && beyond_precision(lc, precision) {
-        return Cause { engine: sig.engine.clone(), query: None, pair: EVERY_PAIR.into(), class: BEYOND_PRECISION.into() };
+        return Cause {
+            engine: sig.engine.clone(),
+            query: None,
+            pair: EVERY_PAIR.into(),
+            class: BEYOND_PRECISION.into(),
+        };
     }
     let class = if known || sig.wrong.starts_with("failed: ") {
         sig.wrong.clone()

@@ -81,12 +81,12 @@ fn anchor(title: &str) -> String {
 /// inline under its query kind's table and linked as `charts/<file>` at the end,
 /// beside `summary.md`, `summary.json` and `discrepancies.json`.
 pub fn index_html(summary: &Summary, charts: &[Chart]) -> String {
-    index_html_with(summary, charts, &super::Opening::default())
+    index_html_with(summary, charts, &super::opening::Opening::default())
 }
 
 /// [`index_html`] opening with `opening` (the findings) after its title; its
 /// script, inline, closes the page.
-pub fn index_html_with(summary: &Summary, charts: &[Chart], opening: &super::Opening) -> String {
+pub fn index_html_with(summary: &Summary, charts: &[Chart], opening: &super::opening::Opening) -> String {
     let p = &summary.provenance;
     let commit = p.commit.clone().unwrap_or_else(|| "unknown commit".into());
     let mut out = String::new();

@@ -6,6 +6,7 @@
 pub mod charts;
 pub mod html;
 pub mod markdown;
+pub mod opening;
 pub mod plot;
 pub mod section;
 pub mod xml;
@@ -16,25 +17,11 @@ use std::path::PathBuf;
 /// The rendered files of a report besides its JSON: `index.html`, `summary.md`
 /// and `charts/*.svg`, as (path relative to the report folder, contents).
 pub fn pages(summary: &Summary) -> Vec<(PathBuf, String)> {
-    pages_with(summary, &Opening::default())
-}
-
-/// What a report opens with, before its provenance: its findings, already
-/// rendered (the page's part may carry its own style and script).
-#[derive(Clone, Debug, Default)]
-pub struct Opening {
-    /// HTML, placed after the page's title.
-    pub html: String,
-    /// Extra style sheet for it.
-    pub style: String,
-    /// Its inline script (placed at the end of the page).
-    pub script: String,
-    /// Markdown, placed after `summary.md`'s title.
-    pub markdown: String,
+    pages_with(summary, &opening::Opening::default())
 }
 
 /// [`pages`] opening with `opening`.
-pub fn pages_with(summary: &Summary, opening: &Opening) -> Vec<(PathBuf, String)> {
+pub fn pages_with(summary: &Summary, opening: &opening::Opening) -> Vec<(PathBuf, String)> {
     let charts = charts::all(summary);
     let mut files = vec![
         (PathBuf::from("index.html"), html::index_html_with(summary, &charts, opening)),

@@ -75,7 +75,8 @@ fn build(s: &Shape, k: u8) -> Vec<String> {
 /// the crate), `fn main`.
 fn header(krate: &str, version: &str, what: &str, uses: &[&str]) -> Vec<String> {
     let m = krate.replace('-', "_");
-    let mut l = vec![format!("// {krate} ={version}: {what} (a crashtest finding; the exact answer is correctly rounded).")];
+    let mut l =
+        vec![format!("// {krate} ={version}: {what} (a crashtest finding; the exact answer is correctly rounded).")];
     l.extend(uses.iter().map(|u| format!("use {m}::{u};")));
     l.push("fn main() {".into());
     l
@@ -96,10 +97,7 @@ pub fn contact(krate: &str, version: &str, a: &Shape, b: &Shape, exact: Option<&
         None => l.push("assert!(c.is_none(), \"exact: no contact (the shapes are apart)\");".into()),
         Some(e) => {
             let (dist, normal1) = (0.0 - e.depth, e.normal.map(|x| 0.0 - x));
-            l.push(format!(
-                "let c = c.expect(\"exact: a contact, dist {}\");",
-                lit(dist)
-            ));
+            l.push(format!("let c = c.expect(\"exact: a contact, dist {}\");", lit(dist)));
             l.push(format!(
                 "assert!((c.dist - {}).abs() <= {:e}, \"dist {{}}, exact {}\", c.dist);",
                 lit(dist),
@@ -131,13 +129,9 @@ pub fn intersect(
     exact: Option<&SegmentHit>,
     allow: &Allowed,
 ) -> String {
-    let mut l = header(krate, version, "ray cast of a segment", &["math::{Pose, Vector}", "query::{Ray, RayCast}", "shape::*"]);
-    l.push(format!(
-        "let ray = Ray::new({}, {} - {});",
-        vec3(&s.start),
-        vec3(&s.end),
-        vec3(&s.start)
-    ));
+    let mut l =
+        header(krate, version, "ray cast of a segment", &["math::{Pose, Vector}", "query::{Ray, RayCast}", "shape::*"]);
+    l.push(format!("let ray = Ray::new({}, {} - {});", vec3(&s.start), vec3(&s.end), vec3(&s.start)));
     l.extend(build(b, 2));
     l.push("let hit = shape2.cast_ray_and_get_normal(&pos2, &ray, 1.0, false);".into());
     l.push("println!(\"{hit:?}\");".into());
@@ -158,9 +152,19 @@ pub fn intersect(
 
 /// The program for two boxes' overlap (touching overlaps).
 pub fn overlap(krate: &str, version: &str, a: &Aabb, b: &Aabb, exact: bool) -> String {
-    let mut l = header(krate, version, "AABB intersection", &["bounding_volume::{Aabb, BoundingVolume}", "math::Vector"]);
-    l.push(format!("let (a, b) = (Aabb::new({}, {}), Aabb::new({}, {}));", vec3(&a.min), vec3(&a.max), vec3(&b.min), vec3(&b.max)));
-    l.push(format!("assert_eq!(a.intersects(&b), {exact}, \"exact: {}\");", if exact { "they overlap" } else { "apart" }));
+    let mut l =
+        header(krate, version, "AABB intersection", &["bounding_volume::{Aabb, BoundingVolume}", "math::Vector"]);
+    l.push(format!(
+        "let (a, b) = (Aabb::new({}, {}), Aabb::new({}, {}));",
+        vec3(&a.min),
+        vec3(&a.max),
+        vec3(&b.min),
+        vec3(&b.max)
+    ));
+    l.push(format!(
+        "assert_eq!(a.intersects(&b), {exact}, \"exact: {}\");",
+        if exact { "they overlap" } else { "apart" }
+    ));
     finish(l)
 }
 
