@@ -193,6 +193,15 @@ pub fn markdown(f: &Finding, repro: Option<&Reproduction>) -> String {
         let mut inputs = case.clone();
         let exact = inputs.expect.take();
         let _ = writeln!(out, "## Inputs\n");
+        if let Some(sh) = f.shrunk.as_ref().filter(|sh| sh.replayed < super::shrink::REPLAYS) {
+            let _ = writeln!(
+                out,
+                "{} answers this case differently between calls: it showed the defect in {} of {} replays.\n",
+                s.engine,
+                sh.replayed,
+                super::shrink::REPLAYS
+            );
+        }
         match &f.shrunk {
             Some(sh) if sh.cost.1 < sh.cost.0 => {
                 let _ = writeln!(

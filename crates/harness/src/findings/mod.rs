@@ -37,6 +37,7 @@ pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet
         let Some(lc) = f.representative.take() else { return };
         let Some(engine) = set.judged.iter().find(|e| e.name == f.cause.engine) else { return };
         let out = shrink::shrink(&lc, &f.signature, engine, &set.referee);
+        let replayed = shrink::replays(&out.case, &f.signature, engine, &set.referee);
         let (_, result, truth) = shrink::judge_one(engine, &set.referee, &out.case);
         let mut case = as_fixture(&out.case, truth.answer.as_ref().map(crate::check::answer_as_expect));
         case.name = f.name.clone();
@@ -53,6 +54,7 @@ pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet
             numbers: out.numbers,
             cost: out.cost,
             evaluations: out.evaluations,
+            replayed,
         });
         if draft::is_peer(engine) {
             f.reproduction = draft::reproduction(engine, &out.case, &truth);

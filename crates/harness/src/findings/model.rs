@@ -70,6 +70,11 @@ pub struct Shrunk {
     pub cost: (u64, u64),
     /// Candidates judged.
     pub evaluations: u32,
+    /// Of [`crate::findings::shrink::REPLAYS`] judgements of the shrunk
+    /// case, how many showed the finding's signature again: fewer than all
+    /// means the engine answers the same case differently between calls.
+    #[serde(default)]
+    pub replayed: u32,
 }
 
 /// One root cause: the discrepancies of one signature.

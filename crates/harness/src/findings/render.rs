@@ -15,7 +15,8 @@ use std::fmt::Write;
 /// The page's script: sorting, filtering and opening rows of every table of
 /// class `sortable`. Sorting compares numbers as numbers (a cell's
 /// `data-v`, else its text read as a number) and text as text; a detail row
-/// (class `more`) travels with the row above it.
+/// (class `more`) travels with the row above it. The filter matches a row's
+/// own cells (not its detail, which names every engine).
 pub const TABLE_SCRIPT: &str = r#"
 document.querySelectorAll('table.sortable').forEach(function (t) {
   var body = t.tBodies[0];
@@ -48,7 +49,7 @@ document.querySelectorAll('table.sortable').forEach(function (t) {
   if (box) box.addEventListener('input', function () {
     var q = box.value.toLowerCase(), shown = 0;
     groups().forEach(function (rows) {
-      var hit = rows.some(function (r) { return r.textContent.toLowerCase().indexOf(q) >= 0; });
+      var hit = rows[0].textContent.toLowerCase().indexOf(q) >= 0;
       rows[0].hidden = !hit; if (hit) shown++;
       rows.slice(1).forEach(function (r) { if (!hit) r.hidden = true; });
     });
@@ -90,8 +91,7 @@ fn err(x: Option<f64>) -> String {
 }
 
 /// The columns of the findings' tables.
-const COLUMNS: [&str; 9] =
-    ["finding", "engine", "pair", "what is wrong", "families", "cases", "share", "worst", "median"];
+const COLUMNS: [&str; 8] = ["engine", "pair", "what is wrong", "families", "cases", "share", "worst", "median"];
 
 /// The ways a finding shows (its variants' `wrong`, with the magnitude class
 /// where there is one, families added up), most cases first.
@@ -127,12 +127,21 @@ fn families_line(f: &Finding) -> String {
     }
 }
 
-fn row(f: &Finding) -> [String; 9] {
+/// What is wrong: the cause's class, and the ways it shows when they say more.
+fn wrong_cell(f: &Finding) -> String {
+    let w = ways(f);
+    if w.len() == 1 && w[0].0 == f.cause.class {
+        f.cause.class.clone()
+    } else {
+        format!("{}: {}", f.cause.class, ways_line(f))
+    }
+}
+
+fn row(f: &Finding) -> [String; 8] {
     [
-        f.name.clone(),
         f.cause.engine.clone(),
         f.cause.pair.clone(),
-        format!("{}: {}", f.cause.class, ways_line(f)),
+        wrong_cell(f),
         families_line(f),
         f.count.to_string(),
         percent(f.share()),
@@ -174,7 +183,7 @@ pub fn markdown(file: &FindingsFile, dir: &str) -> String {
         out.push_str("No discrepancies.\n\n");
     } else {
         let mut cols = COLUMNS.to_vec();
-        cols.push("replay");
+        cols.push("replay (from the repository's root)");
         head(&mut out, &cols);
         for f in &discrepancies {
             let cells: Vec<String> = row(f).iter().map(|c| escape_md(c)).collect();
@@ -230,10 +239,13 @@ fn detail(f: &Finding, dir: &str) -> String {
     if let Some(s) = &f.shrunk {
         let _ = write!(
             out,
-            "<p>Shrunk case ({} → {} numbers; {} candidates judged): {}</p><pre>{}</pre>",
+            "<p>Shrunk case ({} → {} numbers; {} candidates judged; the defect shown in {} of {} replays): {}</p>\
+             <pre>{}</pre>",
             s.numbers.0,
             s.numbers.1,
             s.evaluations,
+            s.replayed,
+            super::shrink::REPLAYS,
             escape(&s.reasons.join("; ")),
             escape(&serde_json::to_string_pretty(&s.case).unwrap_or_default())
         );
@@ -270,7 +282,7 @@ pub fn html(file: &FindingsFile, dir: &str) -> String {
         );
         out.push_str("<div class=\"scroll\"><table class=\"sortable\" id=\"findings-table\">\n<thead><tr>");
         for (i, c) in COLUMNS.iter().enumerate() {
-            let class = if i >= 5 { " class=\"n\"" } else { "" };
+            let class = if i >= 4 { " class=\"n\"" } else { "" };
             let _ = write!(out, "<th{class}>{}</th>", escape(c));
         }
         out.push_str("</tr></thead>\n<tbody>\n");
@@ -279,11 +291,11 @@ pub fn html(file: &FindingsFile, dir: &str) -> String {
             out.push_str("<tr>");
             for (i, c) in cells.iter().enumerate() {
                 let (class, v) = match i {
-                    6 => (" class=\"n\"", format!(" data-v=\"{}\"", f.share())),
-                    7 => (" class=\"n\"", format!(" data-v=\"{}\"", f.errors.max)),
-                    8 => (" class=\"n\"", format!(" data-v=\"{}\"", f.errors.median().unwrap_or(0.0))),
-                    5 => (" class=\"n\"", String::new()),
-                    3 => (" class=\"wrap\"", String::new()),
+                    5 => (" class=\"n\"", format!(" data-v=\"{}\"", f.share())),
+                    6 => (" class=\"n\"", format!(" data-v=\"{}\"", f.errors.max)),
+                    7 => (" class=\"n\"", format!(" data-v=\"{}\"", f.errors.median().unwrap_or(0.0))),
+                    4 => (" class=\"n\"", String::new()),
+                    2 | 3 => (" class=\"wrap\"", String::new()),
                     _ => ("", String::new()),
                 };
                 let _ = write!(out, "<td{class}{v}>{}</td>", escape(c));

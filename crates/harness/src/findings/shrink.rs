@@ -26,6 +26,17 @@ use serde_json::Value;
 /// milliseconds, so one finding costs at most a few seconds.
 pub const MAX_EVALUATIONS: u32 = 400;
 
+/// How often a shrunk case is judged again after shrinking: an engine that
+/// answers the same case differently between calls (FCL's continuous
+/// collision does, on some cases) shows the defect in only some of them, and
+/// the finding says how many.
+pub const REPLAYS: u32 = 5;
+
+/// How many of [`REPLAYS`] judgements of `lc` show the defect of `sig`.
+pub fn replays(lc: &LoadedCase, sig: &Signature, engine: &Engine, referee: &Engine) -> u32 {
+    (0..REPLAYS).filter(|_| judge_one(engine, referee, lc).0.is_some_and(|s| s.same_defect(sig))).count() as u32
+}
+
 /// The numbers a case is shrunk over: JSON pointers into the case.
 fn slots(v: &Value) -> Vec<String> {
     let mut out = Vec::new();
