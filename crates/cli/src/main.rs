@@ -435,7 +435,23 @@ fn main() -> ExitCode {
                 summary.provenance.seed
             );
             let sections = harness::report::write::merge_sections(&read);
-            let files = harness::report::write::render_files(&summary, &discrepancies, &sections, None, "");
+            // Shards' findings add up (a shard written before findings were
+            // kept has none: the merged report then has none either).
+            let mut parts = Vec::new();
+            for dir in &reports {
+                match harness::findings::read(dir) {
+                    Ok(f) => parts.push(f),
+                    Err(e) => {
+                        eprintln!("note: {e}; the merged report has no findings");
+                        parts.clear();
+                        break;
+                    }
+                }
+            }
+            let findings = (parts.len() == reports.len()).then(|| harness::findings::FindingsFile::merge(&parts));
+            let dir = format!("{}/{id}", out.display());
+            let files =
+                harness::report::write::render_files(&summary, &discrepancies, &sections, findings.as_ref(), &dir);
             match harness::report::write::write_report(&out, &id, &files) {
                 Ok(dir) => {
                     outln!("merged {} shards: {}", reports.len(), dir.join("index.html").display());

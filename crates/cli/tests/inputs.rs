@@ -484,3 +484,77 @@ fn no_timing_times_nothing_in_the_time_of_impact_section() {
     let md = std::fs::read_to_string(dir.path("reports/latest/summary.md")).unwrap();
     assert!(md.contains("nothing was timed (the report was run with --no-timing)"), "the section says so");
 }
+
+/// `findings` prints a report's findings; `diff` compares two reports, exits
+/// 1 when a gated engine got worse and 2 for bad input; `merge` adds the
+/// shards' findings up.
+#[test]
+fn findings_diff_and_merge_from_the_command_line() {
+    let s = Scratch::new("findings");
+    let out = |name: &str| s.path(name).display().to_string();
+    let report = |seed: &str, dir: &str, extra: &[&str]| {
+        let mut args = vec![
+            "report",
+            "--only",
+            "toi",
+            "--cases",
+            "400",
+            "--full-range",
+            "0",
+            "--no-sections",
+            "--no-timing",
+            "--engines",
+            "collide/robust,collide/lecture",
+            "--seed",
+            seed,
+        ];
+        args.extend_from_slice(extra);
+        let d = out(dir);
+        args.extend_from_slice(&["--out", &d]);
+        let r = crashtest(&args);
+        assert_eq!(r.code, 0, "{}", r.both());
+        format!("{d}/latest")
+    };
+    let (a, b) = (report("1", "a", &[]), report("2", "b", &[]));
+    let f = crashtest(&["findings", &a]);
+    assert_eq!(f.code, 0, "{}", f.both());
+    assert!(
+        f.stdout.contains("collide/lecture: toi") && f.stdout.contains("replay: crashtest check"),
+        "{}",
+        f.both()
+    );
+    let none = crashtest(&["findings", &out("a")]);
+    assert_eq!(none.code, 2, "{}", none.both());
+    assert!(none.stderr.contains("findings.json"), "{}", none.both());
+
+    let same = crashtest(&["diff", &a, &b, "--engine", "collide/robust", "--engine", "collide/lecture"]);
+    assert_eq!(same.code, 0, "two seeds of unchanged engines: {}", same.both());
+    let worse = crashtest(&["diff", &a, &b, "--engine", "collide/robust", "--as", "collide/robust=collide/lecture"]);
+    assert_eq!(worse.code, 1, "the lecture's methods in place of the robust ones: {}", worse.both());
+    assert!(worse.stderr.contains("worse: collide/robust"), "{}", worse.both());
+    let unknown = crashtest(&["diff", &a, &b, "--engine", "collide/robustt"]);
+    assert_eq!(unknown.code, 2, "{}", unknown.both());
+    assert!(unknown.stderr.contains("--engine collide/robustt"), "{}", unknown.both());
+    let bad = crashtest(&["diff", &a, &b, "--as", "collide/robust"]);
+    assert_eq!(bad.code, 2, "{}", bad.both());
+
+    let (s0, s1) = (report("1", "s", &["--shard", "0/2"]), report("1", "s", &["--shard", "1/2"]));
+    let _ = (s0, s1);
+    let shards: Vec<String> = std::fs::read_dir(s.path("s"))
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().contains("-shard")))
+        .map(|p| p.display().to_string())
+        .collect();
+    assert_eq!(shards.len(), 2, "{shards:?}");
+    let m = crashtest(&["merge", &shards[0], &shards[1], "--out", &out("m")]);
+    assert_eq!(m.code, 0, "{}", m.both());
+    let read = |dir: &str| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(format!("{dir}/findings.json")).unwrap()).unwrap()
+    };
+    let (merged, whole) = (read(&format!("{}/latest", out("m"))), read(&a));
+    assert_eq!(merged["discrepancies"], whole["discrepancies"], "the shards' findings add up to the whole run's");
+    let count = |v: &serde_json::Value| v["findings"].as_array().map_or(0, Vec::len);
+    assert_eq!(count(&merged), count(&whole));
+}

@@ -403,6 +403,15 @@ impl FindingsFile {
             f.variants.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
         }
         findings.sort_by(report_order);
+        // Named anew in the merged order (shards may have numbered two
+        // findings' names differently); each shrunk case's file follows.
+        name_all(&mut findings);
+        for f in &mut findings {
+            if let Some(s) = &mut f.shrunk {
+                s.file = format!("findings/{}.json", f.name);
+                s.case.name = f.name.clone();
+            }
+        }
         FindingsFile {
             format: FORMAT.into(),
             discrepancies,
