@@ -518,11 +518,7 @@ fn findings_diff_and_merge_from_the_command_line() {
     let (a, b) = (report("1", "a", &[]), report("2", "b", &[]));
     let f = crashtest(&["findings", &a]);
     assert_eq!(f.code, 0, "{}", f.both());
-    assert!(
-        f.stdout.contains("collide/lecture: toi") && f.stdout.contains("replay: crashtest check"),
-        "{}",
-        f.both()
-    );
+    assert!(f.stdout.contains("collide/lecture: toi") && f.stdout.contains("replay: crashtest check"), "{}", f.both());
     let none = crashtest(&["findings", &out("a")]);
     assert_eq!(none.code, 2, "{}", none.both());
     assert!(none.stderr.contains("findings.json"), "{}", none.both());
