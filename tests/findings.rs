@@ -85,6 +85,11 @@ fn parrys_ball_half_space_defect_is_one_finding_with_a_failing_reproduction_of_a
     assert!(failed, "the reproduction passed: parry's answer is right now");
 }
 
+/// What a replay's failure adds: a changed judgement or engine makes a kept
+/// sample stale.
+const AGAIN: &str = " (if crashtest's judgement or an engine's pinned version changed on purpose, write \
+                     reports/sample again: reports/README.md says how)";
+
 /// Replays every shrunk case of `file` from the report folder `dir` with its
 /// engine of `set` and checks that it shows its finding's defect and cause —
 /// in one of `shrink::REPLAYS` judgements: an engine that answers one case
@@ -105,11 +110,11 @@ fn replay_all(file: &FindingsFile, dir: &Path, set: &EngineSet) -> usize {
             .filter_map(|_| judged())
             .find(|sig| f.signature.same_defect(sig))
             .or_else(judged)
-            .unwrap_or_else(|| panic!("{}: the shrunk case no longer shows a discrepancy", s.file));
-        assert!(f.signature.same_defect(&sig), "{}: {:?} replays as {:?}", s.file, f.signature, sig);
+            .unwrap_or_else(|| panic!("{}: the shrunk case no longer shows a discrepancy{AGAIN}", s.file));
+        assert!(f.signature.same_defect(&sig), "{}: {:?} replays as {:?}{AGAIN}", s.file, f.signature, sig);
         let precision = engine.precision_for(lc).unwrap_or(53);
         let cause: Cause = harness::findings::signature::cause_of(&sig, lc, precision, false);
-        assert_eq!(cause, f.cause, "{}", s.file);
+        assert_eq!(cause, f.cause, "{}{AGAIN}", s.file);
         n += 1;
     }
     n

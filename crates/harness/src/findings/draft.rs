@@ -129,6 +129,12 @@ fn parry_program(engine: &Engine, lc: &LoadedCase, truth: &Answer, tol: &Toleran
             let seg = crashtest_core::geom::Segment { start: s.start, end: s.end };
             Some(parry::intersect(krate, &version, &seg, &shape(b)?, w.hit.as_ref(), &allow))
         }
+        (Query::Toi, Answer::Toi(w)) => {
+            let Shape::Sphere(a) = &lc.case.a else { return None };
+            let ball = crashtest_core::geom::Sphere { center: a.center, radius: a.radius };
+            let (va, vb) = (lc.case.a.velocity(), b.velocity());
+            Some(parry::toi(krate, &version, &ball, &va, &shape(b)?, &vb, lc.case.t_max(), w.toi.as_ref(), &allow))
+        }
         (Query::Overlap, Answer::Overlap(w)) => {
             let (Shape::Aabb(x), Shape::Aabb(y)) = (&lc.case.a, b) else { return None };
             let bx = |s: &crate::case::AabbSpec| crashtest_core::geom::Aabb { min: s.min, max: s.max };
@@ -148,12 +154,18 @@ pub fn reproduction(engine: &Engine, lc: &LoadedCase, truth: &Truth) -> Option<R
         let r = hello.reproductions.iter().find(|r| r.query == pair.query && r.a == pair.a && r.b == pair.b)?;
         return Some(Reproduction { language: r.language.clone(), code: fill(&r.script, &lc.case) });
     }
-    if engine.name == oracle::parry::Parry64::NAME || engine.name == oracle::parry::Parry32::NAME {
+    if is_parry(engine) {
         let tol = Tolerance::for_precision(engine.precision_for(lc));
         return parry_program(engine, lc, truth.answer.as_ref()?, &tol)
             .map(|code| Reproduction { language: "rust".into(), code });
     }
     None
+}
+
+/// Whether the engine is parry (either precision), whose programs come from
+/// its adapter.
+pub fn is_parry(engine: &Engine) -> bool {
+    engine.name == oracle::parry::Parry64::NAME || engine.name == oracle::parry::Parry32::NAME
 }
 
 /// Whether a finding's engine is a peer's (its findings get drafts): every

@@ -9,7 +9,7 @@
 //! point on shape 2. So the program panics exactly while parry's answer stays
 //! outside the allowances crashtest judged it by — a bug report's test.
 
-use crashtest_core::geom::{Aabb, Contact, Plane, Segment, SegmentHit, Sphere, Triangle};
+use crashtest_core::geom::{Aabb, Contact, P3, Plane, Segment, SegmentHit, Sphere, Toi, Triangle};
 
 /// One shape of a reproduction.
 #[derive(Clone, Copy, Debug)]
@@ -139,6 +139,53 @@ pub fn intersect(
         None => l.push("assert!(hit.is_none(), \"exact: the segment misses\");".into()),
         Some(h) => {
             l.push(format!("let hit = hit.expect(\"exact: a hit at t = {}\");", lit(h.t)));
+            l.push(format!(
+                "assert!((hit.time_of_impact - {}).abs() <= {:e}, \"t {{}}, exact {}\", hit.time_of_impact);",
+                lit(h.t),
+                allow.t,
+                lit(h.t)
+            ));
+        }
+    }
+    finish(l)
+}
+
+/// The program for a time of impact: the ball `a` moving at `va` against `b`
+/// moving at `vb` over `[0, t_max]`, cast with the adapter's options
+/// (`cast.rs`: target distance 0, stop at penetration, impact geometry
+/// computed), the exact first impact `exact` or none. Only the time is
+/// asserted: parry's witnesses and normals are in each shape's local frame.
+#[allow(clippy::too_many_arguments, reason = "one case's shapes, motions and answer, as the adapter takes them")]
+pub fn toi(
+    krate: &str,
+    version: &str,
+    a: &Sphere,
+    va: &P3,
+    b: &Shape,
+    vb: &P3,
+    t_max: f64,
+    exact: Option<&Toi>,
+    allow: &Allowed,
+) -> String {
+    let mut l =
+        header(krate, version, "shape cast", &["math::{Pose, Vector}", "query::{self, ShapeCastOptions}", "shape::*"]);
+    l.extend(build(&Shape::Sphere(*a), 1));
+    l.extend(build(b, 2));
+    l.push(format!(
+        "let options = ShapeCastOptions {{ max_time_of_impact: {}, target_distance: 0.0, stop_at_penetration: true, \
+         compute_impact_geometry_on_penetration: true }};",
+        lit(t_max)
+    ));
+    l.push(format!(
+        "let hit = query::cast_shapes(&pos1, {}, &shape1, &pos2, {}, &shape2, options).unwrap();",
+        vec3(va),
+        vec3(vb)
+    ));
+    l.push("println!(\"{hit:?}\");".into());
+    match exact {
+        None => l.push("assert!(hit.is_none(), \"exact: no impact before t_max\");".into()),
+        Some(h) => {
+            l.push(format!("let hit = hit.expect(\"exact: an impact at t = {}\");", lit(h.t)));
             l.push(format!(
                 "assert!((hit.time_of_impact - {}).abs() <= {:e}, \"t {{}}, exact {}\", hit.time_of_impact);",
                 lit(h.t),
