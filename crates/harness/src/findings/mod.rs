@@ -36,8 +36,19 @@ pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet
     file.findings.par_iter_mut().filter(|f| f.is_discrepancy()).for_each(|f| {
         let Some(lc) = f.representative.take() else { return };
         let Some(engine) = set.judged.iter().find(|e| e.name == f.cause.engine) else { return };
-        let out = shrink::shrink(&lc, &f.signature, engine, &set.referee);
-        let replayed = shrink::replays(&out.case, &f.signature, engine, &set.referee);
+        let mut out = shrink::shrink(&lc, &f.signature, engine, &set.referee);
+        let mut replayed = shrink::replays(&out.case, &f.signature, engine, &set.referee);
+        if replayed < shrink::REPLAYS {
+            // The shrunk case shows the defect less reliably than it might:
+            // the original, if it does better.
+            let original = shrink::replays(&lc, &f.signature, engine, &set.referee);
+            if original > replayed {
+                out.case = lc.clone();
+                out.numbers.1 = out.numbers.0;
+                out.cost.1 = out.cost.0;
+                replayed = original;
+            }
+        }
         let (_, result, truth) = shrink::judge_one(engine, &set.referee, &out.case);
         let mut case = as_fixture(&out.case, truth.answer.as_ref().map(crate::check::answer_as_expect));
         case.name = f.name.clone();
