@@ -325,6 +325,17 @@ pub fn angle(a: &P3, b: &P3) -> f64 {
     s.atan2(d)
 }
 
+/// A normal that is the zero vector is no direction: whatever the normal's
+/// allowance (π where the referee's own normal is a fallback, as for
+/// concentric spheres), an engine's zero normal beside the referee's unit one
+/// is a disagreement, never an agreement by the angle `angle` gives it.
+fn no_direction(got: &P3, want: &P3, value: &mut Vec<String>) {
+    let zero = |p: &P3| p.iter().all(|x| *x == 0.0);
+    if zero(got) && !zero(want) {
+        value.push("normal is the zero vector (no direction)".into());
+    }
+}
+
 /// Whether every number of an answer is finite. The referee's answer to a case
 /// whose exact answer lies beyond `f64`'s range is not (its rounding is ±∞):
 /// such a case is refused as out of range, and no engine is graded on it.
@@ -478,6 +489,7 @@ pub fn judge(
                 e.depth = Some(dd);
                 over("depth", dd, allow.depth, "", &mut value);
                 let a = angle(&gc.normal, &wc.normal);
+                no_direction(&gc.normal, &wc.normal, &mut value);
                 e.normal = Some(a);
                 over("normal", a, allow.normal, " rad", &mut value);
             }
@@ -505,6 +517,7 @@ pub fn judge(
                     e.t = Some(dt);
                     over("t", dt, allow.t, "", &mut value);
                     let a = angle(&gh.normal, &wh.normal);
+                    no_direction(&gh.normal, &wh.normal, &mut value);
                     e.normal = Some(a);
                     over("normal", a, allow.normal, " rad", &mut value);
                     if let (Some(gb), Some(wb)) = (&gh.barycentric, &wh.barycentric) {
@@ -578,6 +591,7 @@ pub fn judge(
                 e.point = Some(dp);
                 over("point", dp, allow.point, "", &mut value);
                 let a = angle(&gt.normal, &wt.normal);
+                no_direction(&gt.normal, &wt.normal, &mut value);
                 e.normal = Some(a);
                 over("normal", a, allow.normal, " rad", &mut value);
             }
@@ -700,4 +714,38 @@ pub fn headline(e: &Errors, scale: f64) -> f64 {
         .into_iter()
         .flatten()
         .fold(0.0, f64::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::load::{Loaded, load_str_into};
+
+    /// Concentric spheres: the referee's normal is its fallback, and any
+    /// direction is allowed (π) — but not the zero vector.
+    #[test]
+    fn a_zero_normal_is_never_an_agreement() {
+        let text = r#"{"schema": "crashtest-fixture/1", "cases": [{"name": "concentric", "query": "contact",
+            "a": {"sphere": {"center": [1, 2, 3], "radius": 1}}, "b": {"sphere": {"center": [1, 2, 3], "radius": 2}}}]}"#;
+        let mut loaded = Loaded::default();
+        load_str_into(std::path::Path::new("c.json"), text, &mut loaded);
+        let lc = &loaded.cases[0];
+        let set = crate::engines::EngineSet::default();
+        let truth = set.referee.run(lc).expect("the referee answers");
+        let tol = Tolerance::for_precision(Some(53));
+        let Answer::Contact(w) = &truth else { panic!("a contact answer") };
+        let wc = w.contact.expect("concentric spheres touch");
+        let allowed = allowed(lc, &truth, &tol);
+        assert!(allowed.normal >= std::f64::consts::PI, "any direction is allowed here: {allowed:?}");
+        let with = |normal: P3| {
+            let mut a = *w;
+            a.contact = Some(crashtest_core::geom::Contact { normal, ..wc });
+            judge(lc, &Answer::Contact(a), &truth, &tol, None).0
+        };
+        assert_eq!(with([0.0, 1.0, 0.0]), Verdict::Agree, "another direction is allowed");
+        match with([0.0, 0.0, 0.0]) {
+            Verdict::Disagree { reasons } => assert!(reasons.iter().any(|r| r.contains("zero vector")), "{reasons:?}"),
+            other => panic!("a zero normal judged {other:?}"),
+        }
+    }
 }
