@@ -79,7 +79,7 @@ pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet
 }
 
 /// Writes the sample a repository keeps of a report (`reports/sample`): its
-/// findings (`findings.md`, and `findings.json` without the examples'
+/// findings (`findings.md`, and `findings.json` — on one line — without the examples'
 /// cases), each finding's shrunk case and draft (`findings/`), and the
 /// report's overview table (`summary.md`). The folder's other files are
 /// left as they are; its old `findings/` is replaced. Returns the files
@@ -101,7 +101,10 @@ pub fn write_sample(
     let dir_name = "reports/sample";
     let mut files: Vec<(std::path::PathBuf, String)> = Vec::new();
     files.push(("findings.md".into(), render::markdown(&file, dir_name)));
-    files.push(("findings.json".into(), pretty(&file)));
+    // One line: the sample is kept in the repository, and its findings are
+    // read by a test and by `crashtest findings`, not by eye (findings.md is
+    // the readable copy).
+    files.push(("findings.json".into(), serde_json::to_string(&file).unwrap_or_default() + "\n"));
     let overview = crate::render::markdown::table_md(&crate::render::markdown::overview_table(summary));
     let p = &summary.provenance;
     files.push((

@@ -197,13 +197,19 @@ fn example(c: &CaseResult, lc: &LoadedCase, ix: usize, headline: f64) -> Example
     };
     Example {
         case: c.name.clone(),
-        origin: if lc.case.source.starts_with("generated") { lc.case.source.clone() } else { c.file.clone() },
+        origin: origin(c, lc),
         verdict: r.verdict.label().into(),
         reasons,
         headline,
         answers,
         fixture: as_fixture(lc, c.referee.clone()),
     }
+}
+
+/// Where a case came from: its generator (the source of a generated case),
+/// or its fixture file.
+pub fn origin(c: &CaseResult, lc: &LoadedCase) -> String {
+    if lc.case.source.starts_with("generated") { lc.case.source.clone() } else { c.file.clone() }
 }
 
 /// The case as a fixture that reproduces wherever it is saved: meshes inline,

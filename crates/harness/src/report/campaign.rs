@@ -6,7 +6,7 @@
 //! gives the same summary whatever the thread count. Timing runs afterwards, one
 //! engine at a time on one thread, over the same cases.
 
-use crate::case::{Case, Expect, FixtureFile, Query, SCHEMA};
+use crate::case::{Expect, FixtureFile, Query, SCHEMA};
 use crate::check::{CaseResult, check_case, run_caught};
 use crate::engine::Engine;
 use crate::engines::{self, EngineSet};
@@ -352,21 +352,11 @@ fn discrepancy(c: &CaseResult, lc: &LoadedCase, ix: usize, tol: Tolerance) -> Di
     if let Some(a) = &c.referee {
         answers.insert(engines::REFEREE.into(), a.clone());
     }
-    let case = Case {
-        expect: c.referee.clone().map(|mut e| {
-            // Bounding spheres are checked by their radius; the AABB exactly.
-            if lc.case.query != Query::Bounds {
-                e.min_radius = None;
-            }
-            e
-        }),
-        ..lc.case.clone()
-    };
-    let case = crate::findings::inline_meshes(case, lc);
+    let case = crate::findings::as_fixture(lc, c.referee.clone());
     Discrepancy {
         engine: r.engine.clone(),
         query: c.query,
-        origin: if lc.case.source.starts_with("generated") { lc.case.source.clone() } else { c.file.clone() },
+        origin: crate::findings::model::origin(c, lc),
         verdict: r.verdict.clone(),
         errors: r.errors,
         scale: c.scale,

@@ -135,18 +135,7 @@ pub fn intersect(
     l.extend(build(b, 2));
     l.push("let hit = shape2.cast_ray_and_get_normal(&pos2, &ray, 1.0, false);".into());
     l.push("println!(\"{hit:?}\");".into());
-    match exact {
-        None => l.push("assert!(hit.is_none(), \"exact: the segment misses\");".into()),
-        Some(h) => {
-            l.push(format!("let hit = hit.expect(\"exact: a hit at t = {}\");", lit(h.t)));
-            l.push(format!(
-                "assert!((hit.time_of_impact - {}).abs() <= {:e}, \"t {{}}, exact {}\", hit.time_of_impact);",
-                lit(h.t),
-                allow.t,
-                lit(h.t)
-            ));
-        }
-    }
+    time_asserted(&mut l, exact.map(|h| h.t), allow.t, "the segment misses", "a hit");
     finish(l)
 }
 
@@ -182,18 +171,7 @@ pub fn toi(
         vec3(vb)
     ));
     l.push("println!(\"{hit:?}\");".into());
-    match exact {
-        None => l.push("assert!(hit.is_none(), \"exact: no impact before t_max\");".into()),
-        Some(h) => {
-            l.push(format!("let hit = hit.expect(\"exact: an impact at t = {}\");", lit(h.t)));
-            l.push(format!(
-                "assert!((hit.time_of_impact - {}).abs() <= {:e}, \"t {{}}, exact {}\", hit.time_of_impact);",
-                lit(h.t),
-                allow.t,
-                lit(h.t)
-            ));
-        }
-    }
+    time_asserted(&mut l, exact.map(|h| h.t), allow.t, "no impact before t_max", "an impact");
     finish(l)
 }
 
@@ -213,6 +191,23 @@ pub fn overlap(krate: &str, version: &str, a: &Aabb, b: &Aabb, exact: bool) -> S
         if exact { "they overlap" } else { "apart" }
     ));
     finish(l)
+}
+
+/// The lines asserting a `hit` (a ray's or a cast's, with `time_of_impact`):
+/// none when the exact answer has none (`none` says why), else one at the
+/// exact time `t` (`some` names it) within `allowed`.
+fn time_asserted(l: &mut Vec<String>, t: Option<f64>, allowed: f64, none: &str, some: &str) {
+    match t {
+        None => l.push(format!("assert!(hit.is_none(), \"exact: {none}\");")),
+        Some(t) => {
+            l.push(format!("let hit = hit.expect(\"exact: {some} at t = {}\");", lit(t)));
+            l.push(format!(
+                "assert!((hit.time_of_impact - {}).abs() <= {allowed:e}, \"t {{}}, exact {}\", hit.time_of_impact);",
+                lit(t),
+                lit(t)
+            ));
+        }
+    }
 }
 
 fn finish(mut l: Vec<String>) -> String {
