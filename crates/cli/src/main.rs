@@ -396,6 +396,11 @@ fn main() -> ExitCode {
                         p.wall_seconds,
                         outcome.summary.discrepancies
                     );
+                    if !p.phases.is_empty() {
+                        let parts: Vec<String> =
+                            p.phases.iter().map(|(name, s)| format!("{name} {s:.1} s")).collect();
+                        outln!("  {}", parts.join(" · "));
+                    }
                     for (name, rate) in &outcome.summary.throughput {
                         outln!("  {name}: {rate:.0} cases/s");
                     }

@@ -255,6 +255,12 @@ pub struct Provenance {
     pub random_cases: u64,
     /// Wall time of the run, seconds (for merged reports, the sum over shards).
     pub wall_seconds: f64,
+    /// Where the wall time went: each phase of the run (making the cases,
+    /// asking the process engines, judging, shrinking the findings, timing,
+    /// the extra sections) and its seconds, in run order (for merged reports,
+    /// summed over shards by phase).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub phases: Vec<(String, f64)>,
     /// When the run started, UTC, RFC 3339.
     pub started: String,
     /// Where the accuracy–speed charts' times come from: the criterion run

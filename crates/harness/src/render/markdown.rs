@@ -286,6 +286,17 @@ fn process_line(p: &crate::protocol::client::ProcessInfo) -> String {
     out
 }
 
+/// The wall time, with the phases it went to when the run recorded them:
+/// "55.3 s (making the cases 0.4 s, asking the process engines 30.1 s, …)".
+fn wall_time(p: &crate::summary::Provenance) -> String {
+    let total = format!("{} s", sig3(p.wall_seconds));
+    if p.phases.is_empty() {
+        return total;
+    }
+    let parts: Vec<String> = p.phases.iter().map(|(name, s)| format!("{name} {} s", sig3(*s))).collect();
+    format!("{total} ({})", parts.join(", "))
+}
+
 /// The provenance as `(field, value)` lines, in the order a report shows them.
 pub fn provenance_lines(summary: &Summary) -> Vec<(String, String)> {
     let p = &summary.provenance;
@@ -301,7 +312,7 @@ pub fn provenance_lines(summary: &Summary) -> Vec<(String, String)> {
         ("profile".into(), p.profile.clone()),
         ("machine".into(), p.machine.clone()),
         ("started".into(), p.started.clone()),
-        ("wall time".into(), format!("{} s", sig3(p.wall_seconds))),
+        ("wall time".into(), wall_time(p)),
         ("seed".into(), p.seed.to_string()),
         ("random cases per query".into(), p.cases_per_query.to_string()),
         ("full-range cases per query".into(), p.full_range_per_query.to_string()),

@@ -388,10 +388,13 @@ pub fn time_engine(engine: &Engine, cases: &[&LoadedCase]) -> Option<Timing> {
 /// Runs the campaign.
 pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     let wall = Instant::now();
+    let mut phases = Phases::default();
     let set = &config.engines;
     let (judged, referee) = (&set.judged, &set.referee);
     let (cases, input_errors) = cases(config);
+    phases.end(PHASE_CASES);
     set.prefetch(&cases);
+    phases.end(PHASE_PROCESS);
     let bar = progress_bar(config.progress, cases.len() as u64);
     let results: Vec<CaseResult> = cases
         .par_iter()
@@ -424,9 +427,11 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
         }
     }
     let judge_seconds = wall.elapsed().as_secs_f64();
+    phases.end(PHASE_JUDGE);
     let versions = engine_infos(judged).into_iter().map(|e| (e.name, e.version)).collect();
     let mut findings = collector.finish(&versions);
     crate::findings::shrink_and_draft(&mut findings, set);
+    phases.end(PHASE_SHRINK);
 
     let mut throughput = Vec::new();
     let mut referee_seconds = 0.0;
@@ -467,6 +472,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
         throughput.push(("campaign (referee included)".into(), n / judge_seconds));
         let without = (judge_seconds - referee_seconds / rayon::current_num_threads() as f64).max(1e-9);
         throughput.push(("campaign (referee excluded, estimated)".into(), n / without));
+        phases.end(PHASE_TIMING);
     }
 
     let (full, ordinary): (Vec<_>, Vec<_>) = map.into_iter().partition(|((_, _, full), _)| *full);
@@ -500,7 +506,14 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     provenance.shards = config.shard.into_iter().collect();
     provenance.fixture_cases = fixture_cases;
     provenance.random_cases = cases.len() as u64 - fixture_cases;
+    let sections = if config.sections && config.only.is_none() && config.shard.is_none_or(|(i, _)| i == 0) {
+        sections(config, &results)
+    } else {
+        Vec::new()
+    };
+    phases.end(PHASE_SECTIONS);
     provenance.wall_seconds = wall.elapsed().as_secs_f64();
+    provenance.phases = phases.0;
     provenance.speed_source = speed_source;
     Outcome {
         summary: Summary {
@@ -514,11 +527,41 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
         discrepancies,
         input_errors,
         findings,
-        sections: if config.sections && config.only.is_none() && config.shard.is_none_or(|(i, _)| i == 0) {
-            sections(config, &results)
-        } else {
-            Vec::new()
-        },
+        sections,
+    }
+}
+
+/// The phases of a run, as [`Provenance::phases`] names them.
+pub const PHASE_CASES: &str = "making the cases";
+/// Asking the process engines (their answers are fetched in batches first).
+pub const PHASE_PROCESS: &str = "asking the process engines";
+/// Judging every engine's answers against the referee's (the referee runs here).
+pub const PHASE_JUDGE: &str = "judging";
+/// Shrinking the findings and drafting their reports.
+pub const PHASE_SHRINK: &str = "shrinking the findings";
+/// The timing loops.
+pub const PHASE_TIMING: &str = "timing";
+/// The extra sections.
+pub const PHASE_SECTIONS: &str = "sections";
+
+/// Phase timings: each phase ends where the previous one ended.
+struct Phases(Vec<(String, f64)>, Instant);
+
+impl Default for Phases {
+    fn default() -> Self {
+        Self(Vec::new(), Instant::now())
+    }
+}
+
+impl Phases {
+    /// Ends `name`, when it took any time (a phase that was skipped is not listed).
+    fn end(&mut self, name: &str) {
+        let now = Instant::now();
+        let s = (now - self.1).as_secs_f64();
+        if s > 0.0005 {
+            self.0.push((name.to_string(), s));
+        }
+        self.1 = now;
     }
 }
 

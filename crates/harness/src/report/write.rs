@@ -374,6 +374,7 @@ pub fn merge(reports: &[ReadReport]) -> Result<(Summary, Vec<Value>), String> {
     out.provenance.fixture_cases = 0;
     out.provenance.random_cases = 0;
     out.provenance.wall_seconds = 0.0;
+    out.provenance.phases.clear();
     out.discrepancies = 0;
     let mut order: Vec<(String, Option<crate::case::Query>)> = Vec::new();
     let mut stats: BTreeMap<(String, Option<crate::case::Query>), EngineQueryStats> = BTreeMap::new();
@@ -399,6 +400,12 @@ pub fn merge(reports: &[ReadReport]) -> Result<(Summary, Vec<Value>), String> {
         out.provenance.fixture_cases += s.provenance.fixture_cases;
         out.provenance.random_cases += s.provenance.random_cases;
         out.provenance.wall_seconds += s.provenance.wall_seconds;
+        for (name, seconds) in &s.provenance.phases {
+            match out.provenance.phases.iter_mut().find(|(n, _)| n == name) {
+                Some((_, total)) => *total += seconds,
+                None => out.provenance.phases.push((name.clone(), *seconds)),
+            }
+        }
         out.discrepancies += s.discrepancies;
         for st in &s.stats {
             let key = (st.engine.clone(), st.query);
