@@ -58,7 +58,10 @@ enum Command {
         #[arg(long, value_parser = parse_query)]
         only: Option<harness::case::Query>,
         /// Run one deterministic slice of the cases, `i/n` (0-based): shard i of n.
-        /// Join shard reports with `crashtest merge`.
+        /// Without it, a task of a Slurm job array (SLURM_ARRAY_TASK_ID, _MIN,
+        /// _COUNT) or a pod of a Kubernetes Indexed Job (JOB_COMPLETION_INDEX,
+        /// JOB_COMPLETIONS) runs its own shard (docs/SCALE.md). Join shard
+        /// reports with `crashtest merge`.
         #[arg(long, value_parser = parse_shard)]
         shard: Option<(u32, u32)>,
         /// Fixture files or folders to include.
@@ -354,6 +357,17 @@ fn main() -> ExitCode {
                 Ok(set) => set,
                 Err(code) => return code,
             };
+            let shard = match harness::report::shard::resolve(shard, |k| std::env::var(k).ok()) {
+                Ok(s) => s,
+                Err(e) => {
+                    eprintln!("error: the shard: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            if let Some(s) = &shard {
+                outln!("shard {}/{} (from {})", s.shard.0, s.shard.1, s.from);
+            }
+            let shard = shard.map(|s| s.shard);
             // The run holds its random cases of both sets: the limit is on their sum.
             let held = cases.saturating_add(full_range);
             if let Err(e) = harness::report::campaign::check_cases(held, shard) {
@@ -397,8 +411,7 @@ fn main() -> ExitCode {
                         outcome.summary.discrepancies
                     );
                     if !p.phases.is_empty() {
-                        let parts: Vec<String> =
-                            p.phases.iter().map(|(name, s)| format!("{name} {s:.1} s")).collect();
+                        let parts: Vec<String> = p.phases.iter().map(|(name, s)| format!("{name} {s:.1} s")).collect();
                         outln!("  {}", parts.join(" · "));
                     }
                     for (name, rate) in &outcome.summary.throughput {

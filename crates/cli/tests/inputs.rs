@@ -49,15 +49,16 @@ impl Run {
 /// [`TIME_LIMIT`]. Output is read on threads, so a chatty run cannot block on a
 /// full pipe.
 fn crashtest_env(args: &[&str], envs: &[(&str, &str)]) -> Run {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_crashtest"))
-        .current_dir(ROOT)
-        .args(args)
-        .envs(envs.iter().copied())
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("crashtest starts");
+    let mut command = Command::new(env!("CARGO_BIN_EXE_crashtest"));
+    command.current_dir(ROOT).args(args).envs(envs.iter().copied());
+    run_limited(command, &format!("crashtest {args:?}"))
+}
+
+/// Runs `command` with its output piped, killing it and failing past
+/// [`TIME_LIMIT`]; `what` names it in that failure.
+fn run_limited(mut command: Command, what: &str) -> Run {
+    let mut child =
+        command.stdin(Stdio::null()).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("the command starts");
     let reader = |mut r: Box<dyn Read + Send>| {
         std::thread::spawn(move || {
             let mut bytes = Vec::new();
@@ -75,7 +76,7 @@ fn crashtest_env(args: &[&str], envs: &[(&str, &str)]) -> Run {
         if start.elapsed() > TIME_LIMIT {
             let _ = child.kill();
             let _ = child.wait();
-            panic!("crashtest {args:?} still running after {TIME_LIMIT:?}: killed");
+            panic!("{what} still running after {TIME_LIMIT:?}: killed");
         }
         std::thread::sleep(Duration::from_millis(20));
     };
@@ -553,4 +554,140 @@ fn findings_diff_and_merge_from_the_command_line() {
     assert_eq!(merged["discrepancies"], whole["discrepancies"], "the shards' findings add up to the whole run's");
     let count = |v: &serde_json::Value| v["findings"].as_array().map_or(0, Vec::len);
     assert_eq!(count(&merged), count(&whole));
+}
+
+/// Four shards started as a scheduler starts them — four processes at once,
+/// each told its shard only by a Slurm job array's variables — and merged, give
+/// the summary and findings of one unsharded run of the same campaign.
+#[test]
+fn four_scheduled_shards_merge_into_the_unsharded_run() {
+    let s = Scratch::new("scheduled-shards");
+    let args = |dir: &str| -> Vec<String> {
+        [
+            "report",
+            "--cases",
+            "300",
+            "--full-range",
+            "30",
+            "--no-sections",
+            "--no-timing",
+            "--engines",
+            "collide/robust,collide/lecture,collide-f32/robust,parry3d-f64",
+            "--seed",
+            "5",
+            "--out",
+            &s.s(dir),
+        ]
+        .map(String::from)
+        .to_vec()
+    };
+    let run = |dir: &str, env: Vec<(String, String)>| {
+        let a = args(dir);
+        let a: Vec<&str> = a.iter().map(String::as_str).collect();
+        let e: Vec<(&str, &str)> = env.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
+        crashtest_env(&a, &e)
+    };
+    let whole = run("whole", Vec::new());
+    assert_eq!(whole.code, 0, "{}", whole.both());
+    // Task ids 1..=4, as `sbatch --array=1-4` numbers them.
+    let shards: Vec<Run> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (1..=4)
+            .map(|id| {
+                let env = [
+                    ("SLURM_ARRAY_TASK_ID", id.to_string()),
+                    ("SLURM_ARRAY_TASK_MIN", "1".into()),
+                    ("SLURM_ARRAY_TASK_MAX", "4".into()),
+                    ("SLURM_ARRAY_TASK_COUNT", "4".into()),
+                ];
+                let env: Vec<(String, String)> = env.into_iter().map(|(k, v)| (k.to_string(), v)).collect();
+                scope.spawn(move || run("shards", env))
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().expect("shard thread")).collect()
+    });
+    for (i, r) in shards.iter().enumerate() {
+        assert_eq!(r.code, 0, "shard {i}: {}", r.both());
+        assert!(r.stdout.contains(&format!("shard {i}/4 (from SLURM_ARRAY_TASK_ID={}", i + 1)), "{}", r.both());
+    }
+    let dirs: Vec<String> = std::fs::read_dir(s.path("shards"))
+        .expect("shard reports")
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().contains("-shard")))
+        .map(|p| p.display().to_string())
+        .collect();
+    assert_eq!(dirs.len(), 4, "{dirs:?}");
+    let mut merge = vec!["merge".to_string()];
+    merge.extend(dirs);
+    merge.extend(["--out".to_string(), s.s("merged")]);
+    let m = crashtest(&merge.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(m.code, 0, "{}", m.both());
+    let read = |dir: PathBuf, file: &str| -> serde_json::Value {
+        let text = std::fs::read_to_string(dir.join("latest").join(file)).expect("report file");
+        serde_json::from_str(&text).expect("JSON")
+    };
+    let (merged, one) = (read(s.path("merged"), "summary.json"), read(s.path("whole"), "summary.json"));
+    // Counts and histograms are integers and exact sums; the timings (off here)
+    // and the provenance (times, shards) are the run's own.
+    for field in ["stats", "full_range", "discrepancies"] {
+        assert!(merged[field] == one[field], "{field}: the merged shards differ from the unsharded run");
+    }
+    assert_eq!(merged["provenance"]["random_cases"], one["provenance"]["random_cases"]);
+    assert_eq!(merged["provenance"]["fixture_cases"], one["provenance"]["fixture_cases"]);
+    let causes = |v: &serde_json::Value| -> Vec<(String, u64)> {
+        let mut c: Vec<(String, u64)> = v["findings"]
+            .as_array()
+            .expect("findings")
+            .iter()
+            .map(|f| (f["title"].as_str().unwrap_or_default().to_string(), f["count"].as_u64().unwrap_or(0)))
+            .collect();
+        c.sort();
+        c
+    };
+    let (mf, wf) = (read(s.path("merged"), "findings.json"), read(s.path("whole"), "findings.json"));
+    assert!(!causes(&wf).is_empty(), "the lecture's engines give findings at 300 cases");
+    assert_eq!(causes(&mf), causes(&wf), "the merged shards' findings differ from the unsharded run's");
+}
+
+/// The Slurm scripts of docs/scale, run by hand as Slurm runs them: two array
+/// tasks of crashtest.sbatch (no SLURM_ARRAY_JOB_ID, so nothing is queued),
+/// then merge.sbatch on their folder, which writes the merged report; with no
+/// shards there, merge.sbatch exits 2 and says so.
+#[test]
+fn the_slurm_scripts_run_and_merge_their_shards() {
+    let s = Scratch::new("slurm-scripts");
+    let script = |name: &str, env: &[(&str, &str)]| -> Run {
+        let mut command = Command::new("bash");
+        command
+            .current_dir(ROOT)
+            .arg(format!("docs/scale/{name}"))
+            .env("CRASHTEST", env!("CARGO_BIN_EXE_crashtest"))
+            .envs(env.iter().copied());
+        run_limited(command, name)
+    };
+    let out = s.s("campaign");
+    for id in ["0", "1"] {
+        let r = script(
+            "crashtest.sbatch",
+            &[
+                ("SLURM_ARRAY_TASK_ID", id),
+                ("SLURM_ARRAY_TASK_MIN", "0"),
+                ("SLURM_ARRAY_TASK_COUNT", "2"),
+                ("CASES", "100"),
+                ("OUT", &out),
+                ("ARGS", "--full-range 10 --no-sections --engines collide/robust,collide/lecture"),
+            ],
+        );
+        assert_eq!(r.code, 0, "task {id}: {}", r.both());
+        assert!(r.stdout.contains(&format!("shard {id}/2 (from SLURM_ARRAY_TASK_ID={id}")), "{}", r.both());
+    }
+    let m = script("merge.sbatch", &[("OUT", &out)]);
+    assert_eq!(m.code, 0, "{}", m.both());
+    assert!(m.stdout.contains("merged 2 shards"), "{}", m.both());
+    let summary = std::fs::read_to_string(s.path("campaign/latest/summary.json")).expect("the merged report");
+    let summary: serde_json::Value = serde_json::from_str(&summary).expect("JSON");
+    assert_eq!(summary["provenance"]["shards"], serde_json::json!([[0, 2], [1, 2]]));
+    let none = script("merge.sbatch", &[("OUT", &s.s("empty"))]);
+    assert_eq!(none.code, 2, "{}", none.both());
+    assert!(none.stderr.contains("no shard reports"), "{}", none.both());
 }

@@ -832,6 +832,7 @@ pub(crate) mod fixture {
                 fixture_cases: 12,
                 random_cases: 200,
                 wall_seconds: 3.25,
+                phases: vec![("judging".into(), 3.0)],
                 started: "2026-01-01T00:00:00Z".into(),
                 speed_source: None,
             },

@@ -8,4 +8,5 @@ pub mod bench;
 pub mod campaign;
 pub mod peers;
 pub mod provenance;
+pub mod shard;
 pub mod write;
