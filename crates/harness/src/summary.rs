@@ -261,6 +261,11 @@ pub struct Provenance {
     /// summed over shards by phase).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub phases: Vec<(String, f64)>,
+    /// The referee's two-stage computations while the cases were judged: each
+    /// stage's label, how often the floating-point stage settled it and how
+    /// often the exact stage had to (for merged reports, summed).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub referee_stages: Vec<(String, u64, u64)>,
     /// When the run started, UTC, RFC 3339.
     pub started: String,
     /// Where the accuracy–speed charts' times come from: the criterion run

@@ -833,6 +833,7 @@ pub(crate) mod fixture {
                 random_cases: 200,
                 wall_seconds: 3.25,
                 phases: vec![("judging".into(), 3.0)],
+                referee_stages: Vec::new(),
                 started: "2026-01-01T00:00:00Z".into(),
                 speed_source: None,
             },

@@ -286,6 +286,23 @@ fn process_line(p: &crate::protocol::client::ProcessInfo) -> String {
     out
 }
 
+/// How often each of the referee's floating-point stages settled its work:
+/// "bounds: … 10990 / 29 (99.7 % without the exact stage)".
+fn referee_stages(p: &crate::summary::Provenance) -> String {
+    if p.referee_stages.is_empty() {
+        return "none counted".into();
+    }
+    let parts: Vec<String> = p
+        .referee_stages
+        .iter()
+        .map(|(label, fast, exact)| {
+            let share = 100.0 * *fast as f64 / (*fast + *exact).max(1) as f64;
+            format!("{label} {fast} / {exact} ({share:.1} % without the exact stage)")
+        })
+        .collect();
+    parts.join("; ")
+}
+
 /// The wall time, with the phases it went to when the run recorded them:
 /// "55.3 s (making the cases 0.4 s, asking the process engines 30.1 s, …)".
 fn wall_time(p: &crate::summary::Provenance) -> String {
@@ -313,6 +330,7 @@ pub fn provenance_lines(summary: &Summary) -> Vec<(String, String)> {
         ("machine".into(), p.machine.clone()),
         ("started".into(), p.started.clone()),
         ("wall time".into(), wall_time(p)),
+        ("referee stages".into(), referee_stages(p)),
         ("seed".into(), p.seed.to_string()),
         ("random cases per query".into(), p.cases_per_query.to_string()),
         ("full-range cases per query".into(), p.full_range_per_query.to_string()),

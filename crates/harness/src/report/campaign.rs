@@ -395,6 +395,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     phases.end(PHASE_CASES);
     set.prefetch(&cases);
     phases.end(PHASE_PROCESS);
+    let stages_before = oracle::referee::stage_counts();
     let bar = progress_bar(config.progress, cases.len() as u64);
     let results: Vec<CaseResult> = cases
         .par_iter()
@@ -428,6 +429,14 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     }
     let judge_seconds = wall.elapsed().as_secs_f64();
     phases.end(PHASE_JUDGE);
+    // Other work in this process (another run, a test) may count too: the
+    // figures are at least this run's, and exactly them in a lone run.
+    let referee_stages: Vec<(String, u64, u64)> = oracle::referee::stage_counts()
+        .into_iter()
+        .zip(stages_before)
+        .map(|((stage, f1, e1), (_, f0, e0))| (stage.label().to_string(), f1 - f0, e1 - e0))
+        .filter(|(_, f, e)| f + e > 0)
+        .collect();
     let versions = engine_infos(judged).into_iter().map(|e| (e.name, e.version)).collect();
     let mut findings = collector.finish(&versions);
     crate::findings::shrink_and_draft(&mut findings, set);
@@ -507,13 +516,15 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     provenance.fixture_cases = fixture_cases;
     provenance.random_cases = cases.len() as u64 - fixture_cases;
     let sections = if config.sections && config.only.is_none() && config.shard.is_none_or(|(i, _)| i == 0) {
-        sections(config, &results)
+        let s = sections(config, &results);
+        phases.end(PHASE_SECTIONS);
+        s
     } else {
         Vec::new()
     };
-    phases.end(PHASE_SECTIONS);
     provenance.wall_seconds = wall.elapsed().as_secs_f64();
     provenance.phases = phases.0;
+    provenance.referee_stages = referee_stages;
     provenance.speed_source = speed_source;
     Outcome {
         summary: Summary {

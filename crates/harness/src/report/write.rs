@@ -375,6 +375,7 @@ pub fn merge(reports: &[ReadReport]) -> Result<(Summary, Vec<Value>), String> {
     out.provenance.random_cases = 0;
     out.provenance.wall_seconds = 0.0;
     out.provenance.phases.clear();
+    out.provenance.referee_stages.clear();
     out.discrepancies = 0;
     let mut order: Vec<(String, Option<crate::case::Query>)> = Vec::new();
     let mut stats: BTreeMap<(String, Option<crate::case::Query>), EngineQueryStats> = BTreeMap::new();
@@ -404,6 +405,15 @@ pub fn merge(reports: &[ReadReport]) -> Result<(Summary, Vec<Value>), String> {
             match out.provenance.phases.iter_mut().find(|(n, _)| n == name) {
                 Some((_, total)) => *total += seconds,
                 None => out.provenance.phases.push((name.clone(), *seconds)),
+            }
+        }
+        for (label, fast, exact) in &s.provenance.referee_stages {
+            match out.provenance.referee_stages.iter_mut().find(|(l, _, _)| l == label) {
+                Some((_, f, e)) => {
+                    *f += fast;
+                    *e += exact;
+                }
+                None => out.provenance.referee_stages.push((label.clone(), *fast, *exact)),
             }
         }
         out.discrepancies += s.discrepancies;

@@ -253,8 +253,161 @@ fn cloud(points: &[P3]) -> Result<Cloud, RefereeError> {
     Ok(Cloud { points, frame, denominator_bits })
 }
 
-/// The exact minimal ball: centre and squared radius as rationals.
+/// The exact minimal ball: centre and squared radius as rationals (by the two
+/// stages of [`min_ball_staged`]).
 fn min_ball_exact(points: &[P3]) -> Result<(V3, Q), RefereeError> {
+    min_ball_staged(points).map(|(ball, _)| ball)
+}
+
+/// The exact minimal ball by exact Welzl alone (no floating-point stage): the
+/// reference the two stages are checked against.
+#[cfg(test)]
+fn min_ball_welzl(points: &[P3]) -> Result<(V3, Q), RefereeError> {
+    super::exact_only(|| min_ball_staged(points)).map(|(ball, _)| ball)
+}
+
+/// The floating-point stage of [`min_ball`]: move-to-front Welzl on the cloud's
+/// `f64` images (in the filter's frame), tracking the support of each ball. Its
+/// answer is only a candidate support, which [`certified`] checks exactly; a
+/// wrong candidate (rounding in a nearly degenerate cloud) costs the exact
+/// stage, never a wrong ball.
+struct FloatWelzl<'a> {
+    points: &'a [Point],
+    order: Vec<usize>,
+}
+
+/// Relative slack of the floating-point stage's "inside" test: generous, since
+/// a point let in wrongly is caught by the exact certificate, and a point kept
+/// out wrongly only grows the candidate. Dimensionless.
+const FLOAT_STAGE_SLACK: f64 = 1e-10;
+
+/// The floating-point stage takes a support point as affinely dependent on
+/// the earlier ones when its new direction's squared length is at most this
+/// fraction of its squared offset (a sine of 1e-12). Like the slack above, it
+/// only steers the search: the certificate is exact. Dimensionless.
+const FLOAT_STAGE_DEPENDENT: f64 = 1e-24;
+
+/// The `f64` ball through `support` (the incremental construction of
+/// [`ball_through`] in floating point): centre and squared radius, or `None`
+/// when it is not finite.
+fn float_ball_through(support: &[usize], points: &[Point]) -> Option<(P3, f64)> {
+    let (&first, rest) = support.split_first()?;
+    let s0 = points[first].approx;
+    let (mut c, mut r2) = (s0, 0.0f64);
+    let mut basis: Vec<(P3, f64)> = Vec::with_capacity(3);
+    let d = |a: &P3, b: &P3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    for &j in rest {
+        let sj = points[j].approx;
+        let w = [sj[0] - s0[0], sj[1] - s0[1], sj[2] - s0[2]];
+        let mut u = w;
+        for (b, bb) in &basis {
+            let f = d(&w, b) / bb;
+            u = [u[0] - f * b[0], u[1] - f * b[1], u[2] - f * b[2]];
+        }
+        let uu = d(&u, &u);
+        // Affinely dependent up to rounding: nothing new (the exact
+        // certificate decides whether that was right).
+        if uu.partial_cmp(&(FLOAT_STAGE_DEPENDENT * d(&w, &w))) != Some(std::cmp::Ordering::Greater) {
+            continue;
+        }
+        let off = [sj[0] - c[0], sj[1] - c[1], sj[2] - c[2]];
+        let lambda = (d(&off, &off) - r2) / (2.0 * uu);
+        c = [c[0] + lambda * u[0], c[1] + lambda * u[1], c[2] + lambda * u[2]];
+        r2 += lambda * lambda * uu;
+        basis.push((u, uu));
+    }
+    (c.iter().all(|x| x.is_finite()) && r2.is_finite()).then_some((c, r2))
+}
+
+impl FloatWelzl<'_> {
+    /// As [`Welzl::mtf`], in `f64`: the ball and the support it was built on.
+    fn mtf(&mut self, end: usize, support: &mut Vec<usize>) -> Option<(P3, f64, Vec<usize>)> {
+        let mut ball = float_ball_through(support, self.points).map(|(c, r2)| (c, r2, support.clone()));
+        if support.len() == 4 {
+            return ball;
+        }
+        for i in 0..end {
+            let idx = self.order[i];
+            let p = self.points[idx].approx;
+            let inside = ball.as_ref().is_some_and(|(c, r2, _)| {
+                let w = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
+                w[0] * w[0] + w[1] * w[1] + w[2] * w[2] <= r2 * (1.0 + FLOAT_STAGE_SLACK)
+            });
+            if !inside {
+                support.push(idx);
+                ball = self.mtf(i, support);
+                support.pop();
+                ball.as_ref()?;
+                self.order[..=i].rotate_right(1);
+            }
+        }
+        ball
+    }
+}
+
+/// The exact ball through `support` when it is provably the minimal ball of
+/// the cloud, else `None`.
+///
+/// **Certificate.** The ball through the affinely independent points `S` of
+/// the support with its centre in their affine hull, and the centre inside
+/// their convex hull (every barycentric weight ≥ 0), is the minimal ball of
+/// `S` (any ball holding `S` has a radius at least as large). If it also holds
+/// every point of the cloud, it is the minimal ball of the cloud, which is
+/// unique: the same ball Welzl's exact algorithm finds. All three checks are
+/// exact (the containment test's `f64` filter answers only where its error
+/// bound leaves no doubt).
+fn certified(cloud: &Cloud, support: &[usize]) -> Option<(V3, Q)> {
+    let (&first, rest) = support.split_first()?;
+    let points = &cloud.points;
+    let s0 = &points[first].exact;
+    let mut center = s0.clone();
+    let mut r2 = Q::ZERO;
+    // Each independent direction: u, ‖u‖², its Gram–Schmidt coefficients on
+    // the earlier directions (u = w − Σ αᵢ uᵢ), and the centre's step λ along it.
+    let mut basis: Vec<(V3, Q, Vec<Q>, Q)> = Vec::with_capacity(3);
+    for &j in rest {
+        let sj = &points[j].exact;
+        let w = sub(sj, s0);
+        let alphas: Vec<Q> = basis.iter().map(|(b, bb, _, _)| dot(&w, b) / bb).collect();
+        let mut u = w;
+        for ((b, _, _, _), a) in basis.iter().zip(&alphas) {
+            u = sub(&u, &scale(b, a));
+        }
+        let uu = dot(&u, &u);
+        if uu.is_zero() {
+            continue;
+        }
+        let off = sub(sj, &center);
+        let lambda = (dot(&off, &off) - &r2) / (Q::from(2u8) * &uu);
+        center = add(&center, &scale(&u, &lambda));
+        r2 += &lambda * &lambda * &uu;
+        basis.push((u, uu, alphas, lambda));
+    }
+    // centre − s0 = Σ λₖ uₖ, rewritten on wₖ = sₖ − s0 from the last direction
+    // down: λₖ uₖ = λₖ wₖ − Σᵢ λₖ αₖᵢ uᵢ. The weights are μₖ and 1 − Σ μₖ.
+    let mut coef: Vec<Q> = basis.iter().map(|(_, _, _, l)| l.clone()).collect();
+    let mut total = Q::ZERO;
+    for k in (0..basis.len()).rev() {
+        let mu = coef[k].clone();
+        if mu < Q::ZERO {
+            return None;
+        }
+        for (i, a) in basis[k].2.iter().enumerate() {
+            coef[i] -= &mu * a;
+        }
+        total += mu;
+    }
+    if total > Q::ONE {
+        return None;
+    }
+    let ball = ExactBall::new(center, r2, cloud.frame, cloud.denominator_bits);
+    points.iter().all(|p| ball.contains(p)).then_some((ball.center, ball.r2))
+}
+
+/// The minimal ball by the two stages: the floating-point candidate when its
+/// exact certificate holds (see [`certified`]), else exact Welzl. The answer is
+/// the same exact ball either way; `fast` says which stage gave it.
+fn min_ball_staged(points: &[P3]) -> Result<((V3, Q), bool), RefereeError> {
     let cloud = cloud(points)?;
     let n = cloud.points.len();
     let mut order: Vec<usize> = (0..n).collect();
@@ -263,12 +416,22 @@ fn min_ball_exact(points: &[P3]) -> Result<(V3, Q), RefereeError> {
         let j = (splitmix(&mut state) % (i as u64 + 1)) as usize;
         order.swap(i, j);
     }
+    if super::staged() {
+        let mut float = FloatWelzl { points: &cloud.points, order: order.clone() };
+        if let Some((_, _, support)) = float.mtf(n, &mut Vec::with_capacity(4))
+            && let Some(ball) = certified(&cloud, &support)
+        {
+            super::count(super::Stage::MinBall, true, 1);
+            return Ok((ball, true));
+        }
+        super::count(super::Stage::MinBall, false, 1);
+    }
     let mut welzl =
         Welzl { points: &cloud.points, order, frame: cloud.frame, denominator_bits: cloud.denominator_bits };
     // A non-empty cloud always yields a ball (its first point is outside the
     // empty support's "ball" and starts one).
     let ball = welzl.mtf(n, &mut Vec::with_capacity(4)).ok_or(RefereeError::NoPoints { field: "a.points" })?;
-    Ok((ball.center, ball.r2))
+    Ok(((ball.center, ball.r2), false))
 }
 
 /// The smallest sphere enclosing `points`, computed exactly.
@@ -449,6 +612,26 @@ mod tests {
         best.unwrap()
     }
 
+    /// The two stages give exactly the exact Welzl's ball (the same rationals),
+    /// and which stage answered.
+    fn same_as_welzl(points: &[P3]) -> bool {
+        let ((center, r2), fast) = min_ball_staged(points).unwrap();
+        let (c, r) = min_ball_welzl(points).unwrap();
+        assert!(center == c && r2 == r, "two stages {center:?} r² {r2} against Welzl {c:?} r² {r}");
+        fast
+    }
+
+    #[test]
+    fn referee_min_ball_stages_fast_and_forced_fallback() {
+        // A plain cloud: the floating-point candidate is certified.
+        assert!(same_as_welzl(&[[0.0; 3], [2.0, 0.0, 0.0], [1.0, 2.0, 0.0], [0.5, 0.5, 0.5]]), "plain cloud");
+        // A point outside the ball of (±1, 0, 0) by a relative 1e-12, which the
+        // floating-point stage's slack lets in: its candidate (the two ends) fails
+        // the exact containment check and exact Welzl answers.
+        let outside = [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 1.0 + 1e-12, 0.0]];
+        assert!(!same_as_welzl(&outside), "the certificate must refuse a candidate that leaves a point out");
+    }
+
     fn coord() -> impl Strategy<Value = f64> {
         // Small integers make duplicates, collinear and cospherical sets common.
         prop_oneof![(-3i8..=3).prop_map(f64::from), -100.0..100.0f64]
@@ -462,6 +645,28 @@ mod tests {
             let (center, r2) = min_ball_exact(&points).unwrap();
             prop_assert!(encloses(&center, &r2, &points), "the ball must enclose every point");
             prop_assert_eq!(r2, brute_force(&points), "r² must be the minimum");
+        }
+
+        #[test]
+        fn referee_min_ball_stages_match_exact_welzl(points in prop::collection::vec([coord(), coord(), coord()], 1..=40)) {
+            same_as_welzl(&points);
+        }
+
+        #[test]
+        fn referee_min_ball_stages_match_exact_welzl_near_a_sphere(
+            dirs in prop::collection::vec([-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64], 2..=30),
+            scale_exp in -300i32..=300,
+        ) {
+            // Points rounded onto a sphere of radius 2^scale_exp: nearly cospherical,
+            // where a floating-point support is least reliable.
+            let s = 2f64.powi(scale_exp);
+            let pts: Vec<P3> = dirs.iter().filter_map(|v| {
+                let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                (n > 1e-3).then(|| [v[0] / n * s, v[1] / n * s, v[2] / n * s])
+            }).collect();
+            if !pts.is_empty() {
+                same_as_welzl(&pts);
+            }
         }
 
         #[test]

@@ -62,7 +62,86 @@ pub use toi::{
     toi_sphere_mesh, toi_sphere_plane, toi_sphere_sphere, toi_sphere_triangle,
 };
 
+use std::cell::Cell;
 use std::fmt;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+thread_local! {
+    static EXACT_ONLY: Cell<bool> = const { Cell::new(false) };
+    /// This thread's counts: fast then exact, per stage.
+    static HERE: Cell<[u64; 4]> = const { Cell::new([0; 4]) };
+}
+
+/// Runs `f` with the referee's floating-point stages off on this thread: every
+/// answer then comes from the exact stage alone. The answers are the same bit
+/// for bit either way (the stages only skip exact work they have proved
+/// unneeded); this is how that is checked (`tests/referee_stages.rs`).
+pub fn exact_only<T>(f: impl FnOnce() -> T) -> T {
+    let before = EXACT_ONLY.with(|e| e.replace(true));
+    let out = f();
+    EXACT_ONLY.with(|e| e.set(before));
+    out
+}
+
+/// Whether the floating-point stages may answer on this thread.
+pub(crate) fn staged() -> bool {
+    !EXACT_ONLY.with(Cell::get)
+}
+
+/// The referee's two-stage computations, each counted: how often the
+/// floating-point stage's answer was certified, and how often the exact stage
+/// had to decide.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// The minimal enclosing ball (`bounds`): a floating-point Welzl's support,
+    /// certified exactly, or exact Welzl.
+    MinBall,
+    /// A sphere against a mesh (`toi` and its margin): faces whose box is
+    /// provably out of reach skipped, or a face's exact test run.
+    MeshFaces,
+}
+
+impl Stage {
+    /// Every stage, in report order.
+    pub const ALL: [Stage; 2] = [Stage::MinBall, Stage::MeshFaces];
+
+    /// What is counted, for the report.
+    pub fn label(self) -> &'static str {
+        match self {
+            Stage::MinBall => "bounds: minimal balls certified from floating point / by exact Welzl",
+            Stage::MeshFaces => "toi sphere–mesh: faces ruled out in floating point / tested exactly",
+        }
+    }
+}
+
+static FAST: [AtomicU64; 2] = [AtomicU64::new(0), AtomicU64::new(0)];
+static EXACT: [AtomicU64; 2] = [AtomicU64::new(0), AtomicU64::new(0)];
+
+/// Counts `n` answers of `stage`, by the floating-point stage or the exact one.
+pub(crate) fn count(stage: Stage, fast: bool, n: u64) {
+    let counters = if fast { &FAST } else { &EXACT };
+    counters[stage as usize].fetch_add(n, Ordering::Relaxed);
+    HERE.with(|h| {
+        let mut c = h.get();
+        c[2 * stage as usize + usize::from(!fast)] += n;
+        h.set(c);
+    });
+}
+
+/// [`stage_counts`] for the work done on this thread only.
+pub fn stage_counts_on_this_thread() -> Vec<(Stage, u64, u64)> {
+    let c = HERE.with(Cell::get);
+    Stage::ALL.iter().map(|&s| (s, c[2 * s as usize], c[2 * s as usize + 1])).collect()
+}
+
+/// The counts so far in this process, per stage: `(stage, fast, exact)`.
+/// Subtract an earlier reading to count one stretch of work.
+pub fn stage_counts() -> Vec<(Stage, u64, u64)> {
+    Stage::ALL
+        .iter()
+        .map(|&s| (s, FAST[s as usize].load(Ordering::Relaxed), EXACT[s as usize].load(Ordering::Relaxed)))
+        .collect()
+}
 
 /// The starting precision, in bits, of the referee's square roots.
 ///

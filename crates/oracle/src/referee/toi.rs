@@ -453,6 +453,69 @@ fn mesh(vertices: &[P3], triangles: &[[usize; 3]]) -> Result<Vec<[V3; 3]>, Refer
         .collect()
 }
 
+/// An axis-aligned box, `[min, max]` per axis, in `f64`.
+type Bounds = (P3, P3);
+
+/// A box holding the path of `a`'s centre over `[0, t_max]` in `b`'s frame,
+/// `c + t (va − vb)`: the box of the two ends, the far end computed in `f64`
+/// and widened by a bound on that computation's error (three roundings of
+/// at most 2⁻⁵³ relative each, taken as 8·2⁻⁵³ of the magnitudes involved,
+/// plus an absolute floor for subnormal results). `None` when not finite.
+fn path_bounds(c: &P3, va: &P3, vb: &P3, t_max: f64) -> Option<Bounds> {
+    let t = t_max.max(0.0);
+    let (mut lo, mut hi) = (*c, *c);
+    for k in 0..3 {
+        let end = c[k] + t * (va[k] - vb[k]);
+        let err = 8.0 * f64::EPSILON / 2.0 * (c[k].abs() + t * (va[k].abs() + vb[k].abs())) + PATH_ERROR_FLOOR;
+        lo[k] = lo[k].min(end - err);
+        hi[k] = hi[k].max(end + err);
+    }
+    lo.iter().chain(&hi).all(|x| x.is_finite()).then_some((lo, hi))
+}
+
+/// The absolute part of [`path_bounds`]'s widening: far above the error of
+/// any subnormal result (sums and differences of `f64` that land in the
+/// subnormal range are exact; a product there errs by at most 2⁻¹⁰⁷⁵).
+const PATH_ERROR_FLOOR: f64 = 1e-300;
+
+/// The box of a face.
+fn face_bounds(vertices: &[P3], tri: &[usize; 3]) -> Bounds {
+    let (mut lo, mut hi) = (vertices[tri[0]], vertices[tri[0]]);
+    for &i in &tri[1..] {
+        for k in 0..3 {
+            lo[k] = lo[k].min(vertices[i][k]);
+            hi[k] = hi[k].max(vertices[i][k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// A lower bound on the squared distance between any point of box `a` and any
+/// point of box `b`, safe under rounding: each axis's gap is a difference of two
+/// `f64` (relative error at most 2⁻⁵³, exact when subnormal), shrunk by 2⁻⁵⁰
+/// before squaring, and the sum of squares shrunk by 2⁻⁵⁰ again (three more
+/// roundings). 0 when the boxes meet or the bound underflows.
+fn box_gap2_below(a: &Bounds, b: &Bounds) -> f64 {
+    let shrink = 1.0 - 8.0 * f64::EPSILON;
+    let mut sum = 0.0;
+    for k in 0..3 {
+        let gap = (a.0[k] - b.1[k]).max(b.0[k] - a.1[k]).max(0.0) * shrink;
+        sum += gap * gap;
+    }
+    sum * shrink
+}
+
+/// An upper bound on `r²` for an `f64` radius (one rounding, widened by 2⁻⁵⁰).
+fn r2_above(r: f64) -> f64 {
+    r * r * (1.0 + 8.0 * f64::EPSILON)
+}
+
+/// Whether `bound`, a lower bound on a squared distance, proves that distance
+/// greater than the exact `d2`.
+fn beyond(bound: f64, d2: &Q) -> bool {
+    Q::try_from(bound).is_ok_and(|b| b > *d2)
+}
+
 /// Time of impact of sphere `a` (velocity `va`) and a triangle mesh `b`
 /// (`vertices`, `triangles` as 0-based index triples; the whole mesh moving
 /// with `vb`) over `[0, t_max]`.
@@ -477,8 +540,24 @@ pub fn toi_sphere_mesh(
 ) -> Result<ToiAnswer, RefereeError> {
     let s = moving(a, va, vb, t_max)?;
     let faces = mesh(vertices, triangles)?;
+    // Faces whose box is provably farther than r from the centre's whole path
+    // are touched neither at t = 0 nor later: the exact tests skip them (a face
+    // in contact at t = 0 is nearer than any skipped one, so the nearest face
+    // is the same; a skipped face has no contact time to compare).
+    let path = path_bounds(&a.center, va, vb, t_max).filter(|_| super::staged());
+    let r2_up = r2_above(a.radius);
+    let near: Vec<bool> = triangles
+        .iter()
+        .map(|tri| path.as_ref().is_none_or(|p| box_gap2_below(p, &face_bounds(vertices, tri)) <= r2_up))
+        .collect();
+    let tested = near.iter().filter(|n| **n).count() as u64;
+    super::count(super::Stage::MeshFaces, true, near.len() as u64 - tested);
+    super::count(super::Stage::MeshFaces, false, tested);
     let mut nearest: Option<(Q, usize)> = None;
     for (i, f) in faces.iter().enumerate() {
+        if !near[i] {
+            continue;
+        }
         let w = sub(&s.c, &closest_on_triangle(&s.c, f));
         let d2 = dot(&w, &w);
         if nearest.as_ref().is_none_or(|(best, _)| d2 < *best) {
@@ -494,7 +573,7 @@ pub fn toi_sphere_mesh(
     }
     let v = sub(&s.va, &s.vb);
     let mut best: Option<Hit> = None;
-    for f in &faces {
+    for (f, _) in faces.iter().zip(&near).filter(|(_, near)| **near) {
         if let Some(h) = first_contact(&s.c, &s.r, &v, &s.vb, f, &s.t_max)
             && best.as_ref().is_none_or(|b| h.t.cmp(&b.t) == Ordering::Less)
         {
@@ -659,7 +738,31 @@ pub fn toi_margin_sphere_mesh(
     let s = moving(a, va, vb, t_max)?;
     let faces = mesh(vertices, triangles)?;
     let end = add(&s.c, &scale(&sub(&s.va, &s.vb), &s.t_max));
-    let nearest = faces.iter().map(|f| dist2_segment_triangle(&s.c, &end, f)).min();
+    // Faces in order of a lower bound on their distance from the path; once
+    // that bound exceeds the nearest exact distance found, no later face can
+    // be nearer, and the minimum is the same as over every face.
+    let path = path_bounds(&a.center, va, vb, t_max).filter(|_| super::staged());
+    let mut order: Vec<(f64, usize)> = triangles
+        .iter()
+        .enumerate()
+        .map(|(i, tri)| (path.as_ref().map_or(0.0, |p| box_gap2_below(p, &face_bounds(vertices, tri))), i))
+        .collect();
+    order.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    let mut nearest: Option<Q> = None;
+    let faces_count = order.len() as u64;
+    let mut tested = 0;
+    for (bound, i) in order {
+        if nearest.as_ref().is_some_and(|d2| beyond(bound, d2)) {
+            break;
+        }
+        tested += 1;
+        let d2 = dist2_segment_triangle(&s.c, &end, &faces[i]);
+        if nearest.as_ref().is_none_or(|best| d2 < *best) {
+            nearest = Some(d2);
+        }
+    }
+    super::count(super::Stage::MeshFaces, true, faces_count - tested);
+    super::count(super::Stage::MeshFaces, false, tested);
     Ok(match nearest {
         Some(d2) => gap_margin(&s.r, d2),
         None => f64::NEG_INFINITY,

@@ -1,0 +1,167 @@
+//! The referee's floating-point stages change nothing: on every fixture, every
+//! stability-sweep point (its default poses), the campaign's random cases of
+//! every query kind (ordinary and full-range), and families built to force the
+//! exact stage (clouds with a point one ulp outside the floating-point ball,
+//! meshes touched exactly), each answer and margin is the same bit for bit
+//! with the stages on as with the exact stage alone
+//! (`oracle::referee::exact_only`).
+//!
+//! `cargo test` runs [`DEFAULT_RANDOM`] random cases. The documented run of a
+//! million (README, "Tests"):
+//!
+//! ```sh
+//! CRASHTEST_STAGE_CASES=1000000 cargo test --release --test referee_stages
+//! ```
+
+use harness::case::{Case, MeshSpec, PointsSpec, Query, Shape, SphereSpec};
+use harness::check::run_caught;
+use harness::engines::{self, referee};
+use harness::generate::{generate, loaded, try_generate_full_range};
+use harness::load::{LoadedCase, load_paths};
+use harness::report::campaign::CAMPAIGN_QUERIES;
+use oracle::referee::{Stage, exact_only, stage_counts_on_this_thread};
+
+/// Random cases in `cargo test`, over the campaign's query kinds (a tenth of
+/// them full-range).
+const DEFAULT_RANDOM: u64 = 100_000;
+
+/// Seed of the random cases (the campaign's default).
+const SEED: u64 = harness::defaults::DEFAULT_SEED;
+
+/// The referee's answer and margin as exact text: `{:?}` prints every `f64`
+/// with the shortest digits that read back to the same bits, and `-0.0` as
+/// such; the margin is compared by its bits.
+fn verdict(r: &harness::engine::Engine, lc: &LoadedCase) -> (String, Option<u64>) {
+    (format!("{:?}", run_caught(r, lc)), referee::margin(lc).map(f64::to_bits))
+}
+
+/// The cases that differ between the stages, named, on two threads (the
+/// switch is per thread).
+fn differences(cases: &[LoadedCase]) -> Vec<String> {
+    let half = cases.len().div_ceil(2).max(1);
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = cases
+            .chunks(half)
+            .map(|chunk| {
+                scope.spawn(move || {
+                    let r = engines::referee();
+                    chunk
+                        .iter()
+                        .filter_map(|lc| {
+                            let staged = verdict(&r, lc);
+                            let exact = exact_only(|| verdict(&r, lc));
+                            (staged != exact)
+                                .then(|| format!("{}: staged {:?}, exact {:?}", lc.case.source, staged, exact))
+                        })
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        handles.into_iter().flat_map(|h| h.join().expect("thread")).collect()
+    })
+}
+
+fn assert_same(what: &str, cases: &[LoadedCase]) {
+    let diffs = differences(cases);
+    assert!(
+        diffs.is_empty(),
+        "{what}: {} of {} cases differ between the stages, first: {}",
+        diffs.len(),
+        cases.len(),
+        diffs[0]
+    );
+}
+
+fn case(query: Query, a: Shape, b: Option<Shape>, source: String) -> LoadedCase {
+    loaded(Case {
+        name: source.clone(),
+        source,
+        query,
+        a,
+        b,
+        expect: None,
+        tol: None,
+        t_max: Some(1.0),
+        restitution: None,
+    })
+}
+
+#[test]
+fn every_fixture_and_sweep_point_is_the_same_with_the_stages() {
+    let fixtures = load_paths(&[std::path::PathBuf::from("fixtures")]);
+    assert!(fixtures.errors.is_empty(), "{:?}", fixtures.errors);
+    assert!(fixtures.cases.len() > 200, "the fixtures: {}", fixtures.cases.len());
+    assert_same("fixtures", &fixtures.cases);
+    let settings = harness::sweep::Settings::default();
+    let sweeps: Vec<LoadedCase> =
+        harness::sweep::SWEEPS.iter().flat_map(|s| harness::sweep::cases(s, &settings)).map(|c| c.case).collect();
+    assert!(!sweeps.is_empty());
+    assert_same("stability sweep points", &sweeps);
+}
+
+#[test]
+fn random_cases_are_the_same_with_the_stages() {
+    let total: u64 = std::env::var("CRASHTEST_STAGE_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(DEFAULT_RANDOM);
+    let per_kind = total / CAMPAIGN_QUERIES.len() as u64;
+    let full = per_kind / 10;
+    for q in CAMPAIGN_QUERIES {
+        let mut cases: Vec<LoadedCase> = (0..per_kind - full).map(|i| generate(q, SEED, i)).collect();
+        cases.extend((0..full).filter_map(|i| try_generate_full_range(q, SEED, i)));
+        assert_same(&format!("{q} ({} cases)", cases.len()), &cases);
+    }
+}
+
+/// Clouds with a point a few ulps outside the ball of the others, which the
+/// floating-point stage lets in: its candidate fails the certificate and the
+/// exact stage answers, the same ball.
+#[test]
+fn clouds_that_force_the_exact_stage_are_the_same() {
+    let mut cases = Vec::new();
+    for k in 1..=200u32 {
+        let s = 2f64.powi(k as i32 % 61 - 30);
+        let bump = 1.0 + f64::from(k % 7 + 1) * f64::EPSILON;
+        let points =
+            vec![[s, 0.0, 0.0], [-s, 0.0, 0.0], [0.0, s * bump, 0.0], [0.0, 0.0, -s * 0.5], [0.25 * s, 0.5 * s, 0.0]];
+        let a = Shape::Points(PointsSpec { points });
+        cases.push(case(Query::Bounds, a, None, format!("cloud {k}: a point {} ulps out", k % 7 + 1)));
+    }
+    assert_same("clouds one ulp out", &cases);
+    let r = engines::referee();
+    for lc in &cases {
+        let before = stage_counts_on_this_thread();
+        run_caught(&r, lc).expect("the referee answers");
+        let (exact, fast) = delta(&before, &stage_counts_on_this_thread(), Stage::MinBall);
+        assert_eq!((exact, fast), (1, 0), "{}: the exact stage must answer", lc.case.source);
+    }
+}
+
+/// Spheres moving along x at height 1 exactly above a mesh's face (touching it
+/// all along, the face's box exactly r below the path), or one ulp above: the
+/// floating-point stage must not rule out a face the sphere touches.
+#[test]
+fn meshes_touched_exactly_are_the_same() {
+    let mut cases = Vec::new();
+    for k in 0..100u32 {
+        let r = 1.0 + f64::from(k) / 64.0;
+        let lift = if k % 2 == 0 { 0.0 } else { r * f64::EPSILON };
+        let center = [-3.0, 0.0, r + lift];
+        let a = Shape::Sphere(SphereSpec { center, radius: r, velocity: Some([6.0, 0.0, 0.0]), mass: None });
+        let vertices = vec![[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0], [5.0, 5.0, -4.0], [6.0, 5.0, -4.0]];
+        let triangles = vec![[0, 1, 2], [3, 4, 2], [0, 3, 4]];
+        let b =
+            Shape::Mesh(MeshSpec { vertices: Some(vertices), triangles: Some(triangles), file: None, velocity: None });
+        let lc = case(Query::Toi, a, Some(b), format!("mesh {k}: touched at height r + {lift:e}"));
+        assert!(lc.meshes[1].is_some(), "the inline mesh loads");
+        cases.push(lc);
+    }
+    assert_same("meshes touched exactly", &cases);
+}
+
+/// How many `stage` answers came from each stage between two readings:
+/// (exact, fast).
+fn delta(before: &[(Stage, u64, u64)], now: &[(Stage, u64, u64)], stage: Stage) -> (u64, u64) {
+    let get =
+        |v: &[(Stage, u64, u64)]| v.iter().find(|(s, _, _)| *s == stage).map(|&(_, f, e)| (f, e)).unwrap_or((0, 0));
+    let ((f0, e0), (f1, e1)) = (get(before), get(now));
+    (e1 - e0, f1 - f0)
+}
