@@ -63,6 +63,24 @@ fn every_discrepancy_reproduces_from_its_fixture() {
 }
 
 #[test]
+fn the_chunk_size_changes_nothing() {
+    // A run streams its cases chunk by chunk; chunks of 7 cases (several per
+    // query kind, and a chunk boundary inside each) give the summary, the
+    // discrepancies and the findings of one chunk per kind.
+    let whole = run(&small(3), Default::default());
+    let chunked = run(&Config { chunk: 7, ..small(3) }, Default::default());
+    let json = |o: &harness::report::campaign::Outcome| {
+        (
+            serde_json::to_string(&comparable(o.summary.clone())).unwrap(),
+            serde_json::to_string(&o.discrepancies).unwrap(),
+            o.findings.findings.iter().map(|f| (f.name.clone(), f.count)).collect::<Vec<_>>(),
+        )
+    };
+    assert!(!whole.discrepancies.is_empty(), "the small campaign has discrepancies to compare");
+    assert!(json(&whole) == json(&chunked), "chunks of 7 changed the outcome");
+}
+
+#[test]
 fn shards_merge_into_the_whole_campaign() {
     use harness::report::write::{ReadReport, merge};
     let shard = |i| {

@@ -103,6 +103,22 @@ impl Engine {
         self.process.as_deref()
     }
 
+    /// Marks `cases` as answers a process engine keeps when it forgets the
+    /// others (nothing for an in-process engine).
+    pub fn keep<'a>(&self, cases: impl IntoIterator<Item = &'a LoadedCase>) {
+        if let Some(p) = &self.process {
+            p.keep(cases);
+        }
+    }
+
+    /// Lets a process engine forget its answers but the kept ones (nothing for
+    /// an in-process engine).
+    pub fn forget(&self) {
+        if let Some(p) = &self.process {
+            p.forget();
+        }
+    }
+
     /// Lets a process engine answer `cases` in batches before they are judged
     /// one by one (nothing for an in-process engine).
     pub fn prefetch<'a>(&self, cases: impl IntoIterator<Item = &'a LoadedCase>) {

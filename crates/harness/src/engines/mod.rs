@@ -187,6 +187,25 @@ impl EngineSet {
         }
     }
 
+    /// Marks `cases` as answers the process engines keep when they forget.
+    pub fn keep<'a, I>(&self, cases: I)
+    where
+        I: IntoIterator<Item = &'a crate::load::LoadedCase> + Clone,
+    {
+        if self.judged.iter().any(|e| e.process().is_some()) {
+            for e in &self.judged {
+                e.keep(cases.clone());
+            }
+        }
+    }
+
+    /// Lets every process engine forget its answers but the kept ones.
+    pub fn forget(&self) {
+        for e in &self.judged {
+            e.forget();
+        }
+    }
+
     /// The gate engine.
     pub fn gate_engine(&self) -> &Engine {
         self.judged.iter().find(|e| e.name == self.gate).unwrap_or(&self.judged[0])

@@ -160,6 +160,8 @@ pub struct ProcessEngine {
     spec: ProcessSpec,
     state: Mutex<State>,
     memo: Mutex<HashMap<String, Reply, KeyHasher>>,
+    /// Keys of the answers [`ProcessEngine::forget`] keeps.
+    kept: Mutex<HashSet<String, KeyHasher>>,
 }
 
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
@@ -183,6 +185,7 @@ impl ProcessEngine {
                 faults: Vec::new(),
             }),
             memo: Mutex::new(HashMap::with_hasher(KeyHasher::default())),
+            kept: Mutex::new(HashSet::with_hasher(KeyHasher::default())),
         };
         {
             let mut st = lock(&engine.state);
@@ -252,6 +255,19 @@ impl ProcessEngine {
             .filter_map(|r| r.ns)
             .collect();
         (!ns.is_empty()).then(|| (ns.iter().sum::<f64>() / ns.len() as f64, ns.len()))
+    }
+
+    /// Marks `cases` as answers [`ProcessEngine::forget`] keeps.
+    pub fn keep<'a>(&self, cases: impl IntoIterator<Item = &'a LoadedCase>) {
+        lock(&self.kept).extend(cases.into_iter().map(case_key));
+    }
+
+    /// Forgets every answer it keeps but those marked with
+    /// [`ProcessEngine::keep`]: a streaming run calls it once a chunk is
+    /// judged, so the answers it holds stay a chunk's.
+    pub fn forget(&self) {
+        let kept = lock(&self.kept);
+        lock(&self.memo).retain(|k, _| kept.contains(k));
     }
 
     /// Asks for every case of `cases` it has not answered yet, in batches, and

@@ -89,12 +89,33 @@ pub fn group(lc: &LoadedCase) -> Option<&'static str> {
 /// cases) fall in each group. An engine missing a figure for a group the
 /// campaign ran gets none for that query kind.
 pub fn apply(stats: &mut [EngineQueryStats], cases: &[LoadedCase], bench: &BenchFile) {
-    let mut mix: BTreeMap<Query, BTreeMap<&str, u64>> = BTreeMap::new();
-    for lc in cases.iter().filter(|c| c.case.source.starts_with("generated")) {
-        if let Some(g) = group(lc) {
-            *mix.entry(lc.case.query).or_default().entry(g).or_default() += 1;
+    let mut mix = Mix::default();
+    for lc in cases {
+        mix.add(lc);
+    }
+    apply_mix(stats, &mix, bench);
+}
+
+/// How many of a campaign's generated cases fall in each benchmark group, per
+/// query kind: folded case by case, so a streaming run needs none of its cases
+/// kept.
+#[derive(Clone, Debug, Default)]
+pub struct Mix(BTreeMap<Query, BTreeMap<&'static str, u64>>);
+
+impl Mix {
+    /// Counts `lc` when it is a generated case of some group.
+    pub fn add(&mut self, lc: &LoadedCase) {
+        if lc.case.source.starts_with("generated")
+            && let Some(g) = group(lc)
+        {
+            *self.0.entry(lc.case.query).or_default().entry(g).or_default() += 1;
         }
     }
+}
+
+/// [`apply`] with the mix already counted.
+pub fn apply_mix(stats: &mut [EngineQueryStats], mix: &Mix, bench: &BenchFile) {
+    let mix = &mix.0;
     for s in stats.iter_mut() {
         let Some(groups) = s.query.and_then(|q| mix.get(&q)) else { continue };
         let total: u64 = groups.values().sum();

@@ -27,48 +27,6 @@ pub use crate::judge::headline;
 pub const CAMPAIGN_QUERIES: [Query; 7] =
     [Query::Contact, Query::Intersect, Query::Barycentric, Query::Bounds, Query::Overlap, Query::Toi, Query::Response];
 
-/// The most random cases per query kind a campaign takes: [`CAMPAIGN_MEMORY_BYTES`]
-/// over [`BYTES_PER_CASE`] for each of the [`CAMPAIGN_QUERIES`]. It bounds one
-/// run's slice: a larger campaign is split with `--shard` (each shard holds
-/// only its own slice).
-pub const MAX_CASES: u64 = CAMPAIGN_MEMORY_BYTES / (BYTES_PER_CASE * CAMPAIGN_QUERIES.len() as u64);
-
-/// The memory a campaign may hold its cases and results in: 16 GiB. Reason:
-/// every case and its every engine's result stay in memory until the summary
-/// is folded, so the count is bounded by what a workstation has, with room
-/// for the rest of the machine; a count beyond it would fail allocating (or
-/// swap for hours) after the fixtures were already read.
-pub const CAMPAIGN_MEMORY_BYTES: u64 = 16 << 30;
-
-/// What one random case costs while the campaign holds it: 8 KiB. Measured: the
-/// peak memory of `report --no-sections --no-timing` was 989 MiB at `--cases
-/// 20000` and 3.77 GiB at `--cases 80000`, 7,172 bytes for each of the 420,000
-/// cases more (the case, its six engines' results and the referee's answer);
-/// rounded up for the discrepancies kept and the allocator's slack.
-pub const BYTES_PER_CASE: u64 = 8 << 10;
-
-/// Checks that the random cases per query kind one run holds — its shard's
-/// slice of `n` — are at most [`MAX_CASES`]; the error names the largest count
-/// allowed, why, and how many shards would hold `n`.
-pub fn check_cases(n: u64, shard: Option<(u32, u32)>) -> Result<(), String> {
-    let (lo, hi) = shard_range(n, shard);
-    if hi - lo <= MAX_CASES {
-        return Ok(());
-    }
-    let what = match shard {
-        Some((i, k)) => format!("shard {i}/{k} of {n} cases per query kind holds {}", hi - lo),
-        None => format!("{n} cases per query kind"),
-    };
-    Err(format!(
-        "{what}, more than the largest allowed in one run, {MAX_CASES}: a run holds every case and its results in \
-         memory (about {BYTES_PER_CASE} bytes each, for {} query kinds, within {} GiB); split it with --shard i/n, \
-         n ≥ {}",
-        CAMPAIGN_QUERIES.len(),
-        CAMPAIGN_MEMORY_BYTES >> 30,
-        n.div_ceil(MAX_CASES)
-    ))
-}
-
 /// At most this many discrepancies per engine and query kind are written out in
 /// full (the summary counts all of them): enough to study every failure family,
 /// few enough to keep `discrepancies.json` readable.
@@ -104,6 +62,9 @@ pub struct Config {
     /// Whether to run the extra sections (dynamics, stability sweeps, the
     /// scene's needs, time of impact) — with the whole campaign only.
     pub sections: bool,
+    /// Cases made and judged at a time ([`CHUNK`]; at least 1). The results
+    /// do not depend on it.
+    pub chunk: u64,
 }
 
 impl Default for Config {
@@ -120,6 +81,7 @@ impl Default for Config {
             sections: true,
             bench: None,
             engines: EngineSet::default(),
+            chunk: CHUNK,
         }
     }
 }
@@ -187,38 +149,6 @@ pub fn shard_range(n: u64, shard: Option<(u32, u32)>) -> (u64, u64) {
             ((n * i / count) as u64, (n * (i + 1) / count) as u64)
         }
     }
-}
-
-/// Every case the campaign runs, fixtures first, then random cases query by query.
-pub fn cases(config: &Config) -> (Vec<LoadedCase>, Vec<String>) {
-    let mut out = Vec::new();
-    let mut errors = Vec::new();
-    if config.shard.is_none_or(|(i, _)| i == 0) {
-        let loaded = load_paths(&config.fixtures);
-        errors.extend(loaded.errors.iter().map(|e| e.to_string()));
-        out.extend(loaded.cases.into_iter().filter(|c| config.only.is_none_or(|q| c.case.query == q)));
-    }
-    let (lo, hi) = shard_range(config.cases_per_query, config.shard);
-    for q in CAMPAIGN_QUERIES {
-        if config.only.is_some_and(|o| o != q) {
-            continue;
-        }
-        let generated: Vec<LoadedCase> =
-            (lo..hi).into_par_iter().map(|i| crate::generate::generate(q, config.seed, i)).collect();
-        out.extend(generated);
-    }
-    let (lo, hi) = shard_range(config.full_range_per_query, config.shard);
-    for q in CAMPAIGN_QUERIES {
-        if config.only.is_some_and(|o| o != q) {
-            continue;
-        }
-        let generated: Vec<LoadedCase> = (lo..hi)
-            .into_par_iter()
-            .filter_map(|i| crate::generate::try_generate_full_range(q, config.seed, i))
-            .collect();
-        out.extend(generated);
-    }
-    (out, errors)
 }
 
 /// The engines and their versions, for the provenance.
@@ -385,50 +315,190 @@ pub fn time_engine(engine: &Engine, cases: &[&LoadedCase]) -> Option<Timing> {
     crate::timing::time_each(TIMING_REPS, &answered, |lc| engine.run(lc))
 }
 
-/// Runs the campaign.
+/// Cases generated, asked of the process engines and judged at a time. A run
+/// holds one chunk's cases and results, never the campaign's: its memory is
+/// what the folded statistics, the capped discrepancies and the findings take,
+/// whatever `--cases` is. Large enough that the parallel judging and the
+/// process engines' batches ([`crate::protocol::client::DEFAULT_BATCH`]) run
+/// full.
+pub const CHUNK: u64 = 8192;
+
+/// Generated cases of each query kind kept for the timing loops and the
+/// referee's estimated share: twice [`TIMING_CASES`], so that the loops still
+/// find that many an engine answers.
+const TIMING_SAMPLE: usize = 2 * TIMING_CASES;
+
+/// What a run keeps while its cases stream past.
+struct Folded<'a> {
+    judged: &'a [Engine],
+    map: BTreeMap<StatsKey, EngineQueryStats>,
+    discrepancies: Vec<Discrepancy>,
+    per_group: BTreeMap<StatsKey, usize>,
+    total_discrepancies: u64,
+    collector: crate::findings::Collector,
+    /// Per query kind: the first generated ordinary cases (for timing), and how
+    /// many there were in all.
+    timing: BTreeMap<Query, (Vec<LoadedCase>, u64)>,
+    /// The benchmark groups' mix over the generated cases.
+    mix: crate::report::bench::Mix,
+    fixture_cases: u64,
+    random_cases: u64,
+    /// The fixtures' results (the peers section reads them).
+    fixture_results: Vec<CaseResult>,
+}
+
+impl Folded<'_> {
+    fn add(&mut self, c: CaseResult, lc: &LoadedCase) {
+        let full = is_full_range(lc);
+        fold(&mut self.map, &c, full);
+        self.collector.add(&c, lc, self.judged);
+        for (ix, r) in c.engines.iter().enumerate() {
+            if matches!(r.verdict, Verdict::Disagree { .. } | Verdict::Failed { .. }) {
+                self.total_discrepancies += 1;
+                let n = self.per_group.entry((ix, c.query, full)).or_default();
+                if *n < MAX_DISCREPANCIES_PER_GROUP {
+                    *n += 1;
+                    self.discrepancies.push(discrepancy(
+                        &c,
+                        lc,
+                        ix,
+                        Tolerance::for_precision(self.judged[ix].precision_for(lc)),
+                    ));
+                }
+            }
+        }
+        let generated = lc.case.source.starts_with("generated");
+        if generated {
+            self.random_cases += 1;
+            self.mix.add(lc);
+            if !full {
+                let (sample, n) = self.timing.entry(lc.case.query).or_default();
+                *n += 1;
+                if sample.len() < TIMING_SAMPLE {
+                    sample.push(lc.clone());
+                }
+            }
+        } else {
+            self.fixture_cases += 1;
+            self.fixture_results.push(c);
+        }
+    }
+}
+
+/// The campaign's cases in chunks of at most [`CHUNK`], in case order: the
+/// fixtures, then each query kind's random cases, then its full-range ones.
+/// Each chunk is generated when it is asked for.
+fn chunks(config: &Config) -> impl Iterator<Item = Vec<LoadedCase>> + '_ {
+    let kinds: Vec<Query> = CAMPAIGN_QUERIES.into_iter().filter(|q| config.only.is_none_or(|o| o == *q)).collect();
+    let chunk = config.chunk.max(1);
+    let slices = |n: u64, full: bool| {
+        let (lo, hi) = shard_range(n, config.shard);
+        let kinds = kinds.clone();
+        kinds.into_iter().flat_map(move |q| {
+            (lo..hi).step_by(chunk as usize).map(move |from| (q, from, (from + chunk).min(hi), full))
+        })
+    };
+    slices(config.cases_per_query, false).chain(slices(config.full_range_per_query, true)).map(
+        move |(q, from, to, full)| {
+            if full {
+                (from..to)
+                    .into_par_iter()
+                    .filter_map(|i| crate::generate::try_generate_full_range(q, config.seed, i))
+                    .collect()
+            } else {
+                (from..to).into_par_iter().map(|i| crate::generate::generate(q, config.seed, i)).collect()
+            }
+        },
+    )
+}
+
+/// Every case the campaign runs, in its order, held at once — for a caller
+/// that wants them all (a user's test of a few thousand cases); [`run`]
+/// streams them instead.
+pub fn cases(config: &Config) -> (Vec<LoadedCase>, Vec<String>) {
+    let (mut out, errors) = fixtures(config);
+    out.extend(chunks(config).flatten());
+    (out, errors)
+}
+
+/// The fixtures a run reads (shard 0 only), and the errors met reading them.
+fn fixtures(config: &Config) -> (Vec<LoadedCase>, Vec<String>) {
+    if config.shard.is_some_and(|(i, _)| i != 0) {
+        return (Vec::new(), Vec::new());
+    }
+    let loaded = load_paths(&config.fixtures);
+    let errors = loaded.errors.iter().map(|e| e.to_string()).collect();
+    (loaded.cases.into_iter().filter(|c| config.only.is_none_or(|q| c.case.query == q)).collect(), errors)
+}
+
+/// Runs the campaign, streaming: chunk by chunk, its cases are made, asked of
+/// the process engines, judged in parallel and folded in case order (so the
+/// same seed gives the same summary whatever the thread count or chunk size),
+/// then dropped.
 pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     let wall = Instant::now();
     let mut phases = Phases::default();
     let set = &config.engines;
     let (judged, referee) = (&set.judged, &set.referee);
-    let (cases, input_errors) = cases(config);
+    let (fixture_list, input_errors) = fixtures(config);
     phases.end(PHASE_CASES);
-    set.prefetch(&cases);
-    phases.end(PHASE_PROCESS);
+    let expected = fixture_list.len() as u64
+        + config.only.map_or(CAMPAIGN_QUERIES.len() as u64, |_| 1)
+            * [config.cases_per_query, config.full_range_per_query]
+                .iter()
+                .map(|&n| {
+                    let (lo, hi) = shard_range(n, config.shard);
+                    hi - lo
+                })
+                .sum::<u64>();
+    let bar = progress_bar(config.progress, expected);
     let stages_before = oracle::referee::stage_counts();
-    let bar = progress_bar(config.progress, cases.len() as u64);
-    let results: Vec<CaseResult> = cases
-        .par_iter()
-        .map(|lc| {
-            let r = check_case(lc, set);
-            bar.inc(1);
-            r
-        })
-        .collect();
-    bar.finish_and_clear();
-
-    let mut map = BTreeMap::new();
-    let mut discrepancies = Vec::new();
-    let mut per_group: BTreeMap<StatsKey, usize> = BTreeMap::new();
-    let mut total_discrepancies = 0u64;
-    let mut collector = crate::findings::Collector::default();
-    for (c, lc) in results.iter().zip(&cases) {
-        let full = is_full_range(lc);
-        fold(&mut map, c, full);
-        collector.add(c, lc, judged);
-        for (ix, r) in c.engines.iter().enumerate() {
-            if matches!(r.verdict, Verdict::Disagree { .. } | Verdict::Failed { .. }) {
-                total_discrepancies += 1;
-                let n = per_group.entry((ix, c.query, full)).or_default();
-                if *n < MAX_DISCREPANCIES_PER_GROUP {
-                    *n += 1;
-                    discrepancies.push(discrepancy(c, lc, ix, Tolerance::for_precision(judged[ix].precision_for(lc))));
-                }
-            }
+    let mut folded = Folded {
+        judged,
+        map: BTreeMap::new(),
+        discrepancies: Vec::new(),
+        per_group: BTreeMap::new(),
+        total_discrepancies: 0,
+        collector: crate::findings::Collector::default(),
+        timing: BTreeMap::new(),
+        mix: Default::default(),
+        fixture_cases: 0,
+        random_cases: 0,
+        fixture_results: Vec::new(),
+    };
+    let mut next = Some(fixture_list);
+    let mut rest = chunks(config);
+    loop {
+        let chunk = match next.take() {
+            Some(c) => c,
+            None => match rest.next() {
+                Some(c) => c,
+                None => break,
+            },
+        };
+        phases.end(PHASE_CASES);
+        set.prefetch(&chunk);
+        phases.end(PHASE_PROCESS);
+        let sampled: BTreeMap<Query, usize> = folded.timing.iter().map(|(q, (s, _))| (*q, s.len())).collect();
+        let results: Vec<CaseResult> = chunk
+            .par_iter()
+            .map(|lc| {
+                let r = check_case(lc, set);
+                bar.inc(1);
+                r
+            })
+            .collect();
+        for (c, lc) in results.into_iter().zip(&chunk) {
+            folded.add(c, lc);
         }
+        // The process engines' answers to this chunk are folded: forget them,
+        // but for the timing sample's (the timing loops read them).
+        set.keep(folded.timing.iter().flat_map(|(q, (s, _))| &s[sampled.get(q).copied().unwrap_or(0)..]));
+        set.forget();
+        phases.end(PHASE_JUDGE);
     }
+    bar.finish_and_clear();
     let judge_seconds = wall.elapsed().as_secs_f64();
-    phases.end(PHASE_JUDGE);
     // Other work in this process (another run, a test) may count too: the
     // figures are at least this run's, and exactly them in a lone run.
     let referee_stages: Vec<(String, u64, u64)> = oracle::referee::stage_counts()
@@ -437,6 +507,18 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
         .map(|((stage, f1, e1), (_, f0, e0))| (stage.label().to_string(), f1 - f0, e1 - e0))
         .filter(|(_, f, e)| f + e > 0)
         .collect();
+    let Folded {
+        mut map,
+        discrepancies,
+        total_discrepancies,
+        collector,
+        timing: samples,
+        mix,
+        fixture_cases,
+        random_cases,
+        fixture_results,
+        ..
+    } = folded;
     let versions = engine_infos(judged).into_iter().map(|e| (e.name, e.version)).collect();
     let mut findings = collector.finish(&versions);
     crate::findings::shrink_and_draft(&mut findings, set);
@@ -449,10 +531,8 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
             // Timed on the generated cases only: the fixtures mix in meshes (whose
             // structures the adapters build per call), which would swamp a
             // per-query figure.
-            let qcases: Vec<&LoadedCase> = cases
-                .iter()
-                .filter(|c| c.case.query == q && c.case.source.starts_with("generated") && !is_full_range(c))
-                .collect();
+            let Some((sample, all)) = samples.get(&q) else { continue };
+            let qcases: Vec<&LoadedCase> = sample.iter().collect();
             if qcases.is_empty() {
                 continue;
             }
@@ -462,7 +542,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
                 }
             }
             if let Some(t) = time_engine(referee, &qcases) {
-                referee_seconds += t.median_ns * 1e-9 * qcases.len() as f64;
+                referee_seconds += t.median_ns * 1e-9 * *all as f64;
                 let ix = judged.len();
                 stats_for(&mut map, ix, &referee.name, q).timing = Some(t);
             }
@@ -477,8 +557,8 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
                 throughput.push((engine.name.clone(), 1e9 * ns.len() as f64 / ns.iter().sum::<f64>()));
             }
         }
-        let n = cases.len() as f64;
-        throughput.push(("campaign (referee included)".into(), n / judge_seconds));
+        let n = (fixture_cases + random_cases) as f64;
+        throughput.push(("campaign (referee included)".into(), n / judge_seconds.max(1e-9)));
         let without = (judge_seconds - referee_seconds / rayon::current_num_threads() as f64).max(1e-9);
         throughput.push(("campaign (referee excluded, estimated)".into(), n / without));
         phases.end(PHASE_TIMING);
@@ -496,7 +576,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     if let Some(path) = &config.bench {
         match crate::report::bench::load(path) {
             Ok(Some(bench)) => {
-                crate::report::bench::apply(&mut stats, &cases, &bench);
+                crate::report::bench::apply_mix(&mut stats, &mix, &bench);
                 speed_source =
                     Some(format!("criterion benchmark of {} on {} ({})", bench.written, bench.machine, path.display()));
             }
@@ -504,7 +584,6 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
             Err(e) => input_errors.push(e),
         }
     }
-    let fixture_cases = cases.iter().filter(|c| !c.case.source.starts_with("generated")).count() as u64;
     let mut provenance = provenance;
     provenance.engines = engine_infos(judged);
     provenance.missing_engines = set.missing.clone();
@@ -514,9 +593,9 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     provenance.only = config.only;
     provenance.shards = config.shard.into_iter().collect();
     provenance.fixture_cases = fixture_cases;
-    provenance.random_cases = cases.len() as u64 - fixture_cases;
+    provenance.random_cases = random_cases;
     let sections = if config.sections && config.only.is_none() && config.shard.is_none_or(|(i, _)| i == 0) {
-        let s = sections(config, &results);
+        let s = sections(config, &fixture_results);
         phases.end(PHASE_SECTIONS);
         s
     } else {
@@ -565,12 +644,15 @@ impl Default for Phases {
 }
 
 impl Phases {
-    /// Ends `name`, when it took any time (a phase that was skipped is not listed).
+    /// Ends a stretch of `name` (a phase met again, chunk after chunk, adds up;
+    /// a phase that never took any time is not listed).
     fn end(&mut self, name: &str) {
         let now = Instant::now();
         let s = (now - self.1).as_secs_f64();
-        if s > 0.0005 {
-            self.0.push((name.to_string(), s));
+        match self.0.iter_mut().find(|(n, _)| n == name) {
+            Some((_, total)) => *total += s,
+            None if s > 0.0005 => self.0.push((name.to_string(), s)),
+            None => {}
         }
         self.1 = now;
     }

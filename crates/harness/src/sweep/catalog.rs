@@ -29,8 +29,7 @@ pub const DEFAULT_POSES: usize = 24;
 /// Reason: a sweep builds every case of every point and pose before judging
 /// them and keeps every outcome until its statistics are folded, so the poses
 /// are bounded by what a workstation has, with room for the rest of the
-/// machine (half of a report's budget, [`crate::report::campaign::CAMPAIGN_MEMORY_BYTES`]:
-/// a sweep is one question, not a campaign).
+/// machine.
 pub const SWEEP_MEMORY_BYTES: u64 = 8 << 30;
 
 /// What one sweep case costs while the sweep holds it: 2 KiB. Measured: the
