@@ -425,17 +425,54 @@ fn main() -> ExitCode {
             if let Err(code) = prepare_out(&out) {
                 return code;
             }
-            let mut read = Vec::new();
+            // First the set is checked on each shard's provenance alone, then
+            // the shards are read and added one at a time: any number of them
+            // merge in the memory of one.
+            let mut light = Vec::new();
             for dir in &reports {
-                match harness::report::write::read_report(dir) {
-                    Ok(r) => read.push(r),
+                match harness::report::write::read_provenance(dir) {
+                    Ok(r) => light.push(r),
                     Err(e) => {
                         eprintln!("error: {e}");
                         return ExitCode::from(2);
                     }
                 }
             }
-            let (summary, discrepancies) = match harness::report::write::merge(&read) {
+            if let Err(e) = harness::report::write::check_mergeable(&light) {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+            drop(light);
+            let mut merging = harness::report::write::Merging::default();
+            // Shards' findings add up (a shard written before findings were
+            // kept has none: the merged report then has none either).
+            let mut findings: Option<harness::findings::FindingsFile> = None;
+            let mut all_findings = true;
+            for dir in &reports {
+                match harness::report::write::read_report(dir) {
+                    Ok(r) => merging.add(&r),
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::from(2);
+                    }
+                }
+                if all_findings {
+                    match harness::findings::read(dir) {
+                        Ok(f) => {
+                            findings = Some(match findings.take() {
+                                None => harness::findings::FindingsFile::merge(&[f]),
+                                Some(acc) => harness::findings::FindingsFile::merge(&[acc, f]),
+                            });
+                        }
+                        Err(e) => {
+                            eprintln!("note: {e}; the merged report has no findings");
+                            all_findings = false;
+                            findings = None;
+                        }
+                    }
+                }
+            }
+            let (summary, discrepancies, sections) = match merging.finish() {
                 Ok(m) => m,
                 Err(e) => {
                     eprintln!("error: {e}");
@@ -447,21 +484,6 @@ fn main() -> ExitCode {
                 harness::report::provenance::stamp(std::time::SystemTime::now()),
                 summary.provenance.seed
             );
-            let sections = harness::report::write::merge_sections(&read);
-            // Shards' findings add up (a shard written before findings were
-            // kept has none: the merged report then has none either).
-            let mut parts = Vec::new();
-            for dir in &reports {
-                match harness::findings::read(dir) {
-                    Ok(f) => parts.push(f),
-                    Err(e) => {
-                        eprintln!("note: {e}; the merged report has no findings");
-                        parts.clear();
-                        break;
-                    }
-                }
-            }
-            let findings = (parts.len() == reports.len()).then(|| harness::findings::FindingsFile::merge(&parts));
             let dir = format!("{}/{id}", out.display());
             let files =
                 harness::report::write::render_files(&summary, &discrepancies, &sections, findings.as_ref(), &dir);

@@ -103,6 +103,14 @@ impl Engine {
         self.process.as_deref()
     }
 
+    /// Lets a process engine forget its answer to `lc` (nothing for an
+    /// in-process engine, which answers anew each time).
+    pub fn forget_case(&self, lc: &LoadedCase) {
+        if let Some(p) = &self.process {
+            p.forget_case(lc);
+        }
+    }
+
     /// Marks `cases` as answers a process engine keeps when it forgets the
     /// others (nothing for an in-process engine).
     pub fn keep<'a>(&self, cases: impl IntoIterator<Item = &'a LoadedCase>) {

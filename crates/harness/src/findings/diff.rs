@@ -175,7 +175,19 @@ pub fn diff(old: (&Summary, &FindingsFile), new: (&Summary, &FindingsFile), rena
         let set = |f: Option<&&super::model::Finding>| -> BTreeSet<String> {
             f.map(|f| f.fixture_cases.iter().cloned().collect()).unwrap_or_default()
         };
-        let (so, sn) = (set(fo), set(fnew));
+        // A fixture case its engine answered differently when judged again
+        // (in either run) may move between findings with no change to the
+        // engine: its moves are not counted.
+        let steady = |names: BTreeSet<String>| -> BTreeSet<String> {
+            names
+                .into_iter()
+                .filter(|n| {
+                    !old.1.unstable.iter().any(|(e, c)| *e == sig.engine && c == n)
+                        && !new.1.unstable.iter().any(|(e, c)| renamed(e, renames) == sig.engine && c == n)
+                })
+                .collect()
+        };
+        let (so, sn) = (steady(set(fo)), steady(set(fnew)));
         let capped = |f: Option<&&super::model::Finding>| {
             f.is_some_and(|f| f.fixture_cases.len() >= super::model::MAX_FIXTURE_NAMES)
         };
@@ -326,6 +338,30 @@ impl Diff {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_fixture_case_marked_unstable_does_not_count_as_a_change() {
+        // The repository's sample, against itself with one fixture case taken
+        // out of a finding: a change (fixture cases are the same every run) —
+        // unless either report lists that case as unstable for its engine.
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../reports/sample");
+        let old = crate::findings::read(&dir).expect("the sample's findings");
+        let summary = Summary::default();
+        let ix = old
+            .findings
+            .iter()
+            .position(|f| f.is_discrepancy() && !f.fixture_cases.is_empty())
+            .expect("a finding with fixture cases");
+        let mut new = old.clone();
+        let moved = new.findings[ix].fixture_cases.remove(0);
+        let engine = new.findings[ix].cause.engine.clone();
+        let changed = |new: &FindingsFile| {
+            diff((&summary, &old), (&summary, new), &[]).findings.iter().any(|c| c.fixtures.1.contains(&moved))
+        };
+        assert!(changed(&new), "a fixture case leaving a finding is a change");
+        new.unstable.push((engine, moved.clone()));
+        assert!(!changed(&new), "not when its engine answered it differently when judged again");
+    }
 
     #[test]
     fn equal_rates_are_noise_and_a_doubled_rate_is_a_change() {

@@ -28,11 +28,41 @@ pub use model::{
 
 use crate::judge::Verdict;
 
+/// How many times a process engine's fixture case in a finding is judged
+/// again to see whether its answer is stable: 3 (with the first, four
+/// judgements; an engine that errs half the time on an input shows both
+/// answers in four with probability 7/8).
+pub const STABILITY_JUDGEMENTS: u32 = 3;
+
 /// Shrinks each discrepancy finding's first case against the engine that
 /// showed it (in parallel, one finding per task: each is deterministic), and
-/// writes each peer engine's bug-report draft from the shrunk case.
+/// writes each peer engine's bug-report draft from the shrunk case. A process
+/// engine's fixture cases in a finding are judged again; those that do not
+/// show the finding's cause every time are listed as unstable.
 pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet) {
     use rayon::prelude::*;
+    let unstable: Vec<(String, String)> = file
+        .findings
+        .par_iter_mut()
+        .flat_map_iter(|f| {
+            let loaded = std::mem::take(&mut f.fixture_loaded);
+            let engine = set.judged.iter().find(|e| e.name == f.cause.engine);
+            let cause = f.cause.clone();
+            loaded.into_iter().filter_map(move |(name, lc)| {
+                let engine = engine?;
+                let stable = (0..STABILITY_JUDGEMENTS).all(|_| {
+                    let (sig, result, _) = shrink::judge_one(engine, &set.referee, &lc);
+                    let precision = engine.precision_for(&lc).unwrap_or(53);
+                    let known = matches!(result.verdict, Verdict::KnownDivergence { .. });
+                    sig.is_some_and(|s| signature::cause_of(&s, &lc, precision, known) == cause)
+                });
+                (!stable).then(|| (cause.engine.clone(), name))
+            })
+        })
+        .collect();
+    file.unstable.extend(unstable);
+    file.unstable.sort();
+    file.unstable.dedup();
     file.findings.par_iter_mut().filter(|f| f.is_discrepancy()).for_each(|f| {
         let Some(lc) = f.representative.take() else { return };
         let Some(engine) = set.judged.iter().find(|e| e.name == f.cause.engine) else { return };

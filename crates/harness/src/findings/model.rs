@@ -122,6 +122,10 @@ pub struct Finding {
     /// The case to shrink (the first example, as loaded).
     #[serde(skip)]
     pub representative: Option<LoadedCase>,
+    /// A process engine's fixture cases in it, as loaded (judged again for
+    /// stability; at most [`MAX_FIXTURE_NAMES`]).
+    #[serde(skip)]
+    pub fixture_loaded: Vec<(String, LoadedCase)>,
 }
 
 impl Finding {
@@ -160,6 +164,12 @@ pub struct FindingsFile {
     pub cases: Vec<(String, Query, u64)>,
     /// The findings, discrepancies first (most cases first), then known divergences.
     pub findings: Vec<Finding>,
+    /// Fixture cases a process engine answered differently when judged again
+    /// ([`crate::findings::STABILITY_JUDGEMENTS`] times): `(engine, "file#case")`.
+    /// Which finding such a case falls in can change from run to run with no
+    /// change to the engine, so `crashtest diff` does not count its moves.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub unstable: Vec<(String, String)>,
 }
 
 /// The findings of a campaign as it runs: fold each case's results in, in
@@ -282,6 +292,7 @@ impl Collector {
                 reproduction: None,
                 draft: None,
                 representative: None,
+                fixture_loaded: Vec::new(),
             });
             f.count += 1;
             f.errors.add(headline);
@@ -298,6 +309,9 @@ impl Collector {
             }
             if !lc.case.source.starts_with("generated") && f.fixture_cases.len() < MAX_FIXTURE_NAMES {
                 f.fixture_cases.push(format!("{}#{}", c.file, c.name));
+                if judged.get(ix).is_some_and(|e| e.process().is_some()) {
+                    f.fixture_loaded.push((format!("{}#{}", c.file, c.name), lc.clone()));
+                }
             }
         }
     }
@@ -320,6 +334,7 @@ impl Collector {
             discrepancies: self.discrepancies,
             cases: cases.into_iter().map(|((e, q), n)| (e, q, n)).collect(),
             findings,
+            unstable: Vec::new(),
         }
     }
 }
@@ -418,11 +433,15 @@ impl FindingsFile {
                 s.case.name = f.name.clone();
             }
         }
+        let mut unstable: Vec<(String, String)> = parts.iter().flat_map(|p| p.unstable.iter().cloned()).collect();
+        unstable.sort();
+        unstable.dedup();
         FindingsFile {
             format: FORMAT.into(),
             discrepancies,
             cases: cases.into_iter().map(|((e, q), n)| (e, q, n)).collect(),
             findings,
+            unstable,
         }
     }
 }

@@ -295,7 +295,12 @@ fn load(v: &Value, file: &std::path::Path) -> Option<LoadedCase> {
 }
 
 /// One engine's result on a case and its signature.
+///
+/// A process engine is asked anew each time (its answer to `lc` from an earlier
+/// judgement is forgotten first), so repeated judgements are independent: an
+/// engine that answers one input differently from call to call shows it.
 pub fn judge_one(engine: &Engine, referee: &Engine, lc: &LoadedCase) -> (Option<Signature>, EngineResult, Truth) {
+    engine.forget_case(lc);
     let truth = Truth::of(referee, lc);
     let r = judge_engine(engine, lc, &truth);
     let misclassified = r.errors.misclass.is_some() || matches!(r.verdict, crate::judge::Verdict::Failed { .. });

@@ -257,6 +257,13 @@ impl ProcessEngine {
         (!ns.is_empty()).then(|| (ns.iter().sum::<f64>() / ns.len() as f64, ns.len()))
     }
 
+    /// Forgets its answer to `lc`, so that the next judgement asks again: a
+    /// repeated judgement of one case (a replay, a stability check) must see
+    /// the engine answer anew, not the first answer again.
+    pub fn forget_case(&self, lc: &LoadedCase) {
+        lock(&self.memo).remove(&case_key(lc));
+    }
+
     /// Marks `cases` as answers [`ProcessEngine::forget`] keeps.
     pub fn keep<'a>(&self, cases: impl IntoIterator<Item = &'a LoadedCase>) {
         lock(&self.kept).extend(cases.into_iter().map(case_key));

@@ -223,13 +223,11 @@ pub fn read_report(dir: &Path) -> Result<ReadReport, String> {
 /// The extra sections of merged shards: each section once, as the first shard
 /// that has it wrote it (they run whole in one shard — shard 0 — not split).
 pub fn merge_sections(reports: &[ReadReport]) -> Vec<Section> {
-    let mut out: Vec<Section> = Vec::new();
-    for s in reports.iter().flat_map(|r| &r.sections) {
-        if !out.iter().any(|o| o.id == s.id) {
-            out.push(s.clone());
-        }
+    let mut m = Merging::default();
+    for r in reports {
+        m.add_sections(r);
     }
-    out
+    m.sections
 }
 
 fn merge_stats(into: &mut EngineQueryStats, s: &EngineQueryStats) {
@@ -366,37 +364,71 @@ pub fn check_mergeable(reports: &[ReadReport]) -> Result<(), String> {
 /// [`check_mergeable`].
 pub fn merge(reports: &[ReadReport]) -> Result<(Summary, Vec<Value>), String> {
     check_mergeable(reports)?;
-    let first = reports.first().ok_or("nothing to merge")?;
-    let mut out = first.summary.clone();
-    out.stats.clear();
-    out.full_range.clear();
-    out.provenance.shards.clear();
-    out.provenance.fixture_cases = 0;
-    out.provenance.random_cases = 0;
-    out.provenance.wall_seconds = 0.0;
-    out.provenance.phases.clear();
-    out.provenance.referee_stages.clear();
-    out.discrepancies = 0;
-    let mut order: Vec<(String, Option<crate::case::Query>)> = Vec::new();
-    let mut stats: BTreeMap<(String, Option<crate::case::Query>), EngineQueryStats> = BTreeMap::new();
-    let mut full_order: Vec<(String, Option<crate::case::Query>)> = Vec::new();
-    let mut full: BTreeMap<(String, Option<crate::case::Query>), EngineQueryStats> = BTreeMap::new();
+    let mut m = Merging::default();
     for r in reports {
-        for st in &r.summary.full_range {
-            let key = (st.engine.clone(), st.query);
-            if !full.contains_key(&key) {
-                full_order.push(key.clone());
-            }
-            let into = full.entry(key).or_insert_with(|| EngineQueryStats {
-                engine: st.engine.clone(),
-                query: st.query,
-                ..Default::default()
-            });
-            merge_stats(into, st);
-        }
+        m.add(r);
     }
-    for r in reports {
+    m.finish().map(|(summary, discrepancies, _)| (summary, discrepancies))
+}
+
+/// A merge folded one report at a time, so that any number of shards merge in
+/// the memory of one (plus the folded statistics and the capped
+/// discrepancies): `crashtest merge` checks the set first
+/// ([`check_mergeable`] on [`read_provenance`]'s light copies), then reads and
+/// adds each report in turn.
+#[derive(Default)]
+pub struct Merging {
+    out: Option<Summary>,
+    order: Vec<(String, Option<crate::case::Query>)>,
+    stats: BTreeMap<(String, Option<crate::case::Query>), EngineQueryStats>,
+    full_order: Vec<(String, Option<crate::case::Query>)>,
+    full: BTreeMap<(String, Option<crate::case::Query>), EngineQueryStats>,
+    per_group: BTreeMap<(String, String), usize>,
+    discrepancies: Vec<Value>,
+    sections: Vec<Section>,
+}
+
+/// Folds `s` into the statistics keyed by engine and query kind, keeping the
+/// order in which keys are first met.
+fn fold_stats(
+    order: &mut Vec<(String, Option<crate::case::Query>)>,
+    into: &mut BTreeMap<(String, Option<crate::case::Query>), EngineQueryStats>,
+    s: &EngineQueryStats,
+) {
+    let key = (s.engine.clone(), s.query);
+    if !into.contains_key(&key) {
+        order.push(key.clone());
+    }
+    merge_stats(
+        into.entry(key).or_insert_with(|| EngineQueryStats {
+            engine: s.engine.clone(),
+            query: s.query,
+            ..Default::default()
+        }),
+        s,
+    );
+}
+
+impl Merging {
+    /// Adds one report (of a set [`check_mergeable`] accepted).
+    pub fn add(&mut self, r: &ReadReport) {
         let s = &r.summary;
+        let out = self.out.get_or_insert_with(|| {
+            let mut out = s.clone();
+            out.stats.clear();
+            out.full_range.clear();
+            out.provenance.shards.clear();
+            out.provenance.fixture_cases = 0;
+            out.provenance.random_cases = 0;
+            out.provenance.wall_seconds = 0.0;
+            out.provenance.phases.clear();
+            out.provenance.referee_stages.clear();
+            out.discrepancies = 0;
+            out
+        });
+        for st in &s.full_range {
+            fold_stats(&mut self.full_order, &mut self.full, st);
+        }
         out.provenance.shards.extend(s.provenance.shards.iter().copied());
         out.provenance.fixture_cases += s.provenance.fixture_cases;
         out.provenance.random_cases += s.provenance.random_cases;
@@ -418,32 +450,46 @@ pub fn merge(reports: &[ReadReport]) -> Result<(Summary, Vec<Value>), String> {
         }
         out.discrepancies += s.discrepancies;
         for st in &s.stats {
-            let key = (st.engine.clone(), st.query);
-            if !stats.contains_key(&key) {
-                order.push(key.clone());
+            fold_stats(&mut self.order, &mut self.stats, st);
+        }
+        for d in &r.discrepancies {
+            let key = (d["engine"].to_string(), d["query"].to_string());
+            let n = self.per_group.entry(key).or_default();
+            if *n < MAX_DISCREPANCIES_PER_GROUP {
+                *n += 1;
+                self.discrepancies.push(d.clone());
             }
-            merge_stats(
-                stats.entry(key).or_insert_with(|| EngineQueryStats {
-                    engine: st.engine.clone(),
-                    query: st.query,
-                    ..Default::default()
-                }),
-                st,
-            );
+        }
+        self.add_sections(r);
+    }
+
+    /// Each section once, as the first shard that has it wrote it (they run
+    /// whole in one shard — shard 0 — not split).
+    fn add_sections(&mut self, r: &ReadReport) {
+        for sec in &r.sections {
+            if !self.sections.iter().any(|o| o.id == sec.id) {
+                self.sections.push(sec.clone());
+            }
         }
     }
-    out.provenance.shards.sort_unstable();
-    out.stats = order.into_iter().filter_map(|k| stats.remove(&k)).collect();
-    out.full_range = full_order.into_iter().filter_map(|k| full.remove(&k)).collect();
-    let mut per_group: BTreeMap<(String, String), usize> = BTreeMap::new();
-    let mut disc = Vec::new();
-    for d in reports.iter().flat_map(|r| &r.discrepancies) {
-        let key = (d["engine"].to_string(), d["query"].to_string());
-        let n = per_group.entry(key).or_default();
-        if *n < MAX_DISCREPANCIES_PER_GROUP {
-            *n += 1;
-            disc.push(d.clone());
-        }
+
+    /// The merged summary, discrepancies and sections.
+    pub fn finish(mut self) -> Result<(Summary, Vec<Value>, Vec<Section>), String> {
+        let mut out = self.out.ok_or("nothing to merge")?;
+        out.provenance.shards.sort_unstable();
+        out.stats = self.order.into_iter().filter_map(|k| self.stats.remove(&k)).collect();
+        out.full_range = self.full_order.into_iter().filter_map(|k| self.full.remove(&k)).collect();
+        Ok((out, self.discrepancies, self.sections))
     }
-    Ok((out, disc))
+}
+
+/// A report's summary alone, with its statistics dropped: what
+/// [`check_mergeable`] reads, light enough to hold for every shard at once.
+pub fn read_provenance(dir: &Path) -> Result<ReadReport, String> {
+    let p = dir.join("summary.json");
+    let text = std::fs::read_to_string(&p).map_err(|e| format!("{}: cannot read: {e}", p.display()))?;
+    let mut summary: Summary = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", p.display()))?;
+    summary.stats = Vec::new();
+    summary.full_range = Vec::new();
+    Ok(ReadReport { dir: dir.to_path_buf(), summary, discrepancies: Vec::new(), sections: Vec::new() })
 }

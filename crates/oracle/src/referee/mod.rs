@@ -27,6 +27,23 @@
 //! sign bit is the decision (`+0.0` exactly on the boundary counts as contact,
 //! hit or overlap; a negative value too small for `f64` rounds to `−0.0`).
 //!
+//! **Two stages where the time goes.** Exact rationals cost microseconds to
+//! milliseconds per query; engines answer in well under one. Where the
+//! referee's time went, a floating-point stage does the search and the exact
+//! stage only certifies or decides what is left:
+//! - the minimal enclosing ball ([`bounds`]): Welzl's algorithm in `f64` finds
+//!   a candidate support; it is kept when its exact circumball has its centre in
+//!   the support's convex hull and holds every point (then it is the unique
+//!   minimal ball), else exact Welzl runs;
+//! - a sphere against a mesh ([`toi`] and its margin): faces whose box a
+//!   rigorous `f64` lower bound puts out of reach of the sphere's whole path are
+//!   skipped; the margin tests faces nearest-bound first and stops once the
+//!   bound exceeds the nearest exact distance.
+//!
+//! The answers are the same bits as the exact stage's alone, by construction
+//! and by test ([`exact_only`] switches the stages off; `tests/referee_stages.rs`).
+//! Each stage is counted ([`stage_counts`]) and a report shows the counts.
+//!
 //! Inputs that are not numbers (NaN, ±∞), a negative radius, a zero plane normal,
 //! an inverted box or an empty point cloud are refused with a [`RefereeError`]
 //! naming the field — never a panic. Geometry that is valid but degenerate
