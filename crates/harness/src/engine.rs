@@ -103,6 +103,13 @@ impl Engine {
         self.process.as_deref()
     }
 
+    /// A process engine's new process (see
+    /// [`crate::protocol::ProcessEngine::fresh_process`]); nothing for an
+    /// in-process engine.
+    pub fn fresh_process(&self) -> Result<(), String> {
+        self.process.as_ref().map_or(Ok(()), |p| p.fresh_process())
+    }
+
     /// Lets a process engine forget its answer to `lc` (nothing for an
     /// in-process engine, which answers anew each time).
     pub fn forget_case(&self, lc: &LoadedCase) {

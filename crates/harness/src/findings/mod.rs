@@ -28,36 +28,53 @@ pub use model::{
 
 use crate::judge::Verdict;
 
-/// How many times a process engine's fixture case in a finding is judged
-/// again to see whether its answer is stable: 3 (with the first, four
-/// judgements; an engine that errs half the time on an input shows both
-/// answers in four with probability 7/8).
-pub const STABILITY_JUDGEMENTS: u32 = 3;
+/// How many new processes judge a process engine's fixture cases in findings
+/// again, each case once per process: 3. An engine may answer an input the
+/// same way all through one process and differently in the next (FCL's time
+/// of impact on one fixture flipped between a failure and a wrong answer in 3
+/// of 6 runs), so asking again in the same process would not show it. With the
+/// report's own judgement, four processes: an input answered one way or the
+/// other at random shows both with probability 7/8.
+pub const STABILITY_PROCESSES: u32 = 3;
 
 /// Shrinks each discrepancy finding's first case against the engine that
 /// showed it (in parallel, one finding per task: each is deterministic), and
-/// writes each peer engine's bug-report draft from the shrunk case. A process
-/// engine's fixture cases in a finding are judged again; those that do not
-/// show the finding's cause every time are listed as unstable.
+/// writes each peer engine's bug-report draft from the shrunk case. First, a
+/// process engine's fixture cases in findings are judged again in new
+/// processes; those that do not show their finding's cause every time are
+/// listed as unstable.
 pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet) {
     use rayon::prelude::*;
-    let unstable: Vec<(String, String)> = file
-        .findings
-        .par_iter_mut()
-        .flat_map_iter(|f| {
-            let loaded = std::mem::take(&mut f.fixture_loaded);
-            let engine = set.judged.iter().find(|e| e.name == f.cause.engine);
-            let cause = f.cause.clone();
-            loaded.into_iter().filter_map(move |(name, lc)| {
-                let engine = engine?;
-                let stable = (0..STABILITY_JUDGEMENTS).all(|_| {
-                    let (sig, result, _) = shrink::judge_one(engine, &set.referee, &lc);
-                    let precision = engine.precision_for(&lc).unwrap_or(53);
+    let mut checks: std::collections::BTreeMap<String, Vec<(signature::Cause, String, crate::load::LoadedCase)>> =
+        Default::default();
+    for f in &mut file.findings {
+        for (name, lc) in std::mem::take(&mut f.fixture_loaded) {
+            checks.entry(f.cause.engine.clone()).or_default().push((f.cause.clone(), name, lc));
+        }
+    }
+    let unstable: Vec<(String, String)> = checks
+        .into_par_iter()
+        .flat_map_iter(|(engine_name, cases)| {
+            let mut out = Vec::new();
+            let Some(engine) = set.judged.iter().find(|e| e.name == engine_name) else { return out };
+            let mut steady = vec![true; cases.len()];
+            for _ in 0..STABILITY_PROCESSES {
+                if engine.fresh_process().is_err() {
+                    break;
+                }
+                for ((cause, _, lc), steady) in cases.iter().zip(&mut steady) {
+                    let (sig, result, _) = shrink::judge_one(engine, &set.referee, lc);
+                    let precision = engine.precision_for(lc).unwrap_or(53);
                     let known = matches!(result.verdict, Verdict::KnownDivergence { .. });
-                    sig.is_some_and(|s| signature::cause_of(&s, &lc, precision, known) == cause)
-                });
-                (!stable).then(|| (cause.engine.clone(), name))
-            })
+                    *steady &= sig.is_some_and(|s| signature::cause_of(&s, lc, precision, known) == *cause);
+                }
+            }
+            for ((_, name, _), steady) in cases.into_iter().zip(steady) {
+                if !steady {
+                    out.push((engine_name.clone(), name));
+                }
+            }
+            out
         })
         .collect();
     file.unstable.extend(unstable);

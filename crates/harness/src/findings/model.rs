@@ -165,7 +165,8 @@ pub struct FindingsFile {
     /// The findings, discrepancies first (most cases first), then known divergences.
     pub findings: Vec<Finding>,
     /// Fixture cases a process engine answered differently when judged again
-    /// ([`crate::findings::STABILITY_JUDGEMENTS`] times): `(engine, "file#case")`.
+    /// in new processes ([`crate::findings::STABILITY_PROCESSES`]):
+    /// `(engine, "file#case")`.
     /// Which finding such a case falls in can change from run to run with no
     /// change to the engine, so `crashtest diff` does not count its moves.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

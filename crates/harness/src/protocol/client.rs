@@ -647,6 +647,21 @@ impl ProcessEngine {
         }
     }
 
+    /// Replaces the running process with a new one (not counted as a restart
+    /// after a fault), and forgets every answer: what follows is answered by a
+    /// process that has seen nothing. A stability check asks this, since an
+    /// engine may answer an input the same way all through one process and
+    /// differently in the next. An engine that is down stays down.
+    pub fn fresh_process(&self) -> Result<(), String> {
+        self.shutdown();
+        lock(&self.memo).clear();
+        let mut st = lock(&self.state);
+        if let Some(down) = &st.down {
+            return Err(format!("the engine is down: {down}"));
+        }
+        self.launch(&mut st)
+    }
+
     /// Asks the engine to exit, and kills it if it has not within
     /// [`EXIT_GRACE`].
     pub fn shutdown(&self) {
