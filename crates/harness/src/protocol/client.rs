@@ -648,13 +648,14 @@ impl ProcessEngine {
     }
 
     /// Replaces the running process with a new one (not counted as a restart
-    /// after a fault), and forgets every answer: what follows is answered by a
-    /// process that has seen nothing. A stability check asks this, since an
-    /// engine may answer an input the same way all through one process and
-    /// differently in the next. An engine that is down stays down.
+    /// after a fault). A stability check asks this, since an engine may answer
+    /// an input the same way all through one process and differently in the
+    /// next (the answers kept from the old process stay: a judgement that
+    /// wants the new process's answer forgets the case's first, as
+    /// [`crate::findings::shrink::judge_one`] does). An engine that is down
+    /// stays down.
     pub fn fresh_process(&self) -> Result<(), String> {
         self.shutdown();
-        lock(&self.memo).clear();
         let mut st = lock(&self.state);
         if let Some(down) = &st.down {
             return Err(format!("the engine is down: {down}"));
