@@ -155,6 +155,40 @@ fn meshes_touched_exactly_are_the_same() {
         cases.push(lc);
     }
     assert_same("meshes touched exactly", &cases);
+    // A diagonal path whose box holds every face, and a zero-size face (one
+    // point, three times) exactly r above the path, or one ulp farther: the
+    // ball bound's edge, where only the rounding allowance keeps the face in.
+    let mut points = Vec::new();
+    for k in 0..100u32 {
+        let r = 0.5 + f64::from(k) / 128.0;
+        let at = f64::from(k % 9) / 4.0 - 1.0;
+        let z = if k % 2 == 0 { r } else { r * (1.0 + f64::EPSILON) };
+        let a = Shape::Sphere(SphereSpec {
+            center: [-3.0, -3.0, 0.0],
+            radius: r,
+            velocity: Some([6.0, 6.0, 0.0]),
+            mass: None,
+        });
+        let vertices =
+            vec![[at, at, z], [at, at, z], [at, at, z], [2.5, -2.5, 0.0], [2.5, -2.0, 0.0], [2.0, -2.5, 0.0]];
+        let b = Shape::Mesh(MeshSpec {
+            vertices: Some(vertices),
+            triangles: Some(vec![[3, 4, 5], [0, 1, 2]]),
+            file: None,
+            velocity: None,
+        });
+        let lc = case(Query::Toi, a, Some(b), format!("point face {k}: at height {z:e} over a diagonal path"));
+        assert!(lc.meshes[1].is_some(), "the inline mesh loads");
+        points.push(lc);
+    }
+    assert_same("point faces at distance r from a diagonal path", &points);
+    // The touching ones are hits (the point face is what the sphere meets), the
+    // others misses: the cases do reach the face.
+    let r = engines::referee();
+    for (k, lc) in points.iter().enumerate() {
+        let hit = format!("{:?}", run_caught(&r, lc)).contains("toi: Some");
+        assert_eq!(hit, k % 2 == 0, "{}: {:?}", lc.case.source, run_caught(&r, lc));
+    }
 }
 
 /// How many `stage` answers came from each stage between two readings:

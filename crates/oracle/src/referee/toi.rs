@@ -456,21 +456,66 @@ fn mesh(vertices: &[P3], triangles: &[[usize; 3]]) -> Result<Vec<[V3; 3]>, Refer
 /// An axis-aligned box, `[min, max]` per axis, in `f64`.
 type Bounds = (P3, P3);
 
-/// A box holding the path of `a`'s centre over `[0, t_max]` in `b`'s frame,
-/// `c + t (va − vb)`: the box of the two ends, the far end computed in `f64`
-/// and widened by a bound on that computation's error (three roundings of
-/// at most 2⁻⁵³ relative each, taken as 8·2⁻⁵³ of the magnitudes involved,
-/// plus an absolute floor for subnormal results). `None` when not finite.
-fn path_bounds(c: &P3, va: &P3, vb: &P3, t_max: f64) -> Option<Bounds> {
+/// The path of `a`'s centre over `[0, t_max]` in `b`'s frame, `c + t (va − vb)`,
+/// in `f64`: its ends (the far one computed, so rounded), a bound on that end's
+/// error, and a box holding the exact path.
+struct Path {
+    bounds: Bounds,
+    start: P3,
+    end: P3,
+    /// Bound on the far end's error, summed over the axes (≥ its length).
+    end_error: f64,
+}
+
+/// [`Path`] of `a`'s centre: the far end computed in `f64` and its error
+/// bounded per axis (three roundings of at most 2⁻⁵³ relative each, taken as
+/// 4·2⁻⁵³ of the magnitudes involved, plus an absolute floor for subnormal
+/// results); the box is the two ends' widened by that bound. `None` when not
+/// finite.
+fn path_bounds(c: &P3, va: &P3, vb: &P3, t_max: f64) -> Option<Path> {
     let t = t_max.max(0.0);
-    let (mut lo, mut hi) = (*c, *c);
+    let (mut lo, mut hi, mut end, mut end_error) = (*c, *c, *c, 0.0);
     for k in 0..3 {
-        let end = c[k] + t * (va[k] - vb[k]);
+        end[k] = c[k] + t * (va[k] - vb[k]);
         let err = 8.0 * f64::EPSILON / 2.0 * (c[k].abs() + t * (va[k].abs() + vb[k].abs())) + PATH_ERROR_FLOOR;
-        lo[k] = lo[k].min(end - err);
-        hi[k] = hi[k].max(end + err);
+        lo[k] = lo[k].min(end[k] - err);
+        hi[k] = hi[k].max(end[k] + err);
+        end_error += err;
     }
-    lo.iter().chain(&hi).all(|x| x.is_finite()).then_some((lo, hi))
+    let finite = lo.iter().chain(&hi).all(|x| x.is_finite()) && end_error.is_finite();
+    finite.then_some(Path { bounds: (lo, hi), start: *c, end, end_error })
+}
+
+/// A lower bound on the squared distance between the exact path and any
+/// point of a face, safe under rounding: the larger of the boxes' gap
+/// ([`box_gap2_below`]) and the gap between the path and the ball around the
+/// face's box — the `f64` distance from the ball's centre to the `f64` path,
+/// less a bound on that distance's rounding error (64·2⁻⁵³ of the magnitudes
+/// involved, at least twice what its dozen roundings can add up to), less the
+/// far end's error and the ball's radius (rounded up), then shrunk by 2⁻⁵⁰
+/// before and after squaring. The ball test rules out faces near the path's box
+/// but far from the path itself (a diagonal path's box holds many).
+fn face_gap2_below(path: &Path, vertices: &[P3], tri: &[usize; 3]) -> f64 {
+    let face = face_bounds(vertices, tri);
+    let by_box = box_gap2_below(&path.bounds, &face);
+    let norm1 = |v: &P3| v[0].abs() + v[1].abs() + v[2].abs();
+    let dot = |a: &P3, b: &P3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let m: P3 = std::array::from_fn(|k| (face.0[k] + face.1[k]) * 0.5);
+    let h: P3 = std::array::from_fn(|k| (face.1[k] - face.0[k]) * 0.5);
+    // The exact box lies in the ball around the rounded centre with the
+    // half-diagonal, rounded up, plus the centre's rounding.
+    let radius = dot(&h, &h).sqrt() * (1.0 + 8.0 * f64::EPSILON) + f64::EPSILON * norm1(&m) + PATH_ERROR_FLOOR;
+    let (c, e) = (&path.start, &path.end);
+    let u: P3 = std::array::from_fn(|k| e[k] - c[k]);
+    let w: P3 = std::array::from_fn(|k| m[k] - c[k]);
+    let uu = dot(&u, &u);
+    let t = if uu > 0.0 { (dot(&w, &u) / uu).clamp(0.0, 1.0) } else { 0.0 };
+    let off: P3 = std::array::from_fn(|k| m[k] - (c[k] + t * u[k]));
+    let d = dot(&off, &off).sqrt();
+    let error = 64.0 * f64::EPSILON * (norm1(c) + norm1(e) + norm1(&m)) + path.end_error + PATH_ERROR_FLOOR;
+    let shrink = 1.0 - 8.0 * f64::EPSILON;
+    let gap = (d - error - radius) * shrink;
+    if gap.is_finite() && gap > 0.0 { by_box.max(gap * gap * shrink) } else { by_box }
 }
 
 /// The absolute part of [`path_bounds`]'s widening: far above the error of
@@ -540,16 +585,14 @@ pub fn toi_sphere_mesh(
 ) -> Result<ToiAnswer, RefereeError> {
     let s = moving(a, va, vb, t_max)?;
     let faces = mesh(vertices, triangles)?;
-    // Faces whose box is provably farther than r from the centre's whole path
+    // Faces provably farther than r from the centre's whole path
     // are touched neither at t = 0 nor later: the exact tests skip them (a face
     // in contact at t = 0 is nearer than any skipped one, so the nearest face
     // is the same; a skipped face has no contact time to compare).
     let path = path_bounds(&a.center, va, vb, t_max).filter(|_| super::staged());
     let r2_up = r2_above(a.radius);
-    let near: Vec<bool> = triangles
-        .iter()
-        .map(|tri| path.as_ref().is_none_or(|p| box_gap2_below(p, &face_bounds(vertices, tri)) <= r2_up))
-        .collect();
+    let near: Vec<bool> =
+        triangles.iter().map(|tri| path.as_ref().is_none_or(|p| face_gap2_below(p, vertices, tri) <= r2_up)).collect();
     let tested = near.iter().filter(|n| **n).count() as u64;
     super::count(super::Stage::MeshFaces, true, near.len() as u64 - tested);
     super::count(super::Stage::MeshFaces, false, tested);
@@ -745,7 +788,7 @@ pub fn toi_margin_sphere_mesh(
     let mut order: Vec<(f64, usize)> = triangles
         .iter()
         .enumerate()
-        .map(|(i, tri)| (path.as_ref().map_or(0.0, |p| box_gap2_below(p, &face_bounds(vertices, tri))), i))
+        .map(|(i, tri)| (path.as_ref().map_or(0.0, |p| face_gap2_below(p, vertices, tri)), i))
         .collect();
     order.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
     let mut nearest: Option<Q> = None;
