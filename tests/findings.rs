@@ -36,7 +36,10 @@ fn campaign(seed: u64, cases: u64, fixtures: Vec<PathBuf>) -> Outcome {
 
 /// The finding of a cause.
 fn find<'a>(f: &'a FindingsFile, engine: &str, pair: &str, class: &str) -> Vec<&'a Finding> {
-    f.findings.iter().filter(|x| x.cause.engine == engine && x.cause.pair == pair && x.cause.class == class).collect()
+    f.findings
+        .iter()
+        .filter(|x| x.engines.contains_key(engine) && x.cause.pair == pair && x.cause.class == class)
+        .collect()
 }
 
 /// Where the parry reproduction is kept: the test compares the generated
@@ -85,6 +88,84 @@ fn parrys_ball_half_space_defect_is_one_finding_with_a_failing_reproduction_of_a
     assert!(failed, "the reproduction passed: parry's answer is right now");
 }
 
+mod parry_mesh_contact {
+    include!("reproductions/parry_mesh_contact.rs");
+    pub fn run() {
+        main()
+    }
+}
+
+mod parry_mesh_ray {
+    include!("reproductions/parry_mesh_ray.rs");
+    pub fn run() {
+        main()
+    }
+}
+
+mod parry_barycentric {
+    include!("reproductions/parry_barycentric.rs");
+    pub fn run() {
+        main()
+    }
+}
+
+mod parry_bounds {
+    include!("reproductions/parry_bounds.rs");
+    pub fn run() {
+        main()
+    }
+}
+
+#[test]
+fn parrys_programs_for_meshes_barycentrics_and_bounds_compile_and_fail_exactly_on_a_wrong_answer() {
+    // Fixture cases, parry3d-f64's program for each (kept under
+    // tests/reproductions/, compiled into this test above), and whether
+    // crashtest judges parry's answer wrong: the program must panic exactly then.
+    let set = EngineSet::select("parry3d-f64", Some("parry3d-f64")).unwrap();
+    let engine = &set.judged[0];
+    /// A fixture file and case, its program's name and the compiled program,
+    /// and whether parry's answer is wrong.
+    type Program = (&'static str, &'static str, &'static str, fn(), bool);
+    let cases: [Program; 4] = [
+        (
+            "mesh.json",
+            "sphere–mesh: inside, three faces equally near",
+            "parry_mesh_contact",
+            parry_mesh_contact::run,
+            true,
+        ),
+        ("mesh.json", "tetrahedron, down through the slanted face first", "parry_mesh_ray", parry_mesh_ray::run, false),
+        ("barycentric.json", "centroid", "parry_barycentric", parry_barycentric::run, false),
+        ("bounds.json", "regular tetrahedron", "parry_bounds", parry_bounds::run, false),
+    ];
+    for (file, name, program, run, wrong) in cases {
+        let loaded = load_paths(&[root().join("fixtures").join(file)]);
+        let lc = loaded.cases.iter().find(|c| c.case.name == name).unwrap_or_else(|| panic!("{file}: {name}"));
+        let truth = harness::check::Truth::of(&set.referee, lc);
+        let judged = harness::check::judge_engine(engine, &set.referee, lc, &truth);
+        assert_eq!(
+            matches!(judged.verdict, harness::judge::Verdict::Disagree { .. }),
+            wrong,
+            "{name}: {:?}",
+            judged.verdict
+        );
+        let repro = harness::findings::draft::reproduction(engine, lc, &truth).expect("parry gives a program");
+        let kept = root().join(format!("tests/reproductions/{program}.rs"));
+        if std::env::var_os("CRASHTEST_BLESS").is_some() {
+            std::fs::write(&kept, &repro.code).unwrap();
+        }
+        let text = std::fs::read_to_string(&kept).unwrap_or_default();
+        assert_eq!(
+            text,
+            repro.code,
+            "{} is not the generated program; run with CRASHTEST_BLESS=1 to write it",
+            kept.display()
+        );
+        let failed = std::panic::catch_unwind(run).is_err();
+        assert_eq!(failed, wrong, "{program}: the program {} on {name}", if failed { "failed" } else { "passed" });
+    }
+}
+
 /// What a replay's failure adds: a changed judgement or engine makes a kept
 /// sample stale.
 const AGAIN: &str = " (if crashtest's judgement or an engine's pinned version changed on purpose, write \
@@ -104,16 +185,17 @@ fn replay_all(file: &FindingsFile, dir: &Path, set: &EngineSet) -> usize {
         let loaded = load_paths(&[dir.join(&s.file)]);
         assert!(loaded.errors.is_empty(), "{}: {:?}", s.file, loaded.errors);
         let lc = &loaded.cases[0];
-        let engine = set.judged.iter().find(|e| e.name == f.cause.engine).expect("the finding's engine");
-        let judged = || judge_one(engine, &set.referee, lc).0;
-        let sig = (0..3 * harness::findings::shrink::REPLAYS)
+        let engine = set.judged.iter().find(|e| e.name == f.engine()).expect("the finding's engine");
+        let judged = || {
+            let (sig, result, _) = judge_one(engine, &set.referee, lc);
+            sig.map(|sig| (harness::findings::signature::cause_of(&sig, lc, Some(engine), &result), sig))
+        };
+        let (cause, sig): (Cause, _) = (0..3 * harness::findings::shrink::REPLAYS)
             .filter_map(|_| judged())
-            .find(|sig| f.signature.same_defect(sig))
+            .find(|(_, sig)| f.signature.same_defect(sig))
             .or_else(judged)
             .unwrap_or_else(|| panic!("{}: the shrunk case no longer shows a discrepancy{AGAIN}", s.file));
         assert!(f.signature.same_defect(&sig), "{}: {:?} replays as {:?}{AGAIN}", s.file, f.signature, sig);
-        let precision = engine.precision_for(lc).unwrap_or(53);
-        let cause: Cause = harness::findings::signature::cause_of(&sig, lc, precision, false);
         assert_eq!(cause, f.cause, "{}{AGAIN}", s.file);
         n += 1;
     }
@@ -153,7 +235,7 @@ fn every_shrunk_case_of_the_sample_report_replays_with_its_signature() {
     let peers = crashtest::process_engines(&[], Some(&crashtest::peer_engines_file()), 60.0).unwrap();
     let set = EngineSet::select_with("all", None, peers).unwrap();
     let mut replayable = file.clone();
-    replayable.findings.retain(|f| set.judged.iter().any(|e| e.name == f.cause.engine));
+    replayable.findings.retain(|f| set.judged.iter().any(|e| e.name == f.engine()));
     let skipped = file.findings.len() - replayable.findings.len();
     assert!(set.missing.is_empty() || skipped > 0, "engines missing ({:?}) but every finding replayable", set.missing);
     eprintln!("{skipped} findings of engines not installed here: {:?}", set.missing);

@@ -37,6 +37,12 @@ pub struct EngineResult {
     /// expectation or the engine gave no answer.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub expect_mismatches: Option<Vec<Mismatch>>,
+    /// For an engine of less precision than `f64` that disagrees: whether its
+    /// answer agrees with the exact answer to the case's inputs rounded to
+    /// its precision (what it was given, in effect). The disagreement stands;
+    /// [`crate::findings`] files it under the engine's precision.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub rounding_explains: bool,
 }
 
 /// Everything about one case.
@@ -214,7 +220,7 @@ pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
     let mut passed = false;
     let mut unanswered = false;
     for engine in judged {
-        let r = judge_engine(engine, lc, &truth);
+        let r = judge_engine(engine, referee, lc, &truth);
         if engine.name == set.gate {
             let expect_ok = r.expect_mismatches.as_ref().is_none_or(|m| m.is_empty());
             let referee_ok = matches!(r.verdict, Verdict::Agree | Verdict::Borderline { .. })
@@ -275,10 +281,14 @@ impl Truth {
 
 /// One engine's answer to `lc`, judged against the referee's `truth` (and
 /// the case's `expect`, when it has one); a disagreement the engine's known
-/// divergences explain is a known divergence.
-pub fn judge_engine(engine: &Engine, lc: &LoadedCase, truth: &Truth) -> EngineResult {
+/// divergences explain is a known divergence. For an `f32` engine that
+/// disagrees, `referee` also answers the case rounded to `f32`
+/// ([`EngineResult::rounding_explains`]).
+pub fn judge_engine(engine: &Engine, referee: &Engine, lc: &LoadedCase, truth: &Truth) -> EngineResult {
     let has_expect = lc.case.expect.is_some();
-    let tol = Tolerance::for_precision(engine.precision_for(lc));
+    let precision = engine.precision_for(lc);
+    let tol = Tolerance::for_precision(precision);
+    let mut rounding_explains = false;
     let (answer, verdict, errors, mism) = match run_caught(engine, lc) {
         Ok(a) => {
             let mism = has_expect.then(|| judge::check_expect(lc, &a));
@@ -288,7 +298,11 @@ pub fn judge_engine(engine: &Engine, lc: &LoadedCase, truth: &Truth) -> EngineRe
                     match &v {
                         Verdict::Disagree { reasons } => match engine.known.explain(&engine.name, lc, &a, t, reasons) {
                             Some(reason) => (Verdict::KnownDivergence { reason }, e),
-                            None => (v, e),
+                            None => {
+                                rounding_explains =
+                                    precision == Some(F32_BITS) && agrees_rounded(referee, lc, &a, &tol);
+                                (v, e)
+                            }
                         },
                         _ => (v, e),
                     }
@@ -299,7 +313,67 @@ pub fn judge_engine(engine: &Engine, lc: &LoadedCase, truth: &Truth) -> EngineRe
         }
         Err(v) => (None, v, Errors::default(), None),
     };
-    EngineResult { engine: engine.name.clone(), answer, verdict, errors, expect_mismatches: mism }
+    EngineResult { engine: engine.name.clone(), answer, verdict, errors, expect_mismatches: mism, rounding_explains }
+}
+
+/// Bits of mantissa of `f32`: engines of this precision are given their
+/// inputs rounded to it.
+pub const F32_BITS: u32 = 24;
+
+/// Whether `a` agrees (or is borderline) with the referee's answer to `lc`
+/// with every input rounded to `f32` as an `f32` engine rounds it.
+fn agrees_rounded(referee: &Engine, lc: &LoadedCase, a: &Answer, tol: &Tolerance) -> bool {
+    let Some(rounded) = rounded_to_f32(lc) else { return false };
+    let t = Truth::of(referee, &rounded);
+    t.answer.as_ref().is_some_and(|t_ans| {
+        let (v, _) = judge::judge(&rounded, a, t_ans, tol, t.margin);
+        matches!(v, Verdict::Agree | Verdict::Borderline { .. })
+    })
+}
+
+/// `lc` with every input number rounded to `f32` (a finite `t_max` beyond
+/// `f32`'s range to its largest value, as the adapters do), or `None` when the
+/// rounded case is no longer valid (a radius rounded to 0): what an `f32`
+/// engine is given, in effect.
+pub fn rounded_to_f32(lc: &LoadedCase) -> Option<LoadedCase> {
+    /// Rounds every number under `v` (`key` its field); false when one
+    /// leaves `f32`'s range.
+    fn walk(v: &mut serde_json::Value, key: &str) -> bool {
+        match v {
+            serde_json::Value::Number(n) => {
+                let Some(x) = n.as_f64().filter(|_| n.is_f64()) else { return true };
+                let y = x as f32;
+                let y = if key == "t_max" && x.is_finite() && !y.is_finite() { f32::MAX } else { y };
+                match serde_json::Number::from_f64(f64::from(y)) {
+                    Some(m) => {
+                        *n = m;
+                        true
+                    }
+                    None => false,
+                }
+            }
+            serde_json::Value::Array(a) => a.iter_mut().all(|x| walk(x, key)),
+            serde_json::Value::Object(o) => o
+                .iter_mut()
+                .filter(|(k, _)| !matches!(k.as_str(), "expect" | "tol" | "triangles"))
+                .all(|(k, x)| walk(x, k)),
+            _ => true,
+        }
+    }
+    let mut v = serde_json::to_value(&lc.case).ok()?;
+    if !walk(&mut v, "") {
+        return None;
+    }
+    let case: crate::case::Case = serde_json::from_value(v).ok()?;
+    let mut meshes = lc.meshes.clone();
+    for x in meshes.iter_mut().flatten().flat_map(|m| m.vertices.iter_mut().flatten()) {
+        *x = f64::from(*x as f32);
+        if !x.is_finite() {
+            return None;
+        }
+    }
+    crate::load::validate(&case).ok()?;
+    Some(LoadedCase { file: lc.file.clone(), case, meshes })
 }
 
 /// Checks every loaded case; `errors` are the input errors met while loading.

@@ -30,6 +30,11 @@ pub struct Engine {
     /// What the report's provenance says it is (`collide 0.1.0`, `parry3d-f64
     /// 0.31.1`); `None` for an engine that does not say.
     pub version: Option<String>,
+    /// The engine whose source code this one is another build of (the same
+    /// code in another precision: `collide-f32/robust` of `collide/robust`,
+    /// `parry3d` of `parry3d-f64`): their findings of one cause are one root
+    /// cause ([`crate::findings`]). `None` for an engine of its own code.
+    pub build_of: Option<String>,
     queries: Arc<dyn Queries>,
     /// A process engine answers through the protocol instead of `queries`.
     process: Option<Arc<ProcessEngine>>,
@@ -62,6 +67,7 @@ impl Engine {
             precision,
             known: Known::NONE,
             version: None,
+            build_of: None,
             queries: Arc::new(queries),
             process: None,
         }
@@ -82,6 +88,7 @@ impl Engine {
             precision: Some(precision),
             known: Known::NONE,
             version: version.or_else(|| Some(format!("down (process: {})", engine.spec().command_line()))),
+            build_of: None,
             queries: Arc::new(ThroughTheProtocol),
             process: Some(Arc::new(engine)),
         }
@@ -145,6 +152,17 @@ impl Engine {
     /// The same engine with its version, as the report's provenance shows it.
     pub fn with_version(self, version: impl Into<String>) -> Self {
         Self { version: Some(version.into()), ..self }
+    }
+
+    /// The same engine, declared another build of `engine`'s source code.
+    pub fn build_of(self, engine: impl Into<String>) -> Self {
+        Self { build_of: Some(engine.into()), ..self }
+    }
+
+    /// The name of the source code it is a build of: [`Engine::build_of`],
+    /// or its own name.
+    pub fn source(&self) -> &str {
+        self.build_of.as_deref().unwrap_or(&self.name)
     }
 
     /// The same engine carrying these known divergences.

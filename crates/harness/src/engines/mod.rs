@@ -28,12 +28,18 @@ pub fn judged() -> Vec<Engine> {
         Engine::new(COLLIDE[1], Some(53), CollideQueries::<f64>::new(Method::Lecture))
             .with_known(LECTURE)
             .with_version(&collide),
-        Engine::new(COLLIDE[2], Some(24), CollideQueries::<f32>::new(Method::Robust)).with_version(&collide),
+        Engine::new(COLLIDE[2], Some(24), CollideQueries::<f32>::new(Method::Robust))
+            .with_version(&collide)
+            .build_of(COLLIDE[0]),
         Engine::new(COLLIDE[3], Some(24), CollideQueries::<f32>::new(Method::Lecture))
             .with_known(LECTURE)
-            .with_version(&collide),
+            .with_version(&collide)
+            .build_of(COLLIDE[1]),
         Engine::new(Parry64::NAME, Some(53), Parry64).with_known(PARRY).with_version(parry(Parry64::NAME)),
-        Engine::new(Parry32::NAME, Some(24), Parry32).with_known(PARRY).with_version(parry(Parry32::NAME)),
+        Engine::new(Parry32::NAME, Some(24), Parry32)
+            .with_known(PARRY)
+            .with_version(parry(Parry32::NAME))
+            .build_of(Parry64::NAME),
     ]
 }
 

@@ -163,13 +163,18 @@ pub fn diff(old: (&Summary, &FindingsFile), new: (&Summary, &FindingsFile), rena
     let keys: BTreeSet<&Signature> = old_f.keys().chain(new_f.keys()).collect();
     let mut findings = Vec::new();
     for sig in keys {
-        let n_old = super::model::of_cases(&old_cases, sig);
-        let n_new = super::model::of_cases(&new_cases, sig);
+        let (fo, fnew) = (old_f.get(sig), new_f.get(sig));
+        // The engines that showed it, in either report (NEW's renamed).
+        let mut engines: BTreeSet<String> =
+            fo.map(|f| f.engine_names().iter().map(|e| e.to_string()).collect()).unwrap_or_default();
+        engines.extend(fnew.iter().flat_map(|f| f.engine_names()).map(|e| renamed(e, renames)));
+        let engines: Vec<&str> = engines.iter().map(String::as_str).collect();
+        let n_old = super::model::cases_of(&old_cases, sig.query, &engines);
+        let n_new = super::model::cases_of(&new_cases, sig.query, &engines);
         if n_old == 0 || n_new == 0 {
             // The engine or the query kind ran in one report only: nothing to compare.
             continue;
         }
-        let (fo, fnew) = (old_f.get(sig), new_f.get(sig));
         let k_old = fo.map_or(0, |f| f.count);
         let k_new = fnew.map_or(0, |f| f.count);
         let set = |f: Option<&&super::model::Finding>| -> BTreeSet<String> {
@@ -182,8 +187,12 @@ pub fn diff(old: (&Summary, &FindingsFile), new: (&Summary, &FindingsFile), rena
             names
                 .into_iter()
                 .filter(|n| {
-                    !old.1.unstable.iter().any(|(e, c)| *e == sig.engine && c == n)
-                        && !new.1.unstable.iter().any(|(e, c)| renamed(e, renames) == sig.engine && c == n)
+                    !old.1.unstable.iter().any(|(e, c)| engines.contains(&e.as_str()) && c == n)
+                        && !new
+                            .1
+                            .unstable
+                            .iter()
+                            .any(|(e, c)| engines.contains(&renamed(e, renames).as_str()) && c == n)
                 })
                 .collect()
         };
@@ -354,7 +363,7 @@ mod tests {
             .expect("a finding with fixture cases");
         let mut new = old.clone();
         let moved = new.findings[ix].fixture_cases.remove(0);
-        let engine = new.findings[ix].cause.engine.clone();
+        let engine = new.findings[ix].engine().to_string();
         let changed = |new: &FindingsFile| {
             diff((&summary, &old), (&summary, new), &[]).findings.iter().any(|c| c.fixtures.1.contains(&moved))
         };

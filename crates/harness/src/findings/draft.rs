@@ -108,37 +108,57 @@ fn parry_program(engine: &Engine, lc: &LoadedCase, truth: &Answer, tol: &Toleran
     let krate = if engine.name == oracle::parry::Parry64::NAME { "parry3d-f64" } else { "parry3d" };
     let version = version_number(engine.version.as_deref().unwrap_or(""));
     let allowed = crate::judge::allowed(lc, truth, tol);
-    let allow = parry::Allowed { point: allowed.point, depth: allowed.depth, normal: allowed.normal, t: allowed.t };
-    let shape = |s: &Shape| -> Option<parry::Shape> {
+    let allow = parry::Allowed {
+        point: allowed.point,
+        depth: allowed.depth,
+        normal: allowed.normal,
+        t: allowed.t,
+        barycentric: allowed.barycentric,
+    };
+    // A case's shape `k` (0: a, 1: b) as parry builds it; a mesh from the
+    // case as loaded.
+    let shape = |s: &Shape, k: usize| -> Option<parry::Shape> {
         Some(match s {
             Shape::Sphere(s) => {
                 parry::Shape::Sphere(crashtest_core::geom::Sphere { center: s.center, radius: s.radius })
             }
             Shape::Plane(p) => parry::Shape::Plane(crashtest_core::geom::Plane { normal: p.normal, offset: p.offset }),
             Shape::Triangle(t) => parry::Shape::Triangle(crashtest_core::geom::Triangle { vertices: t.vertices }),
+            Shape::Mesh(_) => {
+                let m = lc.meshes[k].as_ref()?;
+                parry::Shape::Mesh(m.vertices.clone(), m.triangles.clone())
+            }
             _ => return None,
         })
     };
+    if let (Query::Bounds, Answer::Bounds(_)) = (lc.case.query, truth) {
+        return Some(parry::bounds(krate, &version, crate::load::bounded_points(lc), &allow));
+    }
     let b = lc.case.b.as_ref()?;
     match (lc.case.query, truth) {
         (Query::Contact, Answer::Contact(w)) => {
-            Some(parry::contact(krate, &version, &shape(&lc.case.a)?, &shape(b)?, w.contact.as_ref(), &allow))
+            Some(parry::contact(krate, &version, &shape(&lc.case.a, 0)?, &shape(b, 1)?, w.contact.as_ref(), &allow))
         }
         (Query::Intersect, Answer::Intersect(w)) => {
             let Shape::Segment(s) = &lc.case.a else { return None };
             let seg = crashtest_core::geom::Segment { start: s.start, end: s.end };
-            Some(parry::intersect(krate, &version, &seg, &shape(b)?, w.hit.as_ref(), &allow))
+            Some(parry::intersect(krate, &version, &seg, &shape(b, 1)?, w.hit.as_ref(), &allow))
         }
         (Query::Toi, Answer::Toi(w)) => {
             let Shape::Sphere(a) = &lc.case.a else { return None };
             let ball = crashtest_core::geom::Sphere { center: a.center, radius: a.radius };
             let (va, vb) = (lc.case.a.velocity(), b.velocity());
-            Some(parry::toi(krate, &version, &ball, &va, &shape(b)?, &vb, lc.case.t_max(), w.toi.as_ref(), &allow))
+            Some(parry::toi(krate, &version, &ball, &va, &shape(b, 1)?, &vb, lc.case.t_max(), w.toi.as_ref(), &allow))
         }
         (Query::Overlap, Answer::Overlap(w)) => {
             let (Shape::Aabb(x), Shape::Aabb(y)) = (&lc.case.a, b) else { return None };
             let bx = |s: &crate::case::AabbSpec| crashtest_core::geom::Aabb { min: s.min, max: s.max };
             Some(parry::overlap(krate, &version, &bx(x), &bx(y), *w))
+        }
+        (Query::Barycentric, Answer::Barycentric(w)) => {
+            let (Shape::Point(p), Shape::Triangle(t)) = (&lc.case.a, b) else { return None };
+            let tri = crashtest_core::geom::Triangle { vertices: t.vertices };
+            Some(parry::barycentric(krate, &version, &p.at, &tri, &w.coords, &allow))
         }
         _ => None,
     }
@@ -180,7 +200,7 @@ pub fn is_peer(engine: &Engine) -> bool {
 pub fn markdown(f: &Finding, repro: Option<&Reproduction>) -> String {
     let mut out = String::new();
     let s = &f.signature;
-    let _ = writeln!(out, "# {}: {} — {}\n", f.cause.engine, f.cause.pair, f.cause.class);
+    let _ = writeln!(out, "# {}: {} — {}\n", f.engines_label(), f.cause.pair, f.cause.class);
     let ways: Vec<String> = super::render::ways(f).iter().map(|(w, n)| format!("{w} ({n} cases)")).collect();
     let _ = writeln!(
         out,

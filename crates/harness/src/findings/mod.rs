@@ -48,8 +48,8 @@ pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet
     let mut checks: std::collections::BTreeMap<String, Vec<(signature::Cause, String, crate::load::LoadedCase)>> =
         Default::default();
     for f in &mut file.findings {
-        for (name, lc) in std::mem::take(&mut f.fixture_loaded) {
-            checks.entry(f.cause.engine.clone()).or_default().push((f.cause.clone(), name, lc));
+        for (engine, name, lc) in std::mem::take(&mut f.fixture_loaded) {
+            checks.entry(engine).or_default().push((f.cause.clone(), name, lc));
         }
     }
     let unstable: Vec<(String, String)> = checks
@@ -64,9 +64,7 @@ pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet
                 }
                 for ((cause, _, lc), steady) in cases.iter().zip(&mut steady) {
                     let (sig, result, _) = shrink::judge_one(engine, &set.referee, lc);
-                    let precision = engine.precision_for(lc).unwrap_or(53);
-                    let known = matches!(result.verdict, Verdict::KnownDivergence { .. });
-                    *steady &= sig.is_some_and(|s| signature::cause_of(&s, lc, precision, known) == *cause);
+                    *steady &= sig.is_some_and(|s| signature::cause_of(&s, lc, Some(engine), &result) == *cause);
                 }
             }
             for ((_, name, _), steady) in cases.into_iter().zip(steady) {
@@ -82,13 +80,13 @@ pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet
     file.unstable.dedup();
     file.findings.par_iter_mut().filter(|f| f.is_discrepancy()).for_each(|f| {
         let Some(lc) = f.representative.take() else { return };
-        let Some(engine) = set.judged.iter().find(|e| e.name == f.cause.engine) else { return };
-        let mut out = shrink::shrink(&lc, &f.signature, engine, &set.referee);
-        let mut replayed = shrink::replays(&out.case, &f.signature, engine, &set.referee);
+        let Some(engine) = set.judged.iter().find(|e| e.name == f.engine()) else { return };
+        let mut out = shrink::shrink(&lc, &f.signature, &f.cause, engine, &set.referee);
+        let mut replayed = shrink::replays(&out.case, &f.signature, &f.cause, engine, &set.referee);
         if replayed < shrink::REPLAYS {
             // The shrunk case shows the defect less reliably than it might:
             // the original, if it does better.
-            let original = shrink::replays(&lc, &f.signature, engine, &set.referee);
+            let original = shrink::replays(&lc, &f.signature, &f.cause, engine, &set.referee);
             if original > replayed {
                 out.case = lc.clone();
                 out.numbers.1 = out.numbers.0;

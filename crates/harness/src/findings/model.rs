@@ -84,8 +84,12 @@ pub struct Finding {
     pub name: String,
     /// What it is, in words.
     pub title: String,
-    /// Its root cause: engine, pair, class of what is wrong.
+    /// Its root cause: engine (its source code), pair, class of what is wrong.
     pub cause: Cause,
+    /// The engines that showed it and their cases (two when builds of one
+    /// source code in two precisions show one cause).
+    #[serde(default)]
+    pub engines: BTreeMap<String, u64>,
     /// Its first case's signature: the one its shrunk case keeps.
     pub signature: Signature,
     /// Its signatures and how many cases each (the ways it shows), most first.
@@ -122,13 +126,39 @@ pub struct Finding {
     /// The case to shrink (the first example, as loaded).
     #[serde(skip)]
     pub representative: Option<LoadedCase>,
-    /// A process engine's fixture cases in it, as loaded (judged again for
-    /// stability; at most [`MAX_FIXTURE_NAMES`]).
+    /// A process engine's fixture cases in it, as loaded, with the engine
+    /// (judged again for stability; at most [`MAX_FIXTURE_NAMES`]).
     #[serde(skip)]
-    pub fixture_loaded: Vec<(String, LoadedCase)>,
+    pub fixture_loaded: Vec<(String, String, LoadedCase)>,
 }
 
 impl Finding {
+    /// The engines that showed it, most cases first.
+    pub fn engine_names(&self) -> Vec<&str> {
+        let mut v: Vec<(&str, u64)> = self.engines.iter().map(|(e, n)| (e.as_str(), *n)).collect();
+        if v.is_empty() {
+            return vec![self.cause.engine.as_str()];
+        }
+        v.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(b.0)));
+        v.into_iter().map(|(e, _)| e).collect()
+    }
+
+    /// Its engines in words: `parry3d-f64, parry3d`.
+    pub fn engines_label(&self) -> String {
+        self.engine_names().join(", ")
+    }
+
+    /// The engine its shrunk case is judged by: its first case's.
+    pub fn engine(&self) -> &str {
+        &self.signature.engine
+    }
+
+    /// What it is, in words: `parry3d-f64, parry3d: contact sphere–plane:
+    /// wrong answers`.
+    fn make_title(&self) -> String {
+        format!("{}: {}: {}", self.engines_label(), self.cause.pair, self.cause.class)
+    }
+
     /// Its share of the engine's cases of this query kind.
     pub fn share(&self) -> f64 {
         if self.of_cases == 0 { 0.0 } else { self.count as f64 / self.of_cases as f64 }
@@ -147,8 +177,8 @@ impl Finding {
     /// The command that replays it, from the report folder `dir`.
     pub fn replay_command(&self, dir: &str) -> String {
         match &self.shrunk {
-            Some(s) => format!("crashtest check {dir}/{} --engines {}", s.file, self.cause.engine),
-            None => format!("crashtest check {dir}/findings/{}.json --engines {}", self.name, self.cause.engine),
+            Some(s) => format!("crashtest check {dir}/{} --engines {}", s.file, self.engine()),
+            None => format!("crashtest check {dir}/findings/{}.json --engines {}", self.name, self.engine()),
         }
     }
 }
@@ -269,16 +299,12 @@ impl Collector {
                     None
                 }
             };
-            let cause = signature::cause_of(
-                &sig,
-                lc,
-                judged.get(ix).and_then(|e| e.precision_for(lc)).unwrap_or(53),
-                known.is_some(),
-            );
+            let cause = signature::cause_of(&sig, lc, judged.get(ix), r);
             let f = self.by_cause.entry(cause.clone()).or_insert_with(|| Finding {
                 name: String::new(),
-                title: cause.title(),
+                title: String::new(),
                 cause,
+                engines: BTreeMap::new(),
                 signature: sig.clone(),
                 variants: Vec::new(),
                 families: BTreeMap::new(),
@@ -296,6 +322,7 @@ impl Collector {
                 fixture_loaded: Vec::new(),
             });
             f.count += 1;
+            *f.engines.entry(r.engine.clone()).or_default() += 1;
             f.errors.add(headline);
             *f.families.entry(sig.family.clone()).or_default() += 1;
             match f.variants.iter_mut().find(|(s, _)| *s == sig) {
@@ -311,7 +338,7 @@ impl Collector {
             if !lc.case.source.starts_with("generated") && f.fixture_cases.len() < MAX_FIXTURE_NAMES {
                 f.fixture_cases.push(format!("{}#{}", c.file, c.name));
                 if judged.get(ix).is_some_and(|e| e.process().is_some()) {
-                    f.fixture_loaded.push((format!("{}#{}", c.file, c.name), lc.clone()));
+                    f.fixture_loaded.push((r.engine.clone(), format!("{}#{}", c.file, c.name), lc.clone()));
                 }
             }
         }
@@ -324,8 +351,8 @@ impl Collector {
         let cases = self.cases;
         let mut findings: Vec<Finding> = self.by_cause.into_values().collect();
         for f in &mut findings {
-            f.of_cases = of_cases(&cases, &f.cause);
-            f.engine_version = versions.get(&f.cause.engine).cloned().unwrap_or_default();
+            f.of_cases = of_cases(&cases, f);
+            f.engine_version = versions.get(f.engine()).cloned().unwrap_or_default();
             f.variants.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
         }
         findings.sort_by(report_order);
@@ -340,10 +367,19 @@ impl Collector {
     }
 }
 
-/// The cases a finding's share divides by: the engine's cases of its query
+/// The cases a finding's share divides by: its engines' cases of its query
 /// kind, or of every kind for a cause over every pair.
-pub fn of_cases(cases: &BTreeMap<(String, Query), u64>, c: &Cause) -> u64 {
-    cases.iter().filter(|((e, q), _)| *e == c.engine && c.query.is_none_or(|cq| cq == *q)).map(|(_, n)| n).sum()
+pub fn of_cases(cases: &BTreeMap<(String, Query), u64>, f: &Finding) -> u64 {
+    cases_of(cases, f.cause.query, &f.engine_names())
+}
+
+/// The cases of `engines` of query kind `query` (every kind for `None`).
+pub fn cases_of(cases: &BTreeMap<(String, Query), u64>, query: Option<Query>, engines: &[&str]) -> u64 {
+    cases
+        .iter()
+        .filter(|((e, q), _)| engines.contains(&e.as_str()) && query.is_none_or(|cq| cq == *q))
+        .map(|(_, n)| n)
+        .sum()
 }
 
 /// The report's order: discrepancies before known divergences, most cases first.
@@ -355,12 +391,13 @@ fn report_order(a: &Finding, b: &Finding) -> std::cmp::Ordering {
     ))
 }
 
-/// Gives every finding a unique file name from its signature (`-2`, `-3`, …
-/// after a name already taken).
+/// Gives every finding its title and a unique file name from it (`-2`, `-3`,
+/// … after a name already taken).
 fn name_all(findings: &mut [Finding]) {
     let mut taken: BTreeMap<String, u32> = BTreeMap::new();
     for f in findings {
-        let base = f.cause.slug();
+        f.title = f.make_title();
+        let base = signature::slugify(&format!("{} {} {}", f.engines_label(), f.cause.pair, f.cause.class));
         let n = taken.entry(base.clone()).or_default();
         *n += 1;
         f.name = if *n == 1 { base } else { format!("{base}-{n}") };
@@ -392,6 +429,9 @@ impl FindingsFile {
                     }
                     Some(into) => {
                         into.count += f.count;
+                        for (e, n) in &f.engines {
+                            *into.engines.entry(e.clone()).or_default() += n;
+                        }
                         into.errors.merge(&f.errors);
                         for (fam, n) in &f.families {
                             *into.families.entry(fam.clone()).or_default() += n;
@@ -421,7 +461,7 @@ impl FindingsFile {
         }
         let mut findings: Vec<Finding> = by.into_values().collect();
         for f in &mut findings {
-            f.of_cases = of_cases(&cases, &f.cause);
+            f.of_cases = of_cases(&cases, f);
             f.variants.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
         }
         findings.sort_by(report_order);

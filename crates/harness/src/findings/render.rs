@@ -139,7 +139,7 @@ fn wrong_cell(f: &Finding) -> String {
 
 fn row(f: &Finding) -> [String; 8] {
     [
-        f.cause.engine.clone(),
+        f.engines_label(),
         f.cause.pair.clone(),
         wrong_cell(f),
         families_line(f),
@@ -157,11 +157,14 @@ fn lead(file: &FindingsFile) -> String {
     let known = file.findings.len() - n;
     let shrunk = file.discrepancy_findings().filter(|f| f.shrunk.is_some()).count();
     format!(
-        "{} discrepancies in {n} findings. A finding is one root cause: an engine, a pair in argument order, \
-         and what is wrong — wrong answers (false or missed contacts, hits, impacts, overlaps, or values off), \
-         wrong flags only, one kind of failure, or inputs beyond the engine's precision (every pair); its \
-         variants are the signatures (what exactly is wrong, case family, error's magnitude class) it shows \
-         as. {shrunk} have a shrunk case under findings/, replayed by the command in their row. {known} groups of known divergences follow, each \
+        "{} discrepancies in {n} findings. A finding is one root cause: an engine's code (two builds of one \
+         code in two precisions share it), a pair in argument order, and what is wrong — wrong answers (false or \
+         missed contacts, hits, impacts, overlaps, or values off), wrong flags only, or non-finite answers; one \
+         named failure (a panic at one place, a crash, the engine's message) over every pair; or, per engine \
+         and over every pair, inputs beyond its precision (products of the pair's degree outside the type's \
+         range, or, in f32, inputs whose rounding explains the answer). Its variants are the signatures (what \
+         exactly is wrong, case family, error's magnitude class) it shows as. {shrunk} have a shrunk case under \
+         findings/, replayed by the command in their row. {known} groups of known divergences follow, each \
          with its documented reason. Errors are the headline relative errors (1 for a misclassification or a \
          failure).",
         file.discrepancies
@@ -199,7 +202,7 @@ pub fn markdown(file: &FindingsFile, dir: &str) -> String {
             let _ = writeln!(
                 out,
                 "| {} | {} | {} | {} | {} |",
-                escape_md(&f.cause.engine),
+                escape_md(&f.engines_label()),
                 escape_md(&f.cause.pair),
                 f.count,
                 percent(f.share()),
@@ -321,7 +324,7 @@ pub fn html(file: &FindingsFile, dir: &str) -> String {
                 out,
                 "<tr><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\" data-v=\"{}\">{}</td>\
                  <td class=\"wrap\">{}</td></tr>",
-                escape(&f.cause.engine),
+                escape(&f.engines_label()),
                 escape(&f.cause.pair),
                 f.count,
                 f.share(),
@@ -371,7 +374,7 @@ pub fn text(file: &FindingsFile, dir: &str) -> String {
             let _ = writeln!(
                 out,
                 "  {}: {}: {} cases ({}): {}",
-                f.cause.engine,
+                f.engines_label(),
                 f.cause.pair,
                 f.count,
                 percent(f.share()),

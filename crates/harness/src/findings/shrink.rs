@@ -13,7 +13,7 @@
 //! after [`MAX_EVALUATIONS`] candidates. Every kept candidate lowers the cost,
 //! a non-negative integer, so it ends.
 
-use super::signature::{Signature, signature};
+use super::signature::{Cause, Signature, cause_of, signature};
 use crate::case::SCHEMA;
 use crate::check::{EngineResult, Truth, judge_engine};
 use crate::engine::Engine;
@@ -35,9 +35,17 @@ pub const REPLAYS: u32 = 5;
 /// Judgements a process engine's candidate must pass, each showing the defect.
 pub const STABLE_CHECKS: u32 = 3;
 
-/// How many of [`REPLAYS`] judgements of `lc` show the defect of `sig`.
-pub fn replays(lc: &LoadedCase, sig: &Signature, engine: &Engine, referee: &Engine) -> u32 {
-    (0..REPLAYS).filter(|_| judge_one(engine, referee, lc).0.is_some_and(|s| s.same_defect(sig))).count() as u32
+/// Whether one judgement of `lc` shows the defect of `sig` with the same
+/// root cause `cause` (a case of an engine's precision stays one).
+pub fn shows(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, referee: &Engine) -> bool {
+    let (s, r, _) = judge_one(engine, referee, lc);
+    s.is_some_and(|s| s.same_defect(sig) && cause_of(&s, lc, Some(engine), &r) == *cause)
+}
+
+/// How many of [`REPLAYS`] judgements of `lc` show the defect of `sig` with
+/// its cause.
+pub fn replays(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, referee: &Engine) -> u32 {
+    (0..REPLAYS).filter(|_| shows(lc, sig, cause, engine, referee)).count() as u32
 }
 
 /// The numbers a case is shrunk over: JSON pointers into the case.
@@ -302,7 +310,7 @@ fn load(v: &Value, file: &std::path::Path) -> Option<LoadedCase> {
 pub fn judge_one(engine: &Engine, referee: &Engine, lc: &LoadedCase) -> (Option<Signature>, EngineResult, Truth) {
     engine.forget_case(lc);
     let truth = Truth::of(referee, lc);
-    let r = judge_engine(engine, lc, &truth);
+    let r = judge_engine(engine, referee, lc, &truth);
     let misclassified = r.errors.misclass.is_some() || matches!(r.verdict, crate::judge::Verdict::Failed { .. });
     let headline = if misclassified { 1.0 } else { crate::judge::headline(&r.errors, truth.scale) };
     (signature(lc, &r, headline), r, truth)
@@ -324,7 +332,7 @@ pub struct Outcome {
 /// Shrinks `lc` while `engine`'s answer, judged against `referee`, keeps the
 /// defect of `sig`. The case keeps its name; its source says it was shrunk
 /// and from what (so its family stays the original's).
-pub fn shrink(lc: &LoadedCase, sig: &Signature, engine: &Engine, referee: &Engine) -> Outcome {
+pub fn shrink(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, referee: &Engine) -> Outcome {
     let Ok(mut best) = serde_json::to_value(&lc.case) else {
         return Outcome { case: lc.clone(), numbers: (0, 0), cost: (0, 0), evaluations: 0 };
     };
@@ -345,7 +353,7 @@ pub fn shrink(lc: &LoadedCase, sig: &Signature, engine: &Engine, referee: &Engin
         let cand = load(c, &lc.file)?;
         for _ in 0..checks {
             *evaluations += 1;
-            if !judge_one(engine, referee, &cand).0.is_some_and(|s| s.same_defect(sig)) {
+            if !shows(&cand, sig, cause, engine, referee) {
                 return None;
             }
         }

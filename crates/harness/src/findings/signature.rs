@@ -7,8 +7,9 @@
 //! and a failure message's numbers are dropped, so the same defect at another
 //! input has the same signature.
 
-use crate::case::Query;
+use crate::case::{Query, Shape};
 use crate::check::{EngineResult, PANIC_REASON_PREFIX};
+use crate::engine::Engine;
 use crate::judge::{NON_FINITE, Verdict};
 use crate::load::LoadedCase;
 use serde::{Deserialize, Serialize};
@@ -216,15 +217,26 @@ impl Signature {
 /// A root cause: what makes discrepancies one finding. One defect shows in
 /// several ways — parry's ball–half-space contact gives false contacts,
 /// missed contacts and wrong depths, in every family — so a finding is the
-/// engine, the pair in argument order, and the class of what is wrong: wrong
-/// answers (a false or missed contact, hit, impact or overlap, or values off),
-/// wrong flags only (`degenerate`, `parallel`), one kind of failure, or —
-/// for an engine of less precision than `f64` — inputs that its precision
-/// cannot hold (every pair at once: one cause). The finer [`Signature`]s are
-/// its variants.
+/// engine's source code, the pair in argument order, and the class of what is
+/// wrong:
+///
+/// - wrong answers (a false or missed contact, hit, impact or overlap, or
+///   values off), or wrong flags only (`degenerate`, `parallel`): per pair;
+/// - a non-finite answer: per pair;
+/// - one named failure (a panic at one place, a crash, the engine's own
+///   message): one cause wherever it occurs, every pair at once;
+/// - inputs beyond the engine's precision ([`BEYOND_PRECISION`], every pair at
+///   once, see [`beyond_precision`]), for that engine alone.
+///
+/// Engines that are builds of one source code in two precisions
+/// ([`crate::engine::Engine::build_of`]) share every cause but their
+/// precision's: the same defect seen through both is one finding. The finer
+/// [`Signature`]s are its variants.
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 pub struct Cause {
-    /// The engine.
+    /// The engine's source code: the engine's name, or the engine it is a
+    /// build of ([`crate::engine::Engine::source`]); the engine itself for
+    /// [`BEYOND_PRECISION`].
     pub engine: String,
     /// The query kind (none for a cause over every pair).
     pub query: Option<Query>,
@@ -242,50 +254,113 @@ pub const EVERY_PAIR: &str = "every pair";
 pub const WRONG_ANSWERS: &str = "wrong answers";
 /// The class of answers whose only fault is a flag.
 pub const WRONG_FLAGS: &str = "wrong flags";
-/// The class of cases whose inputs the engine's precision cannot hold.
-pub const BEYOND_PRECISION: &str = "inputs beyond its precision's range";
+/// The class of cases beyond the engine's precision ([`beyond_precision`]).
+pub const BEYOND_PRECISION: &str = "inputs beyond its precision";
+/// The failure kind that is no one failure's: an answer with a NaN or an
+/// infinity, a cause per pair.
+const NON_FINITE_KIND: &str = "failed: non-finite answer";
 
-/// Whether some input number of the case does not survive rounding to a
-/// precision of `bits` bits of mantissa (24: f32): a finite non-zero number
-/// that becomes 0 or infinite.
-pub fn beyond_precision(lc: &LoadedCase, bits: u32) -> bool {
-    if bits != 24 {
-        return false;
+/// The degree of the products a pair's formulas form from its inputs: 4 for
+/// a pair with a triangle or a mesh (a face's squared normal length
+/// `|(b − a) × (c − a)|²`) and for a time of impact (the discriminant `b² −
+/// a·c` of a quadratic whose `b` is already a dot product); 2 for every other
+/// pair (squared lengths and dot products).
+pub fn pair_degree(lc: &LoadedCase) -> i32 {
+    let kinds = [Some(&lc.case.a), lc.case.b.as_ref()];
+    let triangles = kinds.iter().flatten().any(|s| matches!(s, Shape::Triangle(_) | Shape::Mesh(_)));
+    if triangles || lc.case.query == Query::Toi { 4 } else { 2 }
+}
+
+/// The factor by which the squared length of a difference of two input
+/// points can exceed the square of the largest input magnitude `M`:
+/// `|b − a|² ≤ 3 · (2M)² = 12 M²`.
+const DIFFERENCE_SQUARED: f64 = 12.0;
+
+/// Whether the case is beyond the precision of an engine of `bits` bits of
+/// mantissa (53: `f64`, 24: `f32`; no other precision is judged so):
+///
+/// - its products of the pair's degree `d` ([`pair_degree`]) leave the
+///   type's normal range: with `M` the largest input magnitude and `m` the
+///   smallest non-zero one, `(12 M²)^(d/2)` (a difference's squared length,
+///   to the degree) overflows, or `m^d` falls below the smallest normal
+///   number. The pair's formulas cannot be evaluated in the type without
+///   scaling; numbers the type cannot hold at all (`f32` rounding them to 0
+///   or ∞) are among them;
+/// - or, for `f32`, `rounding_explains`: the engine's answer agrees with the
+///   exact answer to the inputs rounded to `f32`
+///   ([`crate::check::EngineResult::rounding_explains`]).
+pub fn beyond_precision(lc: &LoadedCase, bits: u32, rounding_explains: bool) -> bool {
+    let (max, min) = match bits {
+        53 => (f64::MAX, f64::MIN_POSITIVE),
+        24 => (f64::from(f32::MAX), f64::from(f32::MIN_POSITIVE)),
+        _ => return false,
+    };
+    if bits == 24 && rounding_explains {
+        return true;
     }
-    let Ok(v) = serde_json::to_value(&lc.case) else { return false };
-    let mut beyond = false;
-    fn walk(v: &serde_json::Value, beyond: &mut bool) {
+    fn each_number(v: &serde_json::Value, f: &mut dyn FnMut(f64)) {
         match v {
             serde_json::Value::Number(n) => {
                 if let Some(x) = n.as_f64() {
-                    let y = x as f32;
-                    if x != 0.0 && x.is_finite() && (y == 0.0 || !y.is_finite()) {
-                        *beyond = true;
-                    }
+                    f(x)
                 }
             }
-            serde_json::Value::Array(a) => a.iter().for_each(|x| walk(x, beyond)),
-            serde_json::Value::Object(o) => {
-                for (k, x) in o {
-                    if k != "expect" && k != "tol" {
-                        walk(x, beyond);
-                    }
-                }
-            }
+            serde_json::Value::Array(a) => a.iter().for_each(|x| each_number(x, f)),
+            serde_json::Value::Object(o) => o
+                .iter()
+                .filter(|(k, _)| !matches!(k.as_str(), "expect" | "tol" | "triangles"))
+                .for_each(|(_, x)| each_number(x, f)),
             _ => {}
         }
     }
-    walk(&v, &mut beyond);
-    if let Some(m) = lc.meshes.iter().flatten().next() {
-        beyond |= m.vertices.iter().flatten().any(|&x| x != 0.0 && ((x as f32) == 0.0 || !(x as f32).is_finite()));
-    }
-    beyond
+    let Ok(v) = serde_json::to_value(&lc.case) else { return false };
+    let (mut big, mut small) = (0.0f64, f64::INFINITY);
+    let mut seen = |x: f64| {
+        if x != 0.0 && x.is_finite() {
+            big = big.max(x.abs());
+            small = small.min(x.abs());
+        }
+    };
+    each_number(&v, &mut seen);
+    lc.meshes.iter().flatten().flat_map(|m| m.vertices.iter().flatten()).for_each(|&x| seen(x));
+    let d = f64::from(pair_degree(lc));
+    // In logarithms, which neither overflow nor underflow.
+    let (lmax, lmin) = (max.log2(), min.log2());
+    big > 0.0 && ((d / 2.0) * (DIFFERENCE_SQUARED.log2() + 2.0 * big.log2()) > lmax || d * small.log2() < lmin)
 }
 
-/// The cause of a discrepancy of signature `sig` on `lc`, for an engine of
-/// `precision` bits.
-pub fn cause_of(sig: &Signature, lc: &LoadedCase, precision: u32, known: bool) -> Cause {
-    if !known && beyond_precision(lc, precision) {
+/// A panic's place in a dependency without the crate's folder
+/// (`failed: panic at parry3d-0.31.1/src/q.rs:100` → `failed: panic at
+/// src/q.rs:100`): builds of one source code in two precisions are two crates
+/// of one code, and the cause already names the source. Any other kind is
+/// kept as it is.
+fn without_crate_folder(kind: &str) -> String {
+    let prefix = "failed: panic at ";
+    if let Some(rest) = kind.strip_prefix(prefix)
+        && let Some((folder, path)) = rest.split_once('/')
+        && folder.rsplit_once('-').is_some_and(|(_, v)| v.starts_with(|c: char| c.is_ascii_digit()))
+    {
+        return format!("{prefix}{path}");
+    }
+    kind.to_string()
+}
+
+/// The cause of a discrepancy of signature `sig` on `lc`: `r` is the result
+/// that showed it, `engine` the engine that gave it (its precision and source;
+/// without it, an `f64` engine of its own code).
+pub fn cause_of(sig: &Signature, lc: &LoadedCase, engine: Option<&Engine>, r: &EngineResult) -> Cause {
+    let known = matches!(r.verdict, Verdict::KnownDivergence { .. });
+    let source = engine.map_or(sig.engine.as_str(), |e| e.source()).to_string();
+    let failed = sig.wrong.starts_with("failed: ");
+    let named_failure = failed && sig.wrong != NON_FINITE_KIND;
+    if known {
+        return Cause { engine: source, query: Some(sig.query), pair: sig.pair.clone(), class: sig.wrong.clone() };
+    }
+    if named_failure {
+        return Cause { engine: source, query: None, pair: EVERY_PAIR.into(), class: without_crate_folder(&sig.wrong) };
+    }
+    let precision = engine.and_then(|e| e.precision_for(lc)).unwrap_or(53);
+    if beyond_precision(lc, precision, r.rounding_explains) {
         return Cause {
             engine: sig.engine.clone(),
             query: None,
@@ -293,31 +368,19 @@ pub fn cause_of(sig: &Signature, lc: &LoadedCase, precision: u32, known: bool) -
             class: BEYOND_PRECISION.into(),
         };
     }
-    let class = if known || sig.wrong.starts_with("failed: ") {
+    let class = if failed {
         sig.wrong.clone()
     } else if sig.wrong.split("; ").all(|p| p.starts_with("degenerate:") || p.starts_with("parallel:")) {
         WRONG_FLAGS.into()
     } else {
         WRONG_ANSWERS.into()
     };
-    Cause { engine: sig.engine.clone(), query: Some(sig.query), pair: sig.pair.clone(), class }
-}
-
-impl Cause {
-    /// `parry3d-f64: contact sphere–plane: wrong answers`.
-    pub fn title(&self) -> String {
-        format!("{}: {}: {}", self.engine, self.pair, self.class)
-    }
-
-    /// A file name for it: lower-case letters, digits and `-`.
-    pub fn slug(&self) -> String {
-        slugify(&format!("{} {} {}", self.engine, self.pair, self.class))
-    }
+    Cause { engine: source, query: Some(sig.query), pair: sig.pair.clone(), class }
 }
 
 /// Text as a file name: lower-case letters, digits and single `-`, at most
 /// [`MAX_SLUG_CHARS`] characters.
-fn slugify(text: &str) -> String {
+pub fn slugify(text: &str) -> String {
     let mut out = String::new();
     for c in text.chars() {
         let c = match c {
@@ -381,6 +444,118 @@ mod tests {
         assert_eq!(wrong_of(&e).unwrap(), "failed: ValueError: point at is outside");
         assert_eq!(wrong_of(&Verdict::Failed { reason: NON_FINITE.into() }).unwrap(), "failed: non-finite answer");
         assert_eq!(wrong_of(&Verdict::Agree), None);
+    }
+
+    /// One case from its JSON.
+    fn case(json: &str) -> LoadedCase {
+        let text = format!(r#"{{"schema": "crashtest-fixture/1", "cases": [{json}]}}"#);
+        let mut loaded = crate::load::Loaded::default();
+        crate::load::load_str_into(std::path::Path::new("t.json"), &text, &mut loaded);
+        assert!(loaded.errors.is_empty(), "{:?}", loaded.errors);
+        loaded.cases.remove(0)
+    }
+
+    fn spheres(c: f64, r: f64) -> LoadedCase {
+        case(&format!(
+            r#"{{"name": "s", "query": "contact", "a": {{"sphere": {{"center": [{c:e}, 0, 0], "radius": {r:e}}}}},
+                "b": {{"sphere": {{"center": [0, {c:e}, 0], "radius": {r:e}}}}}}}"#
+        ))
+    }
+
+    #[test]
+    fn the_range_rule_takes_the_pair_s_degree_and_the_type() {
+        // Degree 2: squared lengths of differences reach 12·M².
+        assert!(!beyond_precision(&spheres(1e150, 1.0), 53, false), "12e300 fits f64");
+        assert!(beyond_precision(&spheres(1e154, 1.0), 53, false), "12e308 does not");
+        assert!(beyond_precision(&spheres(1.0, 1e-160), 53, false), "1e-320 is below f64's normal range");
+        assert!(!beyond_precision(&spheres(1.0, 1e-150), 53, false));
+        // f32's range is far narrower; no other precision is judged so.
+        assert!(beyond_precision(&spheres(1e19, 1.0), 24, false));
+        assert!(!beyond_precision(&spheres(1e18, 1.0), 24, false), "12e36 fits f32");
+        assert!(!beyond_precision(&spheres(1e18, 1.0), 53, false));
+        assert!(!beyond_precision(&spheres(1e300, 1.0), 11, false));
+        // Degree 4 for a triangle: 1e80 is beyond f64 there, not for two spheres.
+        let tri = case(
+            r#"{"name": "t", "query": "contact", "a": {"sphere": {"center": [0, 0, 1], "radius": 1}},
+                "b": {"triangle": {"vertices": [[1e80, 0, 0], [0, 1, 0], [0, 0, 0]]}}}"#,
+        );
+        assert_eq!(pair_degree(&tri), 4);
+        assert!(beyond_precision(&tri, 53, false));
+        assert!(!beyond_precision(&spheres(1e80, 1.0), 53, false));
+        // Rounding explains only an f32 engine's answer.
+        assert!(beyond_precision(&spheres(1.0, 1.0), 24, true));
+        assert!(!beyond_precision(&spheres(1.0, 1.0), 53, true));
+    }
+
+    #[test]
+    fn an_f32_answer_the_rounding_of_its_inputs_explains_is_filed_under_its_precision() {
+        // Centres 2^-30 apart at 1: exact, they are not concentric; rounded to
+        // f32 they are, and an f32 engine answers the concentric fallback.
+        let lc = case(
+            r#"{"name": "near-concentric", "query": "contact",
+                "a": {"sphere": {"center": [1, 0, 0], "radius": 1}},
+                "b": {"sphere": {"center": [1.000000000931322574615478515625, 0, 0], "radius": 1}}}"#,
+        );
+        let set = crate::engines::EngineSet::default();
+        let r = crate::check::check_case(&lc, &set);
+        let of = |name: &str| r.engines.iter().find(|e| e.engine == name).expect(name);
+        let f32_robust = of("collide-f32/robust");
+        assert!(matches!(f32_robust.verdict, Verdict::Disagree { .. }), "{:?}", f32_robust.verdict);
+        assert!(f32_robust.rounding_explains, "the rounded case is concentric, as the engine answered");
+        let engine = set.judged.iter().find(|e| e.name == "collide-f32/robust").unwrap();
+        let sig = signature(&lc, f32_robust, 1.0).unwrap();
+        let cause = cause_of(&sig, &lc, Some(engine), f32_robust);
+        assert_eq!(
+            (cause.engine.as_str(), cause.pair.as_str(), cause.class.as_str()),
+            ("collide-f32/robust", EVERY_PAIR, BEYOND_PRECISION)
+        );
+        // An f64 engine is never explained so.
+        assert!(
+            r.engines
+                .iter()
+                .filter(|e| e.engine.contains("f64") || e.engine.starts_with("collide/"))
+                .all(|e| !e.rounding_explains)
+        );
+    }
+
+    #[test]
+    fn two_builds_of_one_code_share_a_pair_s_cause() {
+        // parry's ball–half-space defect, seen through parry3d-f64 and parry3d.
+        let lc = case(
+            r#"{"name": "ball above a floor", "query": "contact",
+                "a": {"sphere": {"center": [0, 0, 0.75], "radius": 1}},
+                "b": {"plane": {"normal": [0, 0, 1], "offset": 0}}}"#,
+        );
+        let set = crate::engines::EngineSet::select("parry3d-f64,parry3d", Some("parry3d-f64")).unwrap();
+        let r = crate::check::check_case(&lc, &set);
+        let causes: Vec<Cause> = r
+            .engines
+            .iter()
+            .zip(&set.judged)
+            .map(|(res, e)| {
+                assert!(!res.rounding_explains, "{}: the defect is not f32's rounding", res.engine);
+                let sig = signature(&lc, res, 1.0).unwrap_or_else(|| panic!("{}: {:?}", res.engine, res.verdict));
+                cause_of(&sig, &lc, Some(e), res)
+            })
+            .collect();
+        assert_eq!(causes.len(), 2);
+        assert_eq!(causes[0], causes[1]);
+        assert_eq!((causes[0].engine.as_str(), causes[0].class.as_str()), ("parry3d-f64", WRONG_ANSWERS));
+    }
+
+    #[test]
+    fn a_panic_s_cause_names_its_place_in_the_source_not_the_crate_s_folder() {
+        assert_eq!(
+            without_crate_folder("failed: panic at parry3d-0.31.1/src/query/epa/epa3.rs:100"),
+            without_crate_folder("failed: panic at parry3d-f64-0.31.1/src/query/epa/epa3.rs:100")
+        );
+        assert_eq!(without_crate_folder("failed: panic at parry3d-0.31.1/src/q.rs:1"), "failed: panic at src/q.rs:1");
+        // A panic in the workspace's own code, and any other failure, keep theirs.
+        assert_eq!(
+            without_crate_folder("failed: panic at crates/collide/src/a.rs:3"),
+            "failed: panic at crates/collide/src/a.rs:3"
+        );
+        assert_eq!(without_crate_folder("failed: non-finite answer"), "failed: non-finite answer");
     }
 
     #[test]

@@ -765,6 +765,7 @@ mod tests {
             verdict: Verdict::Failed { reason },
             errors: Errors::default(),
             expect_mismatches: None,
+            rounding_explains: false,
         };
         let case = CaseResult {
             file: "f.json".into(),

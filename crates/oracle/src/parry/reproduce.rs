@@ -8,11 +8,16 @@
 //! `normal1 = −normal` (parry's points from shape 1 to shape 2), `point2` the
 //! point on shape 2. So the program panics exactly while parry's answer stays
 //! outside the allowances crashtest judged it by — a bug report's test.
+//!
+//! A mesh is parry's `TriMesh` of the case's vertices and faces at the
+//! identity; barycentric coordinates are `TrianglePointLocation`'s of the
+//! point's projection (`project_local_point_and_get_location`); a bounding
+//! sphere is `point_cloud_bounding_sphere`'s, asserted to enclose every point.
 
 use crashtest_core::geom::{Aabb, Contact, P3, Plane, Segment, SegmentHit, Sphere, Toi, Triangle};
 
 /// One shape of a reproduction.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub enum Shape {
     /// A ball.
     Sphere(Sphere),
@@ -20,6 +25,8 @@ pub enum Shape {
     Plane(Plane),
     /// A triangle.
     Triangle(Triangle),
+    /// A triangle mesh: vertices and faces (0-based).
+    Mesh(Vec<P3>, Vec<[usize; 3]>),
 }
 
 /// What the exact answer allows, from crashtest's judgement of the case.
@@ -33,6 +40,8 @@ pub struct Allowed {
     pub normal: f64,
     /// A segment parameter's.
     pub t: f64,
+    /// Each barycentric coordinate's.
+    pub barycentric: f64,
 }
 
 /// A number as Rust source: the shortest decimal that reads back to it, with
@@ -68,6 +77,14 @@ fn build(s: &Shape, k: u8) -> Vec<String> {
             vec3(&t.vertices[1]),
             vec3(&t.vertices[2])
         )],
+        Shape::Mesh(vertices, faces) => vec![
+            format!("let vertices{k} = vec![{}];", vertices.iter().map(vec3).collect::<Vec<_>>().join(", ")),
+            format!(
+                "let faces{k} = vec![{}];",
+                faces.iter().map(|f| format!("[{}, {}, {}]", f[0], f[1], f[2])).collect::<Vec<_>>().join(", ")
+            ),
+            format!("let (pos{k}, shape{k}) = (Pose::IDENTITY, TriMesh::new(vertices{k}, faces{k}).unwrap());"),
+        ],
     }
 }
 
@@ -189,6 +206,51 @@ pub fn overlap(krate: &str, version: &str, a: &Aabb, b: &Aabb, exact: bool) -> S
     l.push(format!(
         "assert_eq!(a.intersects(&b), {exact}, \"exact: {}\");",
         if exact { "they overlap" } else { "apart" }
+    ));
+    finish(l)
+}
+
+/// The program for the barycentric coordinates of `p`'s projection on `t`,
+/// the exact ones `exact` (of the projection on the triangle's plane).
+pub fn barycentric(krate: &str, version: &str, p: &P3, t: &Triangle, exact: &[f64; 3], allow: &Allowed) -> String {
+    let mut l = header(
+        krate,
+        version,
+        "barycentric coordinates of a projection",
+        &["math::Vector", "query::PointQueryWithLocation", "shape::Triangle"],
+    );
+    l.push(format!(
+        "let tri = Triangle::new({}, {}, {});",
+        vec3(&t.vertices[0]),
+        vec3(&t.vertices[1]),
+        vec3(&t.vertices[2])
+    ));
+    l.push(format!("let (_, location) = tri.project_local_point_and_get_location({}, false);", vec3(p)));
+    l.push("println!(\"{location:?}\");".into());
+    l.push("let w = location.barycentric_coordinates().expect(\"coordinates\");".into());
+    l.push(format!("let exact = [{}, {}, {}];", lit(exact[0]), lit(exact[1]), lit(exact[2])));
+    l.push(format!(
+        "assert!((0..3).all(|i| (w[i] - exact[i]).abs() <= {:e}), \"{{w:?}}, exact {{exact:?}}\");",
+        allow.barycentric
+    ));
+    finish(l)
+}
+
+/// The program for the bounding sphere of `points`: it must enclose every
+/// point (within `allow.depth`, crashtest's allowance for a radius).
+pub fn bounds(krate: &str, version: &str, points: &[P3], allow: &Allowed) -> String {
+    let mut l = header(
+        krate,
+        version,
+        "bounding sphere of a point cloud",
+        &["bounding_volume::details::point_cloud_bounding_sphere", "math::Vector"],
+    );
+    l.push(format!("let points = [{}];", points.iter().map(vec3).collect::<Vec<_>>().join(", ")));
+    l.push("let s = point_cloud_bounding_sphere(&points);".into());
+    l.push("println!(\"{s:?}\");".into());
+    l.push(format!(
+        "for p in &points {{ assert!((*p - s.center()).length() <= s.radius() + {:e}, \"{{p}} outside\"); }}",
+        allow.depth
     ));
     finish(l)
 }
