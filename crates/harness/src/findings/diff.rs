@@ -84,6 +84,9 @@ pub struct FindingChange {
     pub signature: Signature,
     /// Its title.
     pub title: String,
+    /// The engines that showed it, in either report (NEW's renamed): two
+    /// builds of one code share a finding.
+    pub engines: Vec<String>,
     /// Cases in OLD and the engine's cases of the query there.
     pub old: (u64, u64),
     /// In NEW.
@@ -219,6 +222,7 @@ pub fn diff(old: (&Summary, &FindingsFile), new: (&Summary, &FindingsFile), rena
         findings.push(FindingChange {
             signature: sig.clone(),
             title,
+            engines: engines.iter().map(|e| e.to_string()).collect(),
             old: (k_old, n_old),
             new: (k_new, n_new),
             fixtures: (entered, left),
@@ -282,7 +286,7 @@ impl Diff {
     pub fn worse(&self, gated: &[String]) -> Vec<String> {
         let mut out: BTreeSet<String> = BTreeSet::new();
         for f in self.findings.iter().filter(|f| f.change.is_worse()) {
-            out.insert(f.signature.engine.clone());
+            out.extend(f.engines.iter().cloned());
         }
         for s in self.scores.iter().filter(|s| s.change.is_worse()) {
             out.insert(s.engine.clone());
@@ -370,6 +374,26 @@ mod tests {
         assert!(changed(&new), "a fixture case leaving a finding is a change");
         new.unstable.push((engine, moved.clone()));
         assert!(!changed(&new), "not when its engine answered it differently when judged again");
+    }
+
+    #[test]
+    fn a_worse_finding_two_builds_share_gates_on_either_engine() {
+        // The sample's parry ball–half-space finding holds parry3d-f64's and
+        // parry3d's cases: three times as many in NEW is worse for both.
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../reports/sample");
+        let old = crate::findings::read(&dir).expect("the sample's findings");
+        let ix = old
+            .findings
+            .iter()
+            .position(|f| f.is_discrepancy() && f.engines.len() == 2)
+            .expect("a finding two builds share");
+        let mut new = old.clone();
+        new.findings[ix].count *= 3;
+        let d = diff((&Summary::default(), &old), (&Summary::default(), &new), &[]);
+        let names: Vec<String> = new.findings[ix].engines.keys().cloned().collect();
+        for name in &names {
+            assert_eq!(d.worse(std::slice::from_ref(name)), vec![name.clone()], "{name}");
+        }
     }
 
     #[test]
