@@ -287,12 +287,13 @@ fn process_line(p: &crate::protocol::client::ProcessInfo) -> String {
 }
 
 /// How often each of the referee's floating-point stages settled its work:
-/// "bounds: … 10990 / 29 (99.7 % without the exact stage)".
+/// "bounds: … 10990 / 29 (99.7 % without the exact stage)", and the query
+/// kinds the exact stage alone answers.
 fn referee_stages(p: &crate::summary::Provenance) -> String {
     if p.referee_stages.is_empty() {
         return "none counted".into();
     }
-    let parts: Vec<String> = p
+    let mut parts: Vec<String> = p
         .referee_stages
         .iter()
         .map(|(label, fast, exact)| {
@@ -300,6 +301,7 @@ fn referee_stages(p: &crate::summary::Provenance) -> String {
             format!("{label} {fast} / {exact} ({share:.1} % without the exact stage)")
         })
         .collect();
+    parts.push(format!("{}: the exact stage alone (0 % without it)", oracle::referee::EXACT_STAGE_ONLY));
     parts.join("; ")
 }
 

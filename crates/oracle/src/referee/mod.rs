@@ -131,6 +131,12 @@ impl Stage {
     }
 }
 
+/// The query kinds the referee answers in its exact stage alone (every case
+/// of them is decided exactly: its share without the exact stage is 0 %), for
+/// the report beside [`Stage`]'s counts.
+pub const EXACT_STAGE_ONLY: &str =
+    "contact, intersect, barycentric, overlap, response, and toi against a sphere, plane or triangle";
+
 static FAST: [AtomicU64; 2] = [AtomicU64::new(0), AtomicU64::new(0)];
 static EXACT: [AtomicU64; 2] = [AtomicU64::new(0), AtomicU64::new(0)];
 
