@@ -13,7 +13,7 @@
 //! CRASHTEST_STAGE_CASES=1000000 cargo test --release --test referee_stages
 //! ```
 
-use harness::case::{Case, MeshSpec, PointsSpec, Query, Shape, SphereSpec};
+use harness::case::{Case, MeshSpec, PointSpec, PointsSpec, Query, Shape, SphereSpec, TriangleSpec};
 use harness::check::run_caught;
 use harness::engines::{self, referee};
 use harness::generate::{generate, loaded, try_generate_full_range};
@@ -132,6 +132,65 @@ fn clouds_that_force_the_exact_stage_are_the_same() {
         run_caught(&r, lc).expect("the referee answers");
         let (exact, fast) = delta(&before, &stage_counts_on_this_thread(), Stage::MinBall);
         assert_eq!((exact, fast), (1, 0), "{}: the exact stage must answer", lc.case.source);
+    }
+}
+
+/// Barycentric cases at the floating-point stage's edges: a coordinate exactly
+/// on a midpoint between two `f64` (a tie: the exact stage must round it), a
+/// coordinate exactly 0 (a point on an edge: certified as `+0.0`), a zero-area
+/// triangle (the exact stage's fallback), and inputs beyond the stage's range.
+#[test]
+fn barycentric_ties_zeros_and_degenerate_triangles_are_the_same() {
+    let tri = |v: [[f64; 3]; 3]| Shape::Triangle(TriangleSpec { vertices: v, velocity: None });
+    let pt = |at: [f64; 3]| Shape::Point(PointSpec { at });
+    // (expected stage: true = the floating-point stage answers, case)
+    let mut cases: Vec<(bool, LoadedCase)> = Vec::new();
+    let mut add = |fast: bool, p: [f64; 3], v: [[f64; 3]; 3], what: String| {
+        cases.push((fast, case(Query::Barycentric, pt(p), Some(tri(v)), what)));
+    };
+    for k in 0..40i32 {
+        let s = 2f64.powi(k - 20);
+        // v0.x = −2^-53·s, v1.x = (1 − 2^-53)·s: e1 = (s, 0, 0), and w.x =
+        // (1 + 2^-53)·s, so β = 1 + 2^-53: a tie between 1 and its successor.
+        let v = [
+            [-(2f64.powi(-53)) * s, 0.0, 0.0],
+            [(1.0 - 2f64.powi(-53)) * s, 0.0, 0.0],
+            [-(2f64.powi(-53)) * s, s, 0.0],
+        ];
+        add(false, [s, 0.25 * s, 0.0], v, format!("β on a midpoint, scale 2^{}", k - 20));
+        // The same triangle, the point on its edge v0v1: γ = 0 exactly.
+        add(true, [0.5 * s, 0.0, 0.0], v, format!("γ exactly 0, scale 2^{}", k - 20));
+        // Off the plane and outside: β = 3 + 2^-53 (rounds to 3, no tie),
+        // γ = −1.25, α = −0.75 − 2^-53 (an f64).
+        add(true, [3.0 * s, -1.25 * s, 2.0 * s], v, format!("outside and off the plane, scale 2^{}", k - 20));
+        // Zero area: three collinear vertices.
+        add(
+            false,
+            [s, s, 0.0],
+            [[0.0, 0.0, 0.0], [s, s, s], [2.0 * s, 2.0 * s, 2.0 * s]],
+            format!("collinear, scale 2^{}", k - 20),
+        );
+    }
+    add(
+        false,
+        [1.0, 0.5, 0.0],
+        [[0.0, 0.0, 0.0], [2f64.powi(101), 0.0, 0.0], [0.0, 1.0, 0.0]],
+        "beyond the range".into(),
+    );
+    add(
+        false,
+        [1.0, 0.5, 0.0],
+        [[0.0, 0.0, 0.0], [1.0, 2f64.powi(-101), 0.0], [0.0, 1.0, 0.0]],
+        "below the range".into(),
+    );
+    let loaded: Vec<LoadedCase> = cases.iter().map(|(_, lc)| lc.clone()).collect();
+    assert_same("barycentric edges of the stage", &loaded);
+    let r = engines::referee();
+    for (fast, lc) in &cases {
+        let before = stage_counts_on_this_thread();
+        run_caught(&r, lc).expect("the referee answers");
+        let (exact, by_fast) = delta(&before, &stage_counts_on_this_thread(), Stage::Barycentric);
+        assert_eq!((by_fast, exact), (u64::from(*fast), u64::from(!*fast)), "{}", lc.case.source);
     }
 }
 

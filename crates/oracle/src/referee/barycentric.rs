@@ -67,6 +67,32 @@ fn longest_edge_fallback(p: &V3, v: &[V3; 3]) -> [Q; 3] {
     coords
 }
 
+/// The floating-point stage ([`super::fast`]): the same normal equations in
+/// double-word numbers that account for their error exactly, each coordinate
+/// `N / det` correctly rounded when the bounds certify it — `β = (c·d − b·e) /
+/// det`, `γ = (a·e − b·d) / det`, `α = (det − (c·d − b·e) − (a·e − b·d)) /
+/// det`, the same rationals as the exact stage's. `None` (the exact stage
+/// decides) for inputs beyond the stage's range, a `det` whose sign is not
+/// certain (zero-area and near-degenerate triangles), or a coordinate not
+/// certified (a tie, or too close to one for the bounds).
+fn barycentric_fast(p: &P3, t: &Triangle) -> Option<[f64; 3]> {
+    use super::fast::{diff3, dot, in_range, quotient};
+    let inputs = p.iter().chain(t.vertices.iter().flatten()).copied();
+    if !in_range(inputs) {
+        return None;
+    }
+    let e1 = diff3(&t.vertices[1], &t.vertices[0]);
+    let e2 = diff3(&t.vertices[2], &t.vertices[0]);
+    let w = diff3(p, &t.vertices[0]);
+    let (a, b, c) = (dot(&e1, &e1), dot(&e1, &e2), dot(&e2, &e2));
+    let (d, e) = (dot(&w, &e1), dot(&w, &e2));
+    let det = a.mul(c).sub(b.mul(b));
+    let n_beta = c.mul(d).sub(b.mul(e));
+    let n_gamma = a.mul(e).sub(b.mul(d));
+    let n_alpha = det.sub(n_beta).sub(n_gamma);
+    Some([quotient(n_alpha, det)?, quotient(n_beta, det)?, quotient(n_gamma, det)?])
+}
+
 /// Signed barycentric coordinates `[α, β, γ]` of the orthogonal projection of `p`
 /// onto the plane of triangle `t`, with `projection = α v0 + β v1 + γ v2` and
 /// `α + β + γ = 1` (negative outside the triangle).
@@ -83,7 +109,18 @@ fn longest_edge_fallback(p: &V3, v: &[V3; 3]) -> [Q; 3] {
 /// `degenerate: true`, and the coordinates are those of the point of the longest
 /// edge closest to `p` (clamped to the edge; the first of v0v1, v1v2, v2v0 wins a
 /// tie), or `[1, 0, 0]` when all three vertices coincide. They still sum to 1.
+///
+/// **Two stages.** A floating-point stage answers first and is kept only when
+/// its error bounds certify every coordinate's rounding (`barycentric_fast`);
+/// otherwise the exact stage above decides. The bits are the same either way.
 pub fn barycentric_triangle(p: &P3, t: &Triangle) -> Result<BarycentricAnswer, RefereeError> {
+    if super::staged() {
+        let fast = barycentric_fast(p, t);
+        super::count(super::Stage::Barycentric, fast.is_some(), 1);
+        if let Some(coords) = fast {
+            return Ok(BarycentricAnswer { coords, degenerate: false });
+        }
+    }
     let p = v3(p, "a.at")?;
     let v = [v3(&t.vertices[0], "b.vertices")?, v3(&t.vertices[1], "b.vertices")?, v3(&t.vertices[2], "b.vertices")?];
     let (coords, degenerate) = match barycentric_exact(&p, &v) {

@@ -38,7 +38,10 @@
 //! - a sphere against a mesh ([`toi`] and its margin): faces whose box a
 //!   rigorous `f64` lower bound puts out of reach of the sphere's whole path are
 //!   skipped; the margin tests faces nearest-bound first and stops once the
-//!   bound exceeds the nearest exact distance.
+//!   bound exceeds the nearest exact distance;
+//! - barycentric coordinates ([`barycentric`]): computed in double-word numbers
+//!   that account for their error exactly ([`fast`]), each coordinate kept when
+//!   its correct rounding is certified, else computed in exact rationals.
 //!
 //! The answers are the same bits as the exact stage's alone, by construction
 //! and by test ([`exact_only`] switches the stages off; `tests/referee_stages.rs`).
@@ -56,6 +59,7 @@ pub mod bounds;
 mod closest;
 pub mod contact;
 mod exact;
+mod fast;
 pub mod intersect;
 pub mod overlap;
 pub mod response;
@@ -86,7 +90,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 thread_local! {
     static EXACT_ONLY: Cell<bool> = const { Cell::new(false) };
     /// This thread's counts: fast then exact, per stage.
-    static HERE: Cell<[u64; 4]> = const { Cell::new([0; 4]) };
+    static HERE: Cell<[u64; 6]> = const { Cell::new([0; 6]) };
 }
 
 /// Runs `f` with the referee's floating-point stages off on this thread: every
@@ -116,17 +120,21 @@ pub enum Stage {
     /// A sphere against a mesh (`toi` and its margin): faces whose box is
     /// provably out of reach skipped, or a face's exact test run.
     MeshFaces,
+    /// Barycentric coordinates: certified from double-word numbers, or
+    /// computed in exact rationals.
+    Barycentric,
 }
 
 impl Stage {
     /// Every stage, in report order.
-    pub const ALL: [Stage; 2] = [Stage::MinBall, Stage::MeshFaces];
+    pub const ALL: [Stage; 3] = [Stage::MinBall, Stage::MeshFaces, Stage::Barycentric];
 
     /// What is counted, for the report.
     pub fn label(self) -> &'static str {
         match self {
             Stage::MinBall => "bounds: minimal balls certified from floating point / by exact Welzl",
             Stage::MeshFaces => "toi sphere–mesh: faces ruled out in floating point / tested exactly",
+            Stage::Barycentric => "barycentric: certified from double-word numbers / computed exactly",
         }
     }
 }
@@ -134,11 +142,10 @@ impl Stage {
 /// The query kinds the referee answers in its exact stage alone (every case
 /// of them is decided exactly: its share without the exact stage is 0 %), for
 /// the report beside [`Stage`]'s counts.
-pub const EXACT_STAGE_ONLY: &str =
-    "contact, intersect, barycentric, overlap, response, and toi against a sphere, plane or triangle";
+pub const EXACT_STAGE_ONLY: &str = "contact, intersect, overlap, response, and toi against a sphere, plane or triangle";
 
-static FAST: [AtomicU64; 2] = [AtomicU64::new(0), AtomicU64::new(0)];
-static EXACT: [AtomicU64; 2] = [AtomicU64::new(0), AtomicU64::new(0)];
+static FAST: [AtomicU64; 3] = [AtomicU64::new(0), AtomicU64::new(0), AtomicU64::new(0)];
+static EXACT: [AtomicU64; 3] = [AtomicU64::new(0), AtomicU64::new(0), AtomicU64::new(0)];
 
 /// Counts `n` answers of `stage`, by the floating-point stage or the exact one.
 pub(crate) fn count(stage: Stage, fast: bool, n: u64) {

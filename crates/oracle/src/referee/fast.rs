@@ -1,0 +1,240 @@
+//! The floating-point stage of an exact quotient: double-word numbers that
+//! carry an exact account of the error they commit, and a correctly rounded
+//! `N / D` certified from them, or nothing (the exact stage decides).
+//!
+//! A [`Dw`] is `hi + lo` (two `f64`) and a bound `err` on its distance from the
+//! exact value it stands for. Differences of two inputs are exact (`two_sum`).
+//! A sum or a product is computed with error-free transformations only
+//! (`two_sum`, Dekker's `two_prod`), and the terms it drops are summed into
+//! `err` as they are, not as a worst case: a computation that happens to be
+//! exact carries `err = 0`, so an exact zero is known to be zero. Errors
+//! carried in from the operands are propagated by the usual first-order rules
+//! with their second-order term. Every bound is computed in round-to-nearest
+//! `f64` from non-negative terms and then raised by [`UP`], which exceeds the
+//! relative rounding of the few operations that computed it.
+//!
+//! The exact transformations hold only while no intermediate overflows or
+//! underflows. [`in_range`] admits inputs of magnitude 0 or within
+//! `[2^-INPUT_EXP, 2^INPUT_EXP]`: every component of a degree-4 product of
+//! differences is then 0 or a multiple of `2^(-4·(INPUT_EXP + 52))`, far above
+//! the smallest normal number, and at most `2^(4·INPUT_EXP + 8)`; a quotient
+//! is certified only within `[2^-QUOTIENT_EXP, 2^QUOTIENT_EXP]`, so the
+//! products with its midpoints stay normal too.
+//!
+//! **Certifying `RN(N / D)`.** `D`'s sign must be certain (`|D̃| > err`). An
+//! exactly zero `N` gives `+0.0`, as the exact stage's rounding of zero does.
+//! Otherwise a candidate `r` is taken from the double-word values and the
+//! signs of `N − m·D` at the two midpoints `m = r ± ulp/2` around it (each an
+//! exact double-word) are decided: when the quotient lies strictly between
+//! them, `r` is its rounding to nearest — no tie is possible. A sign that the
+//! error bound leaves open, or a quotient on a midpoint, returns `None`.
+
+/// The unit roundoff of `f64`, `2^-53`.
+const U: f64 = f64::EPSILON / 2.0;
+
+/// Raises an error bound computed in `f64` (a handful of roundings to
+/// nearest, each within a relative `U`) to an upper bound of the exact one.
+const UP: f64 = 1.0 + 16.0 * U;
+
+/// Inputs are admitted of magnitude 0 or within `[2^-INPUT_EXP, 2^INPUT_EXP]`.
+const INPUT_EXP: i32 = 100;
+
+/// A quotient is certified only within `[2^-QUOTIENT_EXP, 2^QUOTIENT_EXP]`.
+const QUOTIENT_EXP: i32 = 300;
+
+/// Dekker's splitter for `f64`: `2^27 + 1`.
+const SPLITTER: f64 = 134_217_729.0;
+
+/// `a + b` as `(s, e)` with `s + e = a + b` exactly (no overflow).
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// `a` split into two halves of at most 26 significant bits each.
+fn split(a: f64) -> (f64, f64) {
+    let c = SPLITTER * a;
+    let hi = c - (c - a);
+    (hi, a - hi)
+}
+
+/// `a · b` as `(p, e)` with `p + e = a · b` exactly (Dekker; no overflow, and
+/// no underflow of the error term: see the module's range).
+fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
+}
+
+/// A double-word number: the exact value lies within `err` of `hi + lo`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Dw {
+    hi: f64,
+    lo: f64,
+    err: f64,
+}
+
+impl Dw {
+    /// `a − b`, exactly.
+    pub(crate) fn diff(a: f64, b: f64) -> Dw {
+        let (hi, lo) = two_sum(a, -b);
+        Dw { hi, lo, err: 0.0 }
+    }
+
+    /// An upper bound of `|hi + lo|`.
+    fn mag(self) -> f64 {
+        (self.hi.abs() + self.lo.abs()) * UP
+    }
+
+    /// A lower bound of `|hi + lo|` (`hi` is its rounding: `|lo| ≤ ulp(hi)/2`).
+    fn mag_below(self) -> f64 {
+        (self.hi.abs() - self.lo.abs()) * (1.0 - 4.0 * U)
+    }
+
+    fn neg(self) -> Dw {
+        Dw { hi: -self.hi, lo: -self.lo, err: self.err }
+    }
+
+    pub(crate) fn add(self, o: Dw) -> Dw {
+        let (s, e1) = two_sum(self.hi, o.hi);
+        let (t, e2) = two_sum(self.lo, o.lo);
+        let (v, e3) = two_sum(e1, t);
+        let (w, e4) = two_sum(v, e2);
+        let (hi, lo) = two_sum(s, w);
+        // self + o = s + e1 + t + e2 = s + v + e3 + e2 = s + w + e4 + e3 = hi + lo + e3 + e4.
+        Dw { hi, lo, err: (self.err + o.err + e3.abs() + e4.abs()) * UP }
+    }
+
+    pub(crate) fn sub(self, o: Dw) -> Dw {
+        self.add(o.neg())
+    }
+
+    pub(crate) fn mul(self, o: Dw) -> Dw {
+        let (p, e0) = two_prod(self.hi, o.hi);
+        let (a, ea) = two_prod(self.hi, o.lo);
+        let (b, eb) = two_prod(self.lo, o.hi);
+        let (c, ec) = two_prod(self.lo, o.lo);
+        let (s1, f1) = two_sum(a, b);
+        let (s2, f2) = two_sum(s1, c);
+        let (s3, f3) = two_sum(e0, s2);
+        let (hi, lo) = two_sum(p, s3);
+        // (hi + lo) of the product = p + s3 exactly; the terms dropped are
+        // f1 + f2 + f3 + ea + eb + ec.
+        let dropped = f1.abs() + f2.abs() + f3.abs() + ea.abs() + eb.abs() + ec.abs();
+        // With x = x̃ + δx, y = ỹ + δy: |xy − x̃ỹ| ≤ |x̃|·|δy| + |ỹ|·|δx| + |δx|·|δy|.
+        let carried = self.mag() * o.err + o.mag() * self.err + self.err * o.err;
+        Dw { hi, lo, err: (carried + dropped) * UP }
+    }
+
+    /// The sign of the exact value, when `err` leaves it certain: `Some(0)`
+    /// only for an exact zero.
+    fn sign(self) -> Option<i8> {
+        if self.hi == 0.0 && self.lo == 0.0 {
+            return (self.err == 0.0).then_some(0);
+        }
+        if self.mag_below() > self.err {
+            // hi + lo is normalized (`two_sum`): its sign is hi's.
+            return Some(if self.hi > 0.0 { 1 } else { -1 });
+        }
+        None
+    }
+}
+
+/// The dot product of two exact differences' vectors.
+pub(crate) fn dot(a: &[Dw; 3], b: &[Dw; 3]) -> Dw {
+    a[0].mul(b[0]).add(a[1].mul(b[1])).add(a[2].mul(b[2]))
+}
+
+/// `p − q`, componentwise, exactly.
+pub(crate) fn diff3(p: &[f64; 3], q: &[f64; 3]) -> [Dw; 3] {
+    [Dw::diff(p[0], q[0]), Dw::diff(p[1], q[1]), Dw::diff(p[2], q[2])]
+}
+
+/// Whether every input is 0 or of magnitude within the module's range.
+pub(crate) fn in_range(xs: impl IntoIterator<Item = f64>) -> bool {
+    let (lo, hi) = (2f64.powi(-INPUT_EXP), 2f64.powi(INPUT_EXP));
+    xs.into_iter().all(|x| x == 0.0 || (x.abs() >= lo && x.abs() <= hi))
+}
+
+/// `N / D` correctly rounded (to nearest, ties to even), when the error
+/// bounds certify it; `None` when the exact stage must decide.
+pub(crate) fn quotient(n: Dw, d: Dw) -> Option<f64> {
+    let d_sign = match d.sign()? {
+        0 => return None,
+        s => s,
+    };
+    if n.sign()? == 0 {
+        return Some(0.0);
+    }
+    let mut r = (n.hi + n.lo) / (d.hi + d.lo);
+    let (lo, hi) = (2f64.powi(-QUOTIENT_EXP), 2f64.powi(QUOTIENT_EXP));
+    // The candidate may be off by an ulp or two; each step moves it one.
+    for _ in 0..4 {
+        if !(r.abs() >= lo && r.abs() <= hi) {
+            return None;
+        }
+        let (up, down) = (r.next_up() - r, r - r.next_down());
+        // Where the quotient lies against a midpoint m: the sign of (N − m·D)·sign(D).
+        let side = |half: f64| -> Option<i8> {
+            let m = Dw { hi: r, lo: half, err: 0.0 };
+            n.sub(m.mul(d)).sign().map(|s| s * d_sign)
+        };
+        match (side(-down / 2.0)?, side(up / 2.0)?) {
+            (1, -1) => return Some(r),
+            (_, 1) => r = r.next_up(),
+            (-1, _) => r = r.next_down(),
+            // On a midpoint: a tie, which the exact stage rounds.
+            _ => return None,
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn exact(x: f64) -> Dw {
+        Dw { hi: x, lo: 0.0, err: 0.0 }
+    }
+
+    #[test]
+    fn exact_operations_carry_no_error_and_zero_is_known() {
+        let x = Dw::diff(1.0, 2f64.powi(-30)).mul(Dw::diff(3.0, 2f64.powi(-20)));
+        assert_eq!(x.err.to_bits(), 0.0f64.to_bits(), "a product of two exact double-words is exact here");
+        let z = x.sub(x);
+        assert_eq!(z.sign(), Some(0));
+        assert_eq!(quotient(z, exact(3.0)), Some(0.0));
+        // A product whose exact value spans more bits than two words hold
+        // carries the dropped part as its error.
+        let y = Dw::diff(1.0, 2f64.powi(-60)).mul(Dw::diff(3.0, 2f64.powi(-70)));
+        assert!(y.err > 0.0 && y.err <= 2f64.powi(-125), "{y:?}");
+    }
+
+    #[test]
+    fn quotients_are_rounded_to_nearest_and_a_tie_is_left_to_the_exact_stage() {
+        assert_eq!(quotient(exact(1.0), exact(3.0)), Some(1.0 / 3.0));
+        assert_eq!(quotient(exact(-2.0), exact(7.0)), Some(-2.0 / 7.0));
+        assert_eq!(quotient(exact(1.0), exact(-2.0)), Some(-0.5));
+        // (1 + 2^-53) / 1 lies exactly between 1 and its successor.
+        assert_eq!(quotient(Dw::diff(1.0, -(2f64.powi(-53))), exact(1.0)), None);
+        // Just above the midpoint it rounds up, just below it rounds down.
+        let above = Dw::diff(1.0, -(2f64.powi(-53))).add(Dw::diff(2f64.powi(-80), 0.0));
+        assert_eq!(quotient(above, exact(1.0)), Some(1.0f64.next_up()));
+        let below = Dw::diff(1.0, -(2f64.powi(-53))).sub(Dw::diff(2f64.powi(-80), 0.0));
+        assert_eq!(quotient(below, exact(1.0)), Some(1.0));
+        // A divisor whose sign the bound leaves open, and one exactly zero.
+        assert_eq!(quotient(exact(1.0), Dw { hi: 1e-20, lo: 0.0, err: 1e-19 }), None);
+        assert_eq!(quotient(exact(1.0), exact(0.0)), None);
+    }
+
+    #[test]
+    fn only_inputs_within_the_range_are_admitted() {
+        assert!(in_range([0.0, -0.0, 1.0, 2f64.powi(100), -(2f64.powi(-100))]));
+        assert!(!in_range([2f64.powi(101)]));
+        assert!(!in_range([2f64.powi(-101)]));
+        assert!(!in_range([f64::NAN]));
+    }
+}
