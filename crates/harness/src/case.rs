@@ -304,6 +304,39 @@ impl AabbSpec {
     }
 }
 
+/// A case's input numbers, as JSON pointers into the case written as JSON
+/// (`serde_json::to_value`): every number of its shapes (`/a/…`, `/b/…`; a
+/// mesh's face indices are not inputs) and its `t_max` and `restitution`.
+/// Never `expect` or `tol`.
+pub fn input_number_paths(case: &serde_json::Value) -> Vec<String> {
+    let mut out = Vec::new();
+    fn walk(v: &serde_json::Value, path: String, out: &mut Vec<String>) {
+        match v {
+            serde_json::Value::Number(_) => out.push(path),
+            serde_json::Value::Array(a) => a.iter().enumerate().for_each(|(i, x)| walk(x, format!("{path}/{i}"), out)),
+            serde_json::Value::Object(o) => {
+                for (k, x) in o {
+                    if k != "triangles" {
+                        walk(x, format!("{path}/{k}"), out);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    for key in ["a", "b"] {
+        if let Some(s) = case.get(key) {
+            walk(s, format!("/{key}"), &mut out);
+        }
+    }
+    for key in ["t_max", "restitution"] {
+        if case.get(key).is_some_and(serde_json::Value::is_number) {
+            out.push(format!("/{key}"));
+        }
+    }
+    out
+}
+
 /// The JSON Schema of a fixture file, generated from these types (committed as
 /// `schema/crashtest-fixture-1.schema.json`; a test keeps the copy current).
 pub fn json_schema() -> String {

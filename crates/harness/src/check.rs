@@ -336,33 +336,14 @@ fn agrees_rounded(referee: &Engine, lc: &LoadedCase, a: &Answer, tol: &Tolerance
 /// rounded case is no longer valid (a radius rounded to 0): what an `f32`
 /// engine is given, in effect.
 pub fn rounded_to_f32(lc: &LoadedCase) -> Option<LoadedCase> {
-    /// Rounds every number under `v` (`key` its field); false when one
-    /// leaves `f32`'s range.
-    fn walk(v: &mut serde_json::Value, key: &str) -> bool {
-        match v {
-            serde_json::Value::Number(n) => {
-                let Some(x) = n.as_f64().filter(|_| n.is_f64()) else { return true };
-                let y = x as f32;
-                let y = if key == "t_max" && x.is_finite() && !y.is_finite() { f32::MAX } else { y };
-                match serde_json::Number::from_f64(f64::from(y)) {
-                    Some(m) => {
-                        *n = m;
-                        true
-                    }
-                    None => false,
-                }
-            }
-            serde_json::Value::Array(a) => a.iter_mut().all(|x| walk(x, key)),
-            serde_json::Value::Object(o) => o
-                .iter_mut()
-                .filter(|(k, _)| !matches!(k.as_str(), "expect" | "tol" | "triangles"))
-                .all(|(k, x)| walk(x, k)),
-            _ => true,
-        }
-    }
     let mut v = serde_json::to_value(&lc.case).ok()?;
-    if !walk(&mut v, "") {
-        return None;
+    for path in crate::case::input_number_paths(&v) {
+        let n = v.pointer_mut(&path)?;
+        let x = n.as_f64()?;
+        let y = x as f32;
+        let y = if path == "/t_max" && x.is_finite() && !y.is_finite() { f32::MAX } else { y };
+        // A number beyond f32's range leaves no case to answer.
+        *n = serde_json::Number::from_f64(f64::from(y))?.into();
     }
     let case: crate::case::Case = serde_json::from_value(v).ok()?;
     let mut meshes = lc.meshes.clone();

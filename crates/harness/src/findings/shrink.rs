@@ -48,36 +48,10 @@ pub fn replays(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine,
     (0..REPLAYS).filter(|_| shows(lc, sig, cause, engine, referee)).count() as u32
 }
 
-/// The numbers a case is shrunk over: JSON pointers into the case.
+/// The numbers a case is shrunk over: its inputs, as JSON pointers into the
+/// case (face indices are not numbers to shrink: faces are dropped whole).
 fn slots(v: &Value) -> Vec<String> {
-    let mut out = Vec::new();
-    fn walk(v: &Value, path: String, out: &mut Vec<String>) {
-        match v {
-            Value::Number(_) => out.push(path),
-            Value::Array(a) => a.iter().enumerate().for_each(|(i, x)| walk(x, format!("{path}/{i}"), out)),
-            Value::Object(o) => {
-                for (k, x) in o {
-                    // Face indices are not numbers to shrink (faces are
-                    // dropped whole).
-                    if k != "triangles" {
-                        walk(x, format!("{path}/{k}"), out);
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
-    for key in ["a", "b"] {
-        if let Some(s) = v.get(key) {
-            walk(s, format!("/{key}"), &mut out);
-        }
-    }
-    for key in ["t_max", "restitution"] {
-        if v.get(key).is_some_and(Value::is_number) {
-            out.push(format!("/{key}"));
-        }
-    }
-    out
+    crate::case::input_number_paths(v)
 }
 
 fn num(v: &Value, p: &str) -> Option<f64> {

@@ -298,21 +298,6 @@ pub fn beyond_precision(lc: &LoadedCase, bits: u32, rounding_explains: bool) -> 
     if bits == 24 && rounding_explains {
         return true;
     }
-    fn each_number(v: &serde_json::Value, f: &mut dyn FnMut(f64)) {
-        match v {
-            serde_json::Value::Number(n) => {
-                if let Some(x) = n.as_f64() {
-                    f(x)
-                }
-            }
-            serde_json::Value::Array(a) => a.iter().for_each(|x| each_number(x, f)),
-            serde_json::Value::Object(o) => o
-                .iter()
-                .filter(|(k, _)| !matches!(k.as_str(), "expect" | "tol" | "triangles"))
-                .for_each(|(_, x)| each_number(x, f)),
-            _ => {}
-        }
-    }
     let Ok(v) = serde_json::to_value(&lc.case) else { return false };
     let (mut big, mut small) = (0.0f64, f64::INFINITY);
     let mut seen = |x: f64| {
@@ -321,7 +306,10 @@ pub fn beyond_precision(lc: &LoadedCase, bits: u32, rounding_explains: bool) -> 
             small = small.min(x.abs());
         }
     };
-    each_number(&v, &mut seen);
+    crate::case::input_number_paths(&v)
+        .iter()
+        .filter_map(|p| v.pointer(p).and_then(serde_json::Value::as_f64))
+        .for_each(&mut seen);
     lc.meshes.iter().flatten().flat_map(|m| m.vertices.iter().flatten()).for_each(|&x| seen(x));
     let d = f64::from(pair_degree(lc));
     // In logarithms, which neither overflow nor underflow.
