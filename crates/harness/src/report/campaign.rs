@@ -602,9 +602,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     provenance.fixture_cases = fixture_cases;
     provenance.random_cases = random_cases;
     let sections = if config.sections && config.only.is_none() && config.shard.is_none_or(|(i, _)| i == 0) {
-        let s = sections(config, &fixture_results);
-        phases.end(PHASE_SECTIONS);
-        s
+        sections(config, &fixture_results, &mut phases)
     } else {
         Vec::new()
     };
@@ -638,7 +636,8 @@ pub const PHASE_JUDGE: &str = "judging";
 pub const PHASE_SHRINK: &str = "shrinking the findings";
 /// The timing loops.
 pub const PHASE_TIMING: &str = "timing";
-/// The extra sections.
+/// The extra sections: each is its own phase, `sections: <id>` (stability,
+/// scene, toi, peers, dynamics).
 pub const PHASE_SECTIONS: &str = "sections";
 
 /// Phase timings: each phase ends where the previous one ended.
@@ -666,7 +665,7 @@ impl Phases {
 }
 
 /// The extra sections of a whole campaign, in report order.
-fn sections(config: &Config, results: &[CaseResult]) -> Vec<crate::render::section::Section> {
+fn sections(config: &Config, results: &[CaseResult], phases: &mut Phases) -> Vec<crate::render::section::Section> {
     let set = &config.engines;
     // The engines of the set a section does not run: all but collide's, and
     // those it names.
@@ -678,10 +677,16 @@ fn sections(config: &Config, results: &[CaseResult]) -> Vec<crate::render::secti
             .collect()
     };
     let mut out = Vec::new();
+    let done = |out: &Vec<crate::render::section::Section>, phases: &mut Phases| {
+        if let Some(s) = out.last() {
+            phases.end(&format!("{PHASE_SECTIONS}: {}", s.id));
+        }
+    };
     out.push(crate::sweep::section(
         &crate::sweep::Settings { poses: crate::sweep::DEFAULT_POSES, seed: config.seed },
         set,
     ));
+    done(&out, phases);
     out.push(
         crate::scene::section(&crate::scene::SceneSettings {
             seed: config.seed,
@@ -695,12 +700,19 @@ fn sections(config: &Config, results: &[CaseResult]) -> Vec<crate::render::secti
              the engine trait",
         ),
     );
+    done(&out, phases);
     out.push(crate::toi_report::section(
         &crate::toi_report::Settings { seed: config.seed, timing: config.timing, ..Default::default() },
         set,
     ));
+    done(&out, phases);
+    let before = out.len();
     out.extend(crate::report::peers::section(results));
+    if out.len() > before {
+        done(&out, phases);
+    }
     out.push(dynamics_section(set));
+    done(&out, phases);
     out
 }
 
