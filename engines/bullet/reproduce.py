@@ -6,7 +6,10 @@ which puts them in the hello; crashtest fills the placeholders (`{{a.radius}}`,
 ...) with a finding's shrunk case (docs/PROTOCOL.md, hello, `reproductions`).
 
 Keep them in step with engine.py: a change to `make_*`, `_body`, the margins or a
-call there is a change here.
+call there is a change here. One difference is kept on purpose: a program makes a
+sphere a body, where engine.py gives getClosestPoints a bare sphere shape (to save
+pybullet's dear body building); bare_spheres.py checks, in crashtest's tests, that
+the two ways answer the same bit for bit.
 """
 from crashtest_engine import pinned
 
