@@ -13,7 +13,7 @@
 //! CRASHTEST_STAGE_CASES=1000000 cargo test --release --test referee_stages
 //! ```
 
-use harness::case::{Case, MeshSpec, PointSpec, PointsSpec, Query, Shape, SphereSpec, TriangleSpec};
+use harness::case::{Case, MeshSpec, PlaneSpec, PointSpec, PointsSpec, Query, Shape, SphereSpec, TriangleSpec};
 use harness::check::run_caught;
 use harness::engines::{self, referee};
 use harness::generate::{generate, loaded, try_generate_full_range};
@@ -190,6 +190,55 @@ fn barycentric_ties_zeros_and_degenerate_triangles_are_the_same() {
         let before = stage_counts_on_this_thread();
         run_caught(&r, lc).expect("the referee answers");
         let (exact, by_fast) = delta(&before, &stage_counts_on_this_thread(), Stage::Barycentric);
+        assert_eq!((by_fast, exact), (u64::from(*fast), u64::from(!*fast)), "{}", lc.case.source);
+    }
+}
+
+/// Contact of spheres with spheres and planes on the edges of the
+/// floating-point stage, at scales 2^-20 … 2^19: touching exactly (depth 0:
+/// the exact stage decides), concentric, a point exactly on a midpoint (a tie:
+/// the exact stage), outputs that are exact or exactly zero (the stage
+/// certifies them), clear contact and clear separation (certified), and
+/// inputs outside its range. Each answer and margin is the same with the
+/// stages as without, and each case is answered by the stage it should be.
+#[test]
+fn contact_touching_ties_and_exact_outputs_are_the_same() {
+    let sphere =
+        |center: [f64; 3], radius: f64| Shape::Sphere(SphereSpec { center, radius, velocity: None, mass: None });
+    let plane = |normal: [f64; 3], offset: f64| Shape::Plane(PlaneSpec { normal, offset, velocity: None });
+    // (the floating-point stage answers the contact, case)
+    let mut cases: Vec<(bool, LoadedCase)> = Vec::new();
+    let mut add = |fast: bool, a: Shape, b: Shape, what: String| {
+        cases.push((fast, case(Query::Contact, a, Some(b), what)));
+    };
+    for k in 0..40i32 {
+        let s = 2f64.powi(k - 20);
+        let at = format!("scale 2^{}", k - 20);
+        // Centres 5s apart (3, 4, 0)·s: radii 2s + 3s touch exactly.
+        add(false, sphere([3.0 * s, 4.0 * s, 0.0], 2.0 * s), sphere([0.0; 3], 3.0 * s), format!("touching, {at}"));
+        // Radii 3s + 3s: depth s, normal (0.6, 0.8, +0): exact or not a tie.
+        add(true, sphere([3.0 * s, 4.0 * s, 0.0], 3.0 * s), sphere([0.0; 3], 3.0 * s), format!("3-4-5, {at}"));
+        add(false, sphere([s, s, s], s), sphere([s, s, s], 0.5 * s), format!("concentric, {at}"));
+        // Δ = (s, 0, 0), rb = 2^-53·s: the point's x is s(1 + 2^-53), a tie.
+        let tiny = 2f64.powi(-53) * s;
+        add(false, sphere([2.0 * s, 0.0, 0.0], s), sphere([s, 0.0, 0.0], tiny), format!("point on a midpoint, {at}"));
+        add(true, sphere([9.0 * s, 0.0, -s], s), sphere([0.0; 3], s), format!("apart, {at}"));
+        // Plane n = (0, 0, 2), d = 0 and a sphere resting on it.
+        add(false, sphere([0.0, 0.0, s], s), plane([0.0, 0.0, 2.0], 0.0), format!("resting on a plane, {at}"));
+        // n = (0, 3, 4), centre at height 2s/5·… : e = 2s, depth s − 2s/5.
+        add(true, sphere([s, 0.0, 0.5 * s], s), plane([0.0, 3.0, 4.0], 0.0), format!("sphere–plane, {at}"));
+        add(true, plane([0.0, 3.0, 4.0], 0.0), sphere([-0.0, 0.0, 0.5 * s], s), format!("plane–sphere, {at}"));
+        add(true, sphere([s, 0.0, 3.0 * s], s), plane([0.0, 3.0, 4.0], 0.0), format!("above a plane, {at}"));
+    }
+    add(false, sphere([0.0; 3], 2f64.powi(101)), sphere([1.0, 0.0, 0.0], 1.0), "beyond the range".into());
+    add(false, sphere([2f64.powi(-101), 0.0, 0.0], 1.0), sphere([1.0, 0.0, 0.0], 1.0), "below the range".into());
+    let loaded: Vec<LoadedCase> = cases.iter().map(|(_, lc)| lc.clone()).collect();
+    assert_same("contact edges of the stage", &loaded);
+    let r = engines::referee();
+    for (fast, lc) in &cases {
+        let before = stage_counts_on_this_thread();
+        run_caught(&r, lc).expect("the referee answers");
+        let (exact, by_fast) = delta(&before, &stage_counts_on_this_thread(), Stage::Contact);
         assert_eq!((by_fast, exact), (u64::from(*fast), u64::from(!*fast)), "{}", lc.case.source);
     }
 }

@@ -16,6 +16,17 @@ use crate::geom::{Contact, ContactAnswer, P3, Plane, Sphere, Triangle};
 /// with the referee on degenerate cases too.
 pub const CONCENTRIC_FALLBACK_NORMAL: P3 = [0.0, 0.0, 1.0];
 
+/// The floating-point stage's answer ([`super::contact_fast`]), counted, when
+/// the stages are on and it certified one; else the exact stage answers.
+fn staged<T>(fast: impl FnOnce() -> Option<T>) -> Option<T> {
+    if !super::staged() {
+        return None;
+    }
+    let answer = fast();
+    super::count(super::Stage::Contact, answer.is_some(), 1);
+    answer
+}
+
 fn fallback_normal() -> V3 {
     [Q::ZERO, Q::ZERO, Q::ONE]
 }
@@ -55,6 +66,9 @@ fn spheres(a: &Sphere, b: &Sphere) -> Result<Spheres, RefereeError> {
 /// `Mb + rb·(0, 0, 1)`, depth `ra + rb`, and `degenerate: true`. Zero radii are
 /// allowed (points); a negative radius or a non-finite number is refused.
 pub fn contact_sphere_sphere(a: &Sphere, b: &Sphere) -> Result<ContactAnswer, RefereeError> {
+    if let Some(contact) = staged(|| super::contact_fast::sphere_sphere(a, b)) {
+        return Ok(ContactAnswer { contact, degenerate: false });
+    }
     let s = spheres(a, b)?;
     let dd = dot(&s.delta, &s.delta);
     if dd > &s.sum * &s.sum {
@@ -88,6 +102,9 @@ pub fn contact_sphere_sphere(a: &Sphere, b: &Sphere) -> Result<ContactAnswer, Re
 /// smaller than the least subnormal rounds to `−0.0`. This holds for every
 /// margin function of the referee.
 pub fn contact_margin_sphere_sphere(a: &Sphere, b: &Sphere) -> Result<f64, RefereeError> {
+    if let Some(margin) = staged(|| super::contact_fast::sphere_sphere_margin(a, b)) {
+        return Ok(margin);
+    }
     let s = spheres(a, b)?;
     Ok(Root::new(dot(&s.delta, &s.delta)).round_affine(&s.sum, &Q::NEG_ONE))
 }
@@ -153,6 +170,9 @@ impl SpherePlane {
 /// **Degenerate input.** None for valid input (`n ≠ 0`); a zero normal is refused
 /// with [`RefereeError::ZeroNormal`], as the fixture format refuses it.
 pub fn contact_sphere_plane(a: &Sphere, b: &Plane) -> Result<ContactAnswer, RefereeError> {
+    if let Some(contact) = staged(|| super::contact_fast::sphere_plane(a, b)) {
+        return Ok(ContactAnswer { contact, degenerate: false });
+    }
     let sp = sphere_plane(a, b, ["a.center", "a.radius"], ["b.normal", "b.offset"])?;
     if !sp.touches() {
         return Ok(ContactAnswer { contact: None, degenerate: false });
@@ -176,6 +196,9 @@ pub fn contact_sphere_plane(a: &Sphere, b: &Plane) -> Result<ContactAnswer, Refe
 ///
 /// **Degenerate input.** As [`contact_sphere_plane`].
 pub fn contact_plane_sphere(a: &Plane, b: &Sphere) -> Result<ContactAnswer, RefereeError> {
+    if let Some(contact) = staged(|| super::contact_fast::plane_sphere(a, b)) {
+        return Ok(ContactAnswer { contact, degenerate: false });
+    }
     let sp = sphere_plane(b, a, ["b.center", "b.radius"], ["a.normal", "a.offset"])?;
     if !sp.touches() {
         return Ok(ContactAnswer { contact: None, degenerate: false });
@@ -194,6 +217,9 @@ pub fn contact_plane_sphere(a: &Plane, b: &Sphere) -> Result<ContactAnswer, Refe
 /// The signed depth `r − (n·c − d)/‖n‖` behind the sphere–plane decision (either
 /// order), correctly rounded: ≥ 0 exactly when in contact, negative when apart.
 pub fn contact_margin_sphere_plane(a: &Sphere, b: &Plane) -> Result<f64, RefereeError> {
+    if let Some(margin) = staged(|| super::contact_fast::sphere_plane_margin(a, b)) {
+        return Ok(margin);
+    }
     Ok(sphere_plane(a, b, ["a.center", "a.radius"], ["b.normal", "b.offset"])?.depth())
 }
 

@@ -93,7 +93,7 @@ impl Dw {
         (self.hi.abs() - self.lo.abs()) * (1.0 - 4.0 * U)
     }
 
-    fn neg(self) -> Dw {
+    pub(crate) fn neg(self) -> Dw {
         Dw { hi: -self.hi, lo: -self.lo, err: self.err }
     }
 
@@ -168,7 +168,20 @@ pub(crate) fn quotient(n: Dw, d: Dw) -> Option<f64> {
     if n.sign()? == 0 {
         return Some(0.0);
     }
-    let mut r = (n.hi + n.lo) / (d.hi + d.lo);
+    // Where the quotient lies against m: the sign of (N − m·D)·sign(D).
+    certify((n.hi + n.lo) / (d.hi + d.lo), |m| n.sub(m.mul(d)).sign().map(|s| s * d_sign))
+}
+
+/// The correct rounding (to nearest, ties to even) of an exact value `x`
+/// that is not zero, from a candidate `r` near it and `side(m)`, the sign of
+/// `x − m` for an exact double-word `m` (or `None` when the error bounds leave
+/// it open).
+///
+/// The signs at the two midpoints around `r` decide: `x` strictly between
+/// them rounds to `r` — no tie is possible. Otherwise `r` moves an ulp toward
+/// `x` (at most a few times). A midpoint exactly (a tie), an open sign, or a
+/// candidate outside `[2^-QUOTIENT_EXP, 2^QUOTIENT_EXP]` gives `None`.
+pub(crate) fn certify(mut r: f64, side: impl Fn(Dw) -> Option<i8>) -> Option<f64> {
     let (lo, hi) = (2f64.powi(-QUOTIENT_EXP), 2f64.powi(QUOTIENT_EXP));
     // The candidate may be off by an ulp or two; each step moves it one.
     for _ in 0..4 {
@@ -176,12 +189,8 @@ pub(crate) fn quotient(n: Dw, d: Dw) -> Option<f64> {
             return None;
         }
         let (up, down) = (r.next_up() - r, r - r.next_down());
-        // Where the quotient lies against a midpoint m: the sign of (N − m·D)·sign(D).
-        let side = |half: f64| -> Option<i8> {
-            let m = Dw { hi: r, lo: half, err: 0.0 };
-            n.sub(m.mul(d)).sign().map(|s| s * d_sign)
-        };
-        match (side(-down / 2.0)?, side(up / 2.0)?) {
+        let at = |half: f64| Dw { hi: r, lo: half, err: 0.0 };
+        match (side(at(-down / 2.0))?, side(at(up / 2.0))?) {
             (1, -1) => return Some(r),
             (_, 1) => r = r.next_up(),
             (-1, _) => r = r.next_down(),
@@ -190,6 +199,50 @@ pub(crate) fn quotient(n: Dw, d: Dw) -> Option<f64> {
         }
     }
     None
+}
+
+/// The sign of `P + Q·√S` for an exact `S > 0` (the caller has made sure of
+/// `S`'s sign), when the error bounds leave it certain; `Some(0)` only for an
+/// exact zero.
+///
+/// With `P` and `Q` of one sign (or either zero) it is theirs. Otherwise it is
+/// `P`'s times the sign of `P² − Q²·S`.
+pub(crate) fn sign_affine_root(p: Dw, q: Dw, s: Dw) -> Option<i8> {
+    let (sp, sq) = (p.sign()?, q.sign()?);
+    if sq == 0 {
+        return Some(sp);
+    }
+    if sp == 0 || sp == sq {
+        return Some(sq);
+    }
+    p.mul(p).sub(q.mul(q).mul(s)).sign().map(|d| d * sp)
+}
+
+impl Dw {
+    /// An input, exactly.
+    pub(crate) fn of(x: f64) -> Dw {
+        Dw { hi: x, lo: 0.0, err: 0.0 }
+    }
+
+    /// The nearest `f64` to `hi + lo` (a candidate: not certified).
+    pub(crate) fn approx(self) -> f64 {
+        self.hi + self.lo
+    }
+
+    /// Whether it is exactly zero.
+    pub(crate) fn is_exact_zero(self) -> bool {
+        self.sign() == Some(0)
+    }
+
+    /// Whether its sign is certainly positive.
+    pub(crate) fn is_positive(self) -> bool {
+        self.sign() == Some(1)
+    }
+
+    /// The sign of the exact value, when certain (`Some(0)`: exactly zero).
+    pub(crate) fn signum(self) -> Option<i8> {
+        self.sign()
+    }
 }
 
 #[cfg(test)]

@@ -41,7 +41,10 @@
 //!   bound exceeds the nearest exact distance;
 //! - barycentric coordinates ([`barycentric`]): computed in double-word numbers
 //!   that account for their error exactly ([`fast`]), each coordinate kept when
-//!   its correct rounding is certified, else computed in exact rationals.
+//!   its correct rounding is certified, else computed in exact rationals;
+//! - contact of a sphere with a sphere or a plane, and its margin ([`contact`]):
+//!   the same, each output `A + B/√S` certified by the signs of `P + Q·√S` at
+//!   the midpoints around its candidate (`contact_fast`).
 //!
 //! The answers are the same bits as the exact stage's alone, by construction
 //! and by test ([`exact_only`] switches the stages off; `tests/referee_stages.rs`).
@@ -58,6 +61,7 @@ pub mod barycentric;
 pub mod bounds;
 mod closest;
 pub mod contact;
+mod contact_fast;
 mod exact;
 mod fast;
 pub mod intersect;
@@ -90,7 +94,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 thread_local! {
     static EXACT_ONLY: Cell<bool> = const { Cell::new(false) };
     /// This thread's counts: fast then exact, per stage.
-    static HERE: Cell<[u64; 6]> = const { Cell::new([0; 6]) };
+    static HERE: Cell<[u64; 8]> = const { Cell::new([0; 8]) };
 }
 
 /// Runs `f` with the referee's floating-point stages off on this thread: every
@@ -123,11 +127,14 @@ pub enum Stage {
     /// Barycentric coordinates: certified from double-word numbers, or
     /// computed in exact rationals.
     Barycentric,
+    /// Contact of a sphere with a sphere or a plane, and its margin: certified
+    /// from double-word numbers, or computed in exact rationals.
+    Contact,
 }
 
 impl Stage {
     /// Every stage, in report order.
-    pub const ALL: [Stage; 3] = [Stage::MinBall, Stage::MeshFaces, Stage::Barycentric];
+    pub const ALL: [Stage; 4] = [Stage::MinBall, Stage::MeshFaces, Stage::Barycentric, Stage::Contact];
 
     /// What is counted, for the report.
     pub fn label(self) -> &'static str {
@@ -135,6 +142,9 @@ impl Stage {
             Stage::MinBall => "bounds: minimal balls certified from floating point / by exact Welzl",
             Stage::MeshFaces => "toi sphere–mesh: faces ruled out in floating point / tested exactly",
             Stage::Barycentric => "barycentric: certified from double-word numbers / computed exactly",
+            Stage::Contact => {
+                "contact sphere–sphere, sphere–plane and their margins: certified from double-word numbers / computed exactly"
+            }
         }
     }
 }
@@ -142,10 +152,11 @@ impl Stage {
 /// The query kinds the referee answers in its exact stage alone (every case
 /// of them is decided exactly: its share without the exact stage is 0 %), for
 /// the report beside [`Stage`]'s counts.
-pub const EXACT_STAGE_ONLY: &str = "contact, intersect, overlap, response, and toi against a sphere, plane or triangle";
+pub const EXACT_STAGE_ONLY: &str =
+    "contact against a triangle or mesh, intersect, overlap, response, and toi against a sphere, plane or triangle";
 
-static FAST: [AtomicU64; 3] = [AtomicU64::new(0), AtomicU64::new(0), AtomicU64::new(0)];
-static EXACT: [AtomicU64; 3] = [AtomicU64::new(0), AtomicU64::new(0), AtomicU64::new(0)];
+static FAST: [AtomicU64; 4] = [const { AtomicU64::new(0) }; 4];
+static EXACT: [AtomicU64; 4] = [const { AtomicU64::new(0) }; 4];
 
 /// Counts `n` answers of `stage`, by the floating-point stage or the exact one.
 pub(crate) fn count(stage: Stage, fast: bool, n: u64) {

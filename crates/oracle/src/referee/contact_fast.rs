@@ -1,0 +1,168 @@
+//! The floating-point stage of contact between a sphere and a sphere or a
+//! plane ([`super::fast`]): the exact stage's formulas in double-word numbers
+//! that account for their error, each output kept only when its correct
+//! rounding is certified.
+//!
+//! Every output is `x = A + B/√S` for double-words `A`, `B` and a sum of
+//! squares `S > 0` (or a quotient, for the sphere–plane point). Its rounding is
+//! certified by [`certify`]: for a midpoint `m` around a candidate, the sign of
+//! `x − m` is that of `P + Q·√S` with `P`, `Q` exact or bounded double-words
+//! ([`sign_affine_root`]). A function here returns `None` whenever anything is
+//! left open — a decision on its boundary (touching exactly), concentric
+//! spheres, an output on a midpoint or exactly zero after cancellation, inputs
+//! outside the stage's range, or input the exact stage refuses — and the exact
+//! stage then answers, with the same bits by construction and by test
+//! (`tests/referee_stages.rs`).
+
+use super::fast::{Dw, certify, diff3, dot, in_range, quotient, sign_affine_root};
+use crate::geom::{Contact, P3, Plane, Sphere};
+
+/// `A + (u·Δ)/√S` correctly rounded, for an exact input `a`, `u` and an
+/// exact or bounded `Δ`; `a + 0` (a `−0` input made `+0`, as the exact
+/// stage's rounding of the rational zero) when `u·Δ` is exactly zero.
+fn over_root(a: f64, u: f64, delta: Dw, s: Dw, root: f64) -> Option<f64> {
+    let p = Dw::of(u).mul(delta);
+    if p.is_exact_zero() {
+        return Some(a + 0.0);
+    }
+    // x − m = ((a − m)·√S + u·Δ)/√S.
+    certify(a + u * delta.approx() / root, |m| sign_affine_root(p, Dw::of(a).sub(m), s))
+}
+
+/// `c − √S` (the sphere–sphere depth and margin `ra + rb − ‖Δ‖`), correctly
+/// rounded; `None` when it is exactly 0 (touching) or left open.
+fn minus_root(c: Dw, s: Dw, root: f64) -> Option<f64> {
+    // x − m = (c − m) − √S.
+    certify(c.approx() - root, |m| sign_affine_root(c.sub(m), Dw::of(-1.0), s))
+}
+
+/// The two spheres' centre difference `Δ = Ma − Mb`, `S = Δ·Δ` and the radii's
+/// sum, or `None` for input outside the stage (a radius that is not `≥ 0`,
+/// a number outside [`in_range`]).
+fn spheres(a: &Sphere, b: &Sphere) -> Option<([Dw; 3], Dw, Dw)> {
+    let numbers = a.center.iter().chain(&b.center).copied().chain([a.radius, b.radius]);
+    if !(a.radius >= 0.0 && b.radius >= 0.0 && in_range(numbers)) {
+        return None;
+    }
+    let delta = diff3(&a.center, &b.center);
+    Some((delta, dot(&delta, &delta), Dw::diff(a.radius, -b.radius)))
+}
+
+/// Sphere–sphere contact: `Some(None)` certified apart, `Some(Some(c))`
+/// certified in contact with every output certified, `None` for the exact
+/// stage.
+pub(super) fn sphere_sphere(a: &Sphere, b: &Sphere) -> Option<Option<Contact>> {
+    let (delta, s, sum) = spheres(a, b)?;
+    // contact ⇔ Δ·Δ ≤ (ra + rb)².
+    if sum.mul(sum).sub(s).signum()? < 0 {
+        return Some(None);
+    }
+    if !s.is_positive() {
+        return None;
+    }
+    let root = s.approx().sqrt();
+    let normal = unit(&delta, s, root)?;
+    let mut point = [0.0; 3];
+    for i in 0..3 {
+        point[i] = over_root(b.center[i], b.radius, delta[i], s, root)?;
+    }
+    Some(Some(Contact { point, normal, depth: minus_root(sum, s, root)? }))
+}
+
+/// `ra + rb − ‖Ma − Mb‖`, correctly rounded, or `None` for the exact stage.
+pub(super) fn sphere_sphere_margin(a: &Sphere, b: &Sphere) -> Option<f64> {
+    let (_, s, sum) = spheres(a, b)?;
+    if s.is_exact_zero() {
+        // ra + rb: two_sum's leading word is its rounding (+0 for 0 + 0).
+        return Some(sum.approx() + 0.0);
+    }
+    minus_root(sum, s, s.approx().sqrt())
+}
+
+/// `v / ‖v‖` componentwise (`S = v·v > 0`), each correctly rounded; an exactly
+/// zero component is `+0`.
+fn unit(v: &[Dw; 3], s: Dw, root: f64) -> Option<P3> {
+    let mut out = [0.0; 3];
+    for i in 0..3 {
+        out[i] = if v[i].is_exact_zero() {
+            0.0
+        } else {
+            // x − m = (v − m·√S)/√S.
+            certify(v[i].approx() / root, |m| sign_affine_root(v[i], m.neg(), s))?
+        };
+    }
+    Some(out)
+}
+
+/// A sphere and a plane: `e = n·c − d`, `S = n·n`, or `None` for input outside
+/// the stage (including a zero normal, which the exact stage refuses).
+fn sphere_plane_parts(s: &Sphere, p: &Plane) -> Option<([Dw; 3], Dw, Dw)> {
+    let numbers = s.center.iter().chain(&p.normal).copied().chain([s.radius, p.offset]);
+    if !(s.radius >= 0.0 && in_range(numbers)) {
+        return None;
+    }
+    let n = p.normal.map(Dw::of);
+    let c = s.center.map(Dw::of);
+    let nn = dot(&n, &n);
+    if !nn.is_positive() {
+        return None;
+    }
+    Some((n, nn, dot(&n, &c).sub(Dw::of(p.offset))))
+}
+
+/// `r − e/√S` (the sphere–plane depth and margin), correctly rounded, or
+/// `None` for the exact stage.
+fn plane_depth(r: f64, e: Dw, nn: Dw, root: f64) -> Option<f64> {
+    if e.is_exact_zero() {
+        return Some(r + 0.0);
+    }
+    // x − m = ((r − m)·√S − e)/√S.
+    certify(r - e.approx() / root, |m| sign_affine_root(e.neg(), Dw::of(r).sub(m), nn))
+}
+
+/// Whether the sphere reaches the plane's solid: `e ≤ 0`, or `e² ≤ r²·S`
+/// (`None` when the bounds leave it open).
+fn touches(r: f64, e: Dw, nn: Dw) -> Option<bool> {
+    if e.signum()? <= 0 {
+        return Some(true);
+    }
+    let r = Dw::of(r);
+    Some(r.mul(r).mul(nn).sub(e.mul(e)).signum()? >= 0)
+}
+
+/// Sphere `a` against plane `b`, as [`sphere_sphere`] answers.
+pub(super) fn sphere_plane(a: &Sphere, b: &Plane) -> Option<Option<Contact>> {
+    let (n, nn, e) = sphere_plane_parts(a, b)?;
+    if !touches(a.radius, e, nn)? {
+        return Some(None);
+    }
+    let root = nn.approx().sqrt();
+    // point = c − e·n/S = (c·S − e·n)/S, rational.
+    let mut point = [0.0; 3];
+    for i in 0..3 {
+        point[i] = quotient(Dw::of(a.center[i]).mul(nn).sub(e.mul(n[i])), nn)?;
+    }
+    Some(Some(Contact { point, normal: unit(&n, nn, root)?, depth: plane_depth(a.radius, e, nn, root)? }))
+}
+
+/// Plane `a` against sphere `b`: the normal is `−n/‖n‖` and the point
+/// `c − r·n/‖n‖`, on the sphere.
+pub(super) fn plane_sphere(a: &Plane, b: &Sphere) -> Option<Option<Contact>> {
+    let (n, nn, e) = sphere_plane_parts(b, a)?;
+    if !touches(b.radius, e, nn)? {
+        return Some(None);
+    }
+    let root = nn.approx().sqrt();
+    let neg = n.map(Dw::neg);
+    let mut point = [0.0; 3];
+    for i in 0..3 {
+        point[i] = over_root(b.center[i], b.radius, neg[i], nn, root)?;
+    }
+    Some(Some(Contact { point, normal: unit(&neg, nn, root)?, depth: plane_depth(b.radius, e, nn, root)? }))
+}
+
+/// The sphere–plane margin `r − (n·c − d)/‖n‖`, correctly rounded, or `None`.
+pub(super) fn sphere_plane_margin(a: &Sphere, b: &Plane) -> Option<f64> {
+    let (_, nn, e) = sphere_plane_parts(a, b)?;
+    plane_depth(a.radius, e, nn, nn.approx().sqrt())
+}
