@@ -229,6 +229,27 @@ fn contact_touching_ties_and_exact_outputs_are_the_same() {
         add(true, sphere([s, 0.0, 0.5 * s], s), plane([0.0, 3.0, 4.0], 0.0), format!("sphere–plane, {at}"));
         add(true, plane([0.0, 3.0, 4.0], 0.0), sphere([-0.0, 0.0, 0.5 * s], s), format!("plane–sphere, {at}"));
         add(true, sphere([s, 0.0, 3.0 * s], s), plane([0.0, 3.0, 4.0], 0.0), format!("above a plane, {at}"));
+        // The triangle (0, 0, 0), (4s, 0, 0), (0, 4s, 0) in each of its regions.
+        let tri = || {
+            Shape::Triangle(TriangleSpec {
+                vertices: [[0.0; 3], [4.0 * s, 0.0, 0.0], [0.0, 4.0 * s, 0.0]],
+                velocity: None,
+            })
+        };
+        add(true, sphere([s, s, 3.0 * s], 4.0 * s), tri(), format!("triangle face, {at}"));
+        add(true, tri(), sphere([s, s, -3.0 * s], 4.0 * s), format!("triangle–sphere face, {at}"));
+        add(false, sphere([s, s, 2.0 * s], 2.0 * s), tri(), format!("triangle face touched, {at}"));
+        add(true, sphere([2.0 * s, -3.0 * s, 4.0 * s], 6.0 * s), tri(), format!("triangle edge, {at}"));
+        add(true, sphere([3.0 * s, 3.0 * s, s], 2.0 * s), tri(), format!("triangle hypotenuse, {at}"));
+        add(true, tri(), sphere([-3.0 * s, -4.0 * s, 0.0], 6.0 * s), format!("triangle vertex, {at}"));
+        // d1 = 0 exactly: on the boundary of vertex a's region and edge ac's.
+        add(true, sphere([0.0, -s, 0.0], 2.0 * s), tri(), format!("triangle region boundary, {at}"));
+        add(false, sphere([s, s, 0.0], s), tri(), format!("centre on the triangle, {at}"));
+        let flat = Shape::Triangle(TriangleSpec {
+            vertices: [[0.0; 3], [s, s, s], [2.0 * s, 2.0 * s, 2.0 * s]],
+            velocity: None,
+        });
+        add(false, sphere([s, 0.0, 0.0], s), flat, format!("zero-area triangle, {at}"));
     }
     add(false, sphere([0.0; 3], 2f64.powi(101)), sphere([1.0, 0.0, 0.0], 1.0), "beyond the range".into());
     add(false, sphere([2f64.powi(-101), 0.0, 0.0], 1.0), sphere([1.0, 0.0, 0.0], 1.0), "below the range".into());

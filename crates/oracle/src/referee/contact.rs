@@ -301,6 +301,9 @@ impl SphereTriangle {
 /// segment or point (its closest point), with `degenerate: false`: the answer is
 /// fully defined.
 pub fn contact_sphere_triangle(a: &Sphere, b: &Triangle) -> Result<ContactAnswer, RefereeError> {
+    if let Some(contact) = staged(|| super::contact_fast::sphere_triangle(a, b)) {
+        return Ok(ContactAnswer { contact, degenerate: false });
+    }
     Ok(sphere_triangle(a, b, ["a.center", "a.radius"], "b.vertices")?.answer())
 }
 
@@ -316,6 +319,9 @@ pub fn contact_sphere_triangle(a: &Sphere, b: &Triangle) -> Result<ContactAnswer
 /// normal `−m` (minus the face normal, or `(0, 0, −1)` for a zero-area triangle),
 /// point `c − r·m`, depth `r`, `degenerate: true`.
 pub fn contact_triangle_sphere(a: &Triangle, b: &Sphere) -> Result<ContactAnswer, RefereeError> {
+    if let Some(contact) = staged(|| super::contact_fast::triangle_sphere(a, b)) {
+        return Ok(ContactAnswer { contact, degenerate: false });
+    }
     let st = sphere_triangle(b, a, ["b.center", "b.radius"], "a.vertices")?;
     if !st.touches() {
         return Ok(ContactAnswer { contact: None, degenerate: false });
@@ -336,6 +342,9 @@ pub fn contact_triangle_sphere(a: &Triangle, b: &Sphere) -> Result<ContactAnswer
 /// The signed depth `r − ‖c − q‖` behind the sphere–triangle decision (either
 /// order), correctly rounded: ≥ 0 exactly when in contact, negative when apart.
 pub fn contact_margin_sphere_triangle(a: &Sphere, b: &Triangle) -> Result<f64, RefereeError> {
+    if let Some(margin) = staged(|| super::contact_fast::sphere_triangle_margin(a, b)) {
+        return Ok(margin);
+    }
     Ok(sphere_triangle(a, b, ["a.center", "a.radius"], "b.vertices")?.depth())
 }
 

@@ -15,7 +15,7 @@
 //! (`tests/referee_stages.rs`).
 
 use super::fast::{Dw, certify, diff3, dot, in_range, quotient, sign_affine_root};
-use crate::geom::{Contact, P3, Plane, Sphere};
+use crate::geom::{Contact, P3, Plane, Sphere, Triangle};
 
 /// `A + (u·Δ)/√S` correctly rounded, for an exact input `a`, `u` and an
 /// exact or bounded `Δ`; `a + 0` (a `−0` input made `+0`, as the exact
@@ -165,4 +165,182 @@ pub(super) fn plane_sphere(a: &Plane, b: &Sphere) -> Option<Option<Contact>> {
 pub(super) fn sphere_plane_margin(a: &Sphere, b: &Plane) -> Option<f64> {
     let (_, nn, e) = sphere_plane_parts(a, b)?;
     plane_depth(a.radius, e, nn, nn.approx().sqrt())
+}
+
+/// `u × v` of double-words.
+fn cross(u: &[Dw; 3], v: &[Dw; 3]) -> [Dw; 3] {
+    [u[1].mul(v[2]).sub(u[2].mul(v[1])), u[2].mul(v[0]).sub(u[0].mul(v[2])), u[0].mul(v[1]).sub(u[1].mul(v[0]))]
+}
+
+/// Where the centre's closest point on a triangle lies, with what the outputs
+/// need, all exact or bounded double-words.
+enum Near {
+    /// On a vertex or an edge: the closest point is `qn / l` (`l > 0`: 1 on a
+    /// vertex, the edge's squared length on an edge), and `w = c − q = wv / l`
+    /// with `ww = wv·wv`.
+    Feature { qn: [Dw; 3], l: Dw, wv: [Dw; 3], ww: Dw },
+    /// Inside the face: `e = N·(c − v0)` with `N = (v1 − v0) × (v2 − v0)`,
+    /// `nn = N·N`. Then `c − q = (e/nn)·N`: its direction is `sign(e)·N`, its
+    /// length `|e|/√nn`, and `q = (c·nn − e·N)/nn`.
+    Face { n: [Dw; 3], nn: Dw, e: Dw },
+}
+
+/// The exact stage's region tests (Ericson §5.1.5, as `closest_on_triangle`)
+/// decided on certified signs; `None` when a sign is open, for a zero-area
+/// triangle, or for a centre exactly on the triangle (no direction).
+fn near(p: &P3, v: &[P3; 3]) -> Option<Near> {
+    let s = |x: Dw| x.signum();
+    let [a, b, c] = v;
+    let (ab, ac) = (diff3(b, a), diff3(c, a));
+    let n = cross(&ab, &ac);
+    let nn = dot(&n, &n);
+    if !nn.is_positive() {
+        return None;
+    }
+    // On a vertex: q = V, w = c − V.
+    let vertex = |x: &P3| {
+        let wv = diff3(p, x);
+        let ww = dot(&wv, &wv);
+        Near::Feature { qn: x.map(Dw::of), l: Dw::of(1.0), wv, ww }
+    };
+    // On the edge from `x` along `e` at `t = d/l`: q = (x·l + d·e)/l, w = ((c − x)·l − d·e)/l.
+    let edge = |x: &P3, e: [Dw; 3], d: Dw| {
+        let l = dot(&e, &e);
+        let xp = diff3(p, x);
+        let qn = [0, 1, 2].map(|i| Dw::of(x[i]).mul(l).add(d.mul(e[i])));
+        let wv = [0, 1, 2].map(|i| xp[i].mul(l).sub(d.mul(e[i])));
+        let ww = dot(&wv, &wv);
+        Near::Feature { qn, l, wv, ww }
+    };
+    let ap = diff3(p, a);
+    let (d1, d2) = (dot(&ab, &ap), dot(&ac, &ap));
+    if s(d1)? <= 0 && s(d2)? <= 0 {
+        return Some(vertex(a));
+    }
+    let bp = diff3(p, b);
+    let (d3, d4) = (dot(&ab, &bp), dot(&ac, &bp));
+    if s(d3)? >= 0 && s(d4.sub(d3))? <= 0 {
+        return Some(vertex(b));
+    }
+    let vc = d1.mul(d4).sub(d3.mul(d2));
+    if s(vc)? <= 0 && s(d1)? >= 0 && s(d3)? <= 0 {
+        return Some(edge(a, ab, d1));
+    }
+    let cp = diff3(p, c);
+    let (d5, d6) = (dot(&ab, &cp), dot(&ac, &cp));
+    if s(d6)? >= 0 && s(d5.sub(d6))? <= 0 {
+        return Some(vertex(c));
+    }
+    let vb = d5.mul(d2).sub(d1.mul(d6));
+    if s(vb)? <= 0 && s(d2)? >= 0 && s(d6)? <= 0 {
+        return Some(edge(a, ac, d2));
+    }
+    let va = d3.mul(d6).sub(d5.mul(d4));
+    let (d43, d56) = (d4.sub(d3), d5.sub(d6));
+    if s(va)? <= 0 && s(d43)? >= 0 && s(d56)? >= 0 {
+        // d4 − d3 = (c − b)·(p − b).
+        return Some(edge(b, diff3(c, b), d43));
+    }
+    Some(Near::Face { n, nn, e: dot(&n, &ap) })
+}
+
+/// The parts of a sphere–triangle answer: the triangle's closest point, the
+/// unit direction `m = (c − q)/‖c − q‖` before rounding (a vector and its
+/// squared length), the depth `r − ‖c − q‖`'s certified rounding, and whether
+/// the sphere touches the triangle.
+struct TriangleParts {
+    near: Near,
+    dir: ([Dw; 3], Dw),
+    touches: bool,
+}
+
+fn sphere_triangle_parts(s: &Sphere, t: &Triangle) -> Option<TriangleParts> {
+    let numbers = s.center.iter().chain(t.vertices.iter().flatten()).copied().chain([s.radius]);
+    if !(s.radius >= 0.0 && in_range(numbers)) {
+        return None;
+    }
+    let near = near(&s.center, &t.vertices)?;
+    let r = Dw::of(s.radius);
+    let (dir, touches) = match &near {
+        Near::Feature { l, wv, ww, .. } => {
+            if !ww.is_positive() {
+                return None;
+            }
+            // ‖w‖² = ww/l² ≤ r².
+            let rl = r.mul(*l);
+            ((*wv, *ww), rl.mul(rl).sub(*ww).signum()? >= 0)
+        }
+        Near::Face { n, nn, e } => {
+            let sign = e.signum()?;
+            if sign == 0 {
+                return None;
+            }
+            let dir = if sign > 0 { *n } else { n.map(Dw::neg) };
+            // (e/nn)²·nn = e²/nn ≤ r².
+            ((dir, *nn), r.mul(r).mul(*nn).sub(e.mul(*e)).signum()? >= 0)
+        }
+    };
+    Some(TriangleParts { near, dir, touches })
+}
+
+impl TriangleParts {
+    /// `r − ‖c − q‖`, correctly rounded (`None`: open, or exactly 0).
+    fn depth(&self, r: f64) -> Option<f64> {
+        match &self.near {
+            // x − m = ((r − m)·l − √ww)/l.
+            Near::Feature { l, ww, .. } => {
+                let root = ww.approx().sqrt();
+                certify(r - root / l.approx(), |m| sign_affine_root(Dw::of(r).sub(m).mul(*l), Dw::of(-1.0), *ww))
+            }
+            // ‖c − q‖ = |e|/√nn.
+            Near::Face { nn, e, .. } => {
+                let abs_e = if e.signum()? < 0 { e.neg() } else { *e };
+                plane_depth(r, abs_e, *nn, nn.approx().sqrt())
+            }
+        }
+    }
+
+    /// The closest point `q`, each component correctly rounded.
+    fn point(&self, c: &P3) -> Option<P3> {
+        let mut out = [0.0; 3];
+        for i in 0..3 {
+            out[i] = match &self.near {
+                Near::Feature { qn, l, .. } => quotient(qn[i], *l)?,
+                Near::Face { n, nn, e } => quotient(Dw::of(c[i]).mul(*nn).sub(e.mul(n[i])), *nn)?,
+            };
+        }
+        Some(out)
+    }
+}
+
+/// Sphere `a` against triangle `b`, as [`sphere_sphere`] answers.
+pub(super) fn sphere_triangle(a: &Sphere, b: &Triangle) -> Option<Option<Contact>> {
+    let parts = sphere_triangle_parts(a, b)?;
+    if !parts.touches {
+        return Some(None);
+    }
+    let (dir, dd) = parts.dir;
+    let normal = unit(&dir, dd, dd.approx().sqrt())?;
+    Some(Some(Contact { point: parts.point(&a.center)?, normal, depth: parts.depth(a.radius)? }))
+}
+
+/// Triangle `a` against sphere `b`: normal `−m`, point `c − r·m` on the sphere.
+pub(super) fn triangle_sphere(a: &Triangle, b: &Sphere) -> Option<Option<Contact>> {
+    let parts = sphere_triangle_parts(b, a)?;
+    if !parts.touches {
+        return Some(None);
+    }
+    let (dir, dd) = parts.dir;
+    let root = dd.approx().sqrt();
+    let neg = dir.map(Dw::neg);
+    let mut point = [0.0; 3];
+    for i in 0..3 {
+        point[i] = over_root(b.center[i], b.radius, neg[i], dd, root)?;
+    }
+    Some(Some(Contact { point, normal: unit(&neg, dd, root)?, depth: parts.depth(b.radius)? }))
+}
+
+/// The sphere–triangle margin `r − ‖c − q‖`, correctly rounded, or `None`.
+pub(super) fn sphere_triangle_margin(a: &Sphere, b: &Triangle) -> Option<f64> {
+    sphere_triangle_parts(a, b)?.depth(a.radius)
 }

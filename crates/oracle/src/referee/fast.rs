@@ -14,12 +14,14 @@
 //! relative rounding of the few operations that computed it.
 //!
 //! The exact transformations hold only while no intermediate overflows or
-//! underflows. [`in_range`] admits inputs of magnitude 0 or within
-//! `[2^-INPUT_EXP, 2^INPUT_EXP]`: every component of a degree-4 product of
-//! differences is then 0 or a multiple of `2^(-4·(INPUT_EXP + 52))`, far above
-//! the smallest normal number, and at most `2^(4·INPUT_EXP + 8)`; a quotient
-//! is certified only within `[2^-QUOTIENT_EXP, 2^QUOTIENT_EXP]`, so the
-//! products with its midpoints stay normal too.
+//! underflows, and every product guards that itself: a factor too large to
+//! split, or a sum that overflows, makes the result unknown (every sign test
+//! on it open); a product below `2^-969`, where Dekker's error term would
+//! underflow, is kept rounded with a bound on what it lost ([`guarded_prod`]).
+//! So the bounds hold at any magnitude. [`in_range`] is a cheap filter on top:
+//! it admits inputs of magnitude 0 or within `[2^-INPUT_EXP, 2^INPUT_EXP]`,
+//! where the stage's products of degree up to 6 stay clear of both ends, and
+//! a quotient is certified only within `[2^-QUOTIENT_EXP, 2^QUOTIENT_EXP]`.
 //!
 //! **Certifying `RN(N / D)`.** `D`'s sign must be certain (`|D̃| > err`). An
 //! exactly zero `N` gives `+0.0`, as the exact stage's rounding of zero does.
@@ -60,12 +62,39 @@ fn split(a: f64) -> (f64, f64) {
 }
 
 /// `a · b` as `(p, e)` with `p + e = a · b` exactly (Dekker; no overflow, and
-/// no underflow of the error term: see the module's range).
+/// no underflow of the error term: see [`guarded_prod`]).
 fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
     let (ah, al) = split(a);
     let (bh, bl) = split(b);
     (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
+}
+
+/// Dekker's product stays exact while `|a · b| ≥ 2^-969` (its error term is
+/// then a normal number) and the splitter cannot overflow (`|a|, |b| ≤ 2^995`).
+const PROD_MIN: f64 = f64::from_bits((1023 - 969) << 52);
+
+/// See [`PROD_MIN`]: `2^995`.
+const SPLIT_MAX: f64 = f64::from_bits((1023 + 995) << 52);
+
+/// A bound on `|a·b − RN(a·b)|` whenever `|RN(a·b)| < 2^-969`: half an ulp of
+/// a number below `2^-969` is at most `2^-1022`; `2^-1021` is kept.
+const UNDERFLOW_ERR: f64 = f64::from_bits((1023 - 1021) << 52);
+
+/// [`two_prod`] where it is exact, and otherwise `(RN(a·b), 0)` with a bound
+/// on what that drops: `Some(0)` exactly, [`UNDERFLOW_ERR`] near underflow;
+/// `None` when a factor is too large to split (the caller's bound is then
+/// infinite).
+fn guarded_prod(a: f64, b: f64) -> Option<(f64, f64, f64)> {
+    if a.abs() > SPLIT_MAX || b.abs() > SPLIT_MAX {
+        return None;
+    }
+    let p = a * b;
+    if a != 0.0 && b != 0.0 && p.abs() < PROD_MIN {
+        return Some((p, 0.0, UNDERFLOW_ERR));
+    }
+    let (p, e) = two_prod(a, b);
+    Some((p, e, 0.0))
 }
 
 /// A double-word number: the exact value lies within `err` of `hi + lo`.
@@ -103,29 +132,46 @@ impl Dw {
         let (v, e3) = two_sum(e1, t);
         let (w, e4) = two_sum(v, e2);
         let (hi, lo) = two_sum(s, w);
-        // self + o = s + e1 + t + e2 = s + v + e3 + e2 = s + w + e4 + e3 = hi + lo + e3 + e4.
+        if !(hi.is_finite() && lo.is_finite()) {
+            return Dw::UNKNOWN;
+        }
+        // self + o = s + e1 + t + e2 = s + v + e3 + e2 = s + w + e4 + e3 = hi + lo + e3 + e4
+        // (two_sum is exact at any magnitude, subnormal included, short of overflow).
         Dw { hi, lo, err: (self.err + o.err + e3.abs() + e4.abs()) * UP }
     }
+
+    /// A value about which nothing is known: every sign test on it is open.
+    const UNKNOWN: Dw = Dw { hi: 0.0, lo: 0.0, err: f64::INFINITY };
 
     pub(crate) fn sub(self, o: Dw) -> Dw {
         self.add(o.neg())
     }
 
     pub(crate) fn mul(self, o: Dw) -> Dw {
-        let (p, e0) = two_prod(self.hi, o.hi);
-        let (a, ea) = two_prod(self.hi, o.lo);
-        let (b, eb) = two_prod(self.lo, o.hi);
-        let (c, ec) = two_prod(self.lo, o.lo);
+        let (Some((p, e0, u0)), Some((a, ea, ua)), Some((b, eb, ub)), Some((c, ec, uc))) = (
+            guarded_prod(self.hi, o.hi),
+            guarded_prod(self.hi, o.lo),
+            guarded_prod(self.lo, o.hi),
+            guarded_prod(self.lo, o.lo),
+        ) else {
+            return Dw::UNKNOWN;
+        };
         let (s1, f1) = two_sum(a, b);
         let (s2, f2) = two_sum(s1, c);
         let (s3, f3) = two_sum(e0, s2);
         let (hi, lo) = two_sum(p, s3);
+        if !(hi.is_finite() && lo.is_finite()) {
+            return Dw::UNKNOWN;
+        }
         // (hi + lo) of the product = p + s3 exactly; the terms dropped are
-        // f1 + f2 + f3 + ea + eb + ec.
-        let dropped = f1.abs() + f2.abs() + f3.abs() + ea.abs() + eb.abs() + ec.abs();
+        // f1 + f2 + f3 + ea + eb + ec, and what an underflowing product lost.
+        let dropped = f1.abs() + f2.abs() + f3.abs() + ea.abs() + eb.abs() + ec.abs() + u0 + ua + ub + uc;
         // With x = x̃ + δx, y = ỹ + δy: |xy − x̃ỹ| ≤ |x̃|·|δy| + |ỹ|·|δx| + |δx|·|δy|.
         let carried = self.mag() * o.err + o.mag() * self.err + self.err * o.err;
-        Dw { hi, lo, err: (carried + dropped) * UP }
+        // Computing the bound in f64 may underflow a product of tiny terms to
+        // 0: a carried error that is not exactly 0 gets UNDERFLOW_ERR more.
+        let floor = if self.err > 0.0 || o.err > 0.0 { UNDERFLOW_ERR } else { 0.0 };
+        Dw { hi, lo, err: (carried + dropped) * UP + floor }
     }
 
     /// The sign of the exact value, when `err` leaves it certain: `Some(0)`
@@ -293,6 +339,27 @@ mod tests {
         // A divisor whose sign the bound leaves open, and one exactly zero.
         assert_eq!(quotient(exact(1.0), Dw { hi: 1e-20, lo: 0.0, err: 1e-19 }), None);
         assert_eq!(quotient(exact(1.0), exact(0.0)), None);
+    }
+
+    #[test]
+    fn the_guards_are_the_powers_of_two_they_name() {
+        assert_eq!(PROD_MIN.to_bits(), 2f64.powi(-969).to_bits());
+        assert_eq!(SPLIT_MAX.to_bits(), 2f64.powi(995).to_bits());
+        assert_eq!(UNDERFLOW_ERR.to_bits(), 2f64.powi(-1021).to_bits());
+    }
+
+    #[test]
+    fn products_near_underflow_or_overflow_are_bounded_not_trusted() {
+        // 2^-500 · 2^-500 underflows: the product is kept with a bound, so its
+        // sign stays known (2^-1000 far above 2^-1021) but it is not exact.
+        let t = exact(2f64.powi(-500)).mul(exact(2f64.powi(-500)));
+        assert_eq!(t.sign(), Some(1));
+        assert!(t.err > 0.0);
+        // 2^-530 · 2^-530 = 2^-1060 is below the bound: its sign is open.
+        assert_eq!(exact(2f64.powi(-530)).mul(exact(2f64.powi(-530))).sign(), None);
+        // Too large to split, and a sum that overflows: nothing is known.
+        assert_eq!(exact(2f64.powi(1000)).mul(exact(1.0)).sign(), None);
+        assert_eq!(exact(f64::MAX).add(exact(f64::MAX)).sign(), None);
     }
 
     #[test]
