@@ -13,7 +13,9 @@
 //! CRASHTEST_STAGE_CASES=1000000 cargo test --release --test referee_stages
 //! ```
 
-use harness::case::{Case, MeshSpec, PlaneSpec, PointSpec, PointsSpec, Query, Shape, SphereSpec, TriangleSpec};
+use harness::case::{
+    Case, MeshSpec, PlaneSpec, PointSpec, PointsSpec, Query, SegmentSpec, Shape, SphereSpec, TriangleSpec,
+};
 use harness::check::run_caught;
 use harness::engines::{self, referee};
 use harness::generate::{generate, loaded, try_generate_full_range};
@@ -260,6 +262,59 @@ fn contact_touching_ties_and_exact_outputs_are_the_same() {
         let before = stage_counts_on_this_thread();
         run_caught(&r, lc).expect("the referee answers");
         let (exact, by_fast) = delta(&before, &stage_counts_on_this_thread(), Stage::Contact);
+        assert_eq!((by_fast, exact), (u64::from(*fast), u64::from(!*fast)), "{}", lc.case.source);
+    }
+}
+
+/// Segments against planes and triangles on the edges of the floating-point
+/// stage, at scales 2^-20 … 2^19: ending or starting exactly on the plane,
+/// through an edge or a vertex exactly (certified: the signs are exactly
+/// known), missing by one ulp (a certified miss), a point exactly on a
+/// midpoint (a tie: the exact stage), parallel, zero-length and zero-area
+/// (the exact stage, with its flags). Answers and margins are the same with
+/// the stages as without, each from the stage it should be.
+#[test]
+fn intersect_ends_edges_ties_and_flags_are_the_same() {
+    let seg = |start: [f64; 3], end: [f64; 3]| Shape::Segment(SegmentSpec { start, end });
+    let plane = |normal: [f64; 3], offset: f64| Shape::Plane(PlaneSpec { normal, offset, velocity: None });
+    let tri = |vertices: [[f64; 3]; 3]| Shape::Triangle(TriangleSpec { vertices, velocity: None });
+    let mut cases: Vec<(bool, LoadedCase)> = Vec::new();
+    let mut add = |fast: bool, a: Shape, b: Shape, what: String| {
+        cases.push((fast, case(Query::Intersect, a, Some(b), what)));
+    };
+    for k in 0..40i32 {
+        let s = 2f64.powi(k - 20);
+        let at = format!("scale 2^{}", k - 20);
+        let ground = || plane([0.0, 0.0, 1.0], 0.0);
+        add(true, seg([s, 0.0, -s], [s, 2.0 * s, 3.0 * s]), ground(), format!("through a plane, {at}"));
+        add(true, seg([s, 0.0, s], [2.0 * s, s, 0.0]), ground(), format!("ending on a plane, {at}"));
+        add(true, seg([s, 0.0, 0.0], [2.0 * s, s, s]), ground(), format!("starting on a plane, {at}"));
+        let above = 2f64.powi(-60) * s;
+        add(true, seg([s, 0.0, s], [s, 0.0, above]), ground(), format!("stopping short of a plane, {at}"));
+        add(true, seg([s, s, -s], [-s, s, 4.0 * s]), plane([0.0, 3.0, 4.0], 2.0 * s), format!("tilted plane, {at}"));
+        add(false, seg([s, 0.0, s], [2.0 * s, s, s]), ground(), format!("parallel to a plane, {at}"));
+        add(false, seg([s, 0.0, s], [s, 0.0, s]), ground(), format!("zero-length, {at}"));
+        // t = 1/2 and x = s(1 + 2^-53): a tie.
+        let tie = seg([s, 0.0, 0.0], [s * (1.0 + f64::EPSILON), 0.0, s]);
+        add(false, tie, plane([0.0, 0.0, 1.0], 0.5 * s), format!("point on a midpoint, {at}"));
+        let t = || tri([[0.0; 3], [4.0 * s, 0.0, 0.0], [0.0, 4.0 * s, 0.0]]);
+        add(true, seg([s, s, s], [s, 2.0 * s, -3.0 * s]), t(), format!("through a triangle, {at}"));
+        add(true, seg([2.0 * s, 0.0, s], [2.0 * s, 0.0, -s]), t(), format!("through an edge, {at}"));
+        add(true, seg([4.0 * s, 0.0, s], [4.0 * s, 0.0, -s]), t(), format!("through a vertex, {at}"));
+        add(true, seg([2.0 * s, 2.0 * s, s], [2.0 * s, 2.0 * s, -s]), t(), format!("through the hypotenuse, {at}"));
+        let out = -(2f64.powi(-60)) * s;
+        add(true, seg([2.0 * s, out, s], [2.0 * s, out, -s]), t(), format!("just outside an edge, {at}"));
+        add(false, seg([s, s, s], [2.0 * s, s, s]), t(), format!("parallel to a triangle, {at}"));
+        let flat = tri([[0.0; 3], [s, s, 0.0], [2.0 * s, 2.0 * s, 0.0]]);
+        add(false, seg([s, 0.0, s], [s, 0.0, -s]), flat, format!("zero-area triangle, {at}"));
+    }
+    let loaded: Vec<LoadedCase> = cases.iter().map(|(_, lc)| lc.clone()).collect();
+    assert_same("intersect edges of the stage", &loaded);
+    let r = engines::referee();
+    for (fast, lc) in &cases {
+        let before = stage_counts_on_this_thread();
+        run_caught(&r, lc).expect("the referee answers");
+        let (exact, by_fast) = delta(&before, &stage_counts_on_this_thread(), Stage::Intersect);
         assert_eq!((by_fast, exact), (u64::from(*fast), u64::from(!*fast)), "{}", lc.case.source);
     }
 }

@@ -16,15 +16,9 @@ use crate::geom::{Contact, ContactAnswer, P3, Plane, Sphere, Triangle};
 /// with the referee on degenerate cases too.
 pub const CONCENTRIC_FALLBACK_NORMAL: P3 = [0.0, 0.0, 1.0];
 
-/// The floating-point stage's answer ([`super::contact_fast`]), counted, when
-/// the stages are on and it certified one; else the exact stage answers.
+/// The floating-point stage's answer ([`super::contact_fast`]), counted.
 fn staged<T>(fast: impl FnOnce() -> Option<T>) -> Option<T> {
-    if !super::staged() {
-        return None;
-    }
-    let answer = fast();
-    super::count(super::Stage::Contact, answer.is_some(), 1);
-    answer
+    super::fast_stage(super::Stage::Contact, fast)
 }
 
 fn fallback_normal() -> V3 {

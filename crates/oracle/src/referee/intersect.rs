@@ -26,6 +26,11 @@ fn crossing(p0: &V3, dir: &V3, n: &V3, k: &Q) -> Crossing {
     Crossing::At((k - dot(n, p0)) / den)
 }
 
+/// The floating-point stage's answer ([`super::intersect_fast`]), counted.
+fn staged<T>(fast: impl FnOnce() -> Option<T>) -> Option<T> {
+    super::fast_stage(super::Stage::Intersect, fast)
+}
+
 fn segment(s: &Segment, field: [&'static str; 2]) -> Result<(V3, V3), RefereeError> {
     let p0 = v3(&s.start, field[0])?;
     let p1 = v3(&s.end, field[1])?;
@@ -75,6 +80,9 @@ fn t_margin(t: &Q) -> Q {
 /// `degenerate: true`, no hit, `parallel: false` (a point is neither parallel nor
 /// crossing). A zero normal is refused with [`RefereeError::ZeroNormal`].
 pub fn intersect_segment_plane(s: &Segment, p: &Plane) -> Result<IntersectAnswer, RefereeError> {
+    if let Some(answer) = staged(|| super::intersect_fast::segment_plane(s, p)) {
+        return Ok(answer);
+    }
     let (p0, dir) = segment(s, ["a.start", "a.end"])?;
     let n = v3(&p.normal, "b.normal")?;
     let d = q(p.offset, "b.offset")?;
@@ -115,6 +123,9 @@ fn along(p0: &V3, dir: &V3, t: &Q) -> V3 {
 /// segment hits. `None` when there is no candidate point (parallel or
 /// zero-length segment).
 pub fn intersect_margin_segment_plane(s: &Segment, p: &Plane) -> Result<Option<f64>, RefereeError> {
+    if let Some(margin) = staged(|| super::intersect_fast::segment_plane_margin(s, p)) {
+        return Ok(Some(margin));
+    }
     let (p0, dir) = segment(s, ["a.start", "a.end"])?;
     let n = v3(&p.normal, "b.normal")?;
     let d = q(p.offset, "b.offset")?;
@@ -221,6 +232,9 @@ fn triangle(t: &Triangle, field: &'static str) -> Result<[V3; 3], RefereeError> 
 /// (`N = 0`): `degenerate: true`, no hit, `parallel: false` — the direction or
 /// the plane needed to classify does not exist (the fixture format's rule).
 pub fn intersect_segment_triangle(s: &Segment, t: &Triangle) -> Result<IntersectAnswer, RefereeError> {
+    if let Some(answer) = staged(|| super::intersect_fast::segment_triangle(s, t)) {
+        return Ok(answer);
+    }
     let (p0, dir) = segment(s, ["a.start", "a.end"])?;
     let v = triangle(t, "b.vertices")?;
     if is_zero(&dir) {
@@ -244,6 +258,9 @@ pub fn intersect_segment_triangle(s: &Segment, t: &Triangle) -> Result<Intersect
 /// (parallel, zero-length segment, zero-area triangle): no crossing point exists
 /// to measure, and the case is decided by the `parallel` / `degenerate` flags.
 pub fn intersect_margin_segment_triangle(s: &Segment, t: &Triangle) -> Result<Option<f64>, RefereeError> {
+    if let Some(margin) = staged(|| super::intersect_fast::segment_triangle_margin(s, t)) {
+        return Ok(Some(margin));
+    }
     let (p0, dir) = segment(s, ["a.start", "a.end"])?;
     let v = triangle(t, "b.vertices")?;
     if is_zero(&dir) {

@@ -42,9 +42,11 @@
 //! - barycentric coordinates ([`barycentric`]): computed in double-word numbers
 //!   that account for their error exactly ([`fast`]), each coordinate kept when
 //!   its correct rounding is certified, else computed in exact rationals;
-//! - contact of a sphere with a sphere or a plane, and its margin ([`contact`]):
-//!   the same, each output `A + B/√S` certified by the signs of `P + Q·√S` at
-//!   the midpoints around its candidate (`contact_fast`).
+//! - contact of a sphere with a sphere, a plane or a triangle, and its margin
+//!   ([`contact`]): the same, each output `A + B/√S` certified by the signs of
+//!   `P + Q·√S` at the midpoints around its candidate (`contact_fast`);
+//! - a segment against a plane or a triangle, and its margin ([`intersect`]):
+//!   every output a certified quotient (`intersect_fast`).
 //!
 //! The answers are the same bits as the exact stage's alone, by construction
 //! and by test ([`exact_only`] switches the stages off; `tests/referee_stages.rs`).
@@ -65,6 +67,7 @@ mod contact_fast;
 mod exact;
 mod fast;
 pub mod intersect;
+mod intersect_fast;
 pub mod overlap;
 pub mod response;
 pub mod toi;
@@ -94,7 +97,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 thread_local! {
     static EXACT_ONLY: Cell<bool> = const { Cell::new(false) };
     /// This thread's counts: fast then exact, per stage.
-    static HERE: Cell<[u64; 8]> = const { Cell::new([0; 8]) };
+    static HERE: Cell<[u64; 10]> = const { Cell::new([0; 10]) };
 }
 
 /// Runs `f` with the referee's floating-point stages off on this thread: every
@@ -111,6 +114,17 @@ pub fn exact_only<T>(f: impl FnOnce() -> T) -> T {
 /// Whether the floating-point stages may answer on this thread.
 pub(crate) fn staged() -> bool {
     !EXACT_ONLY.with(Cell::get)
+}
+
+/// A floating-point stage's answer, counted under `stage`, when the stages
+/// are on and it certified one; `None` sends the caller to its exact stage.
+pub(crate) fn fast_stage<T>(stage: Stage, fast: impl FnOnce() -> Option<T>) -> Option<T> {
+    if !staged() {
+        return None;
+    }
+    let answer = fast();
+    count(stage, answer.is_some(), 1);
+    answer
 }
 
 /// The referee's two-stage computations, each counted: how often the
@@ -130,11 +144,15 @@ pub enum Stage {
     /// Contact of a sphere with a sphere or a plane, and its margin: certified
     /// from double-word numbers, or computed in exact rationals.
     Contact,
+    /// A segment against a plane or a triangle, and its margin: certified
+    /// from double-word numbers, or computed in exact rationals.
+    Intersect,
 }
 
 impl Stage {
     /// Every stage, in report order.
-    pub const ALL: [Stage; 4] = [Stage::MinBall, Stage::MeshFaces, Stage::Barycentric, Stage::Contact];
+    pub const ALL: [Stage; 5] =
+        [Stage::MinBall, Stage::MeshFaces, Stage::Barycentric, Stage::Contact, Stage::Intersect];
 
     /// What is counted, for the report.
     pub fn label(self) -> &'static str {
@@ -143,7 +161,10 @@ impl Stage {
             Stage::MeshFaces => "toi sphere–mesh: faces ruled out in floating point / tested exactly",
             Stage::Barycentric => "barycentric: certified from double-word numbers / computed exactly",
             Stage::Contact => {
-                "contact sphere–sphere, sphere–plane and their margins: certified from double-word numbers / computed exactly"
+                "contact of a sphere with a sphere, plane or triangle, and margins: certified from double-word numbers / computed exactly"
+            }
+            Stage::Intersect => {
+                "intersect segment–plane, segment–triangle and margins: certified from double-word numbers / computed exactly"
             }
         }
     }
@@ -153,10 +174,10 @@ impl Stage {
 /// of them is decided exactly: its share without the exact stage is 0 %), for
 /// the report beside [`Stage`]'s counts.
 pub const EXACT_STAGE_ONLY: &str =
-    "contact against a triangle or mesh, intersect, overlap, response, and toi against a sphere, plane or triangle";
+    "contact against a mesh, intersect against a mesh, overlap, response, and toi against a sphere, plane or triangle";
 
-static FAST: [AtomicU64; 4] = [const { AtomicU64::new(0) }; 4];
-static EXACT: [AtomicU64; 4] = [const { AtomicU64::new(0) }; 4];
+static FAST: [AtomicU64; 5] = [const { AtomicU64::new(0) }; 5];
+static EXACT: [AtomicU64; 5] = [const { AtomicU64::new(0) }; 5];
 
 /// Counts `n` answers of `stage`, by the floating-point stage or the exact one.
 pub(crate) fn count(stage: Stage, fast: bool, n: u64) {
