@@ -307,6 +307,33 @@ fn intersect_ends_edges_ties_and_flags_are_the_same() {
         add(false, seg([s, s, s], [2.0 * s, s, s]), t(), format!("parallel to a triangle, {at}"));
         let flat = tri([[0.0; 3], [s, s, 0.0], [2.0 * s, 2.0 * s, 0.0]]);
         add(false, seg([s, 0.0, s], [s, 0.0, -s]), flat, format!("zero-area triangle, {at}"));
+        // A square of two faces sharing the diagonal, and a face behind them:
+        // through the diagonal both faces tie (the lowest index wins).
+        let vertices = vec![
+            [0.0, 0.0, 0.0],
+            [2.0 * s, 0.0, 0.0],
+            [2.0 * s, 2.0 * s, 0.0],
+            [0.0, 2.0 * s, 0.0],
+            [0.0, 0.0, -s],
+            [4.0 * s, 0.0, -s],
+            [0.0, 4.0 * s, -s],
+        ];
+        for faces in [vec![[0, 1, 2], [0, 2, 3], [4, 5, 6]], vec![[4, 5, 6], [0, 2, 3], [0, 1, 2]]] {
+            let mesh = Shape::Mesh(MeshSpec {
+                vertices: Some(vertices.clone()),
+                triangles: Some(faces.clone()),
+                file: None,
+                velocity: None,
+            });
+            add(true, seg([s, s, s], [s, s, -2.0 * s]), mesh, format!("mesh diagonal tie, faces {faces:?}, {at}"));
+        }
+        let mesh = Shape::Mesh(MeshSpec {
+            vertices: Some(vertices.clone()),
+            triangles: Some(vec![[0, 1, 2], [0, 1, 1]]),
+            file: None,
+            velocity: None,
+        });
+        add(false, seg([s, s, s], [s, s, -2.0 * s]), mesh, format!("mesh with a zero-area face, {at}"));
     }
     let loaded: Vec<LoadedCase> = cases.iter().map(|(_, lc)| lc.clone()).collect();
     assert_same("intersect edges of the stage", &loaded);

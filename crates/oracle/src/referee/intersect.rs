@@ -294,6 +294,9 @@ pub fn intersect_segment_mesh(
     vertices: &[P3],
     triangles: &[[usize; 3]],
 ) -> Result<IntersectAnswer, RefereeError> {
+    if let Some(answer) = staged(|| super::intersect_fast::segment_mesh(s, vertices, triangles)) {
+        return Ok(answer);
+    }
     let (p0, dir) = segment(s, ["a.start", "a.end"])?;
     let verts = vertices.iter().map(|p| v3(p, "b.vertices")).collect::<Result<Vec<_>, _>>()?;
     for (face, tri) in triangles.iter().enumerate() {

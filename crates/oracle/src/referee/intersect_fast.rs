@@ -36,12 +36,8 @@ fn unit(v: &[Dw; 3]) -> Option<P3> {
     }
     let root = s.approx().sqrt();
     let mut out = [0.0; 3];
-    for i in 0..3 {
-        out[i] = if v[i].is_exact_zero() {
-            0.0
-        } else {
-            certify(v[i].approx() / root, |m| sign_affine_root(v[i], m.neg(), s))?
-        };
+    for (o, &x) in out.iter_mut().zip(v) {
+        *o = if x.is_exact_zero() { 0.0 } else { certify(x.approx() / root, |m| sign_affine_root(x, m.neg(), s))? };
     }
     Some(out)
 }
@@ -74,8 +70,8 @@ impl Crossing {
 
     fn point(&self) -> Option<P3> {
         let mut out = [0.0; 3];
-        for i in 0..3 {
-            out[i] = quotient(Dw::of(self.p0[i]).mul(self.den).add(self.tn.mul(self.d[i])), self.den)?;
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = quotient(Dw::of(self.p0[i]).mul(self.den).add(self.tn.mul(self.d[i])), self.den)?;
         }
         Some(out)
     }
@@ -145,13 +141,18 @@ fn triangle_crossing(s: &Segment, t: &Triangle) -> Option<([Dw; 3], Crossing, [D
     if !in_range(numbers) {
         return None;
     }
-    let [v0, v1, v2] = &t.vertices;
+    let d = segment_parts(s)?;
+    crossing_of(s, d, &t.vertices)
+}
+
+/// [`triangle_crossing`] for a segment already checked (`d = p1 − p0`, not zero).
+fn crossing_of(s: &Segment, d: [Dw; 3], v: &[P3; 3]) -> Option<([Dw; 3], Crossing, [Dw; 3])> {
+    let [v0, v1, v2] = v;
     let (e1, e2) = (diff3(v1, v0), diff3(v2, v0));
     let n = cross(&e1, &e2);
     if !dot(&n, &n).is_positive() {
         return None;
     }
-    let d = segment_parts(s)?;
     let tt = diff3(&s.start, v0);
     let pv = cross(&d, &e2);
     let den = dot(&e1, &pv);
@@ -166,17 +167,77 @@ fn triangle_crossing(s: &Segment, t: &Triangle) -> Option<([Dw; 3], Crossing, [D
     Some((n, Crossing { p0: s.start, d, den, tn, sd }, [alpha, beta, gamma]))
 }
 
+impl Crossing {
+    /// Whether the segment hits the triangle whose barycentric numerators are
+    /// `bary`.
+    fn hits(&self, bary: &[Dw; 3]) -> Option<bool> {
+        Some(
+            self.on_segment()?
+                && self.non_negative(bary[0])?
+                && self.non_negative(bary[1])?
+                && self.non_negative(bary[2])?,
+        )
+    }
+
+    /// The hit's outputs, each certified.
+    fn hit(&self, n: &[Dw; 3], bary: &[Dw; 3], triangle: Option<usize>) -> Option<SegmentHit> {
+        let barycentric = [quotient(bary[0], self.den)?, quotient(bary[1], self.den)?, quotient(bary[2], self.den)?];
+        Some(SegmentHit {
+            t: self.t()?,
+            point: self.point()?,
+            normal: unit(n)?,
+            barycentric: Some(barycentric),
+            triangle,
+        })
+    }
+
+    /// `self.t < other.t`, certified (`tn/den` against `tn'/den'`).
+    fn before(&self, other: &Crossing) -> Option<bool> {
+        let diff = self.tn.mul(other.den).sub(other.tn.mul(self.den));
+        Some(diff.signum()? * self.sd * other.sd < 0)
+    }
+}
+
 /// Segment against triangle, as `intersect_segment_triangle` answers, or `None`.
 pub(super) fn segment_triangle(s: &Segment, t: &Triangle) -> Option<IntersectAnswer> {
     let (n, c, bary) = triangle_crossing(s, t)?;
-    let inside = c.on_segment()? && c.non_negative(bary[0])? && c.non_negative(bary[1])? && c.non_negative(bary[2])?;
-    if !inside {
+    if !c.hits(&bary)? {
         return Some(miss());
     }
-    let barycentric = [quotient(bary[0], c.den)?, quotient(bary[1], c.den)?, quotient(bary[2], c.den)?];
-    let hit =
-        SegmentHit { t: c.t()?, point: c.point()?, normal: unit(&n)?, barycentric: Some(barycentric), triangle: None };
-    Some(IntersectAnswer { hit: Some(hit), parallel: false, degenerate: false })
+    Some(IntersectAnswer { hit: Some(c.hit(&n, &bary, None)?), parallel: false, degenerate: false })
+}
+
+/// Segment against mesh, as `intersect_segment_mesh` answers, or `None`: only
+/// for a mesh whose every face has area and crosses the segment's line (a
+/// zero-area or parallel face sets a flag the exact stage decides), with the
+/// first hit certified earlier than every other (a tie goes to the lowest
+/// face, as there).
+pub(super) fn segment_mesh(s: &Segment, vertices: &[P3], triangles: &[[usize; 3]]) -> Option<IntersectAnswer> {
+    let numbers = s.start.iter().chain(&s.end).chain(vertices.iter().flatten()).copied();
+    if !in_range(numbers) {
+        return None;
+    }
+    let d = segment_parts(s)?;
+    let mut best: Option<([Dw; 3], Crossing, [Dw; 3], usize)> = None;
+    for (face, tri) in triangles.iter().enumerate() {
+        let v = [*vertices.get(tri[0])?, *vertices.get(tri[1])?, *vertices.get(tri[2])?];
+        let (n, c, bary) = crossing_of(s, d, &v)?;
+        if !c.hits(&bary)? {
+            continue;
+        }
+        let earlier = match &best {
+            None => true,
+            Some((_, b, _, _)) => c.before(b)?,
+        };
+        if earlier {
+            best = Some((n, c, bary, face));
+        }
+    }
+    let hit = match best {
+        Some((n, c, bary, face)) => Some(c.hit(&n, &bary, Some(face))?),
+        None => None,
+    };
+    Some(IntersectAnswer { hit, parallel: false, degenerate: false })
 }
 
 /// `min(t, 1 − t, α, β, γ)` for the segment and the triangle, or `None`.
