@@ -252,6 +252,22 @@ fn contact_touching_ties_and_exact_outputs_are_the_same() {
             velocity: None,
         });
         add(false, sphere([s, 0.0, 0.0], s), flat, format!("zero-area triangle, {at}"));
+        // A mesh: the triangle and a face far below it; the centre over the
+        // triangle's face, then over its vertex (0, 0, 0) shared by both.
+        let mesh = Shape::Mesh(MeshSpec {
+            vertices: Some(vec![
+                [0.0; 3],
+                [4.0 * s, 0.0, 0.0],
+                [0.0, 4.0 * s, 0.0],
+                [0.0, 0.0, -8.0 * s],
+                [4.0 * s, 0.0, -8.0 * s],
+            ]),
+            triangles: Some(vec![[3, 4, 2], [0, 1, 2]]),
+            file: None,
+            velocity: None,
+        });
+        add(true, sphere([s, s, 3.0 * s], 4.0 * s), mesh.clone(), format!("mesh face, {at}"));
+        add(true, sphere([s, s, 30.0 * s], 4.0 * s), mesh, format!("apart from a mesh, {at}"));
     }
     add(false, sphere([0.0; 3], 2f64.powi(101)), sphere([1.0, 0.0, 0.0], 1.0), "beyond the range".into());
     add(false, sphere([2f64.powi(-101), 0.0, 0.0], 1.0), sphere([1.0, 0.0, 0.0], 1.0), "below the range".into());

@@ -382,6 +382,9 @@ pub fn contact_sphere_mesh(
     vertices: &[P3],
     triangles: &[[usize; 3]],
 ) -> Result<ContactAnswer, RefereeError> {
+    if let Some(contact) = staged(|| super::contact_fast::sphere_mesh(a, vertices, triangles)) {
+        return Ok(ContactAnswer { contact, degenerate: false });
+    }
     Ok(match nearest_face(a, vertices, triangles)? {
         Some((_, st)) => st.answer(),
         None => ContactAnswer { contact: None, degenerate: false },
@@ -392,6 +395,9 @@ pub fn contact_sphere_mesh(
 /// decision, correctly rounded: ≥ 0 exactly when in contact. An empty mesh has
 /// no margin (an error: nothing to decide).
 pub fn contact_margin_sphere_mesh(a: &Sphere, vertices: &[P3], triangles: &[[usize; 3]]) -> Result<f64, RefereeError> {
+    if let Some(margin) = staged(|| super::contact_fast::sphere_mesh_margin(a, vertices, triangles)) {
+        return Ok(margin);
+    }
     match nearest_face(a, vertices, triangles)? {
         Some((_, st)) => Ok(st.depth()),
         None => Err(RefereeError::IndexOutOfRange { field: "b.triangles", face: 0 }),

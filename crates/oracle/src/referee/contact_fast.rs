@@ -1,7 +1,8 @@
-//! The floating-point stage of contact between a sphere and a sphere or a
-//! plane ([`super::fast`]): the exact stage's formulas in double-word numbers
-//! that account for their error, each output kept only when its correct
-//! rounding is certified.
+//! The floating-point stage of contact between a sphere and a sphere, a
+//! plane, a triangle or a mesh ([`super::fast`]): the exact stage's formulas
+//! in double-word numbers that account for their error, each output kept only
+//! when its correct rounding is certified, each decision (contact, a
+//! triangle's region, a mesh's nearest face) only on certified signs.
 //!
 //! Every output is `x = A + B/√S` for double-words `A`, `B` and a sum of
 //! squares `S > 0` (or a quotient, for the sphere–plane point). Its rounding is
@@ -9,7 +10,8 @@
 //! `x − m` is that of `P + Q·√S` with `P`, `Q` exact or bounded double-words
 //! ([`sign_affine_root`]). A function here returns `None` whenever anything is
 //! left open — a decision on its boundary (touching exactly), concentric
-//! spheres, an output on a midpoint or exactly zero after cancellation, inputs
+//! spheres or a centre exactly on a triangle, a zero-area triangle, two mesh
+//! faces whose distances the bounds cannot order, an output on a midpoint or exactly zero after cancellation, inputs
 //! outside the stage's range, or input the exact stage refuses — and the exact
 //! stage then answers, with the same bits by construction and by test
 //! (`tests/referee_stages.rs`).
@@ -259,7 +261,12 @@ fn sphere_triangle_parts(s: &Sphere, t: &Triangle) -> Option<TriangleParts> {
     if !(s.radius >= 0.0 && in_range(numbers)) {
         return None;
     }
-    let near = near(&s.center, &t.vertices)?;
+    parts_of(s, &t.vertices)
+}
+
+/// [`sphere_triangle_parts`] for input already checked.
+fn parts_of(s: &Sphere, v: &[P3; 3]) -> Option<TriangleParts> {
+    let near = near(&s.center, v)?;
     let r = Dw::of(s.radius);
     let (dir, touches) = match &near {
         Near::Feature { l, wv, ww, .. } => {
@@ -284,6 +291,21 @@ fn sphere_triangle_parts(s: &Sphere, t: &Triangle) -> Option<TriangleParts> {
 }
 
 impl TriangleParts {
+    /// `‖c − q‖²` as a fraction `(num, den)` with `den > 0`.
+    fn dist2(&self) -> (Dw, Dw) {
+        match &self.near {
+            Near::Feature { l, ww, .. } => (*ww, l.mul(*l)),
+            Near::Face { nn, e, .. } => (e.mul(*e), *nn),
+        }
+    }
+
+    /// Whether this face is certainly nearer than `other` (`Some(false)` for
+    /// an exact tie too).
+    fn nearer(&self, other: &TriangleParts) -> Option<bool> {
+        let ((a, da), (b, db)) = (self.dist2(), other.dist2());
+        Some(a.mul(db).sub(b.mul(da)).signum()? < 0)
+    }
+
     /// `r − ‖c − q‖`, correctly rounded (`None`: open, or exactly 0).
     fn depth(&self, r: f64) -> Option<f64> {
         match &self.near {
@@ -343,4 +365,44 @@ pub(super) fn triangle_sphere(a: &Triangle, b: &Sphere) -> Option<Option<Contact
 /// The sphere–triangle margin `r − ‖c − q‖`, correctly rounded, or `None`.
 pub(super) fn sphere_triangle_margin(a: &Sphere, b: &Triangle) -> Option<f64> {
     sphere_triangle_parts(a, b)?.depth(a.radius)
+}
+
+/// The nearest face of a mesh (smallest `‖c − q‖²`, certified against every
+/// other face; an exact tie keeps the lowest index, as the exact stage does),
+/// or `None` (an empty mesh, an index out of range, any face the stage cannot
+/// answer, a comparison left open).
+fn nearest(a: &Sphere, vertices: &[P3], triangles: &[[usize; 3]]) -> Option<TriangleParts> {
+    let numbers = a.center.iter().chain(vertices.iter().flatten()).copied().chain([a.radius]);
+    if !(a.radius >= 0.0 && in_range(numbers)) {
+        return None;
+    }
+    let mut best: Option<TriangleParts> = None;
+    for tri in triangles {
+        let v = [*vertices.get(tri[0])?, *vertices.get(tri[1])?, *vertices.get(tri[2])?];
+        let parts = parts_of(a, &v)?;
+        let nearer = match &best {
+            None => true,
+            Some(b) => parts.nearer(b)?,
+        };
+        if nearer {
+            best = Some(parts);
+        }
+    }
+    best
+}
+
+/// Sphere `a` against a mesh, as [`sphere_sphere`] answers.
+pub(super) fn sphere_mesh(a: &Sphere, vertices: &[P3], triangles: &[[usize; 3]]) -> Option<Option<Contact>> {
+    let parts = nearest(a, vertices, triangles)?;
+    if !parts.touches {
+        return Some(None);
+    }
+    let (dir, dd) = parts.dir;
+    let normal = unit(&dir, dd, dd.approx().sqrt())?;
+    Some(Some(Contact { point: parts.point(&a.center)?, normal, depth: parts.depth(a.radius)? }))
+}
+
+/// The sphere–mesh margin `r − min ‖c − q‖`, correctly rounded, or `None`.
+pub(super) fn sphere_mesh_margin(a: &Sphere, vertices: &[P3], triangles: &[[usize; 3]]) -> Option<f64> {
+    nearest(a, vertices, triangles)?.depth(a.radius)
 }

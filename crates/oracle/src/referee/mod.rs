@@ -42,10 +42,10 @@
 //! - barycentric coordinates ([`barycentric`]): computed in double-word numbers
 //!   that account for their error exactly ([`fast`]), each coordinate kept when
 //!   its correct rounding is certified, else computed in exact rationals;
-//! - contact of a sphere with a sphere, a plane or a triangle, and its margin
+//! - contact of a sphere with a sphere, a plane, a triangle or a mesh, and its margin
 //!   ([`contact`]): the same, each output `A + B/√S` certified by the signs of
 //!   `P + Q·√S` at the midpoints around its candidate (`contact_fast`);
-//! - a segment against a plane or a triangle, and its margin ([`intersect`]):
+//! - a segment against a plane, a triangle or a mesh, and its margin ([`intersect`]):
 //!   every output a certified quotient (`intersect_fast`).
 //!
 //! The answers are the same bits as the exact stage's alone, by construction
@@ -161,10 +161,10 @@ impl Stage {
             Stage::MeshFaces => "toi sphere–mesh: faces ruled out in floating point / tested exactly",
             Stage::Barycentric => "barycentric: certified from double-word numbers / computed exactly",
             Stage::Contact => {
-                "contact of a sphere with a sphere, plane or triangle, and margins: certified from double-word numbers / computed exactly"
+                "contact of a sphere with a sphere, plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
             }
             Stage::Intersect => {
-                "intersect segment–plane, segment–triangle and margins: certified from double-word numbers / computed exactly"
+                "intersect of a segment with a plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
             }
         }
     }
@@ -173,8 +173,7 @@ impl Stage {
 /// The query kinds the referee answers in its exact stage alone (every case
 /// of them is decided exactly: its share without the exact stage is 0 %), for
 /// the report beside [`Stage`]'s counts.
-pub const EXACT_STAGE_ONLY: &str =
-    "contact against a mesh, intersect against a mesh, overlap, response, and toi against a sphere, plane or triangle";
+pub const EXACT_STAGE_ONLY: &str = "overlap, response, and toi against a sphere, plane or triangle";
 
 static FAST: [AtomicU64; 5] = [const { AtomicU64::new(0) }; 5];
 static EXACT: [AtomicU64; 5] = [const { AtomicU64::new(0) }; 5];
