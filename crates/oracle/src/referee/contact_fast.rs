@@ -16,26 +16,27 @@
 //! stage then answers, with the same bits by construction and by test
 //! (`tests/referee_stages.rs`).
 
-use super::fast::{Dw, certify, diff3, dot, in_range, quotient, sign_affine_root};
+use super::fast::{Dw, certify, diff3, div_approx, dot, in_range, quotient, sign_affine_root, sqrt_approx};
 use crate::geom::{Contact, P3, Plane, Sphere, Triangle};
 
 /// `A + (u·Δ)/√S` correctly rounded, for an exact input `a`, `u` and an
 /// exact or bounded `Δ`; `a + 0` (a `−0` input made `+0`, as the exact
 /// stage's rounding of the rational zero) when `u·Δ` is exactly zero.
-fn over_root(a: f64, u: f64, delta: Dw, s: Dw, root: f64) -> Option<f64> {
+fn over_root(a: f64, u: f64, delta: Dw, s: Dw, root: Dw) -> Option<f64> {
     let p = Dw::of(u).mul(delta);
     if p.is_exact_zero() {
         return Some(a + 0.0);
     }
     // x − m = ((a − m)·√S + u·Δ)/√S.
-    certify(a + u * delta.approx() / root, |m| sign_affine_root(p, Dw::of(a).sub(m), s))
+    let candidate = Dw::of(a).add(div_approx(p, root)).approx();
+    certify(candidate, |m| sign_affine_root(p, Dw::of(a).sub(m), s))
 }
 
 /// `c − √S` (the sphere–sphere depth and margin `ra + rb − ‖Δ‖`), correctly
 /// rounded; `None` when it is exactly 0 (touching) or left open.
-fn minus_root(c: Dw, s: Dw, root: f64) -> Option<f64> {
+fn minus_root(c: Dw, s: Dw, root: Dw) -> Option<f64> {
     // x − m = (c − m) − √S.
-    certify(c.approx() - root, |m| sign_affine_root(c.sub(m), Dw::of(-1.0), s))
+    certify(c.sub(root).approx(), |m| sign_affine_root(c.sub(m), Dw::of(-1.0), s))
 }
 
 /// The two spheres' centre difference `Δ = Ma − Mb`, `S = Δ·Δ` and the radii's
@@ -62,7 +63,7 @@ pub(super) fn sphere_sphere(a: &Sphere, b: &Sphere) -> Option<Option<Contact>> {
     if !s.is_positive() {
         return None;
     }
-    let root = s.approx().sqrt();
+    let root = sqrt_approx(s);
     let normal = unit(&delta, s, root)?;
     let mut point = [0.0; 3];
     for i in 0..3 {
@@ -78,19 +79,19 @@ pub(super) fn sphere_sphere_margin(a: &Sphere, b: &Sphere) -> Option<f64> {
         // ra + rb: two_sum's leading word is its rounding (+0 for 0 + 0).
         return Some(sum.approx() + 0.0);
     }
-    minus_root(sum, s, s.approx().sqrt())
+    minus_root(sum, s, sqrt_approx(s))
 }
 
 /// `v / ‖v‖` componentwise (`S = v·v > 0`), each correctly rounded; an exactly
 /// zero component is `+0`.
-fn unit(v: &[Dw; 3], s: Dw, root: f64) -> Option<P3> {
+pub(super) fn unit(v: &[Dw; 3], s: Dw, root: Dw) -> Option<P3> {
     let mut out = [0.0; 3];
-    for i in 0..3 {
-        out[i] = if v[i].is_exact_zero() {
+    for (o, &x) in out.iter_mut().zip(v) {
+        *o = if x.is_exact_zero() {
             0.0
         } else {
             // x − m = (v − m·√S)/√S.
-            certify(v[i].approx() / root, |m| sign_affine_root(v[i], m.neg(), s))?
+            certify(div_approx(x, root).approx(), |m| sign_affine_root(x, m.neg(), s))?
         };
     }
     Some(out)
@@ -114,12 +115,12 @@ fn sphere_plane_parts(s: &Sphere, p: &Plane) -> Option<([Dw; 3], Dw, Dw)> {
 
 /// `r − e/√S` (the sphere–plane depth and margin), correctly rounded, or
 /// `None` for the exact stage.
-fn plane_depth(r: f64, e: Dw, nn: Dw, root: f64) -> Option<f64> {
+fn plane_depth(r: f64, e: Dw, nn: Dw, root: Dw) -> Option<f64> {
     if e.is_exact_zero() {
         return Some(r + 0.0);
     }
     // x − m = ((r − m)·√S − e)/√S.
-    certify(r - e.approx() / root, |m| sign_affine_root(e.neg(), Dw::of(r).sub(m), nn))
+    certify(Dw::of(r).sub(div_approx(e, root)).approx(), |m| sign_affine_root(e.neg(), Dw::of(r).sub(m), nn))
 }
 
 /// Whether the sphere reaches the plane's solid: `e ≤ 0`, or `e² ≤ r²·S`
@@ -138,7 +139,7 @@ pub(super) fn sphere_plane(a: &Sphere, b: &Plane) -> Option<Option<Contact>> {
     if !touches(a.radius, e, nn)? {
         return Some(None);
     }
-    let root = nn.approx().sqrt();
+    let root = sqrt_approx(nn);
     // point = c − e·n/S = (c·S − e·n)/S, rational.
     let mut point = [0.0; 3];
     for i in 0..3 {
@@ -154,7 +155,7 @@ pub(super) fn plane_sphere(a: &Plane, b: &Sphere) -> Option<Option<Contact>> {
     if !touches(b.radius, e, nn)? {
         return Some(None);
     }
-    let root = nn.approx().sqrt();
+    let root = sqrt_approx(nn);
     let neg = n.map(Dw::neg);
     let mut point = [0.0; 3];
     for i in 0..3 {
@@ -166,7 +167,7 @@ pub(super) fn plane_sphere(a: &Plane, b: &Sphere) -> Option<Option<Contact>> {
 /// The sphere–plane margin `r − (n·c − d)/‖n‖`, correctly rounded, or `None`.
 pub(super) fn sphere_plane_margin(a: &Sphere, b: &Plane) -> Option<f64> {
     let (_, nn, e) = sphere_plane_parts(a, b)?;
-    plane_depth(a.radius, e, nn, nn.approx().sqrt())
+    plane_depth(a.radius, e, nn, sqrt_approx(nn))
 }
 
 /// `u × v` of double-words.
@@ -311,13 +312,13 @@ impl TriangleParts {
         match &self.near {
             // x − m = ((r − m)·l − √ww)/l.
             Near::Feature { l, ww, .. } => {
-                let root = ww.approx().sqrt();
-                certify(r - root / l.approx(), |m| sign_affine_root(Dw::of(r).sub(m).mul(*l), Dw::of(-1.0), *ww))
+                let candidate = Dw::of(r).sub(div_approx(sqrt_approx(*ww), *l)).approx();
+                certify(candidate, |m| sign_affine_root(Dw::of(r).sub(m).mul(*l), Dw::of(-1.0), *ww))
             }
             // ‖c − q‖ = |e|/√nn.
             Near::Face { nn, e, .. } => {
                 let abs_e = if e.signum()? < 0 { e.neg() } else { *e };
-                plane_depth(r, abs_e, *nn, nn.approx().sqrt())
+                plane_depth(r, abs_e, *nn, sqrt_approx(*nn))
             }
         }
     }
@@ -342,7 +343,7 @@ pub(super) fn sphere_triangle(a: &Sphere, b: &Triangle) -> Option<Option<Contact
         return Some(None);
     }
     let (dir, dd) = parts.dir;
-    let normal = unit(&dir, dd, dd.approx().sqrt())?;
+    let normal = unit(&dir, dd, sqrt_approx(dd))?;
     Some(Some(Contact { point: parts.point(&a.center)?, normal, depth: parts.depth(a.radius)? }))
 }
 
@@ -353,7 +354,7 @@ pub(super) fn triangle_sphere(a: &Triangle, b: &Sphere) -> Option<Option<Contact
         return Some(None);
     }
     let (dir, dd) = parts.dir;
-    let root = dd.approx().sqrt();
+    let root = sqrt_approx(dd);
     let neg = dir.map(Dw::neg);
     let mut point = [0.0; 3];
     for i in 0..3 {
@@ -398,7 +399,7 @@ pub(super) fn sphere_mesh(a: &Sphere, vertices: &[P3], triangles: &[[usize; 3]])
         return Some(None);
     }
     let (dir, dd) = parts.dir;
-    let normal = unit(&dir, dd, dd.approx().sqrt())?;
+    let normal = unit(&dir, dd, sqrt_approx(dd))?;
     Some(Some(Contact { point: parts.point(&a.center)?, normal, depth: parts.depth(a.radius)? }))
 }
 

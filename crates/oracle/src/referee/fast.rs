@@ -215,24 +215,27 @@ pub(crate) fn quotient(n: Dw, d: Dw) -> Option<f64> {
         return Some(0.0);
     }
     // Where the quotient lies against m: the sign of (N − m·D)·sign(D).
-    certify((n.hi + n.lo) / (d.hi + d.lo), |m| n.sub(m.mul(d)).sign().map(|s| s * d_sign))
+    certify(div_approx(n, d).approx(), |m| n.sub(m.mul(d)).sign().map(|s| s * d_sign))
 }
 
-/// The correct rounding (to nearest, ties to even) of an exact value `x`
-/// that is not zero, from a candidate `r` near it and `side(m)`, the sign of
-/// `x − m` for an exact double-word `m` (or `None` when the error bounds leave
-/// it open).
+/// The correct rounding (to nearest, ties to even) of an exact value `x`,
+/// from a candidate `r` near it and `side(m)`, the sign of `x − m` for an
+/// exact double-word `m` (or `None` when the error bounds leave it open).
 ///
 /// The signs at the two midpoints around `r` decide: `x` strictly between
 /// them rounds to `r` — no tie is possible. Otherwise `r` moves an ulp toward
-/// `x` (at most a few times). A midpoint exactly (a tie), an open sign, or a
-/// candidate outside `[2^-QUOTIENT_EXP, 2^QUOTIENT_EXP]` gives `None`.
+/// `x` (at most a few times). A candidate below `2^-QUOTIENT_EXP` is `+0.0`
+/// when `side(0)` proves `x` exactly 0 (as the exact stage rounds the
+/// rational 0). A midpoint exactly (a tie), an open sign, any other candidate
+/// outside `[2^-QUOTIENT_EXP, 2^QUOTIENT_EXP]` gives `None`.
 pub(crate) fn certify(mut r: f64, side: impl Fn(Dw) -> Option<i8>) -> Option<f64> {
     let (lo, hi) = (2f64.powi(-QUOTIENT_EXP), 2f64.powi(QUOTIENT_EXP));
     // The candidate may be off by an ulp or two; each step moves it one.
     for _ in 0..4 {
         if !(r.abs() >= lo && r.abs() <= hi) {
-            return None;
+            // A value exactly 0 (touching, say) is +0.0, as the exact stage
+            // rounds the rational 0; anything else this small is left to it.
+            return (r.abs() < lo && side(Dw::of(0.0))? == 0).then_some(0.0);
         }
         let (up, down) = (r.next_up() - r, r - r.next_down());
         let at = |half: f64| Dw { hi: r, lo: half, err: 0.0 };
@@ -262,6 +265,32 @@ pub(crate) fn sign_affine_root(p: Dw, q: Dw, s: Dw) -> Option<i8> {
         return Some(sq);
     }
     p.mul(p).sub(q.mul(q).mul(s)).sign().map(|d| d * sp)
+}
+
+/// `√s` to about twice `f64`'s precision (one Newton step from `f64`'s
+/// square root, its residual computed exactly): a candidate's ingredient, not
+/// a bound (its `err` is not kept).
+pub(crate) fn sqrt_approx(s: Dw) -> Dw {
+    let r = s.approx().sqrt();
+    if !(r > 0.0 && r.is_finite()) {
+        return Dw::of(r);
+    }
+    let (p, e) = two_prod(r, r);
+    let residual = ((s.hi - p) - e) + s.lo;
+    let (hi, lo) = two_sum(r, residual / (2.0 * r));
+    Dw { hi, lo, err: 0.0 }
+}
+
+/// `a / b` to about twice `f64`'s precision (one correction step): a
+/// candidate's ingredient, not a bound.
+pub(crate) fn div_approx(a: Dw, b: Dw) -> Dw {
+    let q0 = a.approx() / b.approx();
+    if !q0.is_finite() {
+        return Dw::of(q0);
+    }
+    let residual = a.sub(Dw::of(q0).mul(b));
+    let (hi, lo) = two_sum(q0, residual.approx() / b.approx());
+    Dw { hi, lo, err: 0.0 }
 }
 
 impl Dw {

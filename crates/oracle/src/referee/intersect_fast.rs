@@ -29,17 +29,11 @@ fn miss() -> IntersectAnswer {
 
 /// `v / ‖v‖` componentwise, certified, for a `v` with `v·v > 0` (the normal).
 fn unit(v: &[Dw; 3]) -> Option<P3> {
-    use super::fast::{certify, sign_affine_root};
     let s = dot(v, v);
     if !s.is_positive() {
         return None;
     }
-    let root = s.approx().sqrt();
-    let mut out = [0.0; 3];
-    for (o, &x) in out.iter_mut().zip(v) {
-        *o = if x.is_exact_zero() { 0.0 } else { certify(x.approx() / root, |m| sign_affine_root(x, m.neg(), s))? };
-    }
-    Some(out)
+    super::contact_fast::unit(v, s, super::fast::sqrt_approx(s))
 }
 
 /// The line's crossing as numerators over one denominator `den` (sign
