@@ -362,6 +362,56 @@ fn intersect_ends_edges_ties_and_flags_are_the_same() {
     }
 }
 
+/// A sphere's time of impact with a sphere or a plane on the edges of the
+/// floating-point stage, at scales 2^-20 … 2^19 (`t_max` 1): an impact at
+/// t = 1/2, exactly at `t_max`, grazing (a zero discriminant), moving apart,
+/// moving parallel to a plane (certified), and two points meeting (a zero
+/// total radius: the exact stage's fallback normal).
+#[test]
+fn toi_at_the_horizon_grazing_and_points_are_the_same() {
+    let moving = |center: [f64; 3], radius: f64, v: [f64; 3]| {
+        Shape::Sphere(SphereSpec { center, radius, velocity: Some(v), mass: None })
+    };
+    let still =
+        |center: [f64; 3], radius: f64| Shape::Sphere(SphereSpec { center, radius, velocity: None, mass: None });
+    let ground = || Shape::Plane(PlaneSpec { normal: [0.0, 0.0, 1.0], offset: 0.0, velocity: None });
+    let mut cases: Vec<(bool, LoadedCase)> = Vec::new();
+    let mut add = |fast: bool, a: Shape, b: Shape, what: String| {
+        cases.push((fast, case(Query::Toi, a, Some(b), what)));
+    };
+    for k in 0..40i32 {
+        let s = 2f64.powi(k - 20);
+        let at = format!("scale 2^{}", k - 20);
+        let b = || still([0.0; 3], s);
+        add(true, moving([-4.0 * s, 0.0, 0.0], s, [4.0 * s, 0.0, 0.0]), b(), format!("head-on at t = 1/2, {at}"));
+        add(true, moving([-4.0 * s, 0.0, 0.0], s, [2.0 * s, 0.0, 0.0]), b(), format!("impact at t_max, {at}"));
+        add(true, moving([-4.0 * s, s, 0.0], s, [3.0 * s, -s, s]), b(), format!("oblique, {at}"));
+        add(true, moving([-4.0 * s, 2.0 * s, 0.0], s, [4.0 * s, 0.0, 0.0]), b(), format!("grazing, {at}"));
+        add(true, moving([-4.0 * s, 0.0, 0.0], s, [-s, 0.0, 0.0]), b(), format!("moving apart, {at}"));
+        let point = |c: [f64; 3], v| moving(c, 0.0, v);
+        let target = still([0.0; 3], 0.0);
+        add(false, point([-4.0 * s, 0.0, 0.0], [4.0 * s, 0.0, 0.0]), target, format!("two points meet, {at}"));
+        add(true, moving([0.0, 0.0, 3.0 * s], s, [s, 0.0, -4.0 * s]), ground(), format!("onto a plane, {at}"));
+        add(
+            true,
+            moving([0.0, 0.0, 3.0 * s], s, [0.0, 0.0, -2.0 * s]),
+            ground(),
+            format!("onto a plane at t_max, {at}"),
+        );
+        add(true, moving([0.0, 0.0, 3.0 * s], s, [s, s, 0.0]), ground(), format!("along a plane, {at}"));
+        add(true, moving([0.0, 0.0, 3.0 * s], s, [0.0, s, s]), ground(), format!("away from a plane, {at}"));
+    }
+    let loaded: Vec<LoadedCase> = cases.iter().map(|(_, lc)| lc.clone()).collect();
+    assert_same("toi edges of the stage", &loaded);
+    let r = engines::referee();
+    for (fast, lc) in &cases {
+        let before = stage_counts_on_this_thread();
+        run_caught(&r, lc).expect("the referee answers");
+        let (exact, by_fast) = delta(&before, &stage_counts_on_this_thread(), Stage::Toi);
+        assert_eq!((by_fast, exact), (u64::from(*fast), u64::from(!*fast)), "{}", lc.case.source);
+    }
+}
+
 /// Spheres moving along x at height 1 exactly above a mesh's face (touching it
 /// all along, the face's box exactly r below the path), or one ulp above: the
 /// floating-point stage must not rule out a face the sphere touches.

@@ -34,7 +34,7 @@ fn over_root(a: f64, u: f64, delta: Dw, s: Dw, root: Dw) -> Option<f64> {
 
 /// `c − √S` (the sphere–sphere depth and margin `ra + rb − ‖Δ‖`), correctly
 /// rounded; `None` when it is exactly 0 (touching) or left open.
-fn minus_root(c: Dw, s: Dw, root: Dw) -> Option<f64> {
+pub(super) fn minus_root(c: Dw, s: Dw, root: Dw) -> Option<f64> {
     // x − m = (c − m) − √S.
     certify(c.sub(root).approx(), |m| sign_affine_root(c.sub(m), Dw::of(-1.0), s))
 }
@@ -115,7 +115,7 @@ fn sphere_plane_parts(s: &Sphere, p: &Plane) -> Option<([Dw; 3], Dw, Dw)> {
 
 /// `r − e/√S` (the sphere–plane depth and margin), correctly rounded, or
 /// `None` for the exact stage.
-fn plane_depth(r: f64, e: Dw, nn: Dw, root: Dw) -> Option<f64> {
+pub(super) fn plane_depth(r: f64, e: Dw, nn: Dw, root: Dw) -> Option<f64> {
     if e.is_exact_zero() {
         return Some(r + 0.0);
     }

@@ -46,7 +46,9 @@
 //!   ([`contact`]): the same, each output `A + B/√S` certified by the signs of
 //!   `P + Q·√S` at the midpoints around its candidate (`contact_fast`);
 //! - a segment against a plane, a triangle or a mesh, and its margin ([`intersect`]):
-//!   every output a certified quotient (`intersect_fast`).
+//!   every output a certified quotient (`intersect_fast`);
+//! - a sphere's time of impact with a sphere or a plane, and its margin
+//!   ([`toi`]): every output `(P + Q·√D)/K` certified the same way (`toi_fast`).
 //!
 //! The answers are the same bits as the exact stage's alone, by construction
 //! and by test ([`exact_only`] switches the stages off; `tests/referee_stages.rs`).
@@ -71,6 +73,7 @@ mod intersect_fast;
 pub mod overlap;
 pub mod response;
 pub mod toi;
+mod toi_fast;
 
 pub use barycentric::barycentric_triangle;
 pub use bounds::{aabb_of_points, enclosure_margin, min_ball};
@@ -97,7 +100,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 thread_local! {
     static EXACT_ONLY: Cell<bool> = const { Cell::new(false) };
     /// This thread's counts: fast then exact, per stage.
-    static HERE: Cell<[u64; 10]> = const { Cell::new([0; 10]) };
+    static HERE: Cell<[u64; 12]> = const { Cell::new([0; 12]) };
 }
 
 /// Runs `f` with the referee's floating-point stages off on this thread: every
@@ -147,12 +150,15 @@ pub enum Stage {
     /// A segment against a plane or a triangle, and its margin: certified
     /// from double-word numbers, or computed in exact rationals.
     Intersect,
+    /// A sphere's time of impact with a sphere or a plane, and its margin:
+    /// certified from double-word numbers, or computed in exact rationals.
+    Toi,
 }
 
 impl Stage {
     /// Every stage, in report order.
-    pub const ALL: [Stage; 5] =
-        [Stage::MinBall, Stage::MeshFaces, Stage::Barycentric, Stage::Contact, Stage::Intersect];
+    pub const ALL: [Stage; 6] =
+        [Stage::MinBall, Stage::MeshFaces, Stage::Barycentric, Stage::Contact, Stage::Intersect, Stage::Toi];
 
     /// What is counted, for the report.
     pub fn label(self) -> &'static str {
@@ -166,6 +172,9 @@ impl Stage {
             Stage::Intersect => {
                 "intersect of a segment with a plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
             }
+            Stage::Toi => {
+                "toi of a sphere with a sphere or plane, and margins: certified from double-word numbers / computed exactly"
+            }
         }
     }
 }
@@ -175,8 +184,8 @@ impl Stage {
 /// the report beside [`Stage`]'s counts.
 pub const EXACT_STAGE_ONLY: &str = "overlap, response, and toi against a sphere, plane or triangle";
 
-static FAST: [AtomicU64; 5] = [const { AtomicU64::new(0) }; 5];
-static EXACT: [AtomicU64; 5] = [const { AtomicU64::new(0) }; 5];
+static FAST: [AtomicU64; 6] = [const { AtomicU64::new(0) }; 6];
+static EXACT: [AtomicU64; 6] = [const { AtomicU64::new(0) }; 6];
 
 /// Counts `n` answers of `stage`, by the floating-point stage or the exact one.
 pub(crate) fn count(stage: Stage, fast: bool, n: u64) {

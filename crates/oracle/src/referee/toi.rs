@@ -145,6 +145,11 @@ fn finish(h: &Hit, v: &V3) -> ToiAnswer {
     }
 }
 
+/// The floating-point stage's answer ([`super::toi_fast`]), counted.
+fn staged<T>(fast: impl FnOnce() -> Option<T>) -> Option<T> {
+    super::fast_stage(super::Stage::Toi, fast)
+}
+
 fn time(t_max: f64) -> Result<Q, RefereeError> {
     let t = q(t_max, "t_max")?;
     Ok(if t < Q::ZERO { Q::ZERO } else { t })
@@ -328,6 +333,9 @@ pub fn toi_sphere_sphere(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -
     if at0.contact.is_some() {
         return Ok(at_zero(at0));
     }
+    if let Some(answer) = staged(|| super::toi_fast::sphere_sphere(a, va, b, vb, t_max)) {
+        return Ok(answer);
+    }
     let w = sub(&s.c, &mb);
     let v = sub(&s.va, &s.vb);
     let reach = &s.r + &rb;
@@ -376,6 +384,9 @@ pub fn toi_sphere_plane(a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> 
     let at0 = contact_sphere_plane(a, b)?;
     if at0.contact.is_some() {
         return Ok(at_zero(at0));
+    }
+    if let Some(answer) = staged(|| super::toi_fast::sphere_plane(a, va, b, vb, t_max)) {
+        return Ok(answer);
     }
     let n = v3(&b.normal, "b.normal")?;
     let d = q(b.offset, "b.offset")?;
@@ -642,6 +653,9 @@ pub fn toi_margin_sphere_sphere(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max:
     let s = moving(a, va, vb, t_max)?;
     let mb = v3(&b.center, "b.center")?;
     let rb = radius(b.radius, "b.radius")?;
+    if let Some(margin) = staged(|| super::toi_fast::sphere_sphere_margin(a, va, b, vb, t_max)) {
+        return Ok(margin);
+    }
     let w = sub(&s.c, &mb);
     let v = sub(&s.va, &s.vb);
     let vv = dot(&v, &v);
@@ -669,6 +683,9 @@ pub fn toi_margin_sphere_plane(a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f
     let d = q(b.offset, "b.offset")?;
     if is_zero(&n) {
         return Err(RefereeError::ZeroNormal { field: "b.normal" });
+    }
+    if let Some(margin) = staged(|| super::toi_fast::sphere_plane_margin(a, va, b, vb, t_max)) {
+        return Ok(margin);
     }
     let e0 = dot(&n, &s.c) - d;
     let e1 = &e0 + &s.t_max * dot(&n, &sub(&s.va, &s.vb));
