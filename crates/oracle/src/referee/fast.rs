@@ -148,6 +148,9 @@ impl Dw {
     }
 
     pub(crate) fn mul(self, o: Dw) -> Dw {
+        if !(self.err.is_finite() && o.err.is_finite()) {
+            return Dw::UNKNOWN;
+        }
         let (Some((p, e0, u0)), Some((a, ea, ua)), Some((b, eb, ub)), Some((c, ec, uc))) = (
             guarded_prod(self.hi, o.hi),
             guarded_prod(self.hi, o.lo),
@@ -177,6 +180,9 @@ impl Dw {
     /// The sign of the exact value, when `err` leaves it certain: `Some(0)`
     /// only for an exact zero.
     fn sign(self) -> Option<i8> {
+        if !self.err.is_finite() {
+            return None;
+        }
         if self.hi == 0.0 && self.lo == 0.0 {
             return (self.err == 0.0).then_some(0);
         }
