@@ -74,6 +74,21 @@ fn assert_same(what: &str, cases: &[LoadedCase]) {
     );
 }
 
+/// The cases' answers and margins are the same with the stages as without
+/// ([`assert_same`]), and each case's answer came from the stage it names:
+/// `true`, the floating-point stage `stage` (once); `false`, the exact stage.
+fn assert_staged(what: &str, stage: Stage, cases: &[(bool, LoadedCase)]) {
+    let loaded: Vec<LoadedCase> = cases.iter().map(|(_, lc)| lc.clone()).collect();
+    assert_same(what, &loaded);
+    let r = engines::referee();
+    for (fast, lc) in cases {
+        let before = stage_counts_on_this_thread();
+        run_caught(&r, lc).expect("the referee answers");
+        let (exact, by_fast) = delta(&before, &stage_counts_on_this_thread(), stage);
+        assert_eq!((by_fast, exact), (u64::from(*fast), u64::from(!*fast)), "{}", lc.case.source);
+    }
+}
+
 fn case(query: Query, a: Shape, b: Option<Shape>, source: String) -> LoadedCase {
     loaded(Case {
         name: source.clone(),
@@ -185,15 +200,7 @@ fn barycentric_ties_zeros_and_degenerate_triangles_are_the_same() {
         [[0.0, 0.0, 0.0], [1.0, 2f64.powi(-101), 0.0], [0.0, 1.0, 0.0]],
         "below the range".into(),
     );
-    let loaded: Vec<LoadedCase> = cases.iter().map(|(_, lc)| lc.clone()).collect();
-    assert_same("barycentric edges of the stage", &loaded);
-    let r = engines::referee();
-    for (fast, lc) in &cases {
-        let before = stage_counts_on_this_thread();
-        run_caught(&r, lc).expect("the referee answers");
-        let (exact, by_fast) = delta(&before, &stage_counts_on_this_thread(), Stage::Barycentric);
-        assert_eq!((by_fast, exact), (u64::from(*fast), u64::from(!*fast)), "{}", lc.case.source);
-    }
+    assert_staged("barycentric edges of the stage", Stage::Barycentric, &cases);
 }
 
 /// Contact of spheres with spheres and planes on the edges of the
@@ -271,15 +278,7 @@ fn contact_touching_ties_and_exact_outputs_are_the_same() {
     }
     add(false, sphere([0.0; 3], 2f64.powi(101)), sphere([1.0, 0.0, 0.0], 1.0), "beyond the range".into());
     add(false, sphere([2f64.powi(-101), 0.0, 0.0], 1.0), sphere([1.0, 0.0, 0.0], 1.0), "below the range".into());
-    let loaded: Vec<LoadedCase> = cases.iter().map(|(_, lc)| lc.clone()).collect();
-    assert_same("contact edges of the stage", &loaded);
-    let r = engines::referee();
-    for (fast, lc) in &cases {
-        let before = stage_counts_on_this_thread();
-        run_caught(&r, lc).expect("the referee answers");
-        let (exact, by_fast) = delta(&before, &stage_counts_on_this_thread(), Stage::Contact);
-        assert_eq!((by_fast, exact), (u64::from(*fast), u64::from(!*fast)), "{}", lc.case.source);
-    }
+    assert_staged("contact edges of the stage", Stage::Contact, &cases);
 }
 
 /// Segments against planes and triangles on the edges of the floating-point
@@ -351,15 +350,7 @@ fn intersect_ends_edges_ties_and_flags_are_the_same() {
         });
         add(false, seg([s, s, s], [s, s, -2.0 * s]), mesh, format!("mesh with a zero-area face, {at}"));
     }
-    let loaded: Vec<LoadedCase> = cases.iter().map(|(_, lc)| lc.clone()).collect();
-    assert_same("intersect edges of the stage", &loaded);
-    let r = engines::referee();
-    for (fast, lc) in &cases {
-        let before = stage_counts_on_this_thread();
-        run_caught(&r, lc).expect("the referee answers");
-        let (exact, by_fast) = delta(&before, &stage_counts_on_this_thread(), Stage::Intersect);
-        assert_eq!((by_fast, exact), (u64::from(*fast), u64::from(!*fast)), "{}", lc.case.source);
-    }
+    assert_staged("intersect edges of the stage", Stage::Intersect, &cases);
 }
 
 /// A sphere's time of impact with a sphere or a plane on the edges of the
@@ -401,15 +392,7 @@ fn toi_at_the_horizon_grazing_and_points_are_the_same() {
         add(true, moving([0.0, 0.0, 3.0 * s], s, [s, s, 0.0]), ground(), format!("along a plane, {at}"));
         add(true, moving([0.0, 0.0, 3.0 * s], s, [0.0, s, s]), ground(), format!("away from a plane, {at}"));
     }
-    let loaded: Vec<LoadedCase> = cases.iter().map(|(_, lc)| lc.clone()).collect();
-    assert_same("toi edges of the stage", &loaded);
-    let r = engines::referee();
-    for (fast, lc) in &cases {
-        let before = stage_counts_on_this_thread();
-        run_caught(&r, lc).expect("the referee answers");
-        let (exact, by_fast) = delta(&before, &stage_counts_on_this_thread(), Stage::Toi);
-        assert_eq!((by_fast, exact), (u64::from(*fast), u64::from(!*fast)), "{}", lc.case.source);
-    }
+    assert_staged("toi edges of the stage", Stage::Toi, &cases);
 }
 
 /// Spheres moving along x at height 1 exactly above a mesh's face (touching it

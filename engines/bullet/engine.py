@@ -182,8 +182,8 @@ def _bare_sphere(shape):
 def closest_points(case):
     """Bullet's closest points of the case's two shapes (getClosestPoints, distance 0).
 
-    Building a body is pybullet's dearest call (~0.3 ms: createMultiBody serializes the
-    new body for its client), far dearer than the query, so a sphere goes as a bare
+    Building a body is pybullet's dearest call (createMultiBody serializes the new body
+    for its client), far dearer than the query, so a sphere goes as a bare
     collision shape at its centre (collisionShapeA/B and its position: the same
     btSphereShape, in a btCollisionObject at that place, given to the same
     contactPairTest) and only the other shape is made a body (removed after the call).

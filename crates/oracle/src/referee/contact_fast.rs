@@ -8,15 +8,16 @@
 //! squares `S > 0` (or a quotient, for the sphere–plane point). Its rounding is
 //! certified by [`certify`]: for a midpoint `m` around a candidate, the sign of
 //! `x − m` is that of `P + Q·√S` with `P`, `Q` exact or bounded double-words
-//! ([`sign_affine_root`]). A function here returns `None` whenever anything is
-//! left open — a decision on its boundary (touching exactly), concentric
-//! spheres or a centre exactly on a triangle, a zero-area triangle, two mesh
-//! faces whose distances the bounds cannot order, an output on a midpoint or exactly zero after cancellation, inputs
-//! outside the stage's range, or input the exact stage refuses — and the exact
-//! stage then answers, with the same bits by construction and by test
+//! ([`sign_affine_root`]); an output exactly 0 (a touching depth) is proved
+//! so and is `+0.0`. A function here returns `None` whenever anything is left
+//! open — concentric spheres or a centre exactly on a triangle, a zero-area
+//! triangle, two mesh faces whose distances the bounds cannot order, an
+//! output on a midpoint, a sign the bounds leave open, inputs outside the
+//! stage's range, or input the exact stage refuses — and the exact stage then
+//! answers, with the same bits by construction and by test
 //! (`tests/referee_stages.rs`).
 
-use super::fast::{Dw, certify, diff3, div_approx, dot, in_range, quotient, sign_affine_root, sqrt_approx};
+use super::fast::{Dw, certify, cross, diff3, div_approx, dot, in_range, quotient, sign_affine_root, sqrt_approx};
 use crate::geom::{Contact, P3, Plane, Sphere, Triangle};
 
 /// `A + (u·Δ)/√S` correctly rounded, for an exact input `a`, `u` and an
@@ -33,7 +34,7 @@ fn over_root(a: f64, u: f64, delta: Dw, s: Dw, root: Dw) -> Option<f64> {
 }
 
 /// `c − √S` (the sphere–sphere depth and margin `ra + rb − ‖Δ‖`), correctly
-/// rounded; `None` when it is exactly 0 (touching) or left open.
+/// rounded (`+0.0` when touching exactly); `None` when left open.
 pub(super) fn minus_root(c: Dw, s: Dw, root: Dw) -> Option<f64> {
     // x − m = (c − m) − √S.
     certify(c.sub(root).approx(), |m| sign_affine_root(c.sub(m), Dw::of(-1.0), s))
@@ -168,11 +169,6 @@ pub(super) fn plane_sphere(a: &Plane, b: &Sphere) -> Option<Option<Contact>> {
 pub(super) fn sphere_plane_margin(a: &Sphere, b: &Plane) -> Option<f64> {
     let (_, nn, e) = sphere_plane_parts(a, b)?;
     plane_depth(a.radius, e, nn, sqrt_approx(nn))
-}
-
-/// `u × v` of double-words.
-fn cross(u: &[Dw; 3], v: &[Dw; 3]) -> [Dw; 3] {
-    [u[1].mul(v[2]).sub(u[2].mul(v[1])), u[2].mul(v[0]).sub(u[0].mul(v[2])), u[0].mul(v[1]).sub(u[1].mul(v[0]))]
 }
 
 /// Where the centre's closest point on a triangle lies, with what the outputs

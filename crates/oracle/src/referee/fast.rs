@@ -199,6 +199,11 @@ pub(crate) fn dot(a: &[Dw; 3], b: &[Dw; 3]) -> Dw {
     a[0].mul(b[0]).add(a[1].mul(b[1])).add(a[2].mul(b[2]))
 }
 
+/// `u × v`.
+pub(crate) fn cross(u: &[Dw; 3], v: &[Dw; 3]) -> [Dw; 3] {
+    [u[1].mul(v[2]).sub(u[2].mul(v[1])), u[2].mul(v[0]).sub(u[0].mul(v[2])), u[0].mul(v[1]).sub(u[1].mul(v[0]))]
+}
+
 /// `p − q`, componentwise, exactly.
 pub(crate) fn diff3(p: &[f64; 3], q: &[f64; 3]) -> [Dw; 3] {
     [Dw::diff(p[0], q[0]), Dw::diff(p[1], q[1]), Dw::diff(p[2], q[2])]

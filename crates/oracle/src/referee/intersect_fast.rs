@@ -16,12 +16,8 @@
 //! `t = N·(v0 − p0)/(N·D)` and normal equations (the crossing lies in the
 //! plane, where barycentrics are unique).
 
-use super::fast::{Dw, diff3, dot, in_range, quotient};
+use super::fast::{Dw, cross, diff3, dot, in_range, quotient};
 use crate::geom::{IntersectAnswer, P3, Plane, Segment, SegmentHit, Triangle};
-
-fn cross(u: &[Dw; 3], v: &[Dw; 3]) -> [Dw; 3] {
-    [u[1].mul(v[2]).sub(u[2].mul(v[1])), u[2].mul(v[0]).sub(u[0].mul(v[2])), u[0].mul(v[1]).sub(u[1].mul(v[0]))]
-}
 
 fn miss() -> IntersectAnswer {
     IntersectAnswer { hit: None, parallel: false, degenerate: false }

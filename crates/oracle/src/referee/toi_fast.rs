@@ -31,20 +31,35 @@ fn horizon(t_max: f64) -> f64 {
     if t_max < 0.0 { 0.0 } else { t_max }
 }
 
+/// Two moving spheres: the horizon, `w = M1 − M2`, `v = va − vb`,
+/// `R = r1 + r2`, `A = v·v` and `B = w·v`.
+struct Spheres {
+    tm: Dw,
+    w: [Dw; 3],
+    v: [Dw; 3],
+    big_r: Dw,
+    aa: Dw,
+    bb: Dw,
+}
+
+/// [`Spheres`], or `None` for input outside the stage.
+fn spheres(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Option<Spheres> {
+    let numbers = [&a.center, &b.center, va, vb].into_iter().flatten().copied().chain([a.radius, b.radius, t_max]);
+    if !(a.radius >= 0.0 && b.radius >= 0.0 && in_range(numbers)) {
+        return None;
+    }
+    let (w, v) = (diff3(&a.center, &b.center), diff3(va, vb));
+    let (aa, bb) = (dot(&v, &v), dot(&w, &v));
+    Some(Spheres { tm: Dw::of(horizon(t_max)), w, v, big_r: Dw::diff(a.radius, -b.radius), aa, bb })
+}
+
 /// Sphere `a` (velocity `va`) against sphere `b` (velocity `vb`), not in
 /// contact at `t = 0`, as `toi_sphere_sphere` answers: the smaller root
 /// `t = (−B − √D)/A` of `A t² + 2B t + C` (`A = v·v`, `B = w·v`,
 /// `C = w·w − R²`, `D = B² − AC`), normal `(w + t v)/R`, point
 /// `M2 + t vb + r2·normal`.
 pub(super) fn sphere_sphere(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Option<ToiAnswer> {
-    let numbers = [&a.center, &b.center, va, vb].into_iter().flatten().copied().chain([a.radius, b.radius, t_max]);
-    if !(a.radius >= 0.0 && b.radius >= 0.0 && in_range(numbers)) {
-        return None;
-    }
-    let tm = Dw::of(horizon(t_max));
-    let (w, v) = (diff3(&a.center, &b.center), diff3(va, vb));
-    let big_r = Dw::diff(a.radius, -b.radius);
-    let (aa, bb) = (dot(&v, &v), dot(&w, &v));
+    let Spheres { tm, w, v, big_r, aa, bb } = spheres(a, va, b, vb, t_max)?;
     let none = Some(ToiAnswer::default());
     if aa.signum()? == 0 || bb.signum()? >= 0 {
         return none;
@@ -83,14 +98,7 @@ pub(super) fn sphere_sphere(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64
 /// `R − min_{t ∈ [0, t_max]} ‖w + t v‖`, as `toi_margin_sphere_sphere`
 /// answers, or `None`.
 pub(super) fn sphere_sphere_margin(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Option<f64> {
-    let numbers = [&a.center, &b.center, va, vb].into_iter().flatten().copied().chain([a.radius, b.radius, t_max]);
-    if !(a.radius >= 0.0 && b.radius >= 0.0 && in_range(numbers)) {
-        return None;
-    }
-    let tm = Dw::of(horizon(t_max));
-    let (w, v) = (diff3(&a.center, &b.center), diff3(va, vb));
-    let big_r = Dw::diff(a.radius, -b.radius);
-    let (aa, bb) = (dot(&v, &v), dot(&w, &v));
+    let Spheres { tm, w, v, big_r, aa, bb } = spheres(a, va, b, vb, t_max)?;
     // The closest approach at tc = clamp(−B/A, 0, t_max) (0 without motion):
     // p = w + tc·v, over a positive denominator l.
     let (p, l) = if aa.signum()? == 0 || bb.neg().signum()? <= 0 {
