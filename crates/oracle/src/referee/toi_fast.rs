@@ -19,8 +19,8 @@ fn sign_surd(p: Dw, q: Dw, s: Dw) -> Option<i8> {
     if s.is_exact_zero() { p.signum() } else { sign_affine_root(p, q, s) }
 }
 
-/// `(P + Q·√S)/K` correctly rounded, with `side_p(m) = P − m·K`: the sign of
-/// the value minus `m` is that of `P − m·K + Q·√S` times `K`'s sign `sk`.
+/// `(P + Q·√S)/K` correctly rounded: the value minus `m` has the sign of
+/// `P − m·K + Q·√S` times `sk`, `K`'s sign.
 fn over_k(p: Dw, q: Dw, s: Dw, root: Dw, k: Dw, sk: i8) -> Option<f64> {
     let candidate = div_approx(p.add(q.mul(root)), k).approx();
     certify(candidate, |m| sign_surd(p.sub(m.mul(k)), q, s).map(|x| x * sk))
