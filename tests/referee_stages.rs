@@ -395,6 +395,64 @@ fn toi_at_the_horizon_grazing_and_points_are_the_same() {
     assert_staged("toi edges of the stage", Stage::Toi, &cases);
 }
 
+/// A sphere's time of impact with a triangle or a mesh at 40 scales: a face
+/// hit from either side, an edge hit at an irrational time, impact exactly at
+/// `t_max`, and the exact ties of features meeting at one time — a vertex and
+/// the edge whose foot ends there, a face and the edge its contact lies on,
+/// the two faces and the diagonal of a square mesh, the three features of a
+/// zero-area triangle — all certified by the floating-point stage, which
+/// needs only that tied candidates round alike; grazing an edge or a vertex
+/// (`D = 0`: both roots tied), motion in the triangle's plane, moving away. A
+/// point-sized sphere (no normal) and a mesh already touched at `t = 0` are
+/// the exact stage's.
+#[test]
+fn toi_against_triangles_faces_edges_vertices_and_ties_are_the_same() {
+    let moving = |center: [f64; 3], radius: f64, v: [f64; 3]| {
+        Shape::Sphere(SphereSpec { center, radius, velocity: Some(v), mass: None })
+    };
+    let tri = |v: [[f64; 3]; 3]| Shape::Triangle(TriangleSpec { vertices: v, velocity: None });
+    let mesh = |vertices: Vec<[f64; 3]>, triangles: Vec<[usize; 3]>| {
+        Shape::Mesh(MeshSpec { vertices: Some(vertices), triangles: Some(triangles), file: None, velocity: None })
+    };
+    let mut cases: Vec<(bool, LoadedCase)> = Vec::new();
+    let mut add = |fast: bool, a: Shape, b: Shape, what: String| {
+        let lc = case(Query::Toi, a, Some(b), what);
+        assert!(!matches!(lc.case.b, Some(Shape::Mesh(_))) || lc.meshes[1].is_some(), "the inline mesh loads");
+        cases.push((fast, lc));
+    };
+    for k in 0..40i32 {
+        let s = 2f64.powi(k - 20);
+        let at = format!("scale 2^{}", k - 20);
+        // Legs 2s on x and y in z = 0.
+        let t = || tri([[0.0; 3], [2.0 * s, 0.0, 0.0], [0.0, 2.0 * s, 0.0]]);
+        let c = |x: f64, y: f64, z: f64| [x * s, y * s, z * s];
+        add(true, moving(c(0.5, 0.5, 3.0), s, c(0.0, 0.0, -4.0)), t(), format!("face from above at t = 1/2, {at}"));
+        add(true, moving(c(0.5, 0.5, -3.0), s, c(0.1, 0.0, 4.0)), t(), format!("face from below, {at}"));
+        add(true, moving(c(0.5, 0.5, 3.0), s, c(0.0, 0.0, -2.0)), t(), format!("face at t_max, {at}"));
+        add(true, moving(c(2.0, 2.0, 0.2), 0.5 * s, c(-1.0, -1.5, 0.0)), t(), format!("hypotenuse, {at}"));
+        let over = moving(c(2.0, 2.0, 0.5), 0.5 * s, c(-1.0, -1.5, 0.0));
+        add(true, over, t(), format!("grazing the hypotenuse (a double root), {at}"));
+        add(true, moving(c(-3.0, 0.0, 0.0), s, c(4.0, 0.0, 0.0)), t(), format!("vertex and edge end tied, {at}"));
+        add(true, moving(c(1.0, 0.0, 3.0), s, c(0.0, 0.0, -4.0)), t(), format!("face and edge tied, {at}"));
+        add(true, moving(c(-3.0, -1.0, 0.0), s, c(4.0, 0.0, 0.0)), t(), format!("grazing a vertex, {at}"));
+        add(true, moving(c(-3.0, 0.5, 0.0), s, c(4.0, 0.0, 0.0)), t(), format!("in the plane onto an edge, {at}"));
+        add(true, moving(c(0.5, 0.5, 3.0), s, c(0.0, 1.0, 4.0)), t(), format!("moving away, {at}"));
+        let flat = tri([[0.0; 3], [s, 0.0, 0.0], [2.0 * s, 0.0, 0.0]]);
+        add(true, moving(c(1.0, 0.0, 3.0), s, c(0.0, 0.0, -4.0)), flat, format!("zero-area triangle, {at}"));
+        add(false, moving(c(0.5, 0.5, 3.0), 0.0, c(0.0, 0.0, -4.0)), t(), format!("point-sized sphere, {at}"));
+        let square = || {
+            mesh(
+                vec![c(0.0, 0.0, 0.0), c(2.0, 0.0, 0.0), c(2.0, 2.0, 0.0), c(0.0, 2.0, 0.0)],
+                vec![[0, 1, 2], [0, 2, 3]],
+            )
+        };
+        add(true, moving(c(1.0, 1.0, 3.0), s, c(0.0, 0.0, -4.0)), square(), format!("mesh diagonal tied, {at}"));
+        add(true, moving(c(0.5, 1.5, 3.0), s, c(0.5, 0.0, -4.0)), square(), format!("mesh second face, {at}"));
+        add(false, moving(c(1.0, 1.0, 0.5), s, c(0.0, 0.0, -4.0)), square(), format!("mesh touched at 0, {at}"));
+    }
+    assert_staged("toi against triangles", Stage::Toi, &cases);
+}
+
 /// Spheres moving along x at height 1 exactly above a mesh's face (touching it
 /// all along, the face's box exactly r below the path), or one ulp above: the
 /// floating-point stage must not rule out a face the sphere touches.

@@ -364,6 +364,12 @@ pub(super) fn sphere_triangle_margin(a: &Sphere, b: &Triangle) -> Option<f64> {
     sphere_triangle_parts(a, b)?.depth(a.radius)
 }
 
+/// Whether sphere `a` touches the triangle `v` (its inputs already in the
+/// stage's range), or `None` when left open.
+pub(super) fn touches_triangle(a: &Sphere, v: &[P3; 3]) -> Option<bool> {
+    Some(parts_of(a, v)?.touches)
+}
+
 /// The nearest face of a mesh (smallest `‖c − q‖²`, certified against every
 /// other face; an exact tie keeps the lowest index, as the exact stage does),
 /// or `None` (an empty mesh, an index out of range, any face the stage cannot

@@ -47,8 +47,10 @@
 //!   `P + Q·√S` at the midpoints around its candidate (`contact_fast`);
 //! - a segment against a plane, a triangle or a mesh, and its margin ([`intersect`]):
 //!   every output a certified quotient (`intersect_fast`);
-//! - a sphere's time of impact with a sphere or a plane, and its margin
-//!   ([`toi`]): every output `(P + Q·√D)/K` certified the same way (`toi_fast`).
+//! - a sphere's time of impact with a sphere or a plane, and its margin, and
+//!   with a triangle or a mesh ([`toi`]): every output `(P + Q·√D)/K` certified
+//!   the same way, a triangle's candidates (its vertices, edges and face)
+//!   ordered by their certified roundings (`toi_fast`).
 //!
 //! The answers are the same bits as the exact stage's alone, by construction
 //! and by test ([`exact_only`] switches the stages off; `tests/referee_stages.rs`).
@@ -144,14 +146,16 @@ pub enum Stage {
     /// Barycentric coordinates: certified from double-word numbers, or
     /// computed in exact rationals.
     Barycentric,
-    /// Contact of a sphere with a sphere or a plane, and its margin: certified
-    /// from double-word numbers, or computed in exact rationals.
+    /// Contact of a sphere with a sphere, a plane, a triangle or a mesh, and
+    /// its margin: certified from double-word numbers, or computed in exact
+    /// rationals.
     Contact,
-    /// A segment against a plane or a triangle, and its margin: certified
-    /// from double-word numbers, or computed in exact rationals.
-    Intersect,
-    /// A sphere's time of impact with a sphere or a plane, and its margin:
+    /// A segment against a plane, a triangle or a mesh, and its margin:
     /// certified from double-word numbers, or computed in exact rationals.
+    Intersect,
+    /// A sphere's time of impact with a sphere, a plane, a triangle or a mesh
+    /// (and its margin against a sphere or a plane): certified from
+    /// double-word numbers, or computed in exact rationals.
     Toi,
 }
 
@@ -173,7 +177,7 @@ impl Stage {
                 "intersect of a segment with a plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
             }
             Stage::Toi => {
-                "toi of a sphere with a sphere or plane, and margins: certified from double-word numbers / computed exactly"
+                "toi of a sphere with a sphere, plane, triangle or mesh, and margins against a sphere or plane: certified from double-word numbers / computed exactly"
             }
         }
     }
@@ -182,7 +186,7 @@ impl Stage {
 /// The query kinds the referee answers in its exact stage alone (every case
 /// of them is decided exactly: its share without the exact stage is 0 %), for
 /// the report beside [`Stage`]'s counts.
-pub const EXACT_STAGE_ONLY: &str = "overlap, response, and toi against a sphere, plane or triangle";
+pub const EXACT_STAGE_ONLY: &str = "overlap, response, and the toi margin against a triangle or mesh";
 
 static FAST: [AtomicU64; 6] = [const { AtomicU64::new(0) }; 6];
 static EXACT: [AtomicU64; 6] = [const { AtomicU64::new(0) }; 6];

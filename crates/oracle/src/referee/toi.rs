@@ -443,6 +443,9 @@ pub fn toi_sphere_triangle(a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f6
     if at0.contact.is_some() {
         return Ok(at_zero(at0));
     }
+    if let Some(answer) = staged(|| super::toi_fast::sphere_triangle(a, va, b, vb, t_max)) {
+        return Ok(answer);
+    }
     let v = sub(&s.va, &s.vb);
     Ok(match first_contact(&s.c, &s.r, &v, &s.vb, &verts, &s.t_max) {
         Some(h) => finish(&h, &v),
@@ -607,6 +610,9 @@ pub fn toi_sphere_mesh(
     let tested = near.iter().filter(|n| **n).count() as u64;
     super::count(super::Stage::MeshFaces, true, near.len() as u64 - tested);
     super::count(super::Stage::MeshFaces, false, tested);
+    if let Some(answer) = staged(|| super::toi_fast::sphere_mesh(a, va, vertices, triangles, &near, vb, t_max)) {
+        return Ok(answer);
+    }
     let mut nearest: Option<(Q, usize)> = None;
     for (i, f) in faces.iter().enumerate() {
         if !near[i] {

@@ -1,18 +1,23 @@
-//! The floating-point stage of a sphere's time of impact with a sphere or a
-//! plane ([`super::fast`]), after the contact at `t = 0` has been ruled out.
+//! The floating-point stage of a sphere's time of impact with a sphere, a
+//! plane, a triangle or a mesh ([`super::fast`]), after the contact at
+//! `t = 0` has been ruled out.
 //!
 //! Every output is `(P + Q·√D)/K` with double-words `P`, `Q`, `K` (`K`'s sign
 //! certain) and the quadratic's discriminant or the plane normal's squared
 //! length `D ≥ 0`, certified correctly rounded by [`certify`] on the sign of
 //! `P − m·K + Q·√D` at the midpoints `m` around a candidate. Every decision
 //! (moving apart, passing wide, the impact within `[0, t_max]`) is a certified
-//! sign. `None` — the exact stage answers — whenever anything is left open,
-//! for a zero total radius (its normal is a fallback), and for inputs outside
-//! the stage's range; the bits are the same (`tests/referee_stages.rs`).
+//! sign. A triangle's candidates (a root per vertex, two per edge, one per
+//! side of the face, as `first_contact` in `toi.rs` lists them) are ordered by
+//! their certified roundings: the exact time lies strictly inside its
+//! rounding's midpoints. `None` — the exact stage answers — whenever anything
+//! is left open, for a zero total radius (its normal is a fallback), for a
+//! mesh touched at `t = 0`, and for inputs outside the stage's range; the bits
+//! are the same (`tests/referee_stages.rs`).
 
 use super::contact_fast::{plane_depth, unit};
-use super::fast::{Dw, certify, diff3, div_approx, dot, in_range, sign_affine_root, sqrt_approx};
-use crate::geom::{P3, Plane, Sphere, Toi, ToiAnswer};
+use super::fast::{Dw, certify, cross, diff3, div_approx, dot, in_range, sign_affine_root, sqrt_approx};
+use crate::geom::{P3, Plane, Sphere, Toi, ToiAnswer, Triangle};
 
 /// The sign of `P + Q·√S` for an exact `S ≥ 0` (`S` may be exactly 0).
 fn sign_surd(p: Dw, q: Dw, s: Dw) -> Option<i8> {
@@ -170,4 +175,262 @@ pub(super) fn sphere_plane_margin(a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max
     let e1 = e0.add(Dw::of(horizon(t_max)).mul(k));
     let e = if e1.sub(e0).signum()? < 0 { e1 } else { e0 };
     plane_depth(a.radius, e, nn, sqrt_approx(nn))
+}
+
+/// `(P + Q·√S)/K` with `K > 0` certified: a candidate's time, or one
+/// component of its point or normal, sharing the candidate's `S`.
+#[derive(Clone, Copy)]
+struct Frac {
+    p: Dw,
+    q: Dw,
+    k: Dw,
+}
+
+impl Frac {
+    /// Its correct rounding, or `None`.
+    fn round(self, s: Dw, root: Dw) -> Option<f64> {
+        over_k(self.p, self.q, s, root, self.k, 1)
+    }
+
+    /// The sign of `k + m·self`, that is of `k·K + m·P + m·Q·√S`.
+    fn affine_sign(self, k: Dw, m: Dw, s: Dw) -> Option<i8> {
+        sign_surd(k.mul(self.k).add(m.mul(self.p)), m.mul(self.q), s)
+    }
+}
+
+/// A valid candidate of a triangle's first contact: its time certified
+/// within `[0, t_max]` and correctly rounded (`t`), and the exact point and
+/// normal of that time, all in one `√S`.
+struct Candidate {
+    t: f64,
+    s: Dw,
+    root: Dw,
+    point: [Frac; 3],
+    normal: [Frac; 3],
+}
+
+/// The moving sphere against a triangle, in the triangle's frame: the centre
+/// `c`, the radius, `v = va − vb`, the velocities and the horizon, all inputs
+/// in the stage's range and the radius positive.
+struct Sweep {
+    c: P3,
+    r: Dw,
+    v: [Dw; 3],
+    va: P3,
+    vb: P3,
+    tm: Dw,
+}
+
+impl Sweep {
+    fn new(a: &Sphere, va: &P3, vb: &P3, t_max: f64, shape: impl IntoIterator<Item = f64>) -> Option<Sweep> {
+        let numbers = [&a.center, va, vb].into_iter().flatten().copied().chain([a.radius, t_max]).chain(shape);
+        // A zero radius meets the triangle with no normal (the exact stage's
+        // fallback direction, flagged): left to it, as is any input outside.
+        if !(a.radius > 0.0 && in_range(numbers)) {
+            return None;
+        }
+        Some(Sweep { c: a.center, r: Dw::of(a.radius), v: diff3(va, vb), va: *va, vb: *vb, tm: Dw::of(horizon(t_max)) })
+    }
+
+    /// Pushes `t` onto `out` when it is certified within `[0, t_max]`, with
+    /// its point and normal; `None` when a sign or the rounding is left open.
+    fn consider(&self, t: Frac, s: Dw, point: [Frac; 3], normal: [Frac; 3], out: &mut Vec<Candidate>) -> Option<()> {
+        if sign_surd(t.p, t.q, s)? < 0 || sign_surd(t.p.sub(self.tm.mul(t.k)), t.q, s)? > 0 {
+            return Some(());
+        }
+        let root = sqrt_approx(s);
+        out.push(Candidate { t: t.round(s, root)?, s, root, point, normal });
+        Some(())
+    }
+
+    /// Every valid candidate of one triangle (vertices, edges, the face's two
+    /// sides), as `first_contact` in `toi.rs` lists them; the sphere is known
+    /// to be apart from it at `t = 0`.
+    fn candidates(&self, verts: &[P3; 3], out: &mut Vec<Candidate>) -> Option<()> {
+        let (c, r, v) = (&self.c, self.r, &self.v);
+        let aa = dot(v, v);
+        // Vertices: A t² + 2B t + C with A = v·v, B = w·v, C = w·w − r²; the
+        // smaller root (−B − √D)/A when A > 0, B < 0 and D ≥ 0. Point V + t·vb,
+        // normal (w + t v)/r.
+        if aa.signum()? > 0 {
+            for vx in verts {
+                let w = diff3(c, vx);
+                let bb = dot(&w, v);
+                if bb.signum()? >= 0 {
+                    continue;
+                }
+                let d = bb.mul(bb).sub(aa.mul(dot(&w, &w).sub(r.mul(r))));
+                if d.signum()? < 0 {
+                    continue;
+                }
+                let t = Frac { p: bb.neg(), q: Dw::of(-1.0), k: aa };
+                let point = [0, 1, 2].map(|i| {
+                    let vb = Dw::of(self.vb[i]);
+                    Frac { p: Dw::of(vx[i]).mul(aa).sub(vb.mul(bb)), q: vb.neg(), k: aa }
+                });
+                let ar = aa.mul(r);
+                let normal = [0, 1, 2].map(|i| Frac { p: w[i].mul(aa).sub(v[i].mul(bb)), q: v[i].neg(), k: ar });
+                self.consider(t, d, point, normal, out)?;
+            }
+        }
+        // Edges P0 + σu: ‖u × (w + t v)‖² = r²‖u‖², A = ‖u × v‖², B = (u × w)·(u × v),
+        // C = ‖u × w‖² − r²‖u‖², both roots (−B ± √D)/A, kept when the foot
+        // k + m·t (k = w·u, m = v·u) lies in [0, ‖u‖²].
+        for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+            let p0 = &verts[i];
+            let u = diff3(&verts[j], p0);
+            let uu = dot(&u, &u);
+            if uu.signum()? == 0 {
+                continue;
+            }
+            let w = diff3(c, p0);
+            let (cw, cv) = (cross(&u, &w), cross(&u, v));
+            let a = dot(&cv, &cv);
+            if a.signum()? == 0 {
+                continue;
+            }
+            let b = dot(&cw, &cv);
+            let d = b.mul(b).sub(a.mul(dot(&cw, &cw).sub(r.mul(r).mul(uu))));
+            if d.signum()? < 0 {
+                continue;
+            }
+            let (k, m) = (dot(&w, &u), dot(v, &u));
+            // k·A − m·B: the foot's rational part over A.
+            let foot = k.mul(a).sub(m.mul(b));
+            for sigma in [Dw::of(-1.0), Dw::of(1.0)] {
+                let t = Frac { p: b.neg(), q: sigma, k: a };
+                if t.affine_sign(k, m, d)? < 0 || t.affine_sign(k.sub(uu), m, d)? > 0 {
+                    continue;
+                }
+                let (ua, uar) = (uu.mul(a), uu.mul(a).mul(r));
+                let point = [0, 1, 2].map(|x| {
+                    let vb = Dw::of(self.vb[x]);
+                    Frac {
+                        p: Dw::of(p0[x]).mul(ua).add(u[x].mul(foot)).sub(vb.mul(uu).mul(b)),
+                        q: sigma.mul(u[x].mul(m).add(vb.mul(uu))),
+                        k: ua,
+                    }
+                });
+                let normal = [0, 1, 2].map(|x| Frac {
+                    p: w[x].mul(ua).sub(v[x].mul(uu).mul(b)).sub(u[x].mul(foot)),
+                    q: sigma.mul(v[x].mul(uu).sub(u[x].mul(m))),
+                    k: uar,
+                });
+                self.consider(t, d, point, normal, out)?;
+            }
+        }
+        // Face: N·(w + t v) = ±r‖N‖ (w = c − v0), t = (−e0 ± r√nn)/e1, kept when
+        // every edge function s0 + t·s1 is ≥ 0. Point c + t va ∓ r N/‖N‖, normal
+        // ±N/‖N‖.
+        let n = cross(&diff3(&verts[1], &verts[0]), &diff3(&verts[2], &verts[0]));
+        let e1 = dot(&n, v);
+        let n_zero = n.iter().try_fold(true, |z, x| Some(z && x.signum()? == 0))?;
+        let e1_sign = e1.signum()?;
+        if n_zero || e1_sign == 0 {
+            return Some(());
+        }
+        let sign1 = Dw::of(f64::from(e1_sign));
+        let nn = dot(&n, &n);
+        let e0 = dot(&n, &diff3(c, &verts[0]));
+        let edges = [(0, 1), (1, 2), (2, 0)].map(|(i, j)| {
+            let e = diff3(&verts[j], &verts[i]);
+            (dot(&cross(&e, &diff3(c, &verts[i])), &n), dot(&cross(&e, v), &n))
+        });
+        let kt = e1.mul(sign1);
+        let knn = kt.mul(nn);
+        for side in [Dw::of(1.0), Dw::of(-1.0)] {
+            let t = Frac { p: e0.neg().mul(sign1), q: side.mul(r).mul(sign1), k: kt };
+            let mut inside = true;
+            for (s0, s1) in edges {
+                if t.affine_sign(s0, s1, nn)? < 0 {
+                    inside = false;
+                    break;
+                }
+            }
+            if !inside {
+                continue;
+            }
+            let point = [0, 1, 2].map(|i| {
+                let va = Dw::of(self.va[i]);
+                Frac {
+                    p: Dw::of(c[i]).mul(knn).add(va.mul(t.p).mul(nn)),
+                    q: va.mul(t.q).mul(nn).sub(r.mul(side).mul(n[i]).mul(kt)),
+                    k: knn,
+                }
+            });
+            let normal = [0, 1, 2].map(|i| Frac { p: Dw::of(0.0), q: side.mul(n[i]), k: nn });
+            self.consider(t, nn, point, normal, out)?;
+        }
+        Some(())
+    }
+}
+
+/// The first contact among valid candidates, or `None` when the bounds cannot
+/// tell it. Candidates whose times round differently are ordered by their
+/// roundings (the exact times lie strictly between the midpoints around
+/// them). Those tied at the least rounding must all round to the same point
+/// and normal: the first contact is one of them, whichever it is. Exactly
+/// simultaneous candidates do (each is the triangle's unique nearest point at
+/// that time), so the exact stage's choice among ties changes nothing.
+fn first(cands: &[Candidate]) -> Option<ToiAnswer> {
+    let Some(t) = cands.iter().map(|c| c.t).min_by(f64::total_cmp) else {
+        return Some(ToiAnswer::default());
+    };
+    let mut answer: Option<Toi> = None;
+    for c in cands.iter().filter(|c| c.t.to_bits() == t.to_bits()) {
+        let mut point = [0.0; 3];
+        let mut normal = [0.0; 3];
+        for i in 0..3 {
+            point[i] = c.point[i].round(c.s, c.root)?;
+            normal[i] = c.normal[i].round(c.s, c.root)?;
+        }
+        let this = Toi { t, point, normal };
+        match &answer {
+            None => answer = Some(this),
+            Some(a) if same_bits(a, &this) => {}
+            Some(_) => return None,
+        }
+    }
+    Some(ToiAnswer { toi: answer, degenerate: false })
+}
+
+fn same_bits(a: &Toi, b: &Toi) -> bool {
+    let bits =
+        |x: &Toi| [x.t, x.point[0], x.point[1], x.point[2], x.normal[0], x.normal[1], x.normal[2]].map(f64::to_bits);
+    bits(a) == bits(b)
+}
+
+/// Sphere `a` (velocity `va`) against triangle `b` (velocity `vb`), apart at
+/// `t = 0`, as `toi_sphere_triangle` answers, or `None`.
+pub(super) fn sphere_triangle(a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Option<ToiAnswer> {
+    let sweep = Sweep::new(a, va, vb, t_max, b.vertices.iter().flatten().copied())?;
+    let mut cands = Vec::new();
+    sweep.candidates(&b.vertices, &mut cands)?;
+    first(&cands)
+}
+
+/// Sphere `a` against a mesh's faces marked `near` (the others are proved out
+/// of reach of the whole path), as `toi_sphere_mesh` answers, or `None`: every
+/// near face must be certified apart from the sphere at `t = 0` (a contact
+/// then is the exact stage's), and the least time is taken over every near
+/// face's candidates as over one triangle's.
+pub(super) fn sphere_mesh(
+    a: &Sphere,
+    va: &P3,
+    vertices: &[P3],
+    triangles: &[[usize; 3]],
+    near: &[bool],
+    vb: &P3,
+    t_max: f64,
+) -> Option<ToiAnswer> {
+    let sweep = Sweep::new(a, va, vb, t_max, vertices.iter().flatten().copied())?;
+    let mut cands = Vec::new();
+    for (tri, _) in triangles.iter().zip(near).filter(|(_, n)| **n) {
+        let verts = [*vertices.get(tri[0])?, *vertices.get(tri[1])?, *vertices.get(tri[2])?];
+        if super::contact_fast::touches_triangle(a, &verts)? {
+            return None;
+        }
+        sweep.candidates(&verts, &mut cands)?;
+    }
+    first(&cands)
 }
