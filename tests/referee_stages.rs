@@ -188,17 +188,18 @@ fn barycentric_ties_zeros_and_degenerate_triangles_are_the_same() {
             format!("collinear, scale 2^{}", k - 20),
         );
     }
+    // Products of these leave f64's range; the stage's exponent carries them.
     add(
-        false,
-        [1.0, 0.5, 0.0],
-        [[0.0, 0.0, 0.0], [2f64.powi(101), 0.0, 0.0], [0.0, 1.0, 0.0]],
-        "beyond the range".into(),
+        true,
+        [2f64.powi(999), 2f64.powi(-1000), 0.0],
+        [[0.0, 0.0, 0.0], [2f64.powi(1000), 0.0, 0.0], [0.0, 2f64.powi(-1000), 0.0]],
+        "beyond f64's range".into(),
     );
     add(
-        false,
+        true,
         [1.0, 0.5, 0.0],
         [[0.0, 0.0, 0.0], [1.0, 2f64.powi(-101), 0.0], [0.0, 1.0, 0.0]],
-        "below the range".into(),
+        "a vertex 2^-101 off its axis".into(),
     );
     assert_staged("barycentric edges of the stage", Stage::Barycentric, &cases);
 }
@@ -276,8 +277,18 @@ fn contact_touching_ties_and_exact_outputs_are_the_same() {
         add(true, sphere([s, s, 3.0 * s], 4.0 * s), mesh.clone(), format!("mesh face, {at}"));
         add(true, sphere([s, s, 30.0 * s], 4.0 * s), mesh, format!("apart from a mesh, {at}"));
     }
-    add(false, sphere([0.0; 3], 2f64.powi(101)), sphere([1.0, 0.0, 0.0], 1.0), "beyond the range".into());
-    add(false, sphere([2f64.powi(-101), 0.0, 0.0], 1.0), sphere([1.0, 0.0, 0.0], 1.0), "below the range".into());
+    // A product beyond f64's range (2^2000), carried by the stage's exponent;
+    // subnormal inputs and outputs, rounded on the subnormal grid.
+    add(true, sphere([0.0; 3], 2f64.powi(1000)), sphere([1.0, 0.0, 0.0], 1.0), "beyond f64's range".into());
+    for bits in [1u64, 3, 8, 1 << 40] {
+        let tiny = f64::from_bits(bits);
+        let (a, b) = (sphere([0.0; 3], tiny), sphere([tiny, tiny, 0.0], tiny));
+        add(true, a, b, format!("subnormal spheres of {tiny:e}"));
+    }
+    // A contact point exactly 0 whose proof, (1 − 2^-101)² − (1 − 2^-101)²,
+    // needs more than two words: the exact stage's.
+    let off = sphere([2f64.powi(-101), 0.0, 0.0], 1.0);
+    add(false, off, sphere([1.0, 0.0, 0.0], 1.0), "a zero point beyond two words".into());
     assert_staged("contact edges of the stage", Stage::Contact, &cases);
 }
 

@@ -72,13 +72,13 @@ fn longest_edge_fallback(p: &V3, v: &[V3; 3]) -> [Q; 3] {
 /// `N / det` correctly rounded when the bounds certify it — `β = (c·d − b·e) /
 /// det`, `γ = (a·e − b·d) / det`, `α = (det − (c·d − b·e) − (a·e − b·d)) /
 /// det`, the same rationals as the exact stage's. `None` (the exact stage
-/// decides) for inputs beyond the stage's range, a `det` whose sign is not
+/// decides) for inputs that are not finite, a `det` whose sign is not
 /// certain (zero-area and near-degenerate triangles), or a coordinate not
 /// certified (a tie, or too close to one for the bounds).
 fn barycentric_fast(p: &P3, t: &Triangle) -> Option<[f64; 3]> {
-    use super::fast::{diff3, dot, in_range, quotient};
+    use super::fast::{all_finite, diff3, dot, quotient};
     let inputs = p.iter().chain(t.vertices.iter().flatten()).copied();
-    if !in_range(inputs) {
+    if !all_finite(inputs) {
         return None;
     }
     let e1 = diff3(&t.vertices[1], &t.vertices[0]);

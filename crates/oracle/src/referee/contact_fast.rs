@@ -12,12 +12,12 @@
 //! so and is `+0.0`. A function here returns `None` whenever anything is left
 //! open — concentric spheres or a centre exactly on a triangle, a zero-area
 //! triangle, two mesh faces whose distances the bounds cannot order, an
-//! output on a midpoint, a sign the bounds leave open, inputs outside the
-//! stage's range, or input the exact stage refuses — and the exact stage then
+//! output on a midpoint or beyond `MAX`, a sign the bounds leave open, an
+//! input that is not a finite number, or input the exact stage refuses — and the exact stage then
 //! answers, with the same bits by construction and by test
 //! (`tests/referee_stages.rs`).
 
-use super::fast::{Dw, certify, cross, diff3, div_approx, dot, in_range, quotient, sign_affine_root, sqrt_approx};
+use super::fast::{Dw, all_finite, certify, cross, diff3, div_approx, dot, quotient, sign_affine_root, sqrt_approx};
 use crate::geom::{Contact, P3, Plane, Sphere, Triangle};
 
 /// `A + (u·Δ)/√S` correctly rounded, for an exact input `a`, `u` and an
@@ -42,10 +42,10 @@ pub(super) fn minus_root(c: Dw, s: Dw, root: Dw) -> Option<f64> {
 
 /// The two spheres' centre difference `Δ = Ma − Mb`, `S = Δ·Δ` and the radii's
 /// sum, or `None` for input outside the stage (a radius that is not `≥ 0`,
-/// a number outside [`in_range`]).
+/// a number that is not finite: [`all_finite`]).
 fn spheres(a: &Sphere, b: &Sphere) -> Option<([Dw; 3], Dw, Dw)> {
     let numbers = a.center.iter().chain(&b.center).copied().chain([a.radius, b.radius]);
-    if !(a.radius >= 0.0 && b.radius >= 0.0 && in_range(numbers)) {
+    if !(a.radius >= 0.0 && b.radius >= 0.0 && all_finite(numbers)) {
         return None;
     }
     let delta = diff3(&a.center, &b.center);
@@ -77,8 +77,10 @@ pub(super) fn sphere_sphere(a: &Sphere, b: &Sphere) -> Option<Option<Contact>> {
 pub(super) fn sphere_sphere_margin(a: &Sphere, b: &Sphere) -> Option<f64> {
     let (_, s, sum) = spheres(a, b)?;
     if s.is_exact_zero() {
-        // ra + rb: two_sum's leading word is its rounding (+0 for 0 + 0).
-        return Some(sum.approx() + 0.0);
+        // ra + rb, rounded once by IEEE addition (+0 for 0 + 0); a sum beyond
+        // MAX is the exact stage's.
+        let sum = a.radius + b.radius;
+        return sum.is_finite().then_some(sum + 0.0);
     }
     minus_root(sum, s, sqrt_approx(s))
 }
@@ -102,7 +104,7 @@ pub(super) fn unit(v: &[Dw; 3], s: Dw, root: Dw) -> Option<P3> {
 /// the stage (including a zero normal, which the exact stage refuses).
 fn sphere_plane_parts(s: &Sphere, p: &Plane) -> Option<([Dw; 3], Dw, Dw)> {
     let numbers = s.center.iter().chain(&p.normal).copied().chain([s.radius, p.offset]);
-    if !(s.radius >= 0.0 && in_range(numbers)) {
+    if !(s.radius >= 0.0 && all_finite(numbers)) {
         return None;
     }
     let n = p.normal.map(Dw::of);
@@ -255,7 +257,7 @@ struct TriangleParts {
 
 fn sphere_triangle_parts(s: &Sphere, t: &Triangle) -> Option<TriangleParts> {
     let numbers = s.center.iter().chain(t.vertices.iter().flatten()).copied().chain([s.radius]);
-    if !(s.radius >= 0.0 && in_range(numbers)) {
+    if !(s.radius >= 0.0 && all_finite(numbers)) {
         return None;
     }
     parts_of(s, &t.vertices)
@@ -376,7 +378,7 @@ pub(super) fn touches_triangle(a: &Sphere, v: &[P3; 3]) -> Option<bool> {
 /// answer, a comparison left open).
 fn nearest(a: &Sphere, vertices: &[P3], triangles: &[[usize; 3]]) -> Option<TriangleParts> {
     let numbers = a.center.iter().chain(vertices.iter().flatten()).copied().chain([a.radius]);
-    if !(a.radius >= 0.0 && in_range(numbers)) {
+    if !(a.radius >= 0.0 && all_finite(numbers)) {
         return None;
     }
     let mut best: Option<TriangleParts> = None;

@@ -4,8 +4,8 @@
 //! decision a certified sign. A function here returns `None` whenever
 //! anything is left open — a zero-length segment, a zero-area triangle, a
 //! segment parallel to the plane (those the exact stage answers, with their
-//! flags), a sign the bounds leave open, an output on a midpoint, inputs
-//! outside the stage's range or input the exact stage refuses — and the exact
+//! flags), a sign the bounds leave open, an output on a midpoint or beyond
+//! `MAX`, inputs that are not finite or input the exact stage refuses — and the exact
 //! stage then answers, with the same bits (`tests/referee_stages.rs`).
 //!
 //! For the triangle the crossing is written as Möller and Trumbore write it:
@@ -16,7 +16,7 @@
 //! `t = N·(v0 − p0)/(N·D)` and normal equations (the crossing lies in the
 //! plane, where barycentrics are unique).
 
-use super::fast::{Dw, cross, diff3, dot, in_range, quotient};
+use super::fast::{Dw, all_finite, cross, diff3, dot, quotient};
 use crate::geom::{IntersectAnswer, P3, Plane, Segment, SegmentHit, Triangle};
 
 fn miss() -> IntersectAnswer {
@@ -91,7 +91,7 @@ fn segment_parts(s: &Segment) -> Option<[Dw; 3]> {
 /// The segment against the plane `n·x = off`: `t = (off − n·p0)/(n·D)`.
 fn plane_crossing(s: &Segment, p: &Plane) -> Option<([Dw; 3], Crossing)> {
     let numbers = s.start.iter().chain(&s.end).chain(&p.normal).copied().chain([p.offset]);
-    if !in_range(numbers) {
+    if !all_finite(numbers) {
         return None;
     }
     let n = p.normal.map(Dw::of);
@@ -128,7 +128,7 @@ pub(super) fn segment_plane_margin(s: &Segment, p: &Plane) -> Option<f64> {
 /// numerators `[α, β, γ]·det`, and the face normal `e1 × e2`.
 fn triangle_crossing(s: &Segment, t: &Triangle) -> Option<([Dw; 3], Crossing, [Dw; 3])> {
     let numbers = s.start.iter().chain(&s.end).chain(t.vertices.iter().flatten()).copied();
-    if !in_range(numbers) {
+    if !all_finite(numbers) {
         return None;
     }
     let d = segment_parts(s)?;
@@ -204,7 +204,7 @@ pub(super) fn segment_triangle(s: &Segment, t: &Triangle) -> Option<IntersectAns
 /// face, as there).
 pub(super) fn segment_mesh(s: &Segment, vertices: &[P3], triangles: &[[usize; 3]]) -> Option<IntersectAnswer> {
     let numbers = s.start.iter().chain(&s.end).chain(vertices.iter().flatten()).copied();
-    if !in_range(numbers) {
+    if !all_finite(numbers) {
         return None;
     }
     let d = segment_parts(s)?;

@@ -12,11 +12,11 @@
 //! their certified roundings: the exact time lies strictly inside its
 //! rounding's midpoints. `None` — the exact stage answers — whenever anything
 //! is left open, for a zero total radius (its normal is a fallback), for a
-//! mesh touched at `t = 0`, and for inputs outside the stage's range; the bits
+//! mesh touched at `t = 0`, and for inputs that are not finite; the bits
 //! are the same (`tests/referee_stages.rs`).
 
 use super::contact_fast::{plane_depth, unit};
-use super::fast::{Dw, certify, cross, diff3, div_approx, dot, in_range, sign_affine_root, sqrt_approx};
+use super::fast::{Dw, all_finite, certify, cross, diff3, div_approx, dot, sign_affine_root, sqrt_approx};
 use crate::geom::{P3, Plane, Sphere, Toi, ToiAnswer, Triangle};
 
 /// The sign of `P + Q·√S` for an exact `S ≥ 0` (`S` may be exactly 0).
@@ -50,7 +50,7 @@ struct Spheres {
 /// [`Spheres`], or `None` for input outside the stage.
 fn spheres(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Option<Spheres> {
     let numbers = [&a.center, &b.center, va, vb].into_iter().flatten().copied().chain([a.radius, b.radius, t_max]);
-    if !(a.radius >= 0.0 && b.radius >= 0.0 && in_range(numbers)) {
+    if !(a.radius >= 0.0 && b.radius >= 0.0 && all_finite(numbers)) {
         return None;
     }
     let (w, v) = (diff3(&a.center, &b.center), diff3(va, vb));
@@ -115,7 +115,9 @@ pub(super) fn sphere_sphere_margin(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_m
     };
     let pp = dot(&p, &p);
     if pp.is_exact_zero() {
-        return Some(big_r.approx() + 0.0);
+        // R = r1 + r2, rounded once by IEEE addition; beyond MAX, exact.
+        let sum = a.radius + b.radius;
+        return sum.is_finite().then_some(sum + 0.0);
     }
     // x − m = ((R − m)·l − √pp)/l.
     let candidate = big_r.sub(div_approx(sqrt_approx(pp), l)).approx();
@@ -126,7 +128,7 @@ pub(super) fn sphere_sphere_margin(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_m
 /// `k = n·(va − vb)`, or `None` outside the stage.
 fn plane_parts(a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> Option<([Dw; 3], Dw, Dw, Dw)> {
     let numbers = [&a.center, &b.normal, va, vb].into_iter().flatten().copied().chain([a.radius, b.offset, t_max]);
-    if !(a.radius >= 0.0 && in_range(numbers)) {
+    if !(a.radius >= 0.0 && all_finite(numbers)) {
         return None;
     }
     let n = b.normal.map(Dw::of);
@@ -211,7 +213,7 @@ struct Candidate {
 
 /// The moving sphere against a triangle, in the triangle's frame: the centre
 /// `c`, the radius, `v = va − vb`, the velocities and the horizon, all inputs
-/// in the stage's range and the radius positive.
+/// finite and the radius positive.
 struct Sweep {
     c: P3,
     r: Dw,
@@ -226,7 +228,7 @@ impl Sweep {
         let numbers = [&a.center, va, vb].into_iter().flatten().copied().chain([a.radius, t_max]).chain(shape);
         // A zero radius meets the triangle with no normal (the exact stage's
         // fallback direction, flagged): left to it, as is any input outside.
-        if !(a.radius > 0.0 && in_range(numbers)) {
+        if !(a.radius > 0.0 && all_finite(numbers)) {
             return None;
         }
         Some(Sweep { c: a.center, r: Dw::of(a.radius), v: diff3(va, vb), va: *va, vb: *vb, tm: Dw::of(horizon(t_max)) })
