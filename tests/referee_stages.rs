@@ -415,7 +415,8 @@ fn toi_at_the_horizon_grazing_and_points_are_the_same() {
 /// needs only that tied candidates round alike; grazing an edge or a vertex
 /// (`D = 0`: both roots tied), motion in the triangle's plane, moving away. A
 /// point-sized sphere (no normal) and a mesh already touched at `t = 0` are
-/// the exact stage's.
+/// the exact stage's. The margins, the path's distance from the triangle or
+/// the mesh, are the floating-point stage's but for a zero-area triangle.
 #[test]
 fn toi_against_triangles_faces_edges_vertices_and_ties_are_the_same() {
     let moving = |center: [f64; 3], radius: f64, v: [f64; 3]| {
@@ -462,6 +463,17 @@ fn toi_against_triangles_faces_edges_vertices_and_ties_are_the_same() {
         add(false, moving(c(1.0, 1.0, 0.5), s, c(0.0, 0.0, -4.0)), square(), format!("mesh touched at 0, {at}"));
     }
     assert_staged("toi against triangles", Stage::Toi, &cases);
+    // The margins (already the same bits, above) come from the floating-point
+    // stage too — the path's distance from every feature, the crossing of a
+    // face — except for the zero-area triangle, whose nearest feature the
+    // stage leaves to the exact one.
+    for (_, lc) in &cases {
+        let before = stage_counts_on_this_thread();
+        referee::margin(lc).expect("a toi case has a margin");
+        let (exact, by_fast) = delta(&before, &stage_counts_on_this_thread(), Stage::Toi);
+        let flat = lc.case.source.starts_with("zero-area");
+        assert_eq!((by_fast, exact), (u64::from(!flat), u64::from(flat)), "margin of {}", lc.case.source);
+    }
 }
 
 /// Spheres moving along x at height 1 exactly above a mesh's face (touching it

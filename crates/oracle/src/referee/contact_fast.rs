@@ -175,7 +175,7 @@ pub(super) fn sphere_plane_margin(a: &Sphere, b: &Plane) -> Option<f64> {
 
 /// Where the centre's closest point on a triangle lies, with what the outputs
 /// need, all exact or bounded double-words.
-enum Near {
+pub(super) enum Near {
     /// On a vertex or an edge: the closest point is `qn / l` (`l > 0`: 1 on a
     /// vertex, the edge's squared length on an edge), and `w = c − q = wv / l`
     /// with `ww = wv·wv`.
@@ -190,6 +190,12 @@ enum Near {
 /// decided on certified signs; `None` when a sign is open, for a zero-area
 /// triangle, or for a centre exactly on the triangle (no direction).
 fn near(p: &P3, v: &[P3; 3]) -> Option<Near> {
+    near_by(|x| diff3(p, x), v)
+}
+
+/// [`near`] for a point known by its differences `rel(x) = p − x` from the
+/// triangle's vertices (exact or bounded double-words).
+pub(super) fn near_by(rel: impl Fn(&P3) -> [Dw; 3], v: &[P3; 3]) -> Option<Near> {
     let s = |x: Dw| x.signum();
     let [a, b, c] = v;
     let (ab, ac) = (diff3(b, a), diff3(c, a));
@@ -200,25 +206,25 @@ fn near(p: &P3, v: &[P3; 3]) -> Option<Near> {
     }
     // On a vertex: q = V, w = c − V.
     let vertex = |x: &P3| {
-        let wv = diff3(p, x);
+        let wv = rel(x);
         let ww = dot(&wv, &wv);
         Near::Feature { qn: x.map(Dw::of), l: Dw::of(1.0), wv, ww }
     };
     // On the edge from `x` along `e` at `t = d/l`: q = (x·l + d·e)/l, w = ((c − x)·l − d·e)/l.
     let edge = |x: &P3, e: [Dw; 3], d: Dw| {
         let l = dot(&e, &e);
-        let xp = diff3(p, x);
+        let xp = rel(x);
         let qn = [0, 1, 2].map(|i| Dw::of(x[i]).mul(l).add(d.mul(e[i])));
         let wv = [0, 1, 2].map(|i| xp[i].mul(l).sub(d.mul(e[i])));
         let ww = dot(&wv, &wv);
         Near::Feature { qn, l, wv, ww }
     };
-    let ap = diff3(p, a);
+    let ap = rel(a);
     let (d1, d2) = (dot(&ab, &ap), dot(&ac, &ap));
     if s(d1)? <= 0 && s(d2)? <= 0 {
         return Some(vertex(a));
     }
-    let bp = diff3(p, b);
+    let bp = rel(b);
     let (d3, d4) = (dot(&ab, &bp), dot(&ac, &bp));
     if s(d3)? >= 0 && s(d4.sub(d3))? <= 0 {
         return Some(vertex(b));
@@ -227,7 +233,7 @@ fn near(p: &P3, v: &[P3; 3]) -> Option<Near> {
     if s(vc)? <= 0 && s(d1)? >= 0 && s(d3)? <= 0 {
         return Some(edge(a, ab, d1));
     }
-    let cp = diff3(p, c);
+    let cp = rel(c);
     let (d5, d6) = (dot(&ab, &cp), dot(&ac, &cp));
     if s(d6)? >= 0 && s(d5.sub(d6))? <= 0 {
         return Some(vertex(c));

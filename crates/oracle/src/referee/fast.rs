@@ -163,7 +163,7 @@ fn scaled_bound(err: f64, k: i64) -> f64 {
 
 impl Dw {
     /// Exactly zero.
-    const ZERO: Dw = Dw { hi: 0.0, lo: 0.0, err: 0.0, e: 0 };
+    pub(crate) const ZERO: Dw = Dw { hi: 0.0, lo: 0.0, err: 0.0, e: 0 };
 
     /// `(hi + lo ± err)·2^e` rescaled when its leading magnitude leaves
     /// `2^±RESCALE_EXP` (see [`Dw`]); unknown when anything is not finite.

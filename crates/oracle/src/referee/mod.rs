@@ -47,10 +47,11 @@
 //!   `P + Q·√S` at the midpoints around its candidate (`contact_fast`);
 //! - a segment against a plane, a triangle or a mesh, and its margin ([`intersect`]):
 //!   every output a certified quotient (`intersect_fast`);
-//! - a sphere's time of impact with a sphere or a plane, and its margin, and
-//!   with a triangle or a mesh ([`toi`]): every output `(P + Q·√D)/K` certified
-//!   the same way, a triangle's candidates (its vertices, edges and face)
-//!   ordered by their certified roundings (`toi_fast`).
+//! - a sphere's time of impact with a sphere, a plane, a triangle or a mesh,
+//!   and its margin ([`toi`]): every output `(P + Q·√D)/K` certified the same
+//!   way, a triangle's candidates (its vertices, edges and face) ordered by
+//!   their certified roundings, a margin the largest of its candidates'
+//!   certified margins (`toi_fast`).
 //!
 //! The answers are the same bits as the exact stage's alone, by construction
 //! and by test ([`exact_only`] switches the stages off; `tests/referee_stages.rs`).
@@ -140,8 +141,9 @@ pub enum Stage {
     /// The minimal enclosing ball (`bounds`): a floating-point Welzl's support,
     /// certified exactly, or exact Welzl.
     MinBall,
-    /// A sphere against a mesh (`toi` and its margin): faces whose box is
-    /// provably out of reach skipped, or a face's exact test run.
+    /// A sphere against a mesh (`toi` and its margin), when the exact stage
+    /// answers: faces whose box is provably out of reach skipped, or a
+    /// face's exact test run.
     MeshFaces,
     /// Barycentric coordinates: certified from double-word numbers, or
     /// computed in exact rationals.
@@ -153,9 +155,9 @@ pub enum Stage {
     /// A segment against a plane, a triangle or a mesh, and its margin:
     /// certified from double-word numbers, or computed in exact rationals.
     Intersect,
-    /// A sphere's time of impact with a sphere, a plane, a triangle or a mesh
-    /// (and its margin against a sphere or a plane): certified from
-    /// double-word numbers, or computed in exact rationals.
+    /// A sphere's time of impact with a sphere, a plane, a triangle or a
+    /// mesh, and its margin: certified from double-word numbers, or computed
+    /// in exact rationals.
     Toi,
 }
 
@@ -177,7 +179,7 @@ impl Stage {
                 "intersect of a segment with a plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
             }
             Stage::Toi => {
-                "toi of a sphere with a sphere, plane, triangle or mesh, and margins against a sphere or plane: certified from double-word numbers / computed exactly"
+                "toi of a sphere with a sphere, plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
             }
         }
     }
@@ -186,7 +188,7 @@ impl Stage {
 /// The query kinds the referee answers in its exact stage alone (every case
 /// of them is decided exactly: its share without the exact stage is 0 %), for
 /// the report beside [`Stage`]'s counts.
-pub const EXACT_STAGE_ONLY: &str = "overlap, response, and the toi margin against a triangle or mesh";
+pub const EXACT_STAGE_ONLY: &str = "overlap and response";
 
 static FAST: [AtomicU64; 6] = [const { AtomicU64::new(0) }; 6];
 static EXACT: [AtomicU64; 6] = [const { AtomicU64::new(0) }; 6];

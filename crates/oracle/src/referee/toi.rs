@@ -607,12 +607,12 @@ pub fn toi_sphere_mesh(
     let r2_up = r2_above(a.radius);
     let near: Vec<bool> =
         triangles.iter().map(|tri| path.as_ref().is_none_or(|p| face_gap2_below(p, vertices, tri) <= r2_up)).collect();
-    let tested = near.iter().filter(|n| **n).count() as u64;
-    super::count(super::Stage::MeshFaces, true, near.len() as u64 - tested);
-    super::count(super::Stage::MeshFaces, false, tested);
     if let Some(answer) = staged(|| super::toi_fast::sphere_mesh(a, va, vertices, triangles, &near, vb, t_max)) {
         return Ok(answer);
     }
+    let tested = near.iter().filter(|n| **n).count() as u64;
+    super::count(super::Stage::MeshFaces, true, near.len() as u64 - tested);
+    super::count(super::Stage::MeshFaces, false, tested);
     let mut nearest: Option<(Q, usize)> = None;
     for (i, f) in faces.iter().enumerate() {
         if !near[i] {
@@ -786,6 +786,9 @@ fn dist2_segment_triangle(p0: &V3, p1: &V3, verts: &[V3; 3]) -> Q {
 pub fn toi_margin_sphere_triangle(a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Result<f64, RefereeError> {
     let s = moving(a, va, vb, t_max)?;
     let verts = triangle(b, "b.vertices")?;
+    if let Some(margin) = staged(|| super::toi_fast::sphere_triangle_margin(a, va, b, vb, t_max)) {
+        return Ok(margin);
+    }
     let end = add(&s.c, &scale(&sub(&s.va, &s.vb), &s.t_max));
     Ok(gap_margin(&s.r, dist2_segment_triangle(&s.c, &end, &verts)))
 }
@@ -814,6 +817,10 @@ pub fn toi_margin_sphere_mesh(
         .map(|(i, tri)| (path.as_ref().map_or(0.0, |p| face_gap2_below(p, vertices, tri)), i))
         .collect();
     order.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    if let Some(margin) = staged(|| super::toi_fast::sphere_mesh_margin(a, va, vertices, triangles, &order, vb, t_max))
+    {
+        return Ok(margin);
+    }
     let mut nearest: Option<Q> = None;
     let faces_count = order.len() as u64;
     let mut tested = 0;

@@ -10,7 +10,10 @@
 //! sign. A triangle's candidates (a root per vertex, two per edge, one per
 //! side of the face, as `first_contact` in `toi.rs` lists them) are ordered by
 //! their certified roundings: the exact time lies strictly inside its
-//! rounding's midpoints. `None` — the exact stage answers — whenever anything
+//! rounding's midpoints. A margin against a triangle or a mesh is the largest
+//! of its candidates' (the path's ends and its closest points to each edge,
+//! each face), each certified; rounding is monotone, so the largest rounding
+//! is the rounding of the largest. `None` — the exact stage answers — whenever anything
 //! is left open, for a zero total radius (its normal is a fallback), for a
 //! mesh touched at `t = 0`, and for inputs that are not finite; the bits
 //! are the same (`tests/referee_stages.rs`).
@@ -435,4 +438,180 @@ pub(super) fn sphere_mesh(
         sweep.candidates(&verts, &mut cands)?;
     }
     first(&cands)
+}
+
+/// `r − √ww/l` (`l > 0`) correctly rounded: a margin from a squared distance
+/// `ww/l²`; `r` itself (`+0.0` for a zero radius) when `ww` is exactly 0.
+fn gap_margin(r: f64, ww: Dw, l: Dw) -> Option<f64> {
+    if ww.is_exact_zero() {
+        return Some(r + 0.0);
+    }
+    let rr = Dw::of(r);
+    // x − m = ((r − m)·l − √ww)/l.
+    let candidate = rr.sub(div_approx(sqrt_approx(ww), l)).approx();
+    certify(candidate, |m| sign_affine_root(rr.sub(m).mul(l), Dw::of(-1.0), ww))
+}
+
+/// `N/D` clamped to `[0, 1]`, as a fraction with a positive denominator
+/// (`D > 0` certified by the caller), decided on certified signs.
+fn clamp01(n: Dw, d: Dw) -> Option<(Dw, Dw)> {
+    Some(if n.signum()? < 0 {
+        (Dw::ZERO, Dw::of(1.0))
+    } else if n.sub(d).signum()? > 0 {
+        (Dw::of(1.0), Dw::of(1.0))
+    } else {
+        (n, d)
+    })
+}
+
+/// The squared distance between segments `p1 + s·d1` and `p2 + t·d2` as
+/// `(W·W, L)` with `L > 0` (the distance is `√(W·W)/L`), by `dist2_segments`'
+/// branches in `toi.rs` (Ericson's closest points of two segments), each
+/// decided on a certified sign. `r12 = p1 − p2`.
+fn segments(d1: &[Dw; 3], d2: &[Dw; 3], r12: &[Dw; 3]) -> Option<(Dw, Dw)> {
+    let one = Dw::of(1.0);
+    let a = dot(d1, d1);
+    let e = dot(d2, d2);
+    let f = dot(d2, r12);
+    let (za, ze) = (a.signum()? == 0, e.signum()? == 0);
+    // s = sn/sd, t = tn/td, both denominators positive.
+    let ((sn, sd), (tn, td)) = if za && ze {
+        ((Dw::ZERO, one), (Dw::ZERO, one))
+    } else if za {
+        ((Dw::ZERO, one), clamp01(f, e)?)
+    } else {
+        let c = dot(d1, r12);
+        if ze {
+            (clamp01(c.neg(), a)?, (Dw::ZERO, one))
+        } else {
+            let b = dot(d1, d2);
+            let denom = a.mul(e).sub(b.mul(b));
+            let (sn, sd) = if denom.signum()? == 0 { (Dw::ZERO, one) } else { clamp01(b.mul(f).sub(c.mul(e)), denom)? };
+            // tn = b·s + f over sd.
+            let tnum = b.mul(sn).add(f.mul(sd));
+            if tnum.signum()? < 0 {
+                (clamp01(c.neg(), a)?, (Dw::ZERO, one))
+            } else if tnum.sub(e.mul(sd)).signum()? > 0 {
+                (clamp01(b.sub(c), a)?, (one, one))
+            } else {
+                ((sn, sd), (tnum, sd.mul(e)))
+            }
+        }
+    };
+    // W = r12·sd·td + d1·sn·td − d2·tn·sd over L = sd·td.
+    let w = [0, 1, 2].map(|i| r12[i].mul(sd).mul(td).add(d1[i].mul(sn).mul(td)).sub(d2[i].mul(tn).mul(sd)));
+    Some((dot(&w, &w), sd.mul(td)))
+}
+
+/// The squared distance from a point (known by `rel(x) = p − x`) to a
+/// triangle as `(ww, l)`, the distance being `√ww/l`.
+fn to_triangle(rel: impl Fn(&P3) -> [Dw; 3], verts: &[P3; 3]) -> Option<(Dw, Dw)> {
+    Some(match super::contact_fast::near_by(rel, verts)? {
+        super::contact_fast::Near::Feature { l, ww, .. } => (ww, l),
+        // |e|/√nn = √(e²·nn)/nn.
+        super::contact_fast::Near::Face { nn, e, .. } => (e.mul(e).mul(nn), nn),
+    })
+}
+
+/// The margin `r − dist(path, triangle)` of one face, correctly rounded, as
+/// `toi_margin_sphere_triangle` answers, or `None`. The path runs from `c` by
+/// `d = t_max·v`. Every candidate distance of `dist2_segment_triangle` in
+/// `toi.rs` gets its own margin; the answer is the largest (rounding is
+/// monotone, `−0.0` below `+0.0`, so the largest rounding is the largest
+/// margin's).
+fn face_margin(r: f64, c: &P3, d: &[Dw; 3], verts: &[P3; 3]) -> Option<f64> {
+    let end_rel = |x: &P3| [0, 1, 2].map(|i| Dw::diff(c[i], x[i]).add(d[i]));
+    // Crossing the face: the distance is 0.
+    let n = cross(&diff3(&verts[1], &verts[0]), &diff3(&verts[2], &verts[0]));
+    if n.iter().try_fold(false, |any, x| Some(any || x.signum()? != 0))? {
+        let (e0, e1) = (dot(&n, &diff3(c, &verts[0])), dot(&n, &end_rel(&verts[0])));
+        let (s0, s1) = (e0.signum()?, e1.signum()?);
+        if s0 * s1 <= 0 && !(s0 == 0 && s1 == 0) {
+            // x·(e0 − e1) = (c − vi)·(e0 − e1) + d·e0, and e0 − e1 has the
+            // sign of s0 − s1 (not both zero).
+            let (den, sd) = (e0.sub(e1), (s0 - s1).signum());
+            let mut inside = true;
+            for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+                let ci = diff3(c, &verts[i]);
+                let x = [0, 1, 2].map(|k| ci[k].mul(den).add(d[k].mul(e0)));
+                if dot(&cross(&diff3(&verts[j], &verts[i]), &x), &n).signum()? * sd < 0 {
+                    inside = false;
+                    break;
+                }
+            }
+            if inside {
+                return Some(r + 0.0);
+            }
+        }
+    }
+    let mut cands = vec![to_triangle(|x| diff3(c, x), verts)?, to_triangle(end_rel, verts)?];
+    for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+        cands.push(segments(d, &diff3(&verts[j], &verts[i]), &diff3(c, &verts[i]))?);
+    }
+    let mut best: Option<f64> = None;
+    for (ww, l) in cands {
+        let m = gap_margin(r, ww, l)?;
+        best = Some(best.map_or(m, |b| if m.total_cmp(&b).is_gt() { m } else { b }));
+    }
+    best
+}
+
+/// The path's parts for a margin: `d = t_max·(va − vb)`, or `None` outside
+/// the stage.
+fn path(a: &Sphere, va: &P3, vb: &P3, t_max: f64, shape: impl IntoIterator<Item = f64>) -> Option<[Dw; 3]> {
+    let numbers = [&a.center, va, vb].into_iter().flatten().copied().chain([a.radius, t_max]).chain(shape);
+    if !(a.radius >= 0.0 && all_finite(numbers)) {
+        return None;
+    }
+    let tm = Dw::of(horizon(t_max));
+    Some(diff3(va, vb).map(|x| tm.mul(x)))
+}
+
+/// `r − dist(path, b)`, as `toi_margin_sphere_triangle` answers, or `None`.
+pub(super) fn sphere_triangle_margin(a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Option<f64> {
+    let d = path(a, va, vb, t_max, b.vertices.iter().flatten().copied())?;
+    face_margin(a.radius, &a.center, &d, &b.vertices)
+}
+
+/// `r − min_faces dist(path, face)`, as `toi_margin_sphere_mesh` answers, or
+/// `None`. Faces come in `order` (a lower bound on each one's squared
+/// distance from the path, ascending); once a bound exceeds the squared
+/// distance behind the best margin so far, no later face is nearer. An empty
+/// mesh is the exact stage's.
+pub(super) fn sphere_mesh_margin(
+    a: &Sphere,
+    va: &P3,
+    vertices: &[P3],
+    triangles: &[[usize; 3]],
+    order: &[(f64, usize)],
+    vb: &P3,
+    t_max: f64,
+) -> Option<f64> {
+    let d = path(a, va, vb, t_max, vertices.iter().flatten().copied())?;
+    let mut best: Option<(f64, f64)> = None;
+    for &(bound, i) in order {
+        if let Some((_, bound_best)) = best
+            && bound > bound_best
+        {
+            break;
+        }
+        let tri = triangles.get(i)?;
+        let verts = [*vertices.get(tri[0])?, *vertices.get(tri[1])?, *vertices.get(tri[2])?];
+        let m = face_margin(a.radius, &a.center, &d, &verts)?;
+        if best.is_none_or(|(b, _)| m.total_cmp(&b).is_gt()) {
+            best = Some((m, below_of(a.radius, m)));
+        }
+    }
+    best.map(|(m, _)| m)
+}
+
+/// A number at or above every squared distance `δ²` whose margin `r − δ`
+/// rounds to `m`: `δ ≤ r − m + ulp(m)/2`, so `δ² ≤ (r − m + ulp)²`, raised
+/// for the `f64` arithmetic; a face whose lower bound exceeds it is farther
+/// than the best face. `+∞` keeps every face when the margin is not finite.
+fn below_of(r: f64, m: f64) -> f64 {
+    let slack = (m.abs().max(f64::MIN_POSITIVE)).next_up() - m.abs();
+    let delta = (r - m).abs() * (1.0 + 4.0 * f64::EPSILON) + 2.0 * slack;
+    let up = delta * delta * (1.0 + 8.0 * f64::EPSILON) + f64::MIN_POSITIVE;
+    if up.is_finite() { up } else { f64::INFINITY }
 }
