@@ -476,6 +476,51 @@ fn toi_against_triangles_faces_edges_vertices_and_ties_are_the_same() {
     }
 }
 
+/// Collision response at 40 scales: head-on, glancing at a Pythagorean
+/// normal, unequal masses, concentric centres (the flagged +z fallback),
+/// separating and sliding (velocities kept as given, −0 included), a sphere
+/// bouncing on a plane or leaving it — all the floating-point stage's; an
+/// output exactly on a midpoint between two `f64` (a tie) is the exact
+/// stage's.
+#[test]
+fn response_heads_on_glances_ties_and_fallbacks_are_the_same() {
+    let body = |center: [f64; 3], v: [f64; 3], mass: f64| {
+        Shape::Sphere(SphereSpec { center, radius: 1.0, velocity: Some(v), mass: Some(mass) })
+    };
+    let plane = |normal: [f64; 3]| Shape::Plane(PlaneSpec { normal, offset: 0.0, velocity: None });
+    let mut cases: Vec<(bool, LoadedCase)> = Vec::new();
+    let mut add = |fast: bool, a: Shape, b: Shape, e: f64, what: String| {
+        let mut lc = case(Query::Response, a, Some(b), what);
+        lc.case.restitution = Some(e);
+        cases.push((fast, lc));
+    };
+    for k in 0..40i32 {
+        let s = 2f64.powi(k - 20);
+        let at = format!("scale 2^{}", k - 20);
+        let head_on = (body([-s, 0.0, 0.0], [s, 0.0, 0.0], 1.0), body([s, 0.0, 0.0], [-s, 0.0, 0.0], 1.0));
+        add(true, head_on.0, head_on.1, 1.0, format!("head-on, {at}"));
+        let glance = (body([0.0; 3], [s, 0.0, 0.0], 2.0), body([3.0 * s, 4.0 * s, 0.0], [0.0; 3], 3.0));
+        add(true, glance.0, glance.1, 0.5, format!("glancing at (3,4,0)/5, {at}"));
+        let uneven = (body([0.0; 3], [s, s, 0.0], 1e-3), body([s, 2.0 * s, 0.5 * s], [-s, 0.0, s], 7.0));
+        add(true, uneven.0, uneven.1, 0.3, format!("unequal masses, {at}"));
+        let same = (body([s, s, s], [0.0, 0.0, s], 1.0), body([s, s, s], [0.0; 3], 1.0));
+        add(true, same.0, same.1, 1.0, format!("concentric, {at}"));
+        let apart = (body([-s, 0.0, 0.0], [-s, -0.0, 0.0], 1.0), body([s, 0.0, 0.0], [0.0; 3], 1.0));
+        add(true, apart.0, apart.1, 1.0, format!("separating, {at}"));
+        let slide = (body([-s, 0.0, 0.0], [0.0, s, 0.0], 1.0), body([s, 0.0, 0.0], [0.0, -s, 0.0], 1.0));
+        add(true, slide.0, slide.1, 1.0, format!("sliding, {at}"));
+        let bounce = body([0.0, 0.0, s], [s, 0.0, -2.0 * s], 1.0);
+        add(true, bounce, plane([0.0, 3.0, 4.0]), 0.7, format!("bouncing on a plane, {at}"));
+        let leave = body([0.0, 0.0, s], [s, 0.0, 2.0 * s], 1.0);
+        add(true, leave, plane([0.0, 0.0, 1.0]), 0.7, format!("leaving a plane, {at}"));
+    }
+    // −e·vz = 1 + 2^-26 + 2^-27 + 2^-53 exactly: half an ulp above an f64.
+    let e = 1.0 + 2f64.powi(-26);
+    let tie = body([0.0, 0.0, 1.0], [0.0, 0.0, -(1.0 + 2f64.powi(-27))], 1.0);
+    add(false, tie, plane([0.0, 0.0, 1.0]), e, "a velocity on a midpoint".into());
+    assert_staged("response", Stage::Response, &cases);
+}
+
 /// Spheres moving along x at height 1 exactly above a mesh's face (touching it
 /// all along, the face's box exactly r below the path), or one ulp above: the
 /// floating-point stage must not rule out a face the sphere touches.

@@ -51,7 +51,9 @@
 //!   and its margin ([`toi`]): every output `(P + Q·√D)/K` certified the same
 //!   way, a triangle's candidates (its vertices, edges and face) ordered by
 //!   their certified roundings, a margin the largest of its candidates'
-//!   certified margins (`toi_fast`).
+//!   certified margins (`toi_fast`);
+//! - collision response ([`response`]): every velocity a certified quotient
+//!   (`response_fast`).
 //!
 //! The answers are the same bits as the exact stage's alone, by construction
 //! and by test ([`exact_only`] switches the stages off; `tests/referee_stages.rs`).
@@ -75,6 +77,7 @@ pub mod intersect;
 mod intersect_fast;
 pub mod overlap;
 pub mod response;
+mod response_fast;
 pub mod toi;
 mod toi_fast;
 
@@ -103,7 +106,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 thread_local! {
     static EXACT_ONLY: Cell<bool> = const { Cell::new(false) };
     /// This thread's counts: fast then exact, per stage.
-    static HERE: Cell<[u64; 12]> = const { Cell::new([0; 12]) };
+    static HERE: Cell<[u64; 14]> = const { Cell::new([0; 14]) };
 }
 
 /// Runs `f` with the referee's floating-point stages off on this thread: every
@@ -159,12 +162,22 @@ pub enum Stage {
     /// mesh, and its margin: certified from double-word numbers, or computed
     /// in exact rationals.
     Toi,
+    /// Collision response of a sphere against a sphere or a plane: certified
+    /// from double-word numbers, or computed in exact rationals.
+    Response,
 }
 
 impl Stage {
     /// Every stage, in report order.
-    pub const ALL: [Stage; 6] =
-        [Stage::MinBall, Stage::MeshFaces, Stage::Barycentric, Stage::Contact, Stage::Intersect, Stage::Toi];
+    pub const ALL: [Stage; 7] = [
+        Stage::MinBall,
+        Stage::MeshFaces,
+        Stage::Barycentric,
+        Stage::Contact,
+        Stage::Intersect,
+        Stage::Toi,
+        Stage::Response,
+    ];
 
     /// What is counted, for the report.
     pub fn label(self) -> &'static str {
@@ -181,6 +194,9 @@ impl Stage {
             Stage::Toi => {
                 "toi of a sphere with a sphere, plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
             }
+            Stage::Response => {
+                "response of a sphere against a sphere or plane: certified from double-word numbers / computed exactly"
+            }
         }
     }
 }
@@ -188,10 +204,10 @@ impl Stage {
 /// The query kinds the referee answers in its exact stage alone (every case
 /// of them is decided exactly: its share without the exact stage is 0 %), for
 /// the report beside [`Stage`]'s counts.
-pub const EXACT_STAGE_ONLY: &str = "overlap and response";
+pub const EXACT_STAGE_ONLY: &str = "overlap (its exact stage is already a handful of f64 comparisons)";
 
-static FAST: [AtomicU64; 6] = [const { AtomicU64::new(0) }; 6];
-static EXACT: [AtomicU64; 6] = [const { AtomicU64::new(0) }; 6];
+static FAST: [AtomicU64; 7] = [const { AtomicU64::new(0) }; 7];
+static EXACT: [AtomicU64; 7] = [const { AtomicU64::new(0) }; 7];
 
 /// Counts `n` answers of `stage`, by the floating-point stage or the exact one.
 pub(crate) fn count(stage: Stage, fast: bool, n: u64) {

@@ -15,6 +15,11 @@ use super::RefereeError;
 use super::exact::{Q, V3, add, dot, is_zero, q, radius, round_v, scale, sub, v3};
 use crate::geom::{P3, Plane, ResponseAnswer, Sphere};
 
+/// The floating-point stage's answer ([`super::response_fast`]), counted.
+fn staged<T>(fast: impl FnOnce() -> Option<T>) -> Option<T> {
+    super::fast_stage(super::Stage::Response, fast)
+}
+
 fn unchanged(va: &P3, vb: &P3, degenerate: bool) -> ResponseAnswer {
     ResponseAnswer { velocity_a: *va, velocity_b: *vb, degenerate }
 }
@@ -69,10 +74,14 @@ pub fn response_sphere_sphere(
     let cb = v3(&b.center, "b.center")?;
     radius(b.radius, "b.radius")?;
     let (va_q, vb_q) = (v3(va, "a.velocity")?, v3(vb, "b.velocity")?);
+    let (ma_f, mb_f, e_f) = (ma, mb, e);
     let (ma, mb) = (q(ma, "a.mass")?, q(mb, "b.mass")?);
     let e = q(e, "restitution")?;
     if ma <= Q::ZERO || mb <= Q::ZERO {
         return Ok(unchanged(va, vb, true));
+    }
+    if let Some(answer) = staged(|| super::response_fast::sphere_sphere(a, va, ma_f, b, vb, mb_f, e_f)) {
+        return Ok(answer);
     }
     let mut n = sub(&ca, &cb);
     let concentric = is_zero(&n);
@@ -105,9 +114,13 @@ pub fn response_sphere_plane(va: &P3, b: &Plane, e: f64) -> Result<ResponseAnswe
     let va_q = v3(va, "a.velocity")?;
     let n = v3(&b.normal, "b.normal")?;
     q(b.offset, "b.offset")?;
+    let e_f = e;
     let e = q(e, "restitution")?;
     if is_zero(&n) {
         return Err(RefereeError::ZeroNormal { field: "b.normal" });
+    }
+    if let Some(answer) = staged(|| super::response_fast::sphere_plane(va, b, e_f)) {
+        return Ok(answer);
     }
     let zero: V3 = [Q::ZERO, Q::ZERO, Q::ZERO];
     Ok(match impulse(&va_q, &Q::ONE, &zero, &Q::ZERO, &n, &e) {
