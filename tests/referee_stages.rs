@@ -154,8 +154,10 @@ fn clouds_that_force_the_exact_stage_are_the_same() {
 
 /// Barycentric cases at the floating-point stage's edges: a coordinate exactly
 /// on a midpoint between two `f64` (a tie: the exact stage must round it), a
-/// coordinate exactly 0 (a point on an edge: certified as `+0.0`), a zero-area
-/// triangle (the exact stage's fallback), and inputs beyond the stage's range.
+/// coordinate exactly 0 (a point on an edge: certified as `+0.0`), zero-area
+/// triangles (the longest edge's fallback, on certified signs: collinear,
+/// tied edges, clamped, coincident), a sliver, and products beyond `f64`'s
+/// range.
 #[test]
 fn barycentric_ties_zeros_and_degenerate_triangles_are_the_same() {
     let tri = |v: [[f64; 3]; 3]| Shape::Triangle(TriangleSpec { vertices: v, velocity: None });
@@ -180,13 +182,19 @@ fn barycentric_ties_zeros_and_degenerate_triangles_are_the_same() {
         // Off the plane and outside: β = 3 + 2^-53 (rounds to 3, no tie),
         // γ = −1.25, α = −0.75 − 2^-53 (an f64).
         add(true, [3.0 * s, -1.25 * s, 2.0 * s], v, format!("outside and off the plane, scale 2^{}", k - 20));
-        // Zero area: three collinear vertices.
-        add(
-            false,
-            [s, s, 0.0],
-            [[0.0, 0.0, 0.0], [s, s, s], [2.0 * s, 2.0 * s, 2.0 * s]],
-            format!("collinear, scale 2^{}", k - 20),
-        );
+        // Zero area (N exactly 0): the longest edge's fallback, flagged —
+        // three collinear vertices, a tie of two longest edges (the first
+        // wins), a point clamped to an edge's end, three coincident vertices.
+        let at = format!("scale 2^{}", k - 20);
+        let line = [[0.0, 0.0, 0.0], [s, s, s], [2.0 * s, 2.0 * s, 2.0 * s]];
+        add(true, [s, s, 0.0], line, format!("collinear, {at}"));
+        let tied = [[0.0; 3], [s, 0.0, 0.0], [0.0; 3]];
+        add(true, [0.25 * s, s, 0.0], tied, format!("two longest edges tied, {at}"));
+        add(true, [-s, 0.0, 0.0], tied, format!("clamped to an edge's end, {at}"));
+        add(true, [s, s, s], [[s, 0.0, 0.0]; 3], format!("coincident vertices, {at}"));
+        // A sliver 2^-50 high: N·N keeps its precision.
+        let sliver = [[0.0; 3], [s, 0.0, 0.0], [0.5 * s, 2f64.powi(-50) * s, 0.0]];
+        add(true, [0.3 * s, 0.7 * s, 0.0], sliver, format!("sliver, {at}"));
     }
     // Products of these leave f64's range; the stage's exponent carries them.
     add(

@@ -67,30 +67,76 @@ fn longest_edge_fallback(p: &V3, v: &[V3; 3]) -> [Q; 3] {
     coords
 }
 
-/// The floating-point stage ([`super::fast`]): the same normal equations in
+/// The floating-point stage ([`super::fast`]): the exact stage's rationals in
 /// double-word numbers that account for their error exactly, each coordinate
-/// `N / det` correctly rounded when the bounds certify it — `β = (c·d − b·e) /
-/// det`, `γ = (a·e − b·d) / det`, `α = (det − (c·d − b·e) − (a·e − b·d)) /
-/// det`, the same rationals as the exact stage's. `None` (the exact stage
-/// decides) for inputs that are not finite, a `det` whose sign is not
-/// certain (zero-area and near-degenerate triangles), or a coordinate not
-/// certified (a tie, or too close to one for the bounds).
-fn barycentric_fast(p: &P3, t: &Triangle) -> Option<[f64; 3]> {
-    use super::fast::{all_finite, diff3, dot, quotient};
+/// kept when its correct rounding is certified. With `N = e1 × e2`, the
+/// normal equations' `det` is `N·N` (Lagrange's identity) — a sum of squares,
+/// so a sliver's `det` keeps its precision — and the coordinates are the
+/// signed-area ratios `α = ((v1 − p) × (v2 − p))·N / N·N`, `β = ((v2 − p) ×
+/// (v0 − p))·N / N·N`, `γ = ((v0 − p) × (v1 − p))·N / N·N`, the same
+/// rationals as Cramer's rule gives. A triangle whose `N` is exactly zero takes
+/// the exact stage's fallback, decided on certified signs
+/// ([`longest_edge_fast`]), flagged. `None` (the exact stage decides) for
+/// inputs that are not finite, an `N` neither certainly zero nor certainly
+/// not, a comparison the bounds leave open, or a coordinate not certified (a
+/// tie, or too close to one for the bounds).
+fn barycentric_fast(p: &P3, t: &Triangle) -> Option<BarycentricAnswer> {
+    use super::fast::{all_finite, cross, diff3, dot, quotient};
     let inputs = p.iter().chain(t.vertices.iter().flatten()).copied();
     if !all_finite(inputs) {
         return None;
     }
-    let e1 = diff3(&t.vertices[1], &t.vertices[0]);
-    let e2 = diff3(&t.vertices[2], &t.vertices[0]);
-    let w = diff3(p, &t.vertices[0]);
-    let (a, b, c) = (dot(&e1, &e1), dot(&e1, &e2), dot(&e2, &e2));
-    let (d, e) = (dot(&w, &e1), dot(&w, &e2));
-    let det = a.mul(c).sub(b.mul(b));
-    let n_beta = c.mul(d).sub(b.mul(e));
-    let n_gamma = a.mul(e).sub(b.mul(d));
-    let n_alpha = det.sub(n_beta).sub(n_gamma);
-    Some([quotient(n_alpha, det)?, quotient(n_beta, det)?, quotient(n_gamma, det)?])
+    let v = &t.vertices;
+    let n = cross(&diff3(&v[1], &v[0]), &diff3(&v[2], &v[0]));
+    let signs = [n[0].signum(), n[1].signum(), n[2].signum()];
+    if signs.iter().all(|s| *s == Some(0)) {
+        return Some(BarycentricAnswer { coords: longest_edge_fast(p, v)?, degenerate: true });
+    }
+    if !signs.iter().any(|s| matches!(s, Some(1 | -1))) {
+        return None;
+    }
+    let det = dot(&n, &n);
+    let r: [_; 3] = std::array::from_fn(|k| diff3(&v[k], p));
+    let area = |i: usize, j: usize| dot(&cross(&r[i], &r[j]), &n);
+    let coords = [quotient(area(1, 2), det)?, quotient(area(2, 0), det)?, quotient(area(0, 1), det)?];
+    Some(BarycentricAnswer { coords, degenerate: false })
+}
+
+/// [`longest_edge_fallback`] on certified signs: the longest edge (the first
+/// of v0v1, v1v2, v2v0 on an exact tie), `p`'s parameter on it clamped to
+/// `[0, 1]`, each coordinate a certified quotient; `[1, 0, 0]` when the
+/// vertices coincide.
+fn longest_edge_fast(p: &P3, v: &[P3; 3]) -> Option<[f64; 3]> {
+    use super::fast::{Dw, diff3, dot, quotient};
+    let edges = [(0usize, 1usize), (1, 2), (2, 0)];
+    let mut best: Option<(usize, Dw)> = None;
+    for (k, &(i, j)) in edges.iter().enumerate() {
+        let e = diff3(&v[j], &v[i]);
+        let len = dot(&e, &e);
+        let longer = match best {
+            None => len.signum()? > 0,
+            Some((_, b)) => len.sub(b).signum()? > 0,
+        };
+        if longer {
+            best = Some((k, len));
+        }
+    }
+    let Some((k, len)) = best else {
+        return Some([1.0, 0.0, 0.0]);
+    };
+    let (i, j) = edges[k];
+    let num = dot(&diff3(p, &v[i]), &diff3(&v[j], &v[i]));
+    let (ci, cj) = if num.signum()? <= 0 {
+        (1.0, 0.0)
+    } else if num.sub(len).signum()? >= 0 {
+        (0.0, 1.0)
+    } else {
+        (quotient(len.sub(num), len)?, quotient(num, len)?)
+    };
+    let mut coords = [0.0; 3];
+    coords[i] = ci;
+    coords[j] = cj;
+    Some(coords)
 }
 
 /// Signed barycentric coordinates `[α, β, γ]` of the orthogonal projection of `p`
@@ -117,8 +163,8 @@ pub fn barycentric_triangle(p: &P3, t: &Triangle) -> Result<BarycentricAnswer, R
     if super::staged() {
         let fast = barycentric_fast(p, t);
         super::count(super::Stage::Barycentric, fast.is_some(), 1);
-        if let Some(coords) = fast {
-            return Ok(BarycentricAnswer { coords, degenerate: false });
+        if let Some(answer) = fast {
+            return Ok(answer);
         }
     }
     let p = v3(p, "a.at")?;
