@@ -1,7 +1,9 @@
 //! Bounding volumes of a point cloud, exactly: the tight AABB and the minimal
 //! enclosing sphere.
 
-use dashu::base::{AbsOrd, BitTest, Gcd, UnsignedAbs};
+use std::cell::OnceCell;
+
+use dashu::base::{BitTest, Gcd, UnsignedAbs};
 use dashu::integer::{IBig, UBig};
 
 use super::RefereeError;
@@ -65,14 +67,65 @@ fn shift(x: &Q, s: isize) -> Q {
     if s >= 0 { Q::from_parts(num << s as usize, den) } else { Q::from_parts(num, den << (-s) as usize) }
 }
 
-/// A point of the cloud: exact (a rational, and the same as an integer vector
-/// over the cloud's common power-of-two denominator), and its `f64` image in the
-/// filter's frame.
+/// A point of the cloud: its `f64` image in the filter's frame, and, made
+/// when first asked for (most points are only ever filtered in `f64`), its
+/// exact value as a rational and as an integer vector over the cloud's common
+/// power-of-two denominator.
 struct Point {
-    exact: V3,
-    /// `exact · 2^denominator_bits`, an integer vector.
-    int: [IBig; 3],
+    src: P3,
     approx: P3,
+    exact: OnceCell<V3>,
+    /// `exact · 2^denominator_bits`, an integer vector.
+    int: OnceCell<[IBig; 3]>,
+}
+
+impl Point {
+    fn exact(&self) -> &V3 {
+        self.exact.get_or_init(|| self.src.map(|x| dyadic(x).0))
+    }
+
+    fn int(&self, denominator_bits: usize) -> &[IBig; 3] {
+        self.int.get_or_init(|| {
+            self.src.map(|x| {
+                let (_, m, e) = dyadic(x);
+                // x·2^F = m·2^(e + F), an integer since F ≥ −e.
+                m << (e + denominator_bits as i64) as usize
+            })
+        })
+    }
+}
+
+/// A finite `x` exactly: as a rational, and as `m·2^e` with `m` odd (or 0,
+/// with `e = 0`).
+fn dyadic(x: f64) -> (Q, IBig, i64) {
+    let bits = x.to_bits();
+    let field = ((bits >> 52) & 0x7ff) as i64;
+    let frac = bits & ((1u64 << 52) - 1);
+    let (mant, exp) = if field == 0 { (frac, -1074) } else { (frac | (1u64 << 52), field - 1075) };
+    if mant == 0 {
+        return (Q::ZERO, IBig::ZERO, 0);
+    }
+    let tz = i64::from(mant.trailing_zeros());
+    let (odd, e) = (mant >> tz, exp + tz);
+    let m = if x < 0.0 { -IBig::from(odd) } else { IBig::from(odd) };
+    let q =
+        if e >= 0 { Q::from(m.clone() << e as usize) } else { Q::from_parts(m.clone(), UBig::ONE << (-e) as usize) };
+    (q, m, e)
+}
+
+/// `x·2^s` correctly rounded, as the exact value shifted then rounded: one
+/// IEEE multiplication by a representable power of two rounds once; a scale
+/// past `2^1023` goes up in two exact steps.
+fn scaled_f64(x: f64, s: isize) -> f64 {
+    let pow2 = |k: isize| {
+        if k >= -1022 { f64::from_bits(((1023 + k) as u64) << 52) } else { f64::from_bits(1u64 << (k + 1074)) }
+    };
+    // −0 is the rational 0, whose rounding is +0; a negative value that
+    // rounds to zero keeps its sign.
+    if x == 0.0 {
+        return 0.0;
+    }
+    if s > 1023 { x * pow2(s - 1000) * pow2(1000) } else { x * pow2(s) }
 }
 
 /// The exact in-ball test in integers: with the centre `C/D` over a common
@@ -94,6 +147,8 @@ struct ExactBall {
     /// `Some((centre, radius, centre error bound))` in the filter's frame, when
     /// those are finite and `r²` is a normal `f64`.
     approx: Option<(P3, f64, f64)>,
+    /// The cloud's `F`, for its points' integer vectors.
+    denominator_bits: usize,
 }
 
 /// `lcm(a, b)`.
@@ -116,7 +171,7 @@ impl ExactBall {
         let d = IBig::from(d);
         let rhs = (r2.numerator() * &d * &d) << (2 * denominator_bits);
         let int = IntBall { c: int_c, d, e: IBig::from(r2.denominator().clone()), rhs };
-        Self { center, r2, int, approx }
+        Self { center, r2, int, approx, denominator_bits }
     }
 
     /// Whether `p` lies in the closed ball, decided exactly (the filter only
@@ -135,7 +190,8 @@ impl ExactBall {
             }
         }
         let b = &self.int;
-        let w: [IBig; 3] = std::array::from_fn(|k| &p.int[k] * &b.d - &b.c[k]);
+        let int = p.int(self.denominator_bits);
+        let w: [IBig; 3] = std::array::from_fn(|k| &int[k] * &b.d - &b.c[k]);
         (&w[0] * &w[0] + &w[1] * &w[1] + &w[2] * &w[2]) * &b.e <= b.rhs
     }
 }
@@ -154,12 +210,12 @@ impl ExactBall {
 /// only absorbs a repeated constraint.
 fn ball_through(support: &[usize], points: &[Point], frame: isize, denominator_bits: usize) -> Option<ExactBall> {
     let (&first, rest) = support.split_first()?;
-    let s0 = &points[first].exact;
+    let s0 = points[first].exact();
     let mut center = s0.clone();
     let mut r2 = Q::ZERO;
     let mut basis: Vec<(V3, Q)> = Vec::with_capacity(3);
     for &j in rest {
-        let sj = &points[j].exact;
+        let sj = points[j].exact();
         let w = sub(sj, s0);
         let mut u = w.clone();
         for (b, bb) in &basis {
@@ -229,25 +285,24 @@ struct Cloud {
 
 fn cloud(points: &[P3]) -> Result<Cloud, RefereeError> {
     check(points)?;
-    let exact = points.iter().map(|p| v3(p, "a.points")).collect::<Result<Vec<_>, _>>()?;
-    let largest = exact.iter().flatten().max_by(|a, b| (*a).abs_cmp(*b)).cloned().unwrap_or(Q::ZERO);
-    let frame = if largest.is_zero() {
-        0
-    } else {
-        let (num, den) = largest.into_parts();
-        den.bit_len() as isize - num.unsigned_abs().bit_len() as isize
+    // The largest coordinate m·2^e (m odd) is the rational num/den with
+    // num = m·2^max(e, 0), den = 2^max(−e, 0): 2^frame, frame =
+    // bits(den) − bits(num), brings it into [½, 1).
+    let largest = points.iter().flatten().copied().max_by(|a, b| a.abs().total_cmp(&b.abs())).unwrap_or(0.0);
+    let frame = match dyadic(largest) {
+        (_, m, _) if m.is_zero() => 0,
+        (_, m, e) => (e.min(0).unsigned_abs() + 1) as isize - (m.unsigned_abs().bit_len() as i64 + e.max(0)) as isize,
     };
     // Every coordinate is dyadic: over the common denominator 2^F, an integer.
-    let denominator_bits = exact.iter().flatten().map(|x| x.denominator().bit_len() - 1).max().unwrap_or(0);
-    let points = exact
-        .into_iter()
-        .map(|e| {
-            let approx = [round(&shift(&e[0], frame)), round(&shift(&e[1], frame)), round(&shift(&e[2], frame))];
-            let int = std::array::from_fn(|k| {
-                let (num, den) = e[k].clone().into_parts();
-                num << (denominator_bits - (den.bit_len() - 1))
-            });
-            Point { exact: e, int, approx }
+    let denominator_bits =
+        points.iter().flatten().map(|&x| dyadic(x).2.min(0).unsigned_abs() as usize).max().unwrap_or(0);
+    let points = points
+        .iter()
+        .map(|p| Point {
+            src: *p,
+            approx: p.map(|x| scaled_f64(x, frame)),
+            exact: OnceCell::new(),
+            int: OnceCell::new(),
         })
         .collect();
     Ok(Cloud { points, frame, denominator_bits })
@@ -356,52 +411,83 @@ impl FloatWelzl<'_> {
 /// unique: the same ball Welzl's exact algorithm finds. All three checks are
 /// exact (the containment test's `f64` filter answers only where its error
 /// bound leaves no doubt).
+///
+/// **In integers.** Over the cloud's common denominator `2^F` the points are
+/// integer vectors `P`. With `wᵢ = Pᵢ − P₀` for the support points kept (a
+/// point whose `w` lies in the span of those kept before it adds nothing, as
+/// in [`ball_through`]: its Gram determinant with them is 0), the centre is
+/// `P₀ + Σ μᵢ wᵢ` where `G μ = b/2`, `Gᵢⱼ = wᵢ·wⱼ`, `bᵢ = wᵢ·wᵢ` (equal
+/// distance to every kept point). By Cramer's rule `μᵢ = nᵢ/(2d)` with
+/// `d = det G > 0` and `nᵢ` the determinant with column `i` replaced by `b`:
+/// the weights are `≥ 0` exactly when every `nᵢ ≥ 0` and `Σ nᵢ ≤ 2d`, and the
+/// centre is `C/(2d·2^F)` with `C = 2d·P₀ + Σ nᵢ wᵢ` — integers throughout, one
+/// rational per output.
 fn certified(cloud: &Cloud, support: &[usize]) -> Option<(V3, Q)> {
     let (&first, rest) = support.split_first()?;
-    let points = &cloud.points;
-    let s0 = &points[first].exact;
-    let mut center = s0.clone();
-    let mut r2 = Q::ZERO;
-    // Each independent direction: u, ‖u‖², its Gram–Schmidt coefficients on
-    // the earlier directions (u = w − Σ αᵢ uᵢ), and the centre's step λ along it.
-    let mut basis: Vec<(V3, Q, Vec<Q>, Q)> = Vec::with_capacity(3);
+    let bits = cloud.denominator_bits;
+    let s0 = cloud.points[first].int(bits).clone();
+    let mut kept: Vec<[IBig; 3]> = Vec::with_capacity(3);
     for &j in rest {
-        let sj = &points[j].exact;
-        let w = sub(sj, s0);
-        let alphas: Vec<Q> = basis.iter().map(|(b, bb, _, _)| dot(&w, b) / bb).collect();
-        let mut u = w;
-        for ((b, _, _, _), a) in basis.iter().zip(&alphas) {
-            u = sub(&u, &scale(b, a));
+        let pj = cloud.points[j].int(bits);
+        let w: [IBig; 3] = std::array::from_fn(|k| &pj[k] - &s0[k]);
+        kept.push(w);
+        if gram_det(&kept).is_zero() {
+            kept.pop();
         }
-        let uu = dot(&u, &u);
-        if uu.is_zero() {
-            continue;
-        }
-        let off = sub(sj, &center);
-        let lambda = (dot(&off, &off) - &r2) / (Q::from(2u8) * &uu);
-        center = add(&center, &scale(&u, &lambda));
-        r2 += &lambda * &lambda * &uu;
-        basis.push((u, uu, alphas, lambda));
     }
-    // centre − s0 = Σ λₖ uₖ, rewritten on wₖ = sₖ − s0 from the last direction
-    // down: λₖ uₖ = λₖ wₖ − Σᵢ λₖ αₖᵢ uᵢ. The weights are μₖ and 1 − Σ μₖ.
-    let mut coef: Vec<Q> = basis.iter().map(|(_, _, _, l)| l.clone()).collect();
-    let mut total = Q::ZERO;
-    for k in (0..basis.len()).rev() {
-        let mu = coef[k].clone();
-        if mu < Q::ZERO {
-            return None;
-        }
-        for (i, a) in basis[k].2.iter().enumerate() {
-            coef[i] -= &mu * a;
-        }
-        total += mu;
-    }
-    if total > Q::ONE {
+    let g: Vec<Vec<IBig>> = kept.iter().map(|a| kept.iter().map(|b| idot(a, b)).collect()).collect();
+    let b: Vec<IBig> = kept.iter().map(|w| idot(w, w)).collect();
+    let d = det(&g);
+    let n: Vec<IBig> = (0..kept.len())
+        .map(|i| {
+            let replaced: Vec<Vec<IBig>> = g
+                .iter()
+                .zip(&b)
+                .map(|(row, bj)| {
+                    row.iter().enumerate().map(|(c, x)| if c == i { bj.clone() } else { x.clone() }).collect()
+                })
+                .collect();
+            det(&replaced)
+        })
+        .collect();
+    let two_d = &d * IBig::from(2u8);
+    let total = n.iter().fold(IBig::ZERO, |acc, x| acc + x);
+    if n.iter().any(|x| *x < IBig::ZERO) || total > two_d {
         return None;
     }
-    let ball = ExactBall::new(center, r2, cloud.frame, cloud.denominator_bits);
-    points.iter().all(|p| ball.contains(p)).then_some((ball.center, ball.r2))
+    let c: [IBig; 3] =
+        std::array::from_fn(|k| kept.iter().zip(&n).fold(&two_d * &s0[k], |acc, (w, ni)| acc + ni * &w[k]));
+    let off: [IBig; 3] = std::array::from_fn(|k| &c[k] - &two_d * &s0[k]);
+    let den = UBig::try_from(two_d).ok()? << bits;
+    let center: V3 = std::array::from_fn(|k| Q::from_parts(c[k].clone(), den.clone()));
+    let r2 = Q::from_parts(idot(&off, &off), &den * &den);
+    let ball = ExactBall::new(center, r2, cloud.frame, bits);
+    cloud.points.iter().all(|p| ball.contains(p)).then_some((ball.center, ball.r2))
+}
+
+/// `a·b` of integer vectors.
+fn idot(a: &[IBig; 3], b: &[IBig; 3]) -> IBig {
+    &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
+}
+
+/// The Gram determinant of up to three integer vectors: 0 exactly when they
+/// are linearly dependent (1 for none).
+fn gram_det(vs: &[[IBig; 3]]) -> IBig {
+    let g: Vec<Vec<IBig>> = vs.iter().map(|a| vs.iter().map(|b| idot(a, b)).collect()).collect();
+    det(&g)
+}
+
+/// The determinant of a square integer matrix of order 0 to 3 (1 for order 0).
+fn det(m: &[Vec<IBig>]) -> IBig {
+    match m.len() {
+        0 => IBig::ONE,
+        1 => m[0][0].clone(),
+        2 => &m[0][0] * &m[1][1] - &m[0][1] * &m[1][0],
+        _ => {
+            let minor = |a: usize, b: usize| &m[1][a] * &m[2][b] - &m[1][b] * &m[2][a];
+            &m[0][0] * minor(1, 2) - &m[0][1] * minor(0, 2) + &m[0][2] * minor(0, 1)
+        }
+    }
 }
 
 /// The minimal ball by the two stages: the floating-point candidate when its
@@ -479,6 +565,7 @@ pub fn enclosure_margin(ball: &Ball, points: &[P3]) -> Result<f64, RefereeError>
 mod tests {
     use super::*;
     use crate::referee::exact::within_ulps;
+    use dashu::base::AbsOrd;
     use proptest::prelude::*;
 
     /// Expectations are exact dyadic numbers or IEEE-correctly-rounded square
@@ -502,6 +589,62 @@ mod tests {
             let w = sub(&v3(p, "p").unwrap(), center);
             dot(&w, &w) <= *r2
         })
+    }
+
+    /// The cloud read from `f64` bits is the cloud read through rationals:
+    /// the same frame, common denominator, `f64` images and integer vectors,
+    /// on values from the smallest subnormal to `MAX`, signed, and zero.
+    #[test]
+    fn referee_cloud_from_bits_is_the_rational_one() {
+        let mut values = vec![0.0, -0.0, 1.0, -1.5, 0.1, f64::MAX, -f64::MAX, f64::MIN_POSITIVE, 3e-310];
+        values.extend([f64::from_bits(1), -f64::from_bits(7), 2f64.powi(-1000), 1e300, -7.25e-200, 123456.789]);
+        let mut state = 7u64;
+        for _ in 0..200 {
+            let bits = splitmix(&mut state);
+            let x = f64::from_bits(bits);
+            if x.is_finite() {
+                values.push(x);
+            }
+        }
+        for chunk in values.chunks(5).chain([&values[..1], &values[9..11], &values[1..2]]) {
+            let points: Vec<P3> = chunk.iter().map(|&x| [x, x * 0.5, -x]).collect();
+            let cloud = cloud(&points).expect("finite");
+            let exact: Vec<V3> = points.iter().map(|p| v3(p, "a.points").expect("finite")).collect();
+            let largest = exact.iter().flatten().max_by(|a, b| (*a).abs_cmp(*b)).cloned().unwrap_or(Q::ZERO);
+            let frame = if largest.is_zero() {
+                0
+            } else {
+                let (num, den) = largest.into_parts();
+                den.bit_len() as isize - num.unsigned_abs().bit_len() as isize
+            };
+            let bits = exact.iter().flatten().map(|x| x.denominator().bit_len() - 1).max().unwrap_or(0);
+            assert_eq!((cloud.frame, cloud.denominator_bits), (frame, bits), "{chunk:?}");
+            for (point, e) in cloud.points.iter().zip(&exact) {
+                assert_eq!(point.exact(), e);
+                for k in 0..3 {
+                    let approx = round(&shift(&e[k], frame));
+                    assert_eq!(point.approx[k].to_bits(), approx.to_bits(), "{chunk:?}");
+                    let (num, den) = e[k].clone().into_parts();
+                    assert_eq!(point.int(bits)[k], num << (bits - (den.bit_len() - 1)), "{chunk:?}");
+                }
+            }
+        }
+    }
+
+    /// The certificate refuses a support whose circumcentre lies outside its
+    /// hull — whichever point comes first, so both the weights' signs and
+    /// their sum are checked — and accepts the true support.
+    #[test]
+    fn referee_certificate_refuses_a_centre_outside_the_support() {
+        // An obtuse triangle: the ball through all three is centred far below
+        // it; the minimal ball is AB's (centre 0, radius 1), which holds C.
+        let points = [[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.125, 0.0]];
+        let cloud = cloud(&points).expect("finite");
+        for support in [[0, 1, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]] {
+            assert!(certified(&cloud, &support).is_none(), "support {support:?}");
+        }
+        let (center, r2) = certified(&cloud, &[0, 1]).expect("AB's ball is the minimal one");
+        assert!(center.iter().all(Q::is_zero) && r2 == Q::ONE, "{center:?} {r2:?}");
     }
 
     #[test]
@@ -677,12 +820,12 @@ mod tests {
             let support: Vec<usize> = (0..points.len().min(4)).collect();
             let ball = ball_through(&support, &cloud.points, cloud.frame, cloud.denominator_bits).unwrap();
             for (p, point) in points.iter().zip(&cloud.points) {
-                let w = sub(&point.exact, &ball.center);
+                let w = sub(point.exact(), &ball.center);
                 prop_assert_eq!(ball.contains(point), dot(&w, &w) <= ball.r2, "point {:?}", p);
             }
             // The first support point is on the sphere by construction (later ones
             // too unless affinely dependent on earlier ones, which are skipped).
-            let w = sub(&cloud.points[0].exact, &ball.center);
+            let w = sub(cloud.points[0].exact(), &ball.center);
             prop_assert!(dot(&w, &w) == ball.r2, "first support point on the sphere");
         }
 
