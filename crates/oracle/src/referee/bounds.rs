@@ -621,10 +621,10 @@ mod tests {
             assert_eq!((cloud.frame, cloud.denominator_bits), (frame, bits), "{chunk:?}");
             for (point, e) in cloud.points.iter().zip(&exact) {
                 assert_eq!(point.exact(), e);
-                for k in 0..3 {
-                    let approx = round(&shift(&e[k], frame));
+                for (k, ek) in e.iter().enumerate() {
+                    let approx = round(&shift(ek, frame));
                     assert_eq!(point.approx[k].to_bits(), approx.to_bits(), "{chunk:?}");
-                    let (num, den) = e[k].clone().into_parts();
+                    let (num, den) = ek.clone().into_parts();
                     assert_eq!(point.int(bits)[k], num << (bits - (den.bit_len() - 1)), "{chunk:?}");
                 }
             }
