@@ -247,6 +247,42 @@ fn pairs_outside_the_capabilities_are_unsupported_without_a_message() {
 }
 
 #[test]
+fn engines_asked_side_by_side_answer_as_each_does_alone() {
+    // Two process engines in one run are asked side by side (docs/PROTOCOL.md,
+    // `batch`), with two threads even on a one-core machine: one restarts after
+    // every batch, the other answers every case. Each must get the verdicts it
+    // gets alone: no answer, fault or restart crosses from one to the other.
+    let py = format!("python3 {ROOT}/engines/python-reference/engine.py");
+    let faulty = script("exits_mid_batch");
+    let files = ["fixtures/overlap.json", "fixtures/contact.json"];
+    let run = |engines: &str, specs: &[String]| {
+        let mut args = vec!["check", "--json", "--engines", engines, "--engine-batch", "2"];
+        for s in specs {
+            args.extend(["--engine", s.as_str()]);
+        }
+        args.extend(files);
+        let child = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+            .current_dir(ROOT)
+            .env("RAYON_NUM_THREADS", "2")
+            .args(&args)
+            .output()
+            .expect("crashtest runs");
+        let out = String::from_utf8_lossy(&child.stdout).to_string();
+        serde_json::from_str::<Value>(&out).unwrap_or_else(|e| panic!("not JSON ({e}):\n{out}"))
+    };
+    let (x, y) = (format!("x={py}"), format!("y={faulty}"));
+    let both = run("collide/robust,x,y", &[x.clone(), y.clone()]);
+    let x_alone = run("collide/robust,x", &[x]);
+    let y_alone = run("collide/robust,y", &[y]);
+    let (bx, by) = (verdicts(&both, "x"), verdicts(&both, "y"));
+    assert!(count(&bx, "agree", "") >= 20 && count(&bx, "failed", "") == 0, "{bx:?}");
+    assert!(count(&by, "failed", "the engine exited") > 0, "the faulty engine fails batches: {by:?}");
+    assert_eq!(bx, verdicts(&x_alone, "x"));
+    assert_eq!(by, verdicts(&y_alone, "y"));
+    collide_unaffected(&both);
+}
+
+#[test]
 fn the_python_reference_engine_is_judged_beside_collide() {
     let py = format!("python3 {ROOT}/engines/python-reference/engine.py");
     let files = [

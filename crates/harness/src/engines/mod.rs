@@ -183,14 +183,34 @@ impl EngineSet {
     }
 
     /// Lets every process engine of the set answer `cases` in batches before
-    /// they are judged one by one.
+    /// they are judged one by one. The engines are separate processes, so they
+    /// are asked side by side, as many at a time as the run has threads
+    /// ([`prefetch_threads`]): a thread takes the next engine not yet asked
+    /// until none is left. Each engine keeps its own answers, so the result is
+    /// the same in any order.
     pub fn prefetch<'a, I>(&self, cases: I)
     where
         I: IntoIterator<Item = &'a crate::load::LoadedCase> + Clone,
     {
-        for e in &self.judged {
-            e.prefetch(cases.clone());
+        let process: Vec<&Engine> = self.judged.iter().filter(|e| e.process().is_some()).collect();
+        let threads = prefetch_threads(process.len());
+        if threads <= 1 {
+            for e in process {
+                e.prefetch(cases.clone());
+            }
+            return;
         }
+        let cases: Vec<&crate::load::LoadedCase> = cases.into_iter().collect();
+        let next = std::sync::atomic::AtomicUsize::new(0);
+        std::thread::scope(|scope| {
+            for _ in 0..threads {
+                scope.spawn(|| {
+                    while let Some(e) = process.get(next.fetch_add(1, std::sync::atomic::Ordering::Relaxed)) {
+                        e.prefetch(cases.iter().copied());
+                    }
+                });
+            }
+        });
     }
 
     /// Marks `cases` as answers the process engines keep when they forget.
@@ -221,6 +241,15 @@ impl EngineSet {
     pub fn get(&self, name: &str) -> Option<&Engine> {
         self.judged.iter().find(|e| e.name == name)
     }
+}
+
+/// How many process engines are asked at a time, of `engines`: one per thread
+/// of the run (rayon's count, which `RAYON_NUM_THREADS` sets), at most one per
+/// engine. A process engine times its own calls (docs/PROTOCOL.md), so two
+/// engines on two cores do not slow each other's figures the way two on one
+/// core would; no more run at once than there are threads.
+pub fn prefetch_threads(engines: usize) -> usize {
+    rayon::current_num_threads().min(engines).max(1)
 }
 
 /// The built-in engines named in `list` (comma-separated, or `all`), in order.
