@@ -100,13 +100,18 @@ def run_world(world, msg):
 
 
 def serve(name, version, precision, handlers, provenance, pair_precision=None, world=None,
-          reproductions=None):
+          reproductions=None, prepare=None):
     """Answers crashtest on standard input and output until `shutdown`.
     `pair_precision` maps a pair, (query, a, b), to the bits of mantissa it is
     answered in where that is not `precision` (a mesh stored in f32: 24).
     `world`, when given, steps a `world` message (docs/PROTOCOL.md, "`world`").
     `reproductions` maps a pair (b None for bounds) to a Python script with
-    placeholders (the module's docstring), sent in the hello."""
+    placeholders (the module's docstring), sent in the hello.
+    `prepare`, when given, is called with a batch's cases (the JSON objects
+    among them) before they are answered one by one: an adapter may start work
+    on several at once there, and its handlers then hand back what it found.
+    An exception it raises is written to standard error and the batch is
+    answered case by case as without it."""
     pair_precision = pair_precision or {}
     repros = [{"query": q, "a": a, **({"b": b} if b else {}), "language": "python", "script": script}
               for (q, a, b), script in (reproductions or {}).items()]
@@ -128,6 +133,11 @@ def serve(name, version, precision, handlers, provenance, pair_precision=None, w
                   **({"worlds": True} if world else {}),
                   **({"reproductions": repros} if repros else {})})
         elif kind == "batch":
+            if prepare:
+                try:
+                    prepare([c for c in msg.get("cases", []) if isinstance(c, dict)])
+                except Exception as exc:
+                    print(f"{name}: preparing batch {msg.get('id')}: {type(exc).__name__}: {exc}", file=sys.stderr)
             answers = []
             for c in msg.get("cases", []):
                 answers.append(answer(handlers, c) if isinstance(c, dict) else {"error": "a case is a JSON object"})

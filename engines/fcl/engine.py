@@ -48,6 +48,8 @@ CCD_REQUEST = dict(num_max_iterations=10, toc_err=1e-4,
                    ccd_motion_type=fcl.CCDMotionType.CCDM_TRANS,
                    gjk_solver_type=fcl.GJKSolverType.GST_INDEP,
                    ccd_solver_type=fcl.CCDSolverType.CCDC_CONSERVATIVE_ADVANCEMENT)
+WORKERS = max(1, min(4, len(os.sched_getaffinity(0))))  # a batch's toi cases run in this many
+#                                                          forked workers at once (below, "toi")
 DISTANCE_REQUEST = dict(enable_nearest_points=True, gjk_solver_type=fcl.GJKSolverType.GST_INDEP)
 
 PROVENANCE = {
@@ -79,6 +81,7 @@ PROVENANCE = {
     "toi crash containment": "each toi case runs in a forked child (os.fork), which returns its answer and "
                              "the ns of its FCL calls through a pipe; a child killed by a signal is that "
                              "case's error, naming the FCL call",
+    "toi workers": f"{WORKERS} forked children at once (one per core, at most 4), each on one case at a time",
     "stdout": "fd 1 redirected to stderr before import; protocol on a duplicate of fd 1",
 }
 
@@ -337,89 +340,158 @@ def worker_loop(rfd, wfd):
                 emit({"exception": [type(exc).__name__, str(exc)]})
 
 
-_worker = None  # (pid, the write end of its case pipe, a reader of its answers)
+class Worker:
+    """One forked worker (`worker_loop`): its pid, the write end of its case pipe, the
+    read end of its answers with what has arrived of a line, the case it is on (an index
+    into the cases being run, None when idle), the FCL call it last named, and the time
+    by which it must have said something."""
 
+    def __init__(self, siblings):
+        to_r, to_w = os.pipe()
+        from_r, from_w = os.pipe()
+        pid = os.fork()
+        if pid == 0:  # the worker: never returns
+            status = 0
+            try:
+                # The other workers' pipe ends are the engine's alone: a worker keeping a
+                # sibling's case pipe open would keep that sibling waiting for cases after
+                # the engine closed its end, and every fork would inherit more of them.
+                for fd in siblings:
+                    os.close(fd)
+                os.close(to_w)
+                os.close(from_r)
+                worker_loop(to_r, from_w)
+            except BaseException:
+                status = 1
+            finally:
+                os._exit(status)
+        os.close(to_r)
+        os.close(from_w)
+        self.pid, self.to_w, self.fd, self.buf = pid, to_w, from_r, b""
+        self.case, self.stage, self.deadline = None, None, None
 
-def start_worker():
-    to_r, to_w = os.pipe()
-    from_r, from_w = os.pipe()
-    pid = os.fork()
-    if pid == 0:  # the worker: never returns
-        status = 0
-        try:
-            os.close(to_w)
-            os.close(from_r)
-            worker_loop(to_r, from_w)
-        except BaseException:
-            status = 1
-        finally:
-            os._exit(status)
-    os.close(to_r)
-    os.close(from_w)
-    return pid, to_w, LineReader(from_r)
+    def send(self, index, case):
+        os.write(self.to_w, (json.dumps(case, allow_nan=False) + "\n").encode())
+        self.case, self.stage = index, "the adapter"
+        self.deadline = time.monotonic() + CHILD_TIMEOUT
 
+    def read(self):
+        """What has arrived: its complete lines as JSON, and whether the worker is gone (EOF)."""
+        chunk = os.read(self.fd, 65536)
+        if not chunk:
+            return [], True
+        self.buf += chunk
+        *done, self.buf = self.buf.split(b"\n")
+        return [json.loads(line) for line in done], False
 
-def stop_worker(kill):
-    global _worker
-    pid, to_w, reader = _worker
-    _worker = None
-    if kill:
-        os.kill(pid, signal.SIGKILL)
-    os.close(to_w)
-    reader.close()
-    return os.waitpid(pid, 0)[1]
-
-
-class LineReader:
-    """The worker's answers, a line at a time, with a time limit (select on the fd)."""
-
-    def __init__(self, fd):
-        self.fd, self.buf = fd, b""
-
-    def line(self, timeout):
-        """The next line as JSON, or None at EOF; TimeoutError after `timeout` s of silence."""
-        while b"\n" not in self.buf:
-            ready, _, _ = select.select([self.fd], [], [], timeout)
-            if not ready:
-                raise TimeoutError
-            chunk = os.read(self.fd, 65536)
-            if not chunk:
-                return None
-            self.buf += chunk
-        line, self.buf = self.buf.split(b"\n", 1)
-        return json.loads(line)
-
-    def close(self):
+    def end(self, kill):
+        """Ends the worker (SIGKILL first when `kill`) and returns its wait status."""
+        if kill:
+            os.kill(self.pid, signal.SIGKILL)
+        os.close(self.to_w)
         os.close(self.fd)
+        return os.waitpid(self.pid, 0)[1]
+
+
+_pool = []      # the live workers, kept from batch to batch
+_prepared = {}  # id(case) -> its outcome, from `prepare`, for `toi` to hand back
+
+
+def crash_text(status, stage):
+    if os.WIFSIGNALED(status):
+        sig = os.WTERMSIG(status)
+        return f"FCL crashed (signal {sig}, {signal.Signals(sig).name}) in {stage}"
+    return f"the FCL worker exited (status {os.waitstatus_to_exitcode(status)}) in {stage}"
+
+
+def run_toi(cases):
+    """Runs toi `cases` in the workers, up to WORKERS at a time, each worker one case at a
+    time: per case ("answer", answer, ns), ("exception", type name, text) or ("crash",
+    message). A worker that dies is that case's crash and is replaced by a new fork; one
+    silent for CHILD_TIMEOUT is killed and replaced."""
+    out = [None] * len(cases)
+    todo = list(range(len(cases) - 1, -1, -1))  # popped from the end: case order
+    busy = {}  # read fd -> the worker on a case
+
+    def fork():
+        w = Worker([fd for v in _pool for fd in (v.to_w, v.fd)])
+        _pool.append(w)
+        return w
+
+    def feed(w):
+        if todo:
+            i = todo.pop()
+            w.send(i, cases[i])
+            busy[w.fd] = w
+
+    def done(w, outcome):
+        out[w.case] = outcome
+        w.case = None
+        del busy[w.fd]
+        feed(w)
+
+    def replace(w, status_of, outcome):
+        if w.case is not None:
+            out[w.case] = outcome(status_of(w))
+        busy.pop(w.fd, None)
+        _pool.remove(w)
+        if todo:
+            feed(fork())
+
+    while len(_pool) < min(WORKERS, len(cases)):
+        fork()
+    for w in list(_pool):
+        feed(w)
+    while busy:
+        wait = max(0.0, min(w.deadline for w in busy.values()) - time.monotonic())
+        ready, _, _ = select.select(list(busy), [], [], wait)
+        if not ready:
+            for w in [w for w in busy.values() if w.deadline <= time.monotonic()]:
+                stage = w.stage
+                replace(w, lambda v: v.end(kill=True), lambda _s, stage=stage: (
+                    "crash", f"FCL did not answer within {CHILD_TIMEOUT:g} s in {stage} (the worker was killed)"))
+            continue
+        for fd in ready:
+            w = busy.get(fd)
+            if w is None:
+                continue
+            msgs, gone = w.read()
+            for msg in msgs:
+                if "stage" in msg:
+                    w.stage = msg["stage"]
+                elif "exception" in msg:
+                    done(w, ("exception", *msg["exception"]))
+                else:
+                    done(w, ("answer", msg["result"]["answer"], msg["result"]["ns"]))
+            if gone:
+                stage = w.stage
+                replace(w, lambda v: v.end(kill=False), lambda status, stage=stage: ("crash", crash_text(status, stage)))
+    return out
+
+
+def prepare(cases):
+    """A batch's toi cases, run in the workers side by side before they are answered one
+    by one (crashtest_engine.serve's `prepare`); `toi` hands each case's outcome back."""
+    _prepared.clear()
+    mine = []
+    for c in cases:
+        try:
+            if HANDLERS.get(crashtest_engine.pair_of(c)) is toi:
+                mine.append(c)
+        except Exception:
+            pass  # a malformed case: answered (with its error) one by one
+    for c, outcome in zip(mine, run_toi(mine) if mine else []):
+        _prepared[id(c)] = outcome
 
 
 def toi(case):
-    global _worker
-    if _worker is None:
-        _worker = start_worker()
-    pid, to_w, reader = _worker
-    os.write(to_w, (json.dumps(case, allow_nan=False) + "\n").encode())
-    stage = "the adapter"
-    while True:
-        try:
-            msg = reader.line(CHILD_TIMEOUT)
-        except TimeoutError:
-            stop_worker(kill=True)
-            raise EngineCrash(f"FCL did not answer within {CHILD_TIMEOUT:g} s in {stage} (the worker was killed)")
-        if msg is None:  # EOF: the worker died in this case
-            status = stop_worker(kill=False)
-            if os.WIFSIGNALED(status):
-                sig = os.WTERMSIG(status)
-                raise EngineCrash(f"FCL crashed (signal {sig}, {signal.Signals(sig).name}) in {stage}")
-            raise EngineCrash(f"the FCL worker exited (status {os.waitstatus_to_exitcode(status)}) in {stage}")
-        if "stage" in msg:
-            stage = msg["stage"]
-        elif "exception" in msg:
-            name, text = msg["exception"]
-            raise type(name, (Exception,), {})(text)  # shown as it would be in-process
-        else:
-            charge(msg["result"]["ns"])
-            return msg["result"]["answer"]
+    outcome = _prepared.pop(id(case), None) or run_toi([case])[0]
+    if outcome[0] == "answer":
+        charge(outcome[2])
+        return outcome[1]
+    if outcome[0] == "exception":
+        raise type(outcome[1], (Exception,), {})(outcome[2])  # shown as it would be in-process
+    raise EngineCrash(outcome[1])
 
 
 HANDLERS = {
@@ -438,4 +510,4 @@ HANDLERS = {
 
 if __name__ == "__main__":
     sys.exit(serve("fcl", package_version("python-fcl"), 53, HANDLERS, PROVENANCE,
-                   reproductions=reproductions(HANDLERS)))
+                   reproductions=reproductions(HANDLERS), prepare=prepare))

@@ -116,6 +116,42 @@ fn fcl_is_judged_as_recorded() {
 }
 
 #[test]
+fn fcl_toi_workers_side_by_side_answer_as_one_case_at_a_time() {
+    // FCL's toi cases run in forked workers, several at once within a batch
+    // (engines/fcl/README.md, "toi"); a crash is the case's own. A batch of
+    // one case uses one worker; batches of many use them all. The verdicts,
+    // crashes included, must be the same either way.
+    let (code, cases, err) = crashtest(&["cases", "--only", "toi", "--count", "240"]);
+    assert_eq!(code, 0, "{err}");
+    let file = std::env::temp_dir().join(format!("crashtest-fcl-workers-{}.json", std::process::id()));
+    std::fs::write(&file, cases).expect("writes the cases");
+    let fcl = peer("fcl");
+    let spec = format!("fcl={} {}", fcl.spec.program, fcl.spec.args.join(" "));
+    let verdicts = |batch: &str| {
+        let args = ["check", "--json", "--engines", "collide/robust,fcl", "--engine", &spec, "--engine-batch", batch];
+        let (code, out, err) = crashtest(&[&args[..], &[file.to_str().expect("path")]].concat());
+        assert!(code == 0 || code == 1, "check exited {code}:\n{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).expect("check --json");
+        v["cases"]
+            .as_array()
+            .expect("cases")
+            .iter()
+            .map(|c| {
+                let r = c["engines"].as_array().and_then(|es| es.iter().find(|e| e["engine"] == "fcl")).expect("fcl");
+                (c["name"].to_string(), r["verdict"].to_string(), r["reason"].to_string())
+            })
+            .collect::<Vec<_>>()
+    };
+    let (one, many) = (verdicts("1"), verdicts("240"));
+    std::fs::remove_file(&file).ok();
+    let crashes = |v: &[(String, String, String)]| v.iter().filter(|(_, _, r)| r.contains("FCL crashed")).count();
+    assert!(crashes(&many) > 0, "the cases include crashes: {many:?}");
+    assert_eq!(one.len(), 240);
+    let differ: Vec<_> = one.iter().zip(&many).filter(|(a, b)| a != b).collect();
+    assert!(differ.is_empty(), "{} of 240 differ: {:?}", differ.len(), &differ[..differ.len().min(5)]);
+}
+
+#[test]
 fn coal_is_judged_as_recorded() {
     judged_as_recorded("coal");
 }
