@@ -126,6 +126,14 @@ pub struct ProcessInfo {
     pub timeout_seconds: f64,
     /// Every fault met, in order (at most the first 100).
     pub faults: Vec<String>,
+    /// Cases sent to it in this run (unsupported pairs are answered without
+    /// asking and not counted).
+    #[serde(default)]
+    pub cases_sent: u64,
+    /// Wall time spent exchanging those cases with it (writing, its work,
+    /// reading), in seconds: where a run's time went, engine by engine.
+    #[serde(default)]
+    pub seconds_sent: f64,
 }
 
 /// A running engine process.
@@ -151,6 +159,8 @@ struct State {
     down: Option<String>,
     next_id: u64,
     faults: Vec<String>,
+    cases_sent: u64,
+    seconds_sent: f64,
 }
 
 /// A process engine. Calls are serialized (one process answers one batch at a
@@ -183,6 +193,8 @@ impl ProcessEngine {
                 down: None,
                 next_id: 1,
                 faults: Vec::new(),
+                cases_sent: 0,
+                seconds_sent: 0.0,
             }),
             memo: Mutex::new(HashMap::with_hasher(KeyHasher::default())),
             kept: Mutex::new(HashSet::with_hasher(KeyHasher::default())),
@@ -223,6 +235,8 @@ impl ProcessEngine {
             down: st.down.clone(),
             timeout_seconds: self.spec.timeout.as_secs_f64(),
             faults: st.faults.clone(),
+            cases_sent: st.cases_sent,
+            seconds_sent: st.seconds_sent,
         }
     }
 
@@ -381,6 +395,8 @@ impl ProcessEngine {
         }
         // Each batch's answers are kept as they come, while the engine answers
         // the next one.
+        let start = Instant::now();
+        st.cases_sent += sent.len() as u64;
         let got = self.exchange_all(&mut st, batches, |batch, answers| {
             if keep {
                 let mut memo = lock(&self.memo);
@@ -391,6 +407,7 @@ impl ProcessEngine {
                 }
             }
         });
+        st.seconds_sent += start.elapsed().as_secs_f64();
         drop(st);
         for (&i, r) in sent.iter().zip(got) {
             replies[i] = Some(r);

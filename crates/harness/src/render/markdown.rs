@@ -275,10 +275,12 @@ fn process_line(p: &crate::protocol::client::ProcessInfo) -> String {
         }
     }
     out.push_str(&format!(
-        "; times measured inside the engine; time limit {} s per batch; {} restart{}",
+        "; times measured inside the engine; time limit {} s per batch; {} restart{}; {} cases sent, exchanged in {:.1} s of wall time",
         p.timeout_seconds,
         p.restarts,
-        if p.restarts == 1 { "" } else { "s" }
+        if p.restarts == 1 { "" } else { "s" },
+        p.cases_sent,
+        p.seconds_sent
     ));
     if let Some(d) = &p.down {
         out.push_str(&format!("; DOWN: {d}"));

@@ -592,7 +592,6 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
         }
     }
     let mut provenance = provenance;
-    provenance.engines = engine_infos(judged);
     provenance.missing_engines = set.missing.clone();
     provenance.seed = config.seed;
     provenance.cases_per_query = config.cases_per_query;
@@ -606,6 +605,8 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     } else {
         Vec::new()
     };
+    // After the sections: a process engine's counts cover the whole run.
+    provenance.engines = engine_infos(judged);
     provenance.wall_seconds = wall.elapsed().as_secs_f64();
     provenance.phases = phases.0;
     provenance.referee_stages = referee_stages;

@@ -423,9 +423,21 @@ impl Merging {
             out.provenance.wall_seconds = 0.0;
             out.provenance.phases.clear();
             out.provenance.referee_stages.clear();
+            for p in out.provenance.engines.iter_mut().filter_map(|e| e.process.as_mut()) {
+                p.cases_sent = 0;
+                p.seconds_sent = 0.0;
+            }
             out.discrepancies = 0;
             out
         });
+        // A process engine's exchanges are every shard's.
+        for e in &s.provenance.engines {
+            let into = out.provenance.engines.iter_mut().find(|x| x.name == e.name).and_then(|x| x.process.as_mut());
+            if let (Some(p), Some(into)) = (&e.process, into) {
+                into.cases_sent += p.cases_sent;
+                into.seconds_sent += p.seconds_sent;
+            }
+        }
         for st in &s.full_range {
             fold_stats(&mut self.full_order, &mut self.full, st);
         }
