@@ -430,13 +430,15 @@ def run_toi(cases):
         del busy[w.fd]
         feed(w)
 
-    def replace(w, status_of, outcome):
-        if w.case is not None:
-            out[w.case] = outcome(status_of(w))
+    def retire(w, kill):
+        """Ends `w` (out of `busy` first: its fd number may come back with the next fork),
+        forks its successor while cases remain, and returns its wait status."""
         busy.pop(w.fd, None)
         _pool.remove(w)
+        status = w.end(kill)
         if todo:
             feed(fork())
+        return status
 
     while len(_pool) < min(WORKERS, len(cases)):
         fork()
@@ -447,9 +449,9 @@ def run_toi(cases):
         ready, _, _ = select.select(list(busy), [], [], wait)
         if not ready:
             for w in [w for w in busy.values() if w.deadline <= time.monotonic()]:
-                stage = w.stage
-                replace(w, lambda v: v.end(kill=True), lambda _s, stage=stage: (
-                    "crash", f"FCL did not answer within {CHILD_TIMEOUT:g} s in {stage} (the worker was killed)"))
+                i, stage = w.case, w.stage
+                retire(w, kill=True)
+                out[i] = ("crash", f"FCL did not answer within {CHILD_TIMEOUT:g} s in {stage} (the worker was killed)")
             continue
         for fd in ready:
             w = busy.get(fd)
@@ -463,9 +465,11 @@ def run_toi(cases):
                     done(w, ("exception", *msg["exception"]))
                 else:
                     done(w, ("answer", msg["result"]["answer"], msg["result"]["ns"]))
-            if gone:
-                stage = w.stage
-                replace(w, lambda v: v.end(kill=False), lambda status, stage=stage: ("crash", crash_text(status, stage)))
+            if gone:  # it died in its case
+                i, stage = w.case, w.stage
+                status = retire(w, kill=False)
+                if i is not None:
+                    out[i] = ("crash", crash_text(status, stage))
     return out
 
 
@@ -480,7 +484,7 @@ def prepare(cases):
                 mine.append(c)
         except Exception:
             pass  # a malformed case: answered (with its error) one by one
-    for c, outcome in zip(mine, run_toi(mine) if mine else []):
+    for c, outcome in zip(mine, run_toi(mine)):
         _prepared[id(c)] = outcome
 
 

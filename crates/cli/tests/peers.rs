@@ -123,12 +123,11 @@ fn fcl_toi_workers_side_by_side_answer_as_one_case_at_a_time() {
     // crashes included, must be the same either way.
     let (code, cases, err) = crashtest(&["cases", "--only", "toi", "--count", "240"]);
     assert_eq!(code, 0, "{err}");
-    let file = std::env::temp_dir().join(format!("crashtest-fcl-workers-{}.json", std::process::id()));
+    let file = Path::new(env!("CARGO_TARGET_TMPDIR")).join("fcl-workers.json");
     std::fs::write(&file, cases).expect("writes the cases");
-    let fcl = peer("fcl");
-    let spec = format!("fcl={} {}", fcl.spec.program, fcl.spec.args.join(" "));
+    peer("fcl");
     let verdicts = |batch: &str| {
-        let args = ["check", "--json", "--engines", "collide/robust,fcl", "--engine", &spec, "--engine-batch", batch];
+        let args = ["check", "--json", "--engines", "collide/robust,fcl", "--engine-batch", batch];
         let (code, out, err) = crashtest(&[&args[..], &[file.to_str().expect("path")]].concat());
         assert!(code == 0 || code == 1, "check exited {code}:\n{err}");
         let v: serde_json::Value = serde_json::from_str(&out).expect("check --json");
