@@ -10,6 +10,15 @@
 //! At the end a table of mean ns per query, the ratio exact / staged, and the
 //! target (at least [`TARGET_RATIO`] for every kind) is printed and written to
 //! `target/criterion/crashtest-referee-table.md`.
+//!
+//! **The ceiling.** A case the stages cannot finish (the stage counters show
+//! exact work for it, or no stage answered any of it) costs the staged
+//! referee at least what it costs the exact stage alone. Those cases are timed
+//! on their own, staged (`staged-left`), and the table gives the ratio the
+//! stages would reach if their work on every other case cost nothing:
+//! `exact time of the mix / staged time of the cases left`. A kind whose
+//! ceiling is below the target cannot meet it without a faster exact stage (or
+//! a finer fallback) for the cases it leaves; the table names their pairs.
 
 #[path = "shared/criterion.rs"]
 #[allow(
@@ -46,6 +55,28 @@ fn cases(q: harness::case::Query) -> Vec<LoadedCase> {
     out
 }
 
+/// Splits `inputs` into the cases the floating-point stages finish and those
+/// left, wholly or in part, to the exact stage: a case is left when running it
+/// staged counts any exact answer, or no stage answer at all (a kind with no
+/// stage, like overlap, whose exact stage is already plain comparisons).
+fn left_to_exact(inputs: &[LoadedCase], truth: impl Fn(&LoadedCase)) -> Vec<LoadedCase> {
+    let counts = || {
+        oracle::referee::stage_counts_on_this_thread()
+            .iter()
+            .fold((0, 0), |(f, e), &(_, fast, exact)| (f + fast, e + exact))
+    };
+    inputs
+        .iter()
+        .filter(|lc| {
+            let (f0, e0) = counts();
+            truth(lc);
+            let (f1, e1) = counts();
+            e1 > e0 || f1 == f0
+        })
+        .cloned()
+        .collect()
+}
+
 fn main() {
     let since = SystemTime::now();
     let mut c = Criterion::default().configure_from_args().sample_size(10).measurement_time(Duration::from_secs(3));
@@ -54,29 +85,61 @@ fn main() {
     let mut rows = Vec::new();
     for q in CAMPAIGN_QUERIES {
         let inputs = cases(q);
+        let left = left_to_exact(&inputs, |lc| {
+            truth(lc);
+        });
         let group = format!("referee-{q}");
         let mut g = c.benchmark_group(&group);
         run(&mut g, "staged", &inputs, truth);
         run(&mut g, "exact", &inputs, |lc| oracle::referee::exact_only(|| truth(lc)));
+        if !left.is_empty() {
+            run(&mut g, "staged-left", &left, truth);
+        }
         g.finish();
         let staged = ns_per(&group, "staged", inputs.len(), since);
         let exact = ns_per(&group, "exact", inputs.len(), since);
-        rows.push((q, inputs.len(), staged, exact));
+        // The exact time of the whole mix over the staged time of the cases
+        // left: with no case left, nothing bounds the ratio but the stages'
+        // own cost.
+        let ceiling = if left.is_empty() {
+            Some(f64::INFINITY)
+        } else {
+            ratio(exact.map(|e| e * inputs.len() as f64), ns_per(&group, "staged-left", 1, since))
+        };
+        let mut by_pair = std::collections::BTreeMap::<String, usize>::new();
+        for lc in &left {
+            *by_pair.entry(lc.case.pair().map_or_else(|| "(no pair)".into(), |p| p.to_string())).or_default() += 1;
+        }
+        let by_pair: Vec<String> = by_pair.iter().map(|(p, n)| format!("{p} {n}")).collect();
+        rows.push((q, inputs.len(), left.len(), by_pair.join(", "), staged, exact, ceiling));
     }
     c.final_summary();
     let mut table = format!(
         "# The referee's stages\n\nMean ns per query (answer and margin) over the campaign's mix, {PER_KIND} cases \
-         per kind (seed {SEED}, a tenth full-range); target: exact / staged ≥ {TARGET_RATIO} for every kind.\n\n\
-         | query | cases | staged ns | exact ns | exact / staged | target |\n| --- | ---: | ---: | ---: | ---: | --- |\n"
+         per kind (seed {SEED}, a tenth full-range); target: exact / staged ≥ {TARGET_RATIO} for every kind. \
+         \"left\" counts the cases the floating-point stages leave, wholly or in part, to the exact stage; \
+         \"ceiling\" is the exact time of the whole mix over the staged time of those cases alone: the ratio the \
+         stages would reach if their work on every other case cost nothing.\n\n\
+         | query | cases | left | staged ns | exact ns | exact / staged | ceiling | target | left, by pair |\n\
+         | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |\n"
     );
-    for (q, n, staged, exact) in rows {
+    for (q, n, left, by_pair, staged, exact, ceiling) in rows {
         let x = ratio(exact, staged);
         let verdict = match x {
             Some(x) if x >= TARGET_RATIO => "met",
             Some(_) => "not met",
             None => "not measured",
         };
-        table.push_str(&format!("| {q} | {n} | {} | {} | {} | {verdict} |\n", cell(staged), cell(exact), cell(x)));
+        let ceiling = match ceiling {
+            Some(c) if c.is_infinite() => "none".to_string(),
+            c => cell(c),
+        };
+        table.push_str(&format!(
+            "| {q} | {n} | {left} | {} | {} | {} | {ceiling} | {verdict} | {by_pair} |\n",
+            cell(staged),
+            cell(exact),
+            cell(x)
+        ));
     }
     println!("\n{table}");
     let path = criterion_dir().join("crashtest-referee-table.md");

@@ -593,3 +593,138 @@ fn delta(before: &[(Stage, u64, u64)], now: &[(Stage, u64, u64)], stage: Stage) 
     let ((f0, e0), (f1, e1)) = (get(before), get(now));
     (e1 - e0, f1 - f0)
 }
+
+/// Every refusal is the same with the stages on as with the exact stage
+/// alone, and no stage answers a question the exact stage refuses. (The
+/// stages run after checks that make no rational; that the checks refuse as
+/// the conversions do, field for field, is `toi`'s unit test.) Each number of
+/// a valid question is set in turn to NaN, +∞ and −∞, every two of them to
+/// NaN, a radius to −1, a plane's normal to zero and a mesh's index out of
+/// range; the result, error or answer, must be the same text either way.
+#[test]
+fn refusals_name_the_same_field_with_the_stages() {
+    use oracle::geom::{P3, Plane, Sphere, Triangle};
+    use oracle::referee as r;
+    // A valid question's numbers, flat: sphere a (centre, radius), its
+    // velocity, sphere b, b's velocity, a plane (normal, offset), a
+    // triangle, t_max, two masses and a restitution; a mesh's vertices are
+    // the triangle's and a fourth point.
+    const BASE: [f64; 34] = [
+        0.0, 0.0, 3.0, 0.5, // a
+        0.0, 0.0, -2.0, // va
+        0.0, 0.25, 0.0, 1.0, // b
+        0.0, 0.0, 1.0, // vb
+        0.0, 0.0, 1.0, -1.0, // plane
+        -1.0, -1.0, 0.0, 2.0, -1.0, 0.0, -1.0, 2.0, 0.0, // triangle
+        4.0, // t_max
+        2.0, 3.0, 0.5, // masses, restitution
+        0.5, 0.5, -1.0, // the mesh's fourth vertex
+    ];
+    type Call = fn(&[f64; 34], bool) -> String;
+    fn p3(x: &[f64; 34], i: usize) -> P3 {
+        [x[i], x[i + 1], x[i + 2]]
+    }
+    fn sphere(x: &[f64; 34], i: usize) -> Sphere {
+        Sphere { center: p3(x, i), radius: x[i + 3] }
+    }
+    fn plane(x: &[f64; 34], zero: bool) -> Plane {
+        Plane { normal: if zero { [0.0; 3] } else { p3(x, 14) }, offset: x[17] }
+    }
+    fn tri(x: &[f64; 34]) -> Triangle {
+        Triangle { vertices: [p3(x, 18), p3(x, 21), p3(x, 24)] }
+    }
+    fn mesh(x: &[f64; 34], bad: bool) -> (Vec<P3>, Vec<[usize; 3]>) {
+        let t = tri(x).vertices;
+        (vec![t[0], t[1], t[2], p3(x, 31)], vec![[0, 1, 2], [0, 1, if bad { 4 } else { 3 }]])
+    }
+    let calls: [(&str, Call); 14] = [
+        ("toi sphere–sphere", |x, _| {
+            format!("{:?}", r::toi_sphere_sphere(&sphere(x, 0), &p3(x, 4), &sphere(x, 7), &p3(x, 11), x[27]))
+        }),
+        ("toi sphere–plane", |x, z| {
+            format!("{:?}", r::toi_sphere_plane(&sphere(x, 0), &p3(x, 4), &plane(x, z), &p3(x, 11), x[27]))
+        }),
+        ("toi sphere–triangle", |x, _| {
+            format!("{:?}", r::toi_sphere_triangle(&sphere(x, 0), &p3(x, 4), &tri(x), &p3(x, 11), x[27]))
+        }),
+        ("toi sphere–mesh", |x, bad| {
+            let (v, t) = mesh(x, bad);
+            format!("{:?}", r::toi_sphere_mesh(&sphere(x, 0), &p3(x, 4), &v, &t, &p3(x, 11), x[27]))
+        }),
+        ("toi margin sphere–sphere", |x, _| {
+            format!(
+                "{:?}",
+                r::toi_margin_sphere_sphere(&sphere(x, 0), &p3(x, 4), &sphere(x, 7), &p3(x, 11), x[27])
+                    .map(f64::to_bits)
+            )
+        }),
+        ("toi margin sphere–plane", |x, z| {
+            format!(
+                "{:?}",
+                r::toi_margin_sphere_plane(&sphere(x, 0), &p3(x, 4), &plane(x, z), &p3(x, 11), x[27]).map(f64::to_bits)
+            )
+        }),
+        ("toi margin sphere–triangle", |x, _| {
+            format!(
+                "{:?}",
+                r::toi_margin_sphere_triangle(&sphere(x, 0), &p3(x, 4), &tri(x), &p3(x, 11), x[27]).map(f64::to_bits)
+            )
+        }),
+        ("toi margin sphere–mesh", |x, bad| {
+            let (v, t) = mesh(x, bad);
+            format!(
+                "{:?}",
+                r::toi_margin_sphere_mesh(&sphere(x, 0), &p3(x, 4), &v, &t, &p3(x, 11), x[27]).map(f64::to_bits)
+            )
+        }),
+        ("response sphere–sphere", |x, _| {
+            format!(
+                "{:?}",
+                r::response_sphere_sphere(&sphere(x, 0), &p3(x, 4), x[28], &sphere(x, 7), &p3(x, 11), x[29], x[30])
+            )
+        }),
+        ("response sphere–plane", |x, z| format!("{:?}", r::response_sphere_plane(&p3(x, 4), &plane(x, z), x[30]))),
+        ("contact sphere–sphere", |x, _| format!("{:?}", r::contact_sphere_sphere(&sphere(x, 0), &sphere(x, 7)))),
+        ("contact sphere–plane", |x, z| format!("{:?}", r::contact_sphere_plane(&sphere(x, 0), &plane(x, z)))),
+        ("contact sphere–triangle", |x, _| format!("{:?}", r::contact_sphere_triangle(&sphere(x, 0), &tri(x)))),
+        ("contact sphere–mesh", |x, bad| {
+            let (v, t) = mesh(x, bad);
+            format!("{:?}", r::contact_sphere_mesh(&sphere(x, 0), &v, &t))
+        }),
+    ];
+    let mut variants: Vec<(String, [f64; 34], bool)> = vec![("valid".into(), BASE, false), ("flag".into(), BASE, true)];
+    for i in 0..BASE.len() {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut x = BASE;
+            x[i] = bad;
+            variants.push((format!("number {i} = {bad}"), x, false));
+        }
+    }
+    for i in 0..BASE.len() {
+        for j in i + 1..BASE.len() {
+            let mut x = BASE;
+            (x[i], x[j]) = (f64::NAN, f64::NAN);
+            variants.push((format!("numbers {i} and {j} = NaN"), x, false));
+        }
+    }
+    for radius in [3, 10] {
+        let mut x = BASE;
+        x[radius] = -1.0;
+        variants.push((format!("radius {radius} = -1"), x, false));
+    }
+    let mut refused = 0;
+    let mut differ = Vec::new();
+    for (name, call) in calls {
+        for (what, x, flag) in &variants {
+            let staged = call(x, *flag);
+            let exact = exact_only(|| call(x, *flag));
+            refused += usize::from(staged.starts_with("Err"));
+            if staged != exact {
+                differ.push(format!("{name}, {what}: staged {staged}, exact {exact}"));
+            }
+        }
+    }
+    assert!(differ.is_empty(), "{} differences:\n{}", differ.len(), differ.join("\n"));
+    // The corruptions reach the checks: most variants are refusals.
+    assert!(refused > calls.len() * 100, "only {refused} refusals");
+}

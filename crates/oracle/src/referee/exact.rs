@@ -28,6 +28,25 @@ pub(crate) fn q(x: f64, field: &'static str) -> Result<Q, RefereeError> {
     Q::try_from(x).map_err(|_| RefereeError::NonFinite { field })
 }
 
+/// [`q`]'s check without the rational: the same error, or nothing. The
+/// stages run on checked input before any rational is made (making one costs
+/// more than a stage's whole answer); the conversions after them cannot fail.
+pub(crate) fn check(x: f64, field: &'static str) -> Result<(), RefereeError> {
+    if x.is_finite() { Ok(()) } else { Err(RefereeError::NonFinite { field }) }
+}
+
+/// [`v3`]'s checks without the rationals (see [`check`]).
+pub(crate) fn check_v3(p: &P3, field: &'static str) -> Result<(), RefereeError> {
+    p.iter().try_for_each(|&x| check(x, field))
+}
+
+/// [`radius`]'s checks without the rational (see [`check`]): `-0.0` is not
+/// negative, as its rational is 0.
+pub(crate) fn check_radius(r: f64, field: &'static str) -> Result<(), RefereeError> {
+    check(r, field)?;
+    if r < 0.0 { Err(RefereeError::NegativeRadius { field }) } else { Ok(()) }
+}
+
 /// The exact value of a point.
 pub(crate) fn v3(p: &P3, field: &'static str) -> Result<V3, RefereeError> {
     Ok([q(p[0], field)?, q(p[1], field)?, q(p[2], field)?])

@@ -270,12 +270,12 @@ impl Dw {
         if self.is_zero_exactly() || o.is_zero_exactly() {
             return Dw::ZERO;
         }
-        let (Some((p, e0, u0)), Some((a, ea, ua)), Some((b, eb, ub)), Some((c, ec, uc))) = (
-            guarded_prod(self.hi, o.hi),
-            guarded_prod(self.hi, o.lo),
-            guarded_prod(self.lo, o.hi),
-            guarded_prod(self.lo, o.lo),
-        ) else {
+        // A product with a zero word is an exact zero: not computed (a
+        // word-sized number, the common input, has no low word).
+        let prod = |x: f64, y: f64| if x == 0.0 || y == 0.0 { Some((0.0, 0.0, 0.0)) } else { guarded_prod(x, y) };
+        let (Some((p, e0, u0)), Some((a, ea, ua)), Some((b, eb, ub)), Some((c, ec, uc))) =
+            (guarded_prod(self.hi, o.hi), prod(self.hi, o.lo), prod(self.lo, o.hi), prod(self.lo, o.lo))
+        else {
             return Dw::UNKNOWN;
         };
         let (s1, f1) = two_sum(a, b);

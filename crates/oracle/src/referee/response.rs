@@ -12,7 +12,7 @@
 //! continuous across it and no case is borderline.
 
 use super::RefereeError;
-use super::exact::{Q, V3, add, dot, is_zero, q, radius, round_v, scale, sub, v3};
+use super::exact::{Q, V3, add, check, check_radius, check_v3, dot, is_zero, q, round_v, scale, sub, v3};
 use crate::geom::{P3, Plane, ResponseAnswer, Sphere};
 
 /// The floating-point stage's answer ([`super::response_fast`]), counted.
@@ -69,20 +69,27 @@ pub fn response_sphere_sphere(
     mb: f64,
     e: f64,
 ) -> Result<ResponseAnswer, RefereeError> {
-    let ca = v3(&a.center, "a.center")?;
-    radius(a.radius, "a.radius")?;
-    let cb = v3(&b.center, "b.center")?;
-    radius(b.radius, "b.radius")?;
-    let (va_q, vb_q) = (v3(va, "a.velocity")?, v3(vb, "b.velocity")?);
-    let (ma_f, mb_f, e_f) = (ma, mb, e);
-    let (ma, mb) = (q(ma, "a.mass")?, q(mb, "b.mass")?);
-    let e = q(e, "restitution")?;
-    if ma <= Q::ZERO || mb <= Q::ZERO {
+    // The checks first, the stage next, the rationals last ([`check`]).
+    check_v3(&a.center, "a.center")?;
+    check_radius(a.radius, "a.radius")?;
+    check_v3(&b.center, "b.center")?;
+    check_radius(b.radius, "b.radius")?;
+    check_v3(va, "a.velocity")?;
+    check_v3(vb, "b.velocity")?;
+    check(ma, "a.mass")?;
+    check(mb, "b.mass")?;
+    check(e, "restitution")?;
+    // f64 order is the rationals' order.
+    if ma <= 0.0 || mb <= 0.0 {
         return Ok(unchanged(va, vb, true));
     }
-    if let Some(answer) = staged(|| super::response_fast::sphere_sphere(a, va, ma_f, b, vb, mb_f, e_f)) {
+    if let Some(answer) = staged(|| super::response_fast::sphere_sphere(a, va, ma, b, vb, mb, e)) {
         return Ok(answer);
     }
+    let (ca, cb) = (v3(&a.center, "a.center")?, v3(&b.center, "b.center")?);
+    let (va_q, vb_q) = (v3(va, "a.velocity")?, v3(vb, "b.velocity")?);
+    let (ma, mb) = (q(ma, "a.mass")?, q(mb, "b.mass")?);
+    let e = q(e, "restitution")?;
     let mut n = sub(&ca, &cb);
     let concentric = is_zero(&n);
     if concentric {
@@ -111,17 +118,18 @@ pub fn response_sphere_sphere(
 /// **Degenerate input.** None; a zero normal is refused
 /// ([`RefereeError::ZeroNormal`]), as are non-finite numbers.
 pub fn response_sphere_plane(va: &P3, b: &Plane, e: f64) -> Result<ResponseAnswer, RefereeError> {
-    let va_q = v3(va, "a.velocity")?;
-    let n = v3(&b.normal, "b.normal")?;
-    q(b.offset, "b.offset")?;
-    let e_f = e;
-    let e = q(e, "restitution")?;
-    if is_zero(&n) {
+    check_v3(va, "a.velocity")?;
+    check_v3(&b.normal, "b.normal")?;
+    check(b.offset, "b.offset")?;
+    check(e, "restitution")?;
+    if b.normal.iter().all(|x| *x == 0.0) {
         return Err(RefereeError::ZeroNormal { field: "b.normal" });
     }
-    if let Some(answer) = staged(|| super::response_fast::sphere_plane(va, b, e_f)) {
+    if let Some(answer) = staged(|| super::response_fast::sphere_plane(va, b, e)) {
         return Ok(answer);
     }
+    let (va_q, n) = (v3(va, "a.velocity")?, v3(&b.normal, "b.normal")?);
+    let e = q(e, "restitution")?;
     let zero: V3 = [Q::ZERO, Q::ZERO, Q::ZERO];
     Ok(match impulse(&va_q, &Q::ONE, &zero, &Q::ZERO, &n, &e) {
         Some((a2, _)) => ResponseAnswer { velocity_a: round_v(&a2), velocity_b: [0.0; 3], degenerate: false },

@@ -39,7 +39,9 @@ use std::cmp::Ordering;
 use super::RefereeError;
 use super::closest::closest_on_triangle;
 use super::contact::{contact_sphere_plane, contact_sphere_sphere, contact_sphere_triangle};
-use super::exact::{Q, Root, V3, add, cross, dot, is_zero, q, radius, round_unit, scale, sub, v3};
+use super::exact::{
+    Q, Root, V3, add, check, check_radius, check_v3, cross, dot, is_zero, q, radius, round_unit, scale, sub, v3,
+};
 use crate::geom::{ContactAnswer, P3, Plane, Sphere, Toi, ToiAnswer, Triangle};
 
 /// `a + b·√d`, exact (`d ≥ 0`).
@@ -302,6 +304,20 @@ fn triangle(t: &Triangle, field: &'static str) -> Result<[V3; 3], RefereeError> 
     Ok([v3(&t.vertices[0], field)?, v3(&t.vertices[1], field)?, v3(&t.vertices[2], field)?])
 }
 
+/// [`moving`]'s checks, in its order, without its rationals ([`check`]).
+fn check_moving(a: &Sphere, va: &P3, vb: &P3, t_max: f64) -> Result<(), RefereeError> {
+    check_v3(&a.center, "a.center")?;
+    check_radius(a.radius, "a.radius")?;
+    check_v3(va, "a.velocity")?;
+    check_v3(vb, "b.velocity")?;
+    check(t_max, "t_max")
+}
+
+/// [`triangle`]'s checks without its rationals.
+fn check_triangle(t: &Triangle, field: &'static str) -> Result<(), RefereeError> {
+    t.vertices.iter().try_for_each(|p| check_v3(p, field))
+}
+
 /// Time of impact of sphere `a` (centre `M1`, radius `r1`, velocity `va`) and
 /// sphere `b` (`M2`, `r2`, `vb`) over `[0, t_max]`.
 ///
@@ -326,9 +342,9 @@ fn triangle(t: &Triangle, field: &'static str) -> Result<[V3; 3], RefereeError> 
 /// (flagged). Two zero radii meet at a point with no direction between them: the
 /// normal is `−v/‖v‖` (where `a` came from), flagged.
 pub fn toi_sphere_sphere(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Result<ToiAnswer, RefereeError> {
-    let s = moving(a, va, vb, t_max)?;
-    let mb = v3(&b.center, "b.center")?;
-    let rb = radius(b.radius, "b.radius")?;
+    check_moving(a, va, vb, t_max)?;
+    check_v3(&b.center, "b.center")?;
+    check_radius(b.radius, "b.radius")?;
     let at0 = contact_sphere_sphere(a, b)?;
     if at0.contact.is_some() {
         return Ok(at_zero(at0));
@@ -336,6 +352,9 @@ pub fn toi_sphere_sphere(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -
     if let Some(answer) = staged(|| super::toi_fast::sphere_sphere(a, va, b, vb, t_max)) {
         return Ok(answer);
     }
+    let s = moving(a, va, vb, t_max)?;
+    let mb = v3(&b.center, "b.center")?;
+    let rb = radius(b.radius, "b.radius")?;
     let w = sub(&s.c, &mb);
     let v = sub(&s.va, &s.vb);
     let reach = &s.r + &rb;
@@ -380,7 +399,7 @@ pub fn toi_sphere_sphere(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -
 ///
 /// **Degenerate input.** None for valid input; a zero normal is refused.
 pub fn toi_sphere_plane(a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> Result<ToiAnswer, RefereeError> {
-    let s = moving(a, va, vb, t_max)?;
+    check_moving(a, va, vb, t_max)?;
     let at0 = contact_sphere_plane(a, b)?;
     if at0.contact.is_some() {
         return Ok(at_zero(at0));
@@ -388,6 +407,7 @@ pub fn toi_sphere_plane(a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> 
     if let Some(answer) = staged(|| super::toi_fast::sphere_plane(a, va, b, vb, t_max)) {
         return Ok(answer);
     }
+    let s = moving(a, va, vb, t_max)?;
     let n = v3(&b.normal, "b.normal")?;
     let d = q(b.offset, "b.offset")?;
     let v = sub(&s.va, &s.vb);
@@ -437,8 +457,8 @@ pub fn toi_sphere_plane(a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> 
 /// at `t = 0`: the static fallback (flagged). A sphere of zero radius meets the
 /// triangle at a point with no direction: normal `−v/‖v‖`, flagged.
 pub fn toi_sphere_triangle(a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Result<ToiAnswer, RefereeError> {
-    let s = moving(a, va, vb, t_max)?;
-    let verts = triangle(b, "b.vertices")?;
+    check_moving(a, va, vb, t_max)?;
+    check_triangle(b, "b.vertices")?;
     let at0 = contact_sphere_triangle(a, b)?;
     if at0.contact.is_some() {
         return Ok(at_zero(at0));
@@ -446,11 +466,22 @@ pub fn toi_sphere_triangle(a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f6
     if let Some(answer) = staged(|| super::toi_fast::sphere_triangle(a, va, b, vb, t_max)) {
         return Ok(answer);
     }
+    let s = moving(a, va, vb, t_max)?;
+    let verts = triangle(b, "b.vertices")?;
     let v = sub(&s.va, &s.vb);
     Ok(match first_contact(&s.c, &s.r, &v, &s.vb, &verts, &s.t_max) {
         Some(h) => finish(&h, &v),
         None => ToiAnswer::default(),
     })
+}
+
+/// [`mesh`]'s checks, in its order, without its rationals.
+fn check_mesh(vertices: &[P3], triangles: &[[usize; 3]]) -> Result<(), RefereeError> {
+    vertices.iter().try_for_each(|p| check_v3(p, "b.vertices"))?;
+    match triangles.iter().position(|tri| tri.iter().any(|&i| i >= vertices.len())) {
+        Some(face) => Err(RefereeError::IndexOutOfRange { field: "b.triangles", face }),
+        None => Ok(()),
+    }
 }
 
 fn mesh(vertices: &[P3], triangles: &[[usize; 3]]) -> Result<Vec<[V3; 3]>, RefereeError> {
@@ -597,8 +628,8 @@ pub fn toi_sphere_mesh(
     vb: &P3,
     t_max: f64,
 ) -> Result<ToiAnswer, RefereeError> {
-    let s = moving(a, va, vb, t_max)?;
-    let faces = mesh(vertices, triangles)?;
+    check_moving(a, va, vb, t_max)?;
+    check_mesh(vertices, triangles)?;
     // Faces provably farther than r from the centre's whole path
     // are touched neither at t = 0 nor later: the exact tests skip them (a face
     // in contact at t = 0 is nearer than any skipped one, so the nearest face
@@ -610,6 +641,8 @@ pub fn toi_sphere_mesh(
     if let Some(answer) = staged(|| super::toi_fast::sphere_mesh(a, va, vertices, triangles, &near, vb, t_max)) {
         return Ok(answer);
     }
+    let s = moving(a, va, vb, t_max)?;
+    let faces = mesh(vertices, triangles)?;
     let tested = near.iter().filter(|n| **n).count() as u64;
     super::count(super::Stage::MeshFaces, true, near.len() as u64 - tested);
     super::count(super::Stage::MeshFaces, false, tested);
@@ -656,12 +689,15 @@ fn gap_margin(r: &Q, d2: Q) -> f64 {
 /// there is an impact. The minimum of the convex quadratic is at
 /// `clamp(−w·v/v·v, 0, t_max)`, a rational.
 pub fn toi_margin_sphere_sphere(a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Result<f64, RefereeError> {
-    let s = moving(a, va, vb, t_max)?;
-    let mb = v3(&b.center, "b.center")?;
-    let rb = radius(b.radius, "b.radius")?;
+    check_moving(a, va, vb, t_max)?;
+    check_v3(&b.center, "b.center")?;
+    check_radius(b.radius, "b.radius")?;
     if let Some(margin) = staged(|| super::toi_fast::sphere_sphere_margin(a, va, b, vb, t_max)) {
         return Ok(margin);
     }
+    let s = moving(a, va, vb, t_max)?;
+    let mb = v3(&b.center, "b.center")?;
+    let rb = radius(b.radius, "b.radius")?;
     let w = sub(&s.c, &mb);
     let v = sub(&s.va, &s.vb);
     let vv = dot(&v, &v);
@@ -684,15 +720,18 @@ fn clamp(t: Q, hi: &Q) -> Q {
 /// `r − min(e(0), e(t_max))/‖n‖` (the distance above the plane is linear in
 /// time), correctly rounded: ≥ 0 exactly when there is an impact.
 pub fn toi_margin_sphere_plane(a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> Result<f64, RefereeError> {
-    let s = moving(a, va, vb, t_max)?;
-    let n = v3(&b.normal, "b.normal")?;
-    let d = q(b.offset, "b.offset")?;
-    if is_zero(&n) {
+    check_moving(a, va, vb, t_max)?;
+    check_v3(&b.normal, "b.normal")?;
+    check(b.offset, "b.offset")?;
+    if b.normal.iter().all(|x| *x == 0.0) {
         return Err(RefereeError::ZeroNormal { field: "b.normal" });
     }
     if let Some(margin) = staged(|| super::toi_fast::sphere_plane_margin(a, va, b, vb, t_max)) {
         return Ok(margin);
     }
+    let s = moving(a, va, vb, t_max)?;
+    let n = v3(&b.normal, "b.normal")?;
+    let d = q(b.offset, "b.offset")?;
     let e0 = dot(&n, &s.c) - d;
     let e1 = &e0 + &s.t_max * dot(&n, &sub(&s.va, &s.vb));
     let e = if e1 < e0 { e1 } else { e0 };
@@ -784,11 +823,13 @@ fn dist2_segment_triangle(p0: &V3, p1: &V3, verts: &[V3; 3]) -> Q {
 /// `r − dist(path, b)` with the path the centre's segment `c → c + t_max v` in
 /// `b`'s frame, correctly rounded: ≥ 0 exactly when there is an impact.
 pub fn toi_margin_sphere_triangle(a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Result<f64, RefereeError> {
-    let s = moving(a, va, vb, t_max)?;
-    let verts = triangle(b, "b.vertices")?;
+    check_moving(a, va, vb, t_max)?;
+    check_triangle(b, "b.vertices")?;
     if let Some(margin) = staged(|| super::toi_fast::sphere_triangle_margin(a, va, b, vb, t_max)) {
         return Ok(margin);
     }
+    let s = moving(a, va, vb, t_max)?;
+    let verts = triangle(b, "b.vertices")?;
     let end = add(&s.c, &scale(&sub(&s.va, &s.vb), &s.t_max));
     Ok(gap_margin(&s.r, dist2_segment_triangle(&s.c, &end, &verts)))
 }
@@ -804,9 +845,8 @@ pub fn toi_margin_sphere_mesh(
     vb: &P3,
     t_max: f64,
 ) -> Result<f64, RefereeError> {
-    let s = moving(a, va, vb, t_max)?;
-    let faces = mesh(vertices, triangles)?;
-    let end = add(&s.c, &scale(&sub(&s.va, &s.vb), &s.t_max));
+    check_moving(a, va, vb, t_max)?;
+    check_mesh(vertices, triangles)?;
     // Faces in order of a lower bound on their distance from the path; once
     // that bound exceeds the nearest exact distance found, no later face can
     // be nearer, and the minimum is the same as over every face.
@@ -821,6 +861,9 @@ pub fn toi_margin_sphere_mesh(
     {
         return Ok(margin);
     }
+    let s = moving(a, va, vb, t_max)?;
+    let faces = mesh(vertices, triangles)?;
+    let end = add(&s.c, &scale(&sub(&s.va, &s.vb), &s.t_max));
     let mut nearest: Option<Q> = None;
     let faces_count = order.len() as u64;
     let mut tested = 0;
@@ -877,6 +920,55 @@ mod tests {
 
     fn sphere(center: P3, radius: f64) -> Sphere {
         Sphere { center, radius }
+    }
+
+    /// The checks the stages run first refuse what the exact conversions
+    /// refuse, naming the same field: every number (a sphere, two
+    /// velocities, `t_max`, a triangle, a mesh's vertices) set to NaN or ∞,
+    /// every two of them to NaN, the radius to −1, an index out of range.
+    #[test]
+    fn checks_refuse_as_the_conversions_do() {
+        const N: usize = 23;
+        let base: [f64; N] = [
+            0.0, 0.0, 3.0, 0.5, 0.0, 0.0, -2.0, 0.0, 0.0, 1.0, 4.0, -1.0, -1.0, 0.0, 2.0, -1.0, 0.0, -1.0, 2.0, 0.0,
+            0.5, 0.5, -1.0,
+        ];
+        let p = |x: &[f64; N], i: usize| [x[i], x[i + 1], x[i + 2]];
+        let mut variants = vec![(base, 3)];
+        for i in 0..N {
+            for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                let mut x = base;
+                x[i] = bad;
+                variants.push((x, 3));
+            }
+            for j in i + 1..N {
+                let mut x = base;
+                (x[i], x[j]) = (f64::NAN, f64::NAN);
+                variants.push((x, 3));
+            }
+        }
+        let mut x = base;
+        x[3] = -1.0;
+        variants.extend([(x, 3), (base, 4)]);
+        let mut refused = 0;
+        for (x, last) in variants {
+            let a = sphere(p(&x, 0), x[3]);
+            let (va, vb, t_max) = (p(&x, 4), p(&x, 7), x[10]);
+            let tri = Triangle { vertices: [p(&x, 11), p(&x, 14), p(&x, 17)] };
+            let vertices = vec![tri.vertices[0], tri.vertices[1], tri.vertices[2], p(&x, 20)];
+            let triangles = [[0, 1, 2], [0, 1, last]];
+            let what = format!("{x:?}, last index {last}");
+            let moved = moving(&a, &va, &vb, t_max).err();
+            assert_eq!(check_moving(&a, &va, &vb, t_max).err(), moved, "moving: {what}");
+            assert_eq!(
+                check_triangle(&tri, "b.vertices").err(),
+                triangle(&tri, "b.vertices").err(),
+                "triangle: {what}"
+            );
+            assert_eq!(check_mesh(&vertices, &triangles).err(), mesh(&vertices, &triangles).err(), "mesh: {what}");
+            refused += usize::from(moved.is_some());
+        }
+        assert!(refused > 100, "only {refused} refusals");
     }
 
     fn hit(a: Result<ToiAnswer, RefereeError>, what: &str) -> (Toi, bool) {
