@@ -7,7 +7,7 @@ use dashu::base::{BitTest, Gcd, UnsignedAbs};
 use dashu::integer::{IBig, UBig};
 
 use super::RefereeError;
-use super::exact::{Q, Root, V3, add, dot, round, scale, sub, v3};
+use super::exact::{Q, Root, V3, dot, round, sub, v3};
 use crate::geom::{Aabb, Ball, P3};
 
 /// Refuses an empty cloud or a non-finite coordinate.
@@ -69,19 +69,20 @@ fn shift(x: &Q, s: isize) -> Q {
 
 /// A point of the cloud: its `f64` image in the filter's frame, and, made
 /// when first asked for (most points are only ever filtered in `f64`), its
-/// exact value as a rational and as an integer vector over the cloud's common
-/// power-of-two denominator.
+/// exact value as an integer vector over the cloud's common power-of-two
+/// denominator.
 struct Point {
     src: P3,
     approx: P3,
-    exact: OnceCell<V3>,
-    /// `exact · 2^denominator_bits`, an integer vector.
+    /// The exact point times `2^denominator_bits`, an integer vector.
     int: OnceCell<[IBig; 3]>,
 }
 
 impl Point {
-    fn exact(&self) -> &V3 {
-        self.exact.get_or_init(|| self.src.map(|x| dyadic(x).0))
+    /// The exact point as rationals (the tests' reference).
+    #[cfg(test)]
+    fn exact(&self) -> V3 {
+        self.src.map(|x| dyadic(x).0)
     }
 
     fn int(&self, denominator_bits: usize) -> &[IBig; 3] {
@@ -197,42 +198,86 @@ impl ExactBall {
 }
 
 /// The smallest ball with every point of `support` on its boundary and its
-/// centre in their affine hull — the circumsphere of 1 to 4 points.
-///
-/// Incremental (as in Gärtner's Miniball): with `c`, `r²` the ball through
-/// `s0 … s(j−1)` and `u` the part of `sj − s0` orthogonal to the earlier
-/// directions (exact Gram–Schmidt), the new centre is `c + λu`. Every earlier
-/// point keeps distance² `r² + λ²‖u‖²` (its offset from `c` is orthogonal to
-/// `u`), and `sj` gets `e − 2λ‖u‖² + λ²‖u‖²` with `e = ‖sj − c‖²` (because
-/// `(sj − c)·u = ‖u‖²`); equating gives `λ = (e − r²)/(2‖u‖²)`,
-/// `r²' = r² + λ²‖u‖²`. A point already in the hull (`u = 0`) adds nothing —
-/// exact arithmetic makes Welzl's support points affinely independent, so this
-/// only absorbs a repeated constraint.
+/// centre in their affine hull — the circumsphere of 1 to 4 points — from
+/// [`Circumsphere`], in integers (no gcd until the ball's rationals are made
+/// once). A point in the affine hull of those before it adds nothing — exact
+/// arithmetic makes Welzl's support points affinely independent, so this only
+/// absorbs a repeated constraint.
 fn ball_through(support: &[usize], points: &[Point], frame: isize, denominator_bits: usize) -> Option<ExactBall> {
-    let (&first, rest) = support.split_first()?;
-    let s0 = points[first].exact();
-    let mut center = s0.clone();
-    let mut r2 = Q::ZERO;
-    let mut basis: Vec<(V3, Q)> = Vec::with_capacity(3);
-    for &j in rest {
-        let sj = points[j].exact();
-        let w = sub(sj, s0);
-        let mut u = w.clone();
-        for (b, bb) in &basis {
-            u = sub(&u, &scale(b, &(dot(&w, b) / bb)));
+    Circumsphere::new(support, points, denominator_bits)?.ball(frame, denominator_bits)
+}
+
+/// The circumsphere of a support set, in integers. Over the cloud's common
+/// denominator `2^F` the points are integer vectors `P`. With `wᵢ = Pᵢ − P₀`
+/// for the support points kept (a point whose `w` lies in the span of those
+/// kept before it adds nothing: its Gram determinant with them is 0), the
+/// centre is `P₀ + Σ μᵢ wᵢ` where `G μ = b/2`, `Gᵢⱼ = wᵢ·wⱼ`, `bᵢ = wᵢ·wᵢ`
+/// (equal distance to every kept point). By Cramer's rule `μᵢ = nᵢ/(2d)` with
+/// `d = det G > 0` and `nᵢ` the determinant with column `i` replaced by `b`;
+/// the centre is `C/(2d·2^F)` with `C = 2d·P₀ + Σ nᵢ wᵢ` and the squared
+/// radius `‖C − 2d·P₀‖²/(2d·2^F)²` — integers throughout.
+struct Circumsphere {
+    /// The Cramer numerators `nᵢ`, one per kept point after the first.
+    n: Vec<IBig>,
+    /// `2d`.
+    two_d: IBig,
+    /// `C`.
+    c: [IBig; 3],
+    /// `C − 2d·P₀`.
+    off: [IBig; 3],
+}
+
+impl Circumsphere {
+    fn new(support: &[usize], points: &[Point], bits: usize) -> Option<Self> {
+        let (&first, rest) = support.split_first()?;
+        let s0 = points[first].int(bits).clone();
+        let mut kept: Vec<[IBig; 3]> = Vec::with_capacity(3);
+        for &j in rest {
+            let pj = points[j].int(bits);
+            let w: [IBig; 3] = std::array::from_fn(|k| &pj[k] - &s0[k]);
+            kept.push(w);
+            if gram_det(&kept).is_zero() {
+                kept.pop();
+            }
         }
-        let uu = dot(&u, &u);
-        if uu.is_zero() {
-            continue;
-        }
-        let off = sub(sj, &center);
-        let e = dot(&off, &off);
-        let lambda = (e - &r2) / (Q::from(2u8) * &uu);
-        center = add(&center, &scale(&u, &lambda));
-        r2 += &lambda * &lambda * &uu;
-        basis.push((u, uu));
+        let g: Vec<Vec<IBig>> = kept.iter().map(|a| kept.iter().map(|b| idot(a, b)).collect()).collect();
+        let b: Vec<IBig> = kept.iter().map(|w| idot(w, w)).collect();
+        let d = det(&g);
+        let n: Vec<IBig> = (0..kept.len())
+            .map(|i| {
+                let replaced: Vec<Vec<IBig>> = g
+                    .iter()
+                    .zip(&b)
+                    .map(|(row, bj)| {
+                        row.iter().enumerate().map(|(c, x)| if c == i { bj.clone() } else { x.clone() }).collect()
+                    })
+                    .collect();
+                det(&replaced)
+            })
+            .collect();
+        let two_d = &d * IBig::from(2u8);
+        let c: [IBig; 3] =
+            std::array::from_fn(|k| kept.iter().zip(&n).fold(&two_d * &s0[k], |acc, (w, ni)| acc + ni * &w[k]));
+        let off: [IBig; 3] = std::array::from_fn(|k| &c[k] - &two_d * &s0[k]);
+        Some(Self { n, two_d, c, off })
     }
-    Some(ExactBall::new(center, r2, frame, denominator_bits))
+
+    /// Whether the centre lies in the convex hull of the kept points: every
+    /// barycentric weight `≥ 0`, that is every `nᵢ ≥ 0` and `Σ nᵢ ≤ 2d`.
+    fn centred(&self) -> bool {
+        let total = self.n.iter().fold(IBig::ZERO, |acc, x| acc + x);
+        self.n.iter().all(|x| *x >= IBig::ZERO) && total <= self.two_d
+    }
+
+    /// The ball as rationals, with its integer and `f64` tests (`None` only
+    /// if `2d ≤ 0`, which cannot be: the Gram matrix of linearly independent
+    /// vectors is positive definite, and 1 for a single point).
+    fn ball(&self, frame: isize, bits: usize) -> Option<ExactBall> {
+        let den = UBig::try_from(self.two_d.clone()).ok()? << bits;
+        let center: V3 = std::array::from_fn(|k| Q::from_parts(self.c[k].clone(), den.clone()));
+        let r2 = Q::from_parts(idot(&self.off, &self.off), &den * &den);
+        Some(ExactBall::new(center, r2, frame, bits))
+    }
 }
 
 struct Welzl<'a> {
@@ -298,12 +343,7 @@ fn cloud(points: &[P3]) -> Result<Cloud, RefereeError> {
         points.iter().flatten().map(|&x| dyadic(x).2.min(0).unsigned_abs() as usize).max().unwrap_or(0);
     let points = points
         .iter()
-        .map(|p| Point {
-            src: *p,
-            approx: p.map(|x| scaled_f64(x, frame)),
-            exact: OnceCell::new(),
-            int: OnceCell::new(),
-        })
+        .map(|p| Point { src: *p, approx: p.map(|x| scaled_f64(x, frame)), int: OnceCell::new() })
         .collect();
     Ok(Cloud { points, frame, denominator_bits })
 }
@@ -412,56 +452,14 @@ impl FloatWelzl<'_> {
 /// exact (the containment test's `f64` filter answers only where its error
 /// bound leaves no doubt).
 ///
-/// **In integers.** Over the cloud's common denominator `2^F` the points are
-/// integer vectors `P`. With `wᵢ = Pᵢ − P₀` for the support points kept (a
-/// point whose `w` lies in the span of those kept before it adds nothing, as
-/// in [`ball_through`]: its Gram determinant with them is 0), the centre is
-/// `P₀ + Σ μᵢ wᵢ` where `G μ = b/2`, `Gᵢⱼ = wᵢ·wⱼ`, `bᵢ = wᵢ·wᵢ` (equal
-/// distance to every kept point). By Cramer's rule `μᵢ = nᵢ/(2d)` with
-/// `d = det G > 0` and `nᵢ` the determinant with column `i` replaced by `b`:
-/// the weights are `≥ 0` exactly when every `nᵢ ≥ 0` and `Σ nᵢ ≤ 2d`, and the
-/// centre is `C/(2d·2^F)` with `C = 2d·P₀ + Σ nᵢ wᵢ` — integers throughout, one
-/// rational per output.
+/// **In integers** ([`Circumsphere`]): the weights are `≥ 0` exactly when
+/// every Cramer numerator `nᵢ ≥ 0` and `Σ nᵢ ≤ 2d`; one rational per output.
 fn certified(cloud: &Cloud, support: &[usize]) -> Option<(V3, Q)> {
-    let (&first, rest) = support.split_first()?;
-    let bits = cloud.denominator_bits;
-    let s0 = cloud.points[first].int(bits).clone();
-    let mut kept: Vec<[IBig; 3]> = Vec::with_capacity(3);
-    for &j in rest {
-        let pj = cloud.points[j].int(bits);
-        let w: [IBig; 3] = std::array::from_fn(|k| &pj[k] - &s0[k]);
-        kept.push(w);
-        if gram_det(&kept).is_zero() {
-            kept.pop();
-        }
-    }
-    let g: Vec<Vec<IBig>> = kept.iter().map(|a| kept.iter().map(|b| idot(a, b)).collect()).collect();
-    let b: Vec<IBig> = kept.iter().map(|w| idot(w, w)).collect();
-    let d = det(&g);
-    let n: Vec<IBig> = (0..kept.len())
-        .map(|i| {
-            let replaced: Vec<Vec<IBig>> = g
-                .iter()
-                .zip(&b)
-                .map(|(row, bj)| {
-                    row.iter().enumerate().map(|(c, x)| if c == i { bj.clone() } else { x.clone() }).collect()
-                })
-                .collect();
-            det(&replaced)
-        })
-        .collect();
-    let two_d = &d * IBig::from(2u8);
-    let total = n.iter().fold(IBig::ZERO, |acc, x| acc + x);
-    if n.iter().any(|x| *x < IBig::ZERO) || total > two_d {
+    let sphere = Circumsphere::new(support, &cloud.points, cloud.denominator_bits)?;
+    if !sphere.centred() {
         return None;
     }
-    let c: [IBig; 3] =
-        std::array::from_fn(|k| kept.iter().zip(&n).fold(&two_d * &s0[k], |acc, (w, ni)| acc + ni * &w[k]));
-    let off: [IBig; 3] = std::array::from_fn(|k| &c[k] - &two_d * &s0[k]);
-    let den = UBig::try_from(two_d).ok()? << bits;
-    let center: V3 = std::array::from_fn(|k| Q::from_parts(c[k].clone(), den.clone()));
-    let r2 = Q::from_parts(idot(&off, &off), &den * &den);
-    let ball = ExactBall::new(center, r2, cloud.frame, bits);
+    let ball = sphere.ball(cloud.frame, cloud.denominator_bits)?;
     cloud.points.iter().all(|p| ball.contains(p)).then_some((ball.center, ball.r2))
 }
 
@@ -511,6 +509,13 @@ fn min_ball_staged(points: &[P3]) -> Result<((V3, Q), bool), RefereeError> {
             return Ok((ball, true));
         }
         super::count(super::Stage::MinBall, false, 1);
+        // The exact run starts from the floating-point run's move-to-front
+        // order, which puts the points that bounded its ball first: nearly
+        // every other point is then inside the exact run's ball at once,
+        // where the shuffled order recurses again and again (on the campaign's
+        // clouds left to the exact stage, about half the time). The minimal
+        // ball is unique: any order finds it.
+        order = float.order;
     }
     let mut welzl =
         Welzl { points: &cloud.points, order, frame: cloud.frame, denominator_bits: cloud.denominator_bits };
@@ -620,7 +625,7 @@ mod tests {
             let bits = exact.iter().flatten().map(|x| x.denominator().bit_len() - 1).max().unwrap_or(0);
             assert_eq!((cloud.frame, cloud.denominator_bits), (frame, bits), "{chunk:?}");
             for (point, e) in cloud.points.iter().zip(&exact) {
-                assert_eq!(point.exact(), e);
+                assert_eq!(&point.exact(), e);
                 for (k, ek) in e.iter().enumerate() {
                     let approx = round(&shift(ek, frame));
                     assert_eq!(point.approx[k].to_bits(), approx.to_bits(), "{chunk:?}");
@@ -820,12 +825,12 @@ mod tests {
             let support: Vec<usize> = (0..points.len().min(4)).collect();
             let ball = ball_through(&support, &cloud.points, cloud.frame, cloud.denominator_bits).unwrap();
             for (p, point) in points.iter().zip(&cloud.points) {
-                let w = sub(point.exact(), &ball.center);
+                let w = sub(&point.exact(), &ball.center);
                 prop_assert_eq!(ball.contains(point), dot(&w, &w) <= ball.r2, "point {:?}", p);
             }
             // The first support point is on the sphere by construction (later ones
             // too unless affinely dependent on earlier ones, which are skipped).
-            let w = sub(cloud.points[0].exact(), &ball.center);
+            let w = sub(&cloud.points[0].exact(), &ball.center);
             prop_assert!(dot(&w, &w) == ball.r2, "first support point on the sphere");
         }
 
