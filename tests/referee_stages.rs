@@ -328,9 +328,11 @@ fn intersect_ends_edges_ties_and_flags_are_the_same() {
         add(true, seg([s, s, -s], [-s, s, 4.0 * s]), plane([0.0, 3.0, 4.0], 2.0 * s), format!("tilted plane, {at}"));
         add(false, seg([s, 0.0, s], [2.0 * s, s, s]), ground(), format!("parallel to a plane, {at}"));
         add(false, seg([s, 0.0, s], [s, 0.0, s]), ground(), format!("zero-length, {at}"));
-        // t = 1/2 and x = s(1 + 2^-53): a tie.
+        // t = 1/2 and x = s(1 + 2^-53): a tie. The double-word stage leaves
+        // it open; the exact dyadic numbers round it (to even), short of the
+        // rationals.
         let tie = seg([s, 0.0, 0.0], [s * (1.0 + f64::EPSILON), 0.0, s]);
-        add(false, tie, plane([0.0, 0.0, 1.0], 0.5 * s), format!("point on a midpoint, {at}"));
+        add(true, tie, plane([0.0, 0.0, 1.0], 0.5 * s), format!("point on a midpoint, {at}"));
         let t = || tri([[0.0; 3], [4.0 * s, 0.0, 0.0], [0.0, 4.0 * s, 0.0]]);
         add(true, seg([s, s, s], [s, 2.0 * s, -3.0 * s]), t(), format!("through a triangle, {at}"));
         add(true, seg([2.0 * s, 0.0, s], [2.0 * s, 0.0, -s]), t(), format!("through an edge, {at}"));

@@ -97,6 +97,15 @@ pub(crate) fn round(x: &Q) -> f64 {
     }
 }
 
+/// [`round`] of a rational not reduced to lowest terms: the same correct
+/// rounding (round to nearest, ties to even) of the same value, without the
+/// gcd that reducing it costs.
+pub(crate) fn round_relaxed(x: &dashu::rational::Relaxed) -> f64 {
+    match x.to_f64() {
+        Approximation::Exact(f) | Approximation::Inexact(f, _) => f,
+    }
+}
+
 /// Each component correctly rounded.
 pub(crate) fn round_v(v: &V3) -> P3 {
     [round(&v[0]), round(&v[1]), round(&v[2])]

@@ -46,7 +46,12 @@
 //!   ([`contact`]): the same, each output `A + B/√S` certified by the signs of
 //!   `P + Q·√S` at the midpoints around its candidate (`contact_fast`);
 //! - a segment against a plane, a triangle or a mesh, and its margin ([`intersect`]):
-//!   every output a certified quotient (`intersect_fast`);
+//!   every output a certified quotient (`intersect_fast`); what the
+//!   double-word bounds leave open is computed again in exact dyadic numbers
+//!   (`m·2^e`, big integers without a gcd: `dyadic`), where every sign is
+//!   certain and each quotient is rounded once — a full-range case that needs
+//!   two thousand bits costs tens of microseconds there, milliseconds in
+//!   rationals;
 //! - a sphere's time of impact with a sphere, a plane, a triangle or a mesh,
 //!   and its margin ([`toi`]): every output `(P + Q·√D)/K` certified the same
 //!   way, a triangle's candidates (its vertices, edges and face) ordered by
@@ -71,6 +76,7 @@ pub mod bounds;
 mod closest;
 pub mod contact;
 mod contact_fast;
+mod dyadic;
 mod exact;
 mod fast;
 pub mod intersect;
@@ -156,7 +162,8 @@ pub enum Stage {
     /// rationals.
     Contact,
     /// A segment against a plane, a triangle or a mesh, and its margin:
-    /// certified from double-word numbers, or computed in exact rationals.
+    /// certified from double-word numbers or decided in exact dyadic ones, or
+    /// computed in exact rationals.
     Intersect,
     /// A sphere's time of impact with a sphere, a plane, a triangle or a
     /// mesh, and its margin: certified from double-word numbers, or computed
@@ -189,7 +196,7 @@ impl Stage {
                 "contact of a sphere with a sphere, plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
             }
             Stage::Intersect => {
-                "intersect of a segment with a plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
+                "intersect of a segment with a plane, triangle or mesh, and margins: certified from double-word or exact dyadic numbers / computed in rationals"
             }
             Stage::Toi => {
                 "toi of a sphere with a sphere, plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
