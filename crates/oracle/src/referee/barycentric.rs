@@ -1,6 +1,7 @@
 //! Barycentric coordinates of a point with respect to a triangle, exactly.
 
 use super::RefereeError;
+use super::dyadic::{self as dy, Num};
 use super::exact::{Q, V3, dot, round, sub, v3};
 use crate::geom::{BarycentricAnswer, P3, Triangle};
 
@@ -80,25 +81,34 @@ fn longest_edge_fallback(p: &V3, v: &[V3; 3]) -> [Q; 3] {
 /// inputs that are not finite, an `N` neither certainly zero nor certainly
 /// not, a comparison the bounds leave open, or a coordinate not certified (a
 /// tie, or too close to one for the bounds).
+///
+/// The same code then runs in exact dyadic numbers ([`super::dyadic`]) when
+/// the double-word bounds leave something open: every sign is then certain
+/// and each coordinate a correctly rounded quotient of exact integers.
 fn barycentric_fast(p: &P3, t: &Triangle) -> Option<BarycentricAnswer> {
-    use super::fast::{all_finite, cross, diff3, dot, quotient};
+    use super::dyadic::Dy;
+    use super::fast::Dw;
+    barycentric_in::<Dw>(p, t).or_else(|| barycentric_in::<Dy>(p, t))
+}
+
+fn barycentric_in<T: Num>(p: &P3, t: &Triangle) -> Option<BarycentricAnswer> {
     let inputs = p.iter().chain(t.vertices.iter().flatten()).copied();
-    if !all_finite(inputs) {
+    if !super::fast::all_finite(inputs) {
         return None;
     }
     let v = &t.vertices;
-    let n = cross(&diff3(&v[1], &v[0]), &diff3(&v[2], &v[0]));
-    let signs = [n[0].signum(), n[1].signum(), n[2].signum()];
+    let n = dy::cross(&dy::diff3::<T>(&v[1], &v[0]), &dy::diff3::<T>(&v[2], &v[0]));
+    let signs = [n[0].sign_of(), n[1].sign_of(), n[2].sign_of()];
     if signs.iter().all(|s| *s == Some(0)) {
-        return Some(BarycentricAnswer { coords: longest_edge_fast(p, v)?, degenerate: true });
+        return Some(BarycentricAnswer { coords: longest_edge_fast::<T>(p, v)?, degenerate: true });
     }
     if !signs.iter().any(|s| matches!(s, Some(1 | -1))) {
         return None;
     }
-    let det = dot(&n, &n);
-    let r: [_; 3] = std::array::from_fn(|k| diff3(&v[k], p));
-    let area = |i: usize, j: usize| dot(&cross(&r[i], &r[j]), &n);
-    let coords = [quotient(area(1, 2), det)?, quotient(area(2, 0), det)?, quotient(area(0, 1), det)?];
+    let det = dy::dot(&n, &n);
+    let r: [[T; 3]; 3] = std::array::from_fn(|k| dy::diff3::<T>(&v[k], p));
+    let area = |i: usize, j: usize| dy::dot(&dy::cross(&r[i], &r[j]), &n);
+    let coords = [T::quotient(&area(1, 2), &det)?, T::quotient(&area(2, 0), &det)?, T::quotient(&area(0, 1), &det)?];
     Some(BarycentricAnswer { coords, degenerate: false })
 }
 
@@ -106,16 +116,15 @@ fn barycentric_fast(p: &P3, t: &Triangle) -> Option<BarycentricAnswer> {
 /// of v0v1, v1v2, v2v0 on an exact tie), `p`'s parameter on it clamped to
 /// `[0, 1]`, each coordinate a certified quotient; `[1, 0, 0]` when the
 /// vertices coincide.
-fn longest_edge_fast(p: &P3, v: &[P3; 3]) -> Option<[f64; 3]> {
-    use super::fast::{Dw, diff3, dot, quotient};
+fn longest_edge_fast<T: Num>(p: &P3, v: &[P3; 3]) -> Option<[f64; 3]> {
     let edges = [(0usize, 1usize), (1, 2), (2, 0)];
-    let mut best: Option<(usize, Dw)> = None;
+    let mut best: Option<(usize, T)> = None;
     for (k, &(i, j)) in edges.iter().enumerate() {
-        let e = diff3(&v[j], &v[i]);
-        let len = dot(&e, &e);
-        let longer = match best {
-            None => len.signum()? > 0,
-            Some((_, b)) => len.sub(b).signum()? > 0,
+        let e = dy::diff3::<T>(&v[j], &v[i]);
+        let len = dy::dot(&e, &e);
+        let longer = match &best {
+            None => len.sign_of()? > 0,
+            Some((_, b)) => len.minus(b).sign_of()? > 0,
         };
         if longer {
             best = Some((k, len));
@@ -125,13 +134,13 @@ fn longest_edge_fast(p: &P3, v: &[P3; 3]) -> Option<[f64; 3]> {
         return Some([1.0, 0.0, 0.0]);
     };
     let (i, j) = edges[k];
-    let num = dot(&diff3(p, &v[i]), &diff3(&v[j], &v[i]));
-    let (ci, cj) = if num.signum()? <= 0 {
+    let num = dy::dot(&dy::diff3::<T>(p, &v[i]), &dy::diff3::<T>(&v[j], &v[i]));
+    let (ci, cj) = if num.sign_of()? <= 0 {
         (1.0, 0.0)
-    } else if num.sub(len).signum()? >= 0 {
+    } else if num.minus(&len).sign_of()? >= 0 {
         (0.0, 1.0)
     } else {
-        (quotient(len.sub(num), len)?, quotient(num, len)?)
+        (T::quotient(&len.minus(&num), &len)?, T::quotient(&num, &len)?)
     };
     let mut coords = [0.0; 3];
     coords[i] = ci;

@@ -41,13 +41,15 @@
 //!   bound exceeds the nearest exact distance;
 //! - barycentric coordinates ([`barycentric`]): computed in double-word numbers
 //!   that account for their error exactly ([`fast`]), each coordinate kept when
-//!   its correct rounding is certified, else computed in exact rationals;
+//!   its correct rounding is certified, else in exact dyadic numbers (below),
+//!   else computed in exact rationals;
 //! - contact of a sphere with a sphere, a plane, a triangle or a mesh, and its margin
 //!   ([`contact`]): the same, each output `A + B/√S` certified by the signs of
 //!   `P + Q·√S` at the midpoints around its candidate (`contact_fast`);
 //! - a segment against a plane, a triangle or a mesh, and its margin ([`intersect`]):
 //!   every output a certified quotient (`intersect_fast`); what the
-//!   double-word bounds leave open is computed again in exact dyadic numbers
+//!   double-word bounds leave open (here, for barycentric coordinates and for
+//!   response) is computed again in exact dyadic numbers
 //!   (`m·2^e`, big integers without a gcd: `dyadic`), where every sign is
 //!   certain and each quotient is rounded once — a full-range case that needs
 //!   two thousand bits costs tens of microseconds there, milliseconds in
@@ -58,7 +60,7 @@
 //!   their certified roundings, a margin the largest of its candidates'
 //!   certified margins (`toi_fast`);
 //! - collision response ([`response`]): every velocity a certified quotient
-//!   (`response_fast`).
+//!   (`response_fast`), else one rounded from exact dyadic numbers.
 //!
 //! The answers are the same bits as the exact stage's alone, by construction
 //! and by test ([`exact_only`] switches the stages off; `tests/referee_stages.rs`).
@@ -154,8 +156,8 @@ pub enum Stage {
     /// answers: faces whose box is provably out of reach skipped, or a
     /// face's exact test run.
     MeshFaces,
-    /// Barycentric coordinates: certified from double-word numbers, or
-    /// computed in exact rationals.
+    /// Barycentric coordinates: certified from double-word numbers or
+    /// decided in exact dyadic ones, or computed in exact rationals.
     Barycentric,
     /// Contact of a sphere with a sphere, a plane, a triangle or a mesh, and
     /// its margin: certified from double-word numbers, or computed in exact
@@ -170,7 +172,8 @@ pub enum Stage {
     /// in exact rationals.
     Toi,
     /// Collision response of a sphere against a sphere or a plane: certified
-    /// from double-word numbers, or computed in exact rationals.
+    /// from double-word numbers or decided in exact dyadic ones, or computed
+    /// in exact rationals.
     Response,
 }
 
@@ -191,7 +194,9 @@ impl Stage {
         match self {
             Stage::MinBall => "bounds: minimal balls certified from floating point / by exact Welzl",
             Stage::MeshFaces => "toi sphere–mesh: faces ruled out in floating point / tested exactly",
-            Stage::Barycentric => "barycentric: certified from double-word numbers / computed exactly",
+            Stage::Barycentric => {
+                "barycentric: certified from double-word or exact dyadic numbers / computed in rationals"
+            }
             Stage::Contact => {
                 "contact of a sphere with a sphere, plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
             }
@@ -202,7 +207,7 @@ impl Stage {
                 "toi of a sphere with a sphere, plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
             }
             Stage::Response => {
-                "response of a sphere against a sphere or plane: certified from double-word numbers / computed exactly"
+                "response of a sphere against a sphere or plane: certified from double-word or exact dyadic numbers / computed in rationals"
             }
         }
     }

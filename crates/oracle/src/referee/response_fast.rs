@@ -13,17 +13,33 @@
 //!
 //! — the exact stage's `va + j'·wa·n` with `wa = 1/ma`, `wb = 1/mb`, the
 //! masses cleared from the denominators. The switch "already separating" is
-//! the certified sign of `vn`. `None` — the exact stage answers — for a sign
-//! the bounds leave open, an output on a midpoint or beyond `MAX`, input that
-//! is not finite, and input the exact stage refuses or flags in its own way
-//! (a negative radius, a zero plane normal); the bits are the same
-//! (`tests/referee_stages.rs`).
+//! the certified sign of `vn`. What the double-word bounds leave open (a sign,
+//! an output on or near a midpoint, beyond `MAX`) is computed again in exact
+//! dyadic numbers ([`super::dyadic`]), where every sign is certain and each
+//! output is rounded once from exact integers. `None` — the exact stage
+//! answers — for input that is not finite and input the exact stage refuses
+//! or flags in its own way (a negative radius, a zero plane normal); the bits
+//! are the same (`tests/referee_stages.rs`).
 
-use super::fast::{Dw, all_finite, diff3, dot, quotient};
+use super::dyadic::{self as dy, Dy, Num};
+use super::fast::{Dw, all_finite};
 use crate::geom::{P3, Plane, ResponseAnswer, Sphere};
 
-/// Both spheres after the impulse, as `response_sphere_sphere` answers.
+/// Both spheres after the impulse, as `response_sphere_sphere` answers: in
+/// double-word numbers, else in exact dyadic ones ([`super::dyadic`]).
 pub(super) fn sphere_sphere(
+    a: &Sphere,
+    va: &P3,
+    ma: f64,
+    b: &Sphere,
+    vb: &P3,
+    mb: f64,
+    e: f64,
+) -> Option<ResponseAnswer> {
+    sphere_sphere_in::<Dw>(a, va, ma, b, vb, mb, e).or_else(|| sphere_sphere_in::<Dy>(a, va, ma, b, vb, mb, e))
+}
+
+fn sphere_sphere_in<T: Num>(
     a: &Sphere,
     va: &P3,
     ma: f64,
@@ -42,43 +58,48 @@ pub(super) fn sphere_sphere(
         return Some(ResponseAnswer { velocity_a: *va, velocity_b: *vb, degenerate: true });
     }
     // Concentric centres (a difference exactly 0): the +z fallback, flagged.
-    let delta = diff3(&a.center, &b.center);
-    let concentric = delta.iter().all(|x| x.is_exact_zero());
-    let n = if concentric { [0.0, 0.0, 1.0].map(Dw::of) } else { delta };
-    let vn = dot(&diff3(va, vb), &n);
-    if vn.signum()? >= 0 {
+    let delta = dy::diff3::<T>(&a.center, &b.center);
+    let concentric = delta.iter().all(T::exact_zero);
+    let n = if concentric { [0.0, 0.0, 1.0].map(T::of) } else { delta };
+    let vn = dy::dot(&dy::diff3::<T>(va, vb), &n);
+    if vn.sign_of()? >= 0 {
         return Some(ResponseAnswer { velocity_a: *va, velocity_b: *vb, degenerate: concentric });
     }
-    let total = Dw::diff(ma, -mb);
-    let den = total.mul(dot(&n, &n));
-    let kvn = Dw::diff(1.0, -e).mul(vn);
-    let (ka, kb) = (kvn.mul(Dw::of(mb)), kvn.mul(Dw::of(ma)));
+    let total = T::diff(ma, -mb);
+    let den = total.times(&dy::dot(&n, &n));
+    let kvn = T::diff(1.0, -e).times(&vn);
+    let (ka, kb) = (kvn.times(&T::of(mb)), kvn.times(&T::of(ma)));
     let mut velocity_a = [0.0; 3];
     let mut velocity_b = [0.0; 3];
     for i in 0..3 {
-        velocity_a[i] = quotient(Dw::of(va[i]).mul(den).sub(ka.mul(n[i])), den)?;
-        velocity_b[i] = quotient(Dw::of(vb[i]).mul(den).add(kb.mul(n[i])), den)?;
+        velocity_a[i] = T::quotient(&T::of(va[i]).times(&den).minus(&ka.times(&n[i])), &den)?;
+        velocity_b[i] = T::quotient(&T::of(vb[i]).times(&den).plus(&kb.times(&n[i])), &den)?;
     }
     Some(ResponseAnswer { velocity_a, velocity_b, degenerate: concentric })
 }
 
 /// The sphere after the impulse against a static plane, as
-/// `response_sphere_plane` answers.
+/// `response_sphere_plane` answers: in double-word numbers, else in exact
+/// dyadic ones.
 pub(super) fn sphere_plane(va: &P3, b: &Plane, e: f64) -> Option<ResponseAnswer> {
+    sphere_plane_in::<Dw>(va, b, e).or_else(|| sphere_plane_in::<Dy>(va, b, e))
+}
+
+fn sphere_plane_in<T: Num>(va: &P3, b: &Plane, e: f64) -> Option<ResponseAnswer> {
     let numbers = va.iter().chain(&b.normal).copied().chain([b.offset, e]);
     if !all_finite(numbers) || b.normal.iter().all(|x| *x == 0.0) {
         return None;
     }
-    let n = b.normal.map(Dw::of);
-    let vn = dot(&va.map(Dw::of), &n);
-    if vn.signum()? >= 0 {
+    let n = b.normal.map(T::of);
+    let vn = dy::dot(&va.map(T::of), &n);
+    if vn.sign_of()? >= 0 {
         return Some(ResponseAnswer { velocity_a: *va, velocity_b: [0.0; 3], degenerate: false });
     }
-    let nn = dot(&n, &n);
-    let kvn = Dw::diff(1.0, -e).mul(vn);
+    let nn = dy::dot(&n, &n);
+    let kvn = T::diff(1.0, -e).times(&vn);
     let mut velocity_a = [0.0; 3];
     for i in 0..3 {
-        velocity_a[i] = quotient(Dw::of(va[i]).mul(nn).sub(kvn.mul(n[i])), nn)?;
+        velocity_a[i] = T::quotient(&T::of(va[i]).times(&nn).minus(&kvn.times(&n[i])), &nn)?;
     }
     Some(ResponseAnswer { velocity_a, velocity_b: [0.0; 3], degenerate: false })
 }
