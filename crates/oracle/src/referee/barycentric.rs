@@ -165,9 +165,11 @@ fn longest_edge_fast<T: Num>(p: &P3, v: &[P3; 3]) -> Option<[f64; 3]> {
 /// edge closest to `p` (clamped to the edge; the first of v0v1, v1v2, v2v0 wins a
 /// tie), or `[1, 0, 0]` when all three vertices coincide. They still sum to 1.
 ///
-/// **Two stages.** A floating-point stage answers first and is kept only when
+/// **Stages.** A floating-point stage answers first and is kept only when
 /// its error bounds certify every coordinate's rounding (`barycentric_fast`);
-/// otherwise the exact stage above decides. The bits are the same either way.
+/// what they leave open is computed again in exact dyadic numbers, and only
+/// what is still open then goes to the exact stage above. The bits are the
+/// same either way.
 pub fn barycentric_triangle(p: &P3, t: &Triangle) -> Result<BarycentricAnswer, RefereeError> {
     if super::staged() {
         let fast = barycentric_fast(p, t);
