@@ -11,12 +11,12 @@
 //! target (at least [`TARGET_RATIO`] for every kind) is printed and written to
 //! `target/criterion/crashtest-referee-table.md`.
 //!
-//! **The ceiling.** A case the stages cannot finish (the stage counters show
-//! exact work for it, or no stage answered any of it) costs the staged
-//! referee at least what it costs the exact stage alone. Those cases are timed
-//! on their own, staged (`staged-left`), and the table gives the ratio the
-//! stages would reach if their work on every other case cost nothing:
-//! `exact time of the mix / staged time of the cases left`. A kind whose
+//! **The ceiling.** The cases the stages cannot finish (the stage counters
+//! show work of the exact stage for them, or no stage answered any of it) are
+//! timed on their own, staged (`staged-left`): the staged referee spends at
+//! least that on the mix, whatever its work on every other case costs. The
+//! table gives `exact time of the mix / staged time of the cases left`, the
+//! ratio the stages would reach if that other work cost nothing. A kind whose
 //! ceiling is below the target cannot meet it without a faster exact stage (or
 //! a finer fallback) for the cases it leaves; the table names their pairs.
 
@@ -44,7 +44,7 @@ const SEED: u64 = harness::defaults::DEFAULT_SEED;
 /// case) keeps the run to a minute or two.
 const PER_KIND: u64 = 400;
 
-/// The target: the staged referee's mean time per query at least this
+/// The target: the staged referee's mean time per query at least this
 /// many times lower than the exact stage's, for every query kind.
 const TARGET_RATIO: f64 = 50.0;
 

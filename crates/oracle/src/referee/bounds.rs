@@ -382,9 +382,17 @@ const FLOAT_STAGE_SLACK: f64 = 1e-10;
 /// only steers the search: the certificate is exact. Dimensionless.
 const FLOAT_STAGE_DEPENDENT: f64 = 1e-24;
 
-/// The `f64` ball through `support` (the incremental construction of
-/// [`ball_through`] in floating point): centre and squared radius, or `None`
+/// The `f64` ball through `support`: centre and squared radius, or `None`
 /// when it is not finite.
+///
+/// Incremental (as in Gärtner's Miniball): with `c`, `r²` the ball through
+/// `s0 … s(j−1)` and `u` the part of `sj − s0` orthogonal to the earlier
+/// directions (Gram–Schmidt), the new centre is `c + λu`. Every earlier point
+/// keeps distance² `r² + λ²‖u‖²` (its offset from `c` is orthogonal to `u`),
+/// and `sj` gets `e − 2λ‖u‖² + λ²‖u‖²` with `e = ‖sj − c‖²` (because
+/// `(sj − c)·u = ‖u‖²`); equating gives `λ = (e − r²)/(2‖u‖²)`,
+/// `r²' = r² + λ²‖u‖²`. The exact balls are the same circumspheres by
+/// Cramer's rule ([`Circumsphere`]).
 fn float_ball_through(support: &[usize], points: &[Point]) -> Option<(P3, f64)> {
     let (&first, rest) = support.split_first()?;
     let s0 = points[first].approx;
@@ -529,13 +537,15 @@ fn min_ball_staged(points: &[P3]) -> Result<((V3, Q), bool), RefereeError> {
 ///
 /// **Method.** Welzl's algorithm in Gärtner's move-to-front form (Welzl 1991,
 /// "Smallest enclosing disks (balls and ellipsoids)"; Gärtner 1999, "Fast and
-/// robust smallest enclosing balls"), every step in rationals: the ball through
-/// 1–4 support points is their exact circumsphere (see the incremental
-/// construction in the source), and "is this point in the ball?" is decided
-/// exactly (`‖p − c‖² ≤ r²`), after a cheap `f64` filter that answers only
-/// when its rigorous error bound leaves no doubt. The points are first shuffled
-/// with a fixed seed, which gives Welzl's expected linear time and a
-/// reproducible run. The exact minimal ball is unique; its centre (a rational
+/// robust smallest enclosing balls"), every step exact: the ball through 1–4
+/// support points is their exact circumsphere (Cramer's rule in integers over
+/// the cloud's common power-of-two denominator, `Circumsphere`), and "is
+/// this point in the ball?" is decided exactly (`‖p − c‖² ≤ r²`), after a
+/// cheap `f64` filter that answers only when its rigorous error bound leaves no
+/// doubt. The points are first shuffled with a fixed seed, which gives Welzl's
+/// expected linear time and a reproducible run (when the floating-point
+/// stage's candidate fails its certificate, the exact run starts from that
+/// stage's move-to-front order instead). The exact minimal ball is unique; its centre (a rational
 /// point) is correctly rounded per coordinate, and its radius `√(r²)` correctly
 /// rounded.
 ///

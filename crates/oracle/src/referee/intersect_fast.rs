@@ -1,18 +1,15 @@
-//! The floating-point stage of a segment against a plane or a triangle
-//! ([`super::fast`]): every output is a quotient of double-word polynomials
-//! in the inputs, each certified correctly rounded ([`quotient`]), and every
-//! decision a certified sign. A function here returns `None` whenever
-//! anything is left open — a zero-length segment, a zero-area triangle, a
-//! segment parallel to the plane (those the exact stage answers, with their
-//! flags), a sign the bounds leave open, an output on a midpoint or beyond
-//! `MAX`, inputs that are not finite or input the exact stage refuses — and the exact
-//! stage then answers, with the same bits (`tests/referee_stages.rs`).
-//!
-//! Every function is written over [`Num`]: it runs in double-word numbers
-//! ([`Dw`]) first and, when their bounds leave something open, again in exact
-//! dyadic numbers ([`Dy`], [`super::dyadic`]), where every sign is certain;
-//! only what is still open then (a zero-length segment, a zero-area triangle,
-//! a parallel segment: the exact stage's flags) goes to the rationals.
+//! The floating-point stage of a segment against a plane, a triangle or a
+//! mesh ([`super::fast`]): every output is a quotient of polynomials in the
+//! inputs, each correctly rounded ([`Num::quotient`]), and every decision a
+//! certain sign. Every function is written over [`Num`]: it runs in
+//! double-word numbers ([`Dw`]) first and, when their bounds leave a sign or
+//! a rounding open (an output on or near a midpoint, or beyond `MAX`), again
+//! in exact dyadic numbers ([`Dy`], [`super::dyadic`]), where every sign is
+//! certain. A function returns `None` — the rationals of the exact stage
+//! answer, with the same bits (`tests/referee_stages.rs`) — for what has the
+//! exact stage's flags (a zero-length segment, a zero-area triangle, a
+//! segment parallel to the plane), inputs that are not finite and input the
+//! exact stage refuses.
 //!
 //! For the triangle the crossing is written as Möller and Trumbore write it:
 //! with `e1 = v1 − v0`, `e2 = v2 − v0`, `D = p1 − p0`, `T = p0 − v0`,
