@@ -22,7 +22,7 @@
 use dashu::integer::{IBig, UBig};
 use dashu::rational::Relaxed;
 
-use super::exact::{Q, round_unit};
+use super::exact::{Q, Root, round_unit};
 use super::fast::Dw;
 use crate::geom::P3;
 
@@ -98,6 +98,15 @@ pub(crate) trait Num: Clone {
     fn quotient(n: &Self, d: &Self) -> Option<f64>;
     /// `v/‖v‖` componentwise, correctly rounded, for `v·v > 0`.
     fn unit(v: &[Self; 3]) -> Option<P3>;
+    fn neg(&self) -> Self;
+    /// `a + p/√s` (`s > 0`), correctly rounded; `a + 0` when `p` is exactly 0.
+    fn over_root(a: f64, p: &Self, s: &Self) -> Option<f64>;
+    /// `c − √s`, correctly rounded (`+0.0` when exactly 0).
+    fn minus_root(c: &Self, s: &Self) -> Option<f64>;
+    /// `r − e/√s` (`s > 0`), correctly rounded; `r + 0` when `e` is exactly 0.
+    fn minus_over_root(r: f64, e: &Self, s: &Self) -> Option<f64>;
+    /// `r − √w/l` (`l > 0`), correctly rounded.
+    fn minus_root_over(r: f64, w: &Self, l: &Self) -> Option<f64>;
 
     fn exact_zero(&self) -> bool {
         self.sign_of() == Some(0)
@@ -136,6 +145,21 @@ impl Num for Dw {
             return None;
         }
         super::contact_fast::unit(v, s, super::fast::sqrt_approx(s))
+    }
+    fn neg(&self) -> Self {
+        Dw::neg(*self)
+    }
+    fn over_root(a: f64, p: &Self, s: &Self) -> Option<f64> {
+        super::contact_fast::over_root(a, *p, *s, super::fast::sqrt_approx(*s))
+    }
+    fn minus_root(c: &Self, s: &Self) -> Option<f64> {
+        super::contact_fast::minus_root(*c, *s, super::fast::sqrt_approx(*s))
+    }
+    fn minus_over_root(r: f64, e: &Self, s: &Self) -> Option<f64> {
+        super::contact_fast::plane_depth(r, *e, *s, super::fast::sqrt_approx(*s))
+    }
+    fn minus_root_over(r: f64, w: &Self, l: &Self) -> Option<f64> {
+        super::contact_fast::root_over_depth(r, *w, *l)
     }
 }
 
@@ -178,6 +202,32 @@ impl Num for Dy {
             return None;
         }
         Some(round_unit(&v))
+    }
+    fn neg(&self) -> Self {
+        Dy::neg(self)
+    }
+    // The square roots are the exact stage's own (`Root`): an enclosure of
+    // √s narrowed until the output's rounding is decided, from the exact
+    // rationals of these numbers (a power of two below each: no gcd to speak
+    // of).
+    fn over_root(a: f64, p: &Self, s: &Self) -> Option<f64> {
+        if p.sign() == 0 {
+            return Some(a + 0.0);
+        }
+        (s.sign() > 0).then(|| Root::new(s.rational()).round_over(&Dy::of(a).rational(), &p.rational()))
+    }
+    fn minus_root(c: &Self, s: &Self) -> Option<f64> {
+        (s.sign() >= 0).then(|| Root::new(s.rational()).round_affine(&c.rational(), &-Q::ONE))
+    }
+    fn minus_over_root(r: f64, e: &Self, s: &Self) -> Option<f64> {
+        if e.sign() == 0 {
+            return Some(r + 0.0);
+        }
+        (s.sign() > 0).then(|| Root::new(s.rational()).round_over(&Dy::of(r).rational(), &-e.rational()))
+    }
+    fn minus_root_over(r: f64, w: &Self, l: &Self) -> Option<f64> {
+        (w.sign() >= 0 && l.sign() > 0)
+            .then(|| Root::new(w.rational()).round_affine(&Dy::of(r).rational(), &-(Q::ONE / l.rational())))
     }
 }
 
