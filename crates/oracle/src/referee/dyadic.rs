@@ -4,16 +4,18 @@
 //! Every finite `f64` is `m·2^e` with an integer `m`, and sums, differences
 //! and products of such numbers are again such numbers, computed exactly with
 //! a big integer and an exponent: no rounding, no error bound, no gcd. The
-//! stages written over [`Num`] — intersect, barycentric coordinates and
-//! response — run first in double-word numbers, where the bounds decide nearly
-//! every case, and then, when they leave something open, in these: every sign
-//! is then certain, and each output `N/D` is rounded once, correctly, from the
-//! exact integers (the rational's own correct rounding, without reducing it).
-//! A unit normal's square root is taken as the exact stage takes it. An answer
-//! here is the exact stage's, bit for bit (`tests/referee_stages.rs`); only the
-//! exact stage's own flags (a parallel segment, a zero-area triangle) and
-//! refusals still reach the rationals. Contact and time of impact, whose
-//! outputs carry square roots throughout, are not written over it.
+//! stages written over [`Num`] — contact, intersect, barycentric coordinates
+//! and response — run first in double-word numbers, where the bounds decide
+//! nearly every case, and then, when they leave something open, in these:
+//! every sign is then certain, and each output `N/D` is rounded once,
+//! correctly, from the exact integers (the rational's own correct rounding,
+//! without reducing it). An output with a square root (a unit normal, a
+//! depth, a point on a sphere) is rounded by the exact stage's own `Root` from
+//! these numbers' rationals. An answer here is the exact stage's, bit for bit
+//! (`tests/referee_stages.rs`); only the exact stage's own fallbacks and flags
+//! (concentric spheres, a parallel segment, a zero-area triangle) and refusals
+//! still reach the rationals. Time of impact, whose candidates are ordered by
+//! roots of quadratics, is not written over it.
 //!
 //! What it saves: a full-range case (coordinates from `2^-1074` to `2^1023`
 //! in one question) can need two thousand bits to decide `t ≤ 1`, beyond any

@@ -41,26 +41,28 @@
 //!   bound exceeds the nearest exact distance;
 //! - barycentric coordinates ([`barycentric`]): computed in double-word numbers
 //!   that account for their error exactly ([`fast`]), each coordinate kept when
-//!   its correct rounding is certified, else in exact dyadic numbers (below),
-//!   else computed in exact rationals;
+//!   its correct rounding is certified;
 //! - contact of a sphere with a sphere, a plane, a triangle or a mesh, and its margin
 //!   ([`contact`]): the same, each output `A + B/√S` certified by the signs of
 //!   `P + Q·√S` at the midpoints around its candidate (`contact_fast`);
 //! - a segment against a plane, a triangle or a mesh, and its margin ([`intersect`]):
-//!   every output a certified quotient (`intersect_fast`); what the
-//!   double-word bounds leave open (here, for barycentric coordinates and for
-//!   response) is computed again in exact dyadic numbers
-//!   (`m·2^e`, big integers without a gcd: `dyadic`), where every sign is
-//!   certain and each quotient is rounded once — a full-range case that needs
-//!   two thousand bits costs tens of microseconds there, milliseconds in
-//!   rationals;
+//!   every output a certified quotient (`intersect_fast`);
 //! - a sphere's time of impact with a sphere, a plane, a triangle or a mesh,
 //!   and its margin ([`toi`]): every output `(P + Q·√D)/K` certified the same
 //!   way, a triangle's candidates (its vertices, edges and face) ordered by
 //!   their certified roundings, a margin the largest of its candidates'
 //!   certified margins (`toi_fast`);
 //! - collision response ([`response`]): every velocity a certified quotient
-//!   (`response_fast`), else one rounded from exact dyadic numbers.
+//!   (`response_fast`).
+//!
+//! **Exact dyadic numbers.** What the double-word bounds leave open in
+//! contact, intersect, barycentric coordinates and response is computed again,
+//! by the same code, in exact dyadic numbers (`m·2^e`, big integers without a
+//! gcd: `dyadic`), where every sign is certain and each quotient is rounded
+//! once from exact integers (a square root by the exact stage's own `Root`).
+//! A full-range case that needs two thousand bits costs tens of microseconds
+//! there, milliseconds in rationals. Only the exact stage's fallbacks and
+//! flags, and refused input, then reach the rationals.
 //!
 //! The answers are the same bits as the exact stage's alone, by construction
 //! and by test ([`exact_only`] switches the stages off; `tests/referee_stages.rs`).
@@ -160,8 +162,8 @@ pub enum Stage {
     /// decided in exact dyadic ones, or computed in exact rationals.
     Barycentric,
     /// Contact of a sphere with a sphere, a plane, a triangle or a mesh, and
-    /// its margin: certified from double-word numbers, or computed in exact
-    /// rationals.
+    /// its margin: certified from double-word numbers or decided in exact
+    /// dyadic ones, or computed in exact rationals.
     Contact,
     /// A segment against a plane, a triangle or a mesh, and its margin:
     /// certified from double-word numbers or decided in exact dyadic ones, or
@@ -198,7 +200,7 @@ impl Stage {
                 "barycentric: certified from double-word or exact dyadic numbers / computed in rationals"
             }
             Stage::Contact => {
-                "contact of a sphere with a sphere, plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
+                "contact of a sphere with a sphere, plane, triangle or mesh, and margins: certified from double-word or exact dyadic numbers / computed in rationals"
             }
             Stage::Intersect => {
                 "intersect of a segment with a plane, triangle or mesh, and margins: certified from double-word or exact dyadic numbers / computed in rationals"
