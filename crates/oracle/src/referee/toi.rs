@@ -38,7 +38,7 @@ use std::cmp::Ordering;
 
 use super::RefereeError;
 use super::closest::closest_on_triangle;
-use super::contact::{contact_sphere_plane, contact_sphere_sphere, contact_sphere_triangle};
+use super::contact::{contact_sphere_mesh, contact_sphere_plane, contact_sphere_sphere, contact_sphere_triangle};
 use super::exact::{
     Q, Root, V3, add, check, check_radius, check_v3, cross, dot, is_zero, q, radius, round_unit, scale, sub, v3,
 };
@@ -640,6 +640,16 @@ pub fn toi_sphere_mesh(
         triangles.iter().map(|tri| path.as_ref().is_none_or(|p| face_gap2_below(p, vertices, tri) <= r2_up)).collect();
     if let Some(answer) = staged(|| super::toi_fast::sphere_mesh(a, va, vertices, triangles, &near, vb, t_max)) {
         return Ok(answer);
+    }
+    // A contact at t = 0 (the stage above leaves every one to this function)
+    // is the static contact with the nearest face, lowest index on a tie —
+    // what the exact loop below finds — and contact has stages of its own,
+    // exact dyadic numbers included.
+    if super::staged() {
+        let at0 = contact_sphere_mesh(a, vertices, triangles)?;
+        if at0.contact.is_some() {
+            return Ok(at_zero(at0));
+        }
     }
     let s = moving(a, va, vb, t_max)?;
     let faces = mesh(vertices, triangles)?;
