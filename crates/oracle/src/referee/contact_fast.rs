@@ -1,29 +1,26 @@
 //! The floating-point stage of contact between a sphere and a sphere, a
-//! plane, a triangle or a mesh ([`super::fast`]): the exact stage's formulas
-//! in double-word numbers that account for their error, each output kept only
-//! when its correct rounding is certified, each decision (contact, a
-//! triangle's region, a mesh's nearest face) only on certified signs.
+//! plane, a triangle or a mesh ([`super::fast`]): the exact stage's formulas,
+//! each output kept only when its correct rounding is certain, each decision
+//! (contact, a triangle's region, a mesh's nearest face) only on certain
+//! signs.
 //!
-//! Every output is `x = A + B/√S` for double-words `A`, `B` and a sum of
-//! squares `S > 0` (or a quotient, for the sphere–plane point). Its rounding is
-//! certified by [`certify`]: for a midpoint `m` around a candidate, the sign of
-//! `x − m` is that of `P + Q·√S` with `P`, `Q` exact or bounded double-words
-//! ([`sign_affine_root`]); an output exactly 0 (a touching depth) is proved
-//! so and is `+0.0`. A function here returns `None` whenever anything is left
-//! open — concentric spheres or a centre exactly on a triangle, a zero-area
-//! triangle, two mesh faces whose distances the bounds cannot order, an
-//! output on a midpoint or beyond `MAX`, a sign the bounds leave open, an
-//! input that is not a finite number, or input the exact stage refuses — and the exact stage then
-//! answers, with the same bits by construction and by test
-//! (`tests/referee_stages.rs`).
-//!
-//! The decisions and the rational outputs are written over [`Num`]: what the
-//! double-word bounds leave open runs again in exact dyadic numbers
+//! Every function is written over [`Num`] and runs in double-word numbers
+//! first. There every output is `x = A + B/√S` for double-words `A`, `B` and a
+//! sum of squares `S > 0` (or a quotient, for the sphere–plane point); its
+//! rounding is certified by [`certify`]: for a midpoint `m` around a
+//! candidate, the sign of `x − m` is that of `P + Q·√S` with `P`, `Q` exact or
+//! bounded double-words ([`sign_affine_root`]); an output exactly 0 (a
+//! touching depth) is proved so and is `+0.0`. What the double-word bounds
+//! leave open (a sign, two mesh faces they cannot order, an output on or near
+//! a midpoint, beyond `MAX`) runs again in exact dyadic numbers
 //! ([`super::dyadic`]), where every sign is certain, each quotient is rounded
 //! from exact integers, and each output with a square root is rounded by the
-//! exact stage's own `Root` from those numbers' rationals. Only concentric
-//! spheres, a centre exactly on a triangle and a zero-area triangle (the exact
-//! stage's fallbacks) and refused input still reach the rationals.
+//! exact stage's own `Root` from those numbers' rationals. A function returns
+//! `None` — the exact stage's rationals answer, with the same bits by
+//! construction and by test (`tests/referee_stages.rs`) — for concentric
+//! spheres, a centre exactly on a triangle and a zero-area triangle (the
+//! exact stage's fallbacks), input that is not a finite number and input the
+//! exact stage refuses.
 
 use super::dyadic::{self as dy, Dy, Num};
 use super::fast::{Dw, all_finite, certify, div_approx, sign_affine_root, sqrt_approx};
