@@ -99,19 +99,14 @@ impl Point {
 /// A finite `x` exactly: as a rational, and as `m·2^e` with `m` odd (or 0,
 /// with `e = 0`).
 fn dyadic(x: f64) -> (Q, IBig, i64) {
-    let bits = x.to_bits();
-    let field = ((bits >> 52) & 0x7ff) as i64;
-    let frac = bits & ((1u64 << 52) - 1);
-    let (mant, exp) = if field == 0 { (frac, -1074) } else { (frac | (1u64 << 52), field - 1075) };
+    let (mant, exp, negative) = super::dyadic::parts(x);
     if mant == 0 {
         return (Q::ZERO, IBig::ZERO, 0);
     }
     let tz = i64::from(mant.trailing_zeros());
     let (odd, e) = (mant >> tz, exp + tz);
-    let m = if x < 0.0 { -IBig::from(odd) } else { IBig::from(odd) };
-    let q =
-        if e >= 0 { Q::from(m.clone() << e as usize) } else { Q::from_parts(m.clone(), UBig::ONE << (-e) as usize) };
-    (q, m, e)
+    let m = if negative { -IBig::from(odd) } else { IBig::from(odd) };
+    (super::dyadic::rational(&m, e), m, e)
 }
 
 /// `x·2^s` correctly rounded, as the exact value shifted then rounded: one

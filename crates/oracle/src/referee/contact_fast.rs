@@ -75,7 +75,7 @@ fn sphere_sphere_in<T: Num>(a: &Sphere, b: &Sphere) -> Option<Option<Contact>> {
     if !s.positive() {
         return None;
     }
-    let normal = T::unit(&delta)?;
+    let normal = T::unit(&delta, &s)?;
     let mut point = [0.0; 3];
     for i in 0..3 {
         point[i] = T::over_root(b.center[i], &T::of(b.radius).times(&delta[i]), &s)?;
@@ -168,7 +168,7 @@ fn sphere_plane_in<T: Num>(a: &Sphere, b: &Plane) -> Option<Option<Contact>> {
     for i in 0..3 {
         point[i] = T::quotient(&T::of(a.center[i]).times(&nn).minus(&e.times(&n[i])), &nn)?;
     }
-    Some(Some(Contact { point, normal: T::unit(&n)?, depth: T::minus_over_root(a.radius, &e, &nn)? }))
+    Some(Some(Contact { point, normal: T::unit(&n, &nn)?, depth: T::minus_over_root(a.radius, &e, &nn)? }))
 }
 
 /// Sphere `a` against plane `b`, as [`sphere_sphere`] answers.
@@ -186,7 +186,7 @@ fn plane_sphere_in<T: Num>(a: &Plane, b: &Sphere) -> Option<Option<Contact>> {
     for i in 0..3 {
         point[i] = T::over_root(b.center[i], &T::of(b.radius).times(&neg[i]), &nn)?;
     }
-    Some(Some(Contact { point, normal: T::unit(&neg)?, depth: T::minus_over_root(b.radius, &e, &nn)? }))
+    Some(Some(Contact { point, normal: T::unit(&neg, &nn)?, depth: T::minus_over_root(b.radius, &e, &nn)? }))
 }
 
 /// Plane `a` against sphere `b`: the normal is `−n/‖n‖` and the point
@@ -289,7 +289,7 @@ pub(super) fn near_by<T: Num>(rel: impl Fn(&P3) -> [T; 3], v: &[P3; 3]) -> Optio
 /// squared length), and whether the sphere touches the triangle.
 struct TriangleParts<T> {
     near: Near<T>,
-    dir: [T; 3],
+    dir: ([T; 3], T),
     touches: bool,
 }
 
@@ -312,7 +312,7 @@ fn parts_of<T: Num>(s: &Sphere, v: &[P3; 3]) -> Option<TriangleParts<T>> {
             }
             // ‖w‖² = ww/l² ≤ r².
             let rl = r.times(l);
-            (wv.clone(), rl.times(&rl).minus(ww).sign_of()? >= 0)
+            ((wv.clone(), ww.clone()), rl.times(&rl).minus(ww).sign_of()? >= 0)
         }
         Near::Face { n, nn, e } => {
             let sign = e.sign_of()?;
@@ -321,7 +321,7 @@ fn parts_of<T: Num>(s: &Sphere, v: &[P3; 3]) -> Option<TriangleParts<T>> {
             }
             let dir = if sign > 0 { n.clone() } else { n.clone().map(|x| x.neg()) };
             // (e/nn)²·nn = e²/nn ≤ r².
-            (dir, r.times(&r).times(nn).minus(&e.times(e)).sign_of()? >= 0)
+            ((dir, nn.clone()), r.times(&r).times(nn).minus(&e.times(e)).sign_of()? >= 0)
         }
     };
     Some(TriangleParts { near, dir, touches })
@@ -373,7 +373,8 @@ fn sphere_triangle_in<T: Num>(a: &Sphere, b: &Triangle) -> Option<Option<Contact
     if !parts.touches {
         return Some(None);
     }
-    let normal = T::unit(&parts.dir)?;
+    let (dir, dd) = &parts.dir;
+    let normal = T::unit(dir, dd)?;
     Some(Some(Contact { point: parts.point(&a.center)?, normal, depth: parts.depth(a.radius)? }))
 }
 
@@ -387,13 +388,13 @@ fn triangle_sphere_in<T: Num>(a: &Triangle, b: &Sphere) -> Option<Option<Contact
     if !parts.touches {
         return Some(None);
     }
-    let neg = parts.dir.clone().map(|x| x.neg());
-    let dd = dy::dot(&neg, &neg);
+    let (dir, dd) = &parts.dir;
+    let neg = dir.clone().map(|x| x.neg());
     let mut point = [0.0; 3];
     for i in 0..3 {
-        point[i] = T::over_root(b.center[i], &T::of(b.radius).times(&neg[i]), &dd)?;
+        point[i] = T::over_root(b.center[i], &T::of(b.radius).times(&neg[i]), dd)?;
     }
-    Some(Some(Contact { point, normal: T::unit(&neg)?, depth: parts.depth(b.radius)? }))
+    Some(Some(Contact { point, normal: T::unit(&neg, dd)?, depth: parts.depth(b.radius)? }))
 }
 
 /// Triangle `a` against sphere `b`: normal `−m`, point `c − r·m` on the sphere.
@@ -444,7 +445,8 @@ fn sphere_mesh_in<T: Num>(a: &Sphere, vertices: &[P3], triangles: &[[usize; 3]])
     if !parts.touches {
         return Some(None);
     }
-    let normal = T::unit(&parts.dir)?;
+    let (dir, dd) = &parts.dir;
+    let normal = T::unit(dir, dd)?;
     Some(Some(Contact { point: parts.point(&a.center)?, normal, depth: parts.depth(a.radius)? }))
 }
 

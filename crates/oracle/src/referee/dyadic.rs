@@ -24,7 +24,7 @@
 use dashu::integer::{IBig, UBig};
 use dashu::rational::Relaxed;
 
-use super::exact::{Q, Root, round_unit};
+use super::exact::{Q, Root};
 use super::fast::Dw;
 use crate::geom::P3;
 
@@ -35,15 +35,27 @@ pub(crate) struct Dy {
     e: i64,
 }
 
+/// A finite `x` as `±mant·2^e`: its significand (`mant < 2^53`, 0 for ±0),
+/// its exponent and whether it is negative — IEEE 754's fields, read exactly.
+pub(crate) fn parts(x: f64) -> (u64, i64, bool) {
+    let bits = x.to_bits();
+    let field = ((bits >> 52) & 0x7ff) as i64;
+    let frac = bits & ((1u64 << 52) - 1);
+    let (mant, e) = if field == 0 { (frac, -1074) } else { (frac | (1u64 << 52), field - 1075) };
+    (mant, e, x < 0.0)
+}
+
+/// The rational `m·2^e`.
+pub(crate) fn rational(m: &IBig, e: i64) -> Q {
+    if e >= 0 { Q::from(m << e as usize) } else { Q::from_parts(m.clone(), UBig::ONE << (-e) as usize) }
+}
+
 impl Dy {
     /// The exact value of a finite `x` (0 for ±0).
     pub(crate) fn of(x: f64) -> Dy {
-        let bits = x.to_bits();
-        let field = ((bits >> 52) & 0x7ff) as i64;
-        let frac = bits & ((1u64 << 52) - 1);
-        let (mant, e) = if field == 0 { (frac, -1074) } else { (frac | (1u64 << 52), field - 1075) };
+        let (mant, e, negative) = parts(x);
         let m = IBig::from(mant);
-        Dy { m: if x < 0.0 { -m } else { m }, e }
+        Dy { m: if negative { -m } else { m }, e }
     }
 
     fn aligned(&self, e: i64) -> IBig {
@@ -74,11 +86,7 @@ impl Dy {
 
     /// The exact rational.
     fn rational(&self) -> Q {
-        if self.e >= 0 {
-            Q::from(&self.m << self.e as usize)
-        } else {
-            Q::from_parts(self.m.clone(), UBig::ONE << (-self.e) as usize)
-        }
+        rational(&self.m, self.e)
     }
 }
 
@@ -98,8 +106,9 @@ pub(crate) trait Num: Clone {
     /// `RN(n/d)`, certified, or `None`: `d`'s sign must be certain and not
     /// zero; an exact zero `n` gives `+0.0`, as the exact stage rounds 0.
     fn quotient(n: &Self, d: &Self) -> Option<f64>;
-    /// `v/‖v‖` componentwise, correctly rounded, for `v·v > 0`.
-    fn unit(v: &[Self; 3]) -> Option<P3>;
+    /// `v/‖v‖` componentwise, correctly rounded, given `s = v·v` (`None`
+    /// unless `s > 0`).
+    fn unit(v: &[Self; 3], s: &Self) -> Option<P3>;
     fn neg(&self) -> Self;
     /// `a + p/√s` (`s > 0`), correctly rounded; `a + 0` when `p` is exactly 0.
     fn over_root(a: f64, p: &Self, s: &Self) -> Option<f64>;
@@ -141,12 +150,11 @@ impl Num for Dw {
     fn quotient(n: &Self, d: &Self) -> Option<f64> {
         super::fast::quotient(*n, *d)
     }
-    fn unit(v: &[Self; 3]) -> Option<P3> {
-        let s = super::fast::dot(v, v);
+    fn unit(v: &[Self; 3], s: &Self) -> Option<P3> {
         if !s.is_positive() {
             return None;
         }
-        super::contact_fast::unit(v, s, super::fast::sqrt_approx(s))
+        super::contact_fast::unit(v, *s, super::fast::sqrt_approx(*s))
     }
     fn neg(&self) -> Self {
         Dw::neg(*self)
@@ -198,12 +206,12 @@ impl Num for Dy {
         // rational rounds as the reduced one does.
         Some(super::exact::round_relaxed(&Relaxed::from_parts_signed(num, den)))
     }
-    fn unit(v: &[Self; 3]) -> Option<P3> {
-        let v = [v[0].rational(), v[1].rational(), v[2].rational()];
-        if v.iter().all(|x| *x == Q::ZERO) {
+    fn unit(v: &[Self; 3], s: &Self) -> Option<P3> {
+        if s.sign() <= 0 {
             return None;
         }
-        Some(round_unit(&v))
+        let v = [v[0].rational(), v[1].rational(), v[2].rational()];
+        Some(Root::new(s.rational()).round_over_v(&[Q::ZERO, Q::ZERO, Q::ZERO], &Q::ONE, &v))
     }
     fn neg(&self) -> Self {
         Dy::neg(self)

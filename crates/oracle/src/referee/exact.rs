@@ -21,9 +21,7 @@ const MAX_PRECISION_BITS: usize = 1 << 20;
 
 /// The exact value of `x`, or an error naming `field` when `x` is NaN or ±∞.
 pub(crate) fn q(x: f64, field: &'static str) -> Result<Q, RefereeError> {
-    if !x.is_finite() {
-        return Err(RefereeError::NonFinite { field });
-    }
+    check(x, field)?;
     // Every finite f64 is a dyadic rational; the conversion is exact.
     Q::try_from(x).map_err(|_| RefereeError::NonFinite { field })
 }
@@ -54,10 +52,8 @@ pub(crate) fn v3(p: &P3, field: &'static str) -> Result<V3, RefereeError> {
 
 /// A radius, refused when negative.
 pub(crate) fn radius(r: f64, field: &'static str) -> Result<Q, RefereeError> {
+    check_radius(r, field)?;
     let r = q(r, field)?;
-    if r < Q::ZERO {
-        return Err(RefereeError::NegativeRadius { field });
-    }
     Ok(r)
 }
 

@@ -108,7 +108,13 @@ fn segment_plane_in<T: Num>(s: &Segment, p: &Plane) -> Option<IntersectAnswer> {
     if !c.on_segment()? {
         return Some(miss());
     }
-    let hit = SegmentHit { t: c.t()?, point: c.point()?, normal: T::unit(&n)?, barycentric: None, triangle: None };
+    let hit = SegmentHit {
+        t: c.t()?,
+        point: c.point()?,
+        normal: T::unit(&n, &dot(&n, &n))?,
+        barycentric: None,
+        triangle: None,
+    };
     Some(IntersectAnswer { hit: Some(hit), parallel: false, degenerate: false })
 }
 
@@ -181,7 +187,7 @@ impl<T: Num> Crossing<T> {
         Some(SegmentHit {
             t: self.t()?,
             point: self.point()?,
-            normal: T::unit(n)?,
+            normal: T::unit(n, &dot(n, n))?,
             barycentric: Some(barycentric),
             triangle,
         })
