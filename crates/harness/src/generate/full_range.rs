@@ -18,6 +18,12 @@
 //!   segment or point near a vertex, an edge or the face of a triangle with legs
 //!   up to 1e300; plane normals of length `2^±600` with matching offsets;
 //!   points and boxes of mixed magnitudes; masses from the subnormals to 1e300.
+//!   For `toi`, also scenes at `f64`'s extremes: radii and velocity components
+//!   from the smallest subnormal to exactly `f64::MAX` (two spheres of radius
+//!   `f64::MAX` overlap, and their depth is beyond `f64`), `t_max` from the
+//!   smallest subnormal to 1e300, planes whose normal components mix huge and
+//!   tiny magnitudes (`1e-282` beside `1e-68`), and spheres centred on a vertex
+//!   of a sliver far from the origin, whose face normal cancels in `f64`.
 //!
 //! An exact answer beyond `f64`'s range is possible here (two spheres of radius
 //! 1e308 overlap by more than `f64::MAX`): the referee refuses such a case, and
@@ -272,6 +278,118 @@ fn scaled_plane() -> impl Strategy<Value = (P3, f64)> + Clone {
     })
 }
 
+/// A positive length or speed at `f64`'s extremes: exactly `f64::MAX`, the
+/// smallest subnormal, any subnormal, a normal number of any binade, or one of
+/// ordinary size (so that extremes meet ordinary numbers too).
+fn extreme_magnitude() -> impl Strategy<Value = f64> + Clone {
+    prop_oneof![
+        Just(f64::MAX),
+        Just(f64::from_bits(1)),
+        (1u64..1u64 << 52).prop_map(f64::from_bits),
+        magnitude(-1022, 1023),
+        magnitude(-8, 8),
+    ]
+}
+
+/// A coordinate or velocity component at `f64`'s extremes (either sign), or
+/// zero.
+fn extreme_component() -> impl Strategy<Value = f64> + Clone {
+    prop_oneof![
+        4 => (extreme_magnitude(), any::<bool>()).prop_map(|(m, neg)| if neg { -m } else { m }),
+        1 => Just(0.0),
+    ]
+}
+
+fn extreme_vec3() -> impl Strategy<Value = P3> + Clone {
+    prop::array::uniform3(extreme_component())
+}
+
+/// The end of a `toi` interval from the smallest subnormal to 1e300:
+/// `5e-324`, any subnormal, a normal number of any binade up to `2^996`,
+/// 1 or 1e300.
+fn extreme_t_max() -> impl Strategy<Value = f64> + Clone {
+    prop_oneof![
+        Just(f64::from_bits(1)),
+        (1u64..1u64 << 52).prop_map(f64::from_bits),
+        magnitude(-1022, 995),
+        Just(1.0),
+        Just(1e300),
+    ]
+}
+
+/// A sliver far from the origin and a point on it: vertices `v0` and `v1`
+/// with coordinates up to `2^1000` apart, `v2` near their midpoint, off the
+/// line by `2^-j` of the edge (`j ∈ [20, 60]`; the face normal's `f64` cross
+/// product cancels, often to zero); the point is one of the vertices
+/// exactly, or one of them moved by up to a unit.
+fn sliver_and_vertex() -> impl Strategy<Value = ([P3; 3], P3)> + Clone {
+    (extreme_vec3(), vec3(BOX), unit(), 20..=60i32, 0..3usize, any::<bool>(), vec3(1.0)).prop_map(
+        |(v0, v1, u, j, at, exact, off)| {
+            // The midpoint and the edge at half scale: no sum overflows.
+            let mid = add(scale(v0, 0.5), scale(v1, 0.5));
+            let half_edge = sub(scale(v1, 0.5), scale(v0, 0.5));
+            let across = crashtest_core::vec3::norm_sqrt_dot(half_edge) * pow2(-j);
+            let v2 = add(mid, scale(u, if across.is_finite() { across } else { pow2(1000 - j) }));
+            let v = [v0, v1, v2];
+            let p = if exact { v[at] } else { add(v[at], off) };
+            (v, p)
+        },
+    )
+}
+
+/// The `toi` scenes at `f64`'s extremes of the multi-scale family (see the
+/// module docs): sphere–sphere, sphere–plane and a sphere on a sliver's
+/// vertex, each moving at extreme speeds over an extreme interval.
+fn extreme_toi(case: impl Fn(Scene, Option<f64>) -> Case + Clone + Send + Sync + 'static) -> SBoxedStrategy<Case> {
+    let moving = |s: Shape, v: P3| match s {
+        Shape::Sphere(mut sp) => {
+            sp.velocity = Some(v);
+            Shape::Sphere(sp)
+        }
+        Shape::Plane(mut p) => {
+            p.velocity = Some(v);
+            Shape::Plane(p)
+        }
+        Shape::Triangle(mut t) => {
+            t.velocity = Some(v);
+            Shape::Triangle(t)
+        }
+        other => other,
+    };
+    let valid = |mut c: Case| {
+        make_valid(&mut c);
+        c
+    };
+    let (c1, c2, c3) = (case.clone(), case.clone(), case);
+    prop_oneof![
+        (
+            (extreme_vec3(), extreme_magnitude(), extreme_vec3()),
+            (extreme_vec3(), extreme_magnitude(), extreme_vec3()),
+            extreme_t_max()
+        )
+            .prop_map(move |((ca, ra, va), (cb, rb, vb), t)| valid(c1(
+                (moving(sphere(ca, ra), va), Some(moving(sphere(cb, rb), vb))),
+                Some(t)
+            ))),
+        (
+            (extreme_vec3(), extreme_magnitude(), extreme_vec3()),
+            (extreme_vec3(), prop_oneof![extreme_component(), vec3(BOX).prop_map(|p| p[0])], extreme_vec3()),
+            extreme_t_max()
+        )
+            .prop_map(move |((c, r, va), (n, d, vb), t)| valid(c2(
+                (moving(sphere(c, r), va), Some(moving(plane(n, d), vb))),
+                Some(t)
+            ))),
+        (sliver_and_vertex(), extreme_magnitude(), extreme_vec3(), extreme_vec3(), extreme_t_max()).prop_map(
+            move |((v, at), r, va, vb, t)| valid(c3(
+                (moving(sphere(at, r), va), Some(moving(triangle(v), vb))),
+                Some(t)
+            ))
+        ),
+    ]
+    .sboxed()
+}
+
 fn multi_scale(query: Query) -> SBoxedStrategy<Case> {
     let case = move |(a, b): Scene, t_max: Option<f64>, restitution: Option<f64>| Case {
         name: String::new(),
@@ -335,7 +453,8 @@ fn multi_scale(query: Query) -> SBoxedStrategy<Case> {
             })
             .sboxed(),
         Query::Toi => prop_oneof![
-            (huge_triangle_and_near_point(), magnitude(-8, 4), unit(), magnitude(-8, 6)).prop_map(
+            2 => extreme_toi(move |scene, t_max| case(scene, t_max, None)),
+            1 => (huge_triangle_and_near_point(), magnitude(-8, 4), unit(), magnitude(-8, 6)).prop_map(
                 move |((v, c), r, u, speed)| {
                     // The sphere starts a little off and moves through the spot.
                     let start = sub(c, scale(u, speed / 2.0));
@@ -346,7 +465,7 @@ fn multi_scale(query: Query) -> SBoxedStrategy<Case> {
                     case((s, Some(triangle(v))), None, None)
                 }
             ),
-            (scaled_plane(), vec3(BOX), magnitude(-8, 3), vec3(8.0), magnitude(-300, 300)).prop_map(
+            1 => (scaled_plane(), vec3(BOX), magnitude(-8, 3), vec3(8.0), magnitude(-300, 300)).prop_map(
                 move |((n, d), c, r, v, speed)| {
                     let mut s = sphere(c, r);
                     if let Shape::Sphere(sp) = &mut s {
