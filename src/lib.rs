@@ -176,9 +176,19 @@ impl Campaign {
         Self { config, out: PathBuf::from("reports") }
     }
 
-    /// The engines (and gate) to judge.
+    /// The engines (and gate) to judge (a [`Campaign::ulps`] given before
+    /// stays in force).
     pub fn engines(mut self, engines: EngineSet) -> Self {
-        self.config.engines = engines;
+        let ulps = engines.ulps.or(self.config.engines.ulps);
+        self.config.engines = EngineSet { ulps, ..engines };
+        self
+    }
+
+    /// Judges with a fixed allowance of `n` ulps of each field's magnitude in
+    /// each engine's own precision (the CLI's `--ulps N`; the conditioning
+    /// allowances stay): the engines' backward stability to `n` ulps.
+    pub fn ulps(mut self, n: u32) -> Self {
+        self.config.engines.ulps = Some(f64::from(n));
         self
     }
 

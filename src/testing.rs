@@ -79,6 +79,14 @@ impl Judge {
         }
     }
 
+    /// Judges with a fixed allowance of `n` ulps of each field's magnitude in
+    /// the engine's own precision (the CLI's `--ulps N`; the conditioning
+    /// allowances stay): is the engine backward stable to `n` ulps?
+    pub fn ulps(mut self, n: u32) -> Self {
+        self.engines.ulps = Some(f64::from(n));
+        self
+    }
+
     /// The seed of the random cases.
     pub fn seed(mut self, seed: u64) -> Self {
         self.seed = seed;

@@ -142,7 +142,7 @@ fn parrys_programs_for_meshes_barycentrics_and_bounds_compile_and_fail_exactly_o
         let loaded = load_paths(&[root().join("fixtures").join(file)]);
         let lc = loaded.cases.iter().find(|c| c.case.name == name).unwrap_or_else(|| panic!("{file}: {name}"));
         let truth = harness::check::Truth::of(&set.referee, lc);
-        let judged = harness::check::judge_engine(engine, &set.referee, lc, &truth);
+        let judged = harness::check::judge_engine(engine, &set, lc, &truth);
         assert_eq!(
             matches!(judged.verdict, harness::judge::Verdict::Disagree { .. }),
             wrong,
@@ -187,7 +187,7 @@ fn replay_all(file: &FindingsFile, dir: &Path, set: &EngineSet) -> usize {
         let lc = &loaded.cases[0];
         let engine = set.judged.iter().find(|e| e.name == f.engine()).expect("the finding's engine");
         let judged = || {
-            let (sig, result, _) = judge_one(engine, &set.referee, lc);
+            let (sig, result, _) = judge_one(engine, &set, lc);
             sig.map(|sig| (harness::findings::signature::cause_of(&sig, lc, Some(engine), &result), sig))
         };
         let (cause, sig): (Cause, _) = (0..3 * harness::findings::shrink::REPLAYS)

@@ -232,6 +232,12 @@ struct EngineArgs {
     /// Cases per batch sent to a process engine.
     #[arg(long, value_name = "N", default_value_t = harness::protocol::client::DEFAULT_BATCH as u64, value_parser = clap::value_parser!(u64).range(1..=1_000_000))]
     engine_batch: u64,
+    /// Judge with a fixed allowance of N ulps of each field's magnitude in
+    /// the engine's own precision instead of the tolerance table's (the
+    /// conditioning allowances stay): does the engine agree when held to
+    /// backward stability within N ulps? The default verdicts use the table.
+    #[arg(long, value_name = "N")]
+    ulps: Option<u32>,
 }
 
 impl EngineArgs {
@@ -259,9 +265,10 @@ impl EngineArgs {
         for l in &mut listed {
             l.spec.batch = self.engine_batch as usize;
         }
-        crashtest::EngineSet::select_with(&self.engines, self.gate.as_deref(), listed).map_err(|e| {
+        let set = crashtest::EngineSet::select_with(&self.engines, self.gate.as_deref(), listed).map_err(|e| {
             fail(format!("--engines {} --gate {}: {e}", self.engines, self.gate.as_deref().unwrap_or("(default)")))
-        })
+        })?;
+        Ok(crashtest::EngineSet { ulps: self.ulps.map(f64::from), ..set })
     }
 }
 

@@ -421,3 +421,48 @@ fn a_world_that_fails_is_listed_with_its_reason_and_the_rest_of_the_dynamics_sti
     assert_eq!(rows, 27, "every thickness and speed");
     assert_eq!(d["engine_settings"][0]["engine"], "wf");
 }
+
+/// A process engine whose normals are 1.01 or 1.5 times too long, its points,
+/// depths and times collide's own: every case where collide agrees with a
+/// contact, a hit or an impact is a disagreement that says the normal is not
+/// unit; every other case keeps collide's verdict. (Before normals' lengths
+/// were judged, every one of them agreed.)
+#[test]
+fn normals_that_are_not_unit_disagree_over_the_protocol() {
+    let collide = env!("CARGO_BIN_EXE_crashtest-engine-collide");
+    let files = [
+        "fixtures/contact.json",
+        "fixtures/intersect.json",
+        "fixtures/toi.json",
+        "fixtures/mesh.json",
+        "fixtures/peers",
+        "fixtures/regressions",
+    ];
+    for k in ["1.01", "1.5"] {
+        let command = format!("{} {k} {collide}", script("scaled_normals"));
+        let (_, v) = check_with(&command, &[], &files);
+        let (mut with_normal, mut without) = (0, 0);
+        for c in v["cases"].as_array().expect("cases") {
+            let of = |name: &str| {
+                c["engines"].as_array().expect("engines").iter().find(|r| r["engine"] == name).expect("engine").clone()
+            };
+            let (here, x) = (of("collide/robust"), of("x"));
+            let answer = &here["answer"];
+            let normal = ["contact", "hit", "toi"].iter().any(|key| answer[key].get("normal").is_some());
+            if here["verdict"] == "agree" && normal {
+                with_normal += 1;
+                let reasons = x["reasons"].to_string();
+                assert!(
+                    x["verdict"] == "disagree" && reasons.contains("normal not unit"),
+                    "×{k}, {}: {} {reasons}",
+                    c["name"],
+                    x["verdict"]
+                );
+            } else if !normal {
+                without += 1;
+                assert_eq!(x["verdict"], here["verdict"], "×{k}, {}: no normal to scale", c["name"]);
+            }
+        }
+        assert!(with_normal >= 100 && without >= 20, "×{k}: {with_normal} cases with a normal, {without} without");
+    }
+}

@@ -220,7 +220,7 @@ pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
     let mut passed = false;
     let mut unanswered = false;
     for engine in judged {
-        let r = judge_engine(engine, referee, lc, &truth);
+        let r = judge_engine(engine, set, lc, &truth);
         if engine.name == set.gate {
             let expect_ok = r.expect_mismatches.as_ref().is_none_or(|m| m.is_empty());
             let referee_ok = matches!(r.verdict, Verdict::Agree | Verdict::Borderline { .. })
@@ -284,10 +284,10 @@ impl Truth {
 /// divergences explain is a known divergence. For an `f32` engine that
 /// disagrees, `referee` also answers the case rounded to `f32`
 /// ([`EngineResult::rounding_explains`]).
-pub fn judge_engine(engine: &Engine, referee: &Engine, lc: &LoadedCase, truth: &Truth) -> EngineResult {
+pub fn judge_engine(engine: &Engine, set: &EngineSet, lc: &LoadedCase, truth: &Truth) -> EngineResult {
     let has_expect = lc.case.expect.is_some();
     let precision = engine.precision_for(lc);
-    let tol = Tolerance::for_precision(precision);
+    let tol = Tolerance::for_engine(precision, set.ulps);
     let mut rounding_explains = false;
     let (answer, verdict, errors, mism) = match run_caught(engine, lc) {
         Ok(a) => {
@@ -300,7 +300,7 @@ pub fn judge_engine(engine: &Engine, referee: &Engine, lc: &LoadedCase, truth: &
                             Some(reason) => (Verdict::KnownDivergence { reason }, e),
                             None => {
                                 rounding_explains =
-                                    precision == Some(F32_BITS) && agrees_rounded(referee, lc, &a, &tol);
+                                    precision == Some(F32_BITS) && agrees_rounded(&set.referee, lc, &a, &tol);
                                 (v, e)
                             }
                         },

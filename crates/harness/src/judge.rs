@@ -6,7 +6,7 @@
 use crate::case::{Case, Expect, Shape};
 use crate::engine::Answer;
 use crate::load::{LoadedCase, bounded_points};
-use crate::tolerance::Tolerance;
+use crate::tolerance::{NORMAL_LENGTH_ULPS, Tolerance};
 use oracle::geom::P3;
 use serde::Serialize;
 
@@ -74,6 +74,7 @@ pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
                     (Some(w), Some(g)) => {
                         cmp3(&mut out, "contact.point", &w.point, &g.point, tol);
                         cmp3(&mut out, "contact.normal", &w.normal, &g.normal, tol);
+                        unit_expect(&mut out, "contact.normal", &g.normal, tol);
                         cmp1(&mut out, "contact.depth", w.depth, g.depth, tol);
                     }
                     (w, g) => out.push(mm("contact", w, g)),
@@ -88,6 +89,7 @@ pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
                         cmp1(&mut out, "hit.t", w.t, g.t, tol);
                         cmp3(&mut out, "hit.point", &w.point, &g.point, tol);
                         cmp3(&mut out, "hit.normal", &w.normal, &g.normal, tol);
+                        unit_expect(&mut out, "hit.normal", &g.normal, tol);
                         if let Some(wb) = &w.barycentric {
                             match &g.barycentric {
                                 Some(gb) => cmp3(&mut out, "hit.barycentric", wb, gb, tol),
@@ -156,6 +158,7 @@ pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
                         cmp1(&mut out, "toi.t", w.t, g.t, tol);
                         cmp3(&mut out, "toi.point", &w.point, &g.point, tol);
                         cmp3(&mut out, "toi.normal", &w.normal, &g.normal, tol);
+                        unit_expect(&mut out, "toi.normal", &g.normal, tol);
                     }
                     (w, g) => out.push(mm("toi", w, g)),
                 }
@@ -171,6 +174,16 @@ pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
         }
     }
     out
+}
+
+/// An expected normal is unit: the engine's must be too, its length within
+/// the case's `tol` of 1 (a normal within `tol` of the expected one in every
+/// coordinate may still be up to `√3·tol` longer).
+fn unit_expect(out: &mut Vec<Mismatch>, field: &str, got: &P3, tol: f64) {
+    let x = unit_excess(got);
+    if !(x.abs() <= tol) {
+        out.push(mm(&format!("{field} (unit length)"), 1.0, 1.0 + x));
+    }
 }
 
 /// The first point farther than `radius + tol` from `center`, with its excess.
@@ -234,6 +247,9 @@ pub struct Errors {
     pub depth: Option<f64>,
     /// Angle between the normals, radians.
     pub normal: Option<f64>,
+    /// How far the engine's normal's length is from 1 (`|‖n‖ − 1|`, unitless).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal_length: Option<f64>,
     /// Error of the segment parameter `t`.
     pub t: Option<f64>,
     /// Largest barycentric coordinate error.
@@ -242,6 +258,15 @@ pub struct Errors {
     /// input speed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub velocity: Option<f64>,
+    /// The answer's accuracy in ulps: over its numeric fields, the largest
+    /// error beyond what the field's conditioning and the precision's floor
+    /// allow, in units of the engine's `ε` times the field's magnitude (the
+    /// sizes of [`crate::local`]) — so the answer agrees under `--ulps N`
+    /// (the fixed allowance `N · ε` of the magnitude) when this is at most
+    /// `N` and the classification is the referee's. A normal's length counts
+    /// as `|‖n‖ − 1| / ε`. Absent when no numeric field was compared.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ulps: Option<f64>,
     /// The classification differs from the referee's, and how.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub misclass: Option<Misclass>,
@@ -336,6 +361,56 @@ fn no_direction(got: &P3, want: &P3, value: &mut Vec<String>) {
     }
 }
 
+/// `‖n‖ − 1` for a normal `n`, to within a few units of `ε²` where the
+/// length is near 1: the squares and their sum are carried in two words (each
+/// square split exactly by a fused multiply-add), so the judge's own rounding
+/// (an ulp or two of a plain `sqrt(x² + y² + z²)`) never decides a verdict at
+/// [`NORMAL_LENGTH_ULPS`]. A normal whose largest coordinate is outside
+/// `[2⁻⁴, 2]` is far from unit whatever its other coordinates: its length is
+/// taken by the scaled norm, which cannot overflow.
+pub fn unit_excess(n: &P3) -> f64 {
+    let m = crashtest_core::vec3::max_abs(*n);
+    if !(0.0625..=2.0).contains(&m) {
+        return crate::local::norm(n) - 1.0;
+    }
+    // (hi, lo): the running sum x² + y² + z² − 1, exact but for the final
+    // rounding of `lo`.
+    let two_sum = |a: f64, b: f64| {
+        let s = a + b;
+        let bb = s - a;
+        (s, (a - (s - bb)) + (b - bb))
+    };
+    let (mut hi, mut lo) = (-1.0, 0.0);
+    for x in n {
+        let p = x * x;
+        let e = x.mul_add(*x, -p);
+        let (s, err) = two_sum(hi, p);
+        hi = s;
+        lo += err + e;
+    }
+    let ss_minus_1 = hi + lo;
+    // ‖n‖ − 1 = (‖n‖² − 1)/(‖n‖ + 1); the denominator needs no precision.
+    ss_minus_1 / ((ss_minus_1 + 1.0).max(0.0).sqrt() + 1.0)
+}
+
+/// A normal whose length is not 1 within [`NORMAL_LENGTH_ULPS`] of the
+/// engine's `ε`: its reason, with the length and its distance from 1 in ulps.
+/// The zero vector has its own reason ([`no_direction`]) and is not repeated
+/// here.
+fn not_unit(got: &P3, tol: &Tolerance, excess: f64, value: &mut Vec<String>) {
+    if got.iter().all(|x| *x == 0.0) {
+        return;
+    }
+    let allowed = NORMAL_LENGTH_ULPS * tol.eps;
+    if !(excess.abs() <= allowed) {
+        let len = 1.0 + excess;
+        value.push(format!(
+            "normal not unit: length {len} ({:.3e} ulps from 1, allowed {NORMAL_LENGTH_ULPS})",
+            excess.abs() / tol.eps
+        ));
+    }
+}
+
 /// Whether every number of an answer is finite. The referee's answer to a case
 /// whose exact answer lies beyond `f64`'s range is not (its rounding is ±∞):
 /// such a case is refused as out of range, and no engine is graded on it.
@@ -386,47 +461,84 @@ pub struct Allowed {
     pub margin: f64,
 }
 
+/// Which parts of an allowance to add up: the fixed part (`tol`'s relative,
+/// angle and unitless entries times each field's magnitude), the
+/// conditioning part (`K · ε` times each field's condition, and a time of
+/// impact's conditioning), and the precision's floor. A verdict counts all
+/// three ([`Parts::ALL`]); the accuracy in ulps
+/// ([`Errors::ulps`]) divides what exceeds the conditioning and the floor by
+/// one ulp of the magnitude (the fixed part alone, with every entry `ε`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Parts {
+    condition: bool,
+    floor: bool,
+}
+
+impl Parts {
+    const ALL: Parts = Parts { condition: true, floor: true };
+    const FIXED: Parts = Parts { condition: false, floor: false };
+}
+
 /// The allowance of one field: the fixed part times the size's magnitude, the
 /// conditioning part (`ulps · ε`) times its condition, at least the precision's
-/// floor, at most `cap`.
-fn allowance(size: crate::local::Size, fixed: f64, ulps: f64, tol: &Tolerance, cap: f64) -> f64 {
-    let x = fixed * size.magnitude + ulps * tol.eps * size.condition;
-    if x.is_nan() { cap } else { x.clamp(tol.floor(), cap) }
+/// floor, at most `cap` (the parts `parts` names).
+fn allowance(size: crate::local::Size, fixed: f64, ulps: f64, tol: &Tolerance, cap: f64, parts: Parts) -> f64 {
+    let condition = if parts.condition { ulps * tol.eps * size.condition } else { 0.0 };
+    let x = fixed * size.magnitude + condition;
+    let floor = if parts.floor { tol.floor() } else { 0.0 };
+    if x.is_nan() { cap } else { x.clamp(floor, cap) }
 }
 
 /// The allowances of every field of the case's answer (see [`Allowed`]), from
 /// the referee's answer `truth`.
 pub fn allowed(lc: &LoadedCase, truth: &Answer, tol: &Tolerance) -> Allowed {
-    allowed_from(lc, truth, tol, &crate::local::local(lc, truth))
+    allowed_from(lc, truth, tol, &crate::local::local(lc, truth), Parts::ALL)
 }
 
-/// [`allowed`] from the case's sizes `l`, already taken.
-fn allowed_from(lc: &LoadedCase, truth: &Answer, tol: &Tolerance, l: &crate::local::Local) -> Allowed {
+/// [`allowed`] from the case's sizes `l`, already taken, counting `parts`.
+fn allowed_from(lc: &LoadedCase, truth: &Answer, tol: &Tolerance, l: &crate::local::Local, parts: Parts) -> Allowed {
     use crate::tolerance::{BARY_CONDITION_ULPS, LENGTH_CONDITION_ULPS, NORMAL_CONDITION_ULPS};
     let big = f64::MAX;
+    let floor = if parts.floor { tol.floor() } else { 0.0 };
+    let f = |size, fixed, ulps, cap| allowance(size, fixed, ulps, tol, cap, parts);
     let mut a = Allowed {
-        point: allowance(l.point, tol.rel, LENGTH_CONDITION_ULPS, tol, big),
-        depth: allowance(l.depth, tol.rel, LENGTH_CONDITION_ULPS, tol, big),
-        normal: allowance(l.normal, tol.normal_rad, NORMAL_CONDITION_ULPS, tol, std::f64::consts::PI),
+        point: f(l.point, tol.rel, LENGTH_CONDITION_ULPS, big),
+        depth: f(l.depth, tol.rel, LENGTH_CONDITION_ULPS, big),
+        normal: f(l.normal, tol.normal_rad, NORMAL_CONDITION_ULPS, std::f64::consts::PI),
         // A segment parameter lies in [0, 1]: an allowance of 1 already admits
         // every value (a time's is capped by t_max below).
-        t: allowance(l.t, tol.unitless, LENGTH_CONDITION_ULPS, tol, 1.0),
-        barycentric: allowance(l.barycentric, tol.unitless, BARY_CONDITION_ULPS, tol, big),
-        velocity: allowance(l.velocity, tol.rel, LENGTH_CONDITION_ULPS, tol, big),
-        margin: allowance(l.margin, tol.rel, LENGTH_CONDITION_ULPS, tol, big),
+        t: f(l.t, tol.unitless, LENGTH_CONDITION_ULPS, 1.0),
+        barycentric: f(l.barycentric, tol.unitless, BARY_CONDITION_ULPS, big),
+        velocity: f(l.velocity, tol.rel, LENGTH_CONDITION_ULPS, big),
+        margin: f(l.margin, tol.rel, LENGTH_CONDITION_ULPS, big),
     };
     if let (Answer::Toi(w), Some(b)) = (truth, lc.case.b.as_ref())
         && let Some(wt) = &w.toi
     {
-        let extra = toi_allowance(lc, wt, b, tol, l.point.magnitude);
+        let extra =
+            if parts.condition { toi_allowance(lc, wt, b, tol, l.point.magnitude) } else { ToiAllowance::default() };
         // A time is judged relative to the interval: t_max plays the
         // scene's scale for the time axis.
         let t_max = lc.case.t_max();
-        a.t = (tol.rel * t_max + extra.t).clamp(tol.floor(), t_max.max(tol.floor()));
-        a.point = (a.point + extra.point).clamp(tol.floor(), big);
-        a.normal = (a.normal + extra.normal).clamp(tol.floor(), std::f64::consts::PI);
+        a.t = (tol.rel * t_max + extra.t).clamp(floor, t_max.max(floor));
+        a.point = (a.point + extra.point).clamp(floor, big);
+        a.normal = (a.normal + extra.normal).clamp(floor, std::f64::consts::PI);
     }
     a
+}
+
+/// An error in units of the engine's ulp at the field's magnitude, beyond
+/// what conditioning and the floor allow: `(err − conditioned) / one`, 0 when
+/// the error is within `conditioned`, `∞` when the field has no magnitude to
+/// measure an ulp of.
+fn ulps_of(err: f64, conditioned: f64, one: f64) -> f64 {
+    if err <= conditioned {
+        0.0
+    } else if one > 0.0 {
+        ((err - conditioned) / one).min(f64::MAX)
+    } else {
+        f64::INFINITY
+    }
 }
 
 /// The length scale of a case's answer, for relative errors in reports: the
@@ -465,13 +577,29 @@ pub fn judge(
         return (Verdict::Failed { reason: NON_FINITE.into() }, e);
     }
     let sizes = crate::local::local(lc, truth);
-    let allow = allowed_from(lc, truth, tol, &sizes);
+    let allow = allowed_from(lc, truth, tol, &sizes, Parts::ALL);
+    // The accuracy in ulps: what exceeds the conditioning and the floor, over
+    // one ulp of each field's magnitude.
+    let conditioned = allowed_from(lc, truth, &tol.fixed(0.0), &sizes, Parts::ALL);
+    let one = allowed_from(lc, truth, &tol.fixed(tol.eps), &sizes, Parts::FIXED);
+    let ulps = std::cell::Cell::new(None::<f64>);
+    let count = |u: f64| ulps.set(Some(ulps.get().map_or(u, |x: f64| x.max(u))));
     let mut class = Vec::new();
     let mut value = Vec::new();
-    let over = |what: &str, err: f64, allowed: f64, unit: &str, value: &mut Vec<String>| {
+    let over = |what: &str, err: f64, field: fn(&Allowed) -> f64, unit: &str, value: &mut Vec<String>| {
+        let allowed = field(&allow);
         if !(err <= allowed) {
             value.push(format!("{what} off by {err:.3e}{unit} (allowed {allowed:.1e})"));
         }
+        count(ulps_of(err, field(&conditioned), field(&one)));
+    };
+    // A normal's length: `‖n‖ − 1`, kept as an error and judged against
+    // `NORMAL_LENGTH_ULPS` ulps of the engine's precision.
+    let unit = |n: &P3, e: &mut Errors, value: &mut Vec<String>| {
+        let x = unit_excess(n);
+        e.normal_length = Some(x.abs());
+        not_unit(n, tol, x, value);
+        count(x.abs() / tol.eps);
     };
     if degenerate(answer) != degenerate(truth) {
         class.push(format!("degenerate: {} (referee {})", degenerate(answer), degenerate(truth)));
@@ -484,14 +612,15 @@ pub fn judge(
             (Some(gc), Some(wc)) => {
                 let dp = dist3(&gc.point, &wc.point);
                 e.point = Some(dp);
-                over("point", dp, allow.point, "", &mut value);
+                over("point", dp, |a| a.point, "", &mut value);
                 let dd = (gc.depth - wc.depth).abs();
                 e.depth = Some(dd);
-                over("depth", dd, allow.depth, "", &mut value);
+                over("depth", dd, |a| a.depth, "", &mut value);
                 let a = angle(&gc.normal, &wc.normal);
                 no_direction(&gc.normal, &wc.normal, &mut value);
                 e.normal = Some(a);
-                over("normal", a, allow.normal, " rad", &mut value);
+                over("normal", a, |a| a.normal, " rad", &mut value);
+                unit(&gc.normal, &mut e, &mut value);
             }
             (None, None) => {}
             (Some(_), None) => {
@@ -512,18 +641,19 @@ pub fn judge(
                 (Some(gh), Some(wh)) => {
                     let dp = dist3(&gh.point, &wh.point);
                     e.point = Some(dp);
-                    over("hit point", dp, allow.point, "", &mut value);
+                    over("hit point", dp, |a| a.point, "", &mut value);
                     let dt = (gh.t - wh.t).abs();
                     e.t = Some(dt);
-                    over("t", dt, allow.t, "", &mut value);
+                    over("t", dt, |a| a.t, "", &mut value);
                     let a = angle(&gh.normal, &wh.normal);
                     no_direction(&gh.normal, &wh.normal, &mut value);
                     e.normal = Some(a);
-                    over("normal", a, allow.normal, " rad", &mut value);
+                    over("normal", a, |a| a.normal, " rad", &mut value);
+                    unit(&gh.normal, &mut e, &mut value);
                     if let (Some(gb), Some(wb)) = (&gh.barycentric, &wh.barycentric) {
                         let err = dist3(gb, wb);
                         e.barycentric = Some(err);
-                        over("barycentric", err, allow.barycentric, "", &mut value);
+                        over("barycentric", err, |a| a.barycentric, "", &mut value);
                     }
                 }
                 (None, None) => {}
@@ -540,7 +670,7 @@ pub fn judge(
         (Answer::Barycentric(g), Answer::Barycentric(w)) => {
             let err = dist3(&g.coords, &w.coords);
             e.barycentric = Some(err);
-            over("barycentric", err, allow.barycentric, "", &mut value);
+            over("barycentric", err, |a| a.barycentric, "", &mut value);
         }
         (Answer::Bounds(g), Answer::Bounds(w)) => {
             if let (Some(gb), Some(wb)) = (&g.aabb, &w.aabb) {
@@ -551,6 +681,7 @@ pub fn judge(
                 for (gp, wp) in [(&gb.min, &wb.min), (&gb.max, &wb.max)] {
                     for i in 0..3 {
                         let allowed = (tol.rel * wp[i].abs()).max(tol.floor());
+                        count(ulps_of((gp[i] - wp[i]).abs(), tol.floor(), tol.eps * wp[i].abs()));
                         if !((gp[i] - wp[i]).abs() <= allowed) {
                             value.push(format!(
                                 "aabb coordinate {:.17e} off by {:.3e} (allowed {allowed:.1e})",
@@ -572,7 +703,7 @@ pub fn judge(
                 }
                 let excess = gs.radius - ws.radius;
                 e.depth = Some(excess);
-                over("bounding radius", excess, allow.depth, "", &mut value);
+                over("bounding radius", excess, |a| a.depth, "", &mut value);
             }
         }
         (Answer::Overlap(g), Answer::Overlap(w)) => {
@@ -586,14 +717,15 @@ pub fn judge(
                 let t_scale = lc.case.t_max().max(f64::MIN_POSITIVE);
                 let dt = (gt.t - wt.t).abs();
                 e.t = Some(dt / t_scale);
-                over("t", dt, allow.t, "", &mut value);
+                over("t", dt, |a| a.t, "", &mut value);
                 let dp = dist3(&gt.point, &wt.point);
                 e.point = Some(dp);
-                over("point", dp, allow.point, "", &mut value);
+                over("point", dp, |a| a.point, "", &mut value);
                 let a = angle(&gt.normal, &wt.normal);
                 no_direction(&gt.normal, &wt.normal, &mut value);
                 e.normal = Some(a);
-                over("normal", a, allow.normal, " rad", &mut value);
+                over("normal", a, |a| a.normal, " rad", &mut value);
+                unit(&gt.normal, &mut e, &mut value);
             }
             (None, None) => {}
             (Some(_), None) => {
@@ -609,10 +741,11 @@ pub fn judge(
             let err = dist3(&g.velocity_a, &w.velocity_a).max(dist3(&g.velocity_b, &w.velocity_b));
             let speed = sizes.velocity.magnitude;
             e.velocity = Some(if speed > 0.0 { err / speed } else { err });
-            over("velocity", err, allow.velocity, "", &mut value);
+            over("velocity", err, |a| a.velocity, "", &mut value);
         }
         _ => class.push("answer of another query kind".into()),
     }
+    e.ulps = ulps.get();
     let verdict = if !class.is_empty() {
         match margin {
             Some(m) if m.abs() <= allow.margin => Verdict::Borderline { reasons: class },
@@ -705,12 +838,12 @@ fn toi_allowance(lc: &LoadedCase, w: &oracle::geom::Toi, b: &Shape, tol: &Tolera
 }
 
 /// The campaign's headline error of one answer: the largest of the point and
-/// depth errors relative to the answer's scale, the normal's angle (radians),
-/// and the segment parameter's and barycentrics' errors (unitless) — the
+/// depth errors relative to the answer's scale, the normal's angle (radians)
+/// and its length's distance from 1, and the segment parameter's and barycentrics' errors (unitless) — the
 /// measure of the report's accuracy tables and charts, and of the stability
 /// sweeps.
 pub fn headline(e: &Errors, scale: f64) -> f64 {
-    [e.point.map(|x| x / scale), e.depth.map(|x| x.abs() / scale), e.normal, e.t, e.barycentric]
+    [e.point.map(|x| x / scale), e.depth.map(|x| x.abs() / scale), e.normal, e.normal_length, e.t, e.barycentric]
         .into_iter()
         .flatten()
         .fold(0.0, f64::max)

@@ -125,6 +125,45 @@ impl Dist {
     }
 }
 
+/// The ulps at which [`Ulps::within`] counts answers: 1, 4 and 64 (one
+/// rounding, a few roundings, and the fixed allowance a careful library
+/// might document).
+pub const ULPS_THRESHOLDS: [u64; 3] = [1, 4, 64];
+
+/// A distribution of accuracies in ulps, with exact counts at the
+/// thresholds (the histogram's bins are 5% wide; a share within 4 ulps
+/// should not be read off them).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Ulps {
+    /// The distribution (median, p99, maximum).
+    pub dist: Dist,
+    /// How many samples are at most each of [`ULPS_THRESHOLDS`].
+    pub within: [u64; 3],
+}
+
+impl Ulps {
+    /// Adds one answer's ulps.
+    pub fn add(&mut self, u: f64) {
+        self.dist.add(u);
+        for (n, t) in self.within.iter_mut().zip(ULPS_THRESHOLDS) {
+            *n += u64::from(u <= t as f64);
+        }
+    }
+
+    /// Joins another distribution into this one.
+    pub fn merge(&mut self, o: &Ulps) {
+        self.dist.merge(&o.dist);
+        for (a, b) in self.within.iter_mut().zip(o.within) {
+            *a += b;
+        }
+    }
+
+    /// The share of samples within each threshold, `None` when empty.
+    pub fn shares(&self) -> Option<[f64; 3]> {
+        (self.dist.n > 0).then(|| self.within.map(|k| k as f64 / self.dist.n as f64))
+    }
+}
+
 /// Time per query of one engine on one query kind: the median over repetitions of
 /// a tight loop over the same cases, with the spread of the repetitions.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -187,6 +226,10 @@ pub struct EngineQueryStats {
     pub depth_rel: Dist,
     /// Normal angle errors, radians.
     pub normal_rad: Dist,
+    /// How far the normals' lengths are from 1 (`|‖n‖ − 1|`). Absent in
+    /// reports written before normals' lengths were judged.
+    #[serde(default)]
+    pub normal_length: Dist,
     /// Segment parameter errors.
     pub t: Dist,
     /// Barycentric coordinate errors.
@@ -196,6 +239,11 @@ pub struct EngineQueryStats {
     /// barycentrics as they are), and 1 for a misclassification outside the band
     /// or a failure. The accuracy–speed chart plots its p99.
     pub headline: Dist,
+    /// Accuracy in ulps ([`crate::judge::Errors::ulps`]) of every answer
+    /// classified as the referee's: its distribution and how many are within
+    /// 1, 4 and 64 ulps. Absent in reports written before it was measured.
+    #[serde(default)]
+    pub ulps: Ulps,
     /// Time per query, if timed.
     pub timing: Option<Timing>,
     /// Nanoseconds per query from the criterion benchmark, weighted by this
@@ -239,6 +287,11 @@ pub struct Provenance {
     pub missing_engines: Vec<(String, String)>,
     /// The campaign's seed.
     pub seed: u64,
+    /// The judging rule `--ulps N`: every fixed allowance was `N` of the
+    /// engine's ulps of the field's magnitude. Absent for the tolerance
+    /// table's default verdicts.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ulps: Option<f64>,
     /// Random cases per query kind (before sharding).
     pub cases_per_query: u64,
     /// Full-range cases per query kind (before sharding), scored apart.

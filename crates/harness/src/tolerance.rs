@@ -103,6 +103,18 @@ pub const TIME_CONDITION_ULPS: f64 = 64.0;
 /// along its segment by the length times the error of `t`. 16, as for normals.
 pub const LENGTH_CONDITION_ULPS: f64 = 16.0;
 
+/// How far a normal's length may be from 1, in units of the engine's
+/// epsilon: 4. Every normal in an answer is a unit vector by the format's
+/// convention, and normalizing any non-zero direction in the engine's
+/// precision gives a length within about 2 ulps of 1 (the sum of squares, the
+/// square root and the division each round once), at any conditioning: the
+/// direction may be ill-conditioned (its angle has its own allowance), its
+/// length is not. So no conditioning term is added; 4 leaves room for an
+/// engine that multiplies by a rounded reciprocal instead of dividing. The
+/// judge measures the length in two words ([`crate::judge::unit_excess`]), so
+/// its own rounding does not count against the engine.
+pub const NORMAL_LENGTH_ULPS: f64 = 4.0;
+
 /// The floor of every allowance, in units of the precision's smallest positive
 /// (subnormal) number: an answer of that size has no finer grid, so one
 /// rounding of it is that far. 16 leaves room for the few roundings of a
@@ -144,6 +156,24 @@ impl Tolerance {
                 eps: f64::EPSILON,
                 tiny: f64::from_bits(1),
             },
+        }
+    }
+
+    /// This tolerance with its fixed allowances (relative, angle, unitless)
+    /// all `x`: `N · ε` under `--ulps N`, 0 for the conditioning alone.
+    pub fn fixed(self, x: f64) -> Self {
+        Tolerance { rel: x, normal_rad: x, unitless: x, ..self }
+    }
+
+    /// The entry for `precision` ([`Tolerance::for_precision`]), its fixed
+    /// allowances replaced by `N` of the precision's ulps when `ulps` is
+    /// `Some(N)` (`--ulps N`: is the engine backward stable to `N` ulps?);
+    /// the conditioning allowances and the floor stay as they are.
+    pub fn for_engine(precision: Option<u32>, ulps: Option<f64>) -> Self {
+        let t = Tolerance::for_precision(precision);
+        match ulps {
+            Some(n) => t.fixed(n * t.eps),
+            None => t,
         }
     }
 

@@ -73,12 +73,16 @@ pub struct EngineSet {
     /// name, and why (with how to install it). The report's provenance lists
     /// them.
     pub missing: Vec<(String, String)>,
+    /// `--ulps N`: every engine's fixed allowances are `N` of its ulps of
+    /// each field's magnitude ([`crate::tolerance::Tolerance::for_engine`]);
+    /// `None`, the default, keeps the tolerance table's.
+    pub ulps: Option<f64>,
 }
 
 impl Default for EngineSet {
     /// Every built-in engine ([`judged`]), gated by [`DEFAULT_ENGINE`].
     fn default() -> Self {
-        Self { judged: judged(), referee: referee(), gate: DEFAULT_ENGINE.into(), missing: Vec::new() }
+        Self { judged: judged(), referee: referee(), gate: DEFAULT_ENGINE.into(), missing: Vec::new(), ulps: None }
     }
 }
 
@@ -100,7 +104,7 @@ impl EngineSet {
         if !judged.iter().any(|e| e.name == gate) {
             return Err(format!("the gate `{gate}` is not among the engines judged ({})", names(&judged)));
         }
-        Ok(Self { judged, referee: referee(), gate: gate.into(), missing: Vec::new() })
+        Ok(Self { judged, referee: referee(), gate: gate.into(), missing: Vec::new(), ulps: None })
     }
 
     /// The built-in engines named in `list` (comma-separated, or `all`), in that

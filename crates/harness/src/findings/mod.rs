@@ -63,7 +63,7 @@ pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet
                     break;
                 }
                 for ((cause, _, lc), steady) in cases.iter().zip(&mut steady) {
-                    let (sig, result, _) = shrink::judge_one(engine, &set.referee, lc);
+                    let (sig, result, _) = shrink::judge_one(engine, set, lc);
                     *steady &= sig.is_some_and(|s| signature::cause_of(&s, lc, Some(engine), &result) == *cause);
                 }
             }
@@ -81,12 +81,12 @@ pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet
     file.findings.par_iter_mut().filter(|f| f.is_discrepancy()).for_each(|f| {
         let Some(lc) = f.representative.take() else { return };
         let Some(engine) = set.judged.iter().find(|e| e.name == f.engine()) else { return };
-        let mut out = shrink::shrink(&lc, &f.signature, &f.cause, engine, &set.referee);
-        let mut replayed = shrink::replays(&out.case, &f.signature, &f.cause, engine, &set.referee);
+        let mut out = shrink::shrink(&lc, &f.signature, &f.cause, engine, set);
+        let mut replayed = shrink::replays(&out.case, &f.signature, &f.cause, engine, set);
         if replayed < shrink::REPLAYS {
             // The shrunk case shows the defect less reliably than it might:
             // the original, if it does better.
-            let original = shrink::replays(&lc, &f.signature, &f.cause, engine, &set.referee);
+            let original = shrink::replays(&lc, &f.signature, &f.cause, engine, set);
             if original > replayed {
                 out.case = lc.clone();
                 out.numbers.1 = out.numbers.0;
@@ -94,7 +94,7 @@ pub fn shrink_and_draft(file: &mut FindingsFile, set: &crate::engines::EngineSet
                 replayed = original;
             }
         }
-        let (_, result, truth) = shrink::judge_one(engine, &set.referee, &out.case);
+        let (_, result, truth) = shrink::judge_one(engine, set, &out.case);
         let mut case = as_fixture(&out.case, truth.answer.as_ref().map(crate::check::answer_as_expect));
         case.name = f.name.clone();
         let reasons = match &result.verdict {

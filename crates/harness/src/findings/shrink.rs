@@ -17,6 +17,7 @@ use super::signature::{Cause, Signature, cause_of, signature};
 use crate::case::SCHEMA;
 use crate::check::{EngineResult, Truth, judge_engine};
 use crate::engine::Engine;
+use crate::engines::EngineSet;
 use crate::load::{Loaded, LoadedCase, load_str_into};
 use serde_json::Value;
 
@@ -37,15 +38,15 @@ pub const STABLE_CHECKS: u32 = 3;
 
 /// Whether one judgement of `lc` shows the defect of `sig` with the same
 /// root cause `cause` (a case of an engine's precision stays one).
-pub fn shows(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, referee: &Engine) -> bool {
-    let (s, r, _) = judge_one(engine, referee, lc);
+pub fn shows(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, set: &EngineSet) -> bool {
+    let (s, r, _) = judge_one(engine, set, lc);
     s.is_some_and(|s| s.same_defect(sig) && cause_of(&s, lc, Some(engine), &r) == *cause)
 }
 
 /// How many of [`REPLAYS`] judgements of `lc` show the defect of `sig` with
 /// its cause.
-pub fn replays(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, referee: &Engine) -> u32 {
-    (0..REPLAYS).filter(|_| shows(lc, sig, cause, engine, referee)).count() as u32
+pub fn replays(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, set: &EngineSet) -> u32 {
+    (0..REPLAYS).filter(|_| shows(lc, sig, cause, engine, set)).count() as u32
 }
 
 /// The numbers a case is shrunk over: its inputs, as JSON pointers into the
@@ -281,10 +282,10 @@ fn load(v: &Value, file: &std::path::Path) -> Option<LoadedCase> {
 /// A process engine is asked anew each time (its answer to `lc` from an earlier
 /// judgement is forgotten first), so repeated judgements are independent: an
 /// engine that answers one input differently from call to call shows it.
-pub fn judge_one(engine: &Engine, referee: &Engine, lc: &LoadedCase) -> (Option<Signature>, EngineResult, Truth) {
+pub fn judge_one(engine: &Engine, set: &EngineSet, lc: &LoadedCase) -> (Option<Signature>, EngineResult, Truth) {
     engine.forget_case(lc);
-    let truth = Truth::of(referee, lc);
-    let r = judge_engine(engine, referee, lc, &truth);
+    let truth = Truth::of(&set.referee, lc);
+    let r = judge_engine(engine, set, lc, &truth);
     let misclassified = r.errors.misclass.is_some() || matches!(r.verdict, crate::judge::Verdict::Failed { .. });
     let headline = if misclassified { 1.0 } else { crate::judge::headline(&r.errors, truth.scale) };
     (signature(lc, &r, headline), r, truth)
@@ -306,7 +307,7 @@ pub struct Outcome {
 /// Shrinks `lc` while `engine`'s answer, judged against `referee`, keeps the
 /// defect of `sig`. The case keeps its name; its source says it was shrunk
 /// and from what (so its family stays the original's).
-pub fn shrink(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, referee: &Engine) -> Outcome {
+pub fn shrink(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, judge: &EngineSet) -> Outcome {
     let Ok(mut best) = serde_json::to_value(&lc.case) else {
         return Outcome { case: lc.clone(), numbers: (0, 0), cost: (0, 0), evaluations: 0 };
     };
@@ -327,7 +328,7 @@ pub fn shrink(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, 
         let cand = load(c, &lc.file)?;
         for _ in 0..checks {
             *evaluations += 1;
-            if !shows(&cand, sig, cause, engine, referee) {
+            if !shows(&cand, sig, cause, engine, judge) {
                 return None;
             }
         }

@@ -238,6 +238,12 @@ fn fold(map: &mut BTreeMap<StatsKey, EngineQueryStats>, c: &CaseResult, full_ran
             add(&mut s.normal_rad, e.normal);
             add(&mut s.t, e.t);
             add(&mut s.barycentric, e.barycentric);
+            add(&mut s.normal_length, e.normal_length);
+            if e.misclass.is_none()
+                && let Some(u) = e.ulps
+            {
+                s.ulps.add(u);
+            }
         };
         match &r.verdict {
             Verdict::Agree => {
@@ -335,6 +341,8 @@ const TIMING_SAMPLE: usize = 2 * TIMING_CASES;
 /// What a run keeps while its cases stream past.
 struct Folded<'a> {
     judged: &'a [Engine],
+    /// The judging rule `--ulps N` ([`EngineSet::ulps`]).
+    ulps: Option<f64>,
     map: BTreeMap<StatsKey, EngineQueryStats>,
     discrepancies: Vec<Discrepancy>,
     per_group: BTreeMap<StatsKey, usize>,
@@ -366,7 +374,7 @@ impl Folded<'_> {
                         &c,
                         lc,
                         ix,
-                        Tolerance::for_precision(self.judged[ix].precision_for(lc)),
+                        Tolerance::for_engine(self.judged[ix].precision_for(lc), self.ulps),
                     ));
                 }
             }
@@ -459,6 +467,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     let stages_before = oracle::referee::stage_counts();
     let mut folded = Folded {
         judged,
+        ulps: set.ulps,
         map: BTreeMap::new(),
         discrepancies: Vec::new(),
         per_group: BTreeMap::new(),
@@ -594,6 +603,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     let mut provenance = provenance;
     provenance.missing_engines = set.missing.clone();
     provenance.seed = config.seed;
+    provenance.ulps = set.ulps;
     provenance.cases_per_query = config.cases_per_query;
     provenance.full_range_per_query = config.full_range_per_query;
     provenance.only = config.only;

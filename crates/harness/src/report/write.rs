@@ -252,9 +252,11 @@ fn merge_stats(into: &mut EngineQueryStats, s: &EngineQueryStats) {
         (&mut into.t, &s.t),
         (&mut into.barycentric, &s.barycentric),
         (&mut into.headline, &s.headline),
+        (&mut into.normal_length, &s.normal_length),
     ] {
         a.merge(b);
     }
+    into.ulps.merge(&s.ulps);
     // Timings are not additive: keep the one measured over more queries (the
     // shards ran on their own machines; their medians are each a fair figure).
     match (&into.timing, &s.timing) {
