@@ -373,7 +373,13 @@ fn extreme_toi(case: impl Fn(Scene, Option<f64>) -> Case + Clone + Send + Sync +
             ))),
         (
             (extreme_vec3(), extreme_magnitude(), extreme_vec3()),
-            (extreme_vec3(), prop_oneof![extreme_component(), vec3(BOX).prop_map(|p| p[0])], extreme_vec3()),
+            (
+                // Components each at an extreme, or a direction of any length
+                // (a normal of length 4e121 beside a subnormal radius).
+                prop_oneof![extreme_vec3(), (unit(), magnitude(-1022, 1000)).prop_map(|(u, m)| scale(u, m))],
+                prop_oneof![extreme_component(), vec3(BOX).prop_map(|p| p[0]), Just(0.0)],
+                extreme_vec3()
+            ),
             extreme_t_max()
         )
             .prop_map(move |((c, r, va), (n, d, vb), t)| valid(c2(
