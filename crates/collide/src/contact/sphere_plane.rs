@@ -111,21 +111,50 @@ fn clear_miss_factor<T: Real>() -> T {
     T::one() + c::<T>(8.0) * T::EPSILON
 }
 
+/// A plane's normal `n` in parts: the magnitude `m` of its largest
+/// component, the length `l = ‖n/m‖ ∈ [1, √3]` and the unit normal
+/// `(n/m)/l`. The length `‖n‖ = m l` itself is never formed: it overflows
+/// for components near `MAX` (the normal `(−MAX, −7e62, −MAX)` has none, and
+/// its sphere was never in contact) and rounds to a few bits in the
+/// subnormals (`(−5e-324, 0, 5e-324)` has the length `5e-324`, and `n/‖n‖`
+/// the length `√2`). `None` for a zero or non-finite normal.
+#[inline]
+pub(crate) fn normal_parts<T: Real>(n: &Vec3<T>) -> Option<(T, T, Vec3<T>)> {
+    let m = n.x.abs().max(n.y.abs()).max(n.z.abs());
+    if !(m > T::zero() && m.finite()) {
+        return None;
+    }
+    let s = n / m;
+    let l = s.norm();
+    Some((m, l, s / l))
+}
+
 /// The scaled path of [`contact_sphere_plane`]: a normal whose squared length
 /// would underflow or overflow, or a scene whose signed distance overflows.
 #[inline(never)]
 fn contact_sphere_plane_scaled<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<Contact<T>> {
-    let len = crate::real::stable_norm(&b.normal);
-    if len == T::zero() || !len.finite() {
-        return None;
-    }
-    let n = b.normal / len;
-    let d = b.offset / len;
-    let mut s = n.dot(&a.center) - d;
+    contact_sphere_plane_parts(a, b).map(|(k, _)| k)
+}
+
+/// [`contact_sphere_plane`]'s scaled path, and whether its point lies beyond
+/// the type's range (saturated): the contact's `degenerate` flag also marks a
+/// depth beyond the range, which a time of impact, reporting no depth, does
+/// not share.
+///
+/// The plane's distance `d/‖n‖` is `((d/m)/l)` from the normal's parts
+/// ([`normal_parts`]). A signed distance that overflows is formed at a
+/// quarter scale (exact), and so is the point `M − n̂ s`, whose terms may
+/// overflow where their sum does not (a centre at `−MAX` pushed back
+/// `1.3e308` onto the plane).
+pub(crate) fn contact_sphere_plane_parts<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<(Contact<T>, bool)> {
+    let (m, l, n) = normal_parts(&b.normal)?;
+    let q: T = c(0.25);
+    let mut s = n.dot(&a.center) - (b.offset / m) / l;
+    let mut quarter = s * q;
     if !s.finite() {
         // |n̂| ≤ 1, so the quarter-scale dot product cannot overflow.
-        let q: T = c(0.25);
-        s = (n.dot(&(a.center * q)) - d * q) / q;
+        quarter = n.dot(&(a.center * q)) - ((b.offset * q) / m) / l;
+        s = quarter / q;
         if s.is_nan() {
             return None;
         }
@@ -134,14 +163,20 @@ fn contact_sphere_plane_scaled<T: Real>(a: &Sphere<T>, b: &Plane<T>) -> Option<C
         return None;
     }
     let depth = a.radius - s;
-    let point = a.center - n * s;
-    let finite = depth.finite() && crate::real::finite3(&point);
-    Some(Contact {
-        point: if finite { point } else { saturate(&point) },
-        normal: n,
-        depth: if depth.finite() { depth } else { T::max_value().unwrap_or(depth) },
-        degenerate: !finite,
-    })
+    let mut point = a.center - n * s;
+    if !crate::real::finite3(&point) {
+        point = (a.center * q - n * quarter) / q;
+    }
+    let beyond = !crate::real::finite3(&point);
+    Some((
+        Contact {
+            point: if beyond { saturate(&point) } else { point },
+            normal: n,
+            depth: if depth.finite() { depth } else { T::max_value().unwrap_or(depth) },
+            degenerate: beyond || !depth.finite(),
+        },
+        beyond,
+    ))
 }
 
 /// Contact between the solid half-space bounded by plane `a` and a sphere `b`: the

@@ -257,8 +257,7 @@ fn contact_ranked<T: Real>(a: &Sphere<T>, b: &Triangle<T>, rank: bool) -> Option
         if centre_on_triangle(&a.center, b, face.as_ref()) != OnTriangle::Exactly {
             return None;
         }
-        let [v0, v1, v2] = b.vertices;
-        let normal = try_normalize_stable(&(v1 - v0).cross(&(v2 - v0))).unwrap_or_else(|| {
+        let normal = face_unit_normal(b).unwrap_or_else(|| {
             let [x, y, z] = CONCENTRIC_FALLBACK_NORMAL;
             Vec3::new(c(x), c(y), c(z))
         });
@@ -296,10 +295,7 @@ fn contact_ranked<T: Real>(a: &Sphere<T>, b: &Triangle<T>, rank: bool) -> Option
         Some(side) => OnTriangle::Side(side),
         None => centre_on_triangle(&a.center, b, compensated_of(a, b).as_ref()),
     };
-    let face = || {
-        let [v0, v1, v2] = b.vertices;
-        try_normalize_stable(&(v1 - v0).cross(&(v2 - v0)))
-    };
+    let face = || face_unit_normal(b);
     if on == OnTriangle::Exactly {
         // Exactly on the triangle: no direction is defined.
         let normal = face().unwrap_or_else(|| {
@@ -911,6 +907,21 @@ fn face_normal_and_distance(
     };
     let d = vol.mant / norm * pow2(vol.exp - emax);
     d.is_finite().then_some((unit.map(|x| x * side), d))
+}
+
+/// The triangle's unit face normal, the direction of `(v1 − v0) × (v2 − v0)`,
+/// from the cross product's components each accurate to [`FACE_REL`]
+/// (`cross_estimate`: filtered, else exact): the fallback normal of a centre
+/// on the triangle, and the direction of one nearer than `q`'s rounding. The
+/// cross product in `T` cancels on a sliver far from the origin (a sliver at
+/// 1e15 whose rounded cross product is exactly zero, leaving the `+z`
+/// fallback 2.4 rad off its face) and overflows for vertices near `MAX` (a
+/// NaN normal). `None` only for a zero-area triangle.
+pub(crate) fn face_unit_normal<T: Real>(b: &Triangle<T>) -> Option<Vec3<T>> {
+    let w = |v: &Vec3<T>| [v.x.wide(), v.y.wide(), v.z.wide()];
+    let [v0, v1, v2] = b.vertices.map(|v| w(&v));
+    let [x, y, z] = crate::exact::Estimate::unit_vector(crate::exact::cross_estimate(v0, v1, v2, FACE_REL))?;
+    Some(Vec3::new(T::of(x), T::of(y), T::of(z)))
 }
 
 /// `2^k` as an `f64` (0 below the subnormal range, infinity above the top).

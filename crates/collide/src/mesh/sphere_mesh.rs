@@ -3,7 +3,7 @@
 use super::bvh::{MeshBvh, STACK, box_distance_lower_bound};
 use super::hit::MeshContact;
 use super::trimesh::TriMesh;
-use crate::contact::{CONCENTRIC_FALLBACK_NORMAL, Contact, closest_pt_point_triangle};
+use crate::contact::{CONCENTRIC_FALLBACK_NORMAL, Contact, closest_pt_point_triangle, face_unit_normal};
 use crate::real::{Real, Vec3, c, finite3, stable_norm, try_normalize_stable};
 use crate::shapes::{Sphere, Triangle};
 
@@ -31,7 +31,7 @@ fn face_contact<T: Real>(sphere: &Sphere<T>, tri: &Triangle<T>) -> Option<(T, Co
     let (normal, degenerate) = match try_normalize_stable(&delta) {
         Some(n) => (n, false),
         None => {
-            let face = try_normalize_stable(&(v1 - v0).cross(&(v2 - v0))).unwrap_or_else(|| {
+            let face = face_unit_normal(tri).unwrap_or_else(|| {
                 let [x, y, z] = CONCENTRIC_FALLBACK_NORMAL;
                 Vec3::new(c(x), c(y), c(z))
             });

@@ -1,9 +1,9 @@
 //! Sphere–plane time of impact in closed form.
 
 use super::time_of_impact::{Toi, ToiStatus, clamp_t_max};
-use crate::contact::{clearly_apart, contact_sphere_plane};
+use crate::contact::{Contact, clearly_apart, contact_sphere_plane, contact_sphere_plane_parts, normal_parts};
 use crate::exact::norm::safe_squared_range;
-use crate::real::{Real, Vec3, stable_norm};
+use crate::real::{Real, Vec3};
 use crate::shapes::{Plane, Sphere};
 
 /// Time of impact of sphere `a` (centre `M`, radius `r`, velocity `va`) and the
@@ -57,7 +57,11 @@ pub fn toi_sphere_plane<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: 
     }
     // s' = s0 ‖n‖ and k' = closing ‖n‖: the normal's length cancels in t.
     let sp = b.normal.dot(&a.center) - b.offset;
-    if !sp.finite() {
+    // A signed distance below the plain range may be a sum of products
+    // flushed to 0 (a normal of 5e-67 against a centre at 1.2e-308: the
+    // gap reads 0 and the sphere, moving at `MAX`, is answered where it
+    // starts): the scaled path forms it at its own scale.
+    if !(sp.finite() && sp.abs() >= lo) {
         return toi_sphere_plane_scaled(a, va, b, vb, t_max);
     }
     // Within r (up to rounding), or squares too small to tell: the static
@@ -65,7 +69,7 @@ pub fn toi_sphere_plane<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: 
     let r = a.radius;
     if !clearly_apart(sp, r, nn) {
         if let Some(k) = contact_sphere_plane(a, b) {
-            return Some(Toi::penetrating(&k));
+            return Some(penetrating(a, b, &k));
         }
         if let Some(k) = tiny_scene(a, va, b, vb) {
             return scaled_up(a, va, b, vb, t_max, k);
@@ -83,9 +87,18 @@ pub fn toi_sphere_plane<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: 
         return None;
     }
     let len = nn.sqrt();
-    let t = ((sp - r * len) / kp).max(T::zero());
+    let gap = sp - r * len;
+    let t = (gap / kp).max(T::zero());
     if !(t <= t_max) {
         return None;
+    }
+    // A time below the normal range (or flushed to 0) has lost its bits,
+    // and the point moves by it: at a high closing speed the motion
+    // `va t` is of the scene's size (a centre at 1e-300 meeting a plane at
+    // 1e300 per unit time). The scaled path moves the point by the
+    // unrounded time.
+    if gap > T::zero() && t < smallest_normal::<T>() {
+        return toi_sphere_plane_scaled(a, va, b, vb, t_max);
     }
     let n = b.normal * (T::one() / len);
     Some(Toi {
@@ -98,6 +111,22 @@ pub fn toi_sphere_plane<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: 
     })
 }
 
+/// The smallest positive normal number of `T`: below it a time keeps fewer
+/// than the type's digits.
+fn smallest_normal<T: Real>() -> T {
+    T::of(if T::EPSILON.wide() < 1e-10 { f64::MIN_POSITIVE } else { f64::from(f32::MIN_POSITIVE) })
+}
+
+/// The answer of a sphere in contact with the half-space at `t = 0`: the
+/// static contact, flagged only when its point lies beyond the type's range
+/// (a plane's normal is never a fallback; the static contact's flag also
+/// marks a depth beyond the range, which a time of impact does not report:
+/// a sphere of radius `MAX` whose centre is `1e300` inside).
+fn penetrating<T: Real>(a: &Sphere<T>, b: &Plane<T>, k: &Contact<T>) -> Toi<T> {
+    let beyond = k.degenerate && contact_sphere_plane_parts(a, b).is_none_or(|(_, beyond)| beyond);
+    Toi::penetrating_flagged(k, beyond)
+}
+
 /// The scaled path of [`toi_sphere_plane`]: a normal whose squared length would
 /// underflow or overflow, or a signed distance that overflows.
 #[inline(never)]
@@ -108,17 +137,15 @@ fn toi_sphere_plane_scaled<T: Real>(
     vb: &Vec3<T>,
     t_max: T,
 ) -> Option<Toi<T>> {
-    let len = stable_norm(&b.normal);
-    if !(len > T::zero() && len.finite()) {
-        return None;
-    }
+    // The unit normal from the normal's parts: its length may overflow or
+    // round in the subnormals (see `normal_parts`).
+    let (_, _, n) = normal_parts(&b.normal)?;
     if let Some(k) = contact_sphere_plane(a, b) {
-        return Some(Toi::penetrating(&k));
+        return Some(penetrating(a, b, &k));
     }
     if let Some(k) = tiny_scene(a, va, b, vb) {
         return scaled_up(a, va, b, vb, t_max, k);
     }
-    let n = b.normal / len;
     let (t, point) = scaled_time(a, va, b, vb)?;
     let t = T::of(t);
     if t.is_nan() || t > t_max {
@@ -191,8 +218,8 @@ fn scaled_time<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>)
     let w = crate::real::to_f64_3::<T>;
     let (nw, m, pa, pb) = (w(&b.normal), w(&a.center), w(va), w(vb));
     let (offset, radius) = (b.offset.wide(), a.radius.wide());
-    let len = stable_norm(&Vec3::from(nw));
-    let n = nw.map(|x| x / len);
+    let (nm, nl, unit) = normal_parts(&Vec3::from(nw))?;
+    let n = [unit.x, unit.y, unit.z];
     let dot = |x: [f64; 3]| (n[0] * x[0] + n[1] * x[1]) + n[2] * x[2];
     let top = pa.iter().chain(pb.iter()).fold(0.0f64, |t, x| t.max(x.abs()));
     if !(top > 0.0 && top.is_finite()) {
@@ -205,7 +232,13 @@ fn scaled_time<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>)
     }
     // The exponent of each length: `|x| < 2^exp(x)` (zero: far below all).
     let exp = |x: f64| if x == 0.0 { i64::MIN / 4 } else { frexp(x.abs()).1 };
-    let ((om, oe), (lm, le)) = (frexp(offset.abs()), frexp(len));
+    // ‖n‖ = nm · nl as a mantissa in [1/2, √3) and an exponent (never formed:
+    // it overflows or rounds, see `normal_parts`).
+    let (om, oe) = frexp(offset.abs());
+    let (lm, le) = {
+        let (mm, me) = frexp(nm);
+        (mm * nl, me)
+    };
     let plane_exp = if offset == 0.0 { i64::MIN / 4 } else { oe - le + 1 };
     let mmax = m.iter().fold(0.0f64, |t, x| t.max(x.abs()));
     // 2 more: n̂ · M is at most √3 ‖M‖∞, and three terms are summed.
@@ -214,7 +247,17 @@ fn scaled_time<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>)
     let mg = m.map(|x| ldexp(x, -g));
     let gap = (dot(mg) - plane) - ldexp(radius, -g);
     let ((gm, ge), (cm, ce)) = (frexp(gap.max(0.0)), frexp(closing));
-    let t = if gap > 0.0 { ldexp(gm / cm, ge + g - ce - e) } else { 0.0 };
+    // The time as a mantissa and an exponent: the contact point moves by
+    // the unrounded time, which may lie below f64's range or in its
+    // subnormals (a gap of 3.6e-59 closed at 1.2e308: t = 3e-367 rounds to
+    // 0, while the plane, moving at `MAX`, travels 5e-59 by then).
+    let (tm, te) = if gap > 0.0 {
+        let (qm, qe) = frexp(gm / cm);
+        (qm, qe + ge + g - ce - e)
+    } else {
+        (0.0, 0)
+    };
+    let t = ldexp(tm, te);
     // The point, in one of two forms that agree at the touch, whichever
     // sums the smaller terms (the other cancels):
     // - the centre's projection onto the plane at t = 0, moved by the
@@ -230,12 +273,11 @@ fn scaled_time<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Plane<T>, vb: &Vec3<T>)
     // Both at one scale `2^−h` that holds every term (the foot and the
     // motion may each exceed `f64` where their sum does not).
     let along = [0, 1, 2].map(|i| ldexp(pa[i], -e) + n[i] * closing);
-    let (tm, te) = frexp(t);
     let va_s = pa.map(|x| ldexp(x, -e));
     let vb_s = pb.map(|x| ldexp(x, -e));
     // The exponent of a velocity component's motion `x 2^e t` (`x` at the
     // scale 2^−e): below `2^(exp(x) + e + te)`.
-    let motion = |x: f64| if t > 0.0 && x != 0.0 { exp(x) + e + te } else { i64::MIN / 4 };
+    let motion = |x: f64| if tm > 0.0 && x != 0.0 { exp(x) + e + te } else { i64::MIN / 4 };
     // Which form sums the smaller terms along the normal (as exponents):
     // the plane's `d/‖n‖` and `t n̂·vb`, or the sphere's `n̂·M`, `r` and
     // `t n̂·va` (`n̂·M` at a quarter scale, which cannot overflow).

@@ -233,7 +233,11 @@ fn far_apart<T: Real>() -> T {
 #[inline(never)]
 fn rare<T: Real>(a: &Sphere<T>, va: &Vec3<T>, b: &Sphere<T>, vb: &Vec3<T>, t_max: T) -> Option<Toi<T>> {
     if let Some(k) = contact_sphere_sphere(a, b) {
-        return Some(Toi::penetrating(&k));
+        // Flagged for concentric centres (the fallback normal) or a point
+        // beyond the range, not for a depth beyond it (see
+        // `Toi::penetrating_flagged`).
+        let concentric = (a.center - b.center).iter().all(|x| *x == T::zero());
+        return Some(Toi::penetrating_flagged(&k, concentric || !crate::real::finite3(&k.point)));
     }
     // A tiny scene (subnormal coordinates, whose differences, norms and
     // quotients lose their few bits) is answered scaled up by a power of two

@@ -68,6 +68,16 @@ impl<T: Real> Toi<T> {
         self.t.finite() && finite3(&self.point) && finite3(&self.normal)
     }
 
+    /// The answer for shapes already in contact at `t = 0`: the static
+    /// contact, flagged `degenerate` when `fallback` (its normal is a
+    /// documented fallback, or its point lies beyond the type's range). The
+    /// static contact's own flag also marks a depth beyond the range (two
+    /// spheres of radius `MAX` overlap by more than `MAX`), which a time of
+    /// impact, reporting no depth, does not share.
+    pub(crate) fn penetrating_flagged(k: &Contact<T>, fallback: bool) -> Self {
+        Self { degenerate: fallback, ..Self::penetrating(k) }
+    }
+
     /// The answer for shapes already in contact at `t = 0`: the static contact.
     pub(crate) fn penetrating(k: &Contact<T>) -> Self {
         Self {
