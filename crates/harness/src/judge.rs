@@ -403,7 +403,8 @@ fn not_unit(got: &P3, tol: &Tolerance, excess: f64, value: &mut Vec<String>) {
     }
     let allowed = NORMAL_LENGTH_ULPS * tol.eps;
     if !(excess.abs() <= allowed) {
-        let len = 1.0 + excess;
+        // The length itself (scaled: 1 + excess rounds a subnormal length to 0).
+        let len = crate::local::norm(got);
         value.push(format!(
             "normal not unit: length {len} ({:.3e} ulps from 1, allowed {NORMAL_LENGTH_ULPS})",
             excess.abs() / tol.eps

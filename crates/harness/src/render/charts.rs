@@ -64,6 +64,14 @@ pub fn all(summary: &Summary) -> Vec<Chart> {
                 svg,
             });
         }
+        if let Some(svg) = ulps_distribution(summary, query) {
+            out.push(Chart {
+                query,
+                title: format!("{query}: accuracy in ulps"),
+                file: format!("{query}-ulps.svg"),
+                svg,
+            });
+        }
     }
     out
 }
@@ -313,12 +321,33 @@ pub fn accuracy_speed(summary: &Summary, query: Query) -> Option<String> {
 ///
 /// `None` when no engine of this query has a non-zero headline error.
 pub fn error_distribution(summary: &Summary, query: Query) -> Option<String> {
+    distribution(summary, query, |s| &s.headline, "distribution of the headline error", "headline error x")
+}
+
+/// The distribution of the accuracy in ulps for one query kind, per engine
+/// (`judge::Errors::ulps`: the largest error of an answer beyond what its
+/// conditioning allows, in the engine's ulps of the field's magnitude), drawn
+/// as [`error_distribution`] draws the headline error: where a curve crosses
+/// `x = N`, the fraction of answers that `--ulps N` would call wrong.
+pub fn ulps_distribution(summary: &Summary, query: Query) -> Option<String> {
+    distribution(summary, query, |s| &s.ulps.dist, "accuracy in ulps", "ulps beyond the conditioning x")
+}
+
+/// The complementary CDF chart of the distribution `get` of one query kind,
+/// per engine (see [`error_distribution`]).
+fn distribution(
+    summary: &Summary,
+    query: Query,
+    get: fn(&EngineQueryStats) -> &Dist,
+    what: &str,
+    x_title: &str,
+) -> Option<String> {
     let colors = EngineColors::new(summary);
     let mut curves: Vec<(&EngineQueryStats, Vec<(f64, f64)>)> = Vec::new();
     let mut exact = Vec::new();
     let mut unmeasured = Vec::new();
     for s in summary.stats.iter().filter(|s| s.query == Some(query)) {
-        let d = &s.headline;
+        let d = get(s);
         if d.n == 0 {
             unmeasured.push(s.engine.as_str());
         } else if d.bins.is_empty() {
@@ -330,7 +359,7 @@ pub fn error_distribution(summary: &Summary, query: Query) -> Option<String> {
     if curves.is_empty() {
         return None;
     }
-    let max_n = curves.iter().map(|c| c.0.headline.n).max().unwrap_or(1).max(1);
+    let max_n = curves.iter().map(|c| get(c.0).n).max().unwrap_or(1).max(1);
     let xs: Vec<f64> = curves.iter().flat_map(|c| c.1.iter().map(|p| p.0)).collect();
 
     let legend_chars = curves.iter().map(|c| c.0.engine.chars().count()).max().unwrap_or(0);
@@ -344,10 +373,10 @@ pub fn error_distribution(summary: &Summary, query: Query) -> Option<String> {
     let ya = LogAxis { lo: y_lo, hi: 0, p0: bottom, p1: top };
 
     let mut svg = String::new();
-    let title = format!("{query}: distribution of the headline error");
+    let title = format!("{query}: {what}");
     open_svg(&mut svg, w, h, &title);
     frame(&mut svg, &xa, &ya, left, right, top, bottom);
-    x_axis(&mut svg, &xa, bottom, "headline error x");
+    x_axis(&mut svg, &xa, bottom, x_title);
     y_axis(&mut svg, &ya, left, top, bottom, "fraction of cases with error > x");
 
     for (idx, (s, pts)) in curves.iter().enumerate() {
@@ -825,6 +854,7 @@ pub(crate) mod fixture {
                 ],
                 missing_engines: vec![("absent<peer>".into(), "not installed; install it with `x & y`".into())],
                 seed: 42,
+                ulps: None,
                 cases_per_query: 100,
                 full_range_per_query: 0,
                 only: None,

@@ -127,6 +127,9 @@ pub fn index_html_with(summary: &Summary, charts: &[Chart], opening: &super::ope
             let t = query_title(*q);
             let _ = write!(out, "<a href=\"#{}\">{}</a>", anchor(&t), escape(&t));
         }
+        if !crate::render::markdown::ulps_table(summary).rows.is_empty() {
+            out.push_str("<a href=\"#ulps\">ulps</a>");
+        }
         if !summary.full_range.is_empty() {
             out.push_str("<a href=\"#full-range\">full range</a>");
         }
@@ -155,6 +158,13 @@ pub fn index_html_with(summary: &Summary, charts: &[Chart], opening: &super::ope
             out.push_str(&table_html(&detail));
             out.push_str("</details>\n");
         }
+    }
+
+    let ulps = crate::render::markdown::ulps_table(summary);
+    if !ulps.rows.is_empty() {
+        out.push_str("<h2 id=\"ulps\">Accuracy in ulps</h2>\n");
+        let _ = writeln!(out, "<p>{}</p>", escape(crate::render::markdown::ULPS_NOTE));
+        out.push_str(&table_html(&ulps));
     }
 
     if !summary.full_range.is_empty() {

@@ -208,6 +208,51 @@ pub const FULL_RANGE_NOTE: &str = "Cases over the whole finite range of f64, sco
      lies beyond f64's range is refused by the referee and counted unsupported for every engine; \
      f32 engines cannot represent most of these inputs (their scores here show that).";
 
+/// What the ulp table measures, for its heading.
+pub const ULPS_NOTE: &str = "Each answer classified as the referee's, by its largest error beyond \
+     what the field's conditioning allows, in units of the engine's own ulp (ε of its precision) \
+     at the field's magnitude — the sizes the verdict is judged by: the error of a point in ulps \
+     of the point's local scale, a normal's angle in ε radians, its length's distance from 1 in ε. \
+     An engine within N ulps on every answer agrees under `--ulps N`; a correctly rounded one is \
+     within 1. Median and p99 are read from histograms (5% bins); the maximum and the shares are exact.";
+
+/// The accuracy in ulps, per engine and query kind (the manner of a math
+/// library's max-ulp table): answers measured, median, p99 and largest
+/// ulps, and the shares within 1, 4 and 64 ulps. Empty when nothing was
+/// measured (a report written before ulps were).
+pub fn ulps_table(summary: &Summary) -> Table {
+    let mut t = Table::new(&[
+        ("query", false),
+        ("engine", false),
+        ("answers", true),
+        ("median", true),
+        ("p99", true),
+        ("max", true),
+        ("≤ 1 ulp", true),
+        ("≤ 4 ulps", true),
+        ("≤ 64 ulps", true),
+    ]);
+    let pct = |x: f64| format!("{:.1}%", 100.0 * x);
+    for q in queries(summary) {
+        for s in stats_of(summary, q).into_iter().filter(|s| s.ulps.dist.n > 0) {
+            let d = &s.ulps.dist;
+            let shares = s.ulps.shares().unwrap_or_default();
+            t.rows.push(vec![
+                query_title(q),
+                s.engine.clone(),
+                d.n.to_string(),
+                d.median().map_or_else(|| "—".into(), sci),
+                d.p99().map_or_else(|| "—".into(), sci),
+                sci(d.max),
+                pct(shares[0]),
+                pct(shares[1]),
+                pct(shares[2]),
+            ]);
+        }
+    }
+    t
+}
+
 /// The error distributions of one query kind in full: per engine and measured
 /// error, the sample count, exact zeros, median, p99 and maximum.
 pub fn detail_table(summary: &Summary, query: Option<Query>) -> Table {
@@ -336,6 +381,15 @@ pub fn provenance_lines(summary: &Summary) -> Vec<(String, String)> {
         ("wall time".into(), wall_time(p)),
         ("referee stages".into(), referee_stages(p)),
         ("seed".into(), p.seed.to_string()),
+        (
+            "judged by".into(),
+            match p.ulps {
+                Some(n) => {
+                    format!("--ulps {n}: every fixed allowance {n} of the engine's ulps of the field's magnitude")
+                }
+                None => "the tolerance table (crates/harness/src/tolerance.rs)".into(),
+            },
+        ),
         ("random cases per query".into(), p.cases_per_query.to_string()),
         ("full-range cases per query".into(), p.full_range_per_query.to_string()),
         ("shards".into(), shards),
@@ -489,6 +543,13 @@ pub fn summary_md_with(summary: &Summary, opening: &str) -> String {
         }
         out.push('\n');
     }
+    let ulps = ulps_table(summary);
+    if !ulps.rows.is_empty() {
+        out.push_str("## Accuracy in ulps\n\n");
+        let _ = writeln!(out, "{}\n", escape_md(ULPS_NOTE));
+        out.push_str(&table_md(&ulps));
+        out.push('\n');
+    }
     if !summary.full_range.is_empty() {
         out.push_str("## Full range\n\n");
         let _ = writeln!(out, "{}\n", escape_md(FULL_RANGE_NOTE));
@@ -557,6 +618,26 @@ mod tests {
         assert!(md.contains("| fast\\<f32\\> | 97 · 1 · 1 · 0 (1 borderline, 0 failed) |"), "{md}");
         // The provenance names an engine that was not installed.
         assert!(md.contains("NOT RUN: not installed; install it with \\`x \\& y\\`"), "{md}");
+    }
+
+    #[test]
+    fn the_ulps_table_gives_the_distribution_and_exact_shares() {
+        let mut summary = fixture::summary();
+        assert!(!summary_md(&summary).contains("## Accuracy in ulps"), "nothing measured, no table");
+        let s = &mut summary.stats[0];
+        for u in [0.0, 0.5, 1.0, 3.0, 4.0, 10.0, 64.0, 65.0] {
+            s.ulps.add(u);
+        }
+        assert_eq!(s.ulps.within, [3, 5, 7]);
+        let (engine, query) = (s.engine.clone(), query_title(s.query));
+        let md = summary_md(&summary);
+        let at = md.find("## Accuracy in ulps").expect("the ulps section");
+        assert!(at > md.find("## contact").expect("contact") && at < md.find("## Throughput").expect("throughput"));
+        // 8 answers: median (upper edge of its 5% bin) ≈ 3.0, max 65, shares
+        // 3/8, 5/8 and 7/8.
+        let row = format!("| {query} | {} | 8 | ", escape_md(&engine));
+        let line = md[at..].lines().find(|l| l.starts_with(&row)).unwrap_or_else(|| panic!("no row {row} in\n{md}"));
+        assert!(line.ends_with("| 6.5e1 | 37.5% | 62.5% | 87.5% |"), "{line}");
     }
 
     #[test]
