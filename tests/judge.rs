@@ -189,3 +189,128 @@ fn a_time_off_by_a_factor_one_plus_1e_12_agrees_by_default_and_disagrees_under_6
     }
     assert!(hits >= 300 && well_conditioned >= 60, "{hits} hits, {well_conditioned} well-conditioned");
 }
+
+/// `shape` standing still.
+fn still(shape: &harness::case::Shape) -> harness::case::Shape {
+    use harness::case::Shape as S;
+    match shape.clone() {
+        S::Sphere(s) => S::Sphere(harness::case::SphereSpec { velocity: None, ..s }),
+        S::Plane(p) => S::Plane(harness::case::PlaneSpec { velocity: None, ..p }),
+        S::Triangle(t) => S::Triangle(harness::case::TriangleSpec { velocity: None, ..t }),
+        S::Mesh(m) => S::Mesh(harness::case::MeshSpec { velocity: None, ..m }),
+        other => other,
+    }
+}
+
+/// The verdict's kind, for comparing two judges.
+fn kind(v: &Verdict) -> &'static str {
+    v.label()
+}
+
+/// One rule for a contact at t = 0: shapes standing still and touching or
+/// overlapping are a time-of-impact case answered at t = 0 and a contact
+/// case with the same point and normal, and the two judges give the same
+/// verdict to the same answer — a miss (borderline or disagreement by the
+/// same band), and a point or a normal moved by half and by twice either
+/// judge's allowance.
+#[test]
+fn a_contact_at_t_zero_is_judged_alike_as_a_time_of_impact_and_as_a_contact() {
+    let referee = referee();
+    let tol = Tolerance::for_precision(Some(53));
+    let (mut compared, mut misses_borderline) = (0, 0);
+    for lc in campaign(Some(Query::Toi), 1_000) {
+        let mut toi = lc.clone();
+        toi.case.a = still(&lc.case.a);
+        toi.case.b = lc.case.b.as_ref().map(still);
+        let mut contact = toi.clone();
+        contact.case.query = Query::Contact;
+        contact.case.t_max = None;
+        contact.case.expect = None;
+        let (Ok(Answer::Toi(tw)), Ok(Answer::Contact(cw))) =
+            (run_caught(&referee, &toi), run_caught(&referee, &contact))
+        else {
+            continue;
+        };
+        let (Some(t), Some(c)) = (tw.toi, cw.contact) else {
+            assert!(tw.toi.is_none() && cw.contact.is_none(), "{}: {tw:?} against {cw:?}", lc.case.name);
+            continue;
+        };
+        if !judge::all_finite(&Answer::Toi(tw)) || !judge::all_finite(&Answer::Contact(cw)) {
+            continue;
+        }
+        assert!(t.t == 0.0 && t.point == c.point && t.normal == c.normal, "{}: {t:?} against {c:?}", lc.case.name);
+        let (tm, cm) = (harness::engines::referee::margin(&toi), harness::engines::referee::margin(&contact));
+        let (tt, ct) = (Answer::Toi(tw), Answer::Contact(cw));
+        compared += 1;
+        // A miss.
+        let miss_t = judge::judge(&toi, &Answer::Toi(oracle::geom::ToiAnswer { toi: None, ..tw }), &tt, &tol, tm).0;
+        let miss_c = judge::judge(&contact, &Answer::Contact(ContactAnswer { contact: None, ..cw }), &ct, &tol, cm).0;
+        assert_eq!(kind(&miss_t), kind(&miss_c), "{}: a miss: {miss_t:?} against {miss_c:?}", lc.case.name);
+        misses_borderline += usize::from(matches!(miss_c, Verdict::Borderline { .. }));
+        // A point and a normal moved.
+        let (at, ac) = (judge::allowed(&toi, &tt, &tol), judge::allowed(&contact, &ct, &tol));
+        for allowance in [at.point, ac.point] {
+            for f in [0.5, 2.0] {
+                let d = allowance * f;
+                let p = [c.point[0] + d, c.point[1], c.point[2]];
+                let vt = judge::judge(
+                    &toi,
+                    &Answer::Toi(oracle::geom::ToiAnswer { toi: Some(oracle::geom::Toi { point: p, ..t }), ..tw }),
+                    &tt,
+                    &tol,
+                    tm,
+                )
+                .0;
+                let vc = judge::judge(
+                    &contact,
+                    &Answer::Contact(ContactAnswer { contact: Some(oracle::geom::Contact { point: p, ..c }), ..cw }),
+                    &ct,
+                    &tol,
+                    cm,
+                )
+                .0;
+                assert_eq!(kind(&vt), kind(&vc), "{}: point moved by {d:e}: {vt:?} against {vc:?}", lc.case.name);
+            }
+        }
+        for allowance in [at.normal, ac.normal] {
+            for f in [0.5, 2.0] {
+                let a = (allowance * f).min(3.0);
+                // Turned by `a` about an axis across the normal (scaled: a
+                // unit normal's largest coordinate is at least 1/√3).
+                let n = c.normal;
+                let k = if n[0].abs() < 0.5 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+                let u = crashtest_core::vec3::cross(n, k);
+                let l = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+                let (s, co) = a.sin_cos();
+                let turned = [0, 1, 2].map(|i| n[i] * co + u[i] / l * s);
+                let vt = judge::judge(
+                    &toi,
+                    &Answer::Toi(oracle::geom::ToiAnswer {
+                        toi: Some(oracle::geom::Toi { normal: turned, ..t }),
+                        ..tw
+                    }),
+                    &tt,
+                    &tol,
+                    tm,
+                )
+                .0;
+                let vc = judge::judge(
+                    &contact,
+                    &Answer::Contact(ContactAnswer {
+                        contact: Some(oracle::geom::Contact { normal: turned, ..c }),
+                        ..cw
+                    }),
+                    &ct,
+                    &tol,
+                    cm,
+                )
+                .0;
+                assert_eq!(kind(&vt), kind(&vc), "{}: normal turned by {a:e}: {vt:?} against {vc:?}", lc.case.name);
+            }
+        }
+    }
+    assert!(
+        compared >= 150 && misses_borderline >= 10,
+        "{compared} contacts at t = 0, {misses_borderline} borderline misses"
+    );
+}

@@ -828,9 +828,14 @@ fn toi_allowance(lc: &LoadedCase, w: &oracle::geom::Toi, b: &Shape, tol: &Tolera
     let t = first.min(second);
     // A speed of 0 moves nothing, however long the time (no 0 · ∞).
     let moved = |speed: f64| if speed > 0.0 && t > 0.0 { speed * t } else { 0.0 };
-    let point = moved(norm(&va) + norm(&vb) + 2.0 * speed) + delta;
+    // A contact at t = 0 has the static contact's sizes (`local`), whose
+    // conditioning covers the distance the time is decided by: only what the
+    // motion adds over the time's allowance is added here.
+    let at_start = w.t == 0.0;
+    let point = moved(norm(&va) + norm(&vb) + 2.0 * speed) + if at_start { 0.0 } else { delta };
     let normal = if span.is_finite() {
-        if span > 0.0 { moved(speed) / span + c_eps * (reach / span) } else { f64::INFINITY }
+        let still = if at_start { 0.0 } else { c_eps * (reach / span) };
+        if span > 0.0 { moved(speed) / span + still } else { f64::INFINITY }
     } else {
         0.0
     };

@@ -456,7 +456,41 @@ fn barycentric(p: &P3, t: &TriangleShape, l: &P3) -> Local {
     Local { barycentric: Size::new(size, ratio(moved, t.min_alt())), ..Local::default() }
 }
 
+/// The sizes of a contact at `t = 0`: the static contact's of the shapes as
+/// they stand ([`contact`]; a mesh's face nearest the centre), from the
+/// referee's point and normal at `t = 0` and the signed depth they give —
+/// so that the same answer gets the same verdict as a time of impact at
+/// `t = 0` and as a contact (see `judge::toi_allowance` for what motion adds).
+fn contact_at_start(lc: &LoadedCase, a: &crate::case::SphereSpec, b: &Shape, h: &oracle::geom::Toi) -> Local {
+    let sphere = Shape::Sphere(crate::case::SphereSpec { velocity: None, mass: None, ..a.clone() });
+    // The signed depth in f64 (a size needs no more): the radius less the
+    // centre's signed distance from the point on b's surface along the normal
+    // (for a plane, from the plane itself).
+    let along = |q: &P3| {
+        let (d, k) = diff(&a.center, q);
+        clean(dot(d, h.normal).abs() * k) * dot(d, h.normal).signum()
+    };
+    let depth = match b {
+        Shape::Sphere(_) | Shape::Plane(_) => a.radius - along(&h.point),
+        _ => a.radius - distance(&a.center, &h.point),
+    };
+    let c = oracle::geom::Contact { point: h.point, normal: h.normal, depth };
+    match b {
+        Shape::Mesh(_) => match nearest_face(lc, a) {
+            Some(face) => contact(&sphere, &face, Some(&c)),
+            None => Local::default(),
+        },
+        _ => contact(&sphere, b, Some(&c)),
+    }
+}
+
 fn toi(lc: &LoadedCase, a: &crate::case::SphereSpec, b: &Shape, w: &oracle::geom::ToiAnswer) -> Local {
+    if let Some(h) = &w.toi
+        && h.t == 0.0
+    {
+        let t_max = lc.case.t_max();
+        return Local { t: Size::new(t_max, 0.0), ..contact_at_start(lc, a, b, h) };
+    }
     let va = a.velocity.unwrap_or_default();
     let vb = b.velocity();
     let t_max = lc.case.t_max();
