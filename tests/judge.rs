@@ -314,3 +314,46 @@ fn a_contact_at_t_zero_is_judged_alike_as_a_time_of_impact_and_as_a_contact() {
         "{compared} contacts at t = 0, {misses_borderline} borderline misses"
     );
 }
+
+/// The accuracy in ulps is the measure `--ulps N` decides by: over the
+/// campaign, an answer of the lecture's methods or of parry measured within
+/// `N` ulps (`Errors::ulps`) agrees or is borderline under `--ulps N`, and
+/// one measured beyond `N` disagrees — for `N` = 1, 4 and 64 (a flag that
+/// differs is a disagreement whatever its ulps, and left out; so are answers
+/// within a part in 10⁹ of `N`, where the floor's clamp may round either way).
+#[test]
+fn an_answer_within_n_ulps_is_what_ulps_n_lets_through() {
+    let engines: Vec<Engine> = harness::engines::judged()
+        .into_iter()
+        .filter(|e| ["collide/lecture", "parry3d-f64", "collide-f32/lecture"].contains(&e.name.as_str()))
+        .collect();
+    assert_eq!(engines.len(), 3);
+    let referee = referee();
+    let mut checked = [0usize; 2];
+    for lc in campaign(None, 300) {
+        let Ok(truth) = run_caught(&referee, &lc) else { continue };
+        if !judge::all_finite(&truth) {
+            continue;
+        }
+        let margin = harness::engines::referee::margin(&lc);
+        for engine in &engines {
+            let Ok(answer) = run_caught(engine, &lc) else { continue };
+            let precision = engine.precision_for(&lc);
+            let (_, e) = judge::judge(&lc, &answer, &truth, &Tolerance::for_precision(precision), margin);
+            let Some(u) = e.ulps else { continue };
+            if e.misclass == Some(judge::Misclass::Flag) || !judge::all_finite(&answer) {
+                continue;
+            }
+            for n in [1.0, 4.0, 64.0] {
+                if (u - n).abs() <= 1e-9 * n {
+                    continue;
+                }
+                let (v, _) = judge::judge(&lc, &answer, &truth, &Tolerance::for_engine(precision, Some(n)), margin);
+                let within = matches!(v, Verdict::Agree | Verdict::Borderline { .. });
+                assert_eq!(within, u <= n, "{} by {}: {u} ulps under --ulps {n}: {v:?}", lc.case.name, engine.name);
+                checked[usize::from(within)] += 1;
+            }
+        }
+    }
+    assert!(checked[0] >= 500 && checked[1] >= 5_000, "{checked:?} (beyond, within)");
+}

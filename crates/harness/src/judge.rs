@@ -6,7 +6,7 @@
 use crate::case::{Case, Expect, Shape};
 use crate::engine::Answer;
 use crate::load::{LoadedCase, bounded_points};
-use crate::tolerance::{NORMAL_LENGTH_ULPS, Tolerance};
+use crate::tolerance::Tolerance;
 use oracle::geom::P3;
 use serde::Serialize;
 
@@ -261,10 +261,13 @@ pub struct Errors {
     /// The answer's accuracy in ulps: over its numeric fields, the largest
     /// error beyond what the field's conditioning and the precision's floor
     /// allow, in units of the engine's `ε` times the field's magnitude (the
-    /// sizes of [`crate::local`]) — so the answer agrees under `--ulps N`
-    /// (the fixed allowance `N · ε` of the magnitude) when this is at most
-    /// `N` and the classification is the referee's. A normal's length counts
-    /// as `|‖n‖ − 1| / ε`. Absent when no numeric field was compared.
+    /// sizes of [`crate::local`]); for a contact, hit, impact or overlap
+    /// found or missed against the referee, the referee's margin from the
+    /// decision boundary measured the same way. So the answer is within
+    /// `--ulps N` (the fixed allowance `N · ε` of the magnitude: agreement,
+    /// or a borderline classification) when this is at most `N`. A normal's
+    /// length counts as `|‖n‖ − 1| / ε`. Absent when nothing was measured
+    /// (a classification without a margin, such as a mesh's hit).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ulps: Option<f64>,
     /// The classification differs from the referee's, and how.
@@ -365,7 +368,7 @@ fn no_direction(got: &P3, want: &P3, value: &mut Vec<String>) {
 /// length is near 1: the squares and their sum are carried in two words (each
 /// square split exactly by a fused multiply-add), so the judge's own rounding
 /// (an ulp or two of a plain `sqrt(x² + y² + z²)`) never decides a verdict at
-/// [`NORMAL_LENGTH_ULPS`]. A normal whose largest coordinate is outside
+/// [`crate::tolerance::NORMAL_LENGTH_ULPS`]. A normal whose largest coordinate is outside
 /// `[2⁻⁴, 2]` is far from unit whatever its other coordinates: its length is
 /// taken by the scaled norm, which cannot overflow.
 pub fn unit_excess(n: &P3) -> f64 {
@@ -393,7 +396,8 @@ pub fn unit_excess(n: &P3) -> f64 {
     ss_minus_1 / ((ss_minus_1 + 1.0).max(0.0).sqrt() + 1.0)
 }
 
-/// A normal whose length is not 1 within [`NORMAL_LENGTH_ULPS`] of the
+/// A normal whose length is not 1 within `tol.normal_length_ulps` (by
+/// default [`crate::tolerance::NORMAL_LENGTH_ULPS`]) of the
 /// engine's `ε`: its reason, with the length and its distance from 1 in ulps.
 /// The zero vector has its own reason ([`no_direction`]) and is not repeated
 /// here.
@@ -401,13 +405,14 @@ fn not_unit(got: &P3, tol: &Tolerance, excess: f64, value: &mut Vec<String>) {
     if got.iter().all(|x| *x == 0.0) {
         return;
     }
-    let allowed = NORMAL_LENGTH_ULPS * tol.eps;
+    let allowed = tol.normal_length_ulps * tol.eps;
     if !(excess.abs() <= allowed) {
         // The length itself (scaled: 1 + excess rounds a subnormal length to 0).
         let len = crate::local::norm(got);
         value.push(format!(
-            "normal not unit: length {len} ({:.3e} ulps from 1, allowed {NORMAL_LENGTH_ULPS})",
-            excess.abs() / tol.eps
+            "normal not unit: length {len} ({:.3e} ulps from 1, allowed {})",
+            excess.abs() / tol.eps,
+            tol.normal_length_ulps
         ));
     }
 }
@@ -702,6 +707,11 @@ pub fn judge(
                     class.push(format!("bounding sphere misses point {i} by {d:.3e}"));
                     fneg(&mut e);
                 }
+                // A miss has no referee margin: the farthest point's distance
+                // outside is how far off the sphere is, in ulps of the radius's
+                // magnitude.
+                let outside = pts.iter().map(|p| crate::local::distance(p, &gs.center) - gs.radius).fold(0.0, f64::max);
+                count(ulps_of(outside, conditioned.depth, one.depth));
                 let excess = gs.radius - ws.radius;
                 e.depth = Some(excess);
                 over("bounding radius", excess, |a| a.depth, "", &mut value);
@@ -745,6 +755,14 @@ pub fn judge(
             over("velocity", err, |a| a.velocity, "", &mut value);
         }
         _ => class.push("answer of another query kind".into()),
+    }
+    // A classification that differs is as far off as the referee's margin
+    // from the boundary: in ulps beyond the band's conditioning, the same
+    // measure `--ulps N` decides borderline by.
+    if matches!(e.misclass, Some(Misclass::FalsePositive | Misclass::FalseNegative))
+        && let Some(m) = margin
+    {
+        count(ulps_of(m.abs(), conditioned.margin, one.margin));
     }
     e.ulps = ulps.get();
     let verdict = if !class.is_empty() {

@@ -240,8 +240,9 @@ pub struct EngineQueryStats {
     /// or a failure. The accuracy–speed chart plots its p99.
     pub headline: Dist,
     /// Accuracy in ulps ([`crate::judge::Errors::ulps`]) of every answer
-    /// classified as the referee's: its distribution and how many are within
-    /// 1, 4 and 64 ulps. Absent in reports written before it was measured.
+    /// judged (a misclassification by the referee's margin): its
+    /// distribution and how many are within 1, 4 and 64 ulps. Absent in
+    /// reports written before it was measured.
     #[serde(default)]
     pub ulps: Ulps,
     /// Time per query, if timed.

@@ -135,6 +135,9 @@ pub struct Tolerance {
     pub eps: f64,
     /// The precision's smallest positive (subnormal) number.
     pub tiny: f64,
+    /// How far a normal's length may be from 1, in units of `eps`:
+    /// [`NORMAL_LENGTH_ULPS`], or `N` under `--ulps N`.
+    pub normal_length_ulps: f64,
 }
 
 impl Tolerance {
@@ -148,6 +151,7 @@ impl Tolerance {
                 unitless: F32_BARY,
                 eps: f64::from(f32::EPSILON),
                 tiny: f64::from(f32::from_bits(1)),
+                normal_length_ulps: NORMAL_LENGTH_ULPS,
             },
             _ => Tolerance {
                 rel: F64_REL,
@@ -155,6 +159,7 @@ impl Tolerance {
                 unitless: F64_BARY,
                 eps: f64::EPSILON,
                 tiny: f64::from_bits(1),
+                normal_length_ulps: NORMAL_LENGTH_ULPS,
             },
         }
     }
@@ -167,12 +172,13 @@ impl Tolerance {
 
     /// The entry for `precision` ([`Tolerance::for_precision`]), its fixed
     /// allowances replaced by `N` of the precision's ulps when `ulps` is
-    /// `Some(N)` (`--ulps N`: is the engine backward stable to `N` ulps?);
-    /// the conditioning allowances and the floor stay as they are.
+    /// `Some(N)` (`--ulps N`: is the engine backward stable to `N` ulps?),
+    /// and a normal's length held to `N` ulps of 1 as well; the conditioning
+    /// allowances and the floor stay as they are.
     pub fn for_engine(precision: Option<u32>, ulps: Option<f64>) -> Self {
         let t = Tolerance::for_precision(precision);
         match ulps {
-            Some(n) => t.fixed(n * t.eps),
+            Some(n) => Tolerance { normal_length_ulps: n, ..t.fixed(n * t.eps) },
             None => t,
         }
     }

@@ -209,12 +209,14 @@ pub const FULL_RANGE_NOTE: &str = "Cases over the whole finite range of f64, sco
      f32 engines cannot represent most of these inputs (their scores here show that).";
 
 /// What the ulp table measures, for its heading.
-pub const ULPS_NOTE: &str = "Each answer classified as the referee's, by its largest error beyond \
-     what the field's conditioning allows, in units of the engine's own ulp (ε of its precision) \
-     at the field's magnitude — the sizes the verdict is judged by: the error of a point in ulps \
-     of the point's local scale, a normal's angle in ε radians, its length's distance from 1 in ε. \
-     An engine within N ulps on every answer agrees under `--ulps N`; a correctly rounded one is \
-     within 1. Median and p99 are read from histograms (5% bins); the maximum and the shares are exact.";
+pub const ULPS_NOTE: &str = "Each answer by its largest error beyond what the field's conditioning \
+     allows, in units of the engine's own ulp (ε of its precision) at the field's magnitude — the \
+     sizes the verdict is judged by: the error of a point in ulps of the point's local scale, a \
+     normal's angle in ε radians, its length's distance from 1 in ε; a contact, hit or impact found \
+     or missed against the referee by the referee's margin from the decision, measured the same \
+     way. An engine within N ulps on every answer has no disagreement under `--ulps N` (its \
+     misclassifications are borderline); a correctly rounded one is within 1. Median and p99 are \
+     read from histograms (5% bins); the maximum and the shares are exact.";
 
 /// The accuracy in ulps, per engine and query kind (the manner of a math
 /// library's max-ulp table): answers measured, median, p99 and largest

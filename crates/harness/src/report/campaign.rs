@@ -239,9 +239,7 @@ fn fold(map: &mut BTreeMap<StatsKey, EngineQueryStats>, c: &CaseResult, full_ran
             add(&mut s.t, e.t);
             add(&mut s.barycentric, e.barycentric);
             add(&mut s.normal_length, e.normal_length);
-            if e.misclass.is_none()
-                && let Some(u) = e.ulps
-            {
+            if let Some(u) = e.ulps {
                 s.ulps.add(u);
             }
         };
