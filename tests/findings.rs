@@ -187,7 +187,7 @@ fn replay_all(file: &FindingsFile, dir: &Path, set: &EngineSet) -> usize {
         let lc = &loaded.cases[0];
         let engine = set.judged.iter().find(|e| e.name == f.engine()).expect("the finding's engine");
         let judged = || {
-            let (sig, result, _) = judge_one(engine, &set, lc);
+            let (sig, result, _) = judge_one(engine, set, lc);
             sig.map(|sig| (harness::findings::signature::cause_of(&sig, lc, Some(engine), &result), sig))
         };
         let (cause, sig): (Cause, _) = (0..3 * harness::findings::shrink::REPLAYS)
@@ -195,6 +195,26 @@ fn replay_all(file: &FindingsFile, dir: &Path, set: &EngineSet) -> usize {
             .find(|(_, sig)| f.signature.same_defect(sig))
             .or_else(judged)
             .unwrap_or_else(|| panic!("{}: the shrunk case no longer shows a discrepancy{AGAIN}", s.file));
+        // Known as it is: a process engine's finding whose every case the
+        // report lists as unstable (its answer changes between processes)
+        // and whose kept case showed the defect in none of the report's
+        // replays (`replayed: 0`, FCL's distance on a degenerate triangle)
+        // cannot be asked to show it again: only to show a discrepancy of
+        // its engine on its pair.
+        let unsteady = s.replayed == 0
+            && !f.fixture_cases.is_empty()
+            && f.fixture_cases.iter().all(|c| file.unstable.iter().any(|(e, u)| e == f.engine() && u == c));
+        if unsteady && !f.signature.same_defect(&sig) {
+            assert!(
+                sig.engine == f.signature.engine && sig.pair == f.signature.pair,
+                "{}: {:?} replays as {:?}{AGAIN}",
+                s.file,
+                f.signature,
+                sig
+            );
+            n += 1;
+            continue;
+        }
         assert!(f.signature.same_defect(&sig), "{}: {:?} replays as {:?}{AGAIN}", s.file, f.signature, sig);
         assert_eq!(cause, f.cause, "{}{AGAIN}", s.file);
         n += 1;

@@ -9,9 +9,9 @@ use harness::engine::{Answer, Engine, Queries, Reply};
 use harness::engines::EngineSet;
 use harness::engines::{self, referee};
 use harness::generate::{full_range, try_generate_full_range};
+use harness::judge::tolerance::Tolerance;
 use harness::judge::{self, Verdict};
 use harness::load::LoadedCase;
-use harness::tolerance::Tolerance;
 use oracle::geom::{Contact, ContactAnswer, Sphere, Triangle};
 
 fn loaded(query: Query, a: Shape, b: Option<Shape>) -> LoadedCase {

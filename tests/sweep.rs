@@ -7,9 +7,9 @@
 use harness::check::{check_case, run_caught};
 use harness::engines::EngineSet;
 use harness::engines::{self, judged, referee};
+use harness::judge::tolerance::Tolerance;
 use harness::judge::{Verdict, judge, scene_scale};
 use harness::sweep::{self, BreakWhy, Settings, SweepResult};
-use harness::tolerance::Tolerance;
 use std::sync::OnceLock;
 
 /// Poses per point here: 8 — four exact and four rotated where a sweep

@@ -11,10 +11,10 @@
 use crate::case::{Expect, Query};
 use crate::engine::{Answer, Engine};
 use crate::engines::{self, EngineSet};
+use crate::judge::tolerance::Tolerance;
 use crate::judge::{self, Errors, Mismatch, Verdict};
 use crate::load::{InputError, LoadedCase};
 use crate::protocol::client::Outcome;
-use crate::tolerance::Tolerance;
 use serde::Serialize;
 use std::cell::{Cell, RefCell};
 use std::panic::{AssertUnwindSafe, catch_unwind};

@@ -10,13 +10,14 @@
 //!   [`case`]; its JSON Schema is generated from these types
 //!   (`schema/crashtest-fixture-1.schema.json`, kept current by a test).
 //! - Conventions are translated once per engine, in that engine's adapter.
-//! - Every tolerance is a named constant with its reason ([`tolerance`]).
+//! - Every tolerance is a named constant with its reason ([`judge::tolerance`]).
 //!
 //! Layers, each importing only from the ones above it in this list (checked by
 //! `tests/layering.rs`: no module imports one that imports it back):
-//! 1. vocabulary and machinery: [`case`], [`mesh`], [`rng`], [`tolerance`],
+//! 1. vocabulary and machinery: [`case`], [`mesh`], [`rng`],
 //!    [`load`], [`protocol`] (process engines), [`divergence`], [`engine`],
-//!    [`engines`], [`local`], [`judge`], [`check`], [`serve`] (an engine served
+//!    [`engines`], [`judge`] (the verdict, one stage a file: sizes,
+//!    tolerances, allowances, comparison, reasons), [`check`], [`serve`] (an engine served
 //!    over the protocol), [`conformance`] (a process engine's conformance
 //!    run), [`generate`];
 //! 2. what a report measured ([`summary`]), its findings ([`findings`]:
@@ -48,7 +49,6 @@ pub mod findings;
 pub mod generate;
 pub mod judge;
 pub mod load;
-pub mod local;
 pub mod mesh;
 pub mod protocol;
 pub mod render;
@@ -60,4 +60,3 @@ pub mod summary;
 pub mod sweep;
 pub mod timing;
 pub mod toi_report;
-pub mod tolerance;

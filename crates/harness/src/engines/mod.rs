@@ -74,7 +74,7 @@ pub struct EngineSet {
     /// them.
     pub missing: Vec<(String, String)>,
     /// `--ulps N`: every engine's fixed allowances are `N` of its ulps of
-    /// each field's magnitude ([`crate::tolerance::Tolerance::for_engine`]);
+    /// each field's magnitude ([`crate::judge::tolerance::Tolerance::for_engine`]);
     /// `None`, the default, keeps the tolerance table's.
     pub ulps: Option<f64>,
 }

@@ -77,13 +77,16 @@ fn words(reason: &str) -> String {
 /// One reason of a disagreement, as a signature names it: the field over its
 /// allowance (`depth`, `hit point`, `aabb coordinate`), or the
 /// classification (`false contact`, `parallel: true`, `bounding sphere misses
-/// a point`).
+/// a point`), or a normal that is not unit (`normal not unit`).
 fn reason_key(reason: &str) -> String {
     if let Some((field, _)) = reason.split_once(" off by ") {
         return words(field);
     }
     if reason.starts_with("bounding sphere misses point") {
         return "bounding sphere misses a point".into();
+    }
+    if reason.starts_with("normal not unit") {
+        return "normal not unit".into();
     }
     // `false contact (referee: apart)`, `parallel: true (referee false)`,
     // `overlap: false (referee true)`.

@@ -389,7 +389,7 @@ pub fn provenance_lines(summary: &Summary) -> Vec<(String, String)> {
                 Some(n) => {
                     format!("--ulps {n}: every fixed allowance {n} of the engine's ulps of the field's magnitude")
                 }
-                None => "the tolerance table (crates/harness/src/tolerance.rs)".into(),
+                None => "the tolerance table (crates/harness/src/judge/tolerance.rs)".into(),
             },
         ),
         ("random cases per query".into(), p.cases_per_query.to_string()),

@@ -1,6 +1,7 @@
-//! The problem's own scale: for each field of an answer, the sizes that decide
-//! it, from which its tolerance is derived (see [`crate::tolerance`] for the
-//! rules' reasons and [`crate::judge`] for their use).
+//! The verdict's first stage, the problem's own scale: for each field of an
+//! answer, the sizes that decide it, from which its allowance is derived (see
+//! [`super::tolerance`] for the rules' reasons and [`super::allowance`] for
+//! their use).
 //!
 //! The model is backward error. An engine working in a precision with machine
 //! epsilon `ε` is allowed what the exact answer changes by when each input
@@ -537,4 +538,61 @@ fn response(a: &crate::case::SphereSpec, b: &Shape, w: &oracle::geom::ResponseAn
         _ => 1.0,
     };
     Local { velocity: Size::new(size, 2.0 * rel * turn), ..Local::default() }
+}
+
+/// The scene's scale: the largest magnitude among the case's coordinates, radii and
+/// plane offsets (offsets in units of the normal's length), or 1 for an empty or
+/// all-zero scene. Errors of lengths are divided by it.
+pub fn scene_scale(lc: &LoadedCase) -> f64 {
+    let mut m: f64 = 0.0;
+    let mut p3 = |p: &P3| m = p.iter().fold(m, |m, x| m.max(x.abs()));
+    let mut scalars = Vec::new();
+    for (slot, shape) in [Some(&lc.case.a), lc.case.b.as_ref()].into_iter().enumerate() {
+        match shape {
+            Some(Shape::Sphere(s)) => {
+                p3(&s.center);
+                scalars.push(s.radius);
+            }
+            Some(Shape::Plane(p)) => {
+                let n = p.normal.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if n > 0.0 && n.is_finite() {
+                    scalars.push(p.offset / n);
+                }
+            }
+            Some(Shape::Segment(s)) => {
+                p3(&s.start);
+                p3(&s.end);
+            }
+            Some(Shape::Triangle(t)) => t.vertices.iter().for_each(&mut p3),
+            Some(Shape::Point(p)) => p3(&p.at),
+            Some(Shape::Points(p)) => p.points.iter().for_each(&mut p3),
+            Some(Shape::Mesh(_)) => {
+                if let Some(mesh) = &lc.meshes[slot] {
+                    mesh.vertices.iter().for_each(&mut p3);
+                }
+            }
+            Some(Shape::Aabb(b)) => {
+                p3(&b.min);
+                p3(&b.max);
+            }
+            None => {}
+        }
+    }
+    let m = scalars.iter().fold(m, |m, x| m.max(x.abs()));
+    if m > 0.0 && m.is_finite() { m } else { 1.0 }
+}
+
+/// The length scale of a case's answer, for relative errors in reports: the
+/// magnitude of the sizes its point, depth and margin are judged by (at least
+/// the smallest positive number, never 0).
+pub fn answer_scale(lc: &LoadedCase, truth: &Answer) -> f64 {
+    let l = local(lc, truth);
+    let m = l.point.magnitude.max(l.depth.magnitude).max(l.margin.magnitude).max(l.velocity.magnitude);
+    if m > 0.0 && m.is_finite() {
+        m
+    } else if m > 0.0 {
+        f64::MAX
+    } else {
+        scene_scale(lc)
+    }
 }

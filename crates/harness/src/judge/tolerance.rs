@@ -3,7 +3,7 @@
 //!
 //! **The rule: each field is judged by the problem's own scale.** What a field
 //! may be off by is derived from the sizes that decide that field at that input
-//! (see [`crate::local`], which writes the rule out per query kind), never from
+//! (see [`super::sizes`], which writes the rule out per query kind), never from
 //! the scene's bounding size alone:
 //!
 //! `allowed = FIXED · magnitude + K · ε · condition`, at least [`Tolerance::floor`]
@@ -111,7 +111,7 @@ pub const LENGTH_CONDITION_ULPS: f64 = 16.0;
 /// direction may be ill-conditioned (its angle has its own allowance), its
 /// length is not. So no conditioning term is added; 4 leaves room for an
 /// engine that multiplies by a rounded reciprocal instead of dividing. The
-/// judge measures the length in two words ([`crate::judge::unit_excess`]), so
+/// judge measures the length in two words ([`super::compare::unit_excess`]), so
 /// its own rounding does not count against the engine.
 pub const NORMAL_LENGTH_ULPS: f64 = 4.0;
 

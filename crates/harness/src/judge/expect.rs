@@ -1,0 +1,179 @@
+//! Judging an answer against a case's own `expect` (the fixture's numbers,
+//! within its absolute `tol`), beside the verdict against the referee.
+
+use super::compare::{dist3, unit_excess};
+use super::verdict::degenerate;
+use crate::case::{Case, Expect};
+use crate::engine::Answer;
+use crate::load::{LoadedCase, bounded_points};
+use oracle::geom::P3;
+use serde::Serialize;
+
+/// One field of an answer that does not meet the expectation.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Mismatch {
+    /// The expectation's field: `contact.depth`, `hit`, `parallel`, …
+    pub field: String,
+    /// What the fixture expects.
+    pub expected: String,
+    /// What the engine answered.
+    pub got: String,
+}
+
+fn mm(field: &str, expected: impl std::fmt::Debug, got: impl std::fmt::Debug) -> Mismatch {
+    Mismatch { field: field.into(), expected: format!("{expected:?}"), got: format!("{got:?}") }
+}
+
+fn cmp3(out: &mut Vec<Mismatch>, field: &str, want: &P3, got: &P3, tol: f64) {
+    if !(dist3(want, got) <= tol) {
+        out.push(mm(field, want, got));
+    }
+}
+
+fn cmp1(out: &mut Vec<Mismatch>, field: &str, want: f64, got: f64, tol: f64) {
+    if !((want - got).abs() <= tol) {
+        out.push(mm(field, want, got));
+    }
+}
+
+/// Compares an answer with the case's `expect`, every scalar within the case's
+/// absolute `tol`. Only what `expect` names is compared. An empty list is a pass.
+pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
+    let case: &Case = &lc.case;
+    let Some(e): Option<&Expect> = case.expect.as_ref() else { return Vec::new() };
+    let tol = case.tol();
+    let mut out = Vec::new();
+    if let Some(want) = e.degenerate {
+        let got = degenerate(answer);
+        if want != got {
+            out.push(mm("degenerate", want, got));
+        }
+    }
+    match answer {
+        Answer::Contact(a) => {
+            if let Some(want) = &e.contact {
+                match (want, &a.contact) {
+                    (None, None) => {}
+                    (Some(w), Some(g)) => {
+                        cmp3(&mut out, "contact.point", &w.point, &g.point, tol);
+                        cmp3(&mut out, "contact.normal", &w.normal, &g.normal, tol);
+                        unit_expect(&mut out, "contact.normal", &g.normal, tol);
+                        cmp1(&mut out, "contact.depth", w.depth, g.depth, tol);
+                    }
+                    (w, g) => out.push(mm("contact", w, g)),
+                }
+            }
+        }
+        Answer::Intersect(a) => {
+            if let Some(want) = &e.hit {
+                match (want, &a.hit) {
+                    (None, None) => {}
+                    (Some(w), Some(g)) => {
+                        cmp1(&mut out, "hit.t", w.t, g.t, tol);
+                        cmp3(&mut out, "hit.point", &w.point, &g.point, tol);
+                        cmp3(&mut out, "hit.normal", &w.normal, &g.normal, tol);
+                        unit_expect(&mut out, "hit.normal", &g.normal, tol);
+                        if let Some(wb) = &w.barycentric {
+                            match &g.barycentric {
+                                Some(gb) => cmp3(&mut out, "hit.barycentric", wb, gb, tol),
+                                None => out.push(mm("hit.barycentric", wb, "none")),
+                            }
+                        }
+                        if let Some(wt) = w.triangle
+                            && g.triangle != Some(wt)
+                        {
+                            out.push(mm("hit.triangle", wt, g.triangle));
+                        }
+                    }
+                    (w, g) => out.push(mm("hit", w, g)),
+                }
+            }
+            if let Some(want) = e.parallel
+                && want != a.parallel
+            {
+                out.push(mm("parallel", want, a.parallel));
+            }
+        }
+        Answer::Barycentric(a) => {
+            if let Some(w) = &e.barycentric {
+                cmp3(&mut out, "barycentric", w, &a.coords, tol);
+            }
+        }
+        Answer::Bounds(a) => {
+            if let Some(w) = &e.aabb {
+                match &a.aabb {
+                    Some(g) => {
+                        cmp3(&mut out, "aabb.min", &w.min, &g.min, tol);
+                        cmp3(&mut out, "aabb.max", &w.max, &g.max, tol);
+                    }
+                    None => out.push(mm("aabb", w, "none")),
+                }
+            }
+            if let Some(r) = e.min_radius {
+                match &a.sphere {
+                    Some(s) => {
+                        cmp1(&mut out, "min_radius", r, s.radius, tol);
+                        let pts = bounded_points(lc);
+                        if let Some((i, d)) = farthest_outside(&s.center, s.radius, pts, tol) {
+                            out.push(mm(
+                                "min_radius (encloses every point)",
+                                format!("point {i} inside"),
+                                format!("{d:e} outside"),
+                            ));
+                        }
+                    }
+                    None => out.push(mm("min_radius", r, "no sphere")),
+                }
+            }
+        }
+        Answer::Overlap(g) => {
+            if let Some(w) = e.overlap
+                && w != *g
+            {
+                out.push(mm("overlap", w, g));
+            }
+        }
+        Answer::Toi(a) => {
+            if let Some(want) = &e.toi {
+                match (want, &a.toi) {
+                    (None, None) => {}
+                    (Some(w), Some(g)) => {
+                        cmp1(&mut out, "toi.t", w.t, g.t, tol);
+                        cmp3(&mut out, "toi.point", &w.point, &g.point, tol);
+                        cmp3(&mut out, "toi.normal", &w.normal, &g.normal, tol);
+                        unit_expect(&mut out, "toi.normal", &g.normal, tol);
+                    }
+                    (w, g) => out.push(mm("toi", w, g)),
+                }
+            }
+        }
+        Answer::Response(a) => {
+            if let Some(w) = &e.velocity_a {
+                cmp3(&mut out, "velocity_a", w, &a.velocity_a, tol);
+            }
+            if let Some(w) = &e.velocity_b {
+                cmp3(&mut out, "velocity_b", w, &a.velocity_b, tol);
+            }
+        }
+    }
+    out
+}
+
+/// An expected normal is unit: the engine's must be too, its length within
+/// the case's `tol` of 1 (a normal within `tol` of the expected one in every
+/// coordinate may still be up to `√3·tol` longer).
+fn unit_expect(out: &mut Vec<Mismatch>, field: &str, got: &P3, tol: f64) {
+    let x = unit_excess(got);
+    if !(x.abs() <= tol) {
+        out.push(mm(&format!("{field} (unit length)"), 1.0, 1.0 + x));
+    }
+}
+
+/// The first point farther than `radius + tol` from `center`, with its excess.
+fn farthest_outside(center: &P3, radius: f64, pts: &[P3], tol: f64) -> Option<(usize, f64)> {
+    pts.iter().enumerate().find_map(|(i, p)| {
+        // Scaled: the distance of points 1e160 apart does not overflow.
+        let d = super::sizes::distance(p, center);
+        (!(d <= radius + tol)).then_some((i, d - radius))
+    })
+}
