@@ -385,6 +385,7 @@ fn merge_refuses_what_would_double_count_or_leave_shards_out() {
     let s13 = tiny_report(&dir, "s13", &["--shard", "1/3"]);
     let s12_seed = tiny_report(&dir, "s12seed", &["--shard", "1/2", "--seed", "99"]);
     let s12_only = tiny_report(&dir, "s12only", &["--shard", "1/2", "--only", "bounds"]);
+    let s12_ulps = tiny_report(&dir, "s12ulps", &["--shard", "1/2", "--ulps", "4"]);
     let copy = dir.path("s02copy");
     std::fs::create_dir_all(&copy).unwrap();
     for f in ["summary.json", "discrepancies.json"] {
@@ -401,6 +402,7 @@ fn merge_refuses_what_would_double_count_or_leave_shards_out() {
         (vec![p(&s13)], vec!["incomplete shard set".into(), "missing 0/3, 2/3".into()]),
         (vec![p(&s02), p(&s12_seed)], vec!["different campaigns".into(), "seed 99".into()]),
         (vec![p(&s02), p(&s12_only)], vec!["different campaigns".into(), "--only bounds".into()]),
+        (vec![p(&s02), p(&s12_ulps)], vec!["different rules".into(), "--ulps 4".into()]),
     ];
     for (reports, needles) in &cases {
         let mut args = vec!["merge", "--out", &out];

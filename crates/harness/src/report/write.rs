@@ -276,7 +276,7 @@ fn label(r: &ReadReport, i: usize) -> String {
 /// them, so that their counts add up to that campaign's and no case is counted
 /// twice: the same folder named twice, a whole (unsharded) report with any
 /// other, shards of different splits (`0/2` with `1/3`), a shard given twice,
-/// different seeds, case counts or `--only`, and a missing shard (a lone shard
+/// different seeds, case counts, `--only` or `--ulps`, and a missing shard (a lone shard
 /// included) are each refused with the reports named. A single whole report is
 /// accepted as it is.
 pub fn check_mergeable(reports: &[ReadReport]) -> Result<(), String> {
@@ -329,6 +329,16 @@ pub fn check_mergeable(reports: &[ReadReport]) -> Result<(), String> {
                 only(p0.only),
                 label(r, i),
                 only(p.only)
+            ));
+        }
+        if p.ulps != p0.ulps {
+            let rule = |u: Option<f64>| u.map_or("the tolerance table".to_string(), |n| format!("--ulps {n}"));
+            return Err(format!(
+                "shards judged by different rules: {} by {}, {} by {}",
+                label(first, 0),
+                rule(p0.ulps),
+                label(r, i),
+                rule(p.ulps)
             ));
         }
     }
