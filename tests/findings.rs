@@ -292,3 +292,56 @@ fn diff_of_two_seeds_has_no_false_change_and_sees_a_real_one() {
     assert_eq!(d.worse(&["collide/robust".into()]), vec!["collide/robust".to_string()]);
     assert!(d.findings.iter().any(|f| f.change == Change::New && f.signature.engine == "collide/robust"));
 }
+
+/// The absolute paths in `text`: a `/` that begins a word (after a space, a
+/// bracket, a quote, a backtick, `=` or a line's start) followed by a letter,
+/// in a word holding another `/` — `/work/x/engines/…`, `/home/…/.cargo/…` —
+/// with its line number.
+fn absolute_paths(text: &str) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let chars: Vec<char> = line.chars().collect();
+        for i in 0..chars.len() {
+            let starts = i == 0 || " ([{\"'`=:".contains(chars[i - 1]);
+            if chars[i] == '/' && starts && chars.get(i + 1).is_some_and(char::is_ascii_alphabetic) {
+                let word: String =
+                    chars[i..].iter().take_while(|c| !c.is_whitespace() && !")]}\"'`,".contains(**c)).collect();
+                if word[1..].contains('/') {
+                    out.push((n + 1, word));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Nothing committed under `reports/sample/` names the machine that made it:
+/// the drafts and the findings give commands relative to the repository
+/// (`engines/.venv/bin/python engines/fcl/engine.py`) and a dependency's
+/// panic from its crate's folder.
+#[test]
+fn the_sample_report_holds_no_absolute_path() {
+    assert_eq!(absolute_paths("run /work/main/engines/x.py and (/home/u/.cargo/a.rs)").len(), 2);
+    assert!(absolute_paths("1/2 of a/b, km/s, engines/fcl/engine.py, </a>").is_empty());
+    let mut found = Vec::new();
+    let mut stack = vec![root().join("reports/sample")];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).expect("the sample's folder reads") {
+            let path = entry.expect("an entry").path();
+            if path.is_dir() {
+                stack.push(path);
+            } else {
+                let text = std::fs::read_to_string(&path).expect("a text file");
+                for (line, word) in absolute_paths(&text) {
+                    found.push(format!("{}:{line}: {word}", path.display()));
+                }
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "{} absolute paths, the first:\n{}",
+        found.len(),
+        found[..found.len().min(10)].join("\n")
+    );
+}

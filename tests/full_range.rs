@@ -203,7 +203,7 @@ fn every_allowance_is_finite_and_positive_over_the_full_range() {
 }
 
 /// Full-range cases per query kind that `collide/robust` is run on below, on
-/// a seed of its own (the README's command runs 10⁵ per kind).
+/// a seed of its own (the large run of docs/judging.md runs 10⁵ per kind).
 const ROBUST_CASES: u64 = 300;
 
 /// The full-range cases (seed 11) on which `collide/robust` is known to be

@@ -7,7 +7,7 @@
 //! (`oracle::referee::exact_only`).
 //!
 //! `cargo test` runs [`DEFAULT_RANDOM`] random cases. The documented run of a
-//! million (README, "Tests"):
+//! million (docs/tests.md):
 //!
 //! ```sh
 //! CRASHTEST_STAGE_CASES=1000000 cargo test --release --test referee_stages

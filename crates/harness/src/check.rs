@@ -145,8 +145,10 @@ fn install_quiet_hook() {
         let previous = std::panic::take_hook();
         std::panic::set_hook(Box::new(move |info| {
             if CATCHING.with(Cell::get) {
-                let location =
-                    info.location().map(|l| format!("{}:{}:{}", l.file(), l.line(), l.column())).unwrap_or_default();
+                let location = info
+                    .location()
+                    .map(|l| format!("{}:{}:{}", crate_relative(l.file()), l.line(), l.column()))
+                    .unwrap_or_default();
                 let payload = info.payload();
                 let message = payload
                     .downcast_ref::<&str>()
@@ -159,6 +161,20 @@ fn install_quiet_hook() {
             }
         }));
     });
+}
+
+/// A source path from its crate's root: a dependency's file under cargo's
+/// registry (`…/registry/src/<index>/parry3d-f64-0.31.1/src/x.rs`) is named
+/// from its crate's folder (`parry3d-f64-0.31.1/src/x.rs`), the same on every
+/// machine; the workspace's own files already are (`crates/collide/src/x.rs`).
+pub fn crate_relative(file: &str) -> &str {
+    match file.find("/registry/src/") {
+        Some(i) => {
+            let rest = &file[i + "/registry/src/".len()..];
+            rest.split_once('/').map_or(rest, |(_, r)| r)
+        }
+        None => file,
+    }
 }
 
 /// Whether a verdict is a panic [`run_caught`] caught.

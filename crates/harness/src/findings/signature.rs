@@ -133,25 +133,11 @@ pub fn failure_kind(reason: &str) -> String {
         // `src/x.rs:12:5: message` → `src/x.rs:12`.
         let mut parts = rest.splitn(3, ':');
         let (file, line) = (parts.next().unwrap_or(""), parts.next().unwrap_or(""));
-        return format!("failed: panic at {}:{line}", crate_relative(file));
+        return format!("failed: panic at {}:{line}", crate::check::crate_relative(file));
     }
     let text = words(first_sentence(reason));
     let text: String = text.chars().take(MAX_FAILURE_CHARS).collect();
     format!("failed: {text}")
-}
-
-/// A source path from a crate's root: a dependency's file under cargo's
-/// registry (`…/registry/src/<index>/parry3d-f64-0.31.1/src/x.rs`) is named
-/// from its crate's folder (`parry3d-f64-0.31.1/src/x.rs`), the same on every
-/// machine.
-fn crate_relative(file: &str) -> &str {
-    match file.find("/registry/src/") {
-        Some(i) => {
-            let rest = &file[i + "/registry/src/".len()..];
-            rest.split_once('/').map_or(rest, |(_, r)| r)
-        }
-        None => file,
-    }
 }
 
 /// A failure message is cut to this many characters in a signature: enough

@@ -85,9 +85,23 @@ impl ProcessSpec {
         Ok(Self { name: name.into(), program, args: words.collect(), timeout: DEFAULT_TIMEOUT, batch: DEFAULT_BATCH })
     }
 
-    /// The command as one line, for messages and provenance.
+    /// The command as one line, for messages and provenance. A word that is
+    /// a path inside the current folder is shown relative to it: a report
+    /// made at the repository's root names `engines/.venv/bin/python
+    /// engines/fcl/engine.py`, a command that runs there, never the machine's
+    /// own folders.
     pub fn command_line(&self) -> String {
-        std::iter::once(self.program.as_str()).chain(self.args.iter().map(String::as_str)).collect::<Vec<_>>().join(" ")
+        let here = std::env::current_dir().ok();
+        let show = |w: &str| match here.as_deref().and_then(|h| std::path::Path::new(w).strip_prefix(h).ok()) {
+            Some(r) if r.as_os_str().is_empty() => ".".to_string(),
+            Some(r) => r.display().to_string(),
+            None => w.to_string(),
+        };
+        std::iter::once(self.program.as_str())
+            .chain(self.args.iter().map(String::as_str))
+            .map(show)
+            .collect::<Vec<_>>()
+            .join(" ")
     }
 }
 
