@@ -89,11 +89,31 @@ pub fn process_engines(specs: &[String], file: Option<&Path>, timeout_seconds: f
     Ok(out)
 }
 
+/// The environment variable that names the peer engines' list
+/// ([`peer_engines_file`]).
+pub const PEERS_VARIABLE: &str = "CRASHTEST_PEERS";
+
 /// The list of the peer engines crashtest ships adapters for
 /// (`engines/engines.json`: FCL, Coal, MuJoCo and Bullet through their Python
-/// packages, installed by `engines/install`).
-pub fn peer_engines_file() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("engines").join("engines.json")
+/// packages, installed by `engines/install`), found by this rule: the file
+/// [`PEERS_VARIABLE`] names, when it is set; else the list of the repository
+/// this crashtest was built from, when that is still there (so an installed
+/// binary finds the peers its repository installed). Returns the file and
+/// which rule found it, for the provenance; or why there is none.
+pub fn peer_engines_file() -> Result<(PathBuf, String), String> {
+    if let Some(p) = std::env::var_os(PEERS_VARIABLE).filter(|p| !p.is_empty()) {
+        return Ok((PathBuf::from(p), format!("named by {PEERS_VARIABLE}")));
+    }
+    let built = Path::new(env!("CARGO_MANIFEST_DIR")).join("engines").join("engines.json");
+    if built.is_file() {
+        Ok((built, "the repository crashtest was built from".into()))
+    } else {
+        Err(format!(
+            "no peer engines' list: {PEERS_VARIABLE} is not set and the repository crashtest was built from is gone \
+             ({} is missing)",
+            built.display()
+        ))
+    }
 }
 
 /// Starts a process engine and shakes hands; an engine that cannot start is
@@ -110,9 +130,11 @@ pub fn start_process(spec: ProcessSpec) -> Engine {
     Engine::from_process(harness::protocol::ProcessEngine::start(spec))
 }
 
-/// The fixture folder shipped with crashtest (the built-in cases).
+/// The fixtures shipped with crashtest (the built-in cases), embedded in
+/// the binary: give this path where a list of fixture files or folders is
+/// asked for ([`harness::builtin::NAME`]).
 pub fn builtin_fixtures() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures")
+    PathBuf::from(harness::builtin::NAME)
 }
 
 /// Runs every case of the fixture files and folders `paths` through `engines`,

@@ -64,8 +64,10 @@ enum Command {
         /// reports with `crashtest merge`.
         #[arg(long, value_parser = parse_shard)]
         shard: Option<(u32, u32)>,
-        /// Fixture files or folders to include.
-        #[arg(long, default_value = "fixtures")]
+        /// Fixture files or folders to include; `built-in:fixtures`, the
+        /// default, names the repository's fixtures embedded in the binary (the
+        /// same cases from any folder).
+        #[arg(long, default_value = harness::builtin::NAME)]
         fixtures: Vec<PathBuf>,
         /// Skip the timing loops.
         #[arg(long)]
@@ -191,8 +193,9 @@ enum EngineCommand {
     /// probes. Prints what it supports, its scores and every protocol violation;
     /// exit 1 when there was one.
     Test {
-        /// Fixture files or folders to send.
-        #[arg(long, default_value = "fixtures")]
+        /// Fixture files or folders to send (`built-in:fixtures`, the default:
+        /// the ones embedded in the binary).
+        #[arg(long, default_value = harness::builtin::NAME)]
         fixtures: Vec<PathBuf>,
         /// The time limit for one batch, in seconds.
         #[arg(long, value_name = "SECONDS", default_value_t = harness::protocol::client::DEFAULT_TIMEOUT.as_secs_f64())]
@@ -250,14 +253,15 @@ impl EngineArgs {
         // The peer engines crashtest ships adapters for first, then the user's.
         // A shipped list that does not read leaves the peers out, with the reason,
         // and the run goes on.
-        let mut listed =
-            match crashtest::process_engines(&[], Some(&crashtest::peer_engines_file()), self.engine_timeout) {
-                Ok(l) => l,
-                Err(e) => {
-                    eprintln!("warning: the peer engines are not run: {e}");
-                    Vec::new()
-                }
-            };
+        let mut listed = match crashtest::peer_engines_file()
+            .and_then(|(file, _)| crashtest::process_engines(&[], Some(&file), self.engine_timeout))
+        {
+            Ok(l) => l,
+            Err(e) => {
+                eprintln!("warning: the peer engines are not run: {e}");
+                Vec::new()
+            }
+        };
         listed.extend(
             crashtest::process_engines(&self.process, self.engines_file.as_deref(), self.engine_timeout)
                 .map_err(fail)?,
@@ -393,7 +397,14 @@ fn main() -> ExitCode {
                 chunk: harness::report::campaign::CHUNK,
             };
             let started = std::time::SystemTime::now();
-            let outcome = harness::report::campaign::run(&config, harness::report::provenance::here());
+            let mut provenance = harness::report::provenance::here();
+            provenance.peers = Some(match crashtest::peer_engines_file() {
+                Ok((file, rule)) => {
+                    format!("{} ({rule})", harness::protocol::client::shown_path(&file.to_string_lossy()))
+                }
+                Err(why) => why,
+            });
+            let outcome = harness::report::campaign::run(&config, provenance);
             let mut id = format!("{}-seed{seed}", harness::report::provenance::stamp(started));
             if let Some((i, n)) = shard {
                 id.push_str(&format!("-shard{i}of{n}"));

@@ -684,3 +684,47 @@ fn the_slurm_scripts_run_and_merge_their_shards() {
     assert_eq!(none.code, 2, "{}", none.both());
     assert!(none.stderr.contains("no shard reports"), "{}", none.both());
 }
+
+/// Run from a folder that is not the repository, `crashtest report` reads the
+/// same built-in fixtures (embedded in the binary) and finds the same peer
+/// engines' list (by its documented rule, named in the provenance) as from
+/// the repository's root: the same cases, the same counts.
+#[test]
+fn a_report_from_another_folder_runs_the_same_cases() {
+    let dir = Scratch::new("elsewhere");
+    let away = dir.path("away");
+    std::fs::create_dir_all(&away).unwrap();
+    let args = |out: &str| {
+        ["report", "--cases", "5", "--full-range", "1", "--no-sections", "--no-timing", "--engines", "collide/robust"]
+            .into_iter()
+            .map(String::from)
+            .chain(["--out".to_string(), out.to_string()])
+            .collect::<Vec<_>>()
+    };
+    let summary = |out: &str| -> serde_json::Value {
+        let latest = Path::new(out).join("latest");
+        let text = std::fs::read_to_string(latest.join("summary.json")).expect("a summary");
+        serde_json::from_str(&text).expect("JSON")
+    };
+    let at_root = crashtest(&args(&dir.s("root")).iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(at_root.code, 0, "{}", at_root.both());
+    let mut command = Command::new(env!("CARGO_BIN_EXE_crashtest"));
+    command.current_dir(&away).args(args(&dir.s("away/reports"))).env_remove("CRASHTEST_PEERS");
+    let elsewhere = run_limited(command, "crashtest report from another folder");
+    assert_eq!(elsewhere.code, 0, "{}", elsewhere.both());
+    assert!(!elsewhere.stderr.contains("cannot read"), "{}", elsewhere.both());
+    let (mut a, mut b) = (summary(&dir.s("root")), summary(&dir.s("away/reports")));
+    // The bench's figures are read from the folder a run starts in (its
+    // `--bench-figures`): not a case, left out of the comparison.
+    for s in [&mut a, &mut b] {
+        for row in s["stats"].as_array_mut().expect("stats") {
+            row.as_object_mut().expect("a row").remove("bench_ns");
+        }
+    }
+    let fixtures = a["provenance"]["fixture_cases"].as_u64().expect("a count");
+    assert!(fixtures >= 250, "{fixtures} fixture cases");
+    assert_eq!(a["provenance"]["fixture_cases"], b["provenance"]["fixture_cases"]);
+    assert_eq!(a["stats"], b["stats"], "the same cases give the same counts and errors");
+    let peers = b["provenance"]["peers"].as_str().expect("the peers' list is named");
+    assert!(peers.contains("engines.json (the repository crashtest was built from)"), "{peers}");
+}

@@ -14,7 +14,8 @@
 //!
 //! Layers, each importing only from the ones above it in this list (checked by
 //! `tests/layering.rs`: no module imports one that imports it back):
-//! 1. vocabulary and machinery: [`case`], [`mesh`], [`rng`],
+//! 1. vocabulary and machinery: [`builtin`] (the fixtures embedded in the
+//!    binary), [`case`], [`mesh`], [`rng`],
 //!    [`load`], [`protocol`] (process engines), [`divergence`], [`engine`],
 //!    [`engines`], [`judge`] (the verdict, one stage a file: sizes,
 //!    tolerances, allowances, comparison, reasons), [`check`], [`serve`] (an engine served
@@ -36,6 +37,7 @@
 // behind an `Option`.
 #![allow(clippy::neg_cmp_op_on_partial_ord, reason = "`!(x <= y)` is deliberately true for NaN")]
 
+pub mod builtin;
 pub mod case;
 pub mod check;
 pub mod conformance;

@@ -112,7 +112,23 @@ pub fn load_paths<P: AsRef<Path>>(paths: &[P]) -> Loaded {
     let mut read = BTreeSet::new();
     for p in paths {
         let p = p.as_ref();
-        if std::fs::metadata(p).is_ok_and(|m| m.is_dir()) {
+        if let Some(selected) = crate::builtin::selects(p) {
+            let mut any = false;
+            for (shown, bytes) in crate::builtin::files() {
+                let json = shown.extension().is_some_and(|e| e == "json");
+                any |= json && shown.starts_with(&selected);
+                if json && shown.starts_with(&selected) && read.insert(shown.clone()) {
+                    out.files.push(shown.clone());
+                    match std::str::from_utf8(bytes) {
+                        Ok(text) => load_text_into(&shown, text, &mut out, true),
+                        Err(e) => out.errors.push(file_error(&shown, format!("not UTF-8 text: {e}"))),
+                    }
+                }
+            }
+            if !any {
+                out.errors.push(file_error(p, "no built-in fixture file or folder of this name".into()));
+            }
+        } else if std::fs::metadata(p).is_ok_and(|m| m.is_dir()) {
             let mut files = Vec::new();
             collect_json(p, &mut files, &mut BTreeSet::new(), &mut out.errors);
             if files.is_empty() {
@@ -316,6 +332,12 @@ struct NameOnly {
 
 /// Reads fixture text (named `path` in errors; meshes resolved beside `path`).
 pub fn load_str_into(path: &Path, text: &str, out: &mut Loaded) {
+    load_text_into(path, text, out, false);
+}
+
+/// [`load_str_into`]; `embedded`: the text is a built-in fixture's, whose
+/// meshes named by `file` are the embedded ones ([`crate::builtin`]).
+fn load_text_into(path: &Path, text: &str, out: &mut Loaded, embedded: bool) {
     let raw: RawFile = match serde_json::from_str(text) {
         Ok(r) => r,
         Err(e) => {
@@ -407,7 +429,7 @@ pub fn load_str_into(path: &Path, text: &str, out: &mut Loaded) {
         let mut failed = false;
         for (slot, (key, shape)) in [("a", Some(&case.a)), ("b", case.b.as_ref())].into_iter().enumerate() {
             if let Some(Shape::Mesh(m)) = shape {
-                match resolve_mesh(m, base) {
+                match resolve_mesh(m, base, embedded) {
                     Ok(mesh) => meshes[slot] = Some(mesh),
                     Err((field, msg)) => {
                         out.errors.push(err(Some(format!("{key}.mesh.{field}")), None, msg));
@@ -432,9 +454,15 @@ fn absolute(text: &str, offset: usize, line: usize, column: usize) -> (usize, us
     if line <= 1 { (start_line, start_col + column.saturating_sub(1)) } else { (start_line + line - 1, column) }
 }
 
-fn resolve_mesh(m: &MeshSpec, base: &Path) -> Result<Mesh, (String, String)> {
+fn resolve_mesh(m: &MeshSpec, base: &Path, embedded: bool) -> Result<Mesh, (String, String)> {
     match (&m.vertices, &m.triangles, &m.file) {
         (Some(v), Some(t), None) => Mesh::new(v.clone(), t.clone()),
+        (None, None, Some(f)) if embedded => {
+            let path = base.join(f);
+            let bytes = crate::builtin::file(&path)
+                .ok_or_else(|| ("file".to_string(), format!("{}: not among the built-in fixtures", path.display())))?;
+            crate::mesh::load_mesh_bytes(&path, bytes).map_err(|m| ("file".to_string(), m))
+        }
         (None, None, Some(f)) => {
             let path = base.join(f);
             check_input_file(&path, "mesh").map_err(|m| ("file".to_string(), format!("{}: {m}", path.display())))?;

@@ -6,12 +6,35 @@ use std::path::Path;
 /// Reads a mesh file (`.obj`): every object's faces, which must all be triangles.
 /// The error message names the file and what is wrong with it.
 pub fn load_mesh_file(path: &Path) -> Result<Mesh, String> {
+    obj(path, |opts| tobj::load_obj(path, opts))
+}
+
+/// A mesh from an `.obj` file's bytes (a built-in fixture's, embedded in the
+/// binary), named `path` in its messages, read as [`load_mesh_file`] reads a
+/// file.
+pub fn load_mesh_bytes(path: &Path, bytes: &[u8]) -> Result<Mesh, String> {
+    obj(path, |opts| {
+        tobj::load_obj_buf(&mut std::io::BufReader::new(bytes), opts, |_| Err(tobj::LoadError::OpenFileFailed))
+    })
+}
+
+/// A built-in fixture's mesh when `path` names one (`fixtures/meshes/bunny.obj`,
+/// [`crate::builtin::file`]), else the file at `path`.
+pub fn load_mesh_builtin_or_file(path: &Path) -> Result<Mesh, String> {
+    match crate::builtin::file(path) {
+        Some(bytes) => load_mesh_bytes(path, bytes),
+        None => load_mesh_file(path),
+    }
+}
+
+/// The `.obj` reader behind both: `load` reads the models with the options given.
+fn obj(path: &Path, load: impl FnOnce(&tobj::LoadOptions) -> tobj::LoadResult) -> Result<Mesh, String> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     if ext != "obj" {
         return Err(format!("{}: unsupported mesh format (expected .obj)", path.display()));
     }
     let opts = tobj::LoadOptions { single_index: true, triangulate: false, ..Default::default() };
-    let (models, _) = tobj::load_obj(path, &opts).map_err(|e| format!("{}: cannot read mesh: {e}", path.display()))?;
+    let (models, _) = load(&opts).map_err(|e| format!("{}: cannot read mesh: {e}", path.display()))?;
     let mut vertices = Vec::new();
     let mut triangles = Vec::new();
     for m in &models {

@@ -286,6 +286,10 @@ pub struct Provenance {
     /// name, and why (with how to install it).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub missing_engines: Vec<(String, String)>,
+    /// Where the peer engines' list was read, and by which rule (or why
+    /// there was none): `crashtest::peer_engines_file`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub peers: Option<String>,
     /// The campaign's seed.
     pub seed: u64,
     /// The judging rule `--ulps N`: every fixed allowance was `N` of the

@@ -91,17 +91,22 @@ impl ProcessSpec {
     /// engines/fcl/engine.py`, a command that runs there, never the machine's
     /// own folders.
     pub fn command_line(&self) -> String {
-        let here = std::env::current_dir().ok();
-        let show = |w: &str| match here.as_deref().and_then(|h| std::path::Path::new(w).strip_prefix(h).ok()) {
-            Some(r) if r.as_os_str().is_empty() => ".".to_string(),
-            Some(r) => r.display().to_string(),
-            None => w.to_string(),
-        };
         std::iter::once(self.program.as_str())
             .chain(self.args.iter().map(String::as_str))
-            .map(show)
+            .map(shown_path)
             .collect::<Vec<_>>()
             .join(" ")
+    }
+}
+
+/// A word as messages and reports show it: a path inside the current folder
+/// relative to it (`engines/fcl/engine.py`), anything else as it is.
+pub fn shown_path(word: &str) -> String {
+    let here = std::env::current_dir().ok();
+    match here.as_deref().and_then(|h| std::path::Path::new(word).strip_prefix(h).ok()) {
+        Some(r) if r.as_os_str().is_empty() => ".".to_string(),
+        Some(r) => r.display().to_string(),
+        None => word.to_string(),
     }
 }
 

@@ -854,6 +854,7 @@ pub(crate) mod fixture {
                 ],
                 missing_engines: vec![("absent<peer>".into(), "not installed; install it with `x & y`".into())],
                 seed: 42,
+                peers: None,
                 ulps: None,
                 cases_per_query: 100,
                 full_range_per_query: 0,

@@ -383,6 +383,7 @@ pub fn provenance_lines(summary: &Summary) -> Vec<(String, String)> {
         ("wall time".into(), wall_time(p)),
         ("referee stages".into(), referee_stages(p)),
         ("seed".into(), p.seed.to_string()),
+        ("peer engines' list".into(), p.peers.clone().unwrap_or_else(|| "not read (a library run)".into())),
         (
             "judged by".into(),
             match p.ulps {

@@ -79,7 +79,7 @@ impl Default for Config {
             full_range_per_query: DEFAULT_FULL_RANGE_CASES,
             only: None,
             shard: None,
-            fixtures: vec![PathBuf::from("fixtures")],
+            fixtures: vec![PathBuf::from(crate::builtin::NAME)],
             timing: true,
             progress: true,
             sections: true,

@@ -62,7 +62,8 @@ pub struct SceneSettings {
     /// Whether to time the levels (off: no times, and the cheapest lossless
     /// level is chosen by exact tests per query).
     pub timing: bool,
-    /// The bunny's OBJ file.
+    /// The bunny's OBJ file (by default the built-in fixtures' own,
+    /// `fixtures/meshes/bunny.obj`, embedded in the binary).
     pub bunny: PathBuf,
     /// Segment queries against the bunny.
     pub bunny_queries: usize,
@@ -84,7 +85,7 @@ impl Default for SceneSettings {
         Self {
             seed: 0x5ce4_e0ee_d500_0006,
             timing: true,
-            bunny: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/meshes/bunny.obj"),
+            bunny: PathBuf::from(crate::builtin::SHOWN).join("meshes/bunny.obj"),
             bunny_queries: 2_000,
             bunny_timed: 200,
             spheres: 256,
@@ -277,7 +278,7 @@ pub fn mesh_levels(mesh: &TriMesh<f64>, segments: &[(P3, P3)], timing: bool, tim
 }
 
 fn bunny_scene(settings: &SceneSettings) -> Result<SceneNeeds, String> {
-    let bunny = crate::mesh::load_mesh_file(&settings.bunny)?;
+    let bunny = crate::mesh::load_mesh_builtin_or_file(&settings.bunny)?;
     let mesh = TriMesh::new(bunny.vertices.iter().map(|p| v(*p)).collect(), bunny.triangles.clone())
         .map_err(|e| format!("{}: {e}", settings.bunny.display()))?;
     let mut rng = Rng(settings.seed ^ 0xb0b0);
@@ -564,7 +565,7 @@ fn rotate(r: &[[f64; 3]; 3], p: &P3) -> P3 {
 pub fn run(settings: &SceneSettings) -> SceneReport {
     let mut scenes = Vec::new();
     let mut problems = Vec::new();
-    let bunny = match crate::mesh::load_mesh_file(&settings.bunny) {
+    let bunny = match crate::mesh::load_mesh_builtin_or_file(&settings.bunny) {
         Ok(b) => Some(b),
         Err(e) => {
             problems.push(format!("the bunny scene and its tightness were not measured: {e}"));
