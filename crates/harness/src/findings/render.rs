@@ -437,13 +437,71 @@ pub fn discrepancies_html(discrepancies: &[serde_json::Value]) -> String {
     out
 }
 
-/// The report's opening: the findings (HTML with the discrepancies' table,
-/// and Markdown), with the tables' style and script.
+/// Where the page sends its reader for the discrepancies in full: how many
+/// `discrepancies.html` lists, per engine and query kind, and the link. The
+/// table itself (every row with its case and every engine's answer) is most
+/// of a report's weight, and is read row by row, not inline.
+pub fn discrepancies_link(discrepancies: &[serde_json::Value]) -> String {
+    let mut out = String::from("<h3 id=\"discrepancies\">Discrepancies</h3>\n");
+    if discrepancies.is_empty() {
+        out.push_str("<p>None.</p>\n");
+        return out;
+    }
+    let mut counts: std::collections::BTreeMap<(String, String), usize> = Default::default();
+    let s = |v: &serde_json::Value, k: &str| v.get(k).and_then(|x| x.as_str()).unwrap_or("").to_string();
+    for d in discrepancies {
+        *counts.entry((s(d, "engine"), s(d, "query"))).or_default() += 1;
+    }
+    let _ = writeln!(
+        out,
+        "<p>The first few of each engine and query kind ({} in all), each with its case and every engine's answer, \
+         on a page of their own: <a href=\"discrepancies.html\">discrepancies.html</a> (filterable and sortable; \
+         <code>discrepancies.json</code> holds the same).</p>",
+        discrepancies.len()
+    );
+    out.push_str(
+        "<details><summary>How many, per engine and query kind</summary><div class=\"scroll\"><table>\n\
+         <thead><tr><th>engine</th><th>query</th><th class=\"n\">listed</th></tr></thead>\n<tbody>\n",
+    );
+    for ((engine, query), n) in counts {
+        let _ =
+            writeln!(out, "<tr><td>{}</td><td>{}</td><td class=\"n\">{n}</td></tr>", escape(&engine), escape(&query));
+    }
+    out.push_str("</tbody></table></div></details>\n");
+    out
+}
+
+/// The report's opening: the findings (HTML with the link to the
+/// discrepancies' page, and Markdown), with the tables' style and script.
 pub fn opening(file: &FindingsFile, discrepancies: &[serde_json::Value], dir: &str) -> crate::render::opening::Opening {
     crate::render::opening::Opening {
-        html: format!("{}{}", html(file, dir), discrepancies_html(discrepancies)),
+        html: format!("{}{}", html(file, dir), discrepancies_link(discrepancies)),
         style: TABLE_STYLE.into(),
         script: TABLE_SCRIPT.into(),
         markdown: markdown(file, dir),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The page links the discrepancies and counts them per engine and query
+    /// kind; their rows, cases and answers are on their own page.
+    #[test]
+    fn the_page_links_the_discrepancies_and_their_page_holds_them() {
+        let d = |engine: &str, query: &str, case: &str| {
+            serde_json::json!({"engine": engine, "query": query, "verdict": {"verdict": "disagree", "reasons": ["t off"]},
+                "fixture": {"cases": [{"name": case}]}, "answers": {engine: {"toi": null}}, "origin": "generated"})
+        };
+        let all = [d("fcl", "toi", "case one"), d("fcl", "toi", "case two"), d("coal", "contact", "case three")];
+        let link = discrepancies_link(&all);
+        assert!(link.contains("<a href=\"discrepancies.html\">") && link.contains("(3 in all)"), "{link}");
+        assert!(link.contains("<td>fcl</td><td>toi</td><td class=\"n\">2</td>"), "{link}");
+        assert!(!link.contains("case one") && !link.contains("t off"), "no row on the page: {link}");
+        let page = crate::render::html::page("discrepancies", &discrepancies_html(&all), TABLE_STYLE, TABLE_SCRIPT);
+        assert!(page.contains("id=\"discrepancies-table\"") && page.contains("case one") && page.contains("t off"));
+        assert!(page.contains("<a href=\"index.html\">") && page.starts_with("<!DOCTYPE html>"));
+        assert_eq!(discrepancies_link(&[]), "<h3 id=\"discrepancies\">Discrepancies</h3>\n<p>None.</p>\n");
     }
 }

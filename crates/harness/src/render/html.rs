@@ -75,6 +75,19 @@ fn anchor(title: &str) -> String {
     format!("q-{}", title.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '-' }).collect::<String>())
 }
 
+/// A page of the report beside `index.html`: its title, its body's HTML, and
+/// the extra style and inline script it needs, with the report's own style.
+pub fn page(title: &str, body: &str, style: &str, script: &str) -> String {
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
+         <title>{}</title>\n<style>\n{STYLE}{style}</style>\n</head>\n<body>\n<main>\n<h1>{}</h1>\n\
+         <p><a href=\"index.html\">← the report</a></p>\n{body}</main>\n<script>\n{script}</script>\n</body>\n</html>\n",
+        escape(title),
+        escape(title)
+    )
+}
+
 /// The whole of `index.html`.
 ///
 /// `charts` are the report's charts ([`super::charts::all`]); each is shown

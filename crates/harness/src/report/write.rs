@@ -44,6 +44,15 @@ pub fn render_files(
                 }
             }
             files.extend(crate::render::pages_with(summary, &crate::findings::render::opening(f, discrepancies, dir)));
+            files.push((
+                "discrepancies.html".into(),
+                crate::render::html::page(
+                    "crashtest report — discrepancies",
+                    &crate::findings::render::discrepancies_html(discrepancies),
+                    crate::findings::render::TABLE_STYLE,
+                    crate::findings::render::TABLE_SCRIPT,
+                ),
+            ));
         }
         None => files.extend(crate::render::pages(summary)),
     }
