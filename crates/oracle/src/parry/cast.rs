@@ -53,7 +53,7 @@
 //! engines; each entry is pinned by a test below that shows it still happens.
 
 use crate::geom::{P3, Plane, Sphere, ToiAnswer, Triangle};
-use crate::parry::{KnownDivergence, Parry32, Parry64};
+use crate::parry::api::{KnownDivergence, Parry32, Parry64};
 
 /// How parry's cast ended: `ShapeCastStatus`, by name. Which fields of the
 /// answer mean something follows parry's documentation of each variant.
@@ -241,7 +241,7 @@ const fn stamp() -> [KnownDivergence; 2 * CAST_DIVERGENCES.len()] {
 /// names the engine type.
 macro_rules! cast_adapter {
     ($engine:path, $edge:path) => {
-        use super::{CastAnswer, CastStatus, ParryCast};
+        use crate::parry::cast::{CastAnswer, CastStatus, ParryCast};
         // The edge conversions and shape placements are the query adapter's, so
         // a sphere or a plane is placed the same way for every parry query.
         use crate::geom::{P3, Plane, Sphere, Toi, ToiAnswer, Triangle};
@@ -700,7 +700,7 @@ mod cast64 {
     #[cfg(test)]
     const GJK_TOL: f64 = 1e-5;
 
-    cast_adapter!(crate::parry::Parry64, crate::parry::parry64);
+    cast_adapter!(crate::parry::api::Parry64, crate::parry::parry64);
 }
 
 /// parry3d's (f32) casts: inputs rounded to `f32` at the edge, answers widened.
@@ -733,7 +733,7 @@ mod cast32 {
     #[cfg(test)]
     const GJK_TOL: f64 = 1e-2;
 
-    cast_adapter!(crate::parry::Parry32, crate::parry::parry32);
+    cast_adapter!(crate::parry::api::Parry32, crate::parry::parry32);
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ use crate::geom::{
     Aabb, Ball, BarycentricAnswer, Contact, ContactAnswer, IntersectAnswer, P3, Plane, Segment, SegmentHit, Sphere,
     Triangle,
 };
-use crate::parry::ParryEngine;
+use crate::parry::api::ParryEngine;
 
 /// Prediction distance handed to `query::contact`: 0, so parry reports only
 /// touching or overlapping pairs (crashtest's definition of a contact). A positive
@@ -407,7 +407,7 @@ mod tests {
 
     use super::super::SMOKE_TOL;
     use super::*;
-    use crate::parry::{
+    use crate::parry::api::{
         CENTRE_NEAR_TRIANGLE, CENTROID_SPHERE, CLAMPED_BARYCENTRICS, CONCENTRIC_SPHERES, DIVERGENCES, Divergence,
         MESH_END_HIT, MESH_NO_PARALLEL, MESH_TIE_FACE, NO_TRIANGLE_PARALLEL, PLANE_PARALLEL_EPSILON, TOUCHING_SPHERES,
         known_divergences,

@@ -9,7 +9,7 @@ use parry3d as backend;
 type Real = f32;
 
 /// The engine this instantiation of the adapter body implements.
-type Engine = super::Parry32;
+type Engine = super::api::Parry32;
 
 /// An input scalar in the engine's precision: rounded to the nearest `f32`
 /// (overflowing to ±∞, underflowing to a subnormal or ±0).

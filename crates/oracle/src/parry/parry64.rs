@@ -7,7 +7,7 @@ use parry3d_f64 as backend;
 type Real = f64;
 
 /// The engine this instantiation of the adapter body implements.
-type Engine = super::Parry64;
+type Engine = super::api::Parry64;
 
 /// An input scalar in the engine's precision: unchanged.
 fn narrow(x: f64) -> Real {

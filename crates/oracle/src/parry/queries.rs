@@ -2,7 +2,8 @@
 //! method is the oracle's translation of parry's answer ([`ParryEngine`],
 //! [`ParryCast`]), where the conventions are translated once per engine.
 
-use super::{Parry32, Parry64, ParryCast, ParryEngine};
+use super::api::{Parry32, Parry64, ParryEngine};
+use super::cast::ParryCast;
 use crashtest_core::engine::{Queries, Reply};
 use crashtest_core::geom::{
     Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, Segment, Sphere, ToiAnswer,

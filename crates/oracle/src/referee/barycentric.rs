@@ -1,7 +1,7 @@
 //! Barycentric coordinates of a point with respect to a triangle, exactly.
 
-use super::RefereeError;
 use super::dyadic::{self as dy, Num};
+use super::error::RefereeError;
 use super::exact::{Q, V3, dot, round, sub, v3};
 use crate::geom::{BarycentricAnswer, P3, Triangle};
 
@@ -171,9 +171,9 @@ fn longest_edge_fast<T: Num>(p: &P3, v: &[P3; 3]) -> Option<[f64; 3]> {
 /// what is still open then goes to the exact stage above. The bits are the
 /// same either way.
 pub fn barycentric_triangle(p: &P3, t: &Triangle) -> Result<BarycentricAnswer, RefereeError> {
-    if super::staged() {
+    if super::stage::staged() {
         let fast = barycentric_fast(p, t);
-        super::count(super::Stage::Barycentric, fast.is_some(), 1);
+        super::stage::count(super::stage::Stage::Barycentric, fast.is_some(), 1);
         if let Some(answer) = fast {
             return Ok(answer);
         }

@@ -6,7 +6,7 @@ use std::cell::OnceCell;
 use dashu::base::{BitTest, Gcd, UnsignedAbs};
 use dashu::integer::{IBig, UBig};
 
-use super::RefereeError;
+use super::error::RefereeError;
 use super::exact::{Q, Root, V3, dot, round, sub, v3};
 use crate::geom::{Aabb, Ball, P3};
 
@@ -353,7 +353,7 @@ fn min_ball_exact(points: &[P3]) -> Result<(V3, Q), RefereeError> {
 /// reference the two stages are checked against.
 #[cfg(test)]
 fn min_ball_welzl(points: &[P3]) -> Result<(V3, Q), RefereeError> {
-    super::exact_only(|| min_ball_staged(points)).map(|(ball, _)| ball)
+    super::stage::exact_only(|| min_ball_staged(points)).map(|(ball, _)| ball)
 }
 
 /// The floating-point stage of [`min_ball`]: move-to-front Welzl on the cloud's
@@ -503,15 +503,15 @@ fn min_ball_staged(points: &[P3]) -> Result<((V3, Q), bool), RefereeError> {
         let j = (splitmix(&mut state) % (i as u64 + 1)) as usize;
         order.swap(i, j);
     }
-    if super::staged() {
+    if super::stage::staged() {
         let mut float = FloatWelzl { points: &cloud.points, order: order.clone() };
         if let Some((_, _, support)) = float.mtf(n, &mut Vec::with_capacity(4))
             && let Some(ball) = certified(&cloud, &support)
         {
-            super::count(super::Stage::MinBall, true, 1);
+            super::stage::count(super::stage::Stage::MinBall, true, 1);
             return Ok((ball, true));
         }
-        super::count(super::Stage::MinBall, false, 1);
+        super::stage::count(super::stage::Stage::MinBall, false, 1);
         // The exact run starts from the floating-point run's move-to-front
         // order, which puts the points that bounded its ball first: nearly
         // every other point is then inside the exact run's ball at once,

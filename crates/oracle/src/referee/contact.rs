@@ -5,8 +5,8 @@
 //! and touching (depth exactly 0) is contact. Each margin function returns the
 //! signed depth behind the decision (negative when apart), correctly rounded.
 
-use super::RefereeError;
 use super::closest::closest_on_triangle;
+use super::error::RefereeError;
 use super::exact::{Q, Root, V3, cross, dot, is_zero, q, radius, round, round_unit, round_v, sub, v3};
 use crate::geom::{Contact, ContactAnswer, P3, Plane, Sphere, Triangle};
 
@@ -18,7 +18,7 @@ pub const CONCENTRIC_FALLBACK_NORMAL: P3 = [0.0, 0.0, 1.0];
 
 /// The floating-point stage's answer ([`super::contact_fast`]), counted.
 fn staged<T>(fast: impl FnOnce() -> Option<T>) -> Option<T> {
-    super::fast_stage(super::Stage::Contact, fast)
+    super::stage::fast_stage(super::stage::Stage::Contact, fast)
 }
 
 fn fallback_normal() -> V3 {

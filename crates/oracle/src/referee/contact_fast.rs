@@ -23,35 +23,8 @@
 //! exact stage refuses.
 
 use super::dyadic::{self as dy, Dy, Num};
-use super::fast::{Dw, all_finite, certify, div_approx, sign_affine_root, sqrt_approx};
+use super::fast::{Dw, all_finite};
 use crate::geom::{Contact, P3, Plane, Sphere, Triangle};
-
-/// `A + P/√S` correctly rounded, for an exact input `a` and an exact or
-/// bounded `P`; `a + 0` (a `−0` input made `+0`, as the exact stage's rounding
-/// of the rational zero) when `P` is exactly zero.
-pub(super) fn over_root(a: f64, p: Dw, s: Dw, root: Dw) -> Option<f64> {
-    if p.is_exact_zero() {
-        return Some(a + 0.0);
-    }
-    // x − m = ((a − m)·√S + P)/√S.
-    let candidate = Dw::of(a).add(div_approx(p, root)).approx();
-    certify(candidate, |m| sign_affine_root(p, Dw::of(a).sub(m), s))
-}
-
-/// `c − √S` (the sphere–sphere depth and margin `ra + rb − ‖Δ‖`), correctly
-/// rounded (`+0.0` when touching exactly); `None` when left open.
-pub(super) fn minus_root(c: Dw, s: Dw, root: Dw) -> Option<f64> {
-    // x − m = (c − m) − √S.
-    certify(c.sub(root).approx(), |m| sign_affine_root(c.sub(m), Dw::of(-1.0), s))
-}
-
-/// `r − √W/l` (`l > 0`, `W > 0`): a depth from a squared distance `W/l²`,
-/// correctly rounded, or `None` when left open.
-pub(super) fn root_over_depth(r: f64, w: Dw, l: Dw) -> Option<f64> {
-    // x − m = ((r − m)·l − √W)/l.
-    let candidate = Dw::of(r).sub(div_approx(sqrt_approx(w), l)).approx();
-    certify(candidate, |m| sign_affine_root(Dw::of(r).sub(m).mul(l), Dw::of(-1.0), w))
-}
 
 /// The two spheres' centre difference `Δ = Ma − Mb`, `S = Δ·Δ` and the radii's
 /// sum, or `None` for input outside the stage (a radius that is not `≥ 0`,
@@ -106,21 +79,6 @@ pub(super) fn sphere_sphere_margin(a: &Sphere, b: &Sphere) -> Option<f64> {
     sphere_sphere_margin_in::<Dw>(a, b).or_else(|| sphere_sphere_margin_in::<Dy>(a, b))
 }
 
-/// `v / ‖v‖` componentwise (`S = v·v > 0`), each correctly rounded; an exactly
-/// zero component is `+0`.
-pub(super) fn unit(v: &[Dw; 3], s: Dw, root: Dw) -> Option<P3> {
-    let mut out = [0.0; 3];
-    for (o, &x) in out.iter_mut().zip(v) {
-        *o = if x.is_exact_zero() {
-            0.0
-        } else {
-            // x − m = (v − m·√S)/√S.
-            certify(div_approx(x, root).approx(), |m| sign_affine_root(x, m.neg(), s))?
-        };
-    }
-    Some(out)
-}
-
 /// A sphere and a plane: `e = n·c − d`, `S = n·n`, or `None` for input outside
 /// the stage (including a zero normal, which the exact stage refuses).
 fn sphere_plane_parts<T: Num>(s: &Sphere, p: &Plane) -> Option<([T; 3], T, T)> {
@@ -136,16 +94,6 @@ fn sphere_plane_parts<T: Num>(s: &Sphere, p: &Plane) -> Option<([T; 3], T, T)> {
     }
     let e = dy::dot(&n, &c).minus(&T::of(p.offset));
     Some((n, nn, e))
-}
-
-/// `r − e/√S` (the sphere–plane depth and margin), correctly rounded, or
-/// `None` for the exact stage.
-pub(super) fn plane_depth(r: f64, e: Dw, nn: Dw, root: Dw) -> Option<f64> {
-    if e.is_exact_zero() {
-        return Some(r + 0.0);
-    }
-    // x − m = ((r − m)·√S − e)/√S.
-    certify(Dw::of(r).sub(div_approx(e, root)).approx(), |m| sign_affine_root(e.neg(), Dw::of(r).sub(m), nn))
 }
 
 /// Whether the sphere reaches the plane's solid: `e ≤ 0`, or `e² ≤ r²·S`

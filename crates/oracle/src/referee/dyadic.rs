@@ -154,22 +154,22 @@ impl Num for Dw {
         if !s.is_positive() {
             return None;
         }
-        super::contact_fast::unit(v, *s, super::fast::sqrt_approx(*s))
+        super::root_fast::unit(v, *s, super::fast::sqrt_approx(*s))
     }
     fn neg(&self) -> Self {
         Dw::neg(*self)
     }
     fn over_root(a: f64, p: &Self, s: &Self) -> Option<f64> {
-        super::contact_fast::over_root(a, *p, *s, super::fast::sqrt_approx(*s))
+        super::root_fast::over_root(a, *p, *s, super::fast::sqrt_approx(*s))
     }
     fn minus_root(c: &Self, s: &Self) -> Option<f64> {
-        super::contact_fast::minus_root(*c, *s, super::fast::sqrt_approx(*s))
+        super::root_fast::minus_root(*c, *s, super::fast::sqrt_approx(*s))
     }
     fn minus_over_root(r: f64, e: &Self, s: &Self) -> Option<f64> {
-        super::contact_fast::plane_depth(r, *e, *s, super::fast::sqrt_approx(*s))
+        super::root_fast::plane_depth(r, *e, *s, super::fast::sqrt_approx(*s))
     }
     fn minus_root_over(r: f64, w: &Self, l: &Self) -> Option<f64> {
-        super::contact_fast::root_over_depth(r, *w, *l)
+        super::root_fast::root_over_depth(r, *w, *l)
     }
 }
 

@@ -5,7 +5,7 @@ use dashu::base::{Approximation, BitTest, SquareRoot, SquareRootRem, UnsignedAbs
 use dashu::integer::{IBig, UBig};
 use dashu::rational::RBig;
 
-use super::{PRECISION_BITS, RefereeError};
+use super::error::{PRECISION_BITS, RefereeError};
 use crate::geom::P3;
 
 /// An exact rational.

@@ -4,8 +4,8 @@
 //! surface's own unit normal (a plane's `n/‖n‖`, a triangle's
 //! `(v1 − v0) × (v2 − v0)` normalized), never flipped toward the segment.
 
-use super::RefereeError;
 use super::barycentric::barycentric_exact;
+use super::error::RefereeError;
 use super::exact::{Q, V3, add, cross, dot, is_zero, q, round, round_unit, round_v, scale, sub, v3};
 use crate::geom::{IntersectAnswer, P3, Plane, Segment, SegmentHit, Triangle};
 
@@ -28,7 +28,7 @@ fn crossing(p0: &V3, dir: &V3, n: &V3, k: &Q) -> Crossing {
 
 /// The floating-point stage's answer ([`super::intersect_fast`]), counted.
 fn staged<T>(fast: impl FnOnce() -> Option<T>) -> Option<T> {
-    super::fast_stage(super::Stage::Intersect, fast)
+    super::stage::fast_stage(super::stage::Stage::Intersect, fast)
 }
 
 fn segment(s: &Segment, field: [&'static str; 2]) -> Result<(V3, V3), RefereeError> {

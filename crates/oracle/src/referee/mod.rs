@@ -81,6 +81,7 @@ mod closest;
 pub mod contact;
 mod contact_fast;
 mod dyadic;
+mod error;
 mod exact;
 mod fast;
 pub mod intersect;
@@ -88,6 +89,8 @@ mod intersect_fast;
 pub mod overlap;
 pub mod response;
 mod response_fast;
+mod root_fast;
+mod stage;
 pub mod toi;
 mod toi_fast;
 
@@ -109,207 +112,5 @@ pub use toi::{
     toi_sphere_mesh, toi_sphere_plane, toi_sphere_sphere, toi_sphere_triangle,
 };
 
-use std::cell::Cell;
-use std::fmt;
-use std::sync::atomic::{AtomicU64, Ordering};
-
-thread_local! {
-    static EXACT_ONLY: Cell<bool> = const { Cell::new(false) };
-    /// This thread's counts: fast then exact, per stage.
-    static HERE: Cell<[u64; 14]> = const { Cell::new([0; 14]) };
-}
-
-/// Runs `f` with the referee's floating-point stages off on this thread: every
-/// answer then comes from the exact stage alone. The answers are the same bit
-/// for bit either way (the stages only skip exact work they have proved
-/// unneeded); this is how that is checked (`tests/referee_stages.rs`).
-pub fn exact_only<T>(f: impl FnOnce() -> T) -> T {
-    let before = EXACT_ONLY.with(|e| e.replace(true));
-    let out = f();
-    EXACT_ONLY.with(|e| e.set(before));
-    out
-}
-
-/// Whether the floating-point stages may answer on this thread.
-pub(crate) fn staged() -> bool {
-    !EXACT_ONLY.with(Cell::get)
-}
-
-/// A floating-point stage's answer, counted under `stage`, when the stages
-/// are on and it certified one; `None` sends the caller to its exact stage.
-pub(crate) fn fast_stage<T>(stage: Stage, fast: impl FnOnce() -> Option<T>) -> Option<T> {
-    if !staged() {
-        return None;
-    }
-    let answer = fast();
-    count(stage, answer.is_some(), 1);
-    answer
-}
-
-/// The referee's two-stage computations, each counted: how often the
-/// floating-point stage's answer was certified, and how often the exact stage
-/// had to decide.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stage {
-    /// The minimal enclosing ball (`bounds`): a floating-point Welzl's support,
-    /// certified exactly, or exact Welzl.
-    MinBall,
-    /// A sphere against a mesh (`toi` and its margin), when the exact stage
-    /// answers: faces whose box is provably out of reach skipped, or a
-    /// face's exact test run.
-    MeshFaces,
-    /// Barycentric coordinates: certified from double-word numbers or
-    /// decided in exact dyadic ones, or computed in exact rationals.
-    Barycentric,
-    /// Contact of a sphere with a sphere, a plane, a triangle or a mesh, and
-    /// its margin: certified from double-word numbers or decided in exact
-    /// dyadic ones, or computed in exact rationals.
-    Contact,
-    /// A segment against a plane, a triangle or a mesh, and its margin:
-    /// certified from double-word numbers or decided in exact dyadic ones, or
-    /// computed in exact rationals.
-    Intersect,
-    /// A sphere's time of impact with a sphere, a plane, a triangle or a
-    /// mesh, and its margin: certified from double-word numbers, or computed
-    /// in exact rationals.
-    Toi,
-    /// Collision response of a sphere against a sphere or a plane: certified
-    /// from double-word numbers or decided in exact dyadic ones, or computed
-    /// in exact rationals.
-    Response,
-}
-
-impl Stage {
-    /// Every stage, in report order.
-    pub const ALL: [Stage; 7] = [
-        Stage::MinBall,
-        Stage::MeshFaces,
-        Stage::Barycentric,
-        Stage::Contact,
-        Stage::Intersect,
-        Stage::Toi,
-        Stage::Response,
-    ];
-
-    /// What is counted, for the report.
-    pub fn label(self) -> &'static str {
-        match self {
-            Stage::MinBall => "bounds: minimal balls certified from floating point / by exact Welzl",
-            Stage::MeshFaces => "toi sphere–mesh: faces ruled out in floating point / tested exactly",
-            Stage::Barycentric => {
-                "barycentric: certified from double-word or exact dyadic numbers / computed in rationals"
-            }
-            Stage::Contact => {
-                "contact of a sphere with a sphere, plane, triangle or mesh, and margins: certified from double-word or exact dyadic numbers / computed in rationals"
-            }
-            Stage::Intersect => {
-                "intersect of a segment with a plane, triangle or mesh, and margins: certified from double-word or exact dyadic numbers / computed in rationals"
-            }
-            Stage::Toi => {
-                "toi of a sphere with a sphere, plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
-            }
-            Stage::Response => {
-                "response of a sphere against a sphere or plane: certified from double-word or exact dyadic numbers / computed in rationals"
-            }
-        }
-    }
-}
-
-/// The query kinds the referee answers in its exact stage alone (every case
-/// of them is decided exactly: its share without the exact stage is 0 %), for
-/// the report beside [`Stage`]'s counts.
-pub const EXACT_STAGE_ONLY: &str = "overlap (its exact stage is already a handful of f64 comparisons)";
-
-static FAST: [AtomicU64; 7] = [const { AtomicU64::new(0) }; 7];
-static EXACT: [AtomicU64; 7] = [const { AtomicU64::new(0) }; 7];
-
-/// Counts `n` answers of `stage`, by the floating-point stage or the exact one.
-pub(crate) fn count(stage: Stage, fast: bool, n: u64) {
-    let counters = if fast { &FAST } else { &EXACT };
-    counters[stage as usize].fetch_add(n, Ordering::Relaxed);
-    HERE.with(|h| {
-        let mut c = h.get();
-        c[2 * stage as usize + usize::from(!fast)] += n;
-        h.set(c);
-    });
-}
-
-/// [`stage_counts`] for the work done on this thread only.
-pub fn stage_counts_on_this_thread() -> Vec<(Stage, u64, u64)> {
-    let c = HERE.with(Cell::get);
-    Stage::ALL.iter().map(|&s| (s, c[2 * s as usize], c[2 * s as usize + 1])).collect()
-}
-
-/// The counts so far in this process, per stage: `(stage, fast, exact)`.
-/// Subtract an earlier reading to count one stretch of work.
-pub fn stage_counts() -> Vec<(Stage, u64, u64)> {
-    Stage::ALL
-        .iter()
-        .map(|&s| (s, FAST[s as usize].load(Ordering::Relaxed), EXACT[s as usize].load(Ordering::Relaxed)))
-        .collect()
-}
-
-/// The starting precision, in bits, of the referee's square roots.
-///
-/// A square root is enclosed between two rationals whose gap is about
-/// `2^-PRECISION_BITS` of its size; when that enclosure does not yet decide the
-/// rounding of the final `f64` (an answer that cancels, like a depth close to 0
-/// between large radii), the precision is doubled until it does. The reported
-/// values are thus correctly rounded whatever this constant is; 256 bits (well
-/// above the 200 the design asks for) settles nearly every case at the first try.
-pub const PRECISION_BITS: usize = 256;
-
-/// Input the referee refuses: not a geometric question at all. Valid but
-/// degenerate geometry is never an error (see each function's fallback).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RefereeError {
-    /// A number is NaN or infinite; `field` names it (e.g. `"a.center"`).
-    NonFinite {
-        /// The offending field.
-        field: &'static str,
-    },
-    /// A sphere's radius is negative.
-    NegativeRadius {
-        /// The offending field.
-        field: &'static str,
-    },
-    /// A plane's normal is the zero vector.
-    ZeroNormal {
-        /// The offending field.
-        field: &'static str,
-    },
-    /// A box has `min > max` on some axis.
-    InvertedAabb {
-        /// The offending field.
-        field: &'static str,
-    },
-    /// A point cloud has no points.
-    NoPoints {
-        /// The offending field.
-        field: &'static str,
-    },
-    /// A mesh face names a vertex that does not exist.
-    IndexOutOfRange {
-        /// The offending field.
-        field: &'static str,
-        /// The face index.
-        face: usize,
-    },
-}
-
-impl fmt::Display for RefereeError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::NonFinite { field } => write!(f, "{field}: not a finite number"),
-            Self::NegativeRadius { field } => write!(f, "{field}: negative radius"),
-            Self::ZeroNormal { field } => write!(f, "{field}: zero normal"),
-            Self::InvertedAabb { field } => write!(f, "{field}: min > max"),
-            Self::NoPoints { field } => write!(f, "{field}: no points"),
-            Self::IndexOutOfRange { field, face } => {
-                write!(f, "{field}: face {face} has a vertex index out of range")
-            }
-        }
-    }
-}
-
-impl std::error::Error for RefereeError {}
+pub use error::{PRECISION_BITS, RefereeError};
+pub use stage::{EXACT_STAGE_ONLY, Stage, exact_only, stage_counts, stage_counts_on_this_thread};

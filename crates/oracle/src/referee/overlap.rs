@@ -1,6 +1,6 @@
 //! Overlap of two axis-aligned boxes, exactly.
 
-use super::RefereeError;
+use super::error::RefereeError;
 use crate::geom::Aabb;
 
 fn check(b: &Aabb, min: &'static str, max: &'static str) -> Result<(), RefereeError> {

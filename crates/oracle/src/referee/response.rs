@@ -11,13 +11,13 @@
 //! switches at `v_rel·n = 0`, where the impulse `j` is 0 anyway, so the answer is
 //! continuous across it and no case is borderline.
 
-use super::RefereeError;
+use super::error::RefereeError;
 use super::exact::{Q, V3, add, check, check_radius, check_v3, dot, is_zero, q, round_v, scale, sub, v3};
 use crate::geom::{P3, Plane, ResponseAnswer, Sphere};
 
 /// The floating-point stage's answer ([`super::response_fast`]), counted.
 fn staged<T>(fast: impl FnOnce() -> Option<T>) -> Option<T> {
-    super::fast_stage(super::Stage::Response, fast)
+    super::stage::fast_stage(super::stage::Stage::Response, fast)
 }
 
 fn unchanged(va: &P3, vb: &P3, degenerate: bool) -> ResponseAnswer {
@@ -56,7 +56,7 @@ fn impulse(va: &V3, wa: &Q, vb: &V3, wb: &Q, n: &V3, e: &Q) -> Option<(V3, V3)> 
 /// apart. Source: the lecture; Hecker, *Collision Response* (1997), linear part.
 ///
 /// **Degenerate input.** Concentric spheres have no line of centres: the normal
-/// is `+z` (the contact fallback, [`super::CONCENTRIC_FALLBACK_NORMAL`]), the
+/// is `+z` (the contact fallback, [`super::contact::CONCENTRIC_FALLBACK_NORMAL`]), the
 /// impulse is applied along it, flagged. A mass that is not positive defines no
 /// impulse: velocities unchanged, flagged (the fixture format refuses it). `e` is
 /// used as given. Non-finite numbers and negative radii are refused.

@@ -20,7 +20,7 @@
 //! an affine function of `t`, again exact. The contact point and normal at the
 //! winning time are affine in the same `√D`, and every reported scalar is that
 //! exact number correctly rounded by the referee's integer-square-root
-//! enclosure (see [`super::PRECISION_BITS`]).
+//! enclosure (see [`super::error::PRECISION_BITS`]).
 //!
 //! **Margins.** Each `toi_margin_*` function returns the signed closest-approach
 //! gap over the interval, `r − min_{t∈[0,t_max]} dist(p(t), b)` (with `r` the sum
@@ -36,9 +36,9 @@
 
 use std::cmp::Ordering;
 
-use super::RefereeError;
 use super::closest::closest_on_triangle;
 use super::contact::{contact_sphere_mesh, contact_sphere_plane, contact_sphere_sphere, contact_sphere_triangle};
+use super::error::RefereeError;
 use super::exact::{
     Q, Root, V3, add, check, check_radius, check_v3, cross, dot, is_zero, q, radius, round_unit, scale, sub, v3,
 };
@@ -149,7 +149,7 @@ fn finish(h: &Hit, v: &V3) -> ToiAnswer {
 
 /// The floating-point stage's answer ([`super::toi_fast`]), counted.
 fn staged<T>(fast: impl FnOnce() -> Option<T>) -> Option<T> {
-    super::fast_stage(super::Stage::Toi, fast)
+    super::stage::fast_stage(super::stage::Stage::Toi, fast)
 }
 
 fn time(t_max: f64) -> Result<Q, RefereeError> {
@@ -634,7 +634,7 @@ pub fn toi_sphere_mesh(
     // are touched neither at t = 0 nor later: the exact tests skip them (a face
     // in contact at t = 0 is nearer than any skipped one, so the nearest face
     // is the same; a skipped face has no contact time to compare).
-    let path = path_bounds(&a.center, va, vb, t_max).filter(|_| super::staged());
+    let path = path_bounds(&a.center, va, vb, t_max).filter(|_| super::stage::staged());
     let r2_up = r2_above(a.radius);
     let near: Vec<bool> =
         triangles.iter().map(|tri| path.as_ref().is_none_or(|p| face_gap2_below(p, vertices, tri) <= r2_up)).collect();
@@ -645,7 +645,7 @@ pub fn toi_sphere_mesh(
     // is the static contact with the nearest face, lowest index on a tie —
     // what the exact loop below finds — and contact has stages of its own,
     // exact dyadic numbers included.
-    if super::staged() {
+    if super::stage::staged() {
         let at0 = contact_sphere_mesh(a, vertices, triangles)?;
         if at0.contact.is_some() {
             return Ok(at_zero(at0));
@@ -654,8 +654,8 @@ pub fn toi_sphere_mesh(
     let s = moving(a, va, vb, t_max)?;
     let faces = mesh(vertices, triangles)?;
     let tested = near.iter().filter(|n| **n).count() as u64;
-    super::count(super::Stage::MeshFaces, true, near.len() as u64 - tested);
-    super::count(super::Stage::MeshFaces, false, tested);
+    super::stage::count(super::stage::Stage::MeshFaces, true, near.len() as u64 - tested);
+    super::stage::count(super::stage::Stage::MeshFaces, false, tested);
     let mut nearest: Option<(Q, usize)> = None;
     for (i, f) in faces.iter().enumerate() {
         if !near[i] {
@@ -860,7 +860,7 @@ pub fn toi_margin_sphere_mesh(
     // Faces in order of a lower bound on their distance from the path; once
     // that bound exceeds the nearest exact distance found, no later face can
     // be nearer, and the minimum is the same as over every face.
-    let path = path_bounds(&a.center, va, vb, t_max).filter(|_| super::staged());
+    let path = path_bounds(&a.center, va, vb, t_max).filter(|_| super::stage::staged());
     let mut order: Vec<(f64, usize)> = triangles
         .iter()
         .enumerate()
@@ -887,8 +887,8 @@ pub fn toi_margin_sphere_mesh(
             nearest = Some(d2);
         }
     }
-    super::count(super::Stage::MeshFaces, true, faces_count - tested);
-    super::count(super::Stage::MeshFaces, false, tested);
+    super::stage::count(super::stage::Stage::MeshFaces, true, faces_count - tested);
+    super::stage::count(super::stage::Stage::MeshFaces, false, tested);
     Ok(match nearest {
         Some(d2) => gap_margin(&s.r, d2),
         None => f64::NEG_INFINITY,

@@ -18,8 +18,8 @@
 //! mesh touched at `t = 0`, and for inputs that are not finite; the bits
 //! are the same (`tests/referee_stages.rs`).
 
-use super::contact_fast::{plane_depth, unit};
 use super::fast::{Dw, all_finite, certify, cross, diff3, div_approx, dot, sign_affine_root, sqrt_approx};
+use super::root_fast::{plane_depth, unit};
 use crate::geom::{P3, Plane, Sphere, Toi, ToiAnswer, Triangle};
 
 /// The sign of `P + Q·√S` for an exact `S ≥ 0` (`S` may be exactly 0).
