@@ -1,6 +1,8 @@
-//! The harness is layered: no module imports one that imports it back.
+//! The harness is layered, and so is the oracle crate: no module imports one
+//! that imports it back.
 //!
-//! This test reads every `.rs` file under `crates/harness/src`, maps each file
+//! This test reads every `.rs` file under `crates/harness/src` (and then
+//! `crates/oracle/src`), maps each file
 //! to its module (`lib.rs` → the crate root, `report/campaign.rs` →
 //! `report::campaign`, `sweep/mod.rs` → `sweep`), and collects the module
 //! paths each file names: in `use` statements (with their `{…}` groups) and in
