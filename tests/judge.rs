@@ -254,28 +254,32 @@ fn a_contact_at_t_zero_is_judged_alike_as_a_time_of_impact_and_as_a_contact() {
         let miss_c = judge::judge(&contact, &Answer::Contact(ContactAnswer { contact: None, ..cw }), &ct, &tol, cm).0;
         assert_eq!(kind(&miss_t), kind(&miss_c), "{}: a miss: {miss_t:?} against {miss_c:?}", lc.case.name);
         misses_borderline += usize::from(matches!(miss_c, Verdict::Borderline { .. }));
-        // A point and a normal moved.
+        // A point and a normal moved: the same point and normal in both
+        // answers, judged as a time of impact and as a contact.
+        let both = |point: [f64; 3], normal: [f64; 3]| {
+            let vt = judge::judge(
+                &toi,
+                &Answer::Toi(oracle::geom::ToiAnswer { toi: Some(oracle::geom::Toi { point, normal, ..t }), ..tw }),
+                &tt,
+                &tol,
+                tm,
+            )
+            .0;
+            let vc = judge::judge(
+                &contact,
+                &Answer::Contact(ContactAnswer { contact: Some(oracle::geom::Contact { point, normal, ..c }), ..cw }),
+                &ct,
+                &tol,
+                cm,
+            )
+            .0;
+            (vt, vc)
+        };
         let (at, ac) = (judge::allowed(&toi, &tt, &tol), judge::allowed(&contact, &ct, &tol));
         for allowance in [at.point, ac.point] {
             for f in [0.5, 2.0] {
                 let d = allowance * f;
-                let p = [c.point[0] + d, c.point[1], c.point[2]];
-                let vt = judge::judge(
-                    &toi,
-                    &Answer::Toi(oracle::geom::ToiAnswer { toi: Some(oracle::geom::Toi { point: p, ..t }), ..tw }),
-                    &tt,
-                    &tol,
-                    tm,
-                )
-                .0;
-                let vc = judge::judge(
-                    &contact,
-                    &Answer::Contact(ContactAnswer { contact: Some(oracle::geom::Contact { point: p, ..c }), ..cw }),
-                    &ct,
-                    &tol,
-                    cm,
-                )
-                .0;
+                let (vt, vc) = both([c.point[0] + d, c.point[1], c.point[2]], c.normal);
                 assert_eq!(kind(&vt), kind(&vc), "{}: point moved by {d:e}: {vt:?} against {vc:?}", lc.case.name);
             }
         }
@@ -289,29 +293,7 @@ fn a_contact_at_t_zero_is_judged_alike_as_a_time_of_impact_and_as_a_contact() {
                 let u = crashtest_core::vec3::cross(n, k);
                 let l = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
                 let (s, co) = a.sin_cos();
-                let turned = [0, 1, 2].map(|i| n[i] * co + u[i] / l * s);
-                let vt = judge::judge(
-                    &toi,
-                    &Answer::Toi(oracle::geom::ToiAnswer {
-                        toi: Some(oracle::geom::Toi { normal: turned, ..t }),
-                        ..tw
-                    }),
-                    &tt,
-                    &tol,
-                    tm,
-                )
-                .0;
-                let vc = judge::judge(
-                    &contact,
-                    &Answer::Contact(ContactAnswer {
-                        contact: Some(oracle::geom::Contact { normal: turned, ..c }),
-                        ..cw
-                    }),
-                    &ct,
-                    &tol,
-                    cm,
-                )
-                .0;
+                let (vt, vc) = both(c.point, [0, 1, 2].map(|i| n[i] * co + u[i] / l * s));
                 assert_eq!(kind(&vt), kind(&vc), "{}: normal turned by {a:e}: {vt:?} against {vc:?}", lc.case.name);
             }
         }

@@ -341,21 +341,7 @@ fn sliver_and_vertex() -> impl Strategy<Value = ([P3; 3], P3)> + Clone {
 /// module docs): sphere–sphere, sphere–plane and a sphere on a sliver's
 /// vertex, each moving at extreme speeds over an extreme interval.
 fn extreme_toi(case: impl Fn(Scene, Option<f64>) -> Case + Clone + Send + Sync + 'static) -> SBoxedStrategy<Case> {
-    let moving = |s: Shape, v: P3| match s {
-        Shape::Sphere(mut sp) => {
-            sp.velocity = Some(v);
-            Shape::Sphere(sp)
-        }
-        Shape::Plane(mut p) => {
-            p.velocity = Some(v);
-            Shape::Plane(p)
-        }
-        Shape::Triangle(mut t) => {
-            t.velocity = Some(v);
-            Shape::Triangle(t)
-        }
-        other => other,
-    };
+    let moving = super::toi::moving;
     let valid = |mut c: Case| {
         make_valid(&mut c);
         c

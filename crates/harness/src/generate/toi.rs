@@ -31,7 +31,7 @@ const SPEED: f64 = 8.0;
 
 /// `shape` moving at `v` (spheres, planes, triangles and meshes move; other
 /// shapes are returned as they are).
-fn moving(shape: Shape, v: P3) -> Shape {
+pub(super) fn moving(shape: Shape, v: P3) -> Shape {
     match shape {
         Shape::Sphere(mut s) => {
             s.velocity = Some(v);
