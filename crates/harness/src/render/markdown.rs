@@ -235,6 +235,10 @@ pub fn ulps_table(summary: &Summary) -> Table {
         ("≤ 64 ulps", true),
     ]);
     let pct = |x: f64| format!("{:.1}%", 100.0 * x);
+    // The histogram's top bin holds everything from 1e10 up (its quantile
+    // reads as that bin's edge): a quantile there is "≥ 1e10", not 1e10.
+    let top = 10f64.powi(crate::summary::HIST_MAX_EXP);
+    let beyond = |x: f64| if x >= top { format!("≥ {}", sci(top)) } else { sci(x) };
     for q in queries(summary) {
         for s in stats_of(summary, q).into_iter().filter(|s| s.ulps.dist.n > 0) {
             let d = &s.ulps.dist;
@@ -243,8 +247,8 @@ pub fn ulps_table(summary: &Summary) -> Table {
                 query_title(q),
                 s.engine.clone(),
                 d.n.to_string(),
-                d.median().map_or_else(|| "—".into(), sci),
-                d.p99().map_or_else(|| "—".into(), sci),
+                d.median().map_or_else(|| "—".into(), beyond),
+                d.p99().map_or_else(|| "—".into(), beyond),
                 sci(d.max),
                 pct(shares[0]),
                 pct(shares[1]),
@@ -641,6 +645,17 @@ mod tests {
         let row = format!("| {query} | {} | 8 | ", escape_md(&engine));
         let line = md[at..].lines().find(|l| l.starts_with(&row)).unwrap_or_else(|| panic!("no row {row} in\n{md}"));
         assert!(line.ends_with("| 6.5e1 | 37.5% | 62.5% | 87.5% |"), "{line}");
+        // Beyond the histogram's top bin, a quantile says so.
+        let s = &mut summary.stats[0];
+        for _ in 0..100 {
+            s.ulps.add(7e15);
+        }
+        let md = summary_md(&summary);
+        let line = md
+            .lines()
+            .find(|l| l.starts_with(&format!("| {query} | {} | 108 | ", escape_md(&engine))))
+            .expect("the row");
+        assert!(line.contains("| ≥ 1.0e10 | ≥ 1.0e10 | 7.0e15 |"), "{line}");
     }
 
     #[test]
