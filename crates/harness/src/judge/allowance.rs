@@ -204,7 +204,7 @@ fn toi_allowance(lc: &LoadedCase, w: &oracle::geom::Toi, b: &Shape, tol: &Tolera
     let t = first.min(second);
     // A speed of 0 moves nothing, however long the time (no 0 · ∞).
     let moved = |speed: f64| if speed > 0.0 && t > 0.0 { speed * t } else { 0.0 };
-    // A contact at t = 0 has the static contact's sizes (`local`), whose
+    // A contact at t = 0 has the static contact's sizes (`super::sizes`), whose
     // conditioning covers the distance the time is decided by: only what the
     // motion adds over the time's allowance is added here.
     let at_start = w.t == 0.0;

@@ -37,7 +37,7 @@ pub fn angle(a: &P3, b: &P3) -> f64 {
 /// length is near 1: the squares and their sum are carried in two words (each
 /// square split exactly by a fused multiply-add), so the judge's own rounding
 /// (an ulp or two of a plain `sqrt(x² + y² + z²)`) never decides a verdict at
-/// [`crate::tolerance::NORMAL_LENGTH_ULPS`]. A normal whose largest coordinate is outside
+/// [`super::tolerance::NORMAL_LENGTH_ULPS`]. A normal whose largest coordinate is outside
 /// `[2⁻⁴, 2]` is far from unit whatever its other coordinates: its length is
 /// taken by the scaled norm, which cannot overflow.
 pub fn unit_excess(n: &P3) -> f64 {

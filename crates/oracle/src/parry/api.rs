@@ -223,7 +223,7 @@ pub trait ParryEngine {
 
     /// A triangle mesh prepared once for many queries: parry's `TriMesh` (its
     /// vertices in the engine's scalar, its own BVH built by `TriMesh::new`), and
-    /// what the translation needs ([`Parry64Mesh`] or [`Parry32Mesh`]).
+    /// what the translation needs ([`super::Parry64Mesh`] or [`super::Parry32Mesh`]).
     type Mesh: Send + Sync;
 
     /// Prepares a mesh (`vertices`, and `triangles` as 0-based index triples).
