@@ -290,7 +290,7 @@ fn diff_of_two_seeds_has_no_false_change_and_sees_a_real_one() {
 
 /// The absolute paths in `text`: a `/` that begins a word (after a space, a
 /// bracket, a quote, a backtick, `=` or a line's start) followed by a letter,
-/// in a word holding another `/` — `/work/x/engines/…`, `/home/…/.cargo/…` —
+/// in a word holding another `/` — `/srv/build/engines/…`, `/opt/u/.cargo/…` —
 /// with its line number.
 fn absolute_paths(text: &str) -> Vec<(usize, String)> {
     let mut out = Vec::new();
@@ -316,7 +316,7 @@ fn absolute_paths(text: &str) -> Vec<(usize, String)> {
 /// panic from its crate's folder.
 #[test]
 fn the_sample_report_holds_no_absolute_path() {
-    assert_eq!(absolute_paths("run /work/main/engines/x.py and (/home/u/.cargo/a.rs)").len(), 2);
+    assert_eq!(absolute_paths("run /srv/build/engines/x.py and (/opt/u/.cargo/a.rs)").len(), 2);
     assert!(absolute_paths("1/2 of a/b, km/s, engines/fcl/engine.py, </a>").is_empty());
     let mut found = Vec::new();
     let mut stack = vec![root().join("reports/sample")];

@@ -71,9 +71,10 @@ pub enum Against {
     /// A field of the allowances ([`Allowed`]): the verdict's, the
     /// conditioning alone and one ulp of the field's magnitude.
     Field(fn(&Allowed) -> f64),
-    /// A quantity exact in the referee and judged by its own size `|w|`: an
-    /// AABB's coordinate (the fixed allowance of `|w|`, at least the floor;
-    /// rounding the inputs already costs ε of each).
+    /// A quantity exact in the referee and judged by its own size: an
+    /// AABB's coordinate `w` (the fixed allowance of `|w|`, at least the
+    /// floor; rounding the inputs already costs ε of each), named in the
+    /// reason by its value.
     Own(f64),
     /// A normal's distance from unit length, `|‖n‖ − 1|` (its length given):
     /// against `tol.normal_length_ulps` of the engine's ε.
@@ -86,8 +87,8 @@ pub enum Against {
 /// One measured error.
 #[derive(Clone, Debug)]
 pub struct Measured {
-    /// The field, as reasons name it (`point`, `t`, `aabb coordinate 1.5e0`).
-    pub field: String,
+    /// The field, as reasons name it (`point`, `t`, `aabb coordinate`).
+    pub field: &'static str,
     /// Its error (absolute; radians for a normal's angle).
     pub err: f64,
     /// The unit the reason prints after the error (`" rad"` or nothing).
@@ -112,8 +113,8 @@ pub struct Compared {
 }
 
 impl Compared {
-    fn measure(&mut self, field: &str, err: f64, unit: &'static str, against: Against) {
-        self.measured.push(Measured { field: field.into(), err, unit, against });
+    fn measure(&mut self, field: &'static str, err: f64, unit: &'static str, against: Against) {
+        self.measured.push(Measured { field, err, unit, against });
     }
 
     /// A normal: its angle to the referee's, the zero vector's reason, and
@@ -207,8 +208,7 @@ pub fn compare(lc: &LoadedCase, answer: &Answer, truth: &Answer, sizes: &Local) 
                 c.errors.point = Some(dist3(&gb.min, &wb.min).max(dist3(&gb.max, &wb.max)));
                 for (gp, wp) in [(&gb.min, &wb.min), (&gb.max, &wb.max)] {
                     for i in 0..3 {
-                        let name = format!("aabb coordinate {:.17e}", wp[i]);
-                        c.measure(&name, (gp[i] - wp[i]).abs(), "", Against::Own(wp[i].abs()));
+                        c.measure("aabb coordinate", (gp[i] - wp[i]).abs(), "", Against::Own(wp[i]));
                     }
                 }
             }

@@ -54,7 +54,7 @@ pub fn judge(
     truth: &Answer,
     tol: &Tolerance,
     margin: Option<f64>,
-) -> (Verdict, verdict::Errors) {
+) -> (Verdict, Errors) {
     if !all_finite(answer) {
         return (Verdict::Failed { reason: NON_FINITE.into() }, Errors::default());
     }
@@ -71,7 +71,7 @@ pub fn judge(
     for m in &compared.measured {
         let (allowed, conditioned, one) = match m.against {
             Against::Field(f) => (f(&allow.verdict), f(&allow.conditioned), f(&allow.one)),
-            Against::Own(w) => ((tol.rel * w).max(tol.floor()), tol.floor(), tol.eps * w),
+            Against::Own(w) => ((tol.rel * w.abs()).max(tol.floor()), tol.floor(), tol.eps * w.abs()),
             Against::UnitLength(_) => (tol.normal_length_ulps * tol.eps, 0.0, tol.eps),
             Against::Outside(_) => (allow.verdict.depth, allow.conditioned.depth, allow.one.depth),
         };
@@ -90,7 +90,12 @@ pub fn judge(
                 class.push(format!("bounding sphere misses point {i} by {:.3e}", m.err));
                 e.misclass = Some(Misclass::FalseNegative);
             }
-            _ => value.push(format!("{} off by {:.3e}{} (allowed {allowed:.1e})", m.field, m.err, m.unit)),
+            Against::Own(w) => {
+                value.push(format!("{} {w:.17e} off by {:.3e}{} (allowed {allowed:.1e})", m.field, m.err, m.unit))
+            }
+            Against::Field(_) => {
+                value.push(format!("{} off by {:.3e}{} (allowed {allowed:.1e})", m.field, m.err, m.unit))
+            }
         }
     }
     // A contact, hit, impact or overlap found or missed is as far off as the

@@ -469,7 +469,8 @@ fn contact_at_start(lc: &LoadedCase, a: &crate::case::SphereSpec, b: &Shape, h: 
     // (for a plane, from the plane itself).
     let along = |q: &P3| {
         let (d, k) = diff(&a.center, q);
-        clean(dot(d, h.normal).abs() * k) * dot(d, h.normal).signum()
+        let along = dot(d, h.normal);
+        clean(along.abs() * k) * along.signum()
     };
     let depth = match b {
         Shape::Sphere(_) | Shape::Plane(_) => a.radius - along(&h.point),
