@@ -7,8 +7,8 @@
 //! its own conventions inside its methods and nowhere else.
 
 use crate::geom::{
-    Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, ResponseAnswer, Segment, Sphere,
-    ToiAnswer, Triangle,
+    Aabb, BarycentricAnswer, BoundsAnswer, CcdAnswer, ContactAnswer, IntersectAnswer, MovingPoint, MovingSegment,
+    MovingTriangle, P3, Plane, ResponseAnswer, Segment, Sphere, ToiAnswer, Triangle,
 };
 use crate::mesh::Mesh;
 use std::fmt;
@@ -30,6 +30,8 @@ pub enum Answer {
     Toi(ToiAnswer),
     /// `response`.
     Response(ResponseAnswer),
+    /// `ccd`.
+    Ccd(CcdAnswer),
 }
 
 /// The engine does not answer this kind of case, with the reason.
@@ -137,6 +139,16 @@ pub trait Queries: Send + Sync {
     /// `response`, a sphere with velocity against a static plane, restitution `e`.
     fn response_sphere_plane(&self, a: &Sphere, va: &P3, b: &Plane, e: f64) -> Reply<ResponseAnswer> {
         unsupported("sphere–plane response")
+    }
+    /// `ccd`, a moving point against a moving triangle (vertex–face), over
+    /// `[0, t_max]`.
+    fn ccd_point_triangle(&self, p: &MovingPoint, t: &MovingTriangle, t_max: f64) -> Reply<CcdAnswer> {
+        unsupported("vertex–face continuous collision")
+    }
+    /// `ccd`, a moving segment against a moving segment (edge–edge), over
+    /// `[0, t_max]`.
+    fn ccd_segment_segment(&self, a: &MovingSegment, b: &MovingSegment, t_max: f64) -> Reply<CcdAnswer> {
+        unsupported("edge–edge continuous collision")
     }
 }
 

@@ -175,3 +175,47 @@ pub struct ResponseAnswer {
     /// a mass that is not positive).
     pub degenerate: bool,
 }
+
+/// A point moving linearly from `t0` (its position at time 0) to `t1` (at time
+/// 1): `p(t) = (1 − t)·t0 + t·t1`. Both ends are given, never a velocity: their
+/// difference need not be a double.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
+pub struct MovingPoint {
+    /// Position at time 0.
+    pub t0: P3,
+    /// Position at time 1.
+    pub t1: P3,
+}
+
+/// A closed segment whose two ends move linearly from `t0` to `t1`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
+pub struct MovingSegment {
+    /// The two ends at time 0.
+    pub t0: [P3; 2],
+    /// The two ends at time 1.
+    pub t1: [P3; 2],
+}
+
+/// A closed triangle whose three vertices move linearly from `t0` to `t1`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
+pub struct MovingTriangle {
+    /// The three vertices at time 0.
+    pub t0: [P3; 3],
+    /// The three vertices at time 1.
+    pub t1: [P3; 3],
+}
+
+/// The answer to a `ccd` query (vertex–face or edge–edge continuous collision).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct CcdAnswer {
+    /// The first time in `[0, t_max]` at which the point lies on the closed
+    /// triangle (the two closed segments share a point), or `None`.
+    pub t: Option<f64>,
+    /// The motion is coplanar throughout `[0, t_max]` (the problem is planar),
+    /// or at the first time the triangle has zero area (a segment has zero
+    /// length, or the two segments are parallel).
+    pub degenerate: bool,
+}

@@ -35,11 +35,13 @@ pub enum Query {
     Toi,
     /// Velocities after one frictionless impulse.
     Response,
+    /// Continuous collision of linearly moving points: vertex–face and edge–edge.
+    Ccd,
 }
 
 impl Query {
     /// Every query kind, in the format's order.
-    pub const ALL: [Query; 7] = [
+    pub const ALL: [Query; 8] = [
         Query::Contact,
         Query::Intersect,
         Query::Barycentric,
@@ -47,6 +49,7 @@ impl Query {
         Query::Overlap,
         Query::Toi,
         Query::Response,
+        Query::Ccd,
     ];
 
     /// The name used in fixture files.
@@ -59,6 +62,7 @@ impl Query {
             Query::Overlap => "overlap",
             Query::Toi => "toi",
             Query::Response => "response",
+            Query::Ccd => "ccd",
         }
     }
 
@@ -84,7 +88,7 @@ impl fmt::Display for Query {
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize, schemars::JsonSchema),
-    serde(rename_all = "lowercase")
+    serde(rename_all = "snake_case")
 )]
 pub enum ShapeKind {
     /// `sphere`.
@@ -103,6 +107,12 @@ pub enum ShapeKind {
     Mesh,
     /// `aabb`.
     Aabb,
+    /// `moving_point`.
+    MovingPoint,
+    /// `moving_segment`.
+    MovingSegment,
+    /// `moving_triangle`.
+    MovingTriangle,
 }
 
 impl ShapeKind {
@@ -117,6 +127,9 @@ impl ShapeKind {
             ShapeKind::Points => "points",
             ShapeKind::Mesh => "mesh",
             ShapeKind::Aabb => "aabb",
+            ShapeKind::MovingPoint => "moving_point",
+            ShapeKind::MovingSegment => "moving_segment",
+            ShapeKind::MovingTriangle => "moving_triangle",
         }
     }
 }
@@ -150,6 +163,8 @@ pub enum Pair {
     ToiSphereMesh,
     ResponseSphereSphere,
     ResponseSpherePlane,
+    CcdPointTriangle,
+    CcdSegmentSegment,
 }
 
 /// A row of the pair table.
@@ -174,7 +189,7 @@ use Query as Q;
 use ShapeKind as K;
 
 /// The pair table, in report order (query by query, as the format lists them).
-pub const PAIRS: [PairRow; 19] = [
+pub const PAIRS: [PairRow; 21] = [
     row(P::ContactSphereSphere, Q::Contact, K::Sphere, Some(K::Sphere)),
     row(P::ContactSpherePlane, Q::Contact, K::Sphere, Some(K::Plane)),
     row(P::ContactPlaneSphere, Q::Contact, K::Plane, Some(K::Sphere)),
@@ -194,6 +209,8 @@ pub const PAIRS: [PairRow; 19] = [
     row(P::ToiSphereMesh, Q::Toi, K::Sphere, Some(K::Mesh)),
     row(P::ResponseSphereSphere, Q::Response, K::Sphere, Some(K::Sphere)),
     row(P::ResponseSpherePlane, Q::Response, K::Sphere, Some(K::Plane)),
+    row(P::CcdPointTriangle, Q::Ccd, K::MovingPoint, Some(K::MovingTriangle)),
+    row(P::CcdSegmentSegment, Q::Ccd, K::MovingSegment, Some(K::MovingSegment)),
 ];
 
 impl Pair {

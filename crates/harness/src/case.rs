@@ -9,7 +9,7 @@
 //! `expect` would make a wrong expectation pass unchecked. Free text goes in
 //! `source`.
 
-use oracle::geom::{Aabb, Contact, P3, SegmentHit, Toi};
+use oracle::geom::{Aabb, Contact, MovingPoint, MovingSegment, MovingTriangle, P3, SegmentHit, Toi};
 use schemars::JsonSchema;
 use serde::{Deserialize, Deserializer, Serialize};
 
@@ -20,7 +20,7 @@ pub const SCHEMA: &str = "crashtest-fixture/1";
 /// format: `1e-9`.
 pub const DEFAULT_TOL: f64 = 1e-9;
 
-/// The default end of the time interval of a `toi` case, from the format: 1.
+/// The default end of the time interval of a `toi` or `ccd` case, from the format: 1.
 pub const DEFAULT_T_MAX: f64 = 1.0;
 
 /// One fixture file.
@@ -56,7 +56,7 @@ pub struct Case {
     /// Absolute tolerance on every scalar of the answer (default [`DEFAULT_TOL`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tol: Option<f64>,
-    /// End of the time interval for `toi` (default [`DEFAULT_T_MAX`]).
+    /// End of the time interval for `toi` and `ccd` (default [`DEFAULT_T_MAX`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub t_max: Option<f64>,
     /// Coefficient of restitution for `response`.
@@ -80,7 +80,7 @@ pub use crashtest_core::pair::{Pair, Query, ShapeKind};
 
 /// A shape, written `{"<kind>": {fields}}`.
 #[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "snake_case")]
 pub enum Shape {
     /// Solid ball.
     Sphere(SphereSpec),
@@ -98,6 +98,12 @@ pub enum Shape {
     Mesh(MeshSpec),
     /// Axis-aligned box.
     Aabb(AabbSpec),
+    /// A point moving linearly from `t0` (time 0) to `t1` (time 1).
+    MovingPoint(MovingPoint),
+    /// A closed segment whose ends move linearly from `t0` to `t1`.
+    MovingSegment(MovingSegment),
+    /// A closed triangle whose vertices move linearly from `t0` to `t1`.
+    MovingTriangle(MovingTriangle),
 }
 
 impl Shape {
@@ -117,6 +123,9 @@ impl Shape {
             Shape::Points(_) => ShapeKind::Points,
             Shape::Mesh(_) => ShapeKind::Mesh,
             Shape::Aabb(_) => ShapeKind::Aabb,
+            Shape::MovingPoint(_) => ShapeKind::MovingPoint,
+            Shape::MovingSegment(_) => ShapeKind::MovingSegment,
+            Shape::MovingTriangle(_) => ShapeKind::MovingTriangle,
         }
     }
 }
@@ -257,6 +266,23 @@ pub struct Expect {
     /// `response`: `b`'s velocity after the impulse.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub velocity_b: Option<P3>,
+    /// `ccd`: whether there is an impact in `[0, t_max]` (a benchmark's boolean
+    /// ground truth), checked against the answer's classification only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub impact: Option<bool>,
+    /// `ccd`: the first time of impact, or `null`.
+    #[serde(default, deserialize_with = "present", skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<CcdTime>")]
+    pub ccd: Option<Option<CcdTime>>,
+}
+
+/// A `ccd` impact as the format writes it: `{"t": T}`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CcdTime {
+    /// The first time in `[0, t_max]` at which the point lies on the closed
+    /// triangle, or the two closed segments share a point.
+    pub t: f64,
 }
 
 /// A field that is present, with `null` kept apart from absence: absent →

@@ -11,7 +11,7 @@ use crate::divergence::Known;
 use crate::load::LoadedCase;
 use crate::mesh::Mesh;
 use crate::protocol::client::{Outcome, ProcessEngine};
-use oracle::geom::{Aabb, P3, Plane, Segment, Sphere, Triangle};
+use oracle::geom::{Aabb, MovingPoint, MovingSegment, MovingTriangle, P3, Plane, Segment, Sphere, Triangle};
 use std::fmt;
 use std::sync::Arc;
 
@@ -232,6 +232,8 @@ fn dispatch(q: &dyn Queries, pair: Pair, lc: &LoadedCase) -> Reply<Answer> {
             Answer::Response(q.response_sphere_sphere(&sphere(a)?, &va, mass(a), &sphere(b)?, &vb, mass(b), e)?)
         }
         P::ResponseSpherePlane => Answer::Response(q.response_sphere_plane(&sphere(a)?, &va, &plane(b)?, e)?),
+        P::CcdPointTriangle => Answer::Ccd(q.ccd_point_triangle(&moving_point(a)?, &moving_triangle(b)?, t_max)?),
+        P::CcdSegmentSegment => Answer::Ccd(q.ccd_segment_segment(&moving_segment(a)?, &moving_segment(b)?, t_max)?),
     })
 }
 
@@ -260,6 +262,9 @@ shape_of!(triangle, Triangle, "triangle", Triangle, |s| s.to_geom());
 shape_of!(segment, Segment, "segment", Segment, |s| s.to_geom());
 shape_of!(aabb, Aabb, "aabb", Aabb, |s| s.to_geom());
 shape_of!(point, Point, "point", P3, |s| s.at);
+shape_of!(moving_point, MovingPoint, "moving_point", MovingPoint, |s| *s);
+shape_of!(moving_segment, MovingSegment, "moving_segment", MovingSegment, |s| *s);
+shape_of!(moving_triangle, MovingTriangle, "moving_triangle", MovingTriangle, |s| *s);
 
 /// Mesh `i` (0 for `a`, 1 for `b`) as loaded.
 fn mesh(lc: &LoadedCase, i: usize) -> Reply<&Mesh> {

@@ -559,6 +559,24 @@ fn validate_shape(key: &str, shape: &Shape, query: Query) -> FieldResult {
                 }
             }
         }
+        Shape::MovingPoint(p) => {
+            finite3(&format!("{k}.t0"), &p.t0)?;
+            finite3(&format!("{k}.t1"), &p.t1)?;
+        }
+        Shape::MovingSegment(s) => {
+            for (end, at) in [("t0", &s.t0), ("t1", &s.t1)] {
+                for (i, v) in at.iter().enumerate() {
+                    finite3(&format!("{k}.{end}[{i}]"), v)?;
+                }
+            }
+        }
+        Shape::MovingTriangle(t) => {
+            for (end, at) in [("t0", &t.t0), ("t1", &t.t1)] {
+                for (i, v) in at.iter().enumerate() {
+                    finite3(&format!("{k}.{end}[{i}]"), v)?;
+                }
+            }
+        }
     }
     Ok(())
 }
@@ -573,6 +591,7 @@ fn expect_fields(query: Query) -> &'static [&'static str] {
         Query::Overlap => &["overlap", "degenerate"],
         Query::Toi => &["toi", "degenerate"],
         Query::Response => &["velocity_a", "velocity_b", "degenerate"],
+        Query::Ccd => &["ccd", "impact", "degenerate"],
     }
 }
 
@@ -594,6 +613,8 @@ fn named_fields(e: &Expect) -> Vec<&'static str> {
     add(e.toi.is_some(), "toi");
     add(e.velocity_a.is_some(), "velocity_a");
     add(e.velocity_b.is_some(), "velocity_b");
+    add(e.impact.is_some(), "impact");
+    add(e.ccd.is_some(), "ccd");
     v
 }
 
@@ -628,6 +649,12 @@ pub fn validate(case: &Case) -> FieldResult {
         && !(t.is_finite() && t >= 0.0)
     {
         return bad("t_max", format!("t_max must be finite and ≥ 0, got {t}"));
+    }
+    if let Some(t) = case.t_max
+        && case.query == Query::Ccd
+        && t > 1.0
+    {
+        return bad("t_max", format!("a ccd case's t_max is within [0, 1] (the motion is given at 0 and 1), got {t}"));
     }
     match case.restitution {
         Some(e) if !(e.is_finite() && (0.0..=1.0).contains(&e)) => {
@@ -679,6 +706,14 @@ fn validate_expect(e: &Expect) -> FieldResult {
         finite("expect.toi.t", t.t)?;
         finite3("expect.toi.point", &t.point)?;
         finite3("expect.toi.normal", &t.normal)?;
+    }
+    if let Some(Some(c)) = &e.ccd {
+        finite("expect.ccd.t", c.t)?;
+    }
+    if let (Some(impact), Some(ccd)) = (e.impact, &e.ccd)
+        && impact != ccd.is_some()
+    {
+        return bad("expect.impact", format!("impact {impact} contradicts expect.ccd"));
     }
     for (name, v) in [("expect.velocity_a", &e.velocity_a), ("expect.velocity_b", &e.velocity_b)] {
         if let Some(v) = v {

@@ -12,6 +12,7 @@
 use crate::case::{AabbSpec, PlaneSpec, PointSpec, PointsSpec, SegmentSpec, Shape, SphereSpec, TriangleSpec};
 use crashtest_core::vec3::{add, cross, dot, norm_sqrt_dot, scale, sub};
 use oracle::geom::P3;
+use oracle::geom::{MovingPoint, MovingSegment, MovingTriangle};
 use proptest::prelude::*;
 
 /// A generated scene: `a`, and `b` for every query but `bounds`.
@@ -50,6 +51,21 @@ pub(crate) fn points(points: Vec<P3>) -> Shape {
 /// An axis-aligned box.
 pub(crate) fn aabb(min: P3, max: P3) -> Shape {
     Shape::Aabb(AabbSpec { min, max })
+}
+
+/// A point moving linearly from `t0` (time 0) to `t1` (time 1).
+pub(crate) fn moving_point(t0: P3, t1: P3) -> Shape {
+    Shape::MovingPoint(MovingPoint { t0, t1 })
+}
+
+/// A segment whose ends move linearly from `t0` to `t1`.
+pub(crate) fn moving_segment(t0: [P3; 2], t1: [P3; 2]) -> Shape {
+    Shape::MovingSegment(MovingSegment { t0, t1 })
+}
+
+/// A triangle whose vertices move linearly from `t0` to `t1`.
+pub(crate) fn moving_triangle(t0: [P3; 3], t1: [P3; 3]) -> Shape {
+    Shape::MovingTriangle(MovingTriangle { t0, t1 })
 }
 
 /// Below this length a random vector is too short to give a direction (its
@@ -278,6 +294,9 @@ impl Similarity {
                 aabb([0, 1, 2].map(|i| lo[i].min(hi[i])), [0, 1, 2].map(|i| lo[i].max(hi[i])))
             }
             Shape::Mesh(m) => Shape::Mesh(m.clone()),
+            Shape::MovingPoint(p) => moving_point(self.point(p.t0), self.point(p.t1)),
+            Shape::MovingSegment(s) => moving_segment(s.t0.map(|v| self.point(v)), s.t1.map(|v| self.point(v))),
+            Shape::MovingTriangle(t) => moving_triangle(t.t0.map(|v| self.point(v)), t.t1.map(|v| self.point(v))),
         }
     }
 

@@ -114,6 +114,12 @@ fn map_numbers(case: &mut Case, f: &mut dyn FnMut(f64, Role) -> f64) {
                 p3(&mut b.min, Role::Coord, f);
                 p3(&mut b.max, Role::Coord, f);
             }
+            Shape::MovingPoint(p) => {
+                p3(&mut p.t0, Role::Coord, f);
+                p3(&mut p.t1, Role::Coord, f);
+            }
+            Shape::MovingSegment(s) => s.t0.iter_mut().chain(&mut s.t1).for_each(|v| p3(v, Role::Coord, f)),
+            Shape::MovingTriangle(t) => t.t0.iter_mut().chain(&mut t.t1).for_each(|v| p3(v, Role::Coord, f)),
         }
     }
 }
@@ -468,6 +474,7 @@ fn multi_scale(query: Query) -> SBoxedStrategy<Case> {
             ),
         ]
         .sboxed(),
+        Query::Ccd => super::ccd::full_range_scene().prop_map(move |(scene, p)| case(scene, p.t_max, None)).sboxed(),
         Query::Response => (
             vec3(BOX),
             unit(),

@@ -29,6 +29,7 @@
 mod barycentric;
 mod bounds;
 pub(crate) mod build;
+mod ccd;
 mod contact;
 mod family;
 pub mod full_range;
@@ -46,7 +47,7 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 /// The query kinds with generators, in the format's order: every kind.
-pub const GENERATED: [Query; 7] = Query::ALL;
+pub const GENERATED: [Query; 8] = Query::ALL;
 
 /// The `file` of every generated [`LoadedCase`].
 pub const GENERATED_FILE: &str = "generated";
@@ -72,6 +73,7 @@ fn families_of(query: Query) -> Vec<Family> {
         Query::Overlap => overlap::families(),
         Query::Toi => toi::families(),
         Query::Response => response::families(),
+        Query::Ccd => ccd::families(),
     }
 }
 

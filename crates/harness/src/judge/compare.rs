@@ -254,6 +254,16 @@ pub fn compare(lc: &LoadedCase, answer: &Answer, truth: &Answer, sizes: &Local) 
             c.errors.velocity = Some(if speed > 0.0 { err / speed } else { err });
             c.measure("velocity", err, "", field(|a| a.velocity));
         }
+        (Answer::Ccd(g), Answer::Ccd(w)) => match (g.t, w.t) {
+            (Some(gt), Some(wt)) => {
+                let dt = (gt - wt).abs();
+                c.errors.t = Some(dt / lc.case.t_max().max(f64::MIN_POSITIVE));
+                c.measure("t", dt, "", field(|a| a.t));
+            }
+            (None, None) => {}
+            (Some(_), None) => c.classify("false impact (referee: none)".into(), FalsePositive),
+            (None, Some(_)) => c.classify("missed impact (referee: impact)".into(), FalseNegative),
+        },
         _ => c.class.push("answer of another query kind".into()),
     }
     c

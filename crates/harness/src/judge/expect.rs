@@ -155,6 +155,20 @@ pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
                 cmp3(&mut out, "velocity_b", w, &a.velocity_b, tol);
             }
         }
+        Answer::Ccd(a) => {
+            if let Some(want) = e.impact
+                && want != a.t.is_some()
+            {
+                out.push(mm("impact", want, a.t.is_some()));
+            }
+            if let Some(want) = &e.ccd {
+                match (want, &a.t) {
+                    (None, None) => {}
+                    (Some(w), Some(g)) => cmp1(&mut out, "ccd.t", w.t, *g, tol),
+                    (w, g) => out.push(mm("ccd", w, g)),
+                }
+            }
+        }
     }
     out
 }

@@ -299,6 +299,7 @@ pub fn local(lc: &LoadedCase, truth: &Answer) -> Local {
         }
         (Query::Toi, Shape::Sphere(a), Some(b), Answer::Toi(w)) => toi(lc, a, b, w),
         (Query::Response, Shape::Sphere(a), Some(b), Answer::Response(w)) => response(a, b, w),
+        (Query::Ccd, a, Some(b), Answer::Ccd(w)) => ccd(a, b, w, lc.case.t_max()),
         _ => Local::default(),
     }
 }
@@ -524,6 +525,70 @@ fn toi(lc: &LoadedCase, a: &crate::case::SphereSpec, b: &Shape, w: &oracle::geom
     Local { point: reach, margin: reach, t: Size::new(t_max, 0.0), normal: Size::new(1.0, 0.0), ..Local::default() }
 }
 
+/// A `ccd` answer's time: its magnitude is `t_max` (as a `toi`'s), and its
+/// condition is how far the first root of the coplanarity cubic
+/// `f(t) = det[B, C, P](t)` moves when every input position moves by `ε` of the
+/// largest one, `X`: each column (a difference of two positions, at any time a
+/// convex combination of the ends) moves by at most `2εX`, so `f` by at most
+/// `2εX·(‖B‖‖C‖ + ‖C‖‖P‖ + ‖B‖‖P‖)`, and the root by that over `|f′(t*)|`. A
+/// tangent root (`f′(t*) = 0`) and coplanar motion (the referee's degenerate
+/// flag: `f ≡ 0`, where any perturbation of the inputs moves the first time
+/// anywhere in the interval) are capped by `t_max`. The cubic is taken in f64
+/// on the positions scaled by a power of two (exact) so that the largest is
+/// about 1: a size, not a decision.
+fn ccd(a: &Shape, b: &Shape, w: &oracle::geom::CcdAnswer, t_max: f64) -> Local {
+    let t_size = match w.t {
+        Some(t) if !w.degenerate => {
+            let cond = ccd_columns(a, b).map_or(f64::INFINITY, |(x, cols)| {
+                let at = |k: usize| {
+                    let (c0, c1) = cols[k];
+                    let p = [0, 1, 2].map(|i| c0[i] + t * (c1[i] - c0[i]));
+                    (p, sub(c1, c0))
+                };
+                let ((bb, db), (cc, dc), (pp, dp)) = (at(0), at(1), at(2));
+                let det = |u: P3, v: P3, w: P3| dot(cross(u, v), w);
+                let slope = (det(db, cc, pp) + det(bb, dc, pp) + det(bb, cc, dp)).abs();
+                let (nb, nc, np) = (norm(&bb), norm(&cc), norm(&pp));
+                ratio(2.0 * x * (nb * nc + nc * np + nb * np), slope)
+            });
+            Size::new(t_max, cond.min(t_max / f64::EPSILON))
+        }
+        Some(_) => Size::new(t_max, t_max / f64::EPSILON),
+        None => Size::new(t_max, 0.0),
+    };
+    Local { t: t_size, ..Local::default() }
+}
+
+/// The columns `B, C, P` of a `ccd` case's coplanarity determinant, each at
+/// `t = 0` and `t = 1`, with the positions scaled by a power of two so that the
+/// largest coordinate is in `[1, 2)`, and that scale `X` in the scaled units
+/// (so about 1). `None` for shapes that are not a `ccd` pair, or all zero.
+fn ccd_columns(a: &Shape, b: &Shape) -> Option<(f64, [(P3, P3); 3])> {
+    // Vertex–face: B = v1 − v0, C = v2 − v0, P = p − v0. Edge–edge:
+    // B = a1 − a0, C = b0 − a0, P = b1 − a0.
+    let (origin, rest): ([P3; 2], [[P3; 2]; 3]) = match (a, b) {
+        (Shape::MovingPoint(p), Shape::MovingTriangle(t)) => {
+            ([t.t0[0], t.t1[0]], [[t.t0[1], t.t1[1]], [t.t0[2], t.t1[2]], [p.t0, p.t1]])
+        }
+        (Shape::MovingSegment(a), Shape::MovingSegment(b)) => {
+            ([a.t0[0], a.t1[0]], [[a.t0[1], a.t1[1]], [b.t0[0], b.t1[0]], [b.t0[1], b.t1[1]]])
+        }
+        _ => return None,
+    };
+    let m = rest.iter().flatten().chain(&origin).copied().map(max_abs).fold(0.0, f64::max);
+    if !(m > 0.0 && m.is_finite()) {
+        return None;
+    }
+    // A power of two, in two halves so that neither overflows for a subnormal
+    // `m`: scaling by it is exact (but for subnormal results, far below what a
+    // size needs).
+    let e = -(m.log2().floor() as i32);
+    let (k1, k2) = (2f64.powi(e / 2), 2f64.powi(e - e / 2));
+    let s = |p: P3| p.map(|x| x * k1 * k2);
+    let col = |q: [P3; 2]| (sub(s(q[0]), s(origin[0])), sub(s(q[1]), s(origin[1])));
+    Some((m * k1 * k2, rest.map(col)))
+}
+
 fn response(a: &crate::case::SphereSpec, b: &Shape, w: &oracle::geom::ResponseAnswer) -> Local {
     let va = a.velocity.unwrap_or_default();
     let vb = b.velocity();
@@ -576,6 +641,12 @@ pub fn scene_scale(lc: &LoadedCase) -> f64 {
                 p3(&b.min);
                 p3(&b.max);
             }
+            Some(Shape::MovingPoint(p)) => {
+                p3(&p.t0);
+                p3(&p.t1);
+            }
+            Some(Shape::MovingSegment(s)) => s.t0.iter().chain(&s.t1).for_each(&mut p3),
+            Some(Shape::MovingTriangle(t)) => t.t0.iter().chain(&t.t1).for_each(&mut p3),
             None => {}
         }
     }

@@ -114,6 +114,7 @@ pub fn degenerate(answer: &Answer) -> bool {
         Answer::Barycentric(a) => a.degenerate,
         Answer::Toi(a) => a.degenerate,
         Answer::Response(a) => a.degenerate,
+        Answer::Ccd(a) => a.degenerate,
         Answer::Bounds(_) | Answer::Overlap(_) => false,
     }
 }
@@ -136,6 +137,7 @@ pub fn all_finite(answer: &Answer) -> bool {
         Answer::Overlap(_) => true,
         Answer::Toi(a) => a.toi.is_none_or(|t| t.t.is_finite() && f3(&t.point) && f3(&t.normal)),
         Answer::Response(a) => f3(&a.velocity_a) && f3(&a.velocity_b),
+        Answer::Ccd(a) => a.t.is_none_or(f64::is_finite),
     }
 }
 

@@ -3,12 +3,12 @@
 //! ([`json_schema`]), and the conversions between a case or an answer and its
 //! wire form live here and nowhere else.
 
-use crate::case::{Case, Expect, MeshSpec, Query, Shape};
+use crate::case::{Case, CcdTime, Expect, MeshSpec, Query, Shape};
 use crate::load::LoadedCase;
 use crashtest_core::engine::Answer;
 use crashtest_core::geom::{
-    Aabb, Ball, BarycentricAnswer, BoundsAnswer, Contact, ContactAnswer, IntersectAnswer, P3, ResponseAnswer,
-    SegmentHit, Toi, ToiAnswer,
+    Aabb, Ball, BarycentricAnswer, BoundsAnswer, CcdAnswer, Contact, ContactAnswer, IntersectAnswer, P3,
+    ResponseAnswer, SegmentHit, Toi, ToiAnswer,
 };
 use crashtest_core::pair::{Pair, ShapeKind};
 use schemars::JsonSchema;
@@ -337,7 +337,7 @@ pub struct WireCase {
     /// The second shape (absent for `bounds`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub b: Option<Shape>,
-    /// End of the time interval (`toi`: always written).
+    /// End of the time interval (`toi` and `ccd`: always written).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub t_max: Option<f64>,
     /// Coefficient of restitution (`response`).
@@ -347,7 +347,7 @@ pub struct WireCase {
 
 impl WireCase {
     /// The wire form of a loaded case: mesh files replaced by their vertices
-    /// and faces, `t_max` written out for `toi`.
+    /// and faces, `t_max` written out for `toi` and `ccd`.
     pub fn of(lc: &LoadedCase) -> Self {
         let c = &lc.case;
         let inline = |s: &Shape, m: &Option<crate::mesh::Mesh>| match (s, m) {
@@ -364,7 +364,7 @@ impl WireCase {
             query: c.query,
             a: inline(&c.a, &lc.meshes[0]),
             b: c.b.as_ref().map(|b| inline(b, &lc.meshes[1])),
-            t_max: (c.query == Query::Toi).then(|| c.t_max()),
+            t_max: matches!(c.query, Query::Toi | Query::Ccd).then(|| c.t_max()),
             restitution: c.restitution,
         }
     }
@@ -483,6 +483,10 @@ pub struct WireAnswer {
     /// `response`: `b`'s velocity after the impulse.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub velocity_b: Option<P3>,
+    /// `ccd`: the first time of impact, or `null`.
+    #[serde(default, deserialize_with = "crate::case::present", skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<CcdTime>")]
+    pub ccd: Option<Option<CcdTime>>,
 }
 
 impl WireAnswer {
@@ -518,6 +522,10 @@ impl WireAnswer {
                 w.velocity_b = Some(r.velocity_b);
                 w.degenerate = Some(r.degenerate);
             }
+            Answer::Ccd(c) => {
+                w.ccd = Some(c.t.map(|t| CcdTime { t }));
+                w.degenerate = Some(c.degenerate);
+            }
         }
         w
     }
@@ -537,6 +545,8 @@ impl WireAnswer {
             toi: self.toi,
             velocity_a: self.velocity_a,
             velocity_b: self.velocity_b,
+            impact: None,
+            ccd: self.ccd,
         }
     }
 
@@ -559,6 +569,7 @@ impl WireAnswer {
         has(self.toi.is_some(), "toi");
         has(self.velocity_a.is_some(), "velocity_a");
         has(self.velocity_b.is_some(), "velocity_b");
+        has(self.ccd.is_some(), "ccd");
         out
     }
 
@@ -573,6 +584,7 @@ impl WireAnswer {
             Query::Overlap => &["overlap"],
             Query::Toi => &["toi", "degenerate"],
             Query::Response => &["velocity_a", "velocity_b", "degenerate"],
+            Query::Ccd => &["ccd", "degenerate"],
         };
         if let Some(f) = self.present().into_iter().find(|f| !allowed.contains(f)) {
             return Err(format!("{f}: not a field of a {query} answer (its fields: {})", allowed.join(", ")));
@@ -605,6 +617,7 @@ impl WireAnswer {
                 velocity_b: self.velocity_b.ok_or_else(|| need("velocity_b"))?,
                 degenerate,
             }),
+            Query::Ccd => Answer::Ccd(CcdAnswer { t: self.ccd.ok_or_else(|| need("ccd"))?.map(|c| c.t), degenerate }),
         };
         Ok(answer)
     }

@@ -297,6 +297,18 @@ pub fn rounded_to_f32(lc: &LoadedCase) -> LoadedCase {
                 x.max = r3(x.max);
             }
             Shape::Mesh(_) => {}
+            Shape::MovingPoint(x) => {
+                x.t0 = r3(x.t0);
+                x.t1 = r3(x.t1);
+            }
+            Shape::MovingSegment(x) => {
+                x.t0 = x.t0.map(r3);
+                x.t1 = x.t1.map(r3);
+            }
+            Shape::MovingTriangle(x) => {
+                x.t0 = x.t0.map(r3);
+                x.t1 = x.t1.map(r3);
+            }
         }
         s
     }
