@@ -136,6 +136,11 @@ enum Command {
         #[arg(long)]
         protocol: bool,
     },
+    /// Read a published benchmark's queries into a fixture file.
+    Import {
+        #[command(subcommand)]
+        what: ImportCommand,
+    },
     /// Write generated cases as a fixture file on standard output (no
     /// `expect`: `crashtest check` judges them against the referee), to replay
     /// a slice of a campaign or to run it through another build.
@@ -182,6 +187,28 @@ enum Command {
         /// exact point's label) as a fixture file for `crashtest check`.
         #[arg(long, value_name = "LABEL")]
         cases_at: Option<String>,
+    },
+}
+
+/// What `crashtest import` reads.
+#[derive(Subcommand)]
+enum ImportCommand {
+    /// The CCD benchmark's sample queries: a folder of
+    /// `<scene>/vertex-face/*.csv` and `<scene>/edge-edge/*.csv` (8 rows of 7
+    /// integers per query) written as `ccd` cases whose `expect.impact` is the
+    /// benchmark's ground truth. A coordinate that is not exactly a double is
+    /// refused with its file, query, row and column; the other queries are
+    /// still written, and the exit code is 2.
+    CcdBenchmark {
+        /// The benchmark folder.
+        dir: PathBuf,
+        /// The fixture file to write.
+        #[arg(short, long)]
+        out: PathBuf,
+        /// Take this many queries of each file, evenly spaced through it
+        /// (every query when absent).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+        per_file: Option<u64>,
     },
 }
 
@@ -705,6 +732,37 @@ fn main() -> ExitCode {
                 out!("{}", harness::case::json_schema());
             }
             ExitCode::SUCCESS
+        }
+        Command::Import { what: ImportCommand::CcdBenchmark { dir, out, per_file } } => {
+            let (queries, errors) = harness::ccd_benchmark::read_dir(&dir);
+            for e in &errors {
+                eprintln!("error: {e}");
+            }
+            let picked = match per_file {
+                Some(n) => harness::ccd_benchmark::evenly_per_file(&queries, usize::try_from(n).unwrap_or(usize::MAX)),
+                None => queries.iter().collect(),
+            };
+            let positives = picked.iter().filter(|q| q.truth).count();
+            let cases = picked.into_iter().map(|q| q.case.clone()).collect();
+            let file = harness::case::FixtureFile { schema: harness::case::SCHEMA.into(), cases };
+            let written = serde_json::to_string_pretty(&file)
+                .map_err(|e| e.to_string())
+                .and_then(|s| std::fs::write(&out, s + "\n").map_err(|e| e.to_string()));
+            match written {
+                Ok(()) => {
+                    eprintln!(
+                        "{} queries ({positives} with an impact) of {} read, written to {}",
+                        file.cases.len(),
+                        queries.len(),
+                        out.display()
+                    );
+                    if errors.is_empty() { ExitCode::SUCCESS } else { ExitCode::from(2) }
+                }
+                Err(e) => {
+                    eprintln!("error: cannot write {}: {e}", out.display());
+                    ExitCode::from(2)
+                }
+            }
         }
         Command::Cases { only, count, start, full_range, seed } => {
             let Some(end) = start.checked_add(count) else {

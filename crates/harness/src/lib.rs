@@ -39,6 +39,7 @@
 
 pub mod builtin;
 pub mod case;
+pub mod ccd_benchmark;
 pub mod check;
 pub mod conformance;
 pub mod defaults;
