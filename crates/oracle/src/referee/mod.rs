@@ -77,6 +77,9 @@
 
 pub mod barycentric;
 pub mod bounds;
+pub mod ccd;
+mod ccd_fast;
+mod ccd_poly;
 mod closest;
 pub mod contact;
 mod contact_fast;
@@ -96,6 +99,7 @@ mod toi_fast;
 
 pub use barycentric::barycentric_triangle;
 pub use bounds::{aabb_of_points, enclosure_margin, min_ball};
+pub use ccd::{ccd_point_triangle, ccd_segment_segment, ccd_stage_counts};
 pub use contact::{
     CONCENTRIC_FALLBACK_NORMAL, contact_margin_sphere_mesh, contact_margin_sphere_plane, contact_margin_sphere_sphere,
     contact_margin_sphere_triangle, contact_plane_sphere, contact_sphere_mesh, contact_sphere_plane,
