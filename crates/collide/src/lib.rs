@@ -29,6 +29,7 @@
 pub mod barycentric;
 pub mod batch;
 pub mod bounds;
+pub mod ccd;
 pub mod contact;
 pub mod exact;
 pub mod intersect;
@@ -40,5 +41,6 @@ pub mod shapes;
 mod test_support;
 pub mod toi;
 
+pub use ccd::Ccd;
 pub use real::{Real, Vec3};
 pub use shapes::{Aabb, Plane, Segment, Sphere, Triangle};
