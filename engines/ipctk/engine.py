@@ -17,6 +17,7 @@ and on some degenerate queries it runs for minutes; the worker is then killed
 and the case fails, and the next case gets a new worker.
 """
 import json
+import math
 import os
 import select
 import signal
@@ -44,33 +45,36 @@ MIN_DISTANCE = 0.0  # the format's contact is distance 0: no minimum separation
 # Tight Inclusion: its default tolerance (1e-6); conservative_rescaling 1.0 (its default
 # 0.8 makes ipctk ask Tight Inclusion for the time the distance reaches min(1e-4, 0.2 d0)
 # instead of 0: README.md, "Settings"); the iteration limit lowered from its default 1e7
-# to 1e5 (the budget: README.md, "Time"). Additive: every default (max_iterations 1e7,
-# conservative_rescaling 0.9).
+# to 1e5 (the budget: README.md, "Time"). Additive: its default conservative_rescaling
+# 0.9; max_iterations lowered from its default 1e7 to 1e6 (the budget, the same).
 TI_CONSERVATIVE_RESCALING = 1.0
 TI_MAX_ITERATIONS = 100_000
+ADDITIVE_MAX_ITERATIONS = 1_000_000
 METHODS = {
     "tight-inclusion": lambda: ipctk.TightInclusionCCD(max_iterations=TI_MAX_ITERATIONS,
                                                        conservative_rescaling=TI_CONSERVATIVE_RESCALING),
-    "additive": lambda: ipctk.AdditiveCCD(),
+    "additive": lambda: ipctk.AdditiveCCD(max_iterations=ADDITIVE_MAX_ITERATIONS),
 }
-CASE_BUDGET = 1.0  # s of wall time per case; past it the worker is killed, the case failed
+CASE_BUDGET = 0.5    # s of wall time per case; past it the worker is killed, the case failed
+BATCH_BUDGET = 45.0  # s of wall time per batch, below crashtest's 60 s (see `budget`)
+CASE_FLOOR = 0.005   # s: the least a case is given when the batch's budget runs short
 
 
-def additive_max_iterations():
-    """AdditiveCCD's max_iterations: not readable from the object (ipctk exposes no
-    attribute for it), so the default from its constructor's signature."""
+def additive_default_max_iterations():
+    """AdditiveCCD's default max_iterations, from its constructor's signature (ipctk
+    exposes no attribute for it, so what was passed cannot be read back either)."""
     import re
     m = re.search(r"max_iterations: [\w.]+ = (\d+)", ipctk.AdditiveCCD.__init__.__doc__ or "")
     return int(m.group(1)) if m else None
 
 
 def constructor(ccd):
-    """The method object's constructor call with every setting read back from it (what
-    the calls really use): the provenance and the reproductions say it."""
+    """The method object's constructor call with every setting (read back from the object
+    where ipctk exposes it): the provenance and the reproductions say it."""
     if isinstance(ccd, ipctk.TightInclusionCCD):
         return (f"ipctk.TightInclusionCCD(tolerance={ccd.tolerance!r}, max_iterations={ccd.max_iterations!r}, "
                 f"conservative_rescaling={ccd.conservative_rescaling!r})")
-    return (f"ipctk.AdditiveCCD(max_iterations={additive_max_iterations()!r}, "
+    return (f"ipctk.AdditiveCCD(max_iterations={ADDITIVE_MAX_ITERATIONS!r}, "
             f"conservative_rescaling={ccd.conservative_rescaling!r})")
 
 
@@ -79,8 +83,8 @@ def settings(ccd):
         return (f"{constructor(ccd)} (its defaults: tolerance {ccd.DEFAULT_TOLERANCE!r}, max_iterations "
                 f"{ccd.DEFAULT_MAX_ITERATIONS!r}, conservative_rescaling {ccd.DEFAULT_CONSERVATIVE_RESCALING!r}; "
                 f"SMALL_TOI {ccd.SMALL_TOI!r})")
-    return (f"{constructor(ccd)} (its defaults; max_iterations from the constructor's signature, "
-            f"DEFAULT_CONSERVATIVE_RESCALING {ccd.DEFAULT_CONSERVATIVE_RESCALING!r})")
+    return (f"{constructor(ccd)} (its defaults: max_iterations {additive_default_max_iterations()!r}, from the "
+            f"constructor's signature; conservative_rescaling {ccd.DEFAULT_CONSERVATIVE_RESCALING!r})")
 
 
 def provenance(method, ccd):
@@ -110,8 +114,9 @@ def provenance(method, ccd):
                                          "eb1_t1, min_distance, tmax): a.t0[0..1], b.t0[0..1], a.t1[0..1], b.t1[0..1]",
         "answer": "hit false: null (the toi beside it is not a time: inf for Tight Inclusion, Additive's partial "
                   "sum); hit true: {\"t\": toi}, toi as ipctk gives it; no degenerate flag (ipctk has none)",
-        "budget": f"each case in a forked worker process, {CASE_BUDGET:g} s of wall time: past it the worker is "
-                  "killed and the case is an error; ns is the method's own call, timed in the worker",
+        "budget": f"each case in a forked worker process, {CASE_BUDGET:g} s of wall time (less once a batch has "
+                  f"spent most of {BATCH_BUDGET:g} s, never below {CASE_FLOOR:g} s): past it the worker is killed "
+                  "and the case is an error; ns is the method's own call, timed in the worker",
         "logging": "ipctk.set_logger_level(LoggerLevel.error): its warnings (\"Initial distance 0 <= d_min=0, "
                    "returning toi=0!\") are not written; they change no answer",
         "stdout": "fd 1 redirected to stderr before import; protocol on a duplicate of fd 1",
@@ -136,6 +141,8 @@ def provenance(method, ccd):
 #    is early by design: README.md, "Known divergences"). An initial distance 0 is ipctk's
 #    (True, 0.0): t = 0, as the format says.
 # 4. No degenerate flag: ipctk has none, so none is sent.
+# 5. hit with a non-finite toi (Additive on a zero-area triangle: NaN): the case's error,
+#    "non-finite toi", naming ipctk's pair (the protocol's form for a NaN or infinity).
 def arguments(case):
     """The case's positions in ipctk's order, and which method takes them."""
     (ka, sa), = case["a"].items()
@@ -148,6 +155,8 @@ def arguments(case):
 
 
 def to_format(hit, toi):
+    if hit and not math.isfinite(toi):  # the protocol's form for a non-finite answer
+        raise ValueError(f"non-finite toi: ipctk answered (hit {hit}, toi {toi!r})")
     return {"ccd": {"t": float(toi)} if hit else None}
 # --- end of the convention translation ------------------------------------------
 
@@ -227,6 +236,27 @@ class EngineFailure(Exception):
 
 
 _worker = None
+_batch = None  # {"start": monotonic s, "left": cases not yet answered}, set by `prepare`
+
+
+def prepare(cases):
+    """The start of a batch (crashtest_engine.serve's `prepare`): its clock and its count,
+    for `budget`."""
+    global _batch
+    _batch = {"start": time.monotonic(), "left": len(cases)}
+
+
+def budget():
+    """The wall time the next case may take: CASE_BUDGET, unless the batch's slow cases
+    have spent so much of BATCH_BUDGET that what is left, less CASE_FLOOR for each case
+    after this one, is less; never below CASE_FLOOR. A batch so takes at most about
+    BATCH_BUDGET + CASE_FLOOR per case, within crashtest's time limit per batch (60 s by
+    default), and one whose cases take µs, as nearly all do, is never cut short."""
+    if _batch is None:
+        return CASE_BUDGET
+    spent = time.monotonic() - _batch["start"]
+    left = BATCH_BUDGET - spent - CASE_FLOOR * max(0, _batch["left"] - 1)
+    return min(CASE_BUDGET, max(CASE_FLOOR, left))
 
 
 def run(method, name, points, tmax):
@@ -236,11 +266,14 @@ def run(method, name, points, tmax):
     if _worker is None:
         _worker = Worker(method)
     line = (json.dumps([name, points, tmax], allow_nan=False) + "\n").encode()
-    out = _worker.call(line, CASE_BUDGET)
+    allowed = budget()
+    if _batch is not None:
+        _batch["left"] -= 1
+    out = _worker.call(line, allowed)
     if out[0] == "timeout":
         _worker.end(kill=True)
         _worker = None
-        raise EngineFailure(f"ipctk {name} did not answer within {CASE_BUDGET:g} s of wall time "
+        raise EngineFailure(f"ipctk {name} did not answer within {allowed:g} s of wall time "
                             "(the worker was killed; README.md, \"Time\")")
     if out[0] == "gone":
         _worker = None
@@ -275,7 +308,7 @@ def main(argv):
     handlers = {("ccd", "moving_point", "moving_triangle"): h,
                 ("ccd", "moving_segment", "moving_segment"): h}
     return serve(f"ipctk/{method}", package_version("ipctk"), 53, handlers, provenance(method, ccd),
-                 reproductions=reproductions(method, constructor(ccd), handlers))
+                 reproductions=reproductions(method, constructor(ccd), handlers), prepare=prepare)
 
 
 if __name__ == "__main__":
