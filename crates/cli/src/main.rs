@@ -80,6 +80,14 @@ enum Command {
         /// queries`; when the file exists, the accuracy–speed charts use them.
         #[arg(long, default_value = "target/criterion/crashtest-bench.json")]
         bench_figures: PathBuf,
+        /// Add the CCD benchmark section: the benchmark's sample queries in
+        /// DIR (`<scene>/vertex-face/*.csv`, `<scene>/edge-edge/*.csv`)
+        /// through every engine that answers ccd and the referee, false
+        /// positives, false negatives and time per query (ccd-benchmark.json).
+        /// Runs with --no-sections too; a DIR or query that cannot be read is
+        /// named and the exit code is 2, the rest of the report still written.
+        #[arg(long, value_name = "DIR")]
+        ccd_benchmark: Option<PathBuf>,
     },
     /// Join shard reports (folders written by `report --shard`) into one report.
     Merge {
@@ -390,6 +398,7 @@ fn main() -> ExitCode {
             no_timing,
             no_sections,
             bench_figures,
+            ccd_benchmark,
         } => {
             let set = match engines.set() {
                 Ok(set) => set,
@@ -431,7 +440,19 @@ fn main() -> ExitCode {
                 }
                 Err(why) => why,
             });
-            let outcome = harness::report::campaign::run(&config, provenance);
+            let mut outcome = harness::report::campaign::run(&config, provenance);
+            // The CCD benchmark's section, as the campaign's own sections: in
+            // shard 0 only (a merge carries it).
+            if let Some(dir) = ccd_benchmark.filter(|_| shard.is_none_or(|(i, _)| i == 0)) {
+                let settings = harness::ccd_report::Settings { timing: !no_timing, ..Default::default() };
+                let (section, errors) = harness::ccd_report::section(&dir, &settings, &config.engines);
+                let seconds = section.data["seconds"].as_f64().unwrap_or(0.0);
+                let p = &mut outcome.summary.provenance;
+                p.phases.push((format!("sections: {}", section.id), seconds));
+                p.wall_seconds += seconds;
+                outcome.sections.push(section);
+                outcome.input_errors.extend(errors.into_iter().map(|e| format!("--ccd-benchmark: {e}")));
+            }
             let mut id = format!("{}-seed{seed}", harness::report::provenance::stamp(started));
             if let Some((i, n)) = shard {
                 id.push_str(&format!("-shard{i}of{n}"));

@@ -26,7 +26,8 @@
 //!    ([`defaults`]) and the one timing loop ([`timing`]);
 //! 3. rendering ([`render`]): pages, tables, charts and sections from measured
 //!    data, never running anything;
-//! 4. the experiments — [`sweep`], [`scene`], [`toi_report`], [`dynamics`] —
+//! 4. the experiments — [`sweep`], [`scene`], [`toi_report`], [`dynamics`],
+//!    [`ccd_report`] (the CCD benchmark's queries, `report --ccd-benchmark`) —
 //!    each a run and a rendering of what it measured;
 //! 5. the report ([`report`]): the campaign that runs the cases and the
 //!    experiments, the peers' section, the bench's timings, provenance, and
@@ -40,6 +41,7 @@
 pub mod builtin;
 pub mod case;
 pub mod ccd_benchmark;
+pub mod ccd_report;
 pub mod check;
 pub mod conformance;
 pub mod defaults;
