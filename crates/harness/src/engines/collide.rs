@@ -10,8 +10,8 @@ use crate::engine::{Queries, Reply, Unsupported};
 use crate::mesh::Mesh;
 use collide::Real;
 use oracle::geom::{
-    Aabb, Ball, BarycentricAnswer, BoundsAnswer, Contact, ContactAnswer, IntersectAnswer, P3, Plane, ResponseAnswer,
-    Segment, SegmentHit, Sphere, Toi, ToiAnswer, Triangle,
+    Aabb, Ball, BarycentricAnswer, BoundsAnswer, CcdAnswer, Contact, ContactAnswer, IntersectAnswer, MovingPoint,
+    MovingSegment, MovingTriangle, P3, Plane, ResponseAnswer, Segment, SegmentHit, Sphere, Toi, ToiAnswer, Triangle,
 };
 
 /// Bisection steps of the lecture's interval halving as an engine: 40, so its
@@ -113,6 +113,24 @@ fn toi<T: Real>(t: Option<collide::toi::Toi<T>>) -> ToiAnswer {
 
 fn response<T: Real>(r: collide::response::Response<T>) -> ResponseAnswer {
     ResponseAnswer { velocity_a: w(&r.velocity_a), velocity_b: w(&r.velocity_b), degenerate: r.degenerate }
+}
+
+/// collide's continuous collision is written in `f64` only: an `f32` engine
+/// says so rather than widen its inputs and run another precision's method.
+fn ccd_in_f64<T: Real>() -> Reply<()> {
+    if T::EPSILON.wide() == f64::EPSILON {
+        Ok(())
+    } else {
+        Err(Unsupported("collide's continuous collision (ccd) is written in f64 only".into()))
+    }
+}
+
+fn ccd_answer(c: collide::ccd::Ccd) -> CcdAnswer {
+    CcdAnswer { t: c.t, degenerate: c.degenerate }
+}
+
+fn f64v(p: &P3) -> collide::Vec3<f64> {
+    collide::Vec3::new(p[0], p[1], p[2])
 }
 
 impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
@@ -320,6 +338,26 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
 
     fn response_sphere_plane(&self, _a: &Sphere, va: &P3, b: &Plane, e: f64) -> Reply<ResponseAnswer> {
         Ok(response(collide::response::respond_sphere_plane(&v::<T>(va), &v(&b.normal), T::of(e))))
+    }
+
+    fn ccd_point_triangle(&self, p: &MovingPoint, t: &MovingTriangle, t_max: f64) -> Reply<CcdAnswer> {
+        ccd_in_f64::<T>()?;
+        let x0 = [p.t0, t.t0[0], t.t0[1], t.t0[2]].map(|q| f64v(&q));
+        let x1 = [p.t1, t.t1[0], t.t1[1], t.t1[2]].map(|q| f64v(&q));
+        Ok(ccd_answer(match self.method {
+            Method::Lecture => collide::ccd::ccd_vertex_face_lecture(&x0, &x1, t_max),
+            Method::Robust => collide::ccd::ccd_vertex_face(&x0, &x1, t_max),
+        }))
+    }
+
+    fn ccd_segment_segment(&self, a: &MovingSegment, b: &MovingSegment, t_max: f64) -> Reply<CcdAnswer> {
+        ccd_in_f64::<T>()?;
+        let x0 = [a.t0[0], a.t0[1], b.t0[0], b.t0[1]].map(|q| f64v(&q));
+        let x1 = [a.t1[0], a.t1[1], b.t1[0], b.t1[1]].map(|q| f64v(&q));
+        Ok(ccd_answer(match self.method {
+            Method::Lecture => collide::ccd::ccd_edge_edge_lecture(&x0, &x1, t_max),
+            Method::Robust => collide::ccd::ccd_edge_edge(&x0, &x1, t_max),
+        }))
     }
 }
 
