@@ -55,7 +55,7 @@ METHODS = {
                                                        conservative_rescaling=TI_CONSERVATIVE_RESCALING),
     "additive": lambda: ipctk.AdditiveCCD(max_iterations=ADDITIVE_MAX_ITERATIONS),
 }
-CASE_BUDGET = 0.5    # s of wall time per case; past it the worker is killed, the case failed
+CASE_BUDGET = 0.25   # s of wall time per case; past it the worker is killed, the case failed
 BATCH_BUDGET = 45.0  # s of wall time per batch, below crashtest's 60 s (see `budget`)
 CASE_FLOOR = 0.005   # s: the least a case is given when the batch's budget runs short
 
