@@ -3,7 +3,7 @@
 //! of a sweep ([`cases`]).
 
 use super::grid::{GridValue, Pose, PoseKind, Rng, r10_grid};
-use super::{angle, feature, offset, size_ratio, sliver, spheres};
+use super::{angle, ccd, feature, offset, size_ratio, sliver, spheres};
 use crate::case::{Case, FixtureFile, Query, SCHEMA, Shape};
 use crate::generate::build::Scene;
 use crate::load::LoadedCase;
@@ -479,6 +479,46 @@ pub static SWEEPS: &[Sweep] = &[
                 the triangle); benign at ρ = 1 and walked toward both ends. Errors are relative to the \
                 scene's scale, which the larger shape sets.",
     },
+    Sweep {
+        name: "ccd-edge",
+        title: "a moving point passing a moving triangle's edge",
+        parameter: "distance of the point's path from the edge",
+        lo: -300,
+        hi: 0,
+        benign: 0,
+        exact: Some("exactly through the edge"),
+        poses: PoseMix::Alternate,
+        probes: &[
+            Probe { name: "vertex–face outside", query: Query::Ccd, build: ccd::vertex_face_outside },
+            Probe { name: "vertex–face inside", query: Query::Ccd, build: ccd::vertex_face_inside },
+        ],
+        about: "A point crosses a moving triangle's plane at t* in [1/4, 3/4], δ from one of its edges, \
+                outside the triangle or inside it (one probe each), or exactly through the edge. The \
+                referee: outside, no impact for every δ > 0; inside and exactly through, an impact at t* \
+                (the closed triangle holds its edges) — outside flips at δ = 0. The edge runs through the \
+                origin with exact ends; in exact poses point and triangle move only along the normal, so \
+                the path is δ from the edge to an ulp of δ down to 1e-300; in rotated poses the triangle \
+                translates, the point crosses up to 35° off the normal and the scene is turned, so δ below \
+                about 1e-16 is a rounding.",
+    },
+    Sweep {
+        name: "ccd-parallel",
+        title: "two moving edges crossing as they turn parallel",
+        parameter: "angle between the edges (rad)",
+        lo: -300,
+        hi: 0,
+        benign: 0,
+        exact: Some("exactly parallel"),
+        poses: PoseMix::Alternate,
+        probes: &[Probe { name: "edge–edge", query: Query::Ccd, build: ccd::edge_edge }],
+        about: "Two edges of length 2–4 cross each other at interior points at t* in [1/4, 3/4], at the \
+                angle θ. The referee: an impact at t*, not degenerate; exactly parallel, the edges are \
+                collinear and overlap at t*: an impact at t* flagged degenerate (parallel edges are \
+                coplanar at every time: the coplanarity cubic is identically zero). In exact poses one \
+                edge lies on an axis and the other's ends are ∓b sin θ off it, the edges moving along the \
+                normal and sliding along that axis, so θ holds to an ulp down to 1e-300; in rotated poses \
+                each edge translates and the scene is turned, so θ below about 1e-16 is a rounding.",
+    },
 ];
 
 /// The sweeps' names, in order.
@@ -502,7 +542,7 @@ pub fn list_text() -> String {
     for w in SWEEPS {
         let probes: Vec<&str> = w.probes.iter().map(|p| p.name).collect();
         s.push_str(&format!(
-            "{:<11} {} — 1e{} … 1e{}{}; {}\n",
+            "{:<12} {} — 1e{} … 1e{}{}; {}\n",
             w.name,
             w.title,
             w.lo,

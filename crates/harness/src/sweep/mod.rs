@@ -45,6 +45,7 @@
 
 mod angle;
 mod catalog;
+mod ccd;
 mod feature;
 pub mod grid;
 mod measure;
