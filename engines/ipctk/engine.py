@@ -8,13 +8,15 @@ behind crashtest-engine/1, as two engines from one adapter:
 See README.md for what it answers, the convention table and the divergences
 found. Every number in an answer is ipctk's; the adapter only orders the case's
 positions into ipctk's arguments and translates ipctk's (hit, toi) into the
-format's answer, in ONE place: `to_format` below.
+format's answer, in ONE place: `arguments` and `to_format` below (the section
+marked THE CONVENTION TRANSLATION).
 
 Each case's call runs in a forked worker process with a wall-time budget
 (`CASE_BUDGET`): Tight Inclusion's retry for a time of impact below
 `SMALL_TOI` runs without an iteration limit (ipctk's tight_inclusion_ccd.cpp),
-and on some degenerate queries it runs for minutes; the worker is then killed
-and the case fails, and the next case gets a new worker.
+and where the impact is at t = 0 but ipctk's distance there rounds above 0 it
+runs until memory runs out; the worker is then killed and the case fails, and
+the next case gets a new worker. A batch is kept within `BATCH_BUDGET`.
 """
 import json
 import math
@@ -113,7 +115,8 @@ def provenance(method, ccd):
         "moving_segment-moving_segment": "edge_edge_ccd(ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, "
                                          "eb1_t1, min_distance, tmax): a.t0[0..1], b.t0[0..1], a.t1[0..1], b.t1[0..1]",
         "answer": "hit false: null (the toi beside it is not a time: inf for Tight Inclusion, Additive's partial "
-                  "sum); hit true: {\"t\": toi}, toi as ipctk gives it; no degenerate flag (ipctk has none)",
+                  "sum); hit true: {\"t\": toi}, toi as ipctk gives it (a non-finite toi: the case's error); no "
+                  "degenerate flag (ipctk has none)",
         "budget": f"each case in a forked worker process, {CASE_BUDGET:g} s of wall time (less once a batch has "
                   f"spent most of {BATCH_BUDGET:g} s, never below {CASE_FLOOR:g} s): past it the worker is killed "
                   "and the case is an error; ns is the method's own call, timed in the worker",
