@@ -147,3 +147,13 @@ pub(crate) fn solve(q: Query, x0: &Inputs, x1: &Inputs, t_max: f64) -> Ccd {
     }
     Ccd::MISS
 }
+
+/// The first root of the coplanarity cubic in `[tl, th]`, correctly rounded
+/// (the filter has certified the contact at every root there).
+pub(crate) fn first_root_in(q: Query, x0: &Inputs, x1: &Inputs, tl: f64, th: f64) -> Option<f64> {
+    let f = coplanarity(q, &points(x0, x1));
+    if f.is_zero() {
+        return None;
+    }
+    roots_in(&f.square_free(), tl, th).first().map(round)
+}

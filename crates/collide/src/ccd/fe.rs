@@ -45,6 +45,12 @@ impl Fe {
         Self { v, e: 0.0 }
     }
 
+    /// The bound on the error.
+    #[inline(always)]
+    pub(crate) fn bound(self) -> f64 {
+        self.e
+    }
+
     /// The certain sign of the exact value, if the bound decides it (never
     /// [`Sign::Zero`]: an exact zero is not certified here).
     #[inline(always)]

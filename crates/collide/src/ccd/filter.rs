@@ -21,8 +21,12 @@
 //!    evaluated with bounds valid for every `t ∈ [t_l, t_h]`: all certainly
 //!    positive — the contact holds at every root in the bracket, so the
 //!    first root is there, and `t_l < r < t_h` is returned after bisection to
-//!    within 2 ulps; one certainly negative — no contact at any root there,
+//!    within 2 ulps (where the bounds no longer decide the bisection — a
+//!    root near `t = 0`, or a slow approach — the exact first root in the
+//!    bracket, correctly rounded); one certainly negative — no contact at any root there,
 //!    walk on. The stretch after the last bracket must be free of roots too.
+//!    A stretch whose Bernstein coefficients straddle zero is certified on
+//!    halves, a few times over.
 //!
 //! Anything not certified (a root at `0` or `t_max`, a tangency, a zero
 //! margin, a degenerate triangle, overflow) returns `None`: the exact stage
@@ -31,13 +35,25 @@
 use super::fe::{Fe, FeV, cross3, det3, dot3, positions, sub3};
 use super::lecture::{cubic, cubic_roots};
 use super::poly::next_up;
-use super::{Ccd, Inputs, Query};
+use super::{Ccd, Inputs, Query, exact_stage};
 use crate::exact::Sign;
 
-/// Ulps on each side of a candidate root tried as brackets, in turn: the
-/// first is the answer's accuracy itself; wider ones catch roots the `f64`
-/// solver placed a few ulps off (bisection then narrows them).
-const BRACKET_ULPS: [u64; 3] = [1, 16, 1024];
+/// Brackets tried around a candidate root, in turn: 1 ulp on each side (the
+/// answer's accuracy itself), then half-widths of [`BRACKET_GROWTH`]`^k`
+/// times the root's estimated uncertainty (the cubic's error bound at the
+/// root over its slope), `k = 0, 1, 2`: a root whose slope is small against
+/// the rounding of the positions (a slow approach, a root near `t = 0`,
+/// where ulps are tiny) is bracketed by a sign change all the same.
+const BRACKET_TRIES: u32 = 3;
+
+/// Growth of successive brackets' half-widths (see [`BRACKET_TRIES`]).
+const BRACKET_GROWTH: f64 = 16.0;
+
+/// Halvings allowed when certifying a stretch root-free ([`no_root_split`]):
+/// 16 pieces at most, each as cheap as the first test; beyond that the
+/// stretch most likely holds a root the `f64` solver missed (or a near
+/// tangency), which is the exact stage's to decide.
+const SPLIT_DEPTH: u32 = 4;
 
 /// The three coplanarity vectors (see the exact stage's `coplanarity`).
 fn vectors(q: Query, x: &[FeV; 4]) -> [FeV; 3] {
@@ -69,6 +85,23 @@ fn no_root(q: Query, x0: &Inputs, x1: &Inputs, ta: f64, tb: f64) -> bool {
     }
     let b2 = det3(&u1, &v1, &w0) + det3(&u1, &v0, &w1) + det3(&u0, &v1, &w1);
     b2.sign() == Some(s)
+}
+
+/// Whether the cubic certainly has no root on `[ta, tb]`, by step 1 on the
+/// interval or, failing that, on its halves, down to `depth` halvings: the
+/// Bernstein coefficients on an interval converge to the cubic's values as
+/// it shrinks, so a cubic without a root there whose coefficients straddle
+/// zero on the whole interval is certified on pieces.
+fn no_root_split(q: Query, x0: &Inputs, x1: &Inputs, ta: f64, tb: f64, depth: u32) -> bool {
+    if no_root(q, x0, x1, ta, tb) {
+        return true;
+    }
+    let m = 0.5 * (ta + tb);
+    depth > 0
+        && m > ta
+        && m < tb
+        && no_root_split(q, x0, x1, ta, m, depth - 1)
+        && no_root_split(q, x0, x1, m, tb, depth - 1)
 }
 
 /// The contact test's margins on `[tl, th]`: all certainly positive gives
@@ -131,8 +164,9 @@ pub(crate) fn solve(q: Query, x0: &Inputs, x1: &Inputs, t_max: f64) -> Option<Cc
         if r < cursor {
             continue;
         }
-        let (mut tl, mut th) = bracket(q, x0, x1, r, cursor, t_max)?;
-        if !no_root(q, x0, x1, cursor, tl) {
+        let slope = (3.0 * c[3] * r + 2.0 * c[2]) * r + c[1];
+        let (mut tl, mut th) = bracket(q, x0, x1, r, slope, cursor, t_max)?;
+        if !no_root_split(q, x0, x1, cursor, tl, SPLIT_DEPTH) {
             return None;
         }
         match margins(q, x0, x1, tl, th)? {
@@ -148,7 +182,9 @@ pub(crate) fn solve(q: Query, x0: &Inputs, x1: &Inputs, t_max: f64) -> Option<Cc
                     match value_at(q, x0, x1, m).sign() {
                         Some(s) if s != slo => th = m,
                         Some(_) if no_root(q, x0, x1, tl, m) => tl = m,
-                        _ => return None,
+                        // Beyond the filter's accuracy: the contact is
+                        // certain, the time is the exact first root here.
+                        _ => return exact_stage::first_root_in(q, x0, x1, tl, th).map(Ccd::hit),
                     }
                 }
                 let t = if th.to_bits() - tl.to_bits() == 2 { next_up(tl) } else { tl };
@@ -156,15 +192,24 @@ pub(crate) fn solve(q: Query, x0: &Inputs, x1: &Inputs, t_max: f64) -> Option<Cc
             }
         }
     }
-    no_root(q, x0, x1, cursor, t_max).then_some(Ccd::MISS)
+    no_root_split(q, x0, x1, cursor, t_max, SPLIT_DEPTH).then_some(Ccd::MISS)
 }
 
 /// Doubles `cursor < tl < th ≤ t_max` around `r` at which the cubic's signs
-/// are certainly opposite.
-fn bracket(q: Query, x0: &Inputs, x1: &Inputs, r: f64, cursor: f64, t_max: f64) -> Option<(f64, f64)> {
-    for k in BRACKET_ULPS {
-        let (tl, th) = (ulps(r, -(k as i64))?, ulps(r, k as i64)?.min(t_max));
-        if !(tl > cursor) || !(th > tl) {
+/// are certainly opposite (`slope`: the `f64` cubic's derivative at `r`,
+/// which sizes the wider brackets and needs no accuracy).
+fn bracket(q: Query, x0: &Inputs, x1: &Inputs, r: f64, slope: f64, cursor: f64, t_max: f64) -> Option<(f64, f64)> {
+    let at_r = value_at(q, x0, x1, r);
+    let mut half = 4.0 * at_r.bound() / slope.abs();
+    for i in 0..=BRACKET_TRIES {
+        let (tl, th) = if i == 0 {
+            (ulps(r, -1)?, ulps(r, 1)?.min(t_max))
+        } else {
+            let h = half.max(4.0 * (next_up(r) - r));
+            half = h * BRACKET_GROWTH;
+            (r - h, (r + h).min(t_max))
+        };
+        if !(tl > cursor) || !(th > tl) || !(th <= t_max) {
             return None;
         }
         let (sl, sh) = (value_at(q, x0, x1, tl).sign(), value_at(q, x0, x1, th).sign());

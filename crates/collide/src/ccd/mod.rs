@@ -79,6 +79,11 @@ impl Ccd {
     pub const MISS: Self = Self { t: None, degenerate: false };
     /// No contact, input degenerate (non-finite input, for instance).
     pub const DEGENERATE_MISS: Self = Self { t: None, degenerate: true };
+
+    /// A contact at `t`, not degenerate.
+    pub(crate) fn hit(t: f64) -> Self {
+        Self { t: Some(t), degenerate: false }
+    }
 }
 
 /// The four points of a query at one time.

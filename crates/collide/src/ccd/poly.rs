@@ -319,6 +319,11 @@ fn bisect(root: &mut Root) {
     }
 }
 
+/// Bisections tried in [`sign_at`] before the gcd test: enough for a root
+/// well separated from `g`'s roots (each halves the interval), few enough
+/// that a zero of `g` at the root costs little before the gcd finds it.
+const QUICK_BISECTIONS: u32 = 8;
+
 /// The exact sign of `g` at `root`.
 pub(crate) fn sign_at(root: &Root, g: &Poly) -> Sign {
     let (q, lo, hi) = match root {
@@ -327,6 +332,20 @@ pub(crate) fn sign_at(root: &Root, g: &Poly) -> Sign {
     };
     if g.is_zero() {
         return Sign::Zero;
+    }
+    // Most often g has one strict sign near the root after a few bisections,
+    // which shows g(root) ≠ 0 without the gcd.
+    let mut r = root.clone();
+    for _ in 0..QUICK_BISECTIONS {
+        match &r {
+            Root::Exact(t) => return g.sign_at_point(t),
+            Root::Isolated { lo, hi, .. } => {
+                if let Some(s) = common_sign(&g.bernstein(lo, hi)) {
+                    return s;
+                }
+            }
+        }
+        bisect(&mut r);
     }
     let h = q.gcd(g);
     if h.degree().unwrap_or(0) > 0 {
@@ -338,7 +357,6 @@ pub(crate) fn sign_at(root: &Root, g: &Poly) -> Sign {
         }
     }
     // g(root) ≠ 0: refine until g has one strict sign on the whole interval.
-    let mut r = root.clone();
     loop {
         match &r {
             Root::Exact(t) => return g.sign_at_point(t),
