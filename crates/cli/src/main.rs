@@ -54,7 +54,7 @@ enum Command {
         /// Folder the report folders go in.
         #[arg(long, default_value = "reports")]
         out: PathBuf,
-        /// Only this query kind (contact, intersect, barycentric, bounds, overlap, toi, response).
+        /// Only this query kind (contact, intersect, barycentric, bounds, overlap, toi, response, ccd).
         #[arg(long, value_parser = parse_query)]
         only: Option<harness::case::Query>,
         /// Run one deterministic slice of the cases, `i/n` (0-based): shard i of n.

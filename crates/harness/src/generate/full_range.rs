@@ -191,6 +191,13 @@ fn raw_bits(base: SBoxedStrategy<Case>) -> SBoxedStrategy<Case> {
             map_numbers(&mut case, &mut |_, _| finite_from_bits(it.next().unwrap_or(0)));
             if let Some(t) = case.t_max.as_mut() {
                 *t = finite_from_bits(it.next().unwrap_or(0)).abs().max(f64::from_bits(1));
+                // A ccd case's motion is given at times 0 and 1: its t_max is
+                // a bit pattern of [0, 1] (the top exponent bit cleared puts it
+                // in [0, 2); one in [1, 2) is halved).
+                if case.query == Query::Ccd {
+                    let u = f64::from_bits(t.to_bits() & !(1u64 << 62));
+                    *t = if u >= 1.0 { u / 2.0 } else { u };
+                }
             }
             make_valid(&mut case);
             case
