@@ -48,18 +48,21 @@ MIN_DISTANCE = 0.0  # the format's contact is distance 0: no minimum separation
 # 0.8 makes ipctk ask Tight Inclusion for the time the distance reaches min(1e-4, 0.2 d0)
 # instead of 0: README.md, "Settings"); the iteration limit lowered from its default 1e7
 # to 1e5 (the budget: README.md, "Time"). Additive: its default conservative_rescaling
-# 0.9; max_iterations lowered from its default 1e7 to 1e6 (the budget, the same).
+# 0.9; max_iterations lowered from its default 1e7 to 1e5 (the budget, the same).
 TI_CONSERVATIVE_RESCALING = 1.0
 TI_MAX_ITERATIONS = 100_000
-ADDITIVE_MAX_ITERATIONS = 1_000_000
+ADDITIVE_MAX_ITERATIONS = 100_000
 METHODS = {
     "tight-inclusion": lambda: ipctk.TightInclusionCCD(max_iterations=TI_MAX_ITERATIONS,
                                                        conservative_rescaling=TI_CONSERVATIVE_RESCALING),
     "additive": lambda: ipctk.AdditiveCCD(max_iterations=ADDITIVE_MAX_ITERATIONS),
 }
-CASE_BUDGET = 0.25   # s of wall time per case; past it the worker is killed, the case failed
-BATCH_BUDGET = 45.0  # s of wall time per batch, below crashtest's 60 s (see `budget`)
-CASE_FLOOR = 0.005   # s: the least a case is given when the batch's budget runs short
+CASE_BUDGET = 0.25   # s of the worker's CPU time per case; past it the worker is killed, the case failed
+CASE_WALL = 2.0      # s of wall time per case, whatever the CPU time (a machine under load)
+BATCH_BUDGET = 45.0  # s of wall time per batch, below crashtest's 60 s (see `wall_budget`)
+CASE_FLOOR = 0.005   # s of wall time: the least a case is given when the batch's budget runs short
+POLL = 0.01          # s: how often a slow case's CPU time is read
+_TICKS = os.sysconf("SC_CLK_TCK")
 
 
 def additive_default_max_iterations():
@@ -117,9 +120,10 @@ def provenance(method, ccd):
         "answer": "hit false: null (the toi beside it is not a time: inf for Tight Inclusion, Additive's partial "
                   "sum); hit true: {\"t\": toi}, toi as ipctk gives it (a non-finite toi: the case's error); no "
                   "degenerate flag (ipctk has none)",
-        "budget": f"each case in a forked worker process, {CASE_BUDGET:g} s of wall time (less once a batch has "
-                  f"spent most of {BATCH_BUDGET:g} s, never below {CASE_FLOOR:g} s): past it the worker is killed "
-                  "and the case is an error; ns is the method's own call, timed in the worker",
+        "budget": f"each case in a forked worker process, {CASE_BUDGET:g} s of its CPU time and at most "
+                  f"{CASE_WALL:g} s of wall time (less once a batch has spent most of {BATCH_BUDGET:g} s, never below "
+                  f"{CASE_FLOOR:g} s): past it the worker is killed and the case is an error; ns is the method's "
+                  "own call, timed in the worker",
         "logging": "ipctk.set_logger_level(LoggerLevel.error): its warnings (\"Initial distance 0 <= d_min=0, "
                    "returning toi=0!\") are not written; they change no answer",
         "stdout": "fd 1 redirected to stderr before import; protocol on a duplicate of fd 1",
@@ -209,15 +213,28 @@ class Worker:
         os.close(from_w)
         self.pid, self.to_w, self.fd, self.buf = pid, to_w, from_r, b""
 
-    def call(self, line, budget):
-        """Sends one call and waits up to `budget` s for its line: ("answer", obj),
-        ("timeout",) or ("gone", wait status)."""
+    def cpu(self):
+        """The worker's CPU time so far (user + system), in s (/proc/PID/stat, in clock
+        ticks: 10 ms here)."""
+        with open(f"/proc/{self.pid}/stat", "rb") as f:
+            fields = f.read().rsplit(b")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / _TICKS
+
+    def call(self, line, cpu_budget, wall_budget):
+        """Sends one call and waits for its line while the worker has used less than
+        `cpu_budget` s of CPU on it and less than `wall_budget` s of wall time have
+        passed: ("answer", obj), ("timeout", "CPU" or "wall") or ("gone", wait status)."""
+        cpu0 = self.cpu()
         os.write(self.to_w, line)
-        deadline = time.monotonic() + budget
+        deadline = time.monotonic() + wall_budget
         while b"\n" not in self.buf:
             left = deadline - time.monotonic()
-            if left <= 0 or not select.select([self.fd], [], [], left)[0]:
-                return ("timeout",)
+            if left <= 0:
+                return ("timeout", "wall")
+            if not select.select([self.fd], [], [], min(left, POLL))[0]:
+                if self.cpu() - cpu0 >= cpu_budget:
+                    return ("timeout", "CPU")
+                continue
             chunk = os.read(self.fd, 65536)
             if not chunk:
                 return ("gone", self.end(kill=False))
@@ -249,17 +266,18 @@ def prepare(cases):
     _batch = {"start": time.monotonic(), "left": len(cases)}
 
 
-def budget():
-    """The wall time the next case may take: CASE_BUDGET, unless the batch's slow cases
+def wall_budget():
+    """The wall time the next case may take: CASE_WALL, unless the batch's slow cases
     have spent so much of BATCH_BUDGET that what is left, less CASE_FLOOR for each case
     after this one, is less; never below CASE_FLOOR. A batch so takes at most about
     BATCH_BUDGET + CASE_FLOOR per case, within crashtest's time limit per batch (60 s by
-    default), and one whose cases take µs, as nearly all do, is never cut short."""
+    default), and one whose cases take µs, as nearly all do, is never cut short. (The
+    case's own budget is CPU time, CASE_BUDGET: what the machine's load does not change.)"""
     if _batch is None:
-        return CASE_BUDGET
+        return CASE_WALL
     spent = time.monotonic() - _batch["start"]
     left = BATCH_BUDGET - spent - CASE_FLOOR * max(0, _batch["left"] - 1)
-    return min(CASE_BUDGET, max(CASE_FLOOR, left))
+    return min(CASE_WALL, max(CASE_FLOOR, left))
 
 
 def run(method, name, points, tmax):
@@ -269,15 +287,16 @@ def run(method, name, points, tmax):
     if _worker is None:
         _worker = Worker(method)
     line = (json.dumps([name, points, tmax], allow_nan=False) + "\n").encode()
-    allowed = budget()
+    wall = wall_budget()
     if _batch is not None:
         _batch["left"] -= 1
-    out = _worker.call(line, allowed)
+    out = _worker.call(line, CASE_BUDGET, wall)
     if out[0] == "timeout":
         _worker.end(kill=True)
         _worker = None
-        raise EngineFailure(f"ipctk {name} did not answer within {allowed:g} s of wall time "
-                            "(the worker was killed; README.md, \"Time\")")
+        spent = f"{CASE_BUDGET:g} s of CPU time" if out[1] == "CPU" else f"{wall:g} s of wall time"
+        raise EngineFailure(f"ipctk {name} did not answer within its budget, {spent} (the worker was "
+                            "killed; README.md, \"Time\")")
     if out[0] == "gone":
         _worker = None
         status = out[1]
