@@ -286,6 +286,10 @@ enum Judged {
     Unjudged,
 }
 
+/// One query's outcomes: the referee's, then each judged engine's with its
+/// time's error against the referee (`|t − t*| / t_max`, where both found one).
+type QueryOutcomes = (Outcome, Vec<(Outcome, Option<f64>)>);
+
 fn truth_of(referee: &Result<Answer, Verdict>, lc: &LoadedCase) -> Truth {
     let (answer, missing) = match referee {
         Ok(a) if judge::all_finite(a) => (Some(a.clone()), String::new()),
@@ -360,7 +364,7 @@ pub fn run_queries(source: &str, queries: &[BenchmarkQuery], settings: &Settings
     set.prefetch(&cases);
     // Per query: the referee's outcome, then each judged engine's with its
     // time error against the referee.
-    let per_query: Vec<(Outcome, Vec<(Outcome, Option<f64>)>)> = cases
+    let per_query: Vec<QueryOutcomes> = cases
         .par_iter()
         .map(|lc| {
             let referee = check::run_caught(&set.referee, lc);
@@ -577,7 +581,11 @@ fn vs_cells(v: Option<&AgainstReferee>) -> [String; 6] {
             v.agree.to_string(),
             v.borderline.to_string(),
             v.known.to_string(),
-            format!("{} ({} false, {} missed)", v.disagree, v.false_impacts, v.missed_impacts),
+            if v.false_impacts + v.missed_impacts == 0 {
+                v.disagree.to_string()
+            } else {
+                format!("{} ({} false, {} missed)", v.disagree, v.false_impacts, v.missed_impacts)
+            },
             v.unjudged.to_string(),
             v.max_t_error.map_or("—".into(), crate::render::markdown::sci),
         ],
