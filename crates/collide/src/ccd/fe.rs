@@ -7,9 +7,9 @@
 //! operation below keeps that true:
 //!
 //! - `x + y`, `x − y`: `|(x ± y) − fl(v_x ± v_y)| ≤ e_x + e_y + u |fl(·)| / (1 − u)`;
-//! - `x · y`: `|xy − fl(v_x v_y)| ≤ |v_x| e_y + |v_y| e_x + e_x e_y
-//!   + u |fl(·)| / (1 − u) + 2^−1075` (the last term: an underflowing
-//!   product errs by at most half the smallest subnormal);
+//! - `x · y`: `|xy − fl(v_x v_y)| ≤ |v_x| e_y + |v_y| e_x + e_x e_y +
+//!   u |fl(·)| / (1 − u) + 2^−1075` (the last term: an underflowing product
+//!   errs by at most half the smallest subnormal);
 //!
 //! with `u = 2^−53`. Each new bound is a sum of at most five non-negative
 //! terms computed with rounding to nearest, so it may come out low by a
@@ -29,7 +29,7 @@ const GROW: f64 = 1.0 + 16.0 * U;
 
 /// Absolute slack added to every new bound: `2^−1073` (see the module
 /// documentation).
-const ETA: f64 = 2.0 * 4.9406564584124654e-324;
+const ETA: f64 = 2.0 * 5e-324;
 
 /// A value with a bound on its absolute error.
 #[derive(Clone, Copy, Debug)]

@@ -131,7 +131,9 @@ fn newton_bisect(c: &[f64; 4], mut lo: f64, mut hi: f64, flo: f64) -> f64 {
         let d = horner_d(c, t);
         let next = t - ft / d;
         let next = if next > lo && next < hi { next } else { 0.5 * (lo + hi) };
-        if next == t || hi - lo <= f64::EPSILON * hi {
+        #[expect(clippy::float_cmp, reason = "a fixed point of the iteration: identity is the stopping rule")]
+        let stuck = next == t;
+        if stuck || hi - lo <= f64::EPSILON * hi {
             return next;
         }
         t = next;
@@ -191,6 +193,7 @@ fn lecture(
     if c.iter().any(|x| !x.is_finite()) {
         return Ccd::DEGENERATE_MISS;
     }
+    #[expect(clippy::float_cmp, reason = "the lecture's test: every computed coefficient exactly zero")]
     let coplanar = c == [0.0; 4];
     // Coplanar throughout: the cubic has no roots to offer; the lecture tests
     // the start of the step alone.

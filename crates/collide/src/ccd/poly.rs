@@ -63,14 +63,14 @@ impl Poly {
     pub(crate) fn add(&self, other: &Self) -> Self {
         let n = self.0.len().max(other.0.len());
         let z = BigFloat::ZERO;
-        Self::new((0..n).map(|i| &*self.0.get(i).unwrap_or(&z) + other.0.get(i).unwrap_or(&z)).collect())
+        Self::new((0..n).map(|i| self.0.get(i).unwrap_or(&z) + other.0.get(i).unwrap_or(&z)).collect())
     }
 
     /// `self − other`.
     pub(crate) fn sub(&self, other: &Self) -> Self {
         let n = self.0.len().max(other.0.len());
         let z = BigFloat::ZERO;
-        Self::new((0..n).map(|i| &*self.0.get(i).unwrap_or(&z) - other.0.get(i).unwrap_or(&z)).collect())
+        Self::new((0..n).map(|i| self.0.get(i).unwrap_or(&z) - other.0.get(i).unwrap_or(&z)).collect())
     }
 
     /// `self · other`.
@@ -400,7 +400,7 @@ pub(crate) fn round(root: &Root) -> f64 {
         }
         let s = q.sign_at_point(&mid);
         return if s.is_zero() {
-            if d.to_bits() % 2 == 0 { d } else { up }
+            if d.to_bits().is_multiple_of(2) { d } else { up }
         } else if s == sign_lo {
             up
         } else {
@@ -424,7 +424,7 @@ fn round_dyadic(t: &BigFloat) -> f64 {
         Ordering::Less => d,
         Ordering::Greater => up,
         Ordering::Equal => {
-            if d.to_bits() % 2 == 0 {
+            if d.to_bits().is_multiple_of(2) {
                 d
             } else {
                 up
