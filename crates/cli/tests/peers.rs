@@ -166,6 +166,16 @@ fn bullet_is_judged_as_recorded() {
 }
 
 #[test]
+fn ipctk_tight_inclusion_is_judged_as_recorded() {
+    judged_as_recorded("ipctk/tight-inclusion");
+}
+
+#[test]
+fn ipctk_additive_is_judged_as_recorded() {
+    judged_as_recorded("ipctk/additive");
+}
+
+#[test]
 fn all_runs_every_installed_peer_and_names_the_missing_with_how_to_install() {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("peers-missing");
     std::fs::create_dir_all(&dir).expect("dir");

@@ -141,10 +141,10 @@ pub enum Given {
     /// zero-area face — or a sphere whose centre lies strictly inside it: an
     /// engine that takes a mesh as its convex hull answers another shape there.
     MeshNotItsConvexHull,
-    /// `toi`: both found an impact, and the engine's time is early by at most
-    /// this fraction of `t_max`: `t_referee − x · t_max ≤ t_engine ≤
-    /// t_referee` (a conservative advancement that stops within a tolerance of
-    /// the contact, never past it).
+    /// `toi` or `ccd`: both found an impact, and the engine's time is early by
+    /// at most this fraction of `t_max`: `t_referee − x · t_max ≤ t_engine ≤
+    /// t_referee` (a conservative advancement or inclusion that stops within a
+    /// tolerance of the contact, never past it).
     EngineTimeEarlyByAtMost(f64),
 }
 
@@ -181,13 +181,20 @@ impl Given {
                 (Some(m), _) => !convex_closed(m),
                 _ => false,
             },
-            Given::EngineTimeEarlyByAtMost(x) => match (answer, truth) {
-                (Answer::Toi(a), Answer::Toi(t)) => match (a.toi, t.toi) {
-                    (Some(a), Some(t)) => a.t <= t.t && t.t - a.t <= x * lc.case.t_max(),
+            Given::EngineTimeEarlyByAtMost(x) => {
+                let early = |a: f64, t: f64| a <= t && t - a <= x * lc.case.t_max();
+                match (answer, truth) {
+                    (Answer::Toi(a), Answer::Toi(t)) => match (a.toi, t.toi) {
+                        (Some(a), Some(t)) => early(a.t, t.t),
+                        _ => false,
+                    },
+                    (Answer::Ccd(a), Answer::Ccd(t)) => match (a.t, t.t) {
+                        (Some(a), Some(t)) => early(a, t),
+                        _ => false,
+                    },
                     _ => false,
-                },
-                _ => false,
-            },
+                }
+            }
             Given::EngineHitOutsideByAtMost(x) => {
                 let (Some(Shape::Triangle(t)), Some(h)) = (&lc.case.b, engine_hit) else { return false };
                 let [v0, v1, v2] = t.vertices;
