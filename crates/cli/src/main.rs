@@ -213,8 +213,9 @@ enum ImportCommand {
         /// The fixture file to write.
         #[arg(short, long)]
         out: PathBuf,
-        /// Take this many queries of each file, evenly spaced through it
-        /// (every query when absent).
+        /// Take this many queries of each file: half (rounded up) with an
+        /// impact and half without where the file has them, each evenly
+        /// spaced through the file (every query when absent).
         #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
         per_file: Option<u64>,
     },

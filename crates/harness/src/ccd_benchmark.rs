@@ -232,19 +232,30 @@ fn case_of(kind: Kind, rel: &str, index: usize, p: &[P3; 8], truth: bool) -> Cas
     }
 }
 
-/// `count` queries of each file, evenly spaced through it (all of a file's
-/// queries when it has no more), in the input's order.
+/// `count` queries of each file: half of them (rounded up) with an impact
+/// and the rest without, each half evenly spaced through the file's queries of
+/// that truth (where a file has too few of one truth, more of the other); a
+/// file with at most `count` queries is kept whole. In the input's order.
 pub fn evenly_per_file(queries: &[BenchmarkQuery], count: usize) -> Vec<&BenchmarkQuery> {
     let mut out = Vec::new();
     let mut start = 0;
     while start < queries.len() {
         let file = &queries[start].file;
         let end = start + queries[start..].iter().take_while(|q| &q.file == file).count();
-        let n = end - start;
-        if n <= count {
-            out.extend(&queries[start..end]);
+        let all = &queries[start..end];
+        if all.len() <= count {
+            out.extend(all);
         } else {
-            out.extend((0..count).map(|k| &queries[start + k * n / count]));
+            let (pos, neg): (Vec<&BenchmarkQuery>, Vec<&BenchmarkQuery>) = all.iter().partition(|q| q.truth);
+            let want_pos = count.div_ceil(2).min(pos.len());
+            let want_neg = (count - want_pos).min(neg.len());
+            let want_pos = (count - want_neg).min(pos.len());
+            let spread = |v: &[&'_ BenchmarkQuery], n: usize| -> Vec<usize> {
+                (0..n).map(|k| v[k * v.len() / n].index).collect()
+            };
+            let mut keep = spread(&pos, want_pos);
+            keep.extend(spread(&neg, want_neg));
+            out.extend(all.iter().filter(|q| keep.contains(&q.index)));
         }
         start = end;
     }
@@ -325,12 +336,19 @@ mod tests {
     }
 
     #[test]
-    fn evenly_per_file_spreads_its_picks_and_keeps_short_files_whole() {
-        let many: String = VF.repeat(10);
+    fn evenly_per_file_takes_both_truths_spread_and_keeps_short_files_whole() {
+        // File a: queries 0..10, those at 0, 4 and 8 with an impact.
+        let miss = VF.replace(",1\n", ",0\n");
+        let many: String = (0..10).map(|i| if i % 4 == 0 { VF } else { miss.as_str() }).collect();
         let (mut q, _) = read_csv("s", Kind::VertexFace, "a", &many);
         let (q2, _) = read_csv("s", Kind::VertexFace, "b", VF);
         q.extend(q2);
-        let picked: Vec<(String, usize)> = evenly_per_file(&q, 3).iter().map(|q| (q.file.clone(), q.index)).collect();
-        assert_eq!(picked, [("a".into(), 0), ("a".into(), 3), ("a".into(), 6), ("b".into(), 0)]);
+        let picked: Vec<(String, usize)> = evenly_per_file(&q, 4).iter().map(|q| (q.file.clone(), q.index)).collect();
+        // Two of the impacts (0, 4 of [0, 4, 8]), two of the misses (1, 5 of
+        // [1, 2, 3, 5, 6, 7, 9]), then b whole.
+        assert_eq!(picked, [("a".into(), 0), ("a".into(), 1), ("a".into(), 4), ("a".into(), 5), ("b".into(), 0)]);
+        // Too few impacts: the misses fill the count.
+        let picked = evenly_per_file(&q, 8).iter().filter(|q| q.file == "a").count();
+        assert_eq!(picked, 8);
     }
 }
