@@ -403,13 +403,15 @@ proptest! {
         vt in proptest::array::uniform3(-1.0..1.0f64),
         w in proptest::array::uniform3(-1.0..1.0f64),
         other in proptest::array::uniform2(-0.5..1.5f64),
+        normal_speed in prop_oneof![-1.0..-0.5f64, 0.5..1.0f64],
     ) {
         let [a, b, c] = tri.map(|p| v(p[0], p[1], p[2]));
         let n = (b - a).cross(&(c - a));
         prop_assume!(n.norm() >= 0.1);
         let nh = n / n.norm();
+        // w: a random tangential part and a normal part of at least 1/2.
         let w = v(w[0], w[1], w[2]);
-        prop_assume!(w.dot(&nh).abs() >= 0.5);
+        let w = w - nh * w.dot(&nh) + nh * normal_speed;
         let vt = v(vt[0], vt[1], vt[2]);
         // Vertex–face: p on the plane at t*, at barycentric (1 − β − γ, β, γ) of
         // the triangle translated by t* vt, moving relative to it by w:
@@ -447,6 +449,34 @@ proptest! {
         prop_assert!(r.t.is_some() == l.t.is_some(), "robust {r:?}, lecture {l:?}");
         if let (Some(x), Some(y)) = (r.t, l.t) {
             prop_assert!((x - y).abs() <= LECTURE_TIME_TOL, "robust {x}, lecture {y}");
+        }
+    }
+}
+
+/// The same query with its points reordered by `perm` (at both times).
+fn permuted(q: &Q, perm: [usize; 4]) -> Q {
+    (perm.map(|i| q.0[i]), perm.map(|i| q.1[i]))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Relabelling that leaves the geometry unchanged leaves the robust
+    /// answer unchanged: the triangle's vertices rotated or reflected (the
+    /// normal flips sign, the closed triangle does not change), a segment's
+    /// ends swapped, the two segments swapped.
+    #[test]
+    fn robust_is_invariant_under_relabelling((q, is_vf, t_max) in grid_query()) {
+        let perms: &[[usize; 4]] = if is_vf {
+            &[[0, 2, 3, 1], [0, 1, 3, 2], [0, 3, 2, 1]]
+        } else {
+            &[[1, 0, 2, 3], [0, 1, 3, 2], [2, 3, 0, 1], [3, 2, 1, 0]]
+        };
+        let run = |q: &Q| if is_vf { ccd_vertex_face(&q.0, &q.1, t_max) } else { ccd_edge_edge(&q.0, &q.1, t_max) };
+        let base = run(&q);
+        for &perm in perms {
+            let r = run(&permuted(&q, perm));
+            prop_assert!(same(r, base), "{perm:?}: {r:?} against {base:?}");
         }
     }
 }
