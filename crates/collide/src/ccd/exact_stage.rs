@@ -1,5 +1,23 @@
 //! The robust method's exact stage: every decision on polynomials in `t`
 //! with exact coefficients (see [`poly`](super::poly)).
+//!
+//! - **`f ≢ 0`**: the contact can only happen at a root of the coplanarity
+//!   cubic `f`; the roots of its square-free part in `[0, t_max]` are taken
+//!   in increasing order and the static test decided exactly at each
+//!   ([`member_at`]): with `N = n · n` (`n` the triangle's normal, or the
+//!   cross product of the edges' directions), if `N > 0` the sign tests of
+//!   the module documentation, else (zero area, parallel or zero-length
+//!   edges) the point on one of the triangle's edges, or an endpoint of one
+//!   segment on the other.
+//! - **`f ≡ 0`** (coplanar motion throughout): the contact holds at `t = 0`,
+//!   or its first time is one at which a point reaches a segment (the
+//!   vertex reaches an edge of the triangle, an endpoint of one segment
+//!   reaches the other): a crossing of two non-parallel segments in their
+//!   plane, or of a point through a triangle's interior, cannot begin at an
+//!   interior point, since it persists under small changes of time. Each
+//!   point–segment event is the first common root of `e × q` (`e` the
+//!   segment's direction, `q` the point from its start) at which
+//!   `0 ≤ e · q ≤ e · e` ([`first_on_segment`]).
 
 use super::poly::{PVec, Poly, Root, moving, roots_in, round, sign_at, vcross, vdot, vsub};
 use super::{Ccd, Inputs, Query};

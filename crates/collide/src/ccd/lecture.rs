@@ -21,8 +21,11 @@ pub const LECTURE_INSIDE_TOL: f64 = 1e-6;
 /// its division. `1e-12` is a sine of `1e-6`.
 pub const LECTURE_PARALLEL_TOL: f64 = 1e-12;
 
-/// Newton steps (after bisection has bracketed a root to a sign change)
-/// before falling back to bisection for the rest: the usual cap.
+/// Cap on the safeguarded Newton iterations per root: each iteration also
+/// shrinks the bracket (a Newton step leaving it is replaced by bisection),
+/// and 64 halvings narrow `[0, 1]` to `2^−64`, below the spacing of the
+/// doubles above `2^−11`; the cap is a guard, the stopping rule is the
+/// bracket's relative width.
 const NEWTON_STEPS: u32 = 64;
 
 type V = [f64; 3];
