@@ -230,14 +230,38 @@ impl Atoms {
     }
 }
 
-/// A continuous collision question: the coplanarity polynomial `f`, the
-/// contact formula (valid where `f = 0`), and the formula "`n = 0`" for the
-/// degenerate flag.
+/// A continuous collision question: the coplanarity polynomial `f` and the
+/// contact formula (valid where `f = 0`): `face` (`n ≠ 0` and the point inside
+/// the triangle, or the segments crossing), or `flat` (`n = 0`, also the
+/// degenerate flag's test) and `edges` (the point on an edge, an end on the
+/// other segment). `edges` is built when first needed: it is most of the
+/// polynomials and rarely asked.
 struct Problem {
     f: IPoly,
     atoms: Atoms,
-    contact: Formula,
+    face: Formula,
     flat: Formula,
+    edges: Lazy,
+}
+
+enum Lazy {
+    Built(Formula),
+    Later(Box<dyn FnOnce(&mut Atoms) -> Formula>),
+}
+
+impl Problem {
+    fn edges(&mut self) -> &Formula {
+        if let Lazy::Later(_) = self.edges {
+            let Lazy::Later(build) = std::mem::replace(&mut self.edges, Lazy::Built(Formula::Any(Vec::new()))) else {
+                unreachable!("just matched");
+            };
+            self.edges = Lazy::Built(build(&mut self.atoms));
+        }
+        match &self.edges {
+            Lazy::Built(f) => f,
+            Lazy::Later(_) => unreachable!("just built"),
+        }
+    }
 }
 
 fn point_triangle_problem(p: &MovingPoint, tri: &MovingTriangle) -> Problem {
@@ -254,9 +278,10 @@ fn point_triangle_problem(p: &MovingPoint, tri: &MovingTriangle) -> Problem {
         .collect::<Vec<_>>();
     let face = Formula::All([vec![atoms.nonzero(&n)], sides].concat());
     let flat = atoms.zero(&n);
-    let edges = (0..3).map(|i| atoms.on_segment(&x, &v[i], &v[(i + 1) % 3])).collect();
-    let contact = Formula::Any(vec![face, Formula::All(vec![flat.clone(), Formula::Any(edges)])]);
-    Problem { f, atoms, contact, flat }
+    let edges = Lazy::Later(Box::new(move |atoms: &mut Atoms| {
+        Formula::Any((0..3).map(|i| atoms.on_segment(&x, &v[i], &v[(i + 1) % 3])).collect())
+    }));
+    Problem { f, atoms, face, flat, edges }
 }
 
 fn segment_segment_problem(a: &MovingSegment, b: &MovingSegment) -> Problem {
@@ -269,7 +294,7 @@ fn segment_segment_problem(a: &MovingSegment, b: &MovingSegment) -> Problem {
     let s = vdot(&vcross(&w, &db), &n);
     let u = vdot(&vcross(&w, &da), &n);
     let mut atoms = Atoms::default();
-    let crossing = Formula::All(vec![
+    let face = Formula::All(vec![
         atoms.nonzero(&n),
         atoms.nonnegative(&s),
         atoms.nonnegative(&psub(&nn, &s)),
@@ -277,35 +302,52 @@ fn segment_segment_problem(a: &MovingSegment, b: &MovingSegment) -> Problem {
         atoms.nonnegative(&psub(&nn, &u)),
     ]);
     let flat = atoms.zero(&n);
-    let ends = vec![
-        atoms.on_segment(&a0, &b0, &b1),
-        atoms.on_segment(&a1, &b0, &b1),
-        atoms.on_segment(&b0, &a0, &a1),
-        atoms.on_segment(&b1, &a0, &a1),
-    ];
-    let contact = Formula::Any(vec![crossing, Formula::All(vec![flat.clone(), Formula::Any(ends)])]);
-    Problem { f, atoms, contact, flat }
+    let edges = Lazy::Later(Box::new(move |atoms: &mut Atoms| {
+        Formula::Any(vec![
+            atoms.on_segment(&a0, &b0, &b1),
+            atoms.on_segment(&a1, &b0, &b1),
+            atoms.on_segment(&b0, &a0, &a1),
+            atoms.on_segment(&b1, &a0, &a1),
+        ])
+    }));
+    Problem { f, atoms, face, flat, edges }
 }
 
 fn exact_point_triangle(p: &MovingPoint, tri: &MovingTriangle, t_max: f64) -> CcdAnswer {
-    solve(&point_triangle_problem(p, tri), t_max)
+    solve(point_triangle_problem(p, tri), t_max)
 }
 
 fn exact_segment_segment(a: &MovingSegment, b: &MovingSegment, t_max: f64) -> CcdAnswer {
-    solve(&segment_segment_problem(a, b), t_max)
+    solve(segment_segment_problem(a, b), t_max)
 }
 
 /// Whether `formula` holds at the root `r`, each atom's sign decided once.
-fn holds_at(problem: &Problem, formula: &Formula, r: &mut Root, cache: &mut [Option<i8>]) -> bool {
-    formula.holds(&mut |i| *cache[i].get_or_insert_with(|| r.sign_of(&problem.atoms.0[i])))
+fn holds_at(atoms: &Atoms, formula: &Formula, r: &mut Root, cache: &mut Vec<Option<i8>>) -> bool {
+    cache.resize(atoms.0.len(), None);
+    formula.holds(&mut |i| *cache[i].get_or_insert_with(|| r.sign_of(&atoms.0[i])))
+}
+
+/// Whether the contact formula holds at the root `r`.
+fn contact_at(problem: &mut Problem, r: &mut Root, cache: &mut Vec<Option<i8>>) -> bool {
+    if holds_at(&problem.atoms, &problem.face, r, cache) {
+        return true;
+    }
+    if !holds_at(&problem.atoms, &problem.flat, r, cache) {
+        return false;
+    }
+    problem.edges();
+    let Lazy::Built(edges) = &problem.edges else { unreachable!("built") };
+    holds_at(&problem.atoms, edges, r, cache)
 }
 
 /// The first contact in `[0, t_max]`, exactly.
-fn solve(problem: &Problem, t_max: f64) -> CcdAnswer {
+fn solve(mut problem: Problem, t_max: f64) -> CcdAnswer {
     let (lo, hi) = (D::zero(), D::of(t_max));
     let planar = problem.f.is_empty();
     let mut candidates = if planar {
-        // Planar throughout: the first contact is 0 or a root of an atom.
+        // Planar throughout: the first contact is 0 or a root of an atom
+        // (every atom, so the edges' too).
+        problem.edges();
         let mut c = vec![Root::zero()];
         for p in problem.atoms.0.iter().filter(|p| !p.is_empty()) {
             c.extend(roots(p, &lo, &hi));
@@ -316,9 +358,9 @@ fn solve(problem: &Problem, t_max: f64) -> CcdAnswer {
         roots(&problem.f, &lo, &hi)
     };
     for r in &mut candidates {
-        let mut cache = vec![None; problem.atoms.0.len()];
-        if holds_at(problem, &problem.contact, r, &mut cache) {
-            let degenerate = planar || holds_at(problem, &problem.flat, r, &mut cache);
+        let mut cache = Vec::new();
+        if contact_at(&mut problem, r, &mut cache) {
+            let degenerate = planar || holds_at(&problem.atoms, &problem.flat, r, &mut cache);
             return CcdAnswer { t: Some(r.round()), degenerate };
         }
     }

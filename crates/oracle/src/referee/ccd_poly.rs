@@ -36,7 +36,7 @@
 use std::cmp::Ordering;
 use std::rc::Rc;
 
-use dashu::base::{Gcd, Sign};
+use dashu::base::{BitTest, Gcd, Sign, UnsignedAbs};
 use dashu::integer::{IBig, UBig};
 use dashu::rational::Relaxed;
 
@@ -112,6 +112,25 @@ impl D {
     fn mid(&self, o: &D) -> D {
         let s = self.add(o);
         D { m: s.m, e: s.e - 1 }.norm()
+    }
+
+    /// The bits of the largest double `≤ self`, for `0 ≤ self ≤ f64::MAX`
+    /// (truncating the significand to 53 bits, or to a multiple of `2^-1074`
+    /// below the normal range: both round down).
+    fn floor_bits(&self) -> u64 {
+        if self.m.is_zero() {
+            return 0;
+        }
+        let len = (&self.m).unsigned_abs().bit_len() as i64;
+        // Keep 53 bits, or fewer where the double's last bit is 2^-1074.
+        let e = (self.e + len - 53).max(-1074);
+        let m = if e >= self.e { &self.m >> (e - self.e) as usize } else { &self.m << (self.e - e) as usize };
+        let m = u64::try_from(m).unwrap_or(u64::MAX >> 11);
+        // m·2^e exactly: m < 2^53 and the scaling is exact (a power of two in
+        // two steps when e is below the normal range).
+        let pow2 = |k: i64| f64::from_bits(((k.clamp(-1022, 1023) + 1023) as u64) << 52);
+        let x = m as f64 * pow2(e + 60) * pow2(-60);
+        x.to_bits()
     }
 
     /// The value correctly rounded to `f64` (nearest, ties to even).
@@ -209,13 +228,14 @@ fn primitive(p: IPoly) -> IPoly {
     p.into_iter().map(|c| c / &g).collect()
 }
 
-/// `p` times a positive power of two, with integer coefficients, primitive:
-/// the same signs everywhere.
+/// `p` times a positive power of two, with integer coefficients: the same
+/// signs everywhere. (Not made primitive: the gcd of the coefficients costs
+/// more than it saves where only signs are asked.)
 pub(super) fn integer(p: &[D]) -> IPoly {
     let Some(e) = p.iter().filter(|c| c.sign() != 0).map(|c| c.e).min() else {
         return Vec::new();
     };
-    primitive(p.iter().map(|c| if c.sign() == 0 { IBig::ZERO } else { c.aligned(e) }).collect())
+    trim(p.iter().map(|c| if c.sign() == 0 { IBig::ZERO } else { c.aligned(e) }).collect())
 }
 
 /// The sign of `p(x)`.
@@ -334,14 +354,19 @@ fn variations(seq: &[IPoly], x: &D) -> usize {
 /// them in the order of the doubles while there is one at least two doubles
 /// from either end, else their midpoint.
 fn split(lo: &D, hi: &D) -> D {
-    let kl = lo.round().to_bits();
-    let kh = hi.round().to_bits();
+    let kl = lo.floor_bits();
+    let kh = hi.floor_bits();
     if kh >= kl + 2 {
-        // Strictly inside: above RN(lo)'s successor's predecessor, below RN(hi)'s.
+        // Strictly inside: at least the double after RD(lo) (> lo), at most
+        // the one before RD(hi) (< hi).
         return D::of(f64::from_bits(kl + (kh - kl) / 2));
     }
     lo.mid(hi)
 }
+
+/// How many times a root's interval is halved, looking for the sign of a
+/// polynomial there, before the gcd that detects a zero is computed.
+const HALVINGS_BEFORE_GCD: usize = 8;
 
 /// A real root of a square-free integer polynomial, exactly: `exact` (then
 /// `lo = hi` is its value), or the only root of `q` in `(lo, hi)`, where `q`
@@ -353,11 +378,13 @@ pub(super) struct Root {
     hi: D,
     exact: bool,
     s_lo: i8,
+    /// Whether [`Root::tighten`] ran.
+    tight: bool,
 }
 
 impl Root {
     fn at(q: &Rc<IPoly>, x: D) -> Root {
-        Root { q: Rc::clone(q), hi: x.clone(), lo: x, exact: true, s_lo: 0 }
+        Root { q: Rc::clone(q), hi: x.clone(), lo: x, exact: true, s_lo: 0, tight: true }
     }
 
     /// The root `0` (of `t`).
@@ -380,6 +407,59 @@ impl Root {
             s if s == self.s_lo => self.lo = m,
             _ => self.hi = m,
         }
+    }
+
+    /// Narrows the interval, once, to a few doubles around a floating-point
+    /// estimate of the root, when the exact signs of `q` there confirm it
+    /// (two evaluations instead of dozens of halvings); otherwise leaves it.
+    fn tighten(&mut self) {
+        if self.exact || self.tight {
+            return;
+        }
+        self.tight = true;
+        let Some(d) = self.estimate() else {
+            return;
+        };
+        for ulps in [2, 1 << 20] {
+            let below = D::of(f64::from_bits(d.to_bits().saturating_sub(ulps)));
+            let above = D::of(f64::from_bits(d.to_bits() + ulps));
+            let lo = if below.cmp(&self.lo) == Ordering::Greater { below } else { self.lo.clone() };
+            let hi = if above.cmp(&self.hi) == Ordering::Less { above } else { self.hi.clone() };
+            let (s_lo, s_hi) = (sign_at_point(&self.q, &lo), sign_at_point(&self.q, &hi));
+            if s_lo == self.s_lo && s_hi == -self.s_lo {
+                self.lo = lo;
+                self.hi = hi;
+                return;
+            }
+        }
+    }
+
+    /// A floating-point estimate of the root: bisection over the doubles
+    /// of `[lo, hi]` with `q` evaluated in `f64` (its coefficients scaled by a
+    /// power of two so that the largest is near `2^900`). Only a guess: the
+    /// caller checks it exactly.
+    fn estimate(&self) -> Option<f64> {
+        let bits = self.q.iter().map(|c| c.unsigned_abs().bit_len()).max()?;
+        let shift = bits.saturating_sub(900);
+        let c: Vec<f64> = self.q.iter().map(|c| (c >> shift).to_f64().value()).collect();
+        let value = |t: f64| c.iter().rev().fold(0.0, |acc, &x| acc * t + x);
+        let (mut a, mut b) = (self.lo.floor_bits(), self.hi.floor_bits() + 1);
+        if f64::from_bits(b) > 1.0 {
+            b = 1f64.to_bits();
+        }
+        while b > a + 1 {
+            let m = a + (b - a) / 2;
+            let v = value(f64::from_bits(m));
+            if !v.is_finite() {
+                return None;
+            }
+            if (v > 0.0) == (self.s_lo > 0) && v != 0.0 {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        Some(f64::from_bits(a))
     }
 
     /// `x` against the root.
@@ -408,13 +488,23 @@ impl Root {
         if self.exact {
             return sign_at_point(h, &self.lo);
         }
-        let g = gcd(&self.q, h);
-        if g.len() > 1 && sign_at_point(&g, &self.lo) != sign_at_point(&g, &self.hi) {
-            return 0;
+        self.tighten();
+        if self.exact {
+            return sign_at_point(h, &self.lo);
         }
+        // A sign that a few halvings settle needs no gcd (the common case);
+        // after them, a zero is ruled in or out by the gcd.
+        let mut step = 0;
         loop {
             if let Some(s) = certain_sign(h, &self.lo, &self.hi) {
                 return s;
+            }
+            step += 1;
+            if step == HALVINGS_BEFORE_GCD {
+                let g = gcd(&self.q, h);
+                if g.len() > 1 && sign_at_point(&g, &self.lo) != sign_at_point(&g, &self.hi) {
+                    return 0;
+                }
             }
             self.refine();
             if self.exact {
@@ -463,7 +553,8 @@ impl Root {
 
     /// The root correctly rounded to `f64` (nearest, ties to even); the
     /// root is in `[0, 1]`.
-    pub(super) fn round(&self) -> f64 {
+    pub(super) fn round(&mut self) -> f64 {
+        self.tighten();
         if self.exact {
             return self.lo.round();
         }
@@ -527,7 +618,7 @@ fn isolate(q: &Rc<IPoly>, seq: &[IPoly], lo: D, hi: D, count: usize, out: &mut V
     }
     let (s_lo, s_hi) = (sign_at_point(q, &lo), sign_at_point(q, &hi));
     if count == 1 && s_lo != 0 && s_hi != 0 {
-        out.push(Root { q: Rc::clone(q), lo, hi, exact: false, s_lo });
+        out.push(Root { q: Rc::clone(q), lo, hi, exact: false, s_lo, tight: false });
         return;
     }
     let m = split(&lo, &hi);
@@ -557,7 +648,7 @@ mod tests {
         // (t − 1/2)²(t − 3/4)·64 = (4t² − 4t + 1)(16t − 12)·... : roots 1/2 (double), 3/4.
         // (2t − 1)²(4t − 3) = (4t² − 4t + 1)(4t − 3) = 16t³ − 28t² + 16t − 3.
         let p = ip(&[-3, 16, -28, 16]);
-        let r = roots(&p, &D::zero(), &D::of(1.0));
+        let mut r = roots(&p, &D::zero(), &D::of(1.0));
         assert_eq!(r.len(), 2);
         // 1/2 and 3/4 are doubles: each root is exactly representable.
         assert_eq!(r[0].round().to_bits(), 0.5f64.to_bits());
@@ -569,7 +660,7 @@ mod tests {
         // 2t² − 1: root 1/√2. The rounded root d must have 2d² − 1 change sign
         // between the midpoints around d (checked exactly, in dyadics).
         let p = ip(&[-1, 0, 2]);
-        let r = roots(&p, &D::zero(), &D::of(1.0));
+        let mut r = roots(&p, &D::zero(), &D::of(1.0));
         assert_eq!(r.len(), 1);
         let d = r[0].round();
         let below = D::of(d).mid(&D::of(d.next_down()));
