@@ -188,6 +188,35 @@ fn the_lecture_methods_break_where_the_robust_ones_do_not_and_the_table_says_so(
     assert_eq!(section.charts.len(), sweep::SWEEPS.len(), "one chart per sweep");
 }
 
+#[test]
+fn the_lecture_ccd_breaks_at_its_tolerances_and_the_robust_ccd_never() {
+    // What the ccd sweeps show (seed and poses above), asserted as it is:
+    // - ccd-edge, outside: the lecture's inside test admits barycentrics down
+    //   to −1e-6 (its LECTURE_INSIDE_TOL), so a point passing a few millionths
+    //   outside an edge (the triangles' heights are 4–6) is a false impact;
+    // - ccd-parallel: edges within 1e-6 rad of parallel (its
+    //   LECTURE_PARALLEL_TOL, a squared sine of 1e-12) are treated as
+    //   parallel, and the crossing is missed;
+    // - collide/robust (exact polynomials in t) never breaks on either.
+    let walk = |sweep: &str, query: &str, engine: &str| {
+        let r = result(sweep);
+        let p = r.probes.iter().find(|p| p.name == query).expect("probe");
+        let s = p.engines.iter().find(|s| s.engine == engine).expect("engine");
+        s.walks[0].breaks_at.clone()
+    };
+    for (sweep, query) in
+        [("ccd-edge", "vertex–face outside"), ("ccd-edge", "vertex–face inside"), ("ccd-parallel", "edge–edge")]
+    {
+        assert_eq!(walk(sweep, query, "collide/robust"), None, "collide/robust breaks on {sweep} › {query}");
+    }
+    let b = walk("ccd-edge", "vertex–face outside", "collide/lecture").expect("the lecture breaks");
+    assert!((1e-6..=1e-5).contains(&b.value), "ccd-edge: the lecture breaks at {}", b.label);
+    assert!(matches!(b.why, BreakWhy::Misclassified { .. }), "by a false impact: {:?}", b.why);
+    let b = walk("ccd-parallel", "edge–edge", "collide/lecture").expect("the lecture breaks");
+    assert!((1e-7..=1e-6).contains(&b.value), "ccd-parallel: the lecture breaks at {}", b.label);
+    assert!(matches!(b.why, BreakWhy::Misclassified { .. }), "by a missed impact: {:?}", b.why);
+}
+
 /// The cases of one sweep point, one query, one pose, with the report's poses.
 fn pinned(sweep_name: &str, query: &str, label: &str, pose: usize) -> harness::load::LoadedCase {
     let s = sweep::find(sweep_name).expect("sweep");
