@@ -481,6 +481,32 @@ proptest! {
     }
 }
 
+/// `t` moved by `k` ulps (`t ≥ 0`, result clamped at 0).
+fn shift_ulps(t: f64, k: i64) -> f64 {
+    f64::from_bits((t.to_bits() as i64 + k).max(0) as u64)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// The reported time is the first: with `t_max` a few ulps beyond it the
+    /// contact is still found (the exact time is within [`ROBUST_ULPS`]), with
+    /// `t_max` a few ulps before it there is none.
+    #[test]
+    fn the_reported_time_is_the_first((q, is_vf, _) in grid_query()) {
+        let run = |t_max: f64| if is_vf { ccd_vertex_face(&q.0, &q.1, t_max) } else { ccd_edge_edge(&q.0, &q.1, t_max) };
+        let k = ROBUST_ULPS as i64 + 1;
+        if let Some(t) = run(1.0).t {
+            let later = run(shift_ulps(t, k));
+            prop_assert!(later.t.is_some(), "t = {t:e}, but none with t_max = t + {k} ulps");
+            if t > shift_ulps(0.0, k) {
+                let earlier = run(shift_ulps(t, -k));
+                prop_assert!(earlier.t.is_none(), "t = {t:e}, but {earlier:?} with t_max = t − {k} ulps");
+            }
+        }
+    }
+}
+
 /// Ordinary queries: points in the unit cube moving by at most 0.1 per
 /// coordinate, as a simulator's step does.
 fn ordinary_query() -> impl Strategy<Value = (Q, bool, f64)> {
