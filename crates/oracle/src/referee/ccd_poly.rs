@@ -21,11 +21,16 @@
 //! interval reaches two adjacent doubles in at most 64 steps at any magnitude,
 //! then halves the interval.
 //!
-//! **Signs at a root.** `h(r) = 0` exactly when `gcd(q, h)` vanishes at `r`,
+//! **Signs at a root.** The root's interval is first narrowed to a few
+//! doubles around a floating-point estimate of the root, kept only when the
+//! exact signs of `q` at its ends confirm it. Then `h`'s sign is settled on
+//! the whole interval when `h(lo + w·s) = c₀ + c₁s + …` (`w` its width) has
+//! `|c₀| > Σ|cₖ|`; the interval is halved until it is. After a few halvings
+//! a zero is looked for: `h(r) = 0` exactly when `gcd(q, h)` vanishes at `r`,
 //! and since that gcd divides the square-free `q`, whose only root in the
-//! interval is `r`, that is a sign change of the gcd across the interval.
-//! Otherwise the interval is refined until `h(lo + w·s) = c₀ + c₁s + …`
-//! (`w` its width) has `|c₀| > Σ|cₖ|`, which settles `h`'s sign on all of it.
+//! interval is `r`, that is a sign change of the gcd across the interval. (A
+//! non-zero `h(r)` is always settled by halving: the `cₖ`, `k ≥ 1`, vanish
+//! with `w`.)
 //!
 //! **Rounding.** The first root's `f64` is found by bisection over the doubles'
 //! bit patterns (non-negative doubles are ordered as their bits): each step
