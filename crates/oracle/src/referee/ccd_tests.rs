@@ -7,7 +7,7 @@
 
 use super::*;
 use crate::referee::exact::Q;
-use crate::referee::exact_only;
+use crate::referee::stage::exact_only;
 
 /// Random cases in the stage-agreement test, per kind of input.
 const RANDOM_CASES: usize = 1500;
