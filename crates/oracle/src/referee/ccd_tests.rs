@@ -244,6 +244,14 @@ fn edges_crossing_and_missing() {
     assert_eq!(ee(&a, &b, 1.0), hit(0.5, false));
     assert_eq!(ee(&b, &a, 1.0), hit(0.5, false));
     assert_eq!(ee(&a, &b, 0.25), MISS);
+    // Scaled by 2^±997 (near 1e300 and 1e-300, exact): the same time.
+    for scale in [2f64.powi(997), 2f64.powi(-997)] {
+        let s = |m: &MovingSegment| MovingSegment {
+            t0: m.t0.map(|p| p.map(|x| x * scale)),
+            t1: m.t1.map(|p| p.map(|x| x * scale)),
+        };
+        assert_eq!(ee(&s(&a), &s(&b), 1.0), hit(0.5, false), "scale {scale:e}");
+    }
     // b moved to x = 3, beyond a's end at x = 1: the lines cross, the segments do not.
     let far = seg([3.0, -1.0, 0.0], [3.0, 1.0, 0.0], [3.0, -1.0, 0.0], [3.0, 1.0, 0.0]);
     assert_eq!(ee(&a, &far, 1.0), MISS);
