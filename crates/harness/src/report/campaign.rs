@@ -27,17 +27,9 @@ pub use crate::defaults::{
 };
 pub use crate::judge::headline;
 
-/// The query kinds the random campaign generates.
-pub const CAMPAIGN_QUERIES: [Query; 8] = [
-    Query::Contact,
-    Query::Intersect,
-    Query::Barycentric,
-    Query::Bounds,
-    Query::Overlap,
-    Query::Toi,
-    Query::Response,
-    Query::Ccd,
-];
+/// The query kinds the random campaign generates: every kind, in the
+/// format's order.
+pub const CAMPAIGN_QUERIES: [Query; Query::ALL.len()] = Query::ALL;
 
 /// At most this many discrepancies per engine and query kind are written out in
 /// full (the summary counts all of them): enough to study every failure family,
