@@ -54,8 +54,8 @@
 //! `[0, t_max]` (no contact, not planar); the swept boxes, compared exactly,
 //! certify a miss when they are disjoint and `f` is certainly not the zero
 //! polynomial. Only those two answers are given there — a proven
-//! "no impact"; everything else goes to the exact stage. [`ccd_stage_counts`]
-//! counts both.
+//! "no impact"; everything else goes to the exact stage. Both are counted as the
+//! referee's other stages are ([`super::stage::Stage::Ccd`]).
 //!
 //! **Input.** Non-finite coordinates are refused naming the field (`p.t0`,
 //! `tri.t1`, `a.t0`, `b.t1`, …), and so is a `t_max` that is not finite or
@@ -63,23 +63,12 @@
 //! out-of-range kind, so this is reported as [`RefereeError::NonFinite`]).
 
 use std::cmp::Ordering;
-use std::sync::atomic::{AtomicU64, Ordering as AtomicOrdering};
 
 use super::ccd_poly::{D, DPoly, IPoly, Root, integer, moving, padd, pmul, psub, roots};
 use super::error::RefereeError;
 use super::exact::check_v3;
-use super::stage::staged;
+use super::stage::{Stage, fast_stage};
 use crate::geom::{CcdAnswer, MovingPoint, MovingSegment, MovingTriangle, P3};
-
-static FAST: AtomicU64 = AtomicU64::new(0);
-static EXACT: AtomicU64 = AtomicU64::new(0);
-
-/// How many `ccd` queries so far in this process were answered by the
-/// floating-point stage (a certified miss) and how many by the exact stage:
-/// `(fast, exact)`. Subtract an earlier reading to count one stretch of work.
-pub fn ccd_stage_counts() -> (u64, u64) {
-    (FAST.load(AtomicOrdering::Relaxed), EXACT.load(AtomicOrdering::Relaxed))
-}
 
 fn check_t_max(t_max: f64) -> Result<(), RefereeError> {
     if t_max.is_finite() && (0.0..=1.0).contains(&t_max) {
@@ -102,13 +91,9 @@ pub fn ccd_point_triangle(p: &MovingPoint, tri: &MovingTriangle, t_max: f64) -> 
     tri.t0.iter().try_for_each(|v| check_v3(v, "tri.t0"))?;
     tri.t1.iter().try_for_each(|v| check_v3(v, "tri.t1"))?;
     check_t_max(t_max)?;
-    if staged()
-        && let Some(answer) = super::ccd_fast::point_triangle(p, tri, t_max)
-    {
-        FAST.fetch_add(1, AtomicOrdering::Relaxed);
+    if let Some(answer) = fast_stage(Stage::Ccd, || super::ccd_fast::point_triangle(p, tri, t_max)) {
         return Ok(answer);
     }
-    EXACT.fetch_add(1, AtomicOrdering::Relaxed);
     Ok(exact_point_triangle(p, tri, t_max))
 }
 
@@ -125,13 +110,9 @@ pub fn ccd_segment_segment(a: &MovingSegment, b: &MovingSegment, t_max: f64) -> 
     b.t0.iter().try_for_each(|v| check_v3(v, "b.t0"))?;
     b.t1.iter().try_for_each(|v| check_v3(v, "b.t1"))?;
     check_t_max(t_max)?;
-    if staged()
-        && let Some(answer) = super::ccd_fast::segment_segment(a, b, t_max)
-    {
-        FAST.fetch_add(1, AtomicOrdering::Relaxed);
+    if let Some(answer) = fast_stage(Stage::Ccd, || super::ccd_fast::segment_segment(a, b, t_max)) {
         return Ok(answer);
     }
-    EXACT.fetch_add(1, AtomicOrdering::Relaxed);
     Ok(exact_segment_segment(a, b, t_max))
 }
 

@@ -440,11 +440,17 @@ fn answers_agree_with_exact_distances_at_sampled_times() {
 #[test]
 fn a_clear_miss_is_answered_by_the_fast_stage_and_counted() {
     // p = (1/4, 1/4, 1 + t) above the triangle in z = 0: f = 1 + t > 0 on [0, 1],
-    // its Bernstein coefficients are all positive, a certified miss. The counts
-    // are process-wide and only grow, so other tests running meanwhile cannot
-    // make the fast count smaller.
-    let before = ccd_stage_counts();
+    // its Bernstein coefficients are all positive, a certified miss (counted on
+    // this thread, so other tests running meanwhile do not change it).
+    let ccd = || {
+        crate::referee::stage_counts_on_this_thread()
+            .into_iter()
+            .find(|(s, _, _)| *s == crate::referee::Stage::Ccd)
+            .map(|(_, fast, exact)| (fast, exact))
+    };
+    let before = ccd();
     assert_eq!(vf(&pt([0.25, 0.25, 1.0], [0.25, 0.25, 2.0]), &fixed(TRI), 1.0), MISS);
-    let after = ccd_stage_counts();
-    assert!(after.0 > before.0, "{before:?} → {after:?}");
+    let after = ccd();
+    assert_eq!(after.map(|c| c.0), before.map(|c| c.0 + 1), "{before:?} → {after:?}");
+    assert_eq!(after.map(|c| c.1), before.map(|c| c.1), "{before:?} → {after:?}");
 }

@@ -99,7 +99,7 @@ mod toi_fast;
 
 pub use barycentric::barycentric_triangle;
 pub use bounds::{aabb_of_points, enclosure_margin, min_ball};
-pub use ccd::{ccd_point_triangle, ccd_segment_segment, ccd_stage_counts};
+pub use ccd::{ccd_point_triangle, ccd_segment_segment};
 pub use contact::{
     CONCENTRIC_FALLBACK_NORMAL, contact_margin_sphere_mesh, contact_margin_sphere_plane, contact_margin_sphere_sphere,
     contact_margin_sphere_triangle, contact_plane_sphere, contact_sphere_mesh, contact_sphere_plane,

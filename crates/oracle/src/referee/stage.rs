@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 thread_local! {
     static EXACT_ONLY: Cell<bool> = const { Cell::new(false) };
     /// This thread's counts: fast then exact, per stage.
-    static HERE: Cell<[u64; 14]> = const { Cell::new([0; 14]) };
+    static HERE: Cell<[u64; 16]> = const { Cell::new([0; 16]) };
 }
 
 /// Runs `f` with the referee's floating-point stages off on this thread: every
@@ -70,11 +70,15 @@ pub enum Stage {
     /// from double-word numbers or decided in exact dyadic ones, or computed
     /// in exact rationals.
     Response,
+    /// Continuous collision (`ccd`, vertex–face and edge–edge): a miss
+    /// certified from the coplanarity cubic's double-word Bernstein bounds or
+    /// disjoint swept boxes, or the answer computed in exact polynomials.
+    Ccd,
 }
 
 impl Stage {
     /// Every stage, in report order.
-    pub const ALL: [Stage; 7] = [
+    pub const ALL: [Stage; 8] = [
         Stage::MinBall,
         Stage::MeshFaces,
         Stage::Barycentric,
@@ -82,6 +86,7 @@ impl Stage {
         Stage::Intersect,
         Stage::Toi,
         Stage::Response,
+        Stage::Ccd,
     ];
 
     /// What is counted, for the report.
@@ -104,6 +109,9 @@ impl Stage {
             Stage::Response => {
                 "response of a sphere against a sphere or plane: certified from double-word or exact dyadic numbers / computed in rationals"
             }
+            Stage::Ccd => {
+                "ccd vertex–face and edge–edge: misses certified from double-word Bernstein bounds / computed in exact polynomials"
+            }
         }
     }
 }
@@ -113,8 +121,8 @@ impl Stage {
 /// the report beside [`Stage`]'s counts.
 pub const EXACT_STAGE_ONLY: &str = "overlap (its exact stage is already a handful of f64 comparisons)";
 
-static FAST: [AtomicU64; 7] = [const { AtomicU64::new(0) }; 7];
-static EXACT: [AtomicU64; 7] = [const { AtomicU64::new(0) }; 7];
+static FAST: [AtomicU64; 8] = [const { AtomicU64::new(0) }; 8];
+static EXACT: [AtomicU64; 8] = [const { AtomicU64::new(0) }; 8];
 
 /// Counts `n` answers of `stage`, by the floating-point stage or the exact one.
 pub(crate) fn count(stage: Stage, fast: bool, n: u64) {
