@@ -71,10 +71,12 @@ use super::stage::{Stage, fast_stage};
 use crate::geom::{CcdAnswer, MovingPoint, MovingSegment, MovingTriangle, P3};
 
 fn check_t_max(t_max: f64) -> Result<(), RefereeError> {
-    if t_max.is_finite() && (0.0..=1.0).contains(&t_max) {
-        Ok(())
-    } else {
+    if !t_max.is_finite() {
         Err(RefereeError::NonFinite { field: "t_max" })
+    } else if !(0.0..=1.0).contains(&t_max) {
+        Err(RefereeError::TimeOutOfRange { field: "t_max" })
+    } else {
+        Ok(())
     }
 }
 

@@ -49,6 +49,12 @@ pub enum RefereeError {
         /// The face index.
         face: usize,
     },
+    /// A `ccd` case's `t_max` is outside `[0, 1]` (its motion is given at
+    /// times 0 and 1).
+    TimeOutOfRange {
+        /// The offending field.
+        field: &'static str,
+    },
 }
 
 impl fmt::Display for RefereeError {
@@ -62,6 +68,7 @@ impl fmt::Display for RefereeError {
             Self::IndexOutOfRange { field, face } => {
                 write!(f, "{field}: face {face} has a vertex index out of range")
             }
+            Self::TimeOutOfRange { field } => write!(f, "{field}: outside [0, 1] (the motion is given at 0 and 1)"),
         }
     }
 }
