@@ -135,7 +135,7 @@ pub fn read_csv(scene: &str, kind: Kind, rel: &str, text: &str) -> (Vec<Benchmar
         text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty()).collect();
     let mut queries = Vec::new();
     let mut errors = Vec::new();
-    if lines.len() % 8 != 0 {
+    if !lines.len().is_multiple_of(8) {
         errors.push(format!(
             "{} rows, not a multiple of 8: the last {} rows make no query and are left out",
             lines.len(),
@@ -269,6 +269,12 @@ mod tests {
     const VF: &str = "0,1,0,1,1,1,1\n0,1,0,1,0,1,1\n1,1,0,1,0,1,1\n0,1,1,1,0,1,1\n\
                       1,4,1,4,-1,1,1\n0,1,0,1,0,1,1\n1,1,0,1,0,1,1\n0,1,1,1,0,1,1\n";
 
+    /// A position's bits: the parser must give the benchmark's rationals
+    /// exactly, so they are compared bit for bit.
+    fn bits<const N: usize>(p: [P3; N]) -> [[u64; 3]; N] {
+        p.map(|v| v.map(f64::to_bits))
+    }
+
     #[test]
     fn a_vertex_face_query_becomes_a_case_with_its_rows_in_the_benchmark_order() {
         let (q, e) = read_csv("unit-tests", Kind::VertexFace, "unit-tests/vertex-face/data.csv", VF);
@@ -278,9 +284,8 @@ mod tests {
         assert!(q[0].truth);
         let (Shape::MovingPoint(p), Some(Shape::MovingTriangle(t))) = (&c.a, &c.b) else { panic!("{c:?}") };
         // Exact dyadic inputs: the parsed values are the rationals themselves.
-        assert_eq!(p.t0, [0.0, 0.0, 1.0]);
-        assert_eq!(p.t1, [0.25, 0.25, -1.0]);
-        assert_eq!(t.t0, [[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+        assert_eq!(bits([p.t0, p.t1]), bits([[0.0, 0.0, 1.0], [0.25, 0.25, -1.0]]));
+        assert_eq!(bits(t.t0), bits([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]));
         assert_eq!(c.expect.as_ref().and_then(|e| e.impact), Some(true));
         assert_eq!(c.name, "unit-tests/vertex-face/data.csv #0");
         assert!(crate::load::validate(c).is_ok());
@@ -293,9 +298,9 @@ mod tests {
         let (q, e) = read_csv("s", Kind::EdgeEdge, "s/edge-edge/x.csv", text);
         assert!(e.is_empty(), "{e:?}");
         let (Shape::MovingSegment(a), Some(Shape::MovingSegment(b))) = (&q[0].case.a, &q[0].case.b) else { panic!() };
-        assert_eq!(a.t0, [[0.0; 3], [1.0, 0.0, 0.0]]);
-        assert_eq!(b.t0, [[0.0, 1.0, 0.0], [0.0, 2.0, 0.0]]);
-        assert_eq!(a.t1, [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0]]);
+        assert_eq!(bits(a.t0), bits([[0.0; 3], [1.0, 0.0, 0.0]]));
+        assert_eq!(bits(b.t0), bits([[0.0, 1.0, 0.0], [0.0, 2.0, 0.0]]));
+        assert_eq!(bits(a.t1), bits([[0.0, 0.0, 1.0], [1.0, 0.0, 1.0]]));
         assert!(!q[0].truth);
     }
 
@@ -310,10 +315,15 @@ mod tests {
 
     #[test]
     fn huge_dyadic_numerators_and_subnormal_values_are_exact() {
-        assert_eq!(exact_double("6004799503160661", "18014398509481984"), Ok(6004799503160661.0 / 18014398509481984.0));
+        let exact = |n: &str, d: &str| exact_double(n, d).map(f64::to_bits);
+        // A dyadic with a 2^54 denominator: 6004799503160661 · 2^-54, exact.
+        assert_eq!(
+            exact("6004799503160661", "18014398509481984"),
+            Ok((6004799503160661.0 / 18014398509481984.0f64).to_bits())
+        );
         // 2^-1074, the smallest subnormal: 1 / 2^1074.
         let den = UBig::ONE << 1074;
-        assert_eq!(exact_double("1", &den.to_string()), Ok(f64::from_bits(1)));
+        assert_eq!(exact("1", &den.to_string()), Ok(1));
         // 2^-1075 is below every double.
         let den = UBig::ONE << 1075;
         assert!(exact_double("1", &den.to_string()).is_err());

@@ -118,7 +118,7 @@ fn response<T: Real>(r: collide::response::Response<T>) -> ResponseAnswer {
 /// collide's continuous collision is written in `f64` only: an `f32` engine
 /// says so rather than widen its inputs and run another precision's method.
 fn ccd_in_f64<T: Real>() -> Reply<()> {
-    if T::EPSILON.wide() == f64::EPSILON {
+    if T::EPSILON.wide().to_bits() == f64::EPSILON.to_bits() {
         Ok(())
     } else {
         Err(Unsupported("collide's continuous collision (ccd) is written in f64 only".into()))
