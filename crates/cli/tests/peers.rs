@@ -212,14 +212,16 @@ fn all_runs_every_installed_peer_and_names_the_missing_with_how_to_install() {
         .iter()
         .filter_map(|e| e["name"].as_str())
         .collect();
-    for name in ["collide/robust", "parry3d-f64", "fcl", "coal", "mujoco", "bullet"] {
+    for name in
+        ["collide/robust", "parry3d-f64", "fcl", "coal", "mujoco", "bullet", "ipctk/tight-inclusion", "ipctk/additive"]
+    {
         assert!(engines.contains(&name), "{name} in {engines:?}");
     }
     // Each peer says how many cases it was sent and how long the exchanges
     // took; an in-process engine has no such line.
     for e in summary["provenance"]["engines"].as_array().expect("engines") {
         let (name, process) = (e["name"].as_str().unwrap_or(""), &e["process"]);
-        if ["fcl", "coal", "mujoco", "bullet"].contains(&name) {
+        if ["fcl", "coal", "mujoco", "bullet", "ipctk/tight-inclusion", "ipctk/additive"].contains(&name) {
             let (sent, seconds) = (process["cases_sent"].as_u64(), process["seconds_sent"].as_f64());
             assert!(sent.is_some_and(|n| n > 0) && seconds.is_some_and(|s| s > 0.0), "{name}: {process}");
         } else {
