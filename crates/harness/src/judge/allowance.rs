@@ -122,6 +122,11 @@ fn allowed_from(lc: &LoadedCase, truth: &Answer, tol: &Tolerance, l: &Local, par
         a.point = (a.point + extra.point).clamp(floor, big);
         a.normal = (a.normal + extra.normal).clamp(floor, std::f64::consts::PI);
     }
+    if let Answer::Ccd(_) = truth {
+        // A ccd time lies in [0, t_max]: t_max already admits every value.
+        let t_max = lc.case.t_max();
+        a.t = a.t.min(t_max.max(floor));
+    }
     a
 }
 

@@ -256,9 +256,16 @@ pub fn compare(lc: &LoadedCase, answer: &Answer, truth: &Answer, sizes: &Local) 
         }
         (Answer::Ccd(g), Answer::Ccd(w)) => match (g.t, w.t) {
             (Some(gt), Some(wt)) => {
+                let t_max = lc.case.t_max();
                 let dt = (gt - wt).abs();
-                c.errors.t = Some(dt / lc.case.t_max().max(f64::MIN_POSITIVE));
+                c.errors.t = Some(dt / t_max.max(f64::MIN_POSITIVE));
                 c.measure("t", dt, "", field(|a| a.t));
+                // An impact outside the interval is no answer to the question,
+                // however ill-conditioned the time (coplanar motion allows the
+                // whole interval, never beyond it).
+                if !(0.0..=t_max).contains(&gt) {
+                    c.wrong.push(format!("impact time {gt:e} outside [0, t_max = {t_max:e}]"));
+                }
             }
             (None, None) => {}
             (Some(_), None) => c.classify("false impact (referee: none)".into(), FalsePositive),

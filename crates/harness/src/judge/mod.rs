@@ -156,4 +156,34 @@ mod tests {
             other => panic!("a zero normal judged {other:?}"),
         }
     }
+
+    /// Coplanar motion (the referee's degenerate flag) allows a time anywhere
+    /// in the interval, but an impact after `t_max` is no answer: a point
+    /// entering a face in its plane at t = 1/4, the interval cut at 1/2.
+    #[test]
+    fn a_ccd_impact_outside_the_interval_never_agrees() {
+        let text = r#"{"schema": "crashtest-fixture/1", "cases": [{"name": "sliding in", "query": "ccd", "t_max": 0.5,
+            "a": {"moving_point": {"t0": [-1, 1, 0], "t1": [3, 1, 0]}},
+            "b": {"moving_triangle": {"t0": [[0, 0, 0], [4, 0, 0], [0, 4, 0]], "t1": [[0, 0, 0], [4, 0, 0], [0, 4, 0]]}}}]}"#;
+        let mut loaded = Loaded::default();
+        load_str_into(std::path::Path::new("c.json"), text, &mut loaded);
+        let lc = &loaded.cases[0];
+        let set = crate::engines::EngineSet::default();
+        let truth = set.referee.run(lc).expect("the referee answers");
+        let Answer::Ccd(w) = truth else { panic!("a ccd answer") };
+        assert!(w.degenerate && w.t.is_some(), "coplanar motion, an impact: {w:?}");
+        let tol = Tolerance::for_precision(Some(53));
+        let at =
+            |t: f64| judge(lc, &Answer::Ccd(crashtest_core::geom::CcdAnswer { t: Some(t), ..w }), &truth, &tol, None).0;
+        // Within the interval, an ill-posed time is allowed.
+        assert_eq!(at(0.45), Verdict::Agree);
+        for t in [0.5f64.next_up(), 0.75, -1e-300] {
+            match at(t) {
+                Verdict::Disagree { reasons } => {
+                    assert!(reasons.iter().any(|r| r.contains("outside [0, t_max")), "{t}: {reasons:?}")
+                }
+                other => panic!("an impact at {t} judged {other:?}"),
+            }
+        }
+    }
 }
