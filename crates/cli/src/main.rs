@@ -444,6 +444,13 @@ fn main() -> ExitCode {
             let mut outcome = harness::report::campaign::run(&config, provenance);
             // The CCD benchmark's section, as the campaign's own sections: in
             // shard 0 only (a merge carries it).
+            if let (Some(_), Some((i, n))) = (&ccd_benchmark, shard)
+                && i > 0
+            {
+                eprintln!(
+                    "note: --ccd-benchmark runs in shard 0 of {n} only (merge carries its section); not in shard {i}"
+                );
+            }
             if let Some(dir) = ccd_benchmark.filter(|_| shard.is_none_or(|(i, _)| i == 0)) {
                 let settings = harness::ccd_report::Settings { timing: !no_timing, ..Default::default() };
                 let (section, errors) = harness::ccd_report::section(&dir, &settings, &config.engines);
