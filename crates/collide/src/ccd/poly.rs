@@ -335,15 +335,16 @@ pub(crate) fn sign_at(root: &Root, g: &Poly) -> Sign {
     }
     // Most often g has one strict sign near the root after a few bisections,
     // which shows g(root) ≠ 0 without the gcd.
+    // g's sign at the root when the interval settles it: at an exact root, or
+    // where g has one strict sign over the whole interval.
+    let settled = |r: &Root| match r {
+        Root::Exact(t) => Some(g.sign_at_point(t)),
+        Root::Isolated { lo, hi, .. } => common_sign(&g.bernstein(lo, hi)),
+    };
     let mut r = root.clone();
     for _ in 0..QUICK_BISECTIONS {
-        match &r {
-            Root::Exact(t) => return g.sign_at_point(t),
-            Root::Isolated { lo, hi, .. } => {
-                if let Some(s) = common_sign(&g.bernstein(lo, hi)) {
-                    return s;
-                }
-            }
+        if let Some(s) = settled(&r) {
+            return s;
         }
         bisect(&mut r);
     }
@@ -358,13 +359,8 @@ pub(crate) fn sign_at(root: &Root, g: &Poly) -> Sign {
     }
     // g(root) ≠ 0: refine until g has one strict sign on the whole interval.
     loop {
-        match &r {
-            Root::Exact(t) => return g.sign_at_point(t),
-            Root::Isolated { lo, hi, .. } => {
-                if let Some(s) = common_sign(&g.bernstein(lo, hi)) {
-                    return s;
-                }
-            }
+        if let Some(s) = settled(&r) {
+            return s;
         }
         bisect(&mut r);
     }

@@ -35,15 +35,11 @@ fn posed(scene: Scene, t_max: Option<f64>) -> Posed {
     (scene, Params { t_max, restitution: None })
 }
 
-fn moved(p: P3, d: P3) -> P3 {
-    add(p, d)
-}
-
 fn uniform_vertex_face() -> SBoxedStrategy<Posed> {
     (vec3(BOX), vec3(MOTION), random_triangle(), prop::array::uniform3(vec3(MOTION)), t_max())
         .prop_map(|(p0, dp, v0, dv, tm)| {
-            let v1 = [0, 1, 2].map(|i| moved(v0[i], dv[i]));
-            posed((moving_point(p0, moved(p0, dp)), Some(moving_triangle(v0, v1))), tm)
+            let v1 = [0, 1, 2].map(|i| add(v0[i], dv[i]));
+            posed((moving_point(p0, add(p0, dp)), Some(moving_triangle(v0, v1))), tm)
         })
         .sboxed()
 }
@@ -51,8 +47,8 @@ fn uniform_vertex_face() -> SBoxedStrategy<Posed> {
 fn uniform_edge_edge() -> SBoxedStrategy<Posed> {
     (prop::array::uniform4(vec3(BOX)), prop::array::uniform4(vec3(MOTION)), t_max())
         .prop_map(|(e, d, tm)| {
-            let a = moving_segment([e[0], e[1]], [moved(e[0], d[0]), moved(e[1], d[1])]);
-            let b = moving_segment([e[2], e[3]], [moved(e[2], d[2]), moved(e[3], d[3])]);
+            let a = moving_segment([e[0], e[1]], [add(e[0], d[0]), add(e[1], d[1])]);
+            let b = moving_segment([e[2], e[3]], [add(e[2], d[2]), add(e[3], d[3])]);
             posed((a, Some(b)), tm)
         })
         .sboxed()
