@@ -64,6 +64,66 @@ pub struct Aabb {
     pub max: P3,
 }
 
+/// A solid box that may be rotated: the points `center + R·u` with
+/// `|u_i| ≤ half_extents[i]`, `R` the rotation of the quaternion
+/// `rotation / ‖rotation‖` (`[w, x, y, z]`, any non-zero length). `R`'s entries
+/// are rational functions of the quaternion's, so an exact referee holds the box
+/// exactly: `[2, 0, 0, 1]` is the 3-4-5 rotation about z.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
+pub struct OrientedBox {
+    /// Centre.
+    pub center: P3,
+    /// Half-extents along the box's own axes, each ≥ 0 (a zero one is a flat box).
+    pub half_extents: P3,
+    /// `[w, x, y, z]`, non-zero, need not be unit.
+    pub rotation: [f64; 4],
+}
+
+impl OrientedBox {
+    /// The rotation matrix `R` in `f64` (rows), from the quaternion scaled by a
+    /// power of two first (exact), so that no square over- or underflows for
+    /// any finite non-zero quaternion: `R = I + 2w·[v]× + 2[v]×²` over `‖q‖²`.
+    /// The box's axis `i` is column `i` of `R`.
+    pub fn rotation_matrix(&self) -> [[f64; 3]; 3] {
+        rotation_matrix(self.rotation)
+    }
+}
+
+/// The rotation matrix (rows) of the quaternion `q / ‖q‖`, `q = [w, x, y, z]`
+/// non-zero, in `f64` (see [`OrientedBox::rotation_matrix`]). A zero
+/// quaternion, which the format refuses, gives the identity.
+pub fn rotation_matrix(q: [f64; 4]) -> [[f64; 3]; 3] {
+    let m = q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if !(m > 0.0) || !m.is_finite() {
+        return [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    }
+    // 2^-e in two factors: one alone overflows for a subnormal `m`.
+    let e = -(m.log2().floor() as i32);
+    let (k1, k2) = (2f64.powi(e / 2), 2f64.powi(e - e / 2));
+    let [w, x, y, z] = q.map(|c| c * k1 * k2);
+    let n2 = w * w + x * x + y * y + z * z;
+    let s = 2.0 / n2;
+    [
+        [1.0 - s * (y * y + z * z), s * (x * y - w * z), s * (x * z + w * y)],
+        [s * (x * y + w * z), 1.0 - s * (x * x + z * z), s * (y * z - w * x)],
+        [s * (x * z - w * y), s * (y * z + w * x), 1.0 - s * (x * x + y * y)],
+    ]
+}
+
+/// The points within `radius` of the segment from `start` to `end` (a sphere
+/// when the two are equal).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
+pub struct Capsule {
+    /// One end of the axis.
+    pub start: P3,
+    /// The other end of the axis.
+    pub end: P3,
+    /// Radius, > 0.
+    pub radius: f64,
+}
+
 /// A contact (see the module docs for the convention).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
@@ -218,4 +278,38 @@ pub struct CcdAnswer {
     /// or at the first time the triangle has zero area (a segment has zero
     /// length, or the two segments are parallel).
     pub degenerate: bool,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rotation matrix in `f64` is orthonormal and matches its exact value
+    /// to a few roundings: each entry is a handful of operations on numbers
+    /// of size at most 1 (the quaternion scaled to about 1 first).
+    const ENTRY_TOL: f64 = 8.0 * f64::EPSILON;
+
+    fn close(a: [[f64; 3]; 3], b: [[f64; 3]; 3]) -> bool {
+        (0..3).all(|i| (0..3).all(|j| (a[i][j] - b[i][j]).abs() <= ENTRY_TOL))
+    }
+
+    #[test]
+    fn the_3_4_5_rotation_at_every_scale() {
+        let want = [[0.6, -0.8, 0.0], [0.8, 0.6, 0.0], [0.0, 0.0, 1.0]];
+        // f64::from_bits(2) is the subnormal 2^-1073.
+        for k in [1.0, 1e-300, f64::from_bits(2), 1e300, f64::MAX / 2.0] {
+            let r = rotation_matrix([2.0 * k, 0.0, 0.0, k]);
+            assert!(close(r, want), "scale {k}: {r:?}");
+        }
+        // The smallest subnormal quaternion: [0,0,0,tiny] is a half turn about z.
+        let r = rotation_matrix([0.0, 0.0, 0.0, 5e-324]);
+        assert!(close(r, [[-1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]]), "{r:?}");
+    }
+
+    #[test]
+    fn identity_for_the_unit_and_for_the_refused_zero_quaternion() {
+        let id = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        assert!(close(rotation_matrix([1.0, 0.0, 0.0, 0.0]), id));
+        assert!(close(rotation_matrix([0.0; 4]), id));
+    }
 }
