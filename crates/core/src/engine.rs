@@ -7,8 +7,8 @@
 //! its own conventions inside its methods and nowhere else.
 
 use crate::geom::{
-    Aabb, BarycentricAnswer, BoundsAnswer, CcdAnswer, ContactAnswer, IntersectAnswer, MovingPoint, MovingSegment,
-    MovingTriangle, P3, Plane, ResponseAnswer, Segment, Sphere, ToiAnswer, Triangle,
+    Aabb, BarycentricAnswer, BoundsAnswer, Capsule, CcdAnswer, ContactAnswer, IntersectAnswer, MovingPoint,
+    MovingSegment, MovingTriangle, OrientedBox, P3, Plane, ResponseAnswer, Segment, Sphere, ToiAnswer, Triangle,
 };
 use crate::mesh::Mesh;
 use std::fmt;
@@ -82,6 +82,26 @@ pub trait Queries: Send + Sync {
     fn contact_sphere_mesh(&self, a: &Sphere, b: &Mesh) -> Reply<ContactAnswer> {
         unsupported("sphere–mesh contact")
     }
+    /// `contact`, sphere `a`, box `b`.
+    fn contact_sphere_box(&self, a: &Sphere, b: &OrientedBox) -> Reply<ContactAnswer> {
+        unsupported("sphere–box contact")
+    }
+    /// `contact`, box `a`, plane `b` (the solid half-space).
+    fn contact_box_plane(&self, a: &OrientedBox, b: &Plane) -> Reply<ContactAnswer> {
+        unsupported("box–plane contact")
+    }
+    /// `contact`, sphere `a`, capsule `b`.
+    fn contact_sphere_capsule(&self, a: &Sphere, b: &Capsule) -> Reply<ContactAnswer> {
+        unsupported("sphere–capsule contact")
+    }
+    /// `contact`, capsule `a`, capsule `b`.
+    fn contact_capsule_capsule(&self, a: &Capsule, b: &Capsule) -> Reply<ContactAnswer> {
+        unsupported("capsule–capsule contact")
+    }
+    /// `contact`, capsule `a`, plane `b` (the solid half-space).
+    fn contact_capsule_plane(&self, a: &Capsule, b: &Plane) -> Reply<ContactAnswer> {
+        unsupported("capsule–plane contact")
+    }
     /// `intersect`, segment and plane.
     fn intersect_segment_plane(&self, s: &Segment, p: &Plane) -> Reply<IntersectAnswer> {
         unsupported("segment–plane intersection")
@@ -94,6 +114,10 @@ pub trait Queries: Send + Sync {
     fn intersect_segment_mesh(&self, s: &Segment, m: &Mesh) -> Reply<IntersectAnswer> {
         unsupported("segment–mesh intersection")
     }
+    /// `intersect`, segment and solid box: the first point of the segment in the box.
+    fn intersect_segment_box(&self, s: &Segment, b: &OrientedBox) -> Reply<IntersectAnswer> {
+        unsupported("segment–box intersection")
+    }
     /// `barycentric`, point and triangle.
     fn barycentric_triangle(&self, p: &P3, t: &Triangle) -> Reply<BarycentricAnswer> {
         unsupported("barycentric coordinates")
@@ -102,9 +126,21 @@ pub trait Queries: Send + Sync {
     fn bounds(&self, points: &[P3]) -> Reply<BoundsAnswer> {
         unsupported("bounding volumes")
     }
+    /// `bounds` of a box: its AABB and bounding sphere.
+    fn bounds_box(&self, b: &OrientedBox) -> Reply<BoundsAnswer> {
+        unsupported("bounding volumes of a box")
+    }
     /// `overlap`, two boxes.
     fn overlap(&self, a: &Aabb, b: &Aabb) -> Reply<bool> {
         unsupported("AABB overlap")
+    }
+    /// `overlap`, two boxes that may be rotated (touching overlaps).
+    fn overlap_box_box(&self, a: &OrientedBox, b: &OrientedBox) -> Reply<bool> {
+        unsupported("box–box overlap")
+    }
+    /// `overlap`, a box that may be rotated and an axis-aligned box.
+    fn overlap_box_aabb(&self, a: &OrientedBox, b: &Aabb) -> Reply<bool> {
+        unsupported("box–AABB overlap")
     }
     /// `toi`, sphere `a` moving at `va` against sphere `b` moving at `vb`.
     fn toi_sphere_sphere(&self, a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {

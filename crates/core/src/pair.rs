@@ -21,15 +21,15 @@ use std::fmt;
     serde(rename_all = "lowercase")
 )]
 pub enum Query {
-    /// Sphere against sphere, plane or triangle: point, normal, depth.
+    /// Sphere, box or capsule against its partners: point, normal, depth.
     Contact,
-    /// Segment against plane, triangle or mesh: first hit.
+    /// Segment against plane, triangle, mesh or box: first hit.
     Intersect,
     /// Signed barycentric coordinates of a point's projection on a triangle.
     Barycentric,
-    /// AABB and minimal bounding sphere of points or a mesh.
+    /// AABB and minimal bounding sphere of points, a mesh or a box.
     Bounds,
-    /// AABB against AABB.
+    /// Box against box (axis-aligned or oriented).
     Overlap,
     /// Time of impact of a moving sphere.
     Toi,
@@ -113,6 +113,10 @@ pub enum ShapeKind {
     MovingSegment,
     /// `moving_triangle`.
     MovingTriangle,
+    /// `box`: a solid box that may be rotated.
+    Box,
+    /// `capsule`.
+    Capsule,
 }
 
 impl ShapeKind {
@@ -130,6 +134,8 @@ impl ShapeKind {
             ShapeKind::MovingPoint => "moving_point",
             ShapeKind::MovingSegment => "moving_segment",
             ShapeKind::MovingTriangle => "moving_triangle",
+            ShapeKind::Box => "box",
+            ShapeKind::Capsule => "capsule",
         }
     }
 }
@@ -150,13 +156,22 @@ pub enum Pair {
     ContactSphereTriangle,
     ContactTriangleSphere,
     ContactSphereMesh,
+    ContactSphereBox,
+    ContactBoxPlane,
+    ContactSphereCapsule,
+    ContactCapsuleCapsule,
+    ContactCapsulePlane,
     IntersectSegmentPlane,
     IntersectSegmentTriangle,
     IntersectSegmentMesh,
+    IntersectSegmentBox,
     BarycentricPointTriangle,
     BoundsPoints,
     BoundsMesh,
+    BoundsBox,
     OverlapAabbAabb,
+    OverlapBoxBox,
+    OverlapBoxAabb,
     ToiSphereSphere,
     ToiSpherePlane,
     ToiSphereTriangle,
@@ -189,20 +204,29 @@ use Query as Q;
 use ShapeKind as K;
 
 /// The pair table, in report order (query by query, as the format lists them).
-pub const PAIRS: [PairRow; 21] = [
+pub const PAIRS: [PairRow; 30] = [
     row(P::ContactSphereSphere, Q::Contact, K::Sphere, Some(K::Sphere)),
     row(P::ContactSpherePlane, Q::Contact, K::Sphere, Some(K::Plane)),
     row(P::ContactPlaneSphere, Q::Contact, K::Plane, Some(K::Sphere)),
     row(P::ContactSphereTriangle, Q::Contact, K::Sphere, Some(K::Triangle)),
     row(P::ContactTriangleSphere, Q::Contact, K::Triangle, Some(K::Sphere)),
     row(P::ContactSphereMesh, Q::Contact, K::Sphere, Some(K::Mesh)),
+    row(P::ContactSphereBox, Q::Contact, K::Sphere, Some(K::Box)),
+    row(P::ContactBoxPlane, Q::Contact, K::Box, Some(K::Plane)),
+    row(P::ContactSphereCapsule, Q::Contact, K::Sphere, Some(K::Capsule)),
+    row(P::ContactCapsuleCapsule, Q::Contact, K::Capsule, Some(K::Capsule)),
+    row(P::ContactCapsulePlane, Q::Contact, K::Capsule, Some(K::Plane)),
     row(P::IntersectSegmentPlane, Q::Intersect, K::Segment, Some(K::Plane)),
     row(P::IntersectSegmentTriangle, Q::Intersect, K::Segment, Some(K::Triangle)),
     row(P::IntersectSegmentMesh, Q::Intersect, K::Segment, Some(K::Mesh)),
+    row(P::IntersectSegmentBox, Q::Intersect, K::Segment, Some(K::Box)),
     row(P::BarycentricPointTriangle, Q::Barycentric, K::Point, Some(K::Triangle)),
     row(P::BoundsPoints, Q::Bounds, K::Points, None),
     row(P::BoundsMesh, Q::Bounds, K::Mesh, None),
+    row(P::BoundsBox, Q::Bounds, K::Box, None),
     row(P::OverlapAabbAabb, Q::Overlap, K::Aabb, Some(K::Aabb)),
+    row(P::OverlapBoxBox, Q::Overlap, K::Box, Some(K::Box)),
+    row(P::OverlapBoxAabb, Q::Overlap, K::Box, Some(K::Aabb)),
     row(P::ToiSphereSphere, Q::Toi, K::Sphere, Some(K::Sphere)),
     row(P::ToiSpherePlane, Q::Toi, K::Sphere, Some(K::Plane)),
     row(P::ToiSphereTriangle, Q::Toi, K::Sphere, Some(K::Triangle)),
