@@ -9,7 +9,9 @@
 //! `expect` would make a wrong expectation pass unchecked. Free text goes in
 //! `source`.
 
-use oracle::geom::{Aabb, Contact, MovingPoint, MovingSegment, MovingTriangle, P3, SegmentHit, Toi};
+use oracle::geom::{
+    Aabb, Capsule, Contact, MovingPoint, MovingSegment, MovingTriangle, OrientedBox, P3, SegmentHit, Toi,
+};
 use schemars::JsonSchema;
 use serde::{Deserialize, Deserializer, Serialize};
 
@@ -104,6 +106,10 @@ pub enum Shape {
     MovingSegment(MovingSegment),
     /// A closed triangle whose vertices move linearly from `t0` to `t1`.
     MovingTriangle(MovingTriangle),
+    /// A solid box that may be rotated.
+    Box(BoxSpec),
+    /// The points within a radius of a segment.
+    Capsule(Capsule),
 }
 
 impl Shape {
@@ -126,6 +132,8 @@ impl Shape {
             Shape::MovingPoint(_) => ShapeKind::MovingPoint,
             Shape::MovingSegment(_) => ShapeKind::MovingSegment,
             Shape::MovingTriangle(_) => ShapeKind::MovingTriangle,
+            Shape::Box(_) => ShapeKind::Box,
+            Shape::Capsule(_) => ShapeKind::Capsule,
         }
     }
 }
@@ -223,6 +231,23 @@ pub struct AabbSpec {
     /// Upper corner (≥ `min` per axis).
     pub max: P3,
 }
+
+/// `box`: the solid `center + R·u`, `|u_i| ≤ half_extents[i]`, `R` the rotation
+/// of `rotation / ‖rotation‖`.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BoxSpec {
+    /// Centre.
+    pub center: P3,
+    /// Half-extents along the box's own axes, each ≥ 0.
+    pub half_extents: P3,
+    /// The quaternion `[w, x, y, z]`, non-zero, any length (default `[1, 0, 0, 0]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotation: Option<[f64; 4]>,
+}
+
+/// The rotation of a box without one: the identity.
+pub const IDENTITY_ROTATION: [f64; 4] = [1.0, 0.0, 0.0, 0.0];
 
 /// An expected answer. Every field is optional; a check compares only what is
 /// named. For `contact`, `hit` and `toi`, `null` means "nothing is found" and is
@@ -327,6 +352,17 @@ impl AabbSpec {
     /// The box.
     pub fn to_geom(&self) -> Aabb {
         Aabb { min: self.min, max: self.max }
+    }
+}
+
+impl BoxSpec {
+    /// The box, its rotation defaulted.
+    pub fn to_geom(&self) -> OrientedBox {
+        OrientedBox {
+            center: self.center,
+            half_extents: self.half_extents,
+            rotation: self.rotation.unwrap_or(IDENTITY_ROTATION),
+        }
     }
 }
 

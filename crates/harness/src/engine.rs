@@ -11,7 +11,9 @@ use crate::divergence::Known;
 use crate::load::LoadedCase;
 use crate::mesh::Mesh;
 use crate::protocol::client::{Outcome, ProcessEngine};
-use oracle::geom::{Aabb, MovingPoint, MovingSegment, MovingTriangle, P3, Plane, Segment, Sphere, Triangle};
+use oracle::geom::{
+    Aabb, Capsule, MovingPoint, MovingSegment, MovingTriangle, OrientedBox, P3, Plane, Segment, Sphere, Triangle,
+};
 use std::fmt;
 use std::sync::Arc;
 
@@ -214,16 +216,25 @@ fn dispatch(q: &dyn Queries, pair: Pair, lc: &LoadedCase) -> Reply<Answer> {
         P::ContactSphereTriangle => Answer::Contact(q.contact_sphere_triangle(&sphere(a)?, &triangle(b)?)?),
         P::ContactSphereMesh => Answer::Contact(q.contact_sphere_mesh(&sphere(a)?, mesh(lc, 1)?)?),
         P::ContactTriangleSphere => Answer::Contact(q.contact_triangle_sphere(&triangle(a)?, &sphere(b)?)?),
+        P::ContactSphereBox => Answer::Contact(q.contact_sphere_box(&sphere(a)?, &oriented_box(b)?)?),
+        P::ContactBoxPlane => Answer::Contact(q.contact_box_plane(&oriented_box(a)?, &plane(b)?)?),
+        P::ContactSphereCapsule => Answer::Contact(q.contact_sphere_capsule(&sphere(a)?, &capsule(b)?)?),
+        P::ContactCapsuleCapsule => Answer::Contact(q.contact_capsule_capsule(&capsule(a)?, &capsule(b)?)?),
+        P::ContactCapsulePlane => Answer::Contact(q.contact_capsule_plane(&capsule(a)?, &plane(b)?)?),
         P::IntersectSegmentPlane => Answer::Intersect(q.intersect_segment_plane(&segment(a)?, &plane(b)?)?),
         P::IntersectSegmentTriangle => Answer::Intersect(q.intersect_segment_triangle(&segment(a)?, &triangle(b)?)?),
         P::IntersectSegmentMesh => Answer::Intersect(q.intersect_segment_mesh(&segment(a)?, mesh(lc, 1)?)?),
+        P::IntersectSegmentBox => Answer::Intersect(q.intersect_segment_box(&segment(a)?, &oriented_box(b)?)?),
         P::BarycentricPointTriangle => Answer::Barycentric(q.barycentric_triangle(&point(a)?, &triangle(b)?)?),
         P::BoundsPoints => match &case.a {
             Shape::Points(p) => Answer::Bounds(q.bounds(&p.points)?),
             other => return Err(kind_error("points", other.kind())),
         },
         P::BoundsMesh => Answer::Bounds(q.bounds(&mesh(lc, 0)?.vertices)?),
+        P::BoundsBox => Answer::Bounds(q.bounds_box(&oriented_box(a)?)?),
         P::OverlapAabbAabb => Answer::Overlap(q.overlap(&aabb(a)?, &aabb(b)?)?),
+        P::OverlapBoxBox => Answer::Overlap(q.overlap_box_box(&oriented_box(a)?, &oriented_box(b)?)?),
+        P::OverlapBoxAabb => Answer::Overlap(q.overlap_box_aabb(&oriented_box(a)?, &aabb(b)?)?),
         P::ToiSphereSphere => Answer::Toi(q.toi_sphere_sphere(&sphere(a)?, &va, &sphere(b)?, &vb, t_max)?),
         P::ToiSpherePlane => Answer::Toi(q.toi_sphere_plane(&sphere(a)?, &va, &plane(b)?, &vb, t_max)?),
         P::ToiSphereTriangle => Answer::Toi(q.toi_sphere_triangle(&sphere(a)?, &va, &triangle(b)?, &vb, t_max)?),
@@ -258,6 +269,8 @@ macro_rules! shape_of {
 }
 shape_of!(sphere, Sphere, "sphere", Sphere, |s| s.to_geom());
 shape_of!(plane, Plane, "plane", Plane, |s| s.to_geom());
+shape_of!(oriented_box, Box, "box", OrientedBox, |s| s.to_geom());
+shape_of!(capsule, Capsule, "capsule", Capsule, |s| *s);
 shape_of!(triangle, Triangle, "triangle", Triangle, |s| s.to_geom());
 shape_of!(segment, Segment, "segment", Segment, |s| s.to_geom());
 shape_of!(aabb, Aabb, "aabb", Aabb, |s| s.to_geom());

@@ -577,6 +577,31 @@ fn validate_shape(key: &str, shape: &Shape, query: Query) -> FieldResult {
                 }
             }
         }
+        Shape::Box(b) => {
+            finite3(&format!("{k}.center"), &b.center)?;
+            finite3(&format!("{k}.half_extents"), &b.half_extents)?;
+            for (i, h) in b.half_extents.iter().enumerate() {
+                if *h < 0.0 {
+                    return bad(format!("{k}.half_extents[{i}]"), format!("half-extent must be ≥ 0, got {h}"));
+                }
+            }
+            if let Some(q) = &b.rotation {
+                for (i, x) in q.iter().enumerate() {
+                    finite(&format!("{k}.rotation[{i}]"), *x)?;
+                }
+                if q.iter().all(|x| *x == 0.0) {
+                    return bad(format!("{k}.rotation"), "zero quaternion (no rotation)");
+                }
+            }
+        }
+        Shape::Capsule(c) => {
+            finite3(&format!("{k}.start"), &c.start)?;
+            finite3(&format!("{k}.end"), &c.end)?;
+            finite(&format!("{k}.radius"), c.radius)?;
+            if c.radius <= 0.0 {
+                return bad(format!("{k}.radius"), format!("radius must be > 0, got {}", c.radius));
+            }
+        }
     }
     Ok(())
 }

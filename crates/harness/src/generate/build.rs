@@ -9,10 +9,10 @@
 //! log-uniform to within a factor of 2 and reproducible on every platform: a case
 //! is the same everywhere for the same `(seed, index)`.
 
-use crate::case::{AabbSpec, PlaneSpec, PointSpec, PointsSpec, SegmentSpec, Shape, SphereSpec, TriangleSpec};
+use crate::case::{AabbSpec, BoxSpec, PlaneSpec, PointSpec, PointsSpec, SegmentSpec, Shape, SphereSpec, TriangleSpec};
 use crashtest_core::vec3::{add, cross, dot, norm_sqrt_dot, scale, sub};
 use oracle::geom::P3;
-use oracle::geom::{MovingPoint, MovingSegment, MovingTriangle};
+use oracle::geom::{Capsule, MovingPoint, MovingSegment, MovingTriangle, rotation_matrix};
 use proptest::prelude::*;
 
 /// A generated scene: `a`, and `b` for every query but `bounds`.
@@ -51,6 +51,45 @@ pub(crate) fn points(points: Vec<P3>) -> Shape {
 /// An axis-aligned box.
 pub(crate) fn aabb(min: P3, max: P3) -> Shape {
     Shape::Aabb(AabbSpec { min, max })
+}
+
+/// A box that may be rotated: `rotation` the quaternion `[w, x, y, z]`.
+pub(crate) fn oriented_box(center: P3, half_extents: P3, rotation: [f64; 4]) -> Shape {
+    Shape::Box(BoxSpec { center, half_extents, rotation: Some(rotation) })
+}
+
+/// A capsule.
+pub(crate) fn capsule(start: P3, end: P3, radius: f64) -> Shape {
+    Shape::Capsule(Capsule { start, end, radius })
+}
+
+/// A quaternion `[w, x, y, z]` (not normalized) of the rotation with rows
+/// `r`: Shepperd's choice of the largest of `1 + tr`, `1 + 2rᵢᵢ − tr`, each
+/// quaternion scaled by four times that component, so that every entry is a
+/// sum of `r`'s entries (no square root: a quaternion of any length is a
+/// box's rotation).
+pub(crate) fn quaternion_of(r: [P3; 3]) -> [f64; 4] {
+    let tr = r[0][0] + r[1][1] + r[2][2];
+    let cand = [1.0 + tr, 1.0 + 2.0 * r[0][0] - tr, 1.0 + 2.0 * r[1][1] - tr, 1.0 + 2.0 * r[2][2] - tr];
+    let k = (0..4).fold(0, |k, i| if cand[i] > cand[k] { i } else { k });
+    let (a, b, c) = (r[2][1] - r[1][2], r[0][2] - r[2][0], r[1][0] - r[0][1]);
+    let (d, e, f) = (r[0][1] + r[1][0], r[0][2] + r[2][0], r[1][2] + r[2][1]);
+    match k {
+        0 => [cand[0], a, b, c],
+        1 => [a, cand[1], d, e],
+        2 => [b, d, cand[2], f],
+        _ => [c, e, f, cand[3]],
+    }
+}
+
+/// The product of two row matrices.
+fn mat_mul(a: [P3; 3], b: [P3; 3]) -> [P3; 3] {
+    [0, 1, 2].map(|i| [0, 1, 2].map(|j| a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j]))
+}
+
+/// The determinant of a row matrix.
+fn det3(m: [P3; 3]) -> f64 {
+    dot(m[0], cross(m[1], m[2]))
 }
 
 /// A point moving linearly from `t0` (time 0) to `t1` (time 1).
@@ -297,6 +336,25 @@ impl Similarity {
             Shape::MovingPoint(p) => moving_point(self.point(p.t0), self.point(p.t1)),
             Shape::MovingSegment(s) => moving_segment(s.t0.map(|v| self.point(v)), s.t1.map(|v| self.point(v))),
             Shape::MovingTriangle(t) => moving_triangle(t.t0.map(|v| self.point(v)), t.t1.map(|v| self.point(v))),
+            Shape::Box(b) => {
+                let q = b.rotation.unwrap_or(crate::case::IDENTITY_ROTATION);
+                let half = scale(b.half_extents, self.scale);
+                let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+                #[allow(clippy::float_cmp, reason = "exactly the identity keeps the box's own quaternion")]
+                let rotation = if self.rot == identity {
+                    q
+                } else {
+                    // A reflection maps the box onto itself flipped about its
+                    // first axis, which keeps the same set of points.
+                    let mut m = mat_mul(self.rot, rotation_matrix(q));
+                    if det3(m) < 0.0 {
+                        m = m.map(|row| [-row[0], row[1], row[2]]);
+                    }
+                    quaternion_of(m)
+                };
+                oriented_box(self.point(b.center), half, rotation)
+            }
+            Shape::Capsule(c) => capsule(self.point(c.start), self.point(c.end), c.radius * self.scale),
         }
     }
 

@@ -54,6 +54,10 @@ enum Role {
     Radius,
     /// A component of a plane's normal (not all zero).
     Normal,
+    /// A box's half-extent (≥ 0).
+    Extent,
+    /// A component of a box's quaternion (not all zero; scaling leaves it).
+    Rotation,
     /// A plane's offset.
     Offset,
     /// A velocity component.
@@ -120,6 +124,20 @@ fn map_numbers(case: &mut Case, f: &mut dyn FnMut(f64, Role) -> f64) {
             }
             Shape::MovingSegment(s) => s.t0.iter_mut().chain(&mut s.t1).for_each(|v| p3(v, Role::Coord, f)),
             Shape::MovingTriangle(t) => t.t0.iter_mut().chain(&mut t.t1).for_each(|v| p3(v, Role::Coord, f)),
+            Shape::Box(b) => {
+                p3(&mut b.center, Role::Coord, f);
+                p3(&mut b.half_extents, Role::Extent, f);
+                if let Some(q) = &mut b.rotation {
+                    for x in q.iter_mut() {
+                        *x = f(*x, Role::Rotation);
+                    }
+                }
+            }
+            Shape::Capsule(c) => {
+                p3(&mut c.start, Role::Coord, f);
+                p3(&mut c.end, Role::Coord, f);
+                c.radius = f(c.radius, Role::Radius);
+            }
         }
     }
 }
@@ -136,11 +154,19 @@ fn make_valid(case: &mut Case) {
                 f64::from_bits(1)
             }
         }
+        Role::Extent => x.abs(),
         _ => x,
     });
     for shape in [Some(&mut case.a), case.b.as_mut()].into_iter().flatten() {
         match shape {
             Shape::Plane(p) if p.normal.iter().all(|x| *x == 0.0) => p.normal[2] = 1.0,
+            Shape::Box(b) => {
+                if let Some(q) = &mut b.rotation
+                    && q.iter().all(|x| *x == 0.0)
+                {
+                    q[0] = 1.0;
+                }
+            }
             Shape::Aabb(b) => {
                 for i in 0..3 {
                     if b.min[i] > b.max[i] {
@@ -158,7 +184,7 @@ fn make_valid(case: &mut Case) {
 fn largest(case: &mut Case) -> f64 {
     let mut m = 0.0_f64;
     map_numbers(case, &mut |x, role| {
-        if role != Role::Normal && role != Role::Mass {
+        if !matches!(role, Role::Normal | Role::Mass | Role::Rotation) {
             m = m.max(x.abs());
         }
         x
@@ -170,7 +196,7 @@ fn largest(case: &mut Case) -> f64 {
 /// and masses left as they are.
 fn scaled(mut case: Case, s: f64) -> Case {
     map_numbers(&mut case, &mut |x, role| match role {
-        Role::Normal | Role::Mass => x,
+        Role::Normal | Role::Mass | Role::Rotation => x,
         _ => x * s,
     });
     make_valid(&mut case);
@@ -241,13 +267,15 @@ fn signed_zeros(base: SBoxedStrategy<Case>) -> SBoxedStrategy<Case> {
             map_numbers(&mut case, &mut |x, role| {
                 let pick = it.next().unwrap_or(0);
                 match role {
-                    Role::Coord | Role::Offset | Role::Velocity | Role::Normal => match pick {
-                        0 => 0.0,
-                        1 => -0.0,
-                        // A zero already there changes its sign.
-                        2 if x == 0.0 => -x,
-                        _ => x,
-                    },
+                    Role::Coord | Role::Offset | Role::Velocity | Role::Normal | Role::Rotation | Role::Extent => {
+                        match pick {
+                            0 => 0.0,
+                            1 => -0.0,
+                            // A zero already there changes its sign.
+                            2 if x == 0.0 => -x,
+                            _ => x,
+                        }
+                    }
                     _ => x,
                 }
             });

@@ -647,6 +647,15 @@ pub fn scene_scale(lc: &LoadedCase) -> f64 {
             }
             Some(Shape::MovingSegment(s)) => s.t0.iter().chain(&s.t1).for_each(&mut p3),
             Some(Shape::MovingTriangle(t)) => t.t0.iter().chain(&t.t1).for_each(&mut p3),
+            Some(Shape::Box(b)) => {
+                p3(&b.center);
+                p3(&b.half_extents);
+            }
+            Some(Shape::Capsule(c)) => {
+                p3(&c.start);
+                p3(&c.end);
+                scalars.push(c.radius);
+            }
             None => {}
         }
     }

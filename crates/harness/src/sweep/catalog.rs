@@ -309,6 +309,16 @@ pub fn rounded_to_f32(lc: &LoadedCase) -> LoadedCase {
                 x.t0 = x.t0.map(r3);
                 x.t1 = x.t1.map(r3);
             }
+            Shape::Box(x) => {
+                x.center = r3(x.center);
+                x.half_extents = r3(x.half_extents);
+                x.rotation = x.rotation.map(|q| q.map(r));
+            }
+            Shape::Capsule(x) => {
+                x.start = r3(x.start);
+                x.end = r3(x.end);
+                x.radius = r(x.radius);
+            }
         }
         s
     }
