@@ -4,7 +4,7 @@
 //! use, so that they import it, never the module that re-exports them.
 
 use crate::geom::{Aabb, Ball, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer};
-use crate::geom::{P3, Plane, Segment, Sphere, Triangle};
+use crate::geom::{Capsule, OrientedBox, P3, Plane, Segment, Sphere, Triangle};
 
 /// The parry release both engines are pinned to (`=0.31.1` in the workspace
 /// manifest); reports print it beside each engine's name.
@@ -220,6 +220,80 @@ pub trait ParryEngine {
     /// **Degenerate input:** none is refused: bounds rounded to infinity in `f32`
     /// compare as such, and a NaN bound compares false (no overlap).
     fn overlap_aabb_aabb(&self, a: Aabb, b: Aabb) -> bool;
+
+    /// Contact of sphere `a` with box `b`: parry's `query::contact` on a `Ball`
+    /// and a `Cuboid` (the box's half-extents, placed at its centre with the unit
+    /// quaternion `q/‖q‖`, [`super::engine`]'s `cuboid`), which dispatches to
+    /// `contact_ball_convex_polyhedron` (the centre projected on the cuboid,
+    /// `query/contact/contact_ball_convex_polyhedron.rs`). Translated as every
+    /// contact: normal `−normal1`, point `point2`, depth `−dist`.
+    ///
+    /// **Degenerate input:** parry flags nothing: `degenerate` is always false
+    /// (a centre on an edge or equidistant from two faces, which crashtest
+    /// flags, is shown as parry answers it). A radius that is not positive, a
+    /// zero quaternion or any input not finite in the engine's scalar: no
+    /// contact, flagged.
+    fn contact_sphere_box(&self, a: Sphere, b: OrientedBox) -> ContactAnswer;
+
+    /// Contact of box `a` with the solid half-space `b`: `query::contact` on a
+    /// `Cuboid` and a `HalfSpace` (placed as for [`ParryEngine::contact_sphere_plane`]),
+    /// which dispatches to `contact_support_map_halfspace`. Translated as every
+    /// contact. That routine places the half-space with `pos12` where its siblings
+    /// use `pos12.inverse()` (as for spheres): with a rotated box the difference
+    /// is not a mirror image alone, and is shown as it comes.
+    ///
+    /// **Degenerate input:** as [`ParryEngine::contact_sphere_box`].
+    fn contact_box_plane(&self, a: OrientedBox, b: Plane) -> ContactAnswer;
+
+    /// Contact of sphere `a` with capsule `b`: `query::contact` on a `Ball` and
+    /// parry's `Capsule` (its segment's two ends and radius, at the identity
+    /// pose), dispatched to `contact_ball_convex_polyhedron`. Translated as every
+    /// contact.
+    ///
+    /// **Degenerate input:** as [`ParryEngine::contact_sphere_box`] (a centre on
+    /// the axis is not flagged).
+    fn contact_sphere_capsule(&self, a: Sphere, b: Capsule) -> ContactAnswer;
+
+    /// Contact of two capsules: `query::contact` on two parry `Capsule`s,
+    /// dispatched to `contact_support_map_support_map` (GJK, then EPA when the
+    /// cores overlap; `query/contact/contact_support_map_support_map.rs`).
+    /// Translated as every contact.
+    ///
+    /// **Degenerate input:** as [`ParryEngine::contact_sphere_box`].
+    fn contact_capsule_capsule(&self, a: Capsule, b: Capsule) -> ContactAnswer;
+
+    /// Contact of capsule `a` with the solid half-space `b`: `query::contact`,
+    /// dispatched to `contact_support_map_halfspace` (see
+    /// [`ParryEngine::contact_box_plane`]).
+    ///
+    /// **Degenerate input:** as [`ParryEngine::contact_sphere_box`].
+    fn contact_capsule_plane(&self, a: Capsule, b: Plane) -> ContactAnswer;
+
+    /// First hit of a segment on the solid box `b`: parry's
+    /// `RayCast::cast_ray_and_get_normal` on the `Cuboid` with `solid = true` and
+    /// the ray `start + t (end − start)`, `t ≤ 1` (`query/ray/ray_cuboid.rs`,
+    /// through the AABB's slab test). A start inside gives `t = 0` with parry's
+    /// own normal there, shown as it comes. Not flagged; `parallel` false.
+    ///
+    /// **Degenerate input:** a zero-length segment or a non-finite input: no hit,
+    /// flagged.
+    fn intersect_segment_box(&self, s: Segment, b: OrientedBox) -> IntersectAnswer;
+
+    /// The bounding volumes of box `b`: the `Cuboid`'s `aabb(pose)` (its
+    /// half-extents turned by the absolute rotation matrix) and
+    /// `bounding_sphere(pose)` (the centre, radius `‖h‖`).
+    fn bounds_box(&self, b: OrientedBox) -> BoundsAnswer;
+
+    /// Whether two boxes overlap: parry's `query::intersection_test` on two
+    /// `Cuboid`s (`intersection_test_cuboid_cuboid`, separating axes).
+    ///
+    /// **Degenerate input:** a non-finite input or a zero quaternion: `false`.
+    fn overlap_box_box(&self, a: OrientedBox, b: OrientedBox) -> bool;
+
+    /// Whether a box overlaps an AABB: the AABB as a `Cuboid` at its centre
+    /// (half-extents `(max − min)/2`, rounded in the engine's scalar) against the
+    /// box, as [`ParryEngine::overlap_box_box`].
+    fn overlap_box_aabb(&self, a: OrientedBox, b: Aabb) -> bool;
 
     /// A triangle mesh prepared once for many queries: parry's `TriMesh` (its
     /// vertices in the engine's scalar, its own BVH built by `TriMesh::new`), and

@@ -10,16 +10,18 @@
 
 use super::backend::bounding_volume::details::point_cloud_bounding_sphere;
 use super::backend::bounding_volume::{Aabb as EngineAabb, BoundingVolume};
+use super::backend::math::Rotation;
 use super::backend::math::{DEFAULT_EPSILON, Pose, Vector};
 use super::backend::query::details::line_toi_with_halfspace;
 use super::backend::query::{self, PointQuery, PointQueryWithLocation, Ray, RayCast, RayIntersection, Unsupported};
 use super::backend::shape::{
-    Ball as EngineBall, HalfSpace, TriMesh as EngineTriMesh, Triangle as EngineTriangle, TrianglePointLocation,
+    Ball as EngineBall, Capsule as EngineCapsule, Cuboid, HalfSpace, TriMesh as EngineTriMesh,
+    Triangle as EngineTriangle, TrianglePointLocation,
 };
 use super::{Engine, Real, narrow, widen};
 use crate::geom::{
-    Aabb, Ball, BarycentricAnswer, Contact, ContactAnswer, IntersectAnswer, P3, Plane, Segment, SegmentHit, Sphere,
-    Triangle,
+    Aabb, Ball, BarycentricAnswer, BoundsAnswer, Capsule, Contact, ContactAnswer, IntersectAnswer, OrientedBox, P3,
+    Plane, Segment, SegmentHit, Sphere, Triangle,
 };
 use crate::parry::api::ParryEngine;
 
@@ -85,6 +87,43 @@ pub(crate) fn half_space(p: &Plane) -> Option<(Pose, HalfSpace)> {
     let unit = n.try_normalize()?;
     let origin = unit * (d / n.length());
     origin.is_finite().then(|| (Pose::from_translation(origin), HalfSpace::new(unit)))
+}
+
+/// A box as parry places it: a `Cuboid` of the box's half-extents at the pose
+/// (centre, `q/‖q‖`). The quaternion is scaled by a power of two in `f64` first
+/// (exact), so that a huge or subnormal one normalizes in the engine's scalar.
+/// `None` for a negative half-extent, a zero quaternion or a non-finite input.
+fn cuboid(b: &OrientedBox) -> Option<(Pose, Cuboid)> {
+    let center = vector(b.center)?;
+    let half = vector(b.half_extents)?;
+    if half.min_element() < 0.0 {
+        return None;
+    }
+    let m = b.rotation.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if !(m > 0.0 && m.is_finite()) {
+        return None;
+    }
+    let e = -(m.log2().floor() as i32);
+    let k = 2f64.powi(e / 2) * 2f64.powi(e - e / 2);
+    let [w, x, y, z] = b.rotation.map(|c| c * k);
+    let q = Rotation::from_xyzw(scalar(x)?, scalar(y)?, scalar(z)?, scalar(w)?).normalize();
+    q.is_finite().then(|| (Pose::from_parts(center, q), Cuboid::new(half)))
+}
+
+/// A capsule as parry's: its segment's two ends and its radius, at the
+/// identity pose. `None` for a radius that is not positive or a non-finite input.
+fn capsule(c: &Capsule) -> Option<EngineCapsule> {
+    let radius = scalar(c.radius)?;
+    (radius > 0.0).then_some(())?;
+    Some(EngineCapsule::new(vector(c.start)?, vector(c.end)?, radius))
+}
+
+/// An AABB as a `Cuboid` at its centre, in the engine's scalar.
+fn aabb_cuboid(b: &Aabb) -> Option<(Pose, Cuboid)> {
+    let (lo, hi) = (vector(b.min)?, vector(b.max)?);
+    let center = (lo + hi) * 0.5;
+    let half = (hi - lo) * 0.5;
+    (center.is_finite() && half.is_finite()).then(|| (Pose::from_translation(center), Cuboid::new(half)))
 }
 
 /// A triangle as parry's, from its world vertices (placed at the identity pose).
@@ -291,6 +330,89 @@ impl ParryEngine for Engine {
             .any(|i| triangle_contact_fallback(&trimesh.triangle(i), pa.translation));
         let result = query::contact(&pa, &ba, &Pose::IDENTITY, trimesh, PREDICTION);
         contact_answer(result, fallback || mesh.degenerate)
+    }
+
+    fn contact_sphere_box(&self, a: Sphere, b: OrientedBox) -> ContactAnswer {
+        let (Some((pa, ba)), Some((pb, cb))) = (ball(&a), cuboid(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        contact_answer(query::contact(&pa, &ba, &pb, &cb, PREDICTION), false)
+    }
+
+    fn contact_box_plane(&self, a: OrientedBox, b: Plane) -> ContactAnswer {
+        let (Some((pa, ca)), Some((pb, hb))) = (cuboid(&a), half_space(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        contact_answer(query::contact(&pa, &ca, &pb, &hb, PREDICTION), false)
+    }
+
+    fn contact_sphere_capsule(&self, a: Sphere, b: Capsule) -> ContactAnswer {
+        let (Some((pa, ba)), Some(cb)) = (ball(&a), capsule(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        contact_answer(query::contact(&pa, &ba, &Pose::IDENTITY, &cb, PREDICTION), false)
+    }
+
+    fn contact_capsule_capsule(&self, a: Capsule, b: Capsule) -> ContactAnswer {
+        let (Some(ca), Some(cb)) = (capsule(&a), capsule(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        contact_answer(query::contact(&Pose::IDENTITY, &ca, &Pose::IDENTITY, &cb, PREDICTION), false)
+    }
+
+    fn contact_capsule_plane(&self, a: Capsule, b: Plane) -> ContactAnswer {
+        let (Some(ca), Some((pb, hb))) = (capsule(&a), half_space(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        contact_answer(query::contact(&Pose::IDENTITY, &ca, &pb, &hb, PREDICTION), false)
+    }
+
+    fn intersect_segment_box(&self, s: Segment, b: OrientedBox) -> IntersectAnswer {
+        let (Some(ray), Some((pose, cb))) = (ray(&s), cuboid(&b)) else {
+            return NO_HIT_DEGENERATE;
+        };
+        match cb.cast_ray_and_get_normal(&pose, &ray, MAX_TIME_OF_IMPACT, true) {
+            Some(hit) => match (answer_scalar(hit.time_of_impact), answer_point(ray.point_at(hit.time_of_impact))) {
+                (Some(t), Some(point)) => match answer_point(hit.normal) {
+                    Some(normal) => IntersectAnswer {
+                        hit: Some(SegmentHit { t, point, normal, barycentric: None, triangle: None }),
+                        parallel: false,
+                        degenerate: false,
+                    },
+                    None => NO_HIT_DEGENERATE,
+                },
+                _ => NO_HIT_DEGENERATE,
+            },
+            None => IntersectAnswer::default(),
+        }
+    }
+
+    fn bounds_box(&self, b: OrientedBox) -> BoundsAnswer {
+        let Some((pose, cb)) = cuboid(&b) else {
+            return BoundsAnswer::default();
+        };
+        let aabb = cb.aabb(&pose);
+        let sphere = cb.bounding_sphere(&pose);
+        BoundsAnswer {
+            aabb: answer_point(aabb.mins).zip(answer_point(aabb.maxs)).map(|(min, max)| Aabb { min, max }),
+            sphere: answer_point(sphere.center())
+                .zip(answer_scalar(sphere.radius()))
+                .map(|(center, radius)| Ball { center, radius }),
+        }
+    }
+
+    fn overlap_box_box(&self, a: OrientedBox, b: OrientedBox) -> bool {
+        let (Some((pa, ca)), Some((pb, cb))) = (cuboid(&a), cuboid(&b)) else {
+            return false;
+        };
+        query::intersection_test(&pa, &ca, &pb, &cb).is_ok_and(|i| i.intersecting)
+    }
+
+    fn overlap_box_aabb(&self, a: OrientedBox, b: Aabb) -> bool {
+        let (Some((pa, ca)), Some((pb, cb))) = (cuboid(&a), aabb_cuboid(&b)) else {
+            return false;
+        };
+        query::intersection_test(&pa, &ca, &pb, &cb).is_ok_and(|i| i.intersecting)
     }
 
     fn intersect_segment_plane(&self, s: Segment, b: Plane) -> IntersectAnswer {

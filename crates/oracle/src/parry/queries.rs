@@ -6,8 +6,8 @@ use super::api::{Parry32, Parry64, ParryEngine};
 use super::cast::ParryCast;
 use crashtest_core::engine::{Queries, Reply};
 use crashtest_core::geom::{
-    Aabb, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer, P3, Plane, Segment, Sphere, ToiAnswer,
-    Triangle,
+    Aabb, BarycentricAnswer, BoundsAnswer, Capsule, ContactAnswer, IntersectAnswer, OrientedBox, P3, Plane, Segment,
+    Sphere, ToiAnswer, Triangle,
 };
 use crashtest_core::mesh::Mesh;
 
@@ -32,6 +32,33 @@ macro_rules! parry_queries {
             }
             fn contact_sphere_mesh(&self, a: &Sphere, m: &Mesh) -> Reply<ContactAnswer> {
                 Ok(ParryEngine::contact_sphere_mesh(self, *a, &m.vertices, &m.triangles))
+            }
+            fn contact_sphere_box(&self, a: &Sphere, b: &OrientedBox) -> Reply<ContactAnswer> {
+                Ok(ParryEngine::contact_sphere_box(self, *a, *b))
+            }
+            fn contact_box_plane(&self, a: &OrientedBox, b: &Plane) -> Reply<ContactAnswer> {
+                Ok(ParryEngine::contact_box_plane(self, *a, *b))
+            }
+            fn contact_sphere_capsule(&self, a: &Sphere, b: &Capsule) -> Reply<ContactAnswer> {
+                Ok(ParryEngine::contact_sphere_capsule(self, *a, *b))
+            }
+            fn contact_capsule_capsule(&self, a: &Capsule, b: &Capsule) -> Reply<ContactAnswer> {
+                Ok(ParryEngine::contact_capsule_capsule(self, *a, *b))
+            }
+            fn contact_capsule_plane(&self, a: &Capsule, b: &Plane) -> Reply<ContactAnswer> {
+                Ok(ParryEngine::contact_capsule_plane(self, *a, *b))
+            }
+            fn intersect_segment_box(&self, s: &Segment, b: &OrientedBox) -> Reply<IntersectAnswer> {
+                Ok(ParryEngine::intersect_segment_box(self, *s, *b))
+            }
+            fn bounds_box(&self, b: &OrientedBox) -> Reply<BoundsAnswer> {
+                Ok(ParryEngine::bounds_box(self, *b))
+            }
+            fn overlap_box_box(&self, a: &OrientedBox, b: &OrientedBox) -> Reply<bool> {
+                Ok(ParryEngine::overlap_box_box(self, *a, *b))
+            }
+            fn overlap_box_aabb(&self, a: &OrientedBox, b: &Aabb) -> Reply<bool> {
+                Ok(ParryEngine::overlap_box_aabb(self, *a, *b))
             }
             fn intersect_segment_plane(&self, s: &Segment, p: &Plane) -> Reply<IntersectAnswer> {
                 Ok(ParryEngine::intersect_segment_plane(self, *s, *p))
