@@ -69,6 +69,10 @@ PROVENANCE = {
             "faces (FCL's mesh-shape traversal, one contact per touching face), the deepest taken, "
             "ties to the lowest face index",
     "aabb": "fcl.Box(max - min) at translation 0.5*min + 0.5*max",
+    "box": "fcl.Box(2*half_extents) at Transform(q/|q|, centre), q = [w, x, y, z] (python-fcl's order)",
+    "capsule": "fcl.Capsule(r, |end - start|) (along its local z, centred) at Transform(rotation z -> "
+               "end - start, start/2 + end/2)",
+    "capsule-capsule": "no dedicated routine under GST_LIBCCD: libccd MPR (ccdMPRPenetration)",
     "toi": "fcl.continuousCollide(a, a's pose at t_max, b, b's pose at t_max) from the poses at 0 (each shape "
            "translated by velocity*t_max); t = time_of_contact * t_max when is_collide, else null; the "
            "contact at t from FCL's static queries with both shapes moved by velocity*t: fcl.collide's "
@@ -118,6 +122,54 @@ def box_obj(b):
     return g, fcl.CollisionObject(g, fcl.Transform(0.5 * lo + 0.5 * hi))
 
 
+def unit_quaternion(q):
+    """The case's quaternion [w, x, y, z] (any non-zero length) made unit (math.hypot: no
+    overflow or underflow). python-fcl's Transform takes [w, x, y, z] and Eigen's
+    toRotationMatrix, which it calls, assumes a unit quaternion."""
+    n = math.hypot(*q)
+    return np.array([x / n for x in q], dtype=np.float64)
+
+
+def obox_obj(b):
+    # fcl.Box takes full side lengths: 2 h (exact but for overflow past 2^1023); placed
+    # at the centre with the case's rotation, made unit
+    sides = [2.0 * h for h in b["half_extents"]]
+    if not all(math.isfinite(x) for x in sides):
+        raise Unsupported("FCL's Box takes the full side lengths 2h, and 2h overflows f64 here")
+    g = fcl.Box(*sides)
+    return g, fcl.CollisionObject(g, fcl.Transform(unit_quaternion(b.get("rotation", [1.0, 0.0, 0.0, 0.0])),
+                                                   vec(b["center"])))
+
+
+def capsule_pose(c):
+    """THE CAPSULE PLACEMENT (the only one): fcl.Capsule(r, lz) is the segment from
+    (0, 0, -lz/2) to (0, 0, lz/2) of its own frame, swept by r. The case's capsule is
+    placed by the rotation taking z to u = (end - start)/|end - start| — for u_z >= 0 the
+    quaternion [1 + u_z, -u_y, u_x, 0] (half the angle about z x u), for u_z < 0 the half
+    turn about x followed by the rotation from -z to u, [-u_y, 1 - u_z, 0, u_x] (no
+    cancellation near u = -z), made unit; the identity for equal ends — and the
+    translation start/2 + end/2, with lz = |end - start| (math.hypot). Returns (quaternion
+    [w, x, y, z], translation, lz)."""
+    s, e = vec(c["start"]), vec(c["end"])
+    d = [c["end"][i] - c["start"][i] for i in range(3)]
+    lz = math.hypot(*d)
+    if not math.isfinite(lz):
+        raise Unsupported("FCL's Capsule takes the length |end - start|, which overflows f64 here")
+    d = vec(d)
+    mid = 0.5 * s + 0.5 * e
+    if not lz > 0:
+        return np.array([1.0, 0.0, 0.0, 0.0]), mid, 0.0
+    u = d / lz
+    q = [1.0 + u[2], -u[1], u[0], 0.0] if u[2] >= 0 else [-u[1], 1.0 - u[2], 0.0, u[0]]
+    return unit_quaternion(q), mid, lz
+
+
+def capsule_obj(c):
+    q, mid, lz = capsule_pose(c)
+    g = fcl.Capsule(c["radius"], lz)
+    return g, fcl.CollisionObject(g, fcl.Transform(q, mid))
+
+
 def mesh_obj(m):
     # every face of the mesh in one BVHModel (OBBRSS), as for the triangle; the wire's
     # indices arrive as JSON numbers (floats), hence int()
@@ -134,7 +186,8 @@ def mesh_obj(m):
     return g, fcl.CollisionObject(g, fcl.Transform())
 
 
-BUILD = {"sphere": sphere_obj, "plane": halfspace_obj, "triangle": triangle_obj, "mesh": mesh_obj}
+BUILD = {"sphere": sphere_obj, "plane": halfspace_obj, "triangle": triangle_obj, "mesh": mesh_obj,
+         "box": obox_obj, "capsule": capsule_obj, "aabb": box_obj}
 
 
 def fcl_collide(o1, o2, max_contacts=1):
@@ -186,17 +239,34 @@ def fcl_collide(o1, o2, max_contacts=1):
 #    (The difference of the two nearest points says the same, but at FCL's time of contact
 #    the gap is tiny and that difference cancels: 1e-4 rad off on fast small spheres.)
 #    depth = -distance (a gap; the toi answer drops it).
+#  - boxes and capsules (o1 is a in every one of these pairs; depth > 0 in all):
+#      sphere-box (sphere_box-inl.h, sphereBoxIntersect): pos midway between the sphere's
+#        deepest point and the box's surface point -> W = 1/2 (checked: centre outside,
+#        inside, at a corner, flat box)
+#      box-halfspace, capsule-halfspace (halfspace-inl.h): pos midway between the solid's
+#        deepest point and the plane, as sphere-halfspace -> W = 1/2 (the plane rule)
+#      sphere-capsule (sphere_capsule-inl.h, sphereCapsuleIntersect): pos = the axis point
+#        nearest the centre + depth along the normal toward the sphere: on b's surface only
+#        when depth = r_b, on neither surface otherwise. Taken as FCL gives it (W = 0): the
+#        point FCL reports is shown as it is (README, "boxes and capsules")
+#      capsule-capsule: no dedicated routine under GST_LIBCCD; libccd's MPR
+#        (ccdMPRPenetration), whose pos is its portal's estimate of the middle of the
+#        overlap -> W = 1/2
 DEPTH_SIGN = {("sphere", "sphere"): 1.0, ("sphere", "plane"): 1.0, ("plane", "sphere"): 1.0,
               ("sphere", "triangle"): -1.0, ("triangle", "sphere"): -1.0,
-              ("sphere", "mesh"): -1.0}
+              ("sphere", "mesh"): -1.0,
+              ("sphere", "box"): 1.0, ("box", "plane"): 1.0, ("sphere", "capsule"): 1.0,
+              ("capsule", "capsule"): 1.0, ("capsule", "plane"): 1.0}
 
 
 def point_weight(ka, kb, a, b):
     if ka == "sphere" and kb == "sphere":
         ra, rb = a["sphere"]["radius"], b["sphere"]["radius"]
         return rb / (ra + rb)
-    if "plane" in (ka, kb):
+    if "plane" in (ka, kb) or (ka, kb) in (("sphere", "box"), ("capsule", "capsule")):
         return 0.5
+    if (ka, kb) == ("sphere", "capsule"):
+        return 0.0
     return 0.0 if kb in ("triangle", "mesh") else 1.0
 
 
@@ -252,8 +322,10 @@ def contact(case):
 
 
 def overlap(case):
-    _, o1 = box_obj(case["a"]["aabb"])
-    _, o2 = box_obj(case["b"]["aabb"])
+    (ka, sa), = case["a"].items()
+    (kb, sb), = case["b"].items()
+    _, o1 = BUILD[ka](sa)
+    _, o2 = BUILD[kb](sb)
     req = fcl.CollisionRequest(gjk_solver_type=GJK_SOLVER)
     res = fcl.CollisionResult()
     timed(fcl.collide, o1, o2, req, res)
@@ -505,7 +577,14 @@ HANDLERS = {
     ("contact", "sphere", "triangle"): contact,
     ("contact", "triangle", "sphere"): contact,
     ("contact", "sphere", "mesh"): contact,
+    ("contact", "sphere", "box"): contact,
+    ("contact", "box", "plane"): contact,
+    ("contact", "sphere", "capsule"): contact,
+    ("contact", "capsule", "capsule"): contact,
+    ("contact", "capsule", "plane"): contact,
     ("overlap", "aabb", "aabb"): overlap,
+    ("overlap", "box", "box"): overlap,
+    ("overlap", "box", "aabb"): overlap,
     ("toi", "sphere", "sphere"): toi,
     ("toi", "sphere", "plane"): toi,
     ("toi", "sphere", "triangle"): toi,

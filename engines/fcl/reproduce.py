@@ -36,10 +36,33 @@ g@.addSubModel(verts, tris)
 g@.endModel()
 o@ = fcl.CollisionObject(g@, fcl.Transform())
 """,
+    # fcl.Box takes full side lengths; the quaternion [w, x, y, z] made unit (Eigen's
+    # toRotationMatrix assumes a unit quaternion)
+    "box": """\
+q@ = np.array({{@.rotation}}, dtype=np.float64)
+g@ = fcl.Box(*(2.0 * np.array({{@.half_extents}}, dtype=np.float64)))
+o@ = fcl.CollisionObject(g@, fcl.Transform(q@ / math.hypot(*q@), np.array({{@.center}}, dtype=np.float64)))
+""",
+    # fcl.Capsule(r, lz) lies along its own z, centred: rotated onto end - start and moved
+    # to the midpoint, as engine.py's capsule_pose does
+    "capsule": """\
+s@, e@ = np.array({{@.start}}, dtype=np.float64), np.array({{@.end}}, dtype=np.float64)
+lz@ = math.hypot(*(e@ - s@))
+u = (e@ - s@) / lz@ if lz@ > 0 else np.array([0.0, 0.0, 1.0])
+q = np.array([1.0 + u[2], -u[1], u[0], 0.0] if u[2] >= 0 else [-u[1], 1.0 - u[2], 0.0, u[0]])
+g@ = fcl.Capsule({{@.radius}}, lz@)
+o@ = fcl.CollisionObject(g@, fcl.Transform(q / math.hypot(*q), 0.5 * s@ + 0.5 * e@))
+""",
+    "aabb": """\
+lo, hi = np.array({{@.min}}, dtype=np.float64), np.array({{@.max}}, dtype=np.float64)
+g@ = fcl.Box(*(hi - lo))  # an AABB as an fcl.Box at its centre
+o@ = fcl.CollisionObject(g@, fcl.Transform(0.5 * lo + 0.5 * hi))
+""",
 }
 
 HEAD = """\
 # <pins>: crashtest `<query>` <pair>, asked as crashtest's fcl adapter asks it
+import math
 import numpy as np
 import fcl
 """
@@ -65,6 +88,12 @@ def box(lo, hi):  # an AABB as an fcl.Box at its centre
 res = fcl.CollisionResult()
 fcl.collide(box({{a.min}}, {{a.max}}), box({{b.min}}, {{b.max}}),
             fcl.CollisionRequest(gjk_solver_type=fcl.GJKSolverType.GST_LIBCCD), res)
+print("is_collision:", res.is_collision)
+"""
+
+OVERLAP_SHAPES = """\
+res = fcl.CollisionResult()
+fcl.collide(oa, ob, fcl.CollisionRequest(gjk_solver_type=fcl.GJKSolverType.GST_LIBCCD), res)
 print("is_collision:", res.is_collision)
 """
 
@@ -97,8 +126,10 @@ def indent(text, by="    "):
 def script(query, ka, kb):
     head = (HEAD.replace("<pins>", pinned("python-fcl", "numpy"))
             .replace("<query>", query).replace("<pair>", f"{ka}-{kb}"))
-    if query == "overlap":
+    if query == "overlap" and (ka, kb) == ("aabb", "aabb"):
         return head + OVERLAP
+    if query == "overlap":  # a box and a box or an AABB, as for aabb-aabb
+        return head + SHAPE[ka].replace("@", "a") + SHAPE[kb].replace("@", "b") + OVERLAP_SHAPES
     shapes = SHAPE[ka].replace("@", "a") + SHAPE[kb].replace("@", "b")
     # one contact, or for a mesh one per face (the adapter takes the deepest, ties to
     # the lowest face index)
