@@ -7,6 +7,7 @@ tests, `BVHModelBase.computeLocalAABB` for bounds. The only arithmetic this adap
 is the convention translation in `to_format_contact` (negating Coal's normal and its
 signed distance). See README.md for the convention table and the sources it rests on.
 """
+import math
 import os
 import sys
 
@@ -67,7 +68,51 @@ def coal_shape(shape):
         return coal.TriangleP(v[0], v[1], v[2]), _identity()
     if kind == "mesh":  # always inline on the wire; every face, each a two-sided triangle
         return mesh_model(s), _identity()
+    if kind == "box":
+        # coal.Box takes full side lengths (halfSide = side/2): 2h, exact but for overflow
+        sides = [2.0 * float(h) for h in s["half_extents"]]
+        if not all(math.isfinite(x) for x in sides):
+            raise Unsupported("Coal's Box takes the full side lengths 2h, and 2h overflows f64 here")
+        tf = coal.Transform3s(coal.Quaternion(*unit_quaternion(s.get("rotation", [1.0, 0.0, 0.0, 0.0]))),
+                              np.array(s["center"], dtype=np.float64))
+        return coal.Box(*sides), tf
+    if kind == "capsule":
+        q, mid, length = capsule_pose(s)
+        return coal.Capsule(float(s["radius"]), length), coal.Transform3s(coal.Quaternion(*q), mid)
+    if kind == "aabb":  # a coal.Box of max - min at the centre (rounded there; used by box-aabb)
+        lo, hi = (np.array(s[k], dtype=np.float64) for k in ("min", "max"))
+        return coal.Box(*(hi - lo)), _identity_at(0.5 * lo + 0.5 * hi)
     raise Unsupported(f"no Coal shape for {kind}")
+
+
+def unit_quaternion(q):
+    """The case's quaternion [w, x, y, z] (any non-zero length) made unit (math.hypot: no
+    overflow or underflow); coal.Quaternion(w, x, y, z) takes that order, and Eigen's
+    toRotationMatrix, which Transform3s uses, assumes a unit quaternion."""
+    n = math.hypot(*q)
+    return [float(x) / n for x in q]
+
+
+def capsule_pose(c):
+    """THE CAPSULE PLACEMENT (the only one): coal.Capsule(r, lz) is the segment from
+    (0, 0, -lz/2) to (0, 0, lz/2) of its own frame (halfLength = lz/2), swept by r. The
+    case's capsule is placed by the rotation taking z to u = (end - start)/|end - start| —
+    for u_z >= 0 the quaternion [1 + u_z, -u_y, u_x, 0] (half the angle about z x u), for
+    u_z < 0 the half turn about x followed by the rotation from -z to u, [-u_y, 1 - u_z, 0,
+    u_x] (no cancellation near u = -z), made unit; the identity for equal ends — and the
+    translation start/2 + end/2, with lz = |end - start| (math.hypot). Returns (unit
+    quaternion [w, x, y, z], translation, lz)."""
+    st, en = [float(x) for x in c["start"]], [float(x) for x in c["end"]]
+    d = [en[i] - st[i] for i in range(3)]
+    lz = math.hypot(*d)
+    if not math.isfinite(lz):
+        raise Unsupported("Coal's Capsule takes the length |end - start|, which overflows f64 here")
+    mid = np.array([0.5 * st[i] + 0.5 * en[i] for i in range(3)], dtype=np.float64)
+    if not lz > 0:
+        return [1.0, 0.0, 0.0, 0.0], mid, 0.0
+    u = [x / lz for x in d]
+    q = [1.0 + u[2], -u[1], u[0], 0.0] if u[2] >= 0 else [-u[1], 1.0 - u[2], 0.0, u[0]]
+    return unit_quaternion(q), mid, lz
 
 
 def mesh_model(s):
@@ -146,6 +191,39 @@ def contact(case):
     return {"contact": to_format_contact(pick_contact(result))}
 
 
+OVERLAP_REQUEST = coal.CollisionRequest()
+OVERLAP_REQUEST.security_margin = 0.0   # as REQUEST, without contacts: whether they meet
+OVERLAP_REQUEST.num_max_contacts = 1
+OVERLAP_REQUEST.enable_contact = False
+
+
+def overlap_shapes(case):
+    """box-box and box-aabb: coal.collide of the two as Coal shapes (an AABB as a Box),
+    without contacts; overlap = isCollision()."""
+    ga, ta = coal_shape(case["a"])
+    gb, tb = coal_shape(case["b"])
+    result = coal.CollisionResult()
+    timed(coal.collide, ga, ta, gb, tb, OVERLAP_REQUEST, result)
+    return {"overlap": bool(result.isCollision())}
+
+
+def bounds_box(case):
+    """A box's bounds: a coal.CollisionObject of the Box at its pose, computeAABB() (timed),
+    then getAABB() — Coal's AABB of the rotated box in world coordinates — and the Box's
+    bounding sphere: computeLocalAABB's aabb_radius about aabb_center, that centre taken to
+    world coordinates by the object's own transform (Transform3s.transform)."""
+    g, tf = coal_shape(case["a"])
+    obj = coal.CollisionObject(g, tf)
+    timed(obj.computeAABB)
+    box = obj.getAABB()
+    g.computeLocalAABB()
+    c = tf.transform(g.aabb_center)
+    return {
+        "aabb": {"min": [float(x) for x in box.min_], "max": [float(x) for x in box.max_]},
+        "sphere": {"center": [float(x) for x in c], "radius": float(g.aabb_radius)},
+    }
+
+
 def overlap(case):
     A, B = case["a"]["aabb"], case["b"]["aabb"]
     box_a = coal.AABB(np.array(A["min"], dtype=np.float64), np.array(A["max"], dtype=np.float64))
@@ -184,6 +262,14 @@ HANDLERS = {
     ("overlap", "aabb", "aabb"): overlap,
     ("bounds", "points", None): bounds,
     ("bounds", "mesh", None): bounds,
+    ("contact", "sphere", "box"): contact,
+    ("contact", "box", "plane"): contact,
+    ("contact", "sphere", "capsule"): contact,
+    ("contact", "capsule", "capsule"): contact,
+    ("contact", "capsule", "plane"): contact,
+    ("overlap", "box", "box"): overlap_shapes,
+    ("overlap", "box", "aabb"): overlap_shapes,
+    ("bounds", "box", None): bounds_box,
 }
 
 
@@ -213,7 +299,13 @@ def provenance():
                f"initial_guess={r.gjk_initial_guess}, convergence={r.gjk_convergence_criterion}/"
                f"{r.gjk_convergence_criterion_type} (defaults; unused: these pairs are analytic)",
         "epa": f"tolerance={r.epa_tolerance!r}, max_iterations={r.epa_max_iterations} (defaults; unused)",
-        "overlap": "coal.AABB(min, max).overlap(other) (closed boxes)",
+        "overlap": "coal.AABB(min, max).overlap(other) (closed boxes); box-box and box-aabb: coal.collide "
+                   "without contacts (an AABB as a Box of max - min at its centre), isCollision()",
+        "box as": "coal.Box(2*half_extents) at Transform3s(Quaternion(w, x, y, z) made unit, centre)",
+        "capsule as": "coal.Capsule(r, |end - start|) (lz, along its local z, centred) at Transform3s(rotation "
+                      "z -> end - start, start/2 + end/2)",
+        "bounds of a box": "CollisionObject(Box, tf).computeAABB() -> getAABB(); sphere: the Box's aabb_radius "
+                           "about tf.transform(aabb_center)",
         "bounds": "BVHModelOBBRSS (point cloud or triangles) -> computeLocalAABB(): aabb_local, aabb_center, aabb_radius",
         "stdout": "fd 1 redirected to stderr before import; protocol on a duplicate of the original fd 1",
     }

@@ -12,6 +12,7 @@ from crashtest_engine import pinned
 
 HEAD = """\
 # <pins>: crashtest `<query>` <pair>, asked as crashtest's coal adapter asks it
+import math
 import numpy as np
 import coal
 """
@@ -28,6 +29,28 @@ g@, t@ = coal.Halfspace(np.array({{@.normal}}, dtype=np.float64), {{@.offset}}),
     "triangle": """\
 v = [np.array(p, dtype=np.float64) for p in {{@.vertices}}]
 g@, t@ = coal.TriangleP(v[0], v[1], v[2]), coal.Transform3s()
+""",
+    # coal.Box takes full side lengths; coal.Quaternion(w, x, y, z), made unit first
+    "box": """\
+q = [float(x) for x in {{@.rotation}}]
+q = [x / math.hypot(*q) for x in q]
+g@ = coal.Box(*(2.0 * np.array({{@.half_extents}}, dtype=np.float64)))
+t@ = coal.Transform3s(coal.Quaternion(*q), np.array({{@.center}}, dtype=np.float64))
+""",
+    # coal.Capsule(r, lz) lies along its own z, centred (halfLength = lz/2): rotated onto
+    # end - start and moved to the midpoint, as engine.py's capsule_pose does
+    "capsule": """\
+s, e = np.array({{@.start}}, dtype=np.float64), np.array({{@.end}}, dtype=np.float64)
+lz = math.hypot(*(e - s))
+u = (e - s) / lz if lz > 0 else np.array([0.0, 0.0, 1.0])
+q = [1.0 + u[2], -u[1], u[0], 0.0] if u[2] >= 0 else [-u[1], 1.0 - u[2], 0.0, u[0]]
+q = [float(x) / math.hypot(*q) for x in q]
+g@, t@ = coal.Capsule({{@.radius}}, lz), coal.Transform3s(coal.Quaternion(*q), 0.5 * s + 0.5 * e)
+""",
+    "aabb": """\
+lo, hi = np.array({{@.min}}, dtype=np.float64), np.array({{@.max}}, dtype=np.float64)
+g@, t@ = coal.Box(*(hi - lo)), coal.Transform3s()  # an AABB as a Box at its centre
+t@.setTranslation(0.5 * lo + 0.5 * hi)
 """,
 }
 
@@ -70,6 +93,24 @@ box_b = coal.AABB(np.array({{b.min}}, dtype=np.float64), np.array({{b.max}}, dty
 print("overlap:", box_a.overlap(box_b))
 """
 
+OVERLAP_SHAPES = """\
+req = coal.CollisionRequest()
+req.security_margin, req.num_max_contacts, req.enable_contact = 0.0, 1, False
+res = coal.CollisionResult()
+coal.collide(ga, ta, gb, tb, req, res)
+print("isCollision:", res.isCollision())
+"""
+
+BOUNDS_BOX = """\
+L = lambda v: [float(x) for x in v]
+obj = coal.CollisionObject(ga, ta)
+obj.computeAABB()
+print("getAABB: min_", L(obj.getAABB().min_), "max_", L(obj.getAABB().max_))
+ga.computeLocalAABB()
+print("aabb_center (local):", L(ga.aabb_center), "in world:", L(ta.transform(ga.aabb_center)),
+      "aabb_radius:", repr(ga.aabb_radius))
+"""
+
 BOUNDS = """\
 L = lambda v: [float(x) for x in v]
 ga.computeLocalAABB()
@@ -81,8 +122,12 @@ print("aabb_center:", L(ga.aabb_center), "aabb_radius:", repr(ga.aabb_radius))
 def script(query, ka, kb):
     head = (HEAD.replace("<pins>", pinned("coal", "libcoal", "numpy"))
             .replace("<query>", query).replace("<pair>", f"{ka}-{kb}" if kb else ka))
-    if query == "overlap":
+    if query == "overlap" and (ka, kb) == ("aabb", "aabb"):
         return head + OVERLAP
+    if query == "overlap":  # box-box, box-aabb: the shapes collided without contacts
+        return head + SHAPE[ka].replace("@", "a") + SHAPE[kb].replace("@", "b") + OVERLAP_SHAPES
+    if query == "bounds" and ka == "box":
+        return head + SHAPE["box"].replace("@", "a") + BOUNDS_BOX
     if query == "bounds":
         return head + model("a", "points" if ka == "points" else "vertices", ka == "mesh") + BOUNDS
     shapes = "".join(model(r, "vertices", True) + f"t{r} = coal.Transform3s()\n" if k == "mesh"
