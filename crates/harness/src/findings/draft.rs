@@ -38,8 +38,8 @@ fn literal(v: &Value) -> String {
 
 /// Fills a reproduction template's placeholders (`{{a.center}}`,
 /// `{{b.vertices}}`, `{{t_max}}`, …) with the case's values as JSON
-/// literals: an absent velocity is `[0.0, 0.0, 0.0]`, an absent `t_max` its
-/// default; a placeholder the case has no value for is left as it is, so the
+/// literals: an absent velocity is `[0.0, 0.0, 0.0]`, a box's absent rotation
+/// `[1.0, 0.0, 0.0, 0.0]`, an absent `t_max` its default; a placeholder the case has no value for is left as it is, so the
 /// program fails to run rather than run another case.
 pub fn fill(template: &str, case: &Case) -> String {
     let shape_fields = |s: Option<&Shape>| -> Value {
@@ -65,6 +65,7 @@ pub fn fill(template: &str, case: &Case) -> String {
         match fields.get(field) {
             Some(v) => Some(literal(v)),
             None if field == "velocity" && !fields.is_null() => Some("[0.0, 0.0, 0.0]".into()),
+            None if field == "rotation" && fields.get("half_extents").is_some() => Some("[1.0, 0.0, 0.0, 0.0]".into()),
             None => None,
         }
     };
@@ -132,7 +133,7 @@ fn parry_program(engine: &Engine, lc: &LoadedCase, truth: &Answer, tol: &Toleran
         })
     };
     if let (Query::Bounds, Answer::Bounds(_)) = (lc.case.query, truth) {
-        return Some(parry::bounds(krate, &version, crate::load::bounded_points(lc), &allow));
+        return Some(parry::bounds(krate, &version, &crate::load::bounded_points(lc), &allow));
     }
     let b = lc.case.b.as_ref()?;
     match (lc.case.query, truth) {
@@ -302,6 +303,18 @@ mod tests {
             fill(t, &c),
             "c = [1.0, 2.5, -0.0]; r = 0.1; v = [0.0, 0.0, 0.0]; n = [0.0, 0.0, 1.0]; d = 1e300; t = 1.0; \
              x = {{b.nothing}}"
+        );
+    }
+
+    #[test]
+    fn fill_gives_a_box_without_rotation_the_identity() {
+        let c = case(
+            r#"{"name":"n","query":"overlap","a":{"box":{"center":[0,0,0],"half_extents":[1,2,3]}},
+                "b":{"box":{"center":[1,0,0],"half_extents":[1,1,1],"rotation":[2,0,0,1]}}}"#,
+        );
+        assert_eq!(
+            fill("qa = {{a.rotation}}; qb = {{b.rotation}}; h = {{a.half_extents}}", &c),
+            "qa = [1.0, 0.0, 0.0, 0.0]; qb = [2.0, 0.0, 0.0, 1.0]; h = [1.0, 2.0, 3.0]"
         );
     }
 
