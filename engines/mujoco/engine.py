@@ -74,10 +74,33 @@ XML_BOX_BOX = f"""<mujoco><worldbody>
   <body name="a"><freejoint/><geom name="a" type="box" size="1 1 1" contype="1" conaffinity="1" {_GEOM}/></body>
 </worldbody></mujoco>"""
 
+# Boxes and capsules (contact, segment-box): b a geom of the world body, a (the sphere, the
+# box or the capsule of the case's a) a geom of a free body, both collidable (MuJoCo's
+# default contype = conaffinity = 1). Sizes and poses are written per case (set_obox,
+# set_capsule, set_sphere, set_plane); those in the MJCF only let it compile.
+def _xml_pair(b, a):
+    return (f'<mujoco><worldbody>\n  <geom name="b" {b} {_GEOM}/>\n'
+            f'  <body name="a"><freejoint/><geom name="a" {a} {_GEOM}/></body>\n</worldbody></mujoco>')
+
+
+_SPHERE, _BOX, _CAPSULE, _PLANE = ('type="sphere" size="1"', 'type="box" size="1 1 1"',
+                                   'type="capsule" size="1 1"', 'type="plane" size="0 0 1"')
+XML_SPHERE_BOX = _xml_pair(_BOX, _SPHERE)
+XML_PLANE_BOX = _xml_pair(_PLANE, _BOX)
+XML_SPHERE_CAPSULE = _xml_pair(_CAPSULE, _SPHERE)
+XML_CAPSULE_CAPSULE = _xml_pair(_CAPSULE, _CAPSULE)
+XML_PLANE_CAPSULE = _xml_pair(_PLANE, _CAPSULE)
+# segment-box: the box alone, not collidable (mj_ray needs no collision)
+XML_BOX_ONLY = f"""<mujoco><worldbody>
+  <geom name="b" {_BOX} contype="0" conaffinity="0" {_GEOM}/>
+</worldbody></mujoco>"""
+
 
 # the fixed models by scene name (also the MJCF of the hello's reproductions)
 MODELS = {"sphere-sphere": XML_SPHERE_SPHERE, "plane-sphere": XML_PLANE_SPHERE, "flex-sphere": XML_FLEX_SPHERE,
-          "plane-only": XML_PLANE_ONLY, "box-box": XML_BOX_BOX}
+          "plane-only": XML_PLANE_ONLY, "box-box": XML_BOX_BOX, "sphere-box": XML_SPHERE_BOX,
+          "plane-box": XML_PLANE_BOX, "sphere-capsule": XML_SPHERE_CAPSULE, "capsule-capsule": XML_CAPSULE_CAPSULE,
+          "plane-capsule": XML_PLANE_CAPSULE, "box-only": XML_BOX_ONLY}
 
 
 class Scene:
@@ -132,6 +155,53 @@ def set_box(sc, name, box):
     sc.m.geom_size[g] = h
     sc.m.geom_rbound[g] = math.sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2])
     sc.m.geom_aabb[g] = [0.0, 0.0, 0.0, h[0], h[1], h[2]]
+
+
+def set_obox(sc, name, box):
+    """Places a box geom from a `box` shape: geom_pos = the centre, geom_size = the half
+    extents (MuJoCo's box: size = half-sizes), geom_quat = the case's quaternion [w, x, y,
+    z] (MuJoCo's order) divided by its length (math.hypot: MuJoCo composes geom_quat
+    assuming a unit quaternion); and the bounding data of set_box. A zero half-extent
+    (a flat box) is `unsupported`: MuJoCo's compiler refuses a box size <= 0."""
+    g = sc.gid[name]
+    h = [float(x) for x in box["half_extents"]]
+    for i in range(3):
+        if not h[i] > 0:
+            raise Unsupported(f"MuJoCo cannot represent a box with a zero extent (axis {i}: half-size {h[i]!r}): "
+                              f"its compiler refuses it ('size {i} must be positive in geom', checksize in user_objects.cc)")
+    q = [float(x) for x in box.get("rotation", [1.0, 0.0, 0.0, 0.0])]
+    lq = math.hypot(*q)
+    sc.m.geom_pos[g] = box["center"]
+    sc.m.geom_quat[g] = [x / lq for x in q]
+    sc.m.geom_size[g] = h
+    sc.m.geom_rbound[g] = math.sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2])
+    sc.m.geom_aabb[g] = [0.0, 0.0, 0.0, h[0], h[1], h[2]]
+
+
+def set_capsule(sc, name, c):
+    """THE CAPSULE PLACEMENT (the only one). MuJoCo's capsule geom is the segment from
+    (0, 0, -size[1]) to (0, 0, size[1]) of the geom's frame, swept by size[0]. The case's
+    capsule: geom_pos = start/2 + end/2; size = [r, hl] with hl = |end/2 - start/2|
+    (math.hypot of the halves: never overflows); geom_quat = MuJoCo's own
+    mju_quatZ2Vec of the unit axis (end/2 - start/2)/hl, as the compiler's `fromto` does;
+    geom_rbound = r + hl and geom_aabb = [0,0,0, r,r,r+hl], as the compiler sets them. A
+    zero-length axis is `unsupported`: the compiler refuses it ('size 1 must be positive
+    in geom'; with fromto, 'fromto points too close in geom')."""
+    g = sc.gid[name]
+    st, en = [float(x) for x in c["start"]], [float(x) for x in c["end"]]
+    half = [0.5 * en[i] - 0.5 * st[i] for i in range(3)]
+    hl = math.hypot(*half)
+    if not hl > 0:
+        raise Unsupported("MuJoCo cannot represent a capsule with a zero-length axis: its compiler refuses it "
+                          "('size 1 must be positive in geom'; 'fromto points too close in geom')")
+    r = float(c["radius"])
+    q = np.zeros(4)
+    mujoco.mju_quatZ2Vec(q, np.array([x / hl for x in half]))
+    sc.m.geom_pos[g] = [0.5 * st[i] + 0.5 * en[i] for i in range(3)]
+    sc.m.geom_quat[g] = q
+    sc.m.geom_size[g] = [r, hl, 0.0]
+    sc.m.geom_rbound[g] = r + hl
+    sc.m.geom_aabb[g] = [0.0, 0.0, 0.0, r, r, r + hl]
 
 
 def set_plane(sc, name, p):
@@ -238,6 +308,35 @@ def contact_sphere_shape(sphere_a, b, reversed_pair):
     return {"contact": translate_contact(con, b_is_geom1)}
 
 
+def deepest(cons):
+    """MuJoCo's deepest contact (the least dist; on a tie the first in its order). A box on
+    a plane gets up to 4 contacts (its corners below the plane, or the clipped face),
+    parallel capsules 2: every one is a point of the contact region, the deepest taken."""
+    return min(cons, key=lambda c: float(c.dist)) if cons else None
+
+
+SETTERS = {"sphere": set_sphere, "box": set_obox, "capsule": set_capsule, "plane": set_plane}
+SCENE_OF = {("sphere", "box"): "sphere-box", ("box", "plane"): "plane-box", ("sphere", "capsule"): "sphere-capsule",
+            ("capsule", "capsule"): "capsule-capsule", ("capsule", "plane"): "plane-capsule"}
+
+
+def contact_shapes(case):
+    """The box and capsule pairs: a is the model's geom "a" (in a free body), b its geom "b"
+    (in the world body); mj_kinematics, then mj_collision (timed): mjc_SphereBox /
+    mjc_PlaneBox / mjc_SphereCapsule / mjc_CapsuleCapsule / mjc_PlaneCapsule, whichever
+    MuJoCo's collision table holds (geom1 is the geom of the lower type: plane < sphere <
+    capsule < box). The deepest contact, translated."""
+    (ka, sa), = case["a"].items()
+    (kb, sb), = case["b"].items()
+    sc = scene(SCENE_OF[(ka, kb)])
+    SETTERS[ka](sc, "a", sa)
+    SETTERS[kb](sc, "b", sb)
+    con = deepest(collide(sc))
+    if con is None:
+        return {"contact": None}
+    return {"contact": translate_contact(con, int(con.geom[0]) == sc.gid["b"])}
+
+
 def contact_sphere_mesh(case):
     """Sphere a (in a free body) against mesh b (a mesh geom of the world body), both
     collidable (contype = conaffinity = 1, MuJoCo's default), margin 0, gap 0; a model
@@ -301,6 +400,17 @@ def overlap_aabb(case):
     return {"overlap": any(float(c.dist) <= 0.0 for c in cons)}
 
 
+def overlap_box(case):
+    """box-box and box-aabb overlap: as aabb-aabb (the same model, the same rule: at least
+    one contact with dist <= 0), a box placed by set_obox (its rotation), an AABB by set_box."""
+    sc = scene("box-box")
+    set_obox(sc, "a", case["a"]["box"])
+    (kb, sb), = case["b"].items()
+    (set_obox if kb == "box" else set_box)(sc, "b", sb)
+    cons = collide(sc)
+    return {"overlap": any(float(c.dist) <= 0.0 for c in cons)}
+
+
 def ray_guard(vec):
     """mj_ray calls mjERROR("vector length is too small") when mju_norm3(vec) < mjMINVAL
     (engine_ray.c, mj_ray), and in the Python package mjERROR ends the process (exit 1)
@@ -315,6 +425,22 @@ def intersect_plane(case):
     seg, p = case["a"]["segment"], case["b"]["plane"]
     sc = scene("plane-only")
     set_plane(sc, "b", p)
+    mujoco.mj_kinematics(sc.m, sc.d)
+    start = np.array(seg["start"])
+    vec = np.array(seg["end"]) - start
+    ray_guard(vec)
+    normal = np.zeros(3)
+    gid = np.zeros(1, np.int32)
+    x = timed(mujoco.mj_ray, sc.m, sc.d, start, vec, None, 1, -1, gid, normal)
+    return translate_hit(float(x), seg["start"], vec.tolist(), normal)
+
+
+def intersect_box(case):
+    """segment-box: mj_ray on the box alone (set_obox), as segment-plane (pnt = start, vec =
+    end - start, geomgroup NULL, flg_static 1, bodyexclude -1): MuJoCo's ray_box."""
+    seg, bx = case["a"]["segment"], case["b"]["box"]
+    sc = scene("box-only")
+    set_obox(sc, "b", bx)
     mujoco.mj_kinematics(sc.m, sc.d)
     start = np.array(seg["start"])
     vec = np.array(seg["end"]) - start
@@ -380,6 +506,14 @@ HANDLERS = {
     ("intersect", "segment", "triangle"): intersect_triangle,
     ("intersect", "segment", "mesh"): intersect_mesh,
     ("overlap", "aabb", "aabb"): overlap_aabb,
+    ("contact", "sphere", "box"): contact_shapes,
+    ("contact", "box", "plane"): contact_shapes,
+    ("contact", "sphere", "capsule"): contact_shapes,
+    ("contact", "capsule", "capsule"): contact_shapes,
+    ("contact", "capsule", "plane"): contact_shapes,
+    ("intersect", "segment", "box"): intersect_box,
+    ("overlap", "box", "box"): overlap_box,
+    ("overlap", "box", "aabb"): overlap_box,
 }
 
 # ================================================================ WORLDS (dynamics)
@@ -550,6 +684,12 @@ PROVENANCE = {
                  "orientation; b in the world body, a in a free body), rbound/aabb as the compiler sets them, margin 0, "
                  "gap 0; mj_kinematics then mj_collision (bounding-sphere filter, mjc_BoxBox); overlap = any contact "
                  "with dist <= 0; a zero extent: unsupported (the compiler refuses size <= 0)",
+    "box": "box geom: geom_pos = centre, geom_size = half extents, geom_quat = q/|q| ([w, x, y, z]), rbound/aabb "
+           "as the compiler sets them; a zero half-extent: unsupported (the compiler refuses size <= 0)",
+    "capsule": "capsule geom: geom_pos = start/2 + end/2, size = [r, |end/2 - start/2|], geom_quat = "
+               "mju_quatZ2Vec(axis), rbound = r + half length; a zero-length axis: unsupported (the compiler refuses it)",
+    "box and capsule contacts": "a in a free body, b in the world body; mj_collision; the contact with the least dist",
+    "segment-box": "mj_ray on a model holding only the box (contype 0, conaffinity 0)",
     "stdout": "fd 1 redirected to stderr; the protocol uses a duplicate of the original fd 1",
 }
 

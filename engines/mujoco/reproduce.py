@@ -94,6 +94,31 @@ for name, lo, hi in (("a", {{a.min}}, {{a.max}}), ("b", {{b.min}}, {{b.max}})): 
 """
 
 
+# set_obox: centre, half extents, the quaternion [w, x, y, z] made unit, and the bounding
+# data the compiler gives a box
+OBOX = """\
+g, h, q = m.geom("<geom>").id, [float(x) for x in {{@.half_extents}}], [float(x) for x in {{@.rotation}}]
+m.geom_pos[g], m.geom_quat[g], m.geom_size[g] = {{@.center}}, [x / math.hypot(*q) for x in q], h
+m.geom_rbound[g], m.geom_aabb[g] = math.sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]), [0.0, 0.0, 0.0] + h
+"""
+
+# set_capsule: the midpoint, size [r, half length], the geom's z onto the axis by MuJoCo's
+# mju_quatZ2Vec, and the bounding data the compiler gives a capsule
+CAPSULE = """\
+g, st, en, r = m.geom("<geom>").id, {{@.start}}, {{@.end}}, {{@.radius}}
+half = [0.5 * en[i] - 0.5 * st[i] for i in range(3)]
+hl = math.hypot(*half)
+q = np.zeros(4)
+mujoco.mju_quatZ2Vec(q, np.array([x / hl for x in half]))
+m.geom_pos[g], m.geom_quat[g], m.geom_size[g] = [0.5 * st[i] + 0.5 * en[i] for i in range(3)], q, [r, hl, 0.0]
+m.geom_rbound[g], m.geom_aabb[g] = r + hl, [0.0, 0.0, 0.0, r, r, r + hl]
+"""
+
+SETTER = {"sphere": SPHERE, "box": OBOX, "capsule": CAPSULE, "plane": PLANE}
+SCENE_OF = {("sphere", "box"): "sphere-box", ("box", "plane"): "plane-box", ("sphere", "capsule"): "sphere-capsule",
+            ("capsule", "capsule"): "capsule-capsule", ("capsule", "plane"): "plane-capsule"}
+
+
 def script(query, ka, kb, models, geom_attrs, inertia):
     text = body(query, ka, kb, models, geom_attrs, inertia)
     head = (HEAD.replace("<pins>", pinned("mujoco", *(["numpy"] if "np." in text else [])))
@@ -118,6 +143,20 @@ def body(query, ka, kb, models, geom_attrs, inertia):
         return (RAY.replace("<flex>", "mujoco.mj_flex(m, d)\n" if flex else "")
                 .replace("<call>", call).replace("<id>", ident))
 
+    if query == "contact" and (ka, kb) in SCENE_OF:
+        # the case's a is the model's geom "a" (in a free body), its b the geom "b" (world);
+        # the adapter takes the deepest contact (the least dist)
+        return (scene(SCENE_OF[(ka, kb)]) + SETTER[ka].replace("@", "a").replace("<geom>", "a")
+                + SETTER[kb].replace("@", "b").replace("<geom>", "b") + contacts()
+                + "# the adapter takes the contact with the least dist (the first of equals)\n")
+    if query == "intersect" and kb == "box":
+        return scene("box-only") + OBOX.replace("@", "b").replace("<geom>", "b") + ray(RAY_GEOM, "geomid")
+    if query == "overlap" and ka == "box":
+        setter_b = (OBOX.replace("@", "b").replace("<geom>", "b") if kb == "box" else
+                    BOXES.replace('(("a", {{a.min}}, {{a.max}}), ("b", {{b.min}}, {{b.max}}))',
+                                 '(("b", {{b.min}}, {{b.max}}),)'))
+        return (scene("box-box") + OBOX.replace("@", "a").replace("<geom>", "a") + setter_b + contacts()
+                + "# the adapter's overlap: at least one contact with dist <= 0\n")
     if query == "contact":
         # the sphere is the model's geom "a" (in a free body), the other shape is "b" (or
         # the flex) in the world body; in a reversed pair the case's a is the model's "b"
