@@ -55,6 +55,17 @@ pub enum RefereeError {
         /// The offending field.
         field: &'static str,
     },
+    /// An oriented box has a negative half-extent.
+    NegativeHalfExtent {
+        /// The offending field.
+        field: &'static str,
+    },
+    /// An oriented box's rotation quaternion is zero (it has no direction to
+    /// normalize).
+    ZeroRotation {
+        /// The offending field.
+        field: &'static str,
+    },
 }
 
 impl fmt::Display for RefereeError {
@@ -69,6 +80,8 @@ impl fmt::Display for RefereeError {
                 write!(f, "{field}: face {face} has a vertex index out of range")
             }
             Self::TimeOutOfRange { field } => write!(f, "{field}: outside [0, 1] (the motion is given at 0 and 1)"),
+            Self::NegativeHalfExtent { field } => write!(f, "{field}: negative half-extent"),
+            Self::ZeroRotation { field } => write!(f, "{field}: zero quaternion"),
         }
     }
 }

@@ -20,7 +20,15 @@
 //! is computed exactly.)
 //!
 //! Layout follows parry's: one file per query family ([`contact`], [`intersect`],
-//! [`barycentric`], [`bounds`], [`overlap`]), the exact number helpers apart.
+//! [`barycentric`], [`bounds`], [`overlap`]), the exact number helpers apart;
+//! the oriented box ([`boxes`]: sphere–box and box–plane contact, segment–box,
+//! a box's bounds, box–box and box–aabb overlap) and the capsule ([`capsule`]:
+//! sphere–capsule, capsule–capsule and capsule–plane contact) each have their
+//! own file across the families. A box's rotation is exact (its quaternion's
+//! matrix has rational entries and exactly unit columns), so every decision
+//! about boxes is a comparison of rationals too. Where a contact point is not
+//! unique (a box resting on a plane, parallel capsules side by side), the
+//! referee also gives the whole contact region (`contact_region_*`).
 //! Each family also offers a *margin*: the exact signed quantity behind its
 //! decision, rounded to `f64`, so the harness can tell a case that sits within
 //! tolerance of a decision boundary ("borderline") from a clear one. A margin's
@@ -69,7 +77,8 @@
 //! Each stage is counted ([`stage_counts`]) and a report shows the counts.
 //!
 //! Inputs that are not numbers (NaN, ±∞), a negative radius, a zero plane normal,
-//! an inverted box or an empty point cloud are refused with a [`RefereeError`]
+//! an inverted box, an oriented box's negative half-extent or zero quaternion,
+//! or an empty point cloud are refused with a [`RefereeError`]
 //! naming the field — never a panic. Geometry that is valid but degenerate
 //! (concentric spheres, a zero-length segment, a zero-area triangle) is answered
 //! with the documented fallback of each function and a `degenerate` flag.
@@ -77,6 +86,8 @@
 
 pub mod barycentric;
 pub mod bounds;
+pub mod boxes;
+pub mod capsule;
 pub mod ccd;
 mod ccd_fast;
 mod ccd_poly;
@@ -99,6 +110,16 @@ mod toi_fast;
 
 pub use barycentric::barycentric_triangle;
 pub use bounds::{aabb_of_points, enclosure_margin, min_ball};
+pub use boxes::{
+    bounds_box, contact_box_plane, contact_margin_box_plane, contact_margin_sphere_box, contact_region_box_plane,
+    contact_sphere_box, intersect_segment_box, overlap_box_aabb, overlap_box_box, overlap_margin_box_aabb,
+    overlap_margin_box_box,
+};
+pub use capsule::{
+    contact_capsule_capsule, contact_capsule_plane, contact_margin_capsule_capsule, contact_margin_capsule_plane,
+    contact_margin_sphere_capsule, contact_region_capsule_capsule, contact_region_capsule_plane,
+    contact_sphere_capsule,
+};
 pub use ccd::{ccd_point_triangle, ccd_segment_segment};
 pub use contact::{
     CONCENTRIC_FALLBACK_NORMAL, contact_margin_sphere_mesh, contact_margin_sphere_plane, contact_margin_sphere_sphere,

@@ -119,7 +119,7 @@ impl Stage {
 /// The query kinds the referee answers in its exact stage alone (every case
 /// of them is decided exactly: its share without the exact stage is 0 %), for
 /// the report beside [`Stage`]'s counts.
-pub const EXACT_STAGE_ONLY: &str = "overlap (its exact stage is already a handful of f64 comparisons)";
+pub const EXACT_STAGE_ONLY: &str = "overlap of two aabbs (its exact stage is already a handful of f64 comparisons); every box and capsule query (no floating-point stage yet)";
 
 static FAST: [AtomicU64; 8] = [const { AtomicU64::new(0) }; 8];
 static EXACT: [AtomicU64; 8] = [const { AtomicU64::new(0) }; 8];
