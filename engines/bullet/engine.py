@@ -50,11 +50,13 @@ def _housekeeping():
         _created = 0
 
 
-def _body(shape, position):
-    """A static (mass 0) body of `shape` at `position`, identity orientation."""
+def _body(shape, position, orientation=(0.0, 0.0, 0.0, 1.0)):
+    """A static (mass 0) body of `shape` at `position`, with `orientation` (pybullet's
+    quaternion order, [x, y, z, w]; the identity unless given)."""
     global _created
     _created += 1
-    return p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=shape, basePosition=position)
+    return p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=shape, basePosition=position,
+                             baseOrientation=list(orientation))
 
 
 def _zero_margin(body):
@@ -110,6 +112,51 @@ def make_box(b):
     return body
 
 
+def _xyzw(q):
+    """The format's quaternion [w, x, y, z] (any non-zero length) divided by its length
+    (math.hypot) and written in pybullet's order [x, y, z, w]."""
+    n = math.hypot(*q)
+    return [q[1] / n, q[2] / n, q[3] / n, q[0] / n]
+
+
+def make_obox(b):
+    # GEOM_BOX is btBoxShape(half extents) centred on the body, here at the box's centre
+    # with its rotation; margin 0 as for the AABB's box (a zero half-extent is given as is)
+    body = _body(p.createCollisionShape(p.GEOM_BOX, halfExtents=[float(h) for h in b["half_extents"]]),
+                 b["center"], _xyzw(b.get("rotation", [1.0, 0.0, 0.0, 0.0])))
+    _zero_margin(body)
+    return body
+
+
+def capsule_pose(c):
+    """THE CAPSULE PLACEMENT (the only one). pybullet's GEOM_CAPSULE is btCapsuleShapeZ(r,
+    height): the segment from (0, 0, -height/2) to (0, 0, height/2) of the body's frame
+    swept by r (checked: a sphere beside the capsule meets its side, one beyond +z its
+    end; Bullet's C++ btCapsuleShape lies along y, pybullet builds the Z one). The case's
+    capsule: height = |end - start| (math.hypot), the body at start/2 + end/2, rotated by
+    the quaternion taking z to u = (end - start)/height — [1 + u_z, -u_y, u_x, 0] for
+    u_z >= 0, [-u_y, 1 - u_z, 0, u_x] (a half turn about x, then -z onto u) for u_z < 0,
+    made unit — the identity for equal ends. Returns (height, position, [x, y, z, w])."""
+    st, en = [float(x) for x in c["start"]], [float(x) for x in c["end"]]
+    d = [en[i] - st[i] for i in range(3)]
+    height = math.hypot(*d)
+    if not math.isfinite(height):
+        raise Unsupported("pybullet's capsule takes the length |end - start|, which overflows f64 here")
+    mid = [0.5 * st[i] + 0.5 * en[i] for i in range(3)]
+    if not height > 0:
+        return 0.0, mid, [0.0, 0.0, 0.0, 1.0]
+    u = [x / height for x in d]
+    q = [1.0 + u[2], -u[1], u[0], 0.0] if u[2] >= 0 else [-u[1], 1.0 - u[2], 0.0, u[0]]
+    return height, mid, _xyzw(q)
+
+
+def make_capsule(c):
+    # btCapsuleShapeZ: its margin is its radius (btCapsuleShape::setMargin does nothing:
+    # "their entire radius == margin"), so no collisionMargin is sent, as for the sphere
+    height, mid, orn = capsule_pose(c)
+    return _body(p.createCollisionShape(p.GEOM_CAPSULE, radius=c["radius"], height=height), mid, orn)
+
+
 def make(shape):
     kind, s = next(iter(shape.items()))
     if kind == "sphere":
@@ -122,6 +169,10 @@ def make(shape):
         return make_trimesh(s["vertices"], s["triangles"])
     if kind == "aabb":
         return make_box(s)
+    if kind == "box":
+        return make_obox(s)
+    if kind == "capsule":
+        return make_capsule(s)
     raise Unsupported(f"no Bullet shape for {kind}")
 
 
@@ -154,7 +205,9 @@ def contact_from_points(points):
 # triangle the face is known, so the normal is flipped back when it opposes the face
 # normal given in the case (plane: n; triangle: (v1 - v0) x (v2 - v0)); only its sign is
 # read. For a mesh pybullet does not say which face was hit, so the normal is left as
-# Bullet gives it (facing the segment's start). No barycentric, no face index, no
+# Bullet gives it (facing the segment's start). A box is convex: Bullet's convex cast
+# (btGjkConvexCast, kF_UseGjkConvexCastRaytest) gives the surface normal where the ray
+# enters, outward, and it is left as given. No barycentric, no face index, no
 # `parallel`: pybullet reports none of them.
 def hit_from_ray(result, face_normal):
     obj, _link, frac, pos, nrm = result
@@ -239,6 +292,19 @@ def overlap(case):
     # convex-convex closest-point algorithm (GJK, EPA when penetrating). Any point with
     # contactDistance <= 0 means the boxes overlap (touching included).
     return {"overlap": len(closest_points(case)) > 0}
+
+
+def bounds_box(case):
+    # getAABB of the box's body (margin 0): btBoxShape::getAabb at the body's transform,
+    # Bullet's own AABB of the rotated box (btTransformAabb: centre +- |R| h). pybullet
+    # exposes no bounding sphere, so only `aabb` is answered.
+    _housekeeping()
+    body = make(case["a"])
+    try:
+        lo, hi = timed(p.getAABB, body)
+    finally:
+        p.removeBody(body)
+    return {"aabb": {"min": [float(x) for x in lo], "max": [float(x) for x in hi]}}
 
 
 # ======================= WORLDS (rigid-body dynamics) =======================
@@ -384,6 +450,15 @@ HANDLERS = {
     ("intersect", "segment", "triangle"): intersect,
     ("intersect", "segment", "mesh"): intersect,
     ("overlap", "aabb", "aabb"): overlap,
+    ("contact", "sphere", "box"): contact,
+    ("contact", "box", "plane"): contact,
+    ("contact", "sphere", "capsule"): contact,
+    ("contact", "capsule", "capsule"): contact,
+    ("contact", "capsule", "plane"): contact,
+    ("intersect", "segment", "box"): intersect,
+    ("overlap", "box", "box"): overlap,
+    ("overlap", "box", "aabb"): overlap,
+    ("bounds", "box", None): bounds_box,
 }
 
 PROVENANCE = {
@@ -403,6 +478,12 @@ PROVENANCE = {
                   "(concave: every face, two-sided); sphere-mesh contact: getClosestPoints, the point "
                   "with the smallest contactDistance",
     "plane_shape": "GEOM_PLANE -> btStaticPlaneShape(n, 0), body at (d/|n|) n/|n|",
+    "box_shape": "GEOM_BOX -> btBoxShape(half extents), body at the centre with orientation [x, y, z, w] "
+                 "= the case's [w, x, y, z] made unit, collisionMargin 0 (contact, overlap and segment-box alike)",
+    "capsule_shape": "GEOM_CAPSULE -> btCapsuleShapeZ(r, height = |end - start|), body at start/2 + end/2 "
+                     "rotated z -> end - start; its margin is its radius (none sent)",
+    "box_capsule_contacts": "getClosestPoints(bodyA, bodyB or a bare sphere, distance=0), the point with the "
+                            "smallest contactDistance; segment-box: rayTest",
 }
 
 if __name__ == "__main__":

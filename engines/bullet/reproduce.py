@@ -55,6 +55,29 @@ shape = p.createCollisionShape(p.GEOM_BOX, halfExtents=[0.5 * hi[i] - 0.5 * lo[i
 @ = p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=shape, basePosition=[0.5 * lo[i] + 0.5 * hi[i] for i in range(3)])
 p.changeDynamics(@, -1, collisionMargin=0.0)
 """,
+    # btBoxShape(half extents) at the centre, rotated: the quaternion [w, x, y, z] made
+    # unit and written in pybullet's order [x, y, z, w]
+    "box": """\
+q = [float(x) for x in {{@.rotation}}]
+q = [x / math.hypot(*q) for x in q]
+shape = p.createCollisionShape(p.GEOM_BOX, halfExtents={{@.half_extents}})
+@ = p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=shape, basePosition={{@.center}},
+                      baseOrientation=[q[1], q[2], q[3], q[0]])
+p.changeDynamics(@, -1, collisionMargin=0.0)
+""",
+    # btCapsuleShapeZ(r, height) at the midpoint, its z turned onto end - start (its margin
+    # is its radius: none is sent)
+    "capsule": """\
+st, en = {{@.start}}, {{@.end}}
+d = [en[i] - st[i] for i in range(3)]
+height = math.hypot(*d)
+u = [x / height for x in d] if height > 0 else [0.0, 0.0, 1.0]
+q = [1.0 + u[2], -u[1], u[0], 0.0] if u[2] >= 0 else [-u[1], 1.0 - u[2], 0.0, u[0]]
+q = [x / math.hypot(*q) for x in q]
+shape = p.createCollisionShape(p.GEOM_CAPSULE, radius={{@.radius}}, height=height)
+@ = p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=shape, basePosition=[0.5 * st[i] + 0.5 * en[i] for i in range(3)],
+                      baseOrientation=[q[1], q[2], q[3], q[0]])
+""",
 }
 
 # getClosestPoints(A, B, distance): contactNormalOnB points from B toward A,
@@ -75,12 +98,21 @@ print("objectUniqueId", obj, "linkIndex", link, "hitFraction", repr(fraction), "
 """
 
 
+# getAABB(body): Bullet's AABB of the body's shape at its transform
+AABB = """\
+lo, hi = p.getAABB(a)
+print("getAABB:", list(lo), list(hi))
+"""
+
+
 def script(query, ka, kb):
-    if query == "intersect":
+    if query == "bounds":  # a box
+        body = SHAPE[ka].replace("@", "a") + AABB
+    elif query == "intersect":
         body = SHAPE[kb].replace("@", "b") + RAY
     else:  # contact; overlap (the adapter: overlap = at least one point)
         body = SHAPE[ka].replace("@", "a") + SHAPE[kb].replace("@", "b") + CLOSEST
-    return (HEAD.replace("<pins>", pinned("pybullet")).replace("<query>", query).replace("<pair>", f"{ka}-{kb}")
+    return (HEAD.replace("<pins>", pinned("pybullet")).replace("<query>", query).replace("<pair>", f"{ka}-{kb}" if kb else ka)
             .replace("<imports>", "import math\n" if "math." in body else "")) + body
 
 
