@@ -46,6 +46,10 @@ def shapes(rng):
     yield {"triangle": {"vertices": tri}}
     mesh = tri + [[c[i] + rng.uniform(-3, 3) * r for i in range(3)] for _ in range(2)]
     yield {"mesh": {"vertices": mesh, "triangles": [[0, 1, 2], [1, 3, 2], [2, 3, 4]]}}
+    yield {"box": {"center": other_c, "half_extents": [scale * rng.uniform(0.0, 1.0) for _ in range(3)],
+                   "rotation": [rng.uniform(-1, 1) for _ in range(4)]}}
+    yield {"capsule": {"start": other_c, "end": [c[i] + rng.uniform(-3, 3) * r for i in range(3)],
+                       "radius": scale * rng.uniform(0.01, 1.0)}}
     yield sphere  # the sphere itself last: the callers pair it with each of the above
 
 
@@ -55,7 +59,7 @@ def cases():
         *others, sphere = shapes(rng)
         for other in others:
             yield {"a": sphere, "b": other}
-            if "mesh" not in other:
+            if not {"mesh", "box", "capsule"} & set(other):  # sphere first only: the pairs
                 yield {"a": other, "b": sphere}
     # exact: touching a plane, a triangle and a sphere exactly; concentric spheres
     unit = {"sphere": {"center": [0.0, 0.0, 1.0], "radius": 1.0}}
@@ -64,6 +68,8 @@ def cases():
     yield {"a": unit, "b": {"triangle": {"vertices": [[-1.0, -1.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]]}}}
     yield {"a": unit, "b": {"sphere": {"center": [0.0, 0.0, 3.0], "radius": 1.0}}}
     yield {"a": unit, "b": {"sphere": {"center": [0.0, 0.0, 1.0], "radius": 0.5}}}
+    yield {"a": unit, "b": {"box": {"center": [0.0, 0.0, -1.0], "half_extents": [1.0, 1.0, 1.0]}}}
+    yield {"a": unit, "b": {"capsule": {"start": [-1.0, 0.0, -0.5], "end": [1.0, 0.0, -0.5], "radius": 0.5}}}
 
 
 def main():

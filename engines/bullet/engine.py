@@ -243,7 +243,7 @@ def closest_points(case):
     pybullet decides whether Bullet reported the pair swapped by comparing the first
     object's body id with bodyA's, and a bare shape's id is -1: with a body on the other
     side the test still tells them apart. Two spheres both go bare:
-    btSphereSphereCollisionAlgorithm never swaps them. Boxes are two bodies, as before."""
+    btSphereSphereCollisionAlgorithm never swaps them. AABBs, boxes and capsules are bodies."""
     _housekeeping()
     sa, sb = _bare_sphere(case["a"]), _bare_sphere(case["b"])
     if sa and sb:
