@@ -135,7 +135,8 @@ def set_sphere(sc, name, s):
 
 def set_box(sc, name, box):
     """Places a box geom from an aabb: geom_pos = the centre, geom_size = the half
-    extents (MuJoCo's box: size = half-sizes), identity orientation; and the bounding
+    extents (MuJoCo's box: size = half-sizes), identity orientation (written: the model is
+    shared with box-box, whose boxes are rotated); and the bounding
     data MuJoCo's compiler gives a box (user_objects.cc, mjCGeom::GetRBound:
     geom_rbound = sqrt(hx*hx + hy*hy + hz*hz); geom_aabb = [0,0,0, hx,hy,hz]).
     Input conversion: centre = min/2 + max/2, half = max/2 - min/2 (never overflows;
@@ -152,6 +153,7 @@ def set_box(sc, name, box):
             raise Unsupported(f"MuJoCo cannot represent a box with a zero extent (axis {i}: half-size {h[i]!r}): "
                               f"its compiler refuses it ('size {i} must be positive in geom', checksize in user_objects.cc)")
     sc.m.geom_pos[g] = c
+    sc.m.geom_quat[g] = [1.0, 0.0, 0.0, 0.0]  # identity: the model is shared with rotated boxes (set_obox)
     sc.m.geom_size[g] = h
     sc.m.geom_rbound[g] = math.sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2])
     sc.m.geom_aabb[g] = [0.0, 0.0, 0.0, h[0], h[1], h[2]]
