@@ -50,9 +50,10 @@ use crate::shapes::{Sphere, Triangle};
 /// face region is taken only when the projection is proven inside, by the
 /// book's own edge tests against a rigorous bound on their rounding (every
 /// ordinary query) or else by the signs of the centre's barycentric
-/// coordinates, or else by the exact signs of the three edge tests (a
-/// projection within `50 ε L` of an edge, `L` the longest edge: for a small
-/// sphere beside a huge triangle that is several radii); otherwise the
+/// coordinates, or else by the signs of the three edge tests in
+/// compensated, then exact, arithmetic (a projection within `50 ε L` of an
+/// edge, `L` the longest edge: for a small sphere beside a huge triangle
+/// that is several radii); otherwise the
 /// closest point is on an edge the projection is outside of. A book's edge
 /// point far closer to the centre than the triangle's extent (`2^−20` of
 /// it) is recomputed from the exact region, and every edge foot is formed
@@ -475,7 +476,10 @@ enum Certified {
 ///
 /// Whether the projection `P` is inside is the sign of the three edge tests
 /// `((v_j − v_i) × (M − v_i)) · n`, `n = (v1 − v0) × (v2 − v0)`: Ericson's
-/// `va`, `vb`, `vc` ([`Closest::edge_tests`]). In two stages:
+/// `va`, `vb`, `vc` ([`Closest::edge_tests`]). Each stage below returns at
+/// once when its rounding bound certifies every sign; only the cases it
+/// cannot certify go on to the next, and every stage that answers gives
+/// the exact signs, so the region is the exact one whichever stage decides:
 ///
 /// 1. **The book's own values** (nearly every query): in the centre's frame
 ///    each computed test is within `512 u (Ē S)²` of the exact test on the
@@ -487,18 +491,18 @@ enum Certified {
 ///    the exact signs; its vertex regions rest on dot products, which err by
 ///    a rounding of the point's parameter on an edge), or, if the book said
 ///    face, the closest point of the edges `P` is outside of is taken.
-/// 2. **The centre's barycentric coordinates** otherwise
-///    ([`barycentric_triangle_tight`]: exact where its filter cannot
-///    certify `16 ε`, for any shape): each is within `17 ε` of the size `max(1, |coords|)`
-///    ([`BARY_MARGIN`]), so all above `32 ε` of the size is certainly inside
-///    (the face). Otherwise the answer is the closest point of the edges `P`
-///    is not certainly inside of ([`closest_on_outer_edges`]), exact when `P`
-///    is outside. When `P` is in fact inside, a coordinate `λ_k` is at most
-///    `32 ε + 17 ε` of a size at most `1 + 16 ε`, below `50 ε`, so `P` is
-///    within `50 ε h_k ≤ 50 ε L` of an edge (`h_k` the triangle's height over
-///    it, `L` its longest edge), and the answer within about that of the
-///    exact closest point `P` — `1e-14 L`, well within the rounding of the
-///    rest of the answer.
+/// 2. **The centre's barycentric coordinates** otherwise (slivers, a
+///    projection near an edge's line: [`projection_signs`], by
+///    [`barycentric_triangle_tight`], exact where its filter cannot certify
+///    `16 ε`, for any shape): each is within `17 ε` of the size
+///    `max(1, |coords|)` ([`BARY_MARGIN`]), so a coordinate beyond `32 ε` of
+///    the size on either side has the exact sign of its edge test. All of
+///    them beyond it: all positive is the face, otherwise the closest point
+///    is on the edges `P` is outside of ([`closest_on_outer_edges`]).
+/// 3. **The edge tests in compensated, then exact, arithmetic** when a
+///    coordinate is within the margin ([`exact_region`]): a projection
+///    within `50 ε` of the triangle's size from an edge's line, which for a
+///    small sphere beside a huge triangle is several radii.
 ///
 /// Outside the centre's frame (coordinates near the overflow threshold)
 /// stage 1 is skipped.
@@ -513,9 +517,10 @@ fn certified_region<T: Real>(found: &Closest<T>, in_local: bool, centre: &Vec3<T
             (_, Region::Face) => Certified::Edges(outer(inner)),
         };
     }
-    match projection_inner(centre, tri) {
-        [true, true, true] => Certified::Face,
-        _ => exact_region(centre, tri),
+    match projection_signs(centre, tri) {
+        Some([true, true, true]) => Certified::Face,
+        Some(inner) => Certified::Edges(outer(inner)),
+        None => exact_region(centre, tri),
     }
 }
 
@@ -523,17 +528,53 @@ fn certified_region<T: Real>(found: &Closest<T>, in_local: bool, centre: &Vec3<T
 /// cannot tell (a projection within `50 ε` of the triangle's size from an
 /// edge — which for a small sphere beside a huge triangle, `r = 4` against
 /// legs of `1e15`, is several radii): the signs of the three edge tests
-/// `va`, `vb`, `vc` decided exactly ([`exact_edge_tests`]). All positive is
-/// the face; otherwise the closest point is on the edges the projection is
+/// `va`, `vb`, `vc` in compensated arithmetic where its bound certifies
+/// them ([`compensated_edge_tests`]: an exact zero on grid coordinates
+/// included), else exactly ([`exact_edge_tests`]). All positive is the
+/// face; otherwise the closest point is on the edges the projection is
 /// outside of or on, exactly those.
 #[cold]
 #[inline(never)]
 fn exact_region<T: Real>(centre: &Vec3<T>, tri: &Triangle<T>) -> Certified {
-    let inner = exact_edge_tests(centre, tri).map(|s| s == crate::exact::Sign::Positive);
+    let inner = match compensated_edge_tests(centre, tri) {
+        Some(inner) => inner,
+        None => exact_edge_tests(centre, tri).map(|s| s == crate::exact::Sign::Positive),
+    };
     match inner {
         [true, true, true] => Certified::Face,
         _ => Certified::Edges([!inner[2], !inner[0], !inner[1]]),
     }
+}
+
+/// Whether each of the book's edge tests of `p` against `tri` (see
+/// [`exact_edge_tests`]) is positive, from the tests in compensated
+/// arithmetic (`exact::compensated::dot_cross` of the face normal and the
+/// cross product of the offsets, each a compensated cross product of exact
+/// differences): `None` unless every sign is certain, or when an input is
+/// outside that arithmetic's domain. Its bound is zero when every operation
+/// was exact, so a projection exactly on an edge's line (a sphere exactly
+/// touching an edge, grid coordinates) is decided here, as is any test not
+/// within about `u²` of its permanent; the rest go to [`exact_edge_tests`].
+#[cold]
+#[inline(never)]
+fn compensated_edge_tests<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> Option<[bool; 3]> {
+    use crate::exact::compensated::{cross, diff, dot_cross, in_range_degree_4_points, sign_known};
+    let w = |v: &Vec3<T>| [v.x.wide(), v.y.wide(), v.z.wide()];
+    let (m, v) = (w(p), tri.vertices.each_ref().map(w));
+    if !in_range_degree_4_points([m, v[0], v[1], v[2]]) {
+        return None;
+    }
+    let n = cross(&diff(v[1], v[0]), &diff(v[2], v[0]));
+    let rel = v.map(|x| diff(x, m));
+    let mut inner = [false; 3];
+    for (i, slot) in inner.iter_mut().enumerate() {
+        let t = dot_cross(&n, &cross(&rel[(i + 1) % 3], &rel[(i + 2) % 3]));
+        if !sign_known(&t) {
+            return None;
+        }
+        *slot = t.value > 0.0;
+    }
+    Some(inner)
 }
 
 /// The exact signs of the book's edge tests of `p` against `tri` (see
@@ -656,22 +697,28 @@ thread_local! {
 /// certainly positive, and one below `−32 ε` of it certainly negative.
 const BARY_MARGIN: f64 = 32.0;
 
-/// Whether the projection of `centre` onto the plane of `tri` is certainly
-/// strictly inside the edge opposite each vertex, by its barycentric
-/// coordinates (stage 2 of [`certified_region`]): each coordinate above
-/// [`BARY_MARGIN`] of their size. A degenerate answer (no coordinates)
-/// certifies nothing.
+/// On which side of each edge the projection of `centre` onto the plane of
+/// `tri` lies, by its barycentric coordinates (stage 2 of
+/// [`certified_region`]): `Some([λ0 > 0, λ1 > 0, λ2 > 0])` (strictly inside
+/// the edge opposite each vertex) when every coordinate is beyond
+/// [`BARY_MARGIN`] of their size on either side, so that every sign is
+/// exact; `None` when one is within it (the projection within rounding of
+/// an edge's line) or the answer is degenerate (no coordinates).
+///
+/// The signs are those of the book's edge tests (`va = ‖n‖² λ0`, and
+/// cyclically: [`Closest::edge_tests`]), so a `Some` is what
+/// [`exact_region`] would decide.
 #[cold]
-fn projection_inner<T: Real>(centre: &Vec3<T>, tri: &Triangle<T>) -> [bool; 3] {
+fn projection_signs<T: Real>(centre: &Vec3<T>, tri: &Triangle<T>) -> Option<[bool; 3]> {
     #[cfg(test)]
     STAGE_TWO.with(|n| n.set(n.get() + 1));
     let bary = barycentric_triangle_tight(centre, tri);
     if bary.degenerate {
-        return [false; 3];
+        return None;
     }
     let size = bary.coords.iter().fold(T::one(), |m, x| m.max(x.abs()));
     let margin = c::<T>(BARY_MARGIN) * T::EPSILON * size;
-    bary.coords.map(|x| x > margin)
+    bary.coords.iter().all(|x| x.abs() > margin).then(|| bary.coords.map(|x| x > T::zero()))
 }
 
 /// The face normal `n = (v1 − v0) × (v2 − v0)` and the centre's volume
@@ -1682,6 +1729,102 @@ mod tests {
         }
         let stage_two = STAGE_TWO.with(|n| n.get()) - before;
         assert!(stage_two * 1000 < QUERIES, "{stage_two} of {QUERIES} queries needed the barycentric stage");
+    }
+
+    /// Stages 2 and 3 of `certified_region` give the exact signs of the
+    /// book's edge tests or decline: centres whose projections approach an
+    /// edge's line from either side at offsets from the triangle's size down
+    /// to `1e-40` of it, beside an ordinary triangle and a sliver, at scales
+    /// from `1e-3` to `1e12` (coordinates not on a grid, so the compensated
+    /// arithmetic is not exact), and beside a triangle with legs of `2.6e15`
+    /// (multi-scale: the centre's own ulps are far finer than the
+    /// triangle's). Each stage must decide some of them (it is
+    /// not dead code) and decline some (the next stage answers those), and
+    /// every stage that answers, and `exact_region` itself, must agree with
+    /// the signs in exact arithmetic.
+    #[test]
+    fn the_filtered_edge_signs_are_exact_or_decline() {
+        use crate::exact::Sign;
+        let (mut decided, mut declined) = ([0u32; 2], [0u32; 2]);
+        let at = |p: [f64; 3], s: f64| Vec3::new(p[0] * s, p[1] * s, p[2] * s);
+        for (scale, height) in [(1.0, 0.7), (1e-3, 1e-9), (1e12, 0.3), (3.0, 1e-13)] {
+            let a = at([0.1, 0.2, 0.3], scale);
+            let (ab, ac) = (at([1.3, 0.1, -0.2], scale), at([0.4, height, 0.1], scale));
+            let tri = Triangle::new(a, a + ab, a + ac);
+            let foot = a + ab * 0.37;
+            // Off the plane along its normal: the projection stays at the
+            // foot, up to the rounding of the sum.
+            let normal = ab.cross(&ac);
+            let lift = normal * (0.25 * scale / normal.norm());
+            for k in 0..=40 {
+                for side in [1.0, -1.0] {
+                    let offset = side * 10f64.powi(-k);
+                    let centre = foot + ac * offset + lift;
+                    let exact = exact_edge_tests(&centre, &tri).map(|s| s == Sign::Positive);
+                    for (i, got) in
+                        [projection_signs(&centre, &tri), compensated_edge_tests(&centre, &tri)].into_iter().enumerate()
+                    {
+                        match got {
+                            Some(signs) => {
+                                assert_eq!(signs, exact, "stage {} at 1e-{k} of {scale:e}", i + 2);
+                                decided[i] += 1;
+                            }
+                            None => declined[i] += 1,
+                        }
+                    }
+                    let want = if exact == [true; 3] {
+                        Certified::Face
+                    } else {
+                        Certified::Edges([!exact[2], !exact[0], !exact[1]])
+                    };
+                    assert_eq!(exact_region(&centre, &tri), want, "at 1e-{k} of {scale:e}");
+                }
+            }
+        }
+        // Multi-scale: legs of about 2.6e15, not on a grid, with the edge
+        // `ab` through the origin (`a = −b`), and centres near the origin
+        // at `1` down to `1e-40` (their coordinates' own ulps are that fine).
+        let b = v(1.2345678901234567e15, 3.333_333_333_333_334e14, 7.777777777777777e13);
+        let tri = Triangle::<f64>::new(-b, b, v(-4.444444444444444e14, 1.9191919191919192e15, -2.2e14));
+        for k in 0..=40 {
+            for side in [1.0, -1.0] {
+                let centre = v(0.3, -0.7, 0.5) * (side * 10f64.powi(-k));
+                let exact = exact_edge_tests(&centre, &tri).map(|s| s == Sign::Positive);
+                for (i, got) in
+                    [projection_signs(&centre, &tri), compensated_edge_tests(&centre, &tri)].into_iter().enumerate()
+                {
+                    match got {
+                        Some(signs) => {
+                            assert_eq!(signs, exact, "stage {} at 1e-{k} beside legs of 2.6e15", i + 2);
+                            decided[i] += 1;
+                        }
+                        None => declined[i] += 1,
+                    }
+                }
+            }
+        }
+        for i in 0..2 {
+            assert!(
+                decided[i] > 0 && declined[i] > 0,
+                "stage {}: {} decided, {} declined",
+                i + 2,
+                decided[i],
+                declined[i]
+            );
+        }
+    }
+
+    /// The compensated edge tests decide exact zeros: a centre whose
+    /// projection lies exactly on an edge's line (grid coordinates, where
+    /// every operation is exact) is answered without the exact arithmetic,
+    /// as on the edge (not strictly inside it).
+    #[test]
+    fn the_compensated_edge_tests_decide_exact_zeros() {
+        let tri = Triangle::<f64>::new(v(0.25, -1.5, 2.0), v(3.75, -1.5, 2.0), v(0.25, 2.5, 2.0));
+        // Above the edge from (0.25, -1.5) to (3.75, -1.5): y = -1.5 exactly.
+        let centre = v(1.125, -1.5, 2.75);
+        assert_eq!(compensated_edge_tests(&centre, &tri), Some([true, true, false]));
+        assert_eq!(projection_signs(&centre, &tri), None, "the barycentric stage cannot tell a zero");
     }
 
     /// [`FRAME_EDGE_TEST_BOUND`] holds: the book's edge tests computed in

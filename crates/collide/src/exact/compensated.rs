@@ -325,6 +325,82 @@ pub(crate) fn dot_diff(n: &Normal, r: &Diff3) -> Filtered {
     Filtered { value, bound }
 }
 
+/// Smallest non-zero input magnitude of [`dot_cross`] (2^−200): a product of
+/// two cross products is of degree 4, and the module's domain argument (every
+/// value an integer multiple of the inputs' last bit to the degree) then
+/// needs inputs of at least `2^−200`: every input is a multiple of `2^−252`,
+/// every product of four a multiple of `2^−1008`, which is represented
+/// exactly or rounded in the normal range (a multiple of `2^−1008` with more
+/// than 53 significant bits is at least `2^−955`). Nothing overflows:
+/// cross products are at most `2^129`, their products `2^260`.
+pub(crate) const MIN_INPUT_DEGREE_4: f64 = 6.223015277861142e-61;
+
+/// Whether every coordinate of the points is `0` or of magnitude in
+/// `[2^−200, 2^63]`: the domain of [`dot_cross`] ([`MIN_INPUT_DEGREE_4`]).
+#[inline(always)]
+pub(crate) fn in_range_degree_4_points<const N: usize>(ps: [P3; N]) -> bool {
+    let ok = |x: f64| {
+        let a = x.abs();
+        (a <= FAST_MAX) & ((a >= MIN_INPUT_DEGREE_4) | (a == 0.0))
+    };
+    ps.iter().fold(true, |acc, p| acc & ok(p[0]) & ok(p[1]) & ok(p[2]))
+}
+
+/// Factor of the tail sum of a product of two cross products (see
+/// [`dot_cross`]): `16u`.
+const DOT_CROSS_TAIL: f64 = 16.0 * U;
+
+/// The dot product `c · d` of two compensated cross products, with its bound
+/// (`0` when every operation was exact; then `value` is the exact value), on
+/// inputs in the domain of [`in_range_degree_4_points`].
+///
+/// With `c_k = s_k + t_k + ε_k` (`|ε_k| ≤ e_k`) and `d_k = s'_k + t'_k + ε'_k`
+/// (`|ε'_k| ≤ e'_k`, [`cross`]), and `c̃_k = s_k + t_k`, `d̃_k = s'_k + t'_k`:
+///
+/// ```text
+/// c · d = Σ s_k s'_k + Σ (s_k t'_k + t_k s'_k + t_k t'_k) + Σ (ε_k d_k + c̃_k ε'_k)
+/// (P_k, F_k) = two_prod(s_k, s'_k),  (H1, σ1) = two_sum(P0, P1),  (H, σ2) = two_sum(H1, P2)
+/// c · d = H + [σ1 + σ2 + Σ (F_k + s_k t'_k + t_k s'_k + t_k t'_k)] + Σ (ε_k d_k + c̃_k ε'_k)
+/// ```
+///
+/// `L = fl(bracket)` sums 14 terms (9 rounded products) by 13 roundings:
+/// within `γ13 B + u(1 + γ13) Σ|products| ≤ 14.01 u B`, `B = Σ |computed
+/// terms|` (no tail product is dropped: a cross product's tail `t` is not
+/// small against its head `s`, which may cancel). The ε terms are at most
+/// `E = Σ (e_k (|s'_k| + |t'_k| + e'_k) + e'_k (|s_k| + |t_k|))`, computed by
+/// fewer than 12 roundings of non-negative terms. The value `v = fl(H + L)`
+/// adds `u |v|`. With `B̂ ≥ (1 − 13u) B`:
+/// `bound = (16u B̂ + (1 + 16u) Ê + u |v|) · BOUND_ROUNDING`, and `bound = 0`
+/// when `B̂` and `Ê` are `0`: then every tail vanished (no product underflows
+/// in the domain), `L = 0` and `v = H` is exact.
+#[inline]
+pub(crate) fn dot_cross(c: &Cross, d: &Cross) -> Filtered {
+    let (p0, f0) = two_prod(c.s[0], d.s[0]);
+    let (p1, f1) = two_prod(c.s[1], d.s[1]);
+    let (p2, f2) = two_prod(c.s[2], d.s[2]);
+    let (h1, sigma1) = two_sum(p0, p1);
+    let (h, sigma2) = two_sum(h1, p2);
+    let y = [0, 1, 2].map(|k| c.s[k].x * d.t[k]);
+    let z = [0, 1, 2].map(|k| c.t[k] * d.s[k].x);
+    let q = [0, 1, 2].map(|k| c.t[k] * d.t[k]);
+    let l = ((sigma1 + sigma2) + ((f0 + f1) + f2))
+        + ((y[0] + y[1]) + y[2])
+        + ((z[0] + z[1]) + z[2])
+        + ((q[0] + q[1]) + q[2]);
+    let b = ((sigma1.abs() + sigma2.abs()) + ((f0.abs() + f1.abs()) + f2.abs()))
+        + ((y[0].abs() + y[1].abs()) + y[2].abs())
+        + ((z[0].abs() + z[1].abs()) + z[2].abs())
+        + ((q[0].abs() + q[1].abs()) + q[2].abs());
+    let e = [0, 1, 2]
+        .map(|k| c.err[k] * ((d.s[k].x.abs() + d.t[k].abs()) + d.err[k]) + d.err[k] * (c.s[k].x.abs() + c.t[k].abs()))
+        .iter()
+        .fold(0.0, |acc, x| acc + x);
+    let tail = DOT_CROSS_TAIL * b + (1.0 + DOT_CROSS_TAIL) * e;
+    let value = h + l;
+    let bound = if tail == 0.0 { 0.0 } else { (tail + U * value.abs()) * BOUND_ROUNDING };
+    Filtered { value, bound }
+}
+
 /// Whether `x`'s sign is known: its bound is below its magnitude, or it is
 /// exact (bound `0`, zero included).
 #[inline(always)]
@@ -398,6 +474,24 @@ mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(2000))]
+
+        /// The product of two compensated cross products is within its
+        /// bound of the exact value, and a zero bound means an exact value.
+        #[test]
+        fn dot_cross_bound_holds(a in point(), b in point(), c in point(), q in point()) {
+            if !in_range_degree_4_points([a, b, c, q]) {
+                // Outside the domain (a coordinate below 2^−200): not claimed.
+                return Ok(());
+            }
+            let n = cross(&diff(b, a), &diff(c, a));
+            let m = cross(&diff(b, q), &diff(c, q));
+            let got = dot_cross(&n, &m);
+            let exact = big_dot(
+                &big_cross(&big_diff(b, a), &big_diff(c, a)),
+                &big_cross(&big_diff(b, q), &big_diff(c, q)),
+            );
+            prop_assert!(within(&exact, &got), "{got:?}");
+        }
 
         /// The compensated cross product, its components and the triple
         /// product are within their bounds of the exact values, and a zero
