@@ -127,7 +127,7 @@ fn sphere_plane(c: &mut Criterion, cases: &[(geom::Sphere, geom::Plane)]) {
     pairs.measure(&target_pairs("sphere_plane"));
 }
 
-fn sphere_triangle(c: &mut Criterion, cases: &[(geom::Sphere, geom::Triangle)]) {
+fn sphere_triangle(c: &mut Criterion, cases: &[(geom::Sphere, geom::Triangle)], families: &[&'static str]) {
     use collide::contact::contact_sphere_triangle;
     let mut g = group(c, "sphere_triangle", cases.len());
     let c64 = conv(cases, to_collide::sphere::<f64>, to_collide::triangle::<f64>);
@@ -147,6 +147,12 @@ fn sphere_triangle(c: &mut Criterion, cases: &[(geom::Sphere, geom::Triangle)]) 
     pairs.keep("parry64", &d64, |(a, b)| p64::contact_sphere_triangle(a, b));
     pairs.keep("parry64_like", &d64, |(a, b)| p64::contact_sphere_triangle_pair(a, b));
     pairs.measure(&target_pairs("sphere_triangle"));
+    by_family(
+        "sphere_triangle",
+        families,
+        (&c64, |(a, b)| contact_sphere_triangle(a, b)),
+        (&d64, |(a, b)| p64::contact_sphere_triangle(a, b)),
+    );
 }
 
 fn segment_plane(c: &mut Criterion, cases: &[(geom::Segment, geom::Plane)], families: &[&'static str]) {
@@ -678,7 +684,7 @@ fn main() {
         .configure_from_args();
     sphere_sphere(&mut c, &cases.sphere_sphere);
     sphere_plane(&mut c, &cases.sphere_plane);
-    sphere_triangle(&mut c, &cases.sphere_triangle);
+    sphere_triangle(&mut c, &cases.sphere_triangle, &cases.families.sphere_triangle);
     segment_plane(&mut c, &cases.segment_plane, &cases.families.segment_plane);
     segment_triangle(&mut c, "segment_triangle", &cases.segment_triangle, Some(&cases.families.segment_triangle));
     segment_triangle(&mut c, "segment_triangle_uniform", &cases.segment_triangle_uniform, None);
@@ -689,6 +695,11 @@ fn main() {
     c.final_summary();
     if let Some(peak) = peak.map(|p| p.best(peak::measure())) {
         let families = [
+            FamilyTable {
+                label: "sphere–triangle",
+                group: "sphere_triangle",
+                families: family_counts(&cases.families.sphere_triangle),
+            },
             FamilyTable {
                 label: "segment–plane",
                 group: "segment_plane",

@@ -45,7 +45,7 @@ pub struct Cases {
     pub overlap: Vec<(geom::Aabb, geom::Aabb)>,
     /// Point clouds (bounding sphere).
     pub clouds: Vec<Vec<geom::P3>>,
-    /// The campaign family each case of the three queries whose targets
+    /// The campaign family each case of the four queries whose targets
     /// depend most on the mix was drawn from, case by case.
     pub families: Families,
 }
@@ -53,6 +53,8 @@ pub struct Cases {
 /// The campaign family of each case (`harness::generate::family_for`), in
 /// the order of the case sets, for the by-family table.
 pub struct Families {
+    /// Of [`Cases::sphere_triangle`].
+    pub sphere_triangle: Vec<&'static str>,
     /// Of [`Cases::segment_plane`].
     pub segment_plane: Vec<&'static str>,
     /// Of [`Cases::segment_triangle`].
@@ -141,6 +143,8 @@ impl Cases {
     /// Draws every set (about a second: the generators are proptest strategies).
     pub fn draw() -> Self {
         let seg_tri = |_: u64, a: &Shape, b: Option<&Shape>| either(a, b, segment, triangle);
+        let (sphere_triangle, sphere_triangle_families) =
+            draw_with_families(Query::Contact, |_, a, b| either(a, b, sphere, triangle));
         let (segment_plane, segment_plane_families) =
             draw_with_families(Query::Intersect, |_, a, b| either(a, b, segment, plane));
         let (segment_triangle, segment_triangle_families) = draw_with_families(Query::Intersect, seg_tri);
@@ -154,7 +158,7 @@ impl Cases {
         Self {
             sphere_sphere: draw(Query::Contact, |_, a, b| Some((sphere(a)?, sphere(b?)?))),
             sphere_plane: draw(Query::Contact, |_, a, b| either(a, b, sphere, plane)),
-            sphere_triangle: draw(Query::Contact, |_, a, b| either(a, b, sphere, triangle)),
+            sphere_triangle,
             segment_plane,
             segment_triangle,
             segment_triangle_uniform: draw(Query::Intersect, |i, a, b| {
@@ -167,6 +171,7 @@ impl Cases {
                 _ => None,
             }),
             families: Families {
+                sphere_triangle: sphere_triangle_families,
                 segment_plane: segment_plane_families,
                 segment_triangle: segment_triangle_families,
                 barycentric: barycentric_families,
