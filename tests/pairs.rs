@@ -31,6 +31,11 @@ const NO_GENERATOR: &[(Pair, &str)] = &[
 
 /// Pairs without a stability sweep, with the reason.
 const NO_SWEEP: &[(Pair, &str)] = &[
+    (
+        Pair::BoundsBox,
+        "a box's bounds are sums |Rᵢⱼ|hⱼ about its centre, with no decision to sweep toward; the flat-box family \
+         and fixtures cover a zero extent",
+    ),
     (Pair::ContactPlaneSphere, "the reverse order of sphere–plane: the same geometry, swept as sphere–plane"),
     (Pair::ContactTriangleSphere, "the reverse order of sphere–triangle: the same geometry, swept as sphere–triangle"),
     (

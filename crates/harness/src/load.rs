@@ -81,12 +81,30 @@ pub struct LoadedCase {
 }
 
 /// The points a `bounds` case bounds.
-pub fn bounded_points(lc: &LoadedCase) -> &[P3] {
+pub fn bounded_points(lc: &LoadedCase) -> std::borrow::Cow<'_, [P3]> {
+    use std::borrow::Cow;
     match (&lc.case.a, &lc.meshes[0]) {
-        (Shape::Points(p), _) => &p.points,
-        (_, Some(m)) => &m.vertices,
-        _ => &[],
+        (Shape::Points(p), _) => Cow::Borrowed(&p.points),
+        (Shape::Box(b), _) => Cow::Owned(box_corners(&b.to_geom()).to_vec()),
+        (_, Some(m)) => Cow::Borrowed(&m.vertices),
+        _ => Cow::Borrowed(&[]),
     }
+}
+
+/// A box's eight corners in `f64`: `center ± h₀R₀ ± h₁R₁ ± h₂R₂` with the
+/// rotation matrix rounded (each corner within a few ulps of the box's size
+/// of the exact one), halved before the sums where they would overflow.
+pub fn box_corners(b: &oracle::geom::OrientedBox) -> [P3; 8] {
+    let r = b.rotation_matrix();
+    let h = b.half_extents;
+    std::array::from_fn(|k| {
+        let s = [0, 1, 2].map(|j| if k >> j & 1 == 1 { h[j] } else { -h[j] });
+        std::array::from_fn(|i| {
+            let off = r[i][0] * s[0] + r[i][1] * s[1] + r[i][2] * s[2];
+            let x = b.center[i] + off;
+            if x.is_finite() { x } else { 2.0 * (b.center[i] / 2.0 + off / 2.0) }
+        })
+    })
 }
 
 /// What reading some paths gave: the good cases, and an error for each bad one.

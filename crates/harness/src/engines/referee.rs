@@ -7,8 +7,8 @@ use crate::load::LoadedCase;
 use crate::mesh::Mesh;
 use crashtest_core::vec3::{norm_sqrt_dot, sub};
 use oracle::geom::{
-    Aabb, BarycentricAnswer, BoundsAnswer, CcdAnswer, ContactAnswer, IntersectAnswer, MovingPoint, MovingSegment,
-    MovingTriangle, P3, Plane, ResponseAnswer, Segment, Sphere, ToiAnswer, Triangle,
+    Aabb, BarycentricAnswer, BoundsAnswer, Capsule, CcdAnswer, ContactAnswer, IntersectAnswer, MovingPoint,
+    MovingSegment, MovingTriangle, OrientedBox, P3, Plane, ResponseAnswer, Segment, Sphere, ToiAnswer, Triangle,
 };
 use oracle::referee::{self, RefereeError};
 
@@ -38,6 +38,33 @@ impl Queries for RefereeQueries {
     }
     fn contact_sphere_mesh(&self, a: &Sphere, b: &Mesh) -> Reply<ContactAnswer> {
         r(referee::contact_sphere_mesh(a, &b.vertices, &b.triangles))
+    }
+    fn contact_sphere_box(&self, a: &Sphere, b: &OrientedBox) -> Reply<ContactAnswer> {
+        r(referee::contact_sphere_box(a, b))
+    }
+    fn contact_box_plane(&self, a: &OrientedBox, b: &Plane) -> Reply<ContactAnswer> {
+        r(referee::contact_box_plane(a, b))
+    }
+    fn contact_sphere_capsule(&self, a: &Sphere, b: &Capsule) -> Reply<ContactAnswer> {
+        r(referee::contact_sphere_capsule(a, b))
+    }
+    fn contact_capsule_capsule(&self, a: &Capsule, b: &Capsule) -> Reply<ContactAnswer> {
+        r(referee::contact_capsule_capsule(a, b))
+    }
+    fn contact_capsule_plane(&self, a: &Capsule, b: &Plane) -> Reply<ContactAnswer> {
+        r(referee::contact_capsule_plane(a, b))
+    }
+    fn intersect_segment_box(&self, s: &Segment, b: &OrientedBox) -> Reply<IntersectAnswer> {
+        r(referee::intersect_segment_box(s, b))
+    }
+    fn bounds_box(&self, b: &OrientedBox) -> Reply<BoundsAnswer> {
+        r(referee::bounds_box(b))
+    }
+    fn overlap_box_box(&self, a: &OrientedBox, b: &OrientedBox) -> Reply<bool> {
+        r(referee::overlap_box_box(a, b))
+    }
+    fn overlap_box_aabb(&self, a: &OrientedBox, b: &Aabb) -> Reply<bool> {
+        r(referee::overlap_box_aabb(a, b))
     }
     fn intersect_segment_plane(&self, s: &Segment, p: &Plane) -> Reply<IntersectAnswer> {
         r(referee::intersect_segment_plane(s, p))
@@ -137,6 +164,27 @@ pub fn margin(lc: &LoadedCase) -> Option<f64> {
         (P::OverlapAabbAabb, S::Aabb(a), Some(S::Aabb(b))) => {
             referee::overlap_margin_aabb_aabb(&a.to_geom(), &b.to_geom()).ok()
         }
+        (P::OverlapBoxBox, S::Box(a), Some(S::Box(b))) => {
+            referee::overlap_margin_box_box(&a.to_geom(), &b.to_geom()).ok()
+        }
+        (P::OverlapBoxAabb, S::Box(a), Some(S::Aabb(b))) => {
+            referee::overlap_margin_box_aabb(&a.to_geom(), &b.to_geom()).ok()
+        }
+        (P::ContactSphereBox, S::Sphere(a), Some(S::Box(b))) => {
+            referee::contact_margin_sphere_box(&a.to_geom(), &b.to_geom()).ok()
+        }
+        (P::ContactBoxPlane, S::Box(a), Some(S::Plane(b))) => {
+            referee::contact_margin_box_plane(&a.to_geom(), &b.to_geom()).ok()
+        }
+        (P::ContactSphereCapsule, S::Sphere(a), Some(S::Capsule(b))) => {
+            referee::contact_margin_sphere_capsule(&a.to_geom(), b).ok()
+        }
+        (P::ContactCapsuleCapsule, S::Capsule(a), Some(S::Capsule(b))) => {
+            referee::contact_margin_capsule_capsule(a, b).ok()
+        }
+        (P::ContactCapsulePlane, S::Capsule(a), Some(S::Plane(b))) => {
+            referee::contact_margin_capsule_plane(a, &b.to_geom()).ok()
+        }
         (P::ToiSphereSphere, S::Sphere(a), Some(S::Sphere(b))) => {
             referee::toi_margin_sphere_sphere(&a.to_geom(), &va, &b.to_geom(), &vb, t_max).ok()
         }
@@ -153,8 +201,16 @@ pub fn margin(lc: &LoadedCase) -> Option<f64> {
         // face (each face's margin is its own); a barycentric, a bound and a
         // response have no yes/no predicate whose distance from flipping a
         // margin would measure.
-        (P::IntersectSegmentMesh | P::BarycentricPointTriangle | P::BoundsPoints | P::BoundsMesh, _, _)
+        (
+            P::IntersectSegmentMesh | P::BarycentricPointTriangle | P::BoundsPoints | P::BoundsMesh | P::BoundsBox,
+            _,
+            _,
+        )
         | (P::ResponseSphereSphere | P::ResponseSpherePlane, _, _) => None,
+        // A segment against a box has none yet: its distance from flipping
+        // (the segment's distance from the box, or how deep it passes) needs
+        // the exact segment–box closest features, which capsule–box brings.
+        (P::IntersectSegmentBox, _, _) => None,
         // Continuous collision is judged exactly, with no borderline band (the
         // CCD benchmark's terms: a method's false positives and negatives are
         // counted against the exact answer; docs/FORMAT.md).

@@ -12,7 +12,7 @@
 use crate::case::{AabbSpec, BoxSpec, PlaneSpec, PointSpec, PointsSpec, SegmentSpec, Shape, SphereSpec, TriangleSpec};
 use crashtest_core::vec3::{add, cross, dot, norm_sqrt_dot, scale, sub};
 use oracle::geom::P3;
-use oracle::geom::{Capsule, MovingPoint, MovingSegment, MovingTriangle, rotation_matrix};
+use oracle::geom::{Capsule, MovingPoint, MovingSegment, MovingTriangle};
 use proptest::prelude::*;
 
 /// A generated scene: `a`, and `b` for every query but `bounds`.
@@ -82,9 +82,15 @@ pub(crate) fn quaternion_of(r: [P3; 3]) -> [f64; 4] {
     }
 }
 
-/// The product of two row matrices.
-fn mat_mul(a: [P3; 3], b: [P3; 3]) -> [P3; 3] {
-    [0, 1, 2].map(|i| [0, 1, 2].map(|j| a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j]))
+/// The Hamilton product `p ⊗ q`, whose rotation is `R(p)·R(q)`.
+fn hamilton(p: [f64; 4], q: [f64; 4]) -> [f64; 4] {
+    let ([a1, b1, c1, d1], [a2, b2, c2, d2]) = (p, q);
+    [
+        a1 * a2 - b1 * b2 - c1 * c2 - d1 * d2,
+        a1 * b2 + b1 * a2 + c1 * d2 - d1 * c2,
+        a1 * c2 - b1 * d2 + c1 * a2 + d1 * b2,
+        a1 * d2 + b1 * c2 - c1 * b2 + d1 * a2,
+    ]
 }
 
 /// The determinant of a row matrix.
@@ -344,13 +350,12 @@ impl Similarity {
                 let rotation = if self.rot == identity {
                     q
                 } else {
-                    // A reflection maps the box onto itself flipped about its
-                    // first axis, which keeps the same set of points.
-                    let mut m = mat_mul(self.rot, rotation_matrix(q));
-                    if det3(m) < 0.0 {
-                        m = m.map(|row| [-row[0], row[1], row[2]]);
-                    }
-                    quaternion_of(m)
+                    // A reflection M is −P with P a rotation, and a box is
+                    // symmetric about its centre: M·R·u = P·R·(−u) is the
+                    // same box turned by P. The product of quaternions is
+                    // exact for a signed permutation and an integer q.
+                    let m = if det3(self.rot) < 0.0 { self.rot.map(|row| row.map(|x| -x)) } else { self.rot };
+                    hamilton(quaternion_of(m), q)
                 };
                 oriented_box(self.point(b.center), half, rotation)
             }
@@ -484,5 +489,45 @@ mod tests {
         assert_eq!(sim.point(p).map(f64::to_bits), sp.apply(p).map(f64::to_bits));
         let (axis, sign) = sp.image_of_axis(0);
         assert_eq!((axis, sign.to_bits()), (1, 1.0f64.to_bits()), "x lands on y, positive");
+    }
+
+    /// A corner of a box moved by a similarity is the similarity's image of
+    /// the corner to a few roundings of the box's size: the rotation matrices
+    /// are rounded, each entry within a few ulps of 1.
+    const CORNER_TOL: f64 = 64.0 * f64::EPSILON;
+
+    #[test]
+    fn a_box_under_a_similarity_is_the_image_of_the_box() {
+        let q = [2.0, 0.0, 0.0, 1.0];
+        let b = crate::case::BoxSpec { center: [1.0, -2.0, 0.5], half_extents: [1.0, 2.0, 3.0], rotation: Some(q) };
+        let corners = crate::load::box_corners(&b.to_geom());
+        let rotations = [
+            // A reflection (a signed permutation of determinant −1) and a rotation.
+            Similarity::perm_shift(&SignedPerm { perm: [1, 0, 2], sign: [1.0, 1.0, 1.0] }, [3.0, 0.0, -1.0]),
+            Similarity::perm_shift(&SignedPerm { perm: [2, 0, 1], sign: [-1.0, 1.0, -1.0] }, [0.0; 3]),
+            Similarity::rotate_shift([[0.36, 0.48, -0.8], [-0.8, 0.6, 0.0], [0.48, 0.64, 0.6]], [0.25, 0.5, 1.0]),
+        ];
+        for sim in rotations {
+            let Shape::Box(moved) = sim.shape(&Shape::Box(b.clone())) else { panic!("a box maps to a box") };
+            let got = crate::load::box_corners(&moved.to_geom());
+            // The same set of corners, in some order.
+            for c in corners.map(|c| sim.point(c)) {
+                let near = got.iter().any(|g| (0..3).all(|i| (g[i] - c[i]).abs() <= CORNER_TOL * 8.0));
+                assert!(near, "corner {c:?} of the image is not a corner of {got:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn quaternion_of_inverts_the_rotation_matrix() {
+        for q in [[2.0, 0.0, 0.0, 1.0], [1.0, 1.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0], [1.0, -2.0, 3.0, -1.0]] {
+            let r = oracle::geom::rotation_matrix(q);
+            let back = oracle::geom::rotation_matrix(quaternion_of(r));
+            for i in 0..3 {
+                for j in 0..3 {
+                    assert!((back[i][j] - r[i][j]).abs() <= CORNER_TOL, "{q:?}: {back:?} vs {r:?}");
+                }
+            }
+        }
     }
 }

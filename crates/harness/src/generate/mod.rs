@@ -28,6 +28,7 @@
 
 mod barycentric;
 mod bounds;
+mod boxes;
 pub(crate) mod build;
 mod ccd;
 mod contact;
@@ -66,11 +67,11 @@ struct Registry {
 
 fn families_of(query: Query) -> Vec<Family> {
     match query {
-        Query::Contact => contact::families(),
-        Query::Intersect => intersect::families(),
+        Query::Contact => contact::families().into_iter().chain(boxes::contact_families()).collect(),
+        Query::Intersect => intersect::families().into_iter().chain(boxes::intersect_families()).collect(),
         Query::Barycentric => barycentric::families(),
-        Query::Bounds => bounds::families(),
-        Query::Overlap => overlap::families(),
+        Query::Bounds => bounds::families().into_iter().chain(boxes::bounds_families()).collect(),
+        Query::Overlap => overlap::families().into_iter().chain(boxes::overlap_families()).collect(),
         Query::Toi => toi::families(),
         Query::Response => response::families(),
         Query::Ccd => ccd::families(),

@@ -326,3 +326,25 @@ fn generate_response_exact_families_are_answered_by_collide_to_a_few_ulps() {
     // whole formula exact.
     assert!(exact >= 30, "only {exact} of 150 answered exactly");
 }
+
+/// The families of boxes and capsules, each drawn 400 times: every case is
+/// valid input (finite numbers, positive radii, non-zero quaternions).
+#[test]
+fn generate_box_and_capsule_families_give_valid_input() {
+    let families = [
+        (Query::Contact, super::boxes::contact_families()),
+        (Query::Intersect, super::boxes::intersect_families()),
+        (Query::Bounds, super::boxes::bounds_families()),
+        (Query::Overlap, super::boxes::overlap_families()),
+    ];
+    for (q, fams) in families {
+        for f in fams {
+            let s = family_strategy(q, f.name).unwrap_or_else(|| panic!("no family {:?}", f.name));
+            let mut runner = TestRunner::deterministic();
+            for _ in 0..400 {
+                let case = s.new_tree(&mut runner).map(|t| t.current()).expect("no filters");
+                assert!(validate(&case).is_ok(), "{}: {:?}", f.name, validate(&case));
+            }
+        }
+    }
+}

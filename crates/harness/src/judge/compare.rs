@@ -160,7 +160,12 @@ pub fn compare(lc: &LoadedCase, answer: &Answer, truth: &Answer, sizes: &Local) 
     match (answer, truth) {
         (Answer::Contact(g), Answer::Contact(w)) => match (&g.contact, &w.contact) {
             (Some(gc), Some(wc)) => {
-                let dp = dist3(&gc.point, &wc.point);
+                // Where the region is more than a point, any point of it is
+                // right: the distance to it, not to the referee's choice.
+                let dp = match &sizes.region {
+                    Some(r) => r.distance(&gc.point),
+                    None => dist3(&gc.point, &wc.point),
+                };
                 c.errors.point = Some(dp);
                 c.measure("point", dp, "", field(|a| a.point));
                 let dd = (gc.depth - wc.depth).abs();

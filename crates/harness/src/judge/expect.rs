@@ -114,6 +114,7 @@ pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
                     Some(s) => {
                         cmp1(&mut out, "min_radius", r, s.radius, tol);
                         let pts = bounded_points(lc);
+                        let pts = &pts[..];
                         if let Some((i, d)) = farthest_outside(&s.center, s.radius, pts, tol) {
                             out.push(mm(
                                 "min_radius (encloses every point)",

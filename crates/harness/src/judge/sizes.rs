@@ -74,6 +74,96 @@ pub struct Local {
     pub velocity: Size,
     /// The referee's margin from the nearest decision boundary (a length).
     pub margin: Size,
+    /// The exact contact region on `b`'s surface where the contact point is
+    /// not unique (a box face or edge down on a plane, a capsule along a plane,
+    /// parallel capsules side by side): a point is judged by its distance to
+    /// it, never to one chosen point of it.
+    pub region: Option<Region>,
+}
+
+/// A contact region: a segment (2 vertices) or a convex polygon (3 or 4, in
+/// order), each vertex the referee's correctly rounded one.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Region {
+    /// The vertices; the first `len` are used.
+    pub vertices: [P3; 4],
+    /// How many (2 to 4).
+    pub len: usize,
+}
+
+impl Region {
+    /// The region of the referee's vertices, when it is more than a point.
+    fn of(vertices: &[P3]) -> Option<Region> {
+        let len = vertices.len();
+        if !(2..=4).contains(&len) {
+            return None;
+        }
+        let mut r = Region { vertices: [[0.0; 3]; 4], len };
+        r.vertices[..len].copy_from_slice(vertices);
+        Some(r)
+    }
+
+    /// The Euclidean distance from `p` to the region (0 inside it), by
+    /// collide's closest points on a segment or on the polygon's triangles.
+    pub fn distance(&self, p: &P3) -> f64 {
+        use collide::Vec3;
+        use collide::contact::{closest_pt_point_segment, closest_pt_point_triangle};
+        let v = |q: &P3| Vec3::new(q[0], q[1], q[2]);
+        let (pv, vs) = (v(p), self.vertices.map(|q| v(&q)));
+        let closest = match self.len {
+            2 => vec![closest_pt_point_segment(&pv, &vs[0], &vs[1])],
+            n => (1..n - 1)
+                .map(|i| closest_pt_point_triangle(&pv, &collide::Triangle::new(vs[0], vs[i], vs[i + 1])))
+                .collect(),
+        };
+        closest.iter().map(|c| distance(p, &[c.x, c.y, c.z])).fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// The largest ratio a tie's jump is weighed by: a feature that a
+/// perturbation of `ε` of the sizes could swap for another (the lowest vertex of
+/// a box nearly edge-down, a capsule's lower end when it nearly lies along the
+/// plane, the face nearest a centre inside a box) moves the answer by up to the
+/// jump; the conditioning allowance `16 ε` times `jump · size / gap` reaches the
+/// whole jump at this cap for an `f64` engine, never more.
+const TIE_RATIO_CAP: f64 = 1.0 / (16.0 * f64::EPSILON);
+
+/// `jump · size / gap`, the conditioning of a feature that a gap of `gap`
+/// separates from the next one, 0 when the gap is exactly 0 (the tie is
+/// then in the referee's answer: its region or its flag).
+fn tie(jump: f64, size: f64, gap: f64) -> f64 {
+    if gap == 0.0 { 0.0 } else { clean(jump * ratio(size, gap).min(TIE_RATIO_CAP)) }
+}
+
+/// A box's size: its centre and the sum of its half-extents (the farthest a
+/// corner is from the centre, along any axis, is at most that sum).
+fn box_size(b: &crate::case::BoxSpec) -> f64 {
+    clean(max_abs(b.center) + b.half_extents.iter().map(|h| h.abs()).sum::<f64>())
+}
+
+/// A capsule's size: its axis's ends and its radius.
+fn capsule_size(c: &oracle::geom::Capsule) -> f64 {
+    clean(max_abs(c.start).max(max_abs(c.end)) + c.radius)
+}
+
+/// The sphere's centre in the box's frame, `Rᵀ(M − c)`, in f64.
+fn in_box_frame(b: &crate::case::BoxSpec, m: &P3) -> P3 {
+    let r = b.to_geom().rotation_matrix();
+    let (d, k) = diff(m, &b.center);
+    [0, 1, 2].map(|j| clean_signed((r[0][j] * d[0] + r[1][j] * d[1] + r[2][j] * d[2]) * k))
+}
+
+/// A signed size without NaN, within `±f64::MAX`.
+fn clean_signed(x: f64) -> f64 {
+    if x.is_nan() { 0.0 } else { x.clamp(-f64::MAX, f64::MAX) }
+}
+
+/// The gap between the face nearest `u` (in the box's frame) and the next one:
+/// what a centre inside the box must move for its nearest face to change.
+fn nearest_face_gap(h: &P3, u: &P3) -> f64 {
+    let mut d: Vec<f64> = (0..3).flat_map(|i| [h[i] - u[i], h[i] + u[i]]).collect();
+    d.sort_by(f64::total_cmp);
+    clean(d[1] - d[0])
 }
 
 /// A size as a finite, non-negative number: NaN (which no rule should give)
@@ -263,7 +353,12 @@ pub fn local(lc: &LoadedCase, truth: &Answer) -> Local {
             Some(face) => contact(&case.a, &face, w.contact.as_ref()),
             None => Local::default(),
         },
-        (Query::Contact, a, Some(b), Answer::Contact(w)) => contact(a, b, w.contact.as_ref()),
+        (Query::Contact, a, Some(b), Answer::Contact(w)) => {
+            Local { region: contact_region(a, b), ..contact(a, b, w.contact.as_ref()) }
+        }
+        (Query::Intersect, Shape::Segment(s), Some(Shape::Box(b)), Answer::Intersect(w)) => {
+            intersect_box(&s.start, &s.end, b, w.hit.as_ref())
+        }
         (Query::Intersect, Shape::Segment(s), Some(b), Answer::Intersect(w)) => {
             let tri = match b {
                 Shape::Triangle(t) => Some(TriangleShape::new(&t.vertices)),
@@ -295,6 +390,15 @@ pub fn local(lc: &LoadedCase, truth: &Answer) -> Local {
         }
         (Query::Overlap, Shape::Aabb(a), Some(Shape::Aabb(b)), _) => {
             let m = max_abs(a.min).max(max_abs(a.max)).max(max_abs(b.min)).max(max_abs(b.max));
+            Local { margin: Size::new(m, 0.0), ..Local::default() }
+        }
+        (Query::Overlap, Shape::Box(a), Some(b), _) => {
+            let m = box_size(a)
+                + match b {
+                    Shape::Box(b) => box_size(b),
+                    Shape::Aabb(b) => max_abs(b.min).max(max_abs(b.max)),
+                    _ => 0.0,
+                };
             Local { margin: Size::new(m, 0.0), ..Local::default() }
         }
         (Query::Toi, Shape::Sphere(a), Some(b), Answer::Toi(w)) => toi(lc, a, b, w),
@@ -366,8 +470,159 @@ fn contact(a: &Shape, b: &Shape, w: Option<&oracle::geom::Contact>) -> Local {
                 if sphere_first { Size::new(q_size + pm, tilt) } else { Size::new(c + s.radius + pm, s.radius * turn) };
             Local { point, depth, normal: Size::new(1.0, turn), margin: depth, ..Local::default() }
         }
+        (Shape::Sphere(s), Shape::Box(b)) => {
+            let size = max_abs(s.center) + s.radius + box_size(b) + pm + dm;
+            let depth = Size::new(size, 0.0);
+            if w.depth < s.radius {
+                // Centre outside: the closest point of the box moves with the
+                // inputs (a projection: 1-Lipschitz), the normal turns by the
+                // sizes over the centre's distance.
+                let turn = ratio(size, s.radius - w.depth).min(std::f64::consts::PI / f64::EPSILON);
+                Local { point: depth, depth, normal: Size::new(1.0, turn), margin: depth, ..Local::default() }
+            } else {
+                // Centre inside: the nearest face decides; a perturbation
+                // swaps it for the next within its gap (the point jumps across
+                // the box, the normal by a right angle or more).
+                let u = in_box_frame(b, &s.center);
+                let gap = nearest_face_gap(&b.half_extents, &u);
+                let across = 2.0 * b.half_extents.iter().map(|h| h.abs()).sum::<f64>();
+                Local {
+                    point: Size::new(size, tie(across, size, gap)),
+                    depth,
+                    normal: Size::new(1.0, tie(1.0, size, gap)),
+                    margin: depth,
+                    ..Local::default()
+                }
+            }
+        }
+        (Shape::Box(b), Shape::Plane(p)) => {
+            let (dn, n) = plane_offset(&p.normal, p.offset);
+            let size = box_size(b) + 2.0 * dn + pm + dm;
+            let depth = Size::new(size, 0.0);
+            // The lowest vertex: along each axis nearly parallel to the plane
+            // the other end of that edge is within the gap 2hᵢ|n̂·Rᵢ|.
+            let r = b.to_geom().rotation_matrix();
+            let jumps: f64 = (0..3)
+                .map(|i| {
+                    let h = b.half_extents[i].abs();
+                    let along = (n[0] * r[0][i] + n[1] * r[1][i] + n[2] * r[2][i]).abs();
+                    tie(2.0 * h, size, 2.0 * h * along)
+                })
+                .sum();
+            Local {
+                point: Size::new(size, jumps),
+                depth,
+                normal: Size::new(1.0, 1.0),
+                margin: depth,
+                ..Local::default()
+            }
+        }
+        (Shape::Sphere(s), Shape::Capsule(c)) => {
+            let size = max_abs(s.center) + s.radius + capsule_size(c) + pm + dm;
+            let turn = ratio(size, s.radius + c.radius - w.depth).min(std::f64::consts::PI / f64::EPSILON);
+            let depth = Size::new(size, 0.0);
+            Local {
+                point: Size::new(size, c.radius * turn),
+                depth,
+                normal: Size::new(1.0, turn),
+                margin: depth,
+                ..Local::default()
+            }
+        }
+        (Shape::Capsule(ca), Shape::Capsule(cb)) => {
+            let size = capsule_size(ca) + capsule_size(cb) + pm + dm;
+            let turn = ratio(size, ca.radius + cb.radius - w.depth).min(std::f64::consts::PI / f64::EPSILON);
+            // Nearly parallel axes: the closest pair slides along them by
+            // the sizes over the sine of their angle, within b's length.
+            let (da, ka) = diff(&ca.end, &ca.start);
+            let (db, kb) = diff(&cb.end, &cb.start);
+            let (la, lb) = (clean(norm(&da) * ka), clean(norm(&db) * kb));
+            let sine = norm(&cross(unit(&da), unit(&db)));
+            let slide = if la > 0.0 && lb > 0.0 { tie(lb, size, sine * lb) } else { 0.0 };
+            let depth = Size::new(size, 0.0);
+            Local {
+                point: Size::new(size, clean(cb.radius * turn + slide)),
+                depth,
+                normal: Size::new(1.0, turn),
+                margin: depth,
+                ..Local::default()
+            }
+        }
+        (Shape::Capsule(c), Shape::Plane(p)) => {
+            let (dn, n) = plane_offset(&p.normal, p.offset);
+            let size = capsule_size(c) + 2.0 * dn + pm + dm;
+            let (d, k) = diff(&c.end, &c.start);
+            let len = clean(norm(&d) * k);
+            let jump = tie(len, size, clean(dot(d, n).abs() * k));
+            let depth = Size::new(size, 0.0);
+            Local {
+                point: Size::new(size, jump),
+                depth,
+                normal: Size::new(1.0, 1.0),
+                margin: depth,
+                ..Local::default()
+            }
+        }
         _ => Local::default(),
     }
+}
+
+/// The referee's contact region of a box or capsule on a plane, or of two
+/// capsules, when it is more than a point (`None` otherwise, and for a case
+/// the referee refuses).
+fn contact_region(a: &Shape, b: &Shape) -> Option<Region> {
+    use oracle::referee;
+    let vertices = match (a, b) {
+        (Shape::Box(a), Shape::Plane(p)) => referee::contact_region_box_plane(&a.to_geom(), &p.to_geom()),
+        (Shape::Capsule(a), Shape::Capsule(b)) => referee::contact_region_capsule_capsule(a, b),
+        (Shape::Capsule(a), Shape::Plane(p)) => referee::contact_region_capsule_plane(a, &p.to_geom()),
+        _ => return None,
+    };
+    Region::of(&vertices.ok()??)
+}
+
+/// A segment's first hit on a box: the entering face's plane plays the
+/// surface of [`intersect`], with the box's size at the hit; a hit near an edge
+/// or corner (another slab entering within the gap) may enter through the
+/// neighbouring face, whose normal is a right angle away.
+fn intersect_box(s0: &P3, s1: &P3, b: &crate::case::BoxSpec, w: Option<&oracle::geom::SegmentHit>) -> Local {
+    let plane = match w {
+        Some(h) => {
+            let n = unit(&h.normal);
+            crate::case::PlaneSpec { normal: n, offset: dot(n, h.point), velocity: None }
+        }
+        None => crate::case::PlaneSpec { normal: [0.0, 0.0, 1.0], offset: 0.0, velocity: None },
+    };
+    let mut out = intersect(s0, s1, &Shape::Plane(plane), None, None, w);
+    let size = box_size(b) + max_abs(*s0) + max_abs(*s1);
+    out.point.magnitude = clean(out.point.magnitude + size);
+    out.margin = Size::new(clean(out.margin.magnitude + size), out.margin.condition);
+    if let Some(h) = w {
+        // The slabs' entries in the box's frame: the gap between the entering
+        // one and the next, as a length along the segment.
+        let u0 = in_box_frame(b, s0);
+        let u1 = in_box_frame(b, s1);
+        let len = distance(s0, s1);
+        let mut entries: Vec<f64> = (0..3)
+            .filter_map(|i| {
+                let d = u1[i] - u0[i];
+                (d != 0.0).then(|| {
+                    let hi = b.half_extents[i].abs();
+                    ((-hi - u0[i]) / d).min((hi - u0[i]) / d)
+                })
+            })
+            .collect();
+        entries.sort_by(|x, y| y.total_cmp(x));
+        let gap = if h.t == 0.0 {
+            nearest_face_gap(&b.half_extents, &u0)
+        } else if entries.len() >= 2 {
+            clean((entries[0] - entries[1]).abs() * len)
+        } else {
+            f64::INFINITY
+        };
+        out.normal.condition = clean(out.normal.condition + tie(1.0, size, gap));
+    }
+    out
 }
 
 /// The size of a contact's margin (its signed depth) when the referee says
@@ -377,6 +632,8 @@ fn contact_margin_size(a: &Shape, b: &Shape) -> Size {
         Shape::Sphere(s) => max_abs(s.center) + s.radius,
         Shape::Plane(p) => plane_offset(&p.normal, p.offset).0,
         Shape::Triangle(t) => t.vertices.iter().copied().map(max_abs).fold(0.0, f64::max),
+        Shape::Box(b) => box_size(b),
+        Shape::Capsule(c) => capsule_size(c),
         _ => 0.0,
     };
     let tilt = match (a, b) {

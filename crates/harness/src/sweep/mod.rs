@@ -44,6 +44,7 @@
 //! ([`write()`]); the report's stability section ([`section`]) runs them all.
 
 mod angle;
+mod boxes;
 mod catalog;
 mod ccd;
 mod feature;
