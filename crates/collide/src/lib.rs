@@ -29,6 +29,7 @@
 pub mod barycentric;
 pub mod batch;
 pub mod bounds;
+pub mod boxes;
 pub mod ccd;
 pub mod contact;
 pub mod exact;
@@ -43,4 +44,4 @@ pub mod toi;
 
 pub use ccd::Ccd;
 pub use real::{Real, Vec3};
-pub use shapes::{Aabb, Plane, Segment, Sphere, Triangle};
+pub use shapes::{Aabb, Capsule, OrientedBox, Plane, Segment, Sphere, Triangle};

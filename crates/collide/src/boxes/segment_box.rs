@@ -1,0 +1,217 @@
+//! The first hit of a segment on a box.
+
+use super::poly::{Ring, at, dot3, ratio, refs, sign_of, sub3, value_of};
+use super::sphere_box::{classify, coord, nearest_face};
+use super::{all_finite, axes_of, axis, scene_scale, unit, up, wide3};
+use crate::exact::{Sign, dot_diff, points_equal};
+use crate::intersect::{Intersection, SegmentHit};
+use crate::real::{Real, Vec3};
+use crate::shapes::{OrientedBox, Segment};
+
+/// Ericson's `EPSILON` in `IntersectRayAABB` (*Real-Time Collision Detection*,
+/// §5.3.3): a segment whose direction along a box axis is below this (in
+/// absolute value, in the box's frame) is taken as parallel to that slab, and
+/// misses the box when it starts outside the slab. An absolute number (1e-6):
+/// a segment shorter than that along the axis it enters through is missed,
+/// which is where the lecture's form goes wrong by design.
+pub const SLAB_EPSILON: f64 = 1e-6;
+
+/// The first hit of segment `s` on the solid box `b`, **the lecture's form**:
+/// Ericson's slab test (§5.3.3) in the box's frame (`R` from
+/// [`OrientedBox::rotation_matrix_lecture`], `p = Rᵀ(start − center)`,
+/// `d = Rᵀ(end − start)`): for each axis, a direction below [`SLAB_EPSILON`] is
+/// parallel (a start outside the slab misses), otherwise the slab's entry and
+/// exit times `(∓h − p)/d` narrow `[t_min, t_max]` from `[0, 1]`, and the
+/// slab whose entry raised `t_min` last gives the face. A start inside the box
+/// (no entry above 0) is a hit at `t = 0` on the face nearest the start, as in
+/// [`super::contact_sphere_box_lecture`].
+///
+/// `degenerate` when two slabs' entries are equal as computed (an edge or a
+/// corner), two faces are nearest to an inside start, or the segment has zero
+/// length. `parallel` is always false. A scene whose numbers overflow (no
+/// finite hit) is answered as a degenerate miss.
+pub fn intersect_segment_box_lecture<T: Real>(s: &Segment<T>, b: &OrientedBox<T>) -> Intersection<T> {
+    let r = b.rotation_matrix_lecture();
+    let h = b.half_extents;
+    let p = r.transpose() * (s.start - b.center);
+    let d = r.transpose() * (s.end - s.start);
+    let zero = s.start == s.end;
+    let miss = Intersection { hit: None, parallel: false, degenerate: zero };
+    let eps = T::of(SLAB_EPSILON);
+    let (mut tmin, mut tmax) = (T::zero(), T::one());
+    let mut enter: Option<(usize, T)> = None;
+    let mut tie = false;
+    for i in 0..3 {
+        if d[i].abs() < eps {
+            if p[i] < -h[i] || p[i] > h[i] {
+                return miss;
+            }
+            continue;
+        }
+        let ood = T::one() / d[i];
+        let (mut t1, mut t2, mut face) = ((-h[i] - p[i]) * ood, (h[i] - p[i]) * ood, -T::one());
+        if t1 > t2 {
+            core::mem::swap(&mut t1, &mut t2);
+            face = T::one();
+        }
+        if t1 > tmin {
+            tmin = t1;
+            enter = Some((i, face));
+            tie = false;
+        } else if t1 == tmin && enter.is_some() {
+            tie = true;
+        }
+        if t2 < tmax {
+            tmax = t2;
+        }
+        if tmin > tmax {
+            return miss;
+        }
+    }
+    let (t, point, normal) = match enter {
+        Some((i, face)) => (tmin, s.start + (s.end - s.start) * tmin, r.column(i) * face),
+        None => {
+            let gaps = [h.x - p.x.abs(), h.y - p.y.abs(), h.z - p.z.abs()];
+            let mut best = 0;
+            for i in 1..3 {
+                if gaps[i] < gaps[best] {
+                    best = i;
+                }
+            }
+            tie = (0..3).any(|i| i != best && gaps[i] == gaps[best]) || p[best] == T::zero();
+            let face = if p[best] < T::zero() { -T::one() } else { T::one() };
+            (T::zero(), s.start, r.column(best) * face)
+        }
+    };
+    if !(t.finite() && crate::real::finite3(&point) && crate::real::finite3(&normal)) {
+        return Intersection::DEGENERATE;
+    }
+    Intersection {
+        hit: Some(SegmentHit { t, point, normal, barycentric: None }),
+        parallel: false,
+        degenerate: tie || zero,
+    }
+}
+
+/// The first hit of segment `s` on the solid box `b`, **robust form**: the
+/// format's definition with every decision exact for the box of the rounded
+/// rotation `R̃` (see [`crate::boxes`]). With `a_i = R̃_i · (start − c)` and
+/// `D_i = R̃_i · (end − start)`, where each end lies against each slab is
+/// decided exactly; a slab the start is beyond face `σ` of is entered at
+/// `t_i = (σ h_i − a_i)/D_i` (no hit if the end is beyond the same face), and
+/// left, where the end is beyond face `σ'`, at `(σ' h_j − a_j)/D_j`. The hit
+/// is at the latest entry when it is no later than every exit; entries and
+/// exits are compared exactly (the signs of `N_i D_j − N_j D_i`), so an edge
+/// entered exactly is found as a tie. `t` is `N/D` with both formed to
+/// `2^−40`.
+///
+/// **Degenerate input.** Entering through an edge or a corner (the entry
+/// point lies on a second face: two slabs' entries tie, the segment leaves a
+/// slab exactly where it enters the box, or it runs along a face), a start inside with two nearest faces (as
+/// [`super::contact_sphere_box`]), or a zero-length segment (a hit at `t = 0`
+/// when its point is in the box, else none): flagged, the face the first in
+/// the order `+x, −x, +y, −y, +z, −z`. `parallel` is always false. A
+/// non-finite input is a degenerate miss.
+pub fn intersect_segment_box<T: Real>(s: &Segment<T>, b: &OrientedBox<T>) -> Intersection<T> {
+    let ax = axes_of(&b.rotation_matrix());
+    let (p, q, c) = (wide3(&s.start), wide3(&s.end), wide3(&b.center));
+    let h = wide3(&b.half_extents).map(f64::abs);
+    let lengths = [p[0], p[1], p[2], q[0], q[1], q[2], c[0], c[1], c[2], h[0], h[1], h[2]];
+    if !all_finite(&lengths) || !all_finite(&ax) {
+        return Intersection::DEGENERATE;
+    }
+    let zero = points_equal(p, q);
+    let rot = nalgebra::Matrix3::from_column_slice(&ax);
+    let start = classify(p, c, h, &ax);
+    if start == [0; 3] {
+        let (i, side, tie) = nearest_face(p, c, h, &ax);
+        let normal = unit(&(rot.column(i) * f64::from(side))).unwrap_or_else(Vec3::z);
+        return hit_at(T::zero(), s.start, normal, tie || zero);
+    }
+    if zero {
+        return Intersection::DEGENERATE;
+    }
+    let end = classify(q, c, h, &ax);
+    if (0..3).any(|i| start[i] != 0 && end[i] == start[i]) {
+        return Intersection::MISS;
+    }
+    // Compare the crossing times of face `si` of slab `i` and face `sj` of
+    // slab `j`: the sign of t_i − t_j.
+    let cmp = |i: usize, si: i8, j: usize, sj: i8| {
+        let (ai, aj) = (axis(&ax, i), axis(&ax, j));
+        let l = [p[0], p[1], p[2], q[0], q[1], q[2], c[0], c[1], c[2], h[i], h[j]];
+        let u = [ai[0], ai[1], ai[2], f64::from(si), aj[0], aj[1], aj[2], f64::from(sj)];
+        sign_of!(time_order, l, u) * dot_diff(ai, p, q) * dot_diff(aj, p, q)
+    };
+    let entering: Vec<usize> = (0..3).filter(|&i| start[i] != 0).collect();
+    let mut best = entering[0];
+    for &j in &entering[1..] {
+        if cmp(j, start[j], best, start[best]) == Sign::Positive {
+            best = j;
+        }
+    }
+    for (j, &side) in end.iter().enumerate() {
+        if side != 0 && cmp(best, start[best], j, side) == Sign::Positive {
+            return Intersection::MISS;
+        }
+    }
+    // The entry point lies on another face too (an edge or a corner): the
+    // face `σ` of slab `j` holds it when `a_j + t D_j = σ h_j` at the entry
+    // time `t = N/D`, i.e. when `N D_j − (σ h_j − a_j) D = 0` — the same
+    // polynomial as the times' order, which also covers a segment running
+    // along a face (`D_j = 0`).
+    let tie = (0..3).any(|j| {
+        j != best
+            && [1i8, -1].into_iter().any(|sj| {
+                let (ai, aj) = (axis(&ax, best), axis(&ax, j));
+                let l = [p[0], p[1], p[2], q[0], q[1], q[2], c[0], c[1], c[2], h[best], h[j]];
+                let u = [ai[0], ai[1], ai[2], f64::from(start[best]), aj[0], aj[1], aj[2], f64::from(sj)];
+                sign_of!(time_order, l, u) == Sign::Zero
+            })
+    });
+    let a = axis(&ax, best);
+    let num = value_of!(
+        entry_numerator,
+        1,
+        [p[0], p[1], p[2], c[0], c[1], c[2], h[best]],
+        [a[0], a[1], a[2], f64::from(start[best])]
+    );
+    let den = value_of!(coord, 1, [q[0], q[1], q[2], p[0], p[1], p[2]], a);
+    let t = ratio(num, den).clamp(0.0, 1.0);
+    let k = scene_scale(&lengths);
+    let (ps, qs) = (up(p, k), up(q, k));
+    let point = if t <= 0.5 { ps + (qs - ps) * t } else { qs + (ps - qs) * (1.0 - t) };
+    let normal = unit(&(rot.column(best) * f64::from(start[best]))).unwrap_or_else(Vec3::z);
+    hit_at(T::of(t), crate::real::scale2v(&point, -k).map(T::of), normal, tie)
+}
+
+/// A hit with its normal rounded to `T`; a point beyond the type's range is a
+/// degenerate miss.
+fn hit_at<T: Real>(t: T, point: Vec3<T>, normal: Vec3<f64>, degenerate: bool) -> Intersection<T> {
+    if !crate::real::finite3(&point) {
+        return Intersection::DEGENERATE;
+    }
+    Intersection {
+        hit: Some(SegmentHit { t, point, normal: normal.map(T::of), barycentric: None }),
+        parallel: false,
+        degenerate,
+    }
+}
+
+/// `s h − a · (p − c)`: lengths `[p, c, h]`, units `[a, s]` — the numerator of
+/// the time face `s` of axis `a` is crossed.
+fn entry_numerator<N: Ring>(l: &[N; 7], u: &[N; 4]) -> N {
+    let d = sub3(at(l, 0), at(l, 3));
+    u[3].mul(&l[6]).sub(&dot3(at(u, 0), refs(&d)))
+}
+
+/// `N_i D_j − N_j D_i` with `N = s h − a · (p − c)`, `D = a · (q − p)`:
+/// lengths `[p, q, c, h_i, h_j]`, units `[a_i, s_i, a_j, s_j]`.
+fn time_order<N: Ring>(l: &[N; 11], u: &[N; 8]) -> N {
+    let (pc, qp) = (sub3(at(l, 0), at(l, 6)), sub3(at(l, 3), at(l, 0)));
+    let ni = u[3].mul(&l[9]).sub(&dot3(at(u, 0), refs(&pc)));
+    let nj = u[7].mul(&l[10]).sub(&dot3(at(u, 4), refs(&pc)));
+    let di = dot3(at(u, 0), refs(&qp));
+    let dj = dot3(at(u, 4), refs(&qp));
+    ni.mul(&dj).sub(&nj.mul(&di))
+}
