@@ -29,6 +29,7 @@
 //! radius, an inverted axis-aligned box. A flat box (a zero half-extent, down to
 //! a point) is valid everywhere.
 
+use super::boxes_fast::FastBox;
 use super::error::RefereeError;
 use super::exact::{Q, Root, V3, add, check_v3, dot, is_zero, q, radius, round, round_unit, round_v, scale, sub, v3};
 use crate::geom::{
@@ -76,9 +77,10 @@ fn columns(qr: [Q; 4]) -> [V3; 3] {
     ]
 }
 
-/// The exact box, or the refusal naming the field: a non-finite number, a
-/// negative half-extent (`−0.0` is 0, not negative), a zero quaternion.
-pub(crate) fn exact_box(b: &OrientedBox, f: BoxFields) -> Result<ExactBox, RefereeError> {
+/// The refusals of a box, in `f64` before any rational is made: a non-finite
+/// number, a negative half-extent (`−0.0` is 0, not negative), a zero
+/// quaternion.
+pub(crate) fn check_box(b: &OrientedBox, f: BoxFields) -> Result<(), RefereeError> {
     check_v3(&b.center, f.center)?;
     check_v3(&b.half_extents, f.half_extents)?;
     if b.rotation.iter().any(|x| !x.is_finite()) {
@@ -90,6 +92,12 @@ pub(crate) fn exact_box(b: &OrientedBox, f: BoxFields) -> Result<ExactBox, Refer
     if b.rotation.iter().all(|&x| x == 0.0) {
         return Err(RefereeError::ZeroRotation { field: f.rotation });
     }
+    Ok(())
+}
+
+/// The exact box, or the refusal naming the field ([`check_box`]).
+pub(crate) fn exact_box(b: &OrientedBox, f: BoxFields) -> Result<ExactBox, RefereeError> {
+    check_box(b, f)?;
     let qr = [
         q(b.rotation[0], f.rotation)?,
         q(b.rotation[1], f.rotation)?,
@@ -593,25 +601,48 @@ impl AxisOverlap {
 /// projects onto that direction.
 fn sat(a: &ExactBox, b: &ExactBox) -> Vec<AxisOverlap> {
     let t = sub(&b.c, &a.c);
-    let along = |l: &V3, norm2: Q| {
-        let ra = (0..3).fold(Q::ZERO, |acc, i| acc + &a.h[i] * abs(&dot(l, &a.axes[i])));
-        let rb = (0..3).fold(Q::ZERO, |acc, j| acc + &b.h[j] * abs(&dot(l, &b.axes[j])));
-        AxisOverlap { overlap: ra + rb - abs(&dot(l, &t)), norm2 }
-    };
-    let mut out = Vec::with_capacity(15);
-    for l in a.axes.iter().chain(&b.axes) {
-        out.push(along(l, Q::ONE));
-    }
-    for ai in &a.axes {
-        for bj in &b.axes {
-            let l = super::exact::cross(ai, bj);
-            if !is_zero(&l) {
-                let n2 = dot(&l, &l);
-                out.push(along(&l, n2));
-            }
+    (0..15).filter_map(|k| sat_axis(a, b, &t, k)).collect()
+}
+
+/// Axis `k` of [`sat`] (`0..3`: `a`'s, `3..6`: `b`'s, `6..15`: `aᵢ × bⱼ` row by
+/// row), `None` for a zero cross product; `t = cB − cA`.
+fn sat_axis(a: &ExactBox, b: &ExactBox, t: &V3, k: usize) -> Option<AxisOverlap> {
+    let (l, norm2) = if k < 3 {
+        (a.axes[k].clone(), Q::ONE)
+    } else if k < 6 {
+        (b.axes[k - 3].clone(), Q::ONE)
+    } else {
+        let l = super::exact::cross(&a.axes[(k - 6) / 3], &b.axes[(k - 6) % 3]);
+        if is_zero(&l) {
+            return None;
         }
+        let n2 = dot(&l, &l);
+        (l, n2)
+    };
+    let ra = (0..3).fold(Q::ZERO, |acc, i| acc + &a.h[i] * abs(&dot(&l, &a.axes[i])));
+    let rb = (0..3).fold(Q::ZERO, |acc, j| acc + &b.h[j] * abs(&dot(&l, &b.axes[j])));
+    Some(AxisOverlap { overlap: ra + rb - abs(&dot(&l, t)), norm2 })
+}
+
+/// `overlap/‖L‖` of one axis, correctly rounded.
+fn axis_margin(axis: &AxisOverlap) -> f64 {
+    if axis.norm2 == Q::ONE {
+        round(&axis.overlap)
+    } else {
+        Root::new(axis.norm2.clone()).round_over(&Q::ZERO, &axis.overlap)
     }
-    out
+}
+
+/// The exact margin of axis `k` alone, the one the floating-point stage
+/// certified to be the least (a certified axis is never a zero one).
+fn margin_on_axis(a: &ExactBox, b: &ExactBox, k: usize) -> f64 {
+    let t = sub(&b.c, &a.c);
+    sat_axis(a, b, &t, k).map_or_else(|| sat_margin(&sat(a, b)), |axis| axis_margin(&axis))
+}
+
+/// The floating-point stage's answer ([`super::boxes_fast`]), counted.
+fn staged<T>(fast: impl FnOnce() -> Option<T>) -> Option<T> {
+    super::stage::fast_stage(super::stage::Stage::BoxOverlap, fast)
 }
 
 /// `min` over the axes of `overlap/‖L‖`, correctly rounded.
@@ -622,11 +653,7 @@ fn sat_margin(axes: &[AxisOverlap]) -> f64 {
             best = ax;
         }
     }
-    if best.norm2 == Q::ONE {
-        round(&best.overlap)
-    } else {
-        Root::new(best.norm2.clone()).round_over(&Q::ZERO, &best.overlap)
-    }
+    axis_margin(best)
 }
 
 /// Whether the oriented boxes `a` and `b` overlap: the closed solids share a
@@ -641,6 +668,11 @@ fn sat_margin(axes: &[AxisOverlap]) -> f64 {
 /// **Degenerate input.** Flat boxes (down to points) are valid. A negative
 /// half-extent, a zero quaternion or a non-finite number is refused.
 pub fn overlap_box_box(a: &OrientedBox, b: &OrientedBox) -> Result<bool, RefereeError> {
+    check_box(a, BOX_A)?;
+    check_box(b, BOX_B)?;
+    if let Some(answer) = staged(|| super::boxes_fast::overlap(&FastBox::of(a), &FastBox::of(b))) {
+        return Ok(answer);
+    }
     let (a, b) = (exact_box(a, BOX_A)?, exact_box(b, BOX_B)?);
     Ok(sat(&a, &b).iter().all(|ax| ax.overlap >= Q::ZERO))
 }
@@ -657,19 +689,31 @@ pub fn overlap_box_box(a: &OrientedBox, b: &OrientedBox) -> Result<bool, Referee
 /// distance between the boxes, not the distance itself. The sign bit is the
 /// decision.
 pub fn overlap_margin_box_box(a: &OrientedBox, b: &OrientedBox) -> Result<f64, RefereeError> {
+    check_box(a, BOX_A)?;
+    check_box(b, BOX_B)?;
+    let least = staged(|| super::boxes_fast::least_axis(&FastBox::of(a), &FastBox::of(b)));
     let (a, b) = (exact_box(a, BOX_A)?, exact_box(b, BOX_B)?);
-    Ok(sat_margin(&sat(&a, &b)))
+    Ok(match least {
+        Some(k) => margin_on_axis(&a, &b, k),
+        None => sat_margin(&sat(&a, &b)),
+    })
+}
+
+/// The refusals of an axis-aligned box `b`: a non-finite number, `min > max`.
+fn check_aabb(b: &Aabb) -> Result<(), RefereeError> {
+    check_v3(&b.min, "b.min")?;
+    check_v3(&b.max, "b.max")?;
+    if (0..3).any(|k| b.min[k] > b.max[k]) {
+        return Err(RefereeError::InvertedAabb { field: "b.min" });
+    }
+    Ok(())
 }
 
 /// An axis-aligned box as an exact box: centre `(min + max)/2`, half-extents
 /// `(max − min)/2`, the identity rotation. Refuses a non-finite number and an
 /// inverted box as [`super::overlap_aabb_aabb`] does.
 fn aabb_box(b: &Aabb) -> Result<ExactBox, RefereeError> {
-    check_v3(&b.min, "b.min")?;
-    check_v3(&b.max, "b.max")?;
-    if (0..3).any(|k| b.min[k] > b.max[k]) {
-        return Err(RefereeError::InvertedAabb { field: "b.min" });
-    }
+    check_aabb(b)?;
     let (min, max) = (v3(&b.min, "b.min")?, v3(&b.max, "b.max")?);
     let half = Q::from_parts(1.into(), 2u8.into());
     let unit = |k: usize| -> V3 { std::array::from_fn(|i| if i == k { Q::ONE } else { Q::ZERO }) };
@@ -687,6 +731,11 @@ fn aabb_box(b: &Aabb) -> Result<ExactBox, RefereeError> {
 /// **Degenerate input.** Flat boxes on either side are valid. An inverted
 /// `b` (`min > max`) and the box refusals of [`overlap_box_box`] are refused.
 pub fn overlap_box_aabb(a: &OrientedBox, b: &Aabb) -> Result<bool, RefereeError> {
+    check_box(a, BOX_A)?;
+    check_aabb(b)?;
+    if let Some(answer) = staged(|| super::boxes_fast::overlap(&FastBox::of(a), &FastBox::of_aabb(b))) {
+        return Ok(answer);
+    }
     let (a, b) = (exact_box(a, BOX_A)?, aabb_box(b)?);
     Ok(sat(&a, &b).iter().all(|ax| ax.overlap >= Q::ZERO))
 }
@@ -695,8 +744,14 @@ pub fn overlap_box_aabb(a: &OrientedBox, b: &Aabb) -> Result<bool, RefereeError>
 /// [`overlap_margin_box_box`]: the exact penetration depth when they overlap, a
 /// lower bound of minus the distance when apart; correctly rounded.
 pub fn overlap_margin_box_aabb(a: &OrientedBox, b: &Aabb) -> Result<f64, RefereeError> {
+    check_box(a, BOX_A)?;
+    check_aabb(b)?;
+    let least = staged(|| super::boxes_fast::least_axis(&FastBox::of(a), &FastBox::of_aabb(b)));
     let (a, b) = (exact_box(a, BOX_A)?, aabb_box(b)?);
-    Ok(sat_margin(&sat(&a, &b)))
+    Ok(match least {
+        Some(k) => margin_on_axis(&a, &b, k),
+        None => sat_margin(&sat(&a, &b)),
+    })
 }
 
 #[cfg(test)]

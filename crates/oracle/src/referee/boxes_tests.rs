@@ -742,10 +742,109 @@ mod sampled {
         }
     }
 
+    /// Random cases in the stage-agreement test.
+    const STAGE_CASES: usize = 600;
+
+    /// The share of generic random pairs the floating-point stage must settle
+    /// alone (decision and margin): it is meant to take nearly all clear
+    /// cases; a stage that certifies nothing would still be correct but
+    /// useless.
+    const FAST_SHARE: f64 = 0.5;
+
+    /// A deterministic generator (SplitMix64) for the stage test.
+    struct Mix(u64);
+
+    impl Mix {
+        fn next(&mut self) -> u64 {
+            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            z ^ (z >> 31)
+        }
+
+        /// In `[−s, s)`, on a grid of `1/4` half the time (touching and
+        /// parallel cases), else any double.
+        fn coord(&mut self, s: f64) -> f64 {
+            let x = (self.next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+            if self.next().is_multiple_of(2) { (x * s * 4.0).round() / 4.0 } else { x * s }
+        }
+
+        fn rotation(&mut self) -> [f64; 4] {
+            match self.next() % 4 {
+                0 => IDENTITY,
+                1 => Q345,
+                _ => loop {
+                    let q = [self.coord(1.0), self.coord(1.0), self.coord(1.0), self.coord(1.0)];
+                    if q.iter().any(|x| *x != 0.0) {
+                        break q;
+                    }
+                },
+            }
+        }
+
+        fn oriented(&mut self, scale: f64) -> OrientedBox {
+            let h = std::array::from_fn(|_| if self.next().is_multiple_of(8) { 0.0 } else { self.coord(scale).abs() });
+            obb(std::array::from_fn(|_| self.coord(2.0 * scale)), h, self.rotation())
+        }
+    }
+
+    #[test]
+    fn referee_box_overlap_stage_agrees_with_the_exact_stage() {
+        use crate::referee::stage::{Stage, stage_counts_on_this_thread};
+        let counts = || {
+            let c = stage_counts_on_this_thread();
+            let (_, fast, exact) = c.into_iter().find(|(s, _, _)| *s == Stage::BoxOverlap).unwrap();
+            (fast, exact)
+        };
+        let mut mix = Mix(20261205);
+        let before = counts();
+        for case in 0..STAGE_CASES {
+            let scale = [1.0, 1e-300, 1e300, 3.0][case % 4];
+            let (a, b) = (mix.oriented(scale), mix.oriented(scale));
+            let aabb = {
+                let (p, q) = (mix.oriented(scale).center, mix.oriented(scale).center);
+                Aabb { min: std::array::from_fn(|i| p[i].min(q[i])), max: std::array::from_fn(|i| p[i].max(q[i])) }
+            };
+            let staged = (
+                overlap_box_box(&a, &b).unwrap(),
+                overlap_margin_box_box(&a, &b).unwrap().to_bits(),
+                overlap_box_aabb(&a, &aabb).unwrap(),
+                overlap_margin_box_aabb(&a, &aabb).unwrap().to_bits(),
+            );
+            let exact = exact_only(|| {
+                (
+                    overlap_box_box(&a, &b).unwrap(),
+                    overlap_margin_box_box(&a, &b).unwrap().to_bits(),
+                    overlap_box_aabb(&a, &aabb).unwrap(),
+                    overlap_margin_box_aabb(&a, &aabb).unwrap().to_bits(),
+                )
+            });
+            assert_eq!(staged, exact, "case {case}: {a:?} {b:?} {aabb:?}");
+        }
+        let after = counts();
+        let (fast, exact) = (after.0 - before.0, after.1 - before.1);
+        let share = fast as f64 / (fast + exact) as f64;
+        assert!(share >= FAST_SHARE, "the fast stage settled {fast} of {}", fast + exact);
+        // Touching boxes, identical boxes and exactly parallel edges reach the
+        // exact stage or are certified; either way the same answers.
+        for (a, b) in [
+            (unit_box(), obb([2.0, 0.0, 0.0], [1.0; 3], IDENTITY)),
+            (unit_box(), unit_box()),
+            (obb([0.0; 3], [1.0; 3], Q345), obb([0.0, 0.0, 2.0], [1.0; 3], Q345)),
+            (unit_box(), obb([-0.5, 1.5, 0.0], [2.5, 0.0, 0.0], [4.0, 2.0, -1.0, 2.0])),
+        ] {
+            let staged = (overlap_box_box(&a, &b).unwrap(), overlap_margin_box_box(&a, &b).unwrap().to_bits());
+            let exact =
+                exact_only(|| (overlap_box_box(&a, &b).unwrap(), overlap_margin_box_box(&a, &b).unwrap().to_bits()));
+            assert_eq!(staged, exact, "{a:?} {b:?}");
+        }
+    }
+
     #[test]
     fn referee_boxes_answer_the_same_with_the_stages_off() {
-        // The box and capsule functions have no floating-point stage yet: the
-        // switch must not change a bit (a guard for when one is added).
+        // Contact has no floating-point stage yet and overlap has one: the
+        // switch must not change a bit.
         let b = obb([0.25, -0.5, 1.0], [1.0, 0.5, 2.0], [0.9, 0.1, -0.3, 0.2]);
         let s = sphere([1.5, 0.5, 2.5], 1.0);
         let both =

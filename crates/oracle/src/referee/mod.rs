@@ -62,6 +62,10 @@
 //!   certified margins (`toi_fast`);
 //! - collision response ([`response`]): every velocity a certified quotient
 //!   (`response_fast`).
+//! - the overlap of an oriented box with a box or an aabb, and its margin
+//!   ([`boxes`]): the fifteen separating axes in `f64`, each value with a
+//!   rigorous bound on its error, decide the clear cases and pick the margin's
+//!   least axis, which alone is then computed in rationals (`boxes_fast`).
 //!
 //! **Exact dyadic numbers.** What the double-word bounds leave open in
 //! contact, intersect, barycentric coordinates and response is computed again,
@@ -87,6 +91,7 @@
 pub mod barycentric;
 pub mod bounds;
 pub mod boxes;
+mod boxes_fast;
 pub mod capsule;
 pub mod ccd;
 mod ccd_fast;

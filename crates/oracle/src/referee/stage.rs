@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 thread_local! {
     static EXACT_ONLY: Cell<bool> = const { Cell::new(false) };
     /// This thread's counts: fast then exact, per stage.
-    static HERE: Cell<[u64; 16]> = const { Cell::new([0; 16]) };
+    static HERE: Cell<[u64; 18]> = const { Cell::new([0; 18]) };
 }
 
 /// Runs `f` with the referee's floating-point stages off on this thread: every
@@ -74,11 +74,15 @@ pub enum Stage {
     /// certified from the coplanarity cubic's double-word Bernstein bounds or
     /// disjoint swept boxes, or the answer computed in exact polynomials.
     Ccd,
+    /// Overlap of an oriented box with a box or an aabb, and its margin: the
+    /// decision (or the margin's least axis) certified from bounded `f64`
+    /// separating axes, or all fifteen axes computed in rationals.
+    BoxOverlap,
 }
 
 impl Stage {
     /// Every stage, in report order.
-    pub const ALL: [Stage; 8] = [
+    pub const ALL: [Stage; 9] = [
         Stage::MinBall,
         Stage::MeshFaces,
         Stage::Barycentric,
@@ -87,6 +91,7 @@ impl Stage {
         Stage::Toi,
         Stage::Response,
         Stage::Ccd,
+        Stage::BoxOverlap,
     ];
 
     /// What is counted, for the report.
@@ -112,6 +117,9 @@ impl Stage {
             Stage::Ccd => {
                 "ccd vertex–face and edge–edge: misses certified from double-word Bernstein bounds / computed in exact polynomials"
             }
+            Stage::BoxOverlap => {
+                "overlap of boxes, and margins: decision or least axis certified from bounded f64 / all axes computed in rationals"
+            }
         }
     }
 }
@@ -119,10 +127,10 @@ impl Stage {
 /// The query kinds the referee answers in its exact stage alone (every case
 /// of them is decided exactly: its share without the exact stage is 0 %), for
 /// the report beside [`Stage`]'s counts.
-pub const EXACT_STAGE_ONLY: &str = "overlap of two aabbs (its exact stage is already a handful of f64 comparisons); every box and capsule query (no floating-point stage yet)";
+pub const EXACT_STAGE_ONLY: &str = "overlap of two aabbs (its exact stage is already a handful of f64 comparisons); box and capsule contact, segment–box and a box's bounds (no floating-point stage yet)";
 
-static FAST: [AtomicU64; 8] = [const { AtomicU64::new(0) }; 8];
-static EXACT: [AtomicU64; 8] = [const { AtomicU64::new(0) }; 8];
+static FAST: [AtomicU64; 9] = [const { AtomicU64::new(0) }; 9];
+static EXACT: [AtomicU64; 9] = [const { AtomicU64::new(0) }; 9];
 
 /// Counts `n` answers of `stage`, by the floating-point stage or the exact one.
 pub(crate) fn count(stage: Stage, fast: bool, n: u64) {
