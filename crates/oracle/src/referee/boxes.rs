@@ -31,7 +31,11 @@
 
 use super::boxes_fast::FastBox;
 use super::error::RefereeError;
-use super::exact::{Q, Root, V3, add, check_v3, dot, is_zero, q, radius, round, round_unit, round_v, scale, sub, v3};
+use super::exact::{
+    Q, Root, V3, add, check, check_radius, check_v3, dot, is_zero, q, radius, round, round_unit, round_v, scale, sub,
+    v3,
+};
+use super::stage::apart;
 use crate::geom::{
     Aabb, Ball, BoundsAnswer, Contact, ContactAnswer, IntersectAnswer, OrientedBox, P3, Plane, Segment, SegmentHit,
     Sphere,
@@ -265,6 +269,12 @@ fn sphere_box(a: &Sphere, b: &OrientedBox) -> Result<SphereBox, RefereeError> {
 /// `degenerate: true`. A zero radius (a point) is valid; a negative radius, a
 /// negative half-extent, a zero quaternion or a non-finite number is refused.
 pub fn contact_sphere_box(a: &Sphere, b: &OrientedBox) -> Result<ContactAnswer, RefereeError> {
+    check_v3(&a.center, "a.center")?;
+    check_radius(a.radius, "a.radius")?;
+    check_box(b, BOX_B)?;
+    if apart(|| super::boxes_fast::sphere_box_apart(a, b)) {
+        return Ok(ContactAnswer { contact: None, degenerate: false });
+    }
     let sb = sphere_box(a, b)?;
     match &sb.place {
         Place::Outside(out) => {
@@ -381,6 +391,15 @@ impl BoxPlane {
 /// false). A zero plane normal, a zero quaternion, a negative half-extent or a
 /// non-finite number is refused.
 pub fn contact_box_plane(a: &OrientedBox, b: &Plane) -> Result<ContactAnswer, RefereeError> {
+    check_box(a, BOX_A)?;
+    check_v3(&b.normal, "b.normal")?;
+    check(b.offset, "b.offset")?;
+    if b.normal.iter().all(|&x| x == 0.0) {
+        return Err(RefereeError::ZeroNormal { field: "b.normal" });
+    }
+    if apart(|| super::boxes_fast::box_plane_apart(a, b)) {
+        return Ok(ContactAnswer { contact: None, degenerate: false });
+    }
     let bp = box_plane(a, b)?;
     if !bp.touches() {
         return Ok(ContactAnswer { contact: None, degenerate: false });
@@ -511,6 +530,13 @@ fn first_hit(h: &V3, u0: &V3, e: &V3) -> Option<BoxHit> {
 /// zero-length segment is always `degenerate: true`: a point in the box is hit
 /// at `t = 0` with its nearest face, a point outside is no hit.
 pub fn intersect_segment_box(s: &Segment, b: &OrientedBox) -> Result<IntersectAnswer, RefereeError> {
+    check_v3(&s.start, "a.start")?;
+    check_v3(&s.end, "a.end")?;
+    check_box(b, BOX_B)?;
+    if apart(|| super::boxes_fast::segment_box_miss(s, b)) {
+        // A zero-length segment is degenerate however it is answered.
+        return Ok(IntersectAnswer { hit: None, parallel: false, degenerate: s.start == s.end });
+    }
     let p0 = v3(&s.start, "a.start")?;
     let p1 = v3(&s.end, "a.end")?;
     let bx = exact_box(b, BOX_B)?;

@@ -16,7 +16,14 @@
 //! [`SLACK`] beyond it. An overflow or a NaN anywhere makes a comparison fail
 //! to certify, and the exact stage decides.
 //!
-//! What it certifies:
+//! The same bounded numbers certify, for the contact of boxes and capsules
+//! and for a segment against a box, that the shapes are apart (the segment
+//! misses): the whole answer then, with no number to round. Any direction `n`
+//! whose projections of the two shapes are further apart than the radii is a
+//! proof; `n` is chosen in plain `f64` (from approximate closest points) and
+//! taken as the exact vector it is, and only the projections are bounded.
+//!
+//! What it certifies for overlap:
 //! - overlap (`overlap_box_box`, `overlap_box_aabb`): `false` when one axis
 //!   separates by more than its bound, `true` when every axis overlaps by more
 //!   than its bound (an axis whose cross product might be zero but is not known
@@ -26,7 +33,7 @@
 //!   axis in rationals and rounds it once, instead of all fifteen and their
 //!   comparisons.
 
-use crate::geom::{Aabb, OrientedBox};
+use crate::geom::{Aabb, Capsule, OrientedBox, P3, Plane, Segment, Sphere};
 
 /// `u = 2⁻⁵³`, the unit roundoff of round-to-nearest.
 const U: f64 = f64::EPSILON / 2.0;
@@ -130,6 +137,22 @@ impl Bounded {
             f64::INFINITY
         };
         Self { v, e: e + U * v + TINY }
+    }
+
+    /// Certainly > 0.
+    fn positive(self) -> bool {
+        self.v > self.e * SLACK
+    }
+
+    /// The larger of two bounded values (max is 1-Lipschitz: the larger bound
+    /// holds).
+    fn max(self, o: Self) -> Self {
+        Self { v: self.v.max(o.v), e: self.e.max(o.e) }
+    }
+
+    /// The smaller of two bounded values.
+    fn min(self, o: Self) -> Self {
+        Self { v: self.v.min(o.v), e: self.e.max(o.e) }
     }
 
     /// Certainly ≥ 0.
@@ -272,4 +295,143 @@ pub(crate) fn least_axis(a: &FastBox, b: &FastBox) -> Option<usize> {
         other.v - low.v > (other.e + low.e) * SLACK + TINY
     });
     clear.then_some(*best)
+}
+
+fn exact_v(p: &P3) -> BV {
+    p.map(Bounded::exact)
+}
+
+/// Whether shapes whose projections on `n` are `gap` apart (`gap` = the
+/// lower end of one minus the upper end of the other, in units of `‖n‖`)
+/// certainly stay apart with radii summing to `r`: `gap > 0` and
+/// `gap² > r²·‖n‖²`.
+fn clear_gap(gap: Bounded, r: Bounded, n: &BV) -> bool {
+    gap.positive() && gap.mul(gap).sub(r.mul(r).mul(dot(n, n))).positive()
+}
+
+/// The box's projection on `n`: its centre's and its reach `Σ hᵢ|n·Aᵢ|`.
+fn box_span(b: &FastBox, n: &BV) -> (Bounded, Bounded) {
+    let reach = (0..3).fold(Bounded::exact(0.0), |acc, i| acc.add(b.h[i].mul(dot(n, &b.axes[i]).abs())));
+    (dot(n, &b.c), reach)
+}
+
+/// The rotation's columns in plain `f64` (the bounded values'), for choosing
+/// directions.
+fn plain_axes(b: &FastBox) -> [P3; 3] {
+    b.axes.map(|a| a.map(|x| x.v))
+}
+
+/// A sphere (checked input) certainly apart from a box: along `n = M − p`,
+/// `p` the `f64` clamp of the centre into the box.
+pub(crate) fn sphere_box_apart(s: &Sphere, b: &OrientedBox) -> bool {
+    let fb = FastBox::of(b);
+    let axes = plain_axes(&fb);
+    let d: P3 = std::array::from_fn(|i| s.center[i] - b.center[i]);
+    let u: P3 = std::array::from_fn(|i| axes[i][0] * d[0] + axes[i][1] * d[1] + axes[i][2] * d[2]);
+    let w: P3 = std::array::from_fn(|i| u[i] - u[i].clamp(-b.half_extents[i], b.half_extents[i]));
+    let n: P3 = std::array::from_fn(|k| (0..3).map(|i| w[i] * axes[i][k]).sum());
+    if !n.iter().all(|x| x.is_finite()) || n.iter().all(|x| *x == 0.0) {
+        return false;
+    }
+    let n = exact_v(&n);
+    let (c, reach) = box_span(&fb, &n);
+    clear_gap(dot(&n, &exact_v(&s.center)).sub(c.add(reach)), Bounded::exact(s.radius), &n)
+}
+
+/// A box (checked input) certainly above a plane (`n ≠ 0`): its lowest
+/// point's `n·x` certainly beyond `d`.
+pub(crate) fn box_plane_apart(a: &OrientedBox, p: &Plane) -> bool {
+    let n = exact_v(&p.normal);
+    let (c, reach) = box_span(&FastBox::of(a), &n);
+    Bounded::exact(p.offset).sub(c.sub(reach)).negative()
+}
+
+/// The point of segment `[a, b]` nearest `p`, in plain `f64`.
+fn nearest_on(p: &P3, a: &P3, b: &P3) -> P3 {
+    let d: P3 = std::array::from_fn(|i| b[i] - a[i]);
+    let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    let t = if len2 > 0.0 {
+        (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1] + (p[2] - a[2]) * d[2]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    std::array::from_fn(|i| a[i] + t * d[i])
+}
+
+/// Whether the projections of segments `[a0, a1]` and `[b0, b1]` on `n`
+/// (a finite, non-zero `f64` vector) are certainly further apart than `r`.
+fn segments_apart_along(n: P3, a: [&P3; 2], b: [&P3; 2], r: Bounded) -> bool {
+    if !n.iter().all(|x| x.is_finite()) || n.iter().all(|x| *x == 0.0) {
+        return false;
+    }
+    let n = exact_v(&n);
+    let (a0, a1) = (dot(&n, &exact_v(a[0])), dot(&n, &exact_v(a[1])));
+    let (b0, b1) = (dot(&n, &exact_v(b[0])), dot(&n, &exact_v(b[1])));
+    clear_gap(a0.min(a1).sub(b0.max(b1)), r, &n)
+}
+
+/// A sphere (checked input) certainly apart from a capsule: along
+/// `n = M − q`, `q` the `f64` nearest point of the axis.
+pub(crate) fn sphere_capsule_apart(s: &Sphere, b: &Capsule) -> bool {
+    let q = nearest_on(&s.center, &b.start, &b.end);
+    let n = std::array::from_fn(|i| s.center[i] - q[i]);
+    let r = Bounded::exact(s.radius).add(Bounded::exact(b.radius));
+    segments_apart_along(n, [&s.center, &s.center], [&b.start, &b.end], r)
+}
+
+/// Two capsules (checked input) certainly apart: along `n = p_a − p_b`,
+/// approximate closest points of the axes (the nearest of a's ends and
+/// its `f64` Ericson closest pair, each against b's axis).
+pub(crate) fn capsule_capsule_apart(a: &Capsule, b: &Capsule) -> bool {
+    let r = Bounded::exact(a.radius).add(Bounded::exact(b.radius));
+    let candidates = [a.start, a.end, closest_on_a(a, b)];
+    candidates.iter().any(|pa| {
+        let pb = nearest_on(pa, &b.start, &b.end);
+        let n = std::array::from_fn(|i| pa[i] - pb[i]);
+        segments_apart_along(n, [&a.start, &a.end], [&b.start, &b.end], r)
+    })
+}
+
+/// The point of a's axis nearest b's (Ericson §5.1.9 in plain `f64`: the
+/// unclamped solution clamped, then refined once against b).
+fn closest_on_a(a: &Capsule, b: &Capsule) -> P3 {
+    let d1: P3 = std::array::from_fn(|i| a.end[i] - a.start[i]);
+    let d2: P3 = std::array::from_fn(|i| b.end[i] - b.start[i]);
+    let r: P3 = std::array::from_fn(|i| a.start[i] - b.start[i]);
+    let dt = |x: &P3, y: &P3| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    let (aa, ee, bb, cc, ff) = (dt(&d1, &d1), dt(&d2, &d2), dt(&d1, &d2), dt(&d1, &r), dt(&d2, &r));
+    let denom = aa * ee - bb * bb;
+    let s = if denom > 0.0 { ((bb * ff - cc * ee) / denom).clamp(0.0, 1.0) } else { 0.0 };
+    let pa: P3 = std::array::from_fn(|i| a.start[i] + s * d1[i]);
+    let pb = nearest_on(&pa, &b.start, &b.end);
+    nearest_on(&pb, &a.start, &a.end)
+}
+
+/// A capsule (checked input) certainly above a plane (`n ≠ 0`): its lowest
+/// end more than `r` above.
+pub(crate) fn capsule_plane_apart(a: &Capsule, p: &Plane) -> bool {
+    let n = exact_v(&p.normal);
+    let low = dot(&n, &exact_v(&a.start)).min(dot(&n, &exact_v(&a.end)));
+    clear_gap(low.sub(Bounded::exact(p.offset)), Bounded::exact(a.radius), &n)
+}
+
+/// A segment (checked input) certainly missing a box: separated on one of
+/// the box's axes or one of `d × Aᵢ` (`d = p1 − p0`).
+pub(crate) fn segment_box_miss(s: &Segment, b: &OrientedBox) -> bool {
+    let fb = FastBox::of(b);
+    let axes = plain_axes(&fb);
+    let d: P3 = std::array::from_fn(|i| s.end[i] - s.start[i]);
+    let cross_f =
+        |x: &P3, y: &P3| -> P3 { [x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]] };
+    let directions = [axes[0], axes[1], axes[2], cross_f(&d, &axes[0]), cross_f(&d, &axes[1]), cross_f(&d, &axes[2])];
+    directions.iter().any(|n| {
+        if !n.iter().all(|x| x.is_finite()) || n.iter().all(|x| *x == 0.0) {
+            return false;
+        }
+        let n = exact_v(n);
+        let (c, reach) = box_span(&fb, &n);
+        let (p0, p1) = (dot(&n, &exact_v(&s.start)), dot(&n, &exact_v(&s.end)));
+        let (lo, hi) = (p0.min(p1), p0.max(p1));
+        lo.sub(c.add(reach)).positive() || c.sub(reach).sub(hi).positive()
+    })
 }

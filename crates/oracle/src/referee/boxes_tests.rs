@@ -545,6 +545,8 @@ fn referee_boxes_huge_and_tiny_scales() {
 /// Loops against independent `f64` evaluations and sampling, for sanity.
 mod sampled {
     use super::*;
+    use crate::geom::Capsule;
+    use crate::referee::capsule::{contact_capsule_capsule, contact_capsule_plane, contact_sphere_capsule};
     use crashtest_core::geom::rotation_matrix;
     use proptest::prelude::*;
 
@@ -841,10 +843,78 @@ mod sampled {
         }
     }
 
+    /// The share of the random separated pairs (the exact stage says apart)
+    /// that the apart stage must certify alone: the shapes are spread over
+    /// four times their size, so most separated pairs are clearly apart, and a
+    /// stage that certified none would be correct but useless.
+    const APART_SHARE: f64 = 0.5;
+
+    #[test]
+    fn referee_apart_stage_agrees_with_the_exact_stage() {
+        use crate::referee::stage::{Stage, stage_counts_on_this_thread};
+        let fast_count = || {
+            let c = stage_counts_on_this_thread();
+            c.into_iter().find(|(s, _, _)| *s == Stage::ShapesApart).unwrap().1
+        };
+        let mut mix = Mix(20261206);
+        let (mut separated, before) = (0u64, fast_count());
+        for case in 0..STAGE_CASES {
+            let scale = [1.0, 1e-300, 1e300, 3.0][case % 4];
+            let b = mix.oriented(scale);
+            let mut point = || std::array::from_fn::<f64, 3, _>(|_| mix.coord(2.0 * scale));
+            let (p0, p1, p2, p3, p4) = (point(), point(), point(), point(), point());
+            let r = (mix.coord(scale) / 2.0).abs();
+            let s = sphere(p0, r);
+            let ca = Capsule { start: p1, end: if case % 5 == 0 { p1 } else { p2 }, radius: r };
+            let cb = Capsule { start: p3, end: p4, radius: (mix.coord(scale) / 2.0).abs() };
+            let plane = Plane { normal: [mix.coord(1.0), mix.coord(1.0), 1.0], offset: mix.coord(scale) };
+            let seg = Segment { start: p1, end: if case % 7 == 0 { p1 } else { p3 } };
+            let all = || {
+                (
+                    contact_sphere_box(&s, &b).unwrap(),
+                    contact_box_plane(&b, &plane).unwrap(),
+                    contact_sphere_capsule(&s, &ca).unwrap(),
+                    contact_capsule_capsule(&ca, &cb).unwrap(),
+                    contact_capsule_plane(&ca, &plane).unwrap(),
+                    intersect_segment_box(&seg, &b).unwrap(),
+                )
+            };
+            let staged = all();
+            let exact = exact_only(all);
+            assert_eq!(staged, exact, "case {case}: {s:?} {b:?} {ca:?} {cb:?} {plane:?} {seg:?}");
+            separated +=
+                [&exact.0, &exact.1, &exact.2, &exact.3, &exact.4].iter().filter(|a| a.contact.is_none()).count()
+                    as u64
+                    + u64::from(exact.5.hit.is_none());
+        }
+        let fast = fast_count() - before;
+        assert!(
+            fast as f64 >= APART_SHARE * separated as f64,
+            "the apart stage certified {fast} of {separated} separated pairs"
+        );
+        // Touching shapes reach the exact stage: the same answers.
+        let touching = || {
+            (
+                contact_sphere_box(&sphere([2.0, 0.0, 0.0], 1.0), &unit_box()).unwrap(),
+                contact_box_plane(&unit_box(), &Plane { normal: [0.0, 0.0, 1.0], offset: -1.0 }).unwrap(),
+                intersect_segment_box(&Segment { start: [1.0, 2.0, 0.0], end: [1.0, -2.0, 0.0] }, &unit_box()).unwrap(),
+                contact_capsule_capsule(
+                    &Capsule { start: [0.0; 3], end: [1.0, 0.0, 0.0], radius: 0.5 },
+                    &Capsule { start: [0.0, 1.0, 0.0], end: [1.0, 1.0, 0.0], radius: 0.5 },
+                )
+                .unwrap(),
+            )
+        };
+        let staged = touching();
+        assert_eq!(staged, exact_only(touching));
+        assert!(staged.0.contact.is_some() && staged.1.contact.is_some() && staged.2.hit.is_some());
+        assert!(staged.3.contact.is_some());
+    }
+
     #[test]
     fn referee_boxes_answer_the_same_with_the_stages_off() {
-        // Contact has no floating-point stage yet and overlap has one: the
-        // switch must not change a bit.
+        // Contact has a floating-point stage for apart shapes and overlap one
+        // for its decision: the switch must not change a bit.
         let b = obb([0.25, -0.5, 1.0], [1.0, 0.5, 2.0], [0.9, 0.1, -0.3, 0.2]);
         let s = sphere([1.5, 0.5, 2.5], 1.0);
         let both =

@@ -14,7 +14,10 @@
 
 use super::closest::closest_on_segment;
 use super::error::RefereeError;
-use super::exact::{Q, Root, V3, add, dot, is_zero, lerp, q, radius, round_unit, round_v, scale, sub, v3};
+use super::exact::{
+    Q, Root, V3, add, check, check_radius, check_v3, dot, is_zero, lerp, q, radius, round_unit, round_v, scale, sub, v3,
+};
+use super::stage::apart;
 use crate::geom::{Capsule, Contact, ContactAnswer, P3, Plane, Sphere};
 
 /// The normal when the direction is undefined (a sphere's centre on a capsule's
@@ -30,6 +33,27 @@ struct ExactCapsule {
     p1: V3,
     r: Q,
 }
+
+/// [`exact_capsule`]'s refusals without the rationals, in its order.
+fn check_capsule(c: &Capsule, fields: [&'static str; 3]) -> Result<(), RefereeError> {
+    check_v3(&c.start, fields[0])?;
+    check_v3(&c.end, fields[1])?;
+    check_radius(c.radius, fields[2])
+}
+
+/// [`capsule_plane`]'s refusals without the rationals, in its order.
+fn check_capsule_plane(a: &Capsule, b: &Plane) -> Result<(), RefereeError> {
+    check_capsule(a, CAPSULE_A)?;
+    check_v3(&b.normal, "b.normal")?;
+    check(b.offset, "b.offset")?;
+    if b.normal.iter().all(|&x| x == 0.0) {
+        return Err(RefereeError::ZeroNormal { field: "b.normal" });
+    }
+    Ok(())
+}
+
+/// A contact answer of separated shapes.
+const APART: ContactAnswer = ContactAnswer { contact: None, degenerate: false };
 
 fn exact_capsule(c: &Capsule, fields: [&'static str; 3]) -> Result<ExactCapsule, RefereeError> {
     Ok(ExactCapsule { p0: v3(&c.start, fields[0])?, p1: v3(&c.end, fields[1])?, r: radius(c.radius, fields[2])? })
@@ -124,6 +148,12 @@ fn sphere_capsule(a: &Sphere, b: &Capsule) -> Result<Cores, RefereeError> {
 /// `q + r_b·(0, 0, 1)`, depth `r_a + r_b`, `degenerate: true`. A capsule with
 /// `start = end` is a sphere and is answered as one.
 pub fn contact_sphere_capsule(a: &Sphere, b: &Capsule) -> Result<ContactAnswer, RefereeError> {
+    check_v3(&a.center, "a.center")?;
+    check_radius(a.radius, "a.radius")?;
+    check_capsule(b, CAPSULE_B)?;
+    if apart(|| super::boxes_fast::sphere_capsule_apart(a, b)) {
+        return Ok(APART);
+    }
     Ok(sphere_capsule(a, b)?.answer())
 }
 
@@ -259,6 +289,11 @@ fn capsule_capsule(a: &Capsule, b: &Capsule) -> Result<CapsulePair, RefereeError
 /// `p_b + r_b·(0, 0, 1)`, depth `r_a + r_b`, `degenerate: true`. A capsule with
 /// `start = end` is a sphere: its axis is one point.
 pub fn contact_capsule_capsule(a: &Capsule, b: &Capsule) -> Result<ContactAnswer, RefereeError> {
+    check_capsule(a, CAPSULE_A)?;
+    check_capsule(b, CAPSULE_B)?;
+    if apart(|| super::boxes_fast::capsule_capsule_apart(a, b)) {
+        return Ok(APART);
+    }
     Ok(capsule_capsule(a, b)?.cores.answer())
 }
 
@@ -364,9 +399,13 @@ impl CapsulePlane {
 /// **Degenerate input.** None: the normal is always unique. A zero normal is
 /// refused with [`RefereeError::ZeroNormal`].
 pub fn contact_capsule_plane(a: &Capsule, b: &Plane) -> Result<ContactAnswer, RefereeError> {
+    check_capsule_plane(a, b)?;
+    if apart(|| super::boxes_fast::capsule_plane_apart(a, b)) {
+        return Ok(APART);
+    }
     let cp = capsule_plane(a, b)?;
     if !cp.touches() {
-        return Ok(ContactAnswer { contact: None, degenerate: false });
+        return Ok(APART);
     }
     let (x, height) = cp.lowest();
     Ok(ContactAnswer {

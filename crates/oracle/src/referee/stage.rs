@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 thread_local! {
     static EXACT_ONLY: Cell<bool> = const { Cell::new(false) };
     /// This thread's counts: fast then exact, per stage.
-    static HERE: Cell<[u64; 18]> = const { Cell::new([0; 18]) };
+    static HERE: Cell<[u64; 20]> = const { Cell::new([0; 20]) };
 }
 
 /// Runs `f` with the referee's floating-point stages off on this thread: every
@@ -37,6 +37,13 @@ pub(crate) fn fast_stage<T>(stage: Stage, fast: impl FnOnce() -> Option<T>) -> O
     let answer = fast();
     count(stage, answer.is_some(), 1);
     answer
+}
+
+/// Whether the floating-point stage certified that the shapes are apart
+/// (counted under [`Stage::ShapesApart`]); `false` sends the caller to its
+/// exact stage.
+pub(crate) fn apart(fast: impl FnOnce() -> bool) -> bool {
+    fast_stage(Stage::ShapesApart, || fast().then_some(())).is_some()
 }
 
 /// The referee's two-stage computations, each counted: how often the
@@ -78,11 +85,17 @@ pub enum Stage {
     /// decision (or the margin's least axis) certified from bounded `f64`
     /// separating axes, or all fifteen axes computed in rationals.
     BoxOverlap,
+    /// Contact of a box or a capsule (sphere–box, box–plane, sphere–capsule,
+    /// capsule–capsule, capsule–plane) and a segment against a box: shapes
+    /// certainly apart (the segment certainly missing) along one direction
+    /// chosen in `f64`, from bounded projections, or the answer computed in
+    /// rationals.
+    ShapesApart,
 }
 
 impl Stage {
     /// Every stage, in report order.
-    pub const ALL: [Stage; 9] = [
+    pub const ALL: [Stage; 10] = [
         Stage::MinBall,
         Stage::MeshFaces,
         Stage::Barycentric,
@@ -92,6 +105,7 @@ impl Stage {
         Stage::Response,
         Stage::Ccd,
         Stage::BoxOverlap,
+        Stage::ShapesApart,
     ];
 
     /// What is counted, for the report.
@@ -120,6 +134,9 @@ impl Stage {
             Stage::BoxOverlap => {
                 "overlap of boxes, and margins: decision or least axis certified from bounded f64 / all axes computed in rationals"
             }
+            Stage::ShapesApart => {
+                "contact of a box or capsule, segment–box: apart certified from bounded f64 projections / computed in rationals"
+            }
         }
     }
 }
@@ -127,10 +144,10 @@ impl Stage {
 /// The query kinds the referee answers in its exact stage alone (every case
 /// of them is decided exactly: its share without the exact stage is 0 %), for
 /// the report beside [`Stage`]'s counts.
-pub const EXACT_STAGE_ONLY: &str = "overlap of two aabbs (its exact stage is already a handful of f64 comparisons); box and capsule contact, segment–box and a box's bounds (no floating-point stage yet)";
+pub const EXACT_STAGE_ONLY: &str = "overlap of two aabbs (its exact stage is already a handful of f64 comparisons); a box's bounds (a handful of products, rounded once); box and capsule contact and segment–box where the shapes meet (the floating-point stage certifies only that they are apart)";
 
-static FAST: [AtomicU64; 9] = [const { AtomicU64::new(0) }; 9];
-static EXACT: [AtomicU64; 9] = [const { AtomicU64::new(0) }; 9];
+static FAST: [AtomicU64; 10] = [const { AtomicU64::new(0) }; 10];
+static EXACT: [AtomicU64; 10] = [const { AtomicU64::new(0) }; 10];
 
 /// Counts `n` answers of `stage`, by the floating-point stage or the exact one.
 pub(crate) fn count(stage: Stage, fast: bool, n: u64) {
