@@ -1,8 +1,8 @@
 //! Overlap of two boxes, and of a box and an AABB.
 
 use super::poly::{Ring, at, cross3, dot3, refs, sign_of, sub3};
-use super::{all_finite, axes_of, axis, wide3};
-use crate::exact::{P3, Sign, collinear};
+use super::{all_finite, wide3};
+use crate::exact::Sign;
 use crate::real::{Real, Vec3};
 use crate::shapes::{Aabb, OrientedBox};
 
@@ -66,116 +66,149 @@ pub fn test_box_aabb_lecture<T: Real>(a: &OrientedBox<T>, b: &Aabb<T>) -> bool {
 }
 
 /// Whether two boxes overlap (touching counts), **robust form**: the
-/// separating-axis test decided exactly for the boxes of the rounded
-/// rotations, `c + R̃ u` with `|u_i| ≤ h_i` (see [`crate::boxes`]). As `R̃` is
-/// orthonormal only to its rounding, the axes are the solids' own: the face
-/// normals `A_j × A_k` and `B_j × B_k`, and the nine edge directions
-/// `A_i × B_j` (a pair of exactly parallel edges, whose cross product is zero,
-/// is skipped: it separates nothing). An axis `L` separates when
-/// `|L · (c_b − c_a)| > Σ h^a_i |L · A_i| + Σ h^b_j |L · B_j|`, each sign
-/// exact; no axis separating means the closed solids share a point.
+/// separating-axis test decided exactly for the boxes the quaternions define,
+/// `c + R(q) u` with `|u_i| ≤ h_i` and `R(q)` the exact rotation of `q/‖q‖`
+/// (rational in `q`; never the rounded matrix, so a 3-4-5 box touching
+/// another touches here too). The axes are taken unnormalized,
+/// `M_i = ‖q‖² R(q) e_i` (quadratic in `q`, see [`quaternion_axes`]): the
+/// face normals `A_j × A_k` and `B_j × B_k`, and the nine edge directions
+/// `A_i × B_j`. An axis `L` separates when
+/// `|L · (c_b − c_a)| > Σ h^a_i |L · A_i| + Σ h^b_j |L · B_j|`, decided exactly
+/// after multiplying through by `‖q_a‖²‖q_b‖² > 0`; an exactly zero `L` (a pair
+/// of parallel edges) gives `0 > 0` and separates nothing. No axis separating
+/// means the closed solids share a point.
 ///
-/// Non-finite input: `false`.
+/// Non-finite input or a zero quaternion: `false`.
 pub fn test_box_box<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>) -> bool {
-    let (aa, ab) = (axes_of(&a.rotation_matrix()), axes_of(&b.rotation_matrix()));
+    let (qa, qb) = (a.rotation.map(|x| x.wide()), b.rotation.map(|x| x.wide()));
     let (ca, cb) = (wide3(&a.center), wide3(&b.center));
     let (ha, hb) = (wide3(&a.half_extents).map(f64::abs), wide3(&b.half_extents).map(f64::abs));
     let lengths = [ca[0], ca[1], ca[2], cb[0], cb[1], cb[2], ha[0], ha[1], ha[2], hb[0], hb[1], hb[2]];
-    if !all_finite(&lengths) || !all_finite(&aa) || !all_finite(&ab) {
+    if !all_finite(&lengths) || !all_finite(&qa) || !all_finite(&qb) || zero_quaternion(&qa) || zero_quaternion(&qb) {
         return false;
     }
-    let separates = |x: P3, y: P3| {
-        let mut u = [0.0; 24];
-        u[..3].copy_from_slice(&x);
-        u[3..6].copy_from_slice(&y);
-        u[6..15].copy_from_slice(&aa);
-        u[15..].copy_from_slice(&ab);
+    let separates = |x: usize, y: usize| {
+        let mut u = [0.0; 20];
+        u[..4].copy_from_slice(&qa);
+        u[4..8].copy_from_slice(&qb);
+        u[8 + x] = 1.0;
+        u[14 + y] = 1.0;
         sign_of!(separation, lengths, u) == Sign::Positive
     };
     for i in 0..3 {
         let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-        if separates(axis(&aa, j), axis(&aa, k)) || separates(axis(&ab, j), axis(&ab, k)) {
+        if separates(j, k) || separates(3 + j, 3 + k) {
             return false;
         }
     }
-    for i in 0..3 {
-        for j in 0..3 {
-            let (x, y) = (axis(&aa, i), axis(&ab, j));
-            if !collinear([0.0; 3], x, y) && separates(x, y) {
-                return false;
-            }
-        }
-    }
-    true
+    !(0..3).any(|i| (0..3).any(|j| separates(i, 3 + j)))
 }
 
 /// Whether a box and an axis-aligned box overlap, **robust form**: as
-/// [`test_box_box`], with the AABB's own faces (`min`, `max`, never a rounded
-/// centre and half-extent): along `L` it spans `Σ_k min(L_k min_k, L_k max_k)`
-/// to `Σ_k max(…)`, so `L` separates when
+/// [`test_box_box`] (the quaternion's exact rotation), with the AABB's own
+/// faces (`min`, `max`, never a rounded centre and half-extent): along `L` it
+/// spans `Σ_k min(L_k min_k, L_k max_k)` to `Σ_k max(…)`, so `L` separates when
 /// `|L · (min + max − 2c)| > 2 Σ h_i |L · A_i| + Σ_k (max_k − min_k)|L_k|`,
-/// decided exactly. Axes: the box's face normals, the three coordinate axes
-/// and the nine `A_i × e_k` (skipped when exactly zero).
+/// decided exactly after multiplying through by `‖q‖²`. Axes: the box's face
+/// normals, the three coordinate axes and the nine `A_i × e_k` (an exactly
+/// zero one separates nothing).
 ///
-/// Non-finite input: `false`. An AABB with `min > max` on an axis is
-/// malformed; its answer is not meaningful.
+/// Non-finite input or a zero quaternion: `false`. An AABB with `min > max`
+/// on an axis is malformed; its answer is not meaningful.
 pub fn test_box_aabb<T: Real>(a: &OrientedBox<T>, b: &Aabb<T>) -> bool {
-    let aa = axes_of(&a.rotation_matrix());
+    let q = a.rotation.map(|x| x.wide());
     let (ca, ha) = (wide3(&a.center), wide3(&a.half_extents).map(f64::abs));
     let (lo, hi) = (wide3(&b.min), wide3(&b.max));
     let lengths = [ca[0], ca[1], ca[2], ha[0], ha[1], ha[2], lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]];
-    if !all_finite(&lengths) || !all_finite(&aa) {
+    if !all_finite(&lengths) || !all_finite(&q) || zero_quaternion(&q) {
         return false;
     }
-    let separates = |x: P3, y: P3| {
-        let mut u = [0.0; 15];
-        u[..3].copy_from_slice(&x);
-        u[3..6].copy_from_slice(&y);
-        u[6..].copy_from_slice(&aa);
+    let separates = |x: usize, y: usize| {
+        let mut u = [0.0; 17];
+        u[..4].copy_from_slice(&q);
+        u[16] = 1.0;
+        u[4 + x] = 1.0;
+        u[10 + y] = 1.0;
         sign_of!(separation_aabb, lengths, u) == Sign::Positive
     };
-    let e = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     for i in 0..3 {
         let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-        if separates(axis(&aa, j), axis(&aa, k)) || separates(e[j], e[k]) {
+        if separates(j, k) || separates(3 + j, 3 + k) {
             return false;
         }
     }
-    for i in 0..3 {
-        for ek in e {
-            let x = axis(&aa, i);
-            if !collinear([0.0; 3], x, ek) && separates(x, ek) {
-                return false;
-            }
-        }
-    }
-    true
+    !(0..3).any(|i| (0..3).any(|k| separates(i, 3 + k)))
 }
 
-/// `|L · (c_b − c_a)| − Σ h^a_i |L · A_i| − Σ h^b_j |L · B_j|`, `L = X × Y`:
-/// lengths `[c_a, c_b, h_a, h_b]`, units `[X, Y, A, B]`.
-fn separation<N: Ring>(l: &[N; 12], u: &[N; 24]) -> N {
-    let axis_l = cross3(at(u, 0), at(u, 3));
+fn zero_quaternion(q: &[f64; 4]) -> bool {
+    q.iter().all(|x| *x == 0.0)
+}
+
+/// The columns of `‖q‖² R(q)`, `q = [w, x, y, z]`: the box's axes scaled by
+/// `‖q‖²`, each entry a quadratic in `q` (exact in the ring):
+/// `M_0 = (w²+x²−y²−z², 2(xy+wz), 2(xz−wy))`,
+/// `M_1 = (2(xy−wz), w²−x²+y²−z², 2(yz+wx))`,
+/// `M_2 = (2(xz+wy), 2(yz−wx), w²−x²−y²+z²)`.
+fn quaternion_axes<N: Ring>(q: [&N; 4]) -> [[N; 3]; 3] {
+    let [w, x, y, z] = q;
+    let (ww, xx, yy, zz) = (w.mul(w), x.mul(x), y.mul(y), z.mul(z));
+    let two = |a: N| a.add(&a);
+    let (xy, wz, xz, wy, yz, wx) = (x.mul(y), w.mul(z), x.mul(z), w.mul(y), y.mul(z), w.mul(x));
+    [
+        [ww.add(&xx).sub(&yy).sub(&zz), two(xy.add(&wz)), two(xz.sub(&wy))],
+        [two(xy.sub(&wz)), ww.sub(&xx).add(&yy).sub(&zz), two(yz.add(&wx))],
+        [two(xz.add(&wy)), two(yz.sub(&wx)), ww.sub(&xx).sub(&yy).add(&zz)],
+    ]
+}
+
+/// `‖q‖²`.
+fn norm2<N: Ring>(q: [&N; 4]) -> N {
+    q[0].mul(q[0]).add(&q[1].mul(q[1])).add(&q[2].mul(q[2])).add(&q[3].mul(q[3]))
+}
+
+/// `Σ_i s_i v_i` of one-hot selectors `s` (0 or 1) over six vectors.
+fn select<N: Ring>(s: &[N], v: &[[N; 3]; 6]) -> [N; 3] {
+    std::array::from_fn(|k| (1..6).fold(s[0].mul(&v[0][k]), |acc, i| acc.add(&s[i].mul(&v[i][k]))))
+}
+
+/// `n_a n_b |L · (c_b − c_a)| − n_b Σ h^a_i |L · M^a_i| − n_a Σ h^b_j |L · M^b_j|`
+/// (`n = ‖q‖²`, `M` the [`quaternion_axes`]): `n_a n_b` times the separation
+/// along `L = X × Y`, `X` and `Y` picked among `[M^a_0..2, M^b_0..2]` by
+/// one-hot selectors. Lengths `[c_a, c_b, h_a, h_b]`, units
+/// `[q_a, q_b, select X (6), select Y (6)]`.
+fn separation<N: Ring>(l: &[N; 12], u: &[N; 20]) -> N {
+    let (qa, qb) = ([&u[0], &u[1], &u[2], &u[3]], [&u[4], &u[5], &u[6], &u[7]]);
+    let (ma, mb) = (quaternion_axes(qa), quaternion_axes(qb));
+    let (na, nb) = (norm2(qa), norm2(qb));
+    let v = [ma[0].clone(), ma[1].clone(), ma[2].clone(), mb[0].clone(), mb[1].clone(), mb[2].clone()];
+    let axis_l = cross3(refs(&select(&u[8..14], &v)), refs(&select(&u[14..20], &v)));
     let lv = refs(&axis_l);
-    let mut sep = dot3(lv, refs(&sub3(at(l, 3), at(l, 0)))).abs();
+    let mut sep = na.mul(&nb).mul(&dot3(lv, refs(&sub3(at(l, 3), at(l, 0)))).abs());
     for i in 0..3 {
-        sep = sep.sub(&l[6 + i].mul(&dot3(lv, at(u, 6 + 3 * i)).abs()));
-        sep = sep.sub(&l[9 + i].mul(&dot3(lv, at(u, 15 + 3 * i)).abs()));
+        sep = sep.sub(&nb.mul(&l[6 + i].mul(&dot3(lv, refs(&ma[i])).abs())));
+        sep = sep.sub(&na.mul(&l[9 + i].mul(&dot3(lv, refs(&mb[i])).abs())));
     }
     sep
 }
 
-/// `|L · (min + max − 2c)| − 2 Σ h_i |L · A_i| − Σ_k (max_k − min_k)|L_k|`,
-/// `L = X × Y`: lengths `[c, h, min, max]`, units `[X, Y, A]`.
-fn separation_aabb<N: Ring>(l: &[N; 12], u: &[N; 15]) -> N {
-    let axis_l = cross3(at(u, 0), at(u, 3));
+/// `n |L · (min + max − 2c)| − 2 Σ h_i |L · M_i| − n Σ_k (max_k − min_k)|L_k|`
+/// (`n = ‖q‖²`): `n` times the separation along `L = X × Y`, `X` and `Y` picked
+/// among `[M_0..2, e_0..2]` by one-hot selectors. Lengths `[c, h, min, max]`,
+/// units `[q, select X (6), select Y (6), 1]`.
+fn separation_aabb<N: Ring>(l: &[N; 12], u: &[N; 17]) -> N {
+    let q = [&u[0], &u[1], &u[2], &u[3]];
+    let (m, n) = (quaternion_axes(q), norm2(q));
+    let (zero, one) = (u[16].sub(&u[16]), u[16].clone());
+    let e = |k: usize| std::array::from_fn(|i| if i == k { one.clone() } else { zero.clone() });
+    let v = [m[0].clone(), m[1].clone(), m[2].clone(), e(0), e(1), e(2)];
+    let axis_l = cross3(refs(&select(&u[4..10], &v)), refs(&select(&u[10..16], &v)));
     let lv = refs(&axis_l);
     let mid = [0, 1, 2].map(|k| l[6 + k].add(&l[9 + k]).sub(&l[k]).sub(&l[k]));
-    let mut sep = dot3(lv, refs(&mid)).abs();
+    let mut sep = n.mul(&dot3(lv, refs(&mid)).abs());
     for i in 0..3 {
-        let reach = l[3 + i].mul(&dot3(lv, at(u, 6 + 3 * i)).abs());
+        let reach = l[3 + i].mul(&dot3(lv, refs(&m[i])).abs());
         sep = sep.sub(&reach).sub(&reach);
-        sep = sep.sub(&l[9 + i].sub(&l[6 + i]).mul(&lv[i].abs()));
+        sep = sep.sub(&n.mul(&l[9 + i].sub(&l[6 + i]).mul(&lv[i].abs())));
     }
     sep
 }

@@ -29,7 +29,9 @@
 //!   ulp or so of `R`'s own rounding — a sphere exactly touching the 3-4-5 box,
 //!   whose `3/5` is not a binary number — may be decided otherwise than with
 //!   the exact rotation; a box whose rotation is exact in the type (the
-//!   identity, a quarter turn) is decided exactly.
+//!   identity, a quarter turn) is decided exactly. Overlap (box–box and
+//!   box–AABB) is the exception: its decision is exact for the quaternion's
+//!   own rotation, its axes taken as `‖q‖² R(q)`, quadratics in `q`.
 //! - *Values* (points, normals, depths, times) are computed in `f64` from the
 //!   inputs (every `f32` is an `f64`, exactly) and rounded to the type once: on
 //!   the scene scaled by a power of two when it lies outside the plain range,

@@ -716,6 +716,30 @@ fn overlap_robust_at_extreme_scales_and_the_lectures_epsilon() {
     assert!(test_box_box_lecture(&a, &b) && !test_box_box(&a, &b));
 }
 
+#[test]
+fn overlap_robust_is_exact_for_the_quaternions_rotation() {
+    // h = (5,5,5) turned by q = [2,0,0,1] (the 3-4-5 rotation about z) reaches
+    // x = 7 exactly at its corners R·(5,−5,±5) = (7,1,±5), though 3/5 and 4/5
+    // are not binary numbers: an AABB from x = 7 touches it, one from the
+    // next double does not.
+    let a = OrientedBox::<f64>::new(Vec3::zeros(), Vec3::new(5.0, 5.0, 5.0), [2.0, 0.0, 0.0, 1.0]);
+    for s in [1.0, 2f64.powi(-1000), 2f64.powi(1000)] {
+        let a = OrientedBox::<f64>::new(Vec3::zeros(), a.half_extents * s, a.rotation);
+        let aabb = |lo: f64| Aabb::new(Vec3::new(lo, -s, -s), Vec3::new(8.0 * s, s, s));
+        assert!(test_box_aabb(&a, &aabb(7.0 * s)), "touching at scale {s:e}");
+        assert!(!test_box_aabb(&a, &aabb((7.0 * s).next_up())), "apart at scale {s:e}");
+        // The same AABB as an unrotated box, and the quaternion at another length.
+        let b = |lo: f64| {
+            OrientedBox::axis_aligned(Vec3::new((lo + 8.0 * s) / 2.0, 0.0, 0.0), Vec3::new((8.0 * s - lo) / 2.0, s, s))
+        };
+        let a3 = OrientedBox::<f64>::new(Vec3::zeros(), a.half_extents, [6.0, 0.0, 0.0, 3.0]);
+        assert!(test_box_box(&a3, &b(7.0 * s)) && test_box_box(&b(7.0 * s), &a3), "touching box at scale {s:e}");
+        // x = 7 + 2 ulps (the box's centre and half-extent of [lo, 8] are exact).
+        let lo = (7.0 * s).next_up().next_up();
+        assert!(!test_box_box(&a3, &b(lo)), "apart box at scale {s:e}");
+    }
+}
+
 // ---------------------------------------------------------------------------
 // Never NaN
 // ---------------------------------------------------------------------------

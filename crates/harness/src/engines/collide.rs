@@ -10,8 +10,9 @@ use crate::engine::{Queries, Reply, Unsupported};
 use crate::mesh::Mesh;
 use collide::Real;
 use oracle::geom::{
-    Aabb, Ball, BarycentricAnswer, BoundsAnswer, CcdAnswer, Contact, ContactAnswer, IntersectAnswer, MovingPoint,
-    MovingSegment, MovingTriangle, P3, Plane, ResponseAnswer, Segment, SegmentHit, Sphere, Toi, ToiAnswer, Triangle,
+    Aabb, Ball, BarycentricAnswer, BoundsAnswer, Capsule, CcdAnswer, Contact, ContactAnswer, IntersectAnswer,
+    MovingPoint, MovingSegment, MovingTriangle, OrientedBox, P3, Plane, ResponseAnswer, Segment, SegmentHit, Sphere,
+    Toi, ToiAnswer, Triangle,
 };
 
 /// Bisection steps of the lecture's interval halving as an engine: 40, so its
@@ -68,6 +69,18 @@ fn triangle<T: Real>(t: &Triangle) -> collide::Triangle<T> {
 
 fn segment<T: Real>(s: &Segment) -> collide::Segment<T> {
     collide::Segment::new(v(&s.start), v(&s.end))
+}
+
+fn oriented_box<T: Real>(b: &OrientedBox) -> collide::OrientedBox<T> {
+    collide::OrientedBox::new(v(&b.center), v(&b.half_extents), b.rotation.map(T::of))
+}
+
+fn capsule<T: Real>(c: &Capsule) -> collide::Capsule<T> {
+    collide::Capsule::new(v(&c.start), v(&c.end), T::of(c.radius))
+}
+
+fn aabb<T: Real>(b: &Aabb) -> collide::Aabb<T> {
+    collide::Aabb::new(v(&b.min), v(&b.max))
 }
 
 fn contact<T: Real>(k: Option<collide::contact::Contact<T>>) -> ContactAnswer {
@@ -172,6 +185,84 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
             Method::Robust => collide::mesh::contact_sphere_mesh_nearest_bvh(&a, &collide::mesh::MeshBvh::new(mesh)),
         };
         Ok(contact(k.map(|m| m.contact)))
+    }
+
+    fn contact_sphere_box(&self, a: &Sphere, b: &OrientedBox) -> Reply<ContactAnswer> {
+        let (a, b) = (sphere::<T>(a), oriented_box(b));
+        Ok(contact(match self.method {
+            Method::Lecture => collide::boxes::contact_sphere_box_lecture(&a, &b),
+            Method::Robust => collide::boxes::contact_sphere_box(&a, &b),
+        }))
+    }
+
+    fn contact_box_plane(&self, a: &OrientedBox, b: &Plane) -> Reply<ContactAnswer> {
+        let (a, b) = (oriented_box::<T>(a), plane(b));
+        Ok(contact(match self.method {
+            Method::Lecture => collide::boxes::contact_box_plane_lecture(&a, &b),
+            Method::Robust => collide::boxes::contact_box_plane(&a, &b),
+        }))
+    }
+
+    fn contact_sphere_capsule(&self, a: &Sphere, b: &Capsule) -> Reply<ContactAnswer> {
+        let (a, b) = (sphere::<T>(a), capsule(b));
+        Ok(contact(match self.method {
+            Method::Lecture => collide::boxes::contact_sphere_capsule_lecture(&a, &b),
+            Method::Robust => collide::boxes::contact_sphere_capsule(&a, &b),
+        }))
+    }
+
+    fn contact_capsule_capsule(&self, a: &Capsule, b: &Capsule) -> Reply<ContactAnswer> {
+        let (a, b) = (capsule::<T>(a), capsule(b));
+        Ok(contact(match self.method {
+            Method::Lecture => collide::boxes::contact_capsule_capsule_lecture(&a, &b),
+            Method::Robust => collide::boxes::contact_capsule_capsule(&a, &b),
+        }))
+    }
+
+    fn contact_capsule_plane(&self, a: &Capsule, b: &Plane) -> Reply<ContactAnswer> {
+        let (a, b) = (capsule::<T>(a), plane(b));
+        Ok(contact(match self.method {
+            Method::Lecture => collide::boxes::contact_capsule_plane_lecture(&a, &b),
+            Method::Robust => collide::boxes::contact_capsule_plane(&a, &b),
+        }))
+    }
+
+    fn intersect_segment_box(&self, s: &Segment, b: &OrientedBox) -> Reply<IntersectAnswer> {
+        let (s, b) = (segment::<T>(s), oriented_box(b));
+        Ok(intersection(match self.method {
+            Method::Lecture => collide::boxes::intersect_segment_box_lecture(&s, &b),
+            Method::Robust => collide::boxes::intersect_segment_box(&s, &b),
+        }))
+    }
+
+    fn bounds_box(&self, b: &OrientedBox) -> Reply<BoundsAnswer> {
+        let b = oriented_box::<T>(b);
+        let (aabb, sphere) = match self.method {
+            Method::Lecture => {
+                (collide::boxes::aabb_of_box_lecture(&b), collide::boxes::bounding_sphere_of_box_lecture(&b))
+            }
+            Method::Robust => (collide::boxes::aabb_of_box(&b), collide::boxes::bounding_sphere_of_box(&b)),
+        };
+        Ok(BoundsAnswer {
+            aabb: Some(Aabb { min: w(&aabb.min), max: w(&aabb.max) }),
+            sphere: Some(Ball { center: w(&sphere.center), radius: sphere.radius.wide() }),
+        })
+    }
+
+    fn overlap_box_box(&self, a: &OrientedBox, b: &OrientedBox) -> Reply<bool> {
+        let (a, b) = (oriented_box::<T>(a), oriented_box(b));
+        Ok(match self.method {
+            Method::Lecture => collide::boxes::test_box_box_lecture(&a, &b),
+            Method::Robust => collide::boxes::test_box_box(&a, &b),
+        })
+    }
+
+    fn overlap_box_aabb(&self, a: &OrientedBox, b: &Aabb) -> Reply<bool> {
+        let (a, b) = (oriented_box::<T>(a), aabb(b));
+        Ok(match self.method {
+            Method::Lecture => collide::boxes::test_box_aabb_lecture(&a, &b),
+            Method::Robust => collide::boxes::test_box_aabb(&a, &b),
+        })
     }
 
     fn intersect_segment_plane(&self, s: &Segment, p: &Plane) -> Reply<IntersectAnswer> {
