@@ -1,6 +1,6 @@
 //! Overlap of two boxes, and of a box and an AABB.
 
-use super::poly::{Ring, at, cross3, dot3, refs, sign_of, sub3};
+use super::poly::{Ring, at, cross3, dot3, norm2, quaternion_axes, refs, select, sign_of, sub3};
 use super::{all_finite, wide3};
 use crate::exact::Sign;
 use crate::real::{Real, Vec3};
@@ -70,7 +70,7 @@ pub fn test_box_aabb_lecture<T: Real>(a: &OrientedBox<T>, b: &Aabb<T>) -> bool {
 /// `c + R(q) u` with `|u_i| ≤ h_i` and `R(q)` the exact rotation of `q/‖q‖`
 /// (rational in `q`; never the rounded matrix, so a 3-4-5 box touching
 /// another touches here too). The axes are taken unnormalized,
-/// `M_i = ‖q‖² R(q) e_i` (quadratic in `q`, see [`quaternion_axes`]): the
+/// `M_i = ‖q‖² R(q) e_i` (quadratic in `q`, see `poly::quaternion_axes`): the
 /// face normals `A_j × A_k` and `B_j × B_k`, and the nine edge directions
 /// `A_i × B_j`. An axis `L` separates when
 /// `|L · (c_b − c_a)| > Σ h^a_i |L · A_i| + Σ h^b_j |L · B_j|`, decided exactly
@@ -142,33 +142,6 @@ pub fn test_box_aabb<T: Real>(a: &OrientedBox<T>, b: &Aabb<T>) -> bool {
 
 fn zero_quaternion(q: &[f64; 4]) -> bool {
     q.iter().all(|x| *x == 0.0)
-}
-
-/// The columns of `‖q‖² R(q)`, `q = [w, x, y, z]`: the box's axes scaled by
-/// `‖q‖²`, each entry a quadratic in `q` (exact in the ring):
-/// `M_0 = (w²+x²−y²−z², 2(xy+wz), 2(xz−wy))`,
-/// `M_1 = (2(xy−wz), w²−x²+y²−z², 2(yz+wx))`,
-/// `M_2 = (2(xz+wy), 2(yz−wx), w²−x²−y²+z²)`.
-fn quaternion_axes<N: Ring>(q: [&N; 4]) -> [[N; 3]; 3] {
-    let [w, x, y, z] = q;
-    let (ww, xx, yy, zz) = (w.mul(w), x.mul(x), y.mul(y), z.mul(z));
-    let two = |a: N| a.add(&a);
-    let (xy, wz, xz, wy, yz, wx) = (x.mul(y), w.mul(z), x.mul(z), w.mul(y), y.mul(z), w.mul(x));
-    [
-        [ww.add(&xx).sub(&yy).sub(&zz), two(xy.add(&wz)), two(xz.sub(&wy))],
-        [two(xy.sub(&wz)), ww.sub(&xx).add(&yy).sub(&zz), two(yz.add(&wx))],
-        [two(xz.add(&wy)), two(yz.sub(&wx)), ww.sub(&xx).sub(&yy).add(&zz)],
-    ]
-}
-
-/// `‖q‖²`.
-fn norm2<N: Ring>(q: [&N; 4]) -> N {
-    q[0].mul(q[0]).add(&q[1].mul(q[1])).add(&q[2].mul(q[2])).add(&q[3].mul(q[3]))
-}
-
-/// `Σ_i s_i v_i` of one-hot selectors `s` (0 or 1) over six vectors.
-fn select<N: Ring>(s: &[N], v: &[[N; 3]; 6]) -> [N; 3] {
-    std::array::from_fn(|k| (1..6).fold(s[0].mul(&v[0][k]), |acc, i| acc.add(&s[i].mul(&v[i][k]))))
 }
 
 /// `n_a n_b |L · (c_b − c_a)| − n_b Σ h^a_i |L · M^a_i| − n_a Σ h^b_j |L · M^b_j|`

@@ -17,27 +17,31 @@
 //! **The robust forms** decide with exact predicates and compute with
 //! scaled norms:
 //!
-//! - *The box they decide about* is the one of the rotation rounded to the
-//!   type, `R̃` ([`OrientedBox::rotation_matrix`], within a few ulps of the
-//!   quaternion's exact rotation per entry): every decision — inside or outside
-//!   a face, contact or not, which face is nearest and whether two tie, which
-//!   face a segment enters first, which way a plane's normal leans against an
-//!   axis, whether an axis separates two boxes — is the exact sign of the
-//!   format's formula with `R̃` in place of `R`, for every finite input, at
-//!   every scale (`crate::boxes::poly`: a filtered `f64` evaluation, exact
-//!   arithmetic when the filter cannot decide). So a scene decided within an
-//!   ulp or so of `R`'s own rounding — a sphere exactly touching the 3-4-5 box,
-//!   whose `3/5` is not a binary number — may be decided otherwise than with
-//!   the exact rotation; a box whose rotation is exact in the type (the
-//!   identity, a quarter turn) is decided exactly. Overlap (box–box and
-//!   box–AABB) is the exception: its decision is exact for the quaternion's
-//!   own rotation, its axes taken as `‖q‖² R(q)`, quadratics in `q`.
+//! - *The box they decide about* is the one the format defines, turned by the
+//!   quaternion's own rotation `R(q)`, the rotation of `q/‖q‖` (rational in
+//!   `q`; never the rounded matrix [`OrientedBox::rotation_matrix`], whose
+//!   `3/5` for the 3-4-5 box is not a binary number): every decision — inside
+//!   or outside a face, contact or not, which face is nearest and whether two
+//!   tie, which face a segment enters first and whether it enters through an
+//!   edge, which way a plane's normal leans against an axis, whether an axis
+//!   separates two boxes — is the exact sign of the format's formula, for
+//!   every finite input, at every scale (`crate::boxes::poly`: a filtered
+//!   `f64` evaluation, exact arithmetic when the filter cannot decide). The
+//!   axes enter as `M_i = ‖q‖² R(q) e_i` (quadratics in the quaternion's raw
+//!   components, `poly::quaternion_axes`, picked by one-hot selectors), and
+//!   each comparison `R_i · x` against `h_i` as `M_i · x` against `‖q‖² h_i`
+//!   (multiplied through by `‖q‖² > 0`, signs unchanged); a length formed so
+//!   (a depth, a distance) is divided by `‖q‖²` after. So a sphere exactly
+//!   touching the 3-4-5 box touches, and a segment through its exact corner
+//!   hits it. A zero quaternion is the identity.
 //! - *Values* (points, normals, depths, times) are computed in `f64` from the
 //!   inputs (every `f32` is an `f64`, exactly) and rounded to the type once: on
 //!   the scene scaled by a power of two when it lies outside the plain range,
 //!   and with the quantities that cancel (a distance to a face, a
 //!   perpendicular direction, a segment's entry time) taken from the same
-//!   exact kit to `2^−40` relative. An `f32` robust answer is therefore
+//!   exact kit to `2^−40` relative. Points and normals turn with the rounded
+//!   matrix [`OrientedBox::rotation_matrix`] (within a few ulps of `R(q)` per
+//!   entry): values, never decisions. An `f32` robust answer is therefore
 //!   more accurate than `f32` arithmetic would give.
 //! - *Flags* are set exactly where the format puts them; nothing returns NaN.
 //!   A non-finite input answers "no contact" (or a degenerate miss).
@@ -97,10 +101,28 @@ pub(crate) fn axes_of<T: Real>(r: &nalgebra::Matrix3<T>) -> [f64; 9] {
     ]
 }
 
-/// Axis `i` of `axes` ([`axes_of`]).
+/// A box's quaternion as `f64`, the rotation every robust decision is exact
+/// for (its axes taken as `‖q‖² R(q)`, [`poly::quaternion_axes`]): `None` when
+/// a component is not finite; a zero quaternion is the identity `[1, 0, 0, 0]`
+/// (as in [`OrientedBox::rotation_matrix`]).
+pub(crate) fn quaternion_of<T: Real>(b: &OrientedBox<T>) -> Option<[f64; 4]> {
+    let q = b.rotation.map(|x| x.wide());
+    if !all_finite(&q) {
+        None
+    } else if q.iter().all(|x| *x == 0.0) {
+        Some([1.0, 0.0, 0.0, 0.0])
+    } else {
+        Some(q)
+    }
+}
+
+/// The units `[q, e_i]` of a polynomial over one of the box's axes: the
+/// quaternion and the one-hot selector of axis `i` ([`poly::picked_axis`]).
 #[inline(always)]
-pub(crate) fn axis(axes: &[f64; 9], i: usize) -> P3 {
-    [axes[3 * i], axes[3 * i + 1], axes[3 * i + 2]]
+pub(crate) fn quaternion_units(q: &[f64; 4], i: usize) -> [f64; 7] {
+    let mut u = [q[0], q[1], q[2], q[3], 0.0, 0.0, 0.0];
+    u[4 + i] = 1.0;
+    u
 }
 
 /// Whether every number is finite.

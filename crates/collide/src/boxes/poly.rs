@@ -267,7 +267,57 @@ pub(crate) fn ratio(x: Estimate, y: Estimate) -> f64 {
     if x.sign == y.sign { q } else { -q }
 }
 
+/// `x / ‖q‖²` of a finite non-zero quaternion `q`, within a few more
+/// roundings (`‖q‖²` formed on `q` scaled by a power of two, so it neither
+/// over- nor underflows): a length that a polynomial of the quaternion's axes
+/// ([`quaternion_axes`]) returned multiplied by `‖q‖²`.
+#[inline]
+pub(crate) fn over_norm2(x: Estimate, q: &[f64; 4]) -> Estimate {
+    let m = q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if x.sign == Sign::Zero || m == 0.0 {
+        return x;
+    }
+    let e = frexp(m).1;
+    let n: f64 = q.iter().map(|x| ldexp(*x, -e) * ldexp(*x, -e)).sum();
+    let (mant, ex) = frexp(x.mant / n);
+    Estimate { sign: x.sign, mant, exp: x.exp + ex - 2 * e, rel_err: x.rel_err + 16.0 * U }
+}
+
 // Vector helpers over a ring.
+
+/// The columns of `‖q‖² R(q)`, `q = [w, x, y, z]`: the box's axes scaled by
+/// `‖q‖²`, each entry a quadratic in `q` (exact in the ring):
+/// `M_0 = (w²+x²−y²−z², 2(xy+wz), 2(xz−wy))`,
+/// `M_1 = (2(xy−wz), w²−x²+y²−z², 2(yz+wx))`,
+/// `M_2 = (2(xz+wy), 2(yz−wx), w²−x²−y²+z²)`.
+pub(crate) fn quaternion_axes<N: Ring>(q: [&N; 4]) -> [[N; 3]; 3] {
+    let [w, x, y, z] = q;
+    let (ww, xx, yy, zz) = (w.mul(w), x.mul(x), y.mul(y), z.mul(z));
+    let two = |a: N| a.add(&a);
+    let (xy, wz, xz, wy, yz, wx) = (x.mul(y), w.mul(z), x.mul(z), w.mul(y), y.mul(z), w.mul(x));
+    [
+        [ww.add(&xx).sub(&yy).sub(&zz), two(xy.add(&wz)), two(xz.sub(&wy))],
+        [two(xy.sub(&wz)), ww.sub(&xx).add(&yy).sub(&zz), two(yz.add(&wx))],
+        [two(xz.add(&wy)), two(yz.sub(&wx)), ww.sub(&xx).sub(&yy).add(&zz)],
+    ]
+}
+
+/// `‖q‖²`.
+pub(crate) fn norm2<N: Ring>(q: [&N; 4]) -> N {
+    q[0].mul(q[0]).add(&q[1].mul(q[1])).add(&q[2].mul(q[2])).add(&q[3].mul(q[3]))
+}
+
+/// `Σ_i s_i v_i` of one-hot selectors `s` (0 or 1) over `K ≥ 1` vectors.
+pub(crate) fn select<N: Ring, const K: usize>(s: &[N], v: &[[N; 3]; K]) -> [N; 3] {
+    std::array::from_fn(|k| (1..K).fold(s[0].mul(&v[0][k]), |acc, i| acc.add(&s[i].mul(&v[i][k]))))
+}
+
+/// The quaternion `u[0..4]`, `‖q‖²` and the axis `M_i = ‖q‖² R(q) e_i` picked
+/// by the one-hot selector `u[4..7]` (see [`crate::boxes::quaternion_units`]).
+pub(crate) fn picked_axis<N: Ring>(u: &[N]) -> ([N; 3], N) {
+    let q = [&u[0], &u[1], &u[2], &u[3]];
+    (select(&u[4..7], &quaternion_axes(q)), norm2(q))
+}
 
 /// `a − b`.
 #[inline(always)]

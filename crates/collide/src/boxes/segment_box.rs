@@ -1,9 +1,9 @@
 //! The first hit of a segment on a box.
 
-use super::poly::{Ring, at, dot3, ratio, refs, sign_of, sub3, value_of};
+use super::poly::{Ring, at, dot3, norm2, picked_axis, quaternion_axes, ratio, refs, select, sign_of, sub3, value_of};
 use super::sphere_box::{classify, coord, nearest_face};
-use super::{all_finite, axes_of, axis, scene_scale, unit, up, wide3};
-use crate::exact::{Sign, dot_diff, points_equal};
+use super::{all_finite, quaternion_of, quaternion_units, scene_scale, unit, up, wide3};
+use crate::exact::{Sign, points_equal};
 use crate::intersect::{Intersection, SegmentHit};
 use crate::real::{Real, Vec3};
 use crate::shapes::{OrientedBox, Segment};
@@ -94,16 +94,19 @@ pub fn intersect_segment_box_lecture<T: Real>(s: &Segment<T>, b: &OrientedBox<T>
 }
 
 /// The first hit of segment `s` on the solid box `b`, **robust form**: the
-/// format's definition with every decision exact for the box of the rounded
-/// rotation `R̃` (see [`crate::boxes`]). With `a_i = R̃_i · (start − c)` and
-/// `D_i = R̃_i · (end − start)`, where each end lies against each slab is
-/// decided exactly; a slab the start is beyond face `σ` of is entered at
-/// `t_i = (σ h_i − a_i)/D_i` (no hit if the end is beyond the same face), and
-/// left, where the end is beyond face `σ'`, at `(σ' h_j − a_j)/D_j`. The hit
-/// is at the latest entry when it is no later than every exit; entries and
-/// exits are compared exactly (the signs of `N_i D_j − N_j D_i`), so an edge
-/// entered exactly is found as a tie. `t` is `N/D` with both formed to
-/// `2^−40`.
+/// format's definition with every decision exact for the box of the
+/// quaternion's own rotation `R(q)` (see [`crate::boxes`]). With
+/// `a_i = R_i · (start − c)` and `D_i = R_i · (end − start)` — all taken times
+/// `n = ‖q‖²`, the axes as `M_i = n R_i` (quadratics in `q`) and `h_i` as
+/// `n h_i` — where each end lies against each slab is decided exactly; a slab
+/// the start is beyond face `σ` of is entered at `t_i = (σ h_i − a_i)/D_i` (no
+/// hit if the end is beyond the same face), and left, where the end is beyond
+/// face `σ'`, at `(σ' h_j − a_j)/D_j`. The hit is at the latest entry when it
+/// is no later than every exit; entries and exits are compared exactly (the
+/// signs of `N_i D_j − N_j D_i` and of each `D_i`), so an edge entered exactly
+/// is found as a tie. `t` is `N/D` with both formed to `2^−40` (the factor `n`
+/// cancels). The point is formed from `t`, the normal from the rounded matrix
+/// [`OrientedBox::rotation_matrix`].
 ///
 /// **Degenerate input.** Entering through an edge or a corner (the entry
 /// point lies on a second face: two slabs' entries tie, the segment leaves a
@@ -113,36 +116,39 @@ pub fn intersect_segment_box_lecture<T: Real>(s: &Segment<T>, b: &OrientedBox<T>
 /// the order `+x, −x, +y, −y, +z, −z`. `parallel` is always false. A
 /// non-finite input is a degenerate miss.
 pub fn intersect_segment_box<T: Real>(s: &Segment<T>, b: &OrientedBox<T>) -> Intersection<T> {
-    let ax = axes_of(&b.rotation_matrix());
     let (p, q, c) = (wide3(&s.start), wide3(&s.end), wide3(&b.center));
     let h = wide3(&b.half_extents).map(f64::abs);
     let lengths = [p[0], p[1], p[2], q[0], q[1], q[2], c[0], c[1], c[2], h[0], h[1], h[2]];
-    if !all_finite(&lengths) || !all_finite(&ax) {
+    let Some(qt) = quaternion_of(b).filter(|_| all_finite(&lengths)) else {
         return Intersection::DEGENERATE;
-    }
+    };
     let zero = points_equal(p, q);
-    let rot = nalgebra::Matrix3::from_column_slice(&ax);
-    let start = classify(p, c, h, &ax);
+    let rot = b.rotation_matrix().map(|x| x.wide());
+    let start = classify(p, c, h, &qt);
     if start == [0; 3] {
-        let (i, side, tie) = nearest_face(p, c, h, &ax);
+        let (i, side, tie) = nearest_face(p, c, h, &qt);
         let normal = unit(&(rot.column(i) * f64::from(side))).unwrap_or_else(Vec3::z);
         return hit_at(T::zero(), s.start, normal, tie || zero);
     }
     if zero {
         return Intersection::DEGENERATE;
     }
-    let end = classify(q, c, h, &ax);
+    let end = classify(q, c, h, &qt);
     if (0..3).any(|i| start[i] != 0 && end[i] == start[i]) {
         return Intersection::MISS;
     }
+    // The sign of `D_i = M_i · (q − p)`.
+    let along = |i: usize| sign_of!(coord, [q[0], q[1], q[2], p[0], p[1], p[2]], quaternion_units(&qt, i));
+    let order = |i: usize, si: i8, j: usize, sj: i8| {
+        let l = [p[0], p[1], p[2], q[0], q[1], q[2], c[0], c[1], c[2], h[i], h[j]];
+        let mut u = [qt[0], qt[1], qt[2], qt[3], 0.0, 0.0, 0.0, f64::from(si), 0.0, 0.0, 0.0, f64::from(sj)];
+        u[4 + i] = 1.0;
+        u[8 + j] = 1.0;
+        sign_of!(time_order, l, u)
+    };
     // Compare the crossing times of face `si` of slab `i` and face `sj` of
     // slab `j`: the sign of t_i − t_j.
-    let cmp = |i: usize, si: i8, j: usize, sj: i8| {
-        let (ai, aj) = (axis(&ax, i), axis(&ax, j));
-        let l = [p[0], p[1], p[2], q[0], q[1], q[2], c[0], c[1], c[2], h[i], h[j]];
-        let u = [ai[0], ai[1], ai[2], f64::from(si), aj[0], aj[1], aj[2], f64::from(sj)];
-        sign_of!(time_order, l, u) * dot_diff(ai, p, q) * dot_diff(aj, p, q)
-    };
+    let cmp = |i: usize, si: i8, j: usize, sj: i8| order(i, si, j, sj) * along(i) * along(j);
     let entering: Vec<usize> = (0..3).filter(|&i| start[i] != 0).collect();
     let mut best = entering[0];
     for &j in &entering[1..] {
@@ -160,23 +166,16 @@ pub fn intersect_segment_box<T: Real>(s: &Segment<T>, b: &OrientedBox<T>) -> Int
     // time `t = N/D`, i.e. when `N D_j − (σ h_j − a_j) D = 0` — the same
     // polynomial as the times' order, which also covers a segment running
     // along a face (`D_j = 0`).
-    let tie = (0..3).any(|j| {
-        j != best
-            && [1i8, -1].into_iter().any(|sj| {
-                let (ai, aj) = (axis(&ax, best), axis(&ax, j));
-                let l = [p[0], p[1], p[2], q[0], q[1], q[2], c[0], c[1], c[2], h[best], h[j]];
-                let u = [ai[0], ai[1], ai[2], f64::from(start[best]), aj[0], aj[1], aj[2], f64::from(sj)];
-                sign_of!(time_order, l, u) == Sign::Zero
-            })
-    });
-    let a = axis(&ax, best);
+    let tie =
+        (0..3).any(|j| j != best && [1i8, -1].into_iter().any(|sj| order(best, start[best], j, sj) == Sign::Zero));
+    let u = quaternion_units(&qt, best);
     let num = value_of!(
         entry_numerator,
         1,
         [p[0], p[1], p[2], c[0], c[1], c[2], h[best]],
-        [a[0], a[1], a[2], f64::from(start[best])]
+        [u[0], u[1], u[2], u[3], u[4], u[5], u[6], f64::from(start[best])]
     );
-    let den = value_of!(coord, 1, [q[0], q[1], q[2], p[0], p[1], p[2]], a);
+    let den = value_of!(coord, 1, [q[0], q[1], q[2], p[0], p[1], p[2]], u);
     let t = ratio(num, den).clamp(0.0, 1.0);
     let k = scene_scale(&lengths);
     let (ps, qs) = (up(p, k), up(q, k));
@@ -198,20 +197,25 @@ fn hit_at<T: Real>(t: T, point: Vec3<T>, normal: Vec3<f64>, degenerate: bool) ->
     }
 }
 
-/// `s h − a · (p − c)`: lengths `[p, c, h]`, units `[a, s]` — the numerator of
-/// the time face `s` of axis `a` is crossed.
-fn entry_numerator<N: Ring>(l: &[N; 7], u: &[N; 4]) -> N {
+/// `s n h − M · (p − c)` (`M` the picked axis of `‖q‖² R(q)`, `n = ‖q‖²`):
+/// lengths `[p, c, h]`, units `[q, e_i, s]` — `n` times the numerator of the
+/// time face `s` of axis `i` is crossed.
+fn entry_numerator<N: Ring>(l: &[N; 7], u: &[N; 8]) -> N {
+    let (a, n) = picked_axis(u);
     let d = sub3(at(l, 0), at(l, 3));
-    u[3].mul(&l[6]).sub(&dot3(at(u, 0), refs(&d)))
+    u[7].mul(&n.mul(&l[6])).sub(&dot3(refs(&a), refs(&d)))
 }
 
-/// `N_i D_j − N_j D_i` with `N = s h − a · (p − c)`, `D = a · (q − p)`:
-/// lengths `[p, q, c, h_i, h_j]`, units `[a_i, s_i, a_j, s_j]`.
-fn time_order<N: Ring>(l: &[N; 11], u: &[N; 8]) -> N {
+/// `N_i D_j − N_j D_i` with `N = s n h − M · (p − c)`, `D = M · (q − p)`:
+/// lengths `[p, q, c, h_i, h_j]`, units `[q, e_i, s_i, e_j, s_j]`.
+fn time_order<N: Ring>(l: &[N; 11], u: &[N; 12]) -> N {
+    let qt = [&u[0], &u[1], &u[2], &u[3]];
+    let (ax, n) = (quaternion_axes(qt), norm2(qt));
+    let (ai, aj) = (select(&u[4..7], &ax), select(&u[8..11], &ax));
     let (pc, qp) = (sub3(at(l, 0), at(l, 6)), sub3(at(l, 3), at(l, 0)));
-    let ni = u[3].mul(&l[9]).sub(&dot3(at(u, 0), refs(&pc)));
-    let nj = u[7].mul(&l[10]).sub(&dot3(at(u, 4), refs(&pc)));
-    let di = dot3(at(u, 0), refs(&qp));
-    let dj = dot3(at(u, 4), refs(&qp));
+    let ni = u[7].mul(&n.mul(&l[9])).sub(&dot3(refs(&ai), refs(&pc)));
+    let nj = u[11].mul(&n.mul(&l[10])).sub(&dot3(refs(&aj), refs(&pc)));
+    let di = dot3(refs(&ai), refs(&qp));
+    let dj = dot3(refs(&aj), refs(&qp));
     ni.mul(&dj).sub(&nj.mul(&di))
 }

@@ -1,7 +1,9 @@
 //! Sphere–box contact.
 
-use super::poly::{Ring, at, dot3, refs, sign_of, sub3, value_of};
-use super::{all_finite, axes_of, axis, fallback_normal, finish, scene_scale, unit, up, up1, wide3};
+use super::poly::{
+    Ring, at, dot3, norm2, over_norm2, picked_axis, quaternion_axes, refs, scaled_f64, select, sign_of, sub3, value_of,
+};
+use super::{all_finite, fallback_normal, finish, quaternion_of, quaternion_units, scene_scale, unit, up, up1, wide3};
 use crate::contact::Contact;
 use crate::exact::{Estimate, P3, Sign};
 use crate::real::{Real, Vec3};
@@ -64,13 +66,16 @@ fn contact_sphere_box_lecture_raw<T: Real>(a: &Sphere<T>, b: &OrientedBox<T>) ->
 
 /// Contact between a sphere `a` and a box `b`, **robust form**: the lecture's
 /// formulas (see [`contact_sphere_box_lecture`] and `docs/FORMAT.md`) with
-/// every decision exact for the box of the rounded rotation `R̃` (see
-/// [`crate::boxes`]): whether the centre is beyond each face
-/// (`±R̃_i · (M − c) − h_i`), whether `‖u − p‖ ≤ r` (its square against `r²`),
-/// which face is nearest from inside and whether two tie. The distance to the
-/// box is formed from the excesses `±u_i − h_i` to `2^−40` relative, so the
-/// normal `R̃ (u − p)/‖u − p‖` is right however close the centre is to the
-/// box, at every scale.
+/// every decision exact for the box of the quaternion's own rotation `R(q)`
+/// (see [`crate::boxes`]; its axes taken as `M_i = ‖q‖² R(q) e_i`, quadratics
+/// in `q`, and every comparison multiplied through by `n = ‖q‖² > 0`): whether
+/// the centre is beyond each face (`±M_i · (m − c) − n h_i`), whether
+/// `‖u − p‖ ≤ r` (its square against `r²`, times `n²`), which face is nearest
+/// from inside and whether two tie. The distance to the box is formed from the
+/// excesses `±u_i − h_i` (times `n`, divided by it after) to `2^−40`
+/// relative, so the normal `R (u − p)/‖u − p‖` is right however close the
+/// centre is to the box, at every scale. Points are computed with the rounded
+/// matrix [`OrientedBox::rotation_matrix`].
 ///
 /// **Degenerate input.** A centre in the closed box with two nearest faces
 /// (on an edge or a corner, equidistant from two faces inside, or `u_i = 0`,
@@ -78,48 +83,48 @@ fn contact_sphere_box_lecture_raw<T: Real>(a: &Sphere<T>, b: &OrientedBox<T>) ->
 /// first face in the order `+x, −x, +y, −y, +z, −z`, flagged. A non-finite
 /// input is no contact.
 pub fn contact_sphere_box<T: Real>(a: &Sphere<T>, b: &OrientedBox<T>) -> Option<Contact<T>> {
-    let ax = axes_of(&b.rotation_matrix());
+    let qt = quaternion_of(b)?;
     let (m, c) = (wide3(&a.center), wide3(&b.center));
     let h = wide3(&b.half_extents).map(f64::abs);
     let r = a.radius.wide();
-    if !all_finite(&[m[0], m[1], m[2], c[0], c[1], c[2], h[0], h[1], h[2], r]) || !all_finite(&ax) {
+    let lengths = [m[0], m[1], m[2], c[0], c[1], c[2], h[0], h[1], h[2], r];
+    if !all_finite(&lengths) {
         return None;
     }
-    let side = classify(m, c, h, &ax);
-    let k = scene_scale(&[m[0], m[1], m[2], c[0], c[1], c[2], h[0], h[1], h[2], r]);
-    let rot = nalgebra::Matrix3::from_column_slice(&ax);
+    let side = classify(m, c, h, &qt);
+    let k = scene_scale(&lengths);
+    let rot = b.rotation_matrix().map(|x| x.wide());
     let (ms, cs, hs, rs) = (up(m, k), up(c, k), up(h, k), up1(r, k));
     let us = rot.transpose() * (ms - cs);
     if side == [0; 3] {
-        let (i, s, tie) = nearest_face(m, c, h, &ax);
-        let gap = super::poly::scaled_f64(face_gap(m, c, h, &ax, i), i64::from(k));
+        let (i, s, tie) = nearest_face(m, c, h, &qt);
+        let gap = scaled_f64(over_norm2(face_gap(m, c, h, &qt, i), &qt), i64::from(k));
         let mut q = clamp(&us, &hs);
         q[i] = f64::from(s) * hs[i];
         let normal = unit(&(rot.column(i) * f64::from(s))).unwrap_or_else(fallback_normal);
         return Some(finish(cs + rot * q, normal, rs + gap, k, tie));
     }
-    let lengths = [m[0], m[1], m[2], c[0], c[1], c[2], h[0], h[1], h[2], r];
     let s = side.map(f64::from);
     let mask = side.map(|x| f64::from(x.abs()));
-    let units =
-        [ax[0], ax[1], ax[2], ax[3], ax[4], ax[5], ax[6], ax[7], ax[8], s[0], s[1], s[2], mask[0], mask[1], mask[2]];
+    let units = [qt[0], qt[1], qt[2], qt[3], s[0], s[1], s[2], mask[0], mask[1], mask[2]];
     if sign_of!(outside_reach, lengths, units) == Sign::Positive {
         return None;
     }
-    // The excess beyond each face the centre is outside of, signed: u − p.
+    // The excess beyond each face the centre is outside of, signed: u − p
+    // (times n).
     let e: [Estimate; 3] = [0, 1, 2].map(|i| {
         if side[i] == 0 {
             Estimate::ZERO
         } else {
+            let u = quaternion_units(&qt, i);
             let x = value_of!(face_excess, 1, [m[0], m[1], m[2], c[0], c[1], c[2], h[i]], {
-                let a = axis(&ax, i);
-                [a[0], a[1], a[2], s[i]]
+                [u[0], u[1], u[2], u[3], u[4], u[5], u[6], s[i]]
             });
             if side[i] < 0 { Estimate { sign: -x.sign, ..x } } else { x }
         }
     });
     let dir = Estimate::unit_vector(e).map(|d| Vec3::new(d[0], d[1], d[2]));
-    let es = Vec3::from(e.map(|x| super::poly::scaled_f64(x, i64::from(k))));
+    let es = Vec3::from(e.map(|x| scaled_f64(over_norm2(x, &qt), i64::from(k))));
     let dist = crate::real::stable_norm(&es);
     let normal = dir.and_then(|d| unit(&(rot * d))).unwrap_or_else(fallback_normal);
     let mut q = clamp(&us, &hs);
@@ -136,54 +141,66 @@ fn clamp(u: &Vec3<f64>, h: &Vec3<f64>) -> Vec3<f64> {
     Vec3::new(u.x.max(-h.x).min(h.x), u.y.max(-h.y).min(h.y), u.z.max(-h.z).min(h.z))
 }
 
-/// `s · (a · (m − c)) − h`: lengths `[m, c, h]`, units `[a, s]`. Positive
-/// when `m` lies beyond the face `s` of axis `a` at `h`.
-pub(crate) fn face_excess<N: Ring>(l: &[N; 7], u: &[N; 4]) -> N {
+/// `s · (M · (m − c)) − n h` (`M` the picked axis of `‖q‖² R(q)`,
+/// `n = ‖q‖²`): lengths `[m, c, h]`, units `[q, e_i, s]`. Positive when `m`
+/// lies beyond the face `s` of axis `i` at `h`.
+fn face_excess<N: Ring>(l: &[N; 7], u: &[N; 8]) -> N {
+    let (a, n) = picked_axis(u);
     let d = sub3(at(l, 0), at(l, 3));
-    u[3].mul(&dot3(at(u, 0), refs(&d))).sub(&l[6])
+    u[7].mul(&dot3(refs(&a), refs(&d))).sub(&n.mul(&l[6]))
 }
 
-/// `Σ mask_i (s_i R̃_i · (m − c) − h_i)² − r²`: lengths `[m, c, h, r]`, units
-/// `[R̃ (axes), s, mask]`.
-fn outside_reach<N: Ring>(l: &[N; 10], u: &[N; 15]) -> N {
+/// `Σ mask_i (s_i M_i · (m − c) − n h_i)² − n² r²` (`M_i` the columns of
+/// `‖q‖² R(q)`, `n = ‖q‖²`): lengths `[m, c, h, r]`, units `[q, s, mask]`.
+fn outside_reach<N: Ring>(l: &[N; 10], u: &[N; 10]) -> N {
+    let q = [&u[0], &u[1], &u[2], &u[3]];
+    let (ax, n) = (quaternion_axes(q), norm2(q));
     let d = sub3(at(l, 0), at(l, 3));
     let term = |i: usize| {
-        let x = u[9 + i].mul(&dot3(at(u, 3 * i), refs(&d))).sub(&l[6 + i]);
-        u[12 + i].mul(&x.mul(&x))
+        let x = u[4 + i].mul(&dot3(refs(&ax[i]), refs(&d))).sub(&n.mul(&l[6 + i]));
+        u[7 + i].mul(&x.mul(&x))
     };
-    term(0).add(&term(1)).add(&term(2)).sub(&l[9].mul(&l[9]))
+    let nr = n.mul(&l[9]);
+    term(0).add(&term(1)).add(&term(2)).sub(&nr.mul(&nr))
 }
 
-/// `(h_i − |a_i · (m − c)|) − (h_j − |a_j · (m − c)|)`: lengths
-/// `[m, c, h_i, h_j]`, units `[a_i, a_j]`.
-fn gap_order<N: Ring>(l: &[N; 8], u: &[N; 6]) -> N {
+/// `(n h_i − |M_i · (m − c)|) − (n h_j − |M_j · (m − c)|)`: lengths
+/// `[m, c, h_i, h_j]`, units `[q, e_i, e_j]`.
+fn gap_order<N: Ring>(l: &[N; 8], u: &[N; 10]) -> N {
+    let q = [&u[0], &u[1], &u[2], &u[3]];
+    let (ax, n) = (quaternion_axes(q), norm2(q));
+    let (ai, aj) = (select(&u[4..7], &ax), select(&u[7..10], &ax));
     let d = sub3(at(l, 0), at(l, 3));
-    let gi = l[6].sub(&dot3(at(u, 0), refs(&d)).abs());
-    let gj = l[7].sub(&dot3(at(u, 3), refs(&d)).abs());
+    let gi = n.mul(&l[6]).sub(&dot3(refs(&ai), refs(&d)).abs());
+    let gj = n.mul(&l[7]).sub(&dot3(refs(&aj), refs(&d)).abs());
     gi.sub(&gj)
 }
 
-/// `h − |a · (m − c)|`: lengths `[m, c, h]`, units `[a]`.
-fn gap<N: Ring>(l: &[N; 7], u: &[N; 3]) -> N {
+/// `n h − |M · (m − c)|`: lengths `[m, c, h]`, units `[q, e_i]`.
+fn gap<N: Ring>(l: &[N; 7], u: &[N; 7]) -> N {
+    let (a, n) = picked_axis(u);
     let d = sub3(at(l, 0), at(l, 3));
-    l[6].sub(&dot3(at(u, 0), refs(&d)).abs())
+    n.mul(&l[6]).sub(&dot3(refs(&a), refs(&d)).abs())
 }
 
-/// `a · (m − c)`: lengths `[m, c]`, units `[a]`.
-pub(crate) fn coord<N: Ring>(l: &[N; 6], u: &[N; 3]) -> N {
+/// `M · (m − c)` (`‖q‖²` times the coordinate along axis `i`): lengths
+/// `[m, c]`, units `[q, e_i]`.
+pub(crate) fn coord<N: Ring>(l: &[N; 6], u: &[N; 7]) -> N {
+    let (a, _) = picked_axis(u);
     let d = sub3(at(l, 0), at(l, 3));
-    dot3(at(u, 0), refs(&d))
+    dot3(refs(&a), refs(&d))
 }
 
-/// Where `m` lies against each slab of the box, exactly: `+1` beyond the face
-/// `+i`, `−1` beyond `−i`, `0` within (faces included).
-pub(crate) fn classify(m: P3, c: P3, h: P3, ax: &[f64; 9]) -> [i8; 3] {
+/// Where `m` lies against each slab of the box of quaternion `q`, exactly:
+/// `+1` beyond the face `+i`, `−1` beyond `−i`, `0` within (faces included).
+pub(crate) fn classify(m: P3, c: P3, h: P3, q: &[f64; 4]) -> [i8; 3] {
     [0, 1, 2].map(|i| {
-        let a = axis(ax, i);
         let l = [m[0], m[1], m[2], c[0], c[1], c[2], h[i]];
-        if sign_of!(face_excess, l, [a[0], a[1], a[2], 1.0]) == Sign::Positive {
+        let u = quaternion_units(q, i);
+        let beyond = |s: f64| sign_of!(face_excess, l, [u[0], u[1], u[2], u[3], u[4], u[5], u[6], s]) == Sign::Positive;
+        if beyond(1.0) {
             1
-        } else if sign_of!(face_excess, l, [a[0], a[1], a[2], -1.0]) == Sign::Positive {
+        } else if beyond(-1.0) {
             -1
         } else {
             0
@@ -191,13 +208,16 @@ pub(crate) fn classify(m: P3, c: P3, h: P3, ax: &[f64; 9]) -> [i8; 3] {
     })
 }
 
-/// The face nearest `m` from inside the closed box, exactly: its axis, its
-/// side (`±1`) and whether another face is as near (the format's first face
-/// in the order `+x, −x, +y, −y, +z, −z` is the one returned).
-pub(crate) fn nearest_face(m: P3, c: P3, h: P3, ax: &[f64; 9]) -> (usize, i8, bool) {
+/// The face nearest `m` from inside the closed box of quaternion `q`, exactly:
+/// its axis, its side (`±1`) and whether another face is as near (the
+/// format's first face in the order `+x, −x, +y, −y, +z, −z` is the one
+/// returned).
+pub(crate) fn nearest_face(m: P3, c: P3, h: P3, q: &[f64; 4]) -> (usize, i8, bool) {
     let order = |i: usize, j: usize| {
-        let (a, b) = (axis(ax, i), axis(ax, j));
-        sign_of!(gap_order, [m[0], m[1], m[2], c[0], c[1], c[2], h[i], h[j]], [a[0], a[1], a[2], b[0], b[1], b[2]])
+        let mut u = [q[0], q[1], q[2], q[3], 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        u[4 + i] = 1.0;
+        u[7 + j] = 1.0;
+        sign_of!(gap_order, [m[0], m[1], m[2], c[0], c[1], c[2], h[i], h[j]], u)
     };
     let mut best = 0;
     for j in 1..3 {
@@ -206,8 +226,7 @@ pub(crate) fn nearest_face(m: P3, c: P3, h: P3, ax: &[f64; 9]) -> (usize, i8, bo
         }
     }
     let mut tie = (0..3).any(|j| j != best && order(j, best) == Sign::Zero);
-    let a = axis(ax, best);
-    let side = match sign_of!(coord, [m[0], m[1], m[2], c[0], c[1], c[2]], a) {
+    let side = match sign_of!(coord, [m[0], m[1], m[2], c[0], c[1], c[2]], quaternion_units(q, best)) {
         Sign::Negative => -1,
         Sign::Positive => 1,
         Sign::Zero => {
@@ -218,7 +237,8 @@ pub(crate) fn nearest_face(m: P3, c: P3, h: P3, ax: &[f64; 9]) -> (usize, i8, bo
     (best, side, tie)
 }
 
-/// `h_i − |u_i|` of `m` (the distance to face `i` from inside) to `2^−40`.
-pub(crate) fn face_gap(m: P3, c: P3, h: P3, ax: &[f64; 9], i: usize) -> Estimate {
-    value_of!(gap, 1, [m[0], m[1], m[2], c[0], c[1], c[2], h[i]], axis(ax, i))
+/// `‖q‖² (h_i − |u_i|)` of `m` (the distance to face `i` from inside, times
+/// `‖q‖²`) to `2^−40`.
+fn face_gap(m: P3, c: P3, h: P3, q: &[f64; 4], i: usize) -> Estimate {
+    value_of!(gap, 1, [m[0], m[1], m[2], c[0], c[1], c[2], h[i]], quaternion_units(q, i))
 }

@@ -741,6 +741,137 @@ fn overlap_robust_is_exact_for_the_quaternions_rotation() {
 }
 
 // ---------------------------------------------------------------------------
+// Every robust decision exact for the quaternion's own rotation
+// ---------------------------------------------------------------------------
+
+/// The scales of the exact-rotation tests: powers of two, so every scaled
+/// input is the unit one scaled exactly and decides the same.
+const ROTATION_SCALES: [f64; 3] = [1.0, f64::from_bits((1023 - 1000) << 52), f64::from_bits((1023 + 1000) << 52)];
+
+/// `q = [2, 0, 0, 1]` and `[6, 0, 0, 3]`: the same 3-4-5 rotation about z at
+/// two lengths, `R = [[3/5, −4/5, 0], [4/5, 3/5, 0], [0, 0, 1]]`, whose `3/5`
+/// and `4/5` are not binary numbers (the rounded matrix misses the exact box
+/// by an ulp or so).
+const Q345: [[f64; 4]; 2] = [[2.0, 0.0, 0.0, 1.0], [6.0, 0.0, 0.0, 3.0]];
+
+/// `got` within a few ulps of `want · s` (`f64`), relative to the scene's size
+/// `s · (1 + |want|)`.
+fn near(got: f64, want: f64, s: f64) -> bool {
+    (got - want * s).abs() <= HAND_EPS * f64::EPSILON * s * (1.0 + want.abs())
+}
+
+fn near3(got: &Vec3<f64>, want: [f64; 3], s: f64) -> bool {
+    (0..3).all(|i| near(got[i], want[i], s))
+}
+
+#[test]
+fn segment_box_robust_is_exact_for_the_quaternions_rotation() {
+    // h = 5/64 = 0.078125 on every axis, turned by the 3-4-5 rotation: the
+    // corner u = (h, h, 0) is R·(h, h, 0) = (3h/5 − 4h/5, 4h/5 + 3h/5, 0)
+    // = (−h/5, 7h/5, 0) = (−1/64, 7/64, 0) = (−0.015625, 0.109375, 0), the
+    // highest point of the box in y (the other corners: (7/64, 1/64),
+    // (1/64, −7/64), (−7/64, −1/64)). The segment y = 7/64, z = 0 from
+    // x = 8.421875 to x = −8.453125 (length 16.875) touches the box only on
+    // that edge (z free), at t = (8.421875 + 0.015625)/16.875 = 0.5. In the
+    // box's frame it runs along Rᵀ(−1, 0, 0) = (−3/5, 4/5, 0): it enters the
+    // slab x' through the face +x' exactly where it leaves the slab y' through
+    // +y': the entry is face +x', normal R·e_x = (0.6, 0.8, 0), flagged.
+    for q in Q345 {
+        for s in ROTATION_SCALES {
+            let b = OrientedBox::<f64>::new(Vec3::zeros(), Vec3::new(0.078125, 0.078125, 0.078125) * s, q);
+            let y = 0.109375 * s;
+            let seg = Segment::new(Vec3::new(8.421875 * s, y, 0.0), Vec3::new(-8.453125 * s, y, 0.0));
+            let i = intersect_segment_box(&seg, &b);
+            let h = i.hit.unwrap_or_else(|| panic!("q {q:?}, scale {s:e}: no hit, {i:?}"));
+            assert!((h.t - 0.5).abs() <= 4.0 * f64::EPSILON, "q {q:?}, scale {s:e}: {i:?}");
+            assert!(near3(&h.point, [-0.015625, 0.109375, 0.0], s), "q {q:?}, scale {s:e}: {i:?}");
+            assert!(near3(&h.normal, [0.6, 0.8, 0.0], 1.0), "q {q:?}, scale {s:e}: {i:?}");
+            assert!(i.degenerate && !i.parallel, "q {q:?}, scale {s:e}: an edge, {i:?}");
+            // One ulp higher in y: the line passes above the highest edge.
+            let above =
+                Segment::new(Vec3::new(8.421875 * s, y.next_up(), 0.0), Vec3::new(-8.453125 * s, y.next_up(), 0.0));
+            let i = intersect_segment_box(&above, &b);
+            assert!(i.hit.is_none(), "q {q:?}, scale {s:e}: an ulp above, {i:?}");
+        }
+    }
+}
+
+#[test]
+fn sphere_box_robust_is_exact_for_the_quaternions_rotation() {
+    // h = (5, 5, 5) at c = (1, 2, 3), turned by the 3-4-5 rotation. A sphere of
+    // radius 5 centred at c + R·(10, 0, 0) = c + (6, 8, 0) = (7, 10, 3) touches
+    // the face x' = 5 at c + R·(5, 0, 0) = (4, 6, 3): u = (10, 0, 0), excess
+    // 10 − 5 = 5 = r, so depth exactly 0 (the excess ‖q‖²·5 = 25 over
+    // ‖q‖² = 5 is exact), normal R·e_x = (0.6, 0.8, 0), not flagged. One ulp
+    // further in x: u_x = 10 + 3/5·ulp, apart.
+    for q in Q345 {
+        for s in ROTATION_SCALES {
+            let b = OrientedBox::<f64>::new(Vec3::new(1.0, 2.0, 3.0) * s, Vec3::new(5.0, 5.0, 5.0) * s, q);
+            let touch = Sphere::new(Vec3::new(7.0, 10.0, 3.0) * s, 5.0 * s);
+            let k = contact_sphere_box(&touch, &b).unwrap_or_else(|| panic!("q {q:?}, scale {s:e}: apart"));
+            // Exact, bitwise: the depth is r − 5 with both exactly 5 (times s): +0.
+            assert_eq!(k.depth.to_bits(), 0.0f64.to_bits(), "q {q:?}, scale {s:e}: {k:?}");
+            assert!(near3(&k.point, [4.0, 6.0, 3.0], s) && !k.degenerate, "q {q:?}, scale {s:e}: {k:?}");
+            assert!(near3(&k.normal, [0.6, 0.8, 0.0], 1.0), "q {q:?}, scale {s:e}: {k:?}");
+            let apart = Sphere::new(Vec3::new((7.0 * s).next_up(), 10.0 * s, 3.0 * s), 5.0 * s);
+            assert!(contact_sphere_box(&apart, &b).is_none(), "q {q:?}, scale {s:e}: an ulp further");
+            // A centre on the edge x' = y' = 5, z' = 0: R·(5, 5, 0) = (3 − 4,
+            // 4 + 3, 0) = (−1, 7, 0), so c + (−1, 7, 0) = (0, 9, 3). In the
+            // closed box, the faces +x' and +y' both at gap 0: +x' first,
+            // flagged, depth r + 0 = 1 exactly, point the centre itself.
+            let on_edge = Sphere::new(Vec3::new(0.0, 9.0, 3.0) * s, s);
+            let k = contact_sphere_box(&on_edge, &b).unwrap_or_else(|| panic!("q {q:?}, scale {s:e}: on the edge"));
+            // Exact, bitwise: r + a gap of exactly 0.
+            assert_eq!(k.depth.to_bits(), s.to_bits(), "q {q:?}, scale {s:e}: {k:?}");
+            assert!(k.degenerate, "q {q:?}, scale {s:e}: on an edge, {k:?}");
+            assert!(near3(&k.point, [0.0, 9.0, 3.0], s), "q {q:?}, scale {s:e}: {k:?}");
+            assert!(near3(&k.normal, [0.6, 0.8, 0.0], 1.0), "q {q:?}, scale {s:e}: {k:?}");
+        }
+    }
+}
+
+#[test]
+fn box_plane_robust_is_exact_for_the_quaternions_rotation() {
+    // h = (5, 5, 5) at c = (2, 1, −3), turned by the 3-4-5 rotation: the
+    // corners in xy are c + R·(±5, ±5): R·(5, 5) = (−1, 7), R·(−5, −5) =
+    // (1, −7), R·(5, −5) = (7, 1), R·(−5, 5) = (−7, −1). The lowest in y is
+    // the edge c + (1, −7, z) = (3, −6, −3 ± 5), exactly at y = −6: against
+    // the half-space y ≤ −6 (normal (0, 1, 0), offset −6) the box rests on
+    // it, depth exactly 0 (‖q‖²(n·c − d) − Σ h_i |n · M_i| = 5·7 − 5·4 − 5·3
+    // − 0 = 0 with q = [2,0,0,1]), point the lowest edge's middle (3, −6, −3).
+    // With the offset one ulp lower (−6 − ulp) the box is above the plane.
+    for q in Q345 {
+        for s in ROTATION_SCALES {
+            let b = OrientedBox::<f64>::new(Vec3::new(2.0, 1.0, -3.0) * s, Vec3::new(5.0, 5.0, 5.0) * s, q);
+            let rest = Plane::new(Vec3::new(0.0, 1.0, 0.0), -6.0 * s);
+            let k = contact_box_plane(&b, &rest).unwrap_or_else(|| panic!("q {q:?}, scale {s:e}: apart"));
+            // Exact, bitwise: the lowest vertex's height above the plane is exactly 0: +0.
+            assert_eq!(k.depth.to_bits(), 0.0f64.to_bits(), "q {q:?}, scale {s:e}: {k:?}");
+            assert!(near3(&k.point, [3.0, -6.0, -3.0], s) && !k.degenerate, "q {q:?}, scale {s:e}: {k:?}");
+            assert!(near3(&k.normal, [0.0, 1.0, 0.0], 1.0), "q {q:?}, scale {s:e}: {k:?}");
+            let below = Plane::new(Vec3::new(0.0, 1.0, 0.0), (-6.0 * s).next_down());
+            assert!(contact_box_plane(&b, &below).is_none(), "q {q:?}, scale {s:e}: an ulp apart");
+            // h = (15, 5, 5) at the same centre: R·(−15, −5) = (−9 + 4, −12 − 3)
+            // = (−5, −15), R·(−15, 5) = (−9 − 4, −12 + 3) = (−13, −9), so the
+            // lowest in x is the edge c + (−13, −9, z) = (−11, −8, −3 ± 5).
+            // The half-space x ≤ −11 touches it (‖q‖²(n·c − d) − Σ h_i |n · M_i|
+            // = 5·13 − 15·3 − 5·4 = 0): depth exactly 0, point (−11, −8, −3).
+            // (The rounded matrix's reach 15·0.6̃ + 5·0.8̃ falls short of 13
+            // by about 1e-16: it misses this contact.) One ulp lower, apart.
+            let long = OrientedBox::<f64>::new(Vec3::new(2.0, 1.0, -3.0) * s, Vec3::new(15.0, 5.0, 5.0) * s, q);
+            let side = Plane::new(Vec3::new(1.0, 0.0, 0.0), -11.0 * s);
+            let k = contact_box_plane(&long, &side).unwrap_or_else(|| panic!("q {q:?}, scale {s:e}: long box apart"));
+            // Exact, bitwise, as above.
+            assert_eq!(k.depth.to_bits(), 0.0f64.to_bits(), "q {q:?}, scale {s:e}: {k:?}");
+            assert!(near3(&k.point, [-11.0, -8.0, -3.0], s) && !k.degenerate, "q {q:?}, scale {s:e}: {k:?}");
+            assert!(near3(&k.normal, [1.0, 0.0, 0.0], 1.0), "q {q:?}, scale {s:e}: {k:?}");
+            let beyond = Plane::new(Vec3::new(1.0, 0.0, 0.0), (-11.0 * s).next_down());
+            assert!(contact_box_plane(&long, &beyond).is_none(), "q {q:?}, scale {s:e}: long box an ulp apart");
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
 // Never NaN
 // ---------------------------------------------------------------------------
 
