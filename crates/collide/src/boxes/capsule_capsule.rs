@@ -142,7 +142,9 @@ pub fn contact_capsule_capsule<T: Real>(a: &Capsule<T>, b: &Capsule<T>) -> Optio
     // The boundary of the square: each end against the other axis.
     let ends: [(P3, P3, P3, bool); 4] =
         [(a0, b0, b1, true), (a1, b0, b1, true), (b0, a0, a1, false), (b1, a0, a1, false)];
-    let mut best: Option<(f64, bool, Contact<T>)> = None;
+    // The nearest of the ends' distances, compared exactly: near-parallel
+    // axes put them within far less than the values' 2^−40 of each other.
+    let mut best: Option<(Feature, bool, Contact<T>)> = None;
     for (p, s0, s1, from_a) in ends {
         let foot: Foot = foot_of(p, s0, s1);
         let (contact, on) = reach_test(p, s0, s1, ra, rb, foot);
@@ -161,15 +163,66 @@ pub fn contact_capsule_capsule<T: Real>(a: &Capsule<T>, b: &Capsule<T>) -> Optio
                 finish(pb + n * rbs, n, (ras + rbs) - near.dist, k, false)
             }
         };
+        let feature = Feature::of(p, s0, s1, foot);
         let better = match &best {
             None => true,
-            Some((dist, met, _)) => (on && !met) || (on == *met && near.dist < *dist),
+            Some((other, met, _)) => (on && !met) || (on == *met && feature.nearer_than(other)),
         };
         if better {
-            best = Some((near.dist, on, found));
+            best = Some((feature, on, found));
         }
     }
     best.map(|(_, _, k)| k)
+}
+
+/// A point `p` and the feature of a segment nearest it: an end (`a`), or the
+/// segment `[a, b]` itself when the foot lies strictly between its ends.
+#[derive(Clone, Copy)]
+struct Feature {
+    p: P3,
+    a: P3,
+    b: P3,
+    line: bool,
+}
+
+impl Feature {
+    fn of(p: P3, s0: P3, s1: P3, foot: Foot) -> Self {
+        match foot {
+            Foot::Start => Self { p, a: s0, b: s1, line: false },
+            Foot::End => Self { p, a: s1, b: s0, line: false },
+            Foot::Between => Self { p, a: s0, b: s1, line: true },
+        }
+    }
+
+    /// Whether this squared distance is strictly below `o`'s, exactly.
+    fn nearer_than(&self, o: &Self) -> bool {
+        let (x, y) = (self, o);
+        let l = [
+            x.p[0], x.p[1], x.p[2], x.a[0], x.a[1], x.a[2], x.b[0], x.b[1], x.b[2], y.p[0], y.p[1], y.p[2], y.a[0],
+            y.a[1], y.a[2], y.b[0], y.b[1], y.b[2],
+        ];
+        let flag = |line: bool| if line { [1.0, 0.0] } else { [0.0, 1.0] };
+        let (fx, fy) = (flag(x.line), flag(y.line));
+        sign_of!(distance_order, l, [fx[0], fx[1], fy[0], fy[1]]) == Sign::Negative
+    }
+}
+
+/// `n_1 d_2 − n_2 d_1` for two squared distances `n_i/d_i` from a point `p` to
+/// a feature: the end `a` (`n = ‖p − a‖²`, `d = 1`) or the line through
+/// `a` and `b` (`n = ‖(p − a) × (b − a)‖²`, `d = ‖b − a‖²`), picked by the units
+/// `[line, 1 − line]` of each. Homogeneous in the lengths whichever is picked
+/// (each quotient has degree 2). Lengths `[p_1, a_1, b_1, p_2, a_2, b_2]`.
+fn distance_order<N: Ring>(l: &[N; 18], u: &[N; 4]) -> N {
+    let part = |o: usize, line: &N, end: &N| {
+        let (v, d) = (sub3(at(l, o), at(l, o + 3)), sub3(at(l, o + 6), at(l, o + 3)));
+        let x = cross3(refs(&v), refs(&d));
+        let num = line.mul(&dot3(refs(&x), refs(&x))).add(&end.mul(&dot3(refs(&v), refs(&v))));
+        let den = line.mul(&dot3(refs(&d), refs(&d))).add(end);
+        (num, den)
+    };
+    let (n1, d1) = part(0, &u[0], &u[1]);
+    let (n2, d2) = part(9, &u[2], &u[3]);
+    n1.mul(&d2).sub(&n2.mul(&d1))
 }
 
 /// `w_s · s_num + w_t · t_num + w_d · denom`, Ericson's numerators and

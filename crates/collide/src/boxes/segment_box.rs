@@ -108,9 +108,10 @@ pub fn intersect_segment_box_lecture<T: Real>(s: &Segment<T>, b: &OrientedBox<T>
 /// cancels). The point is formed from `t`, the normal from the rounded matrix
 /// [`OrientedBox::rotation_matrix`].
 ///
-/// **Degenerate input.** Entering through an edge or a corner (the entry
-/// point lies on a second face: two slabs' entries tie, the segment leaves a
-/// slab exactly where it enters the box, or it runs along a face), a start inside with two nearest faces (as
+/// **Degenerate input.** Entering through an edge or a corner (two slabs
+/// the start is outside of are entered at the same time — the format's rule;
+/// a segment running along a face, or leaving a slab exactly where it enters
+/// the box, is not flagged), a start inside with two nearest faces (as
 /// [`super::contact_sphere_box`]), or a zero-length segment (a hit at `t = 0`
 /// when its point is in the box, else none): flagged, the face the first in
 /// the order `+x, −x, +y, −y, +z, −z`. `parallel` is always false. A
@@ -161,13 +162,12 @@ pub fn intersect_segment_box<T: Real>(s: &Segment<T>, b: &OrientedBox<T>) -> Int
             return Intersection::MISS;
         }
     }
-    // The entry point lies on another face too (an edge or a corner): the
-    // face `σ` of slab `j` holds it when `a_j + t D_j = σ h_j` at the entry
-    // time `t = N/D`, i.e. when `N D_j − (σ h_j − a_j) D = 0` — the same
-    // polynomial as the times' order, which also covers a segment running
-    // along a face (`D_j = 0`).
-    let tie =
-        (0..3).any(|j| j != best && [1i8, -1].into_iter().any(|sj| order(best, start[best], j, sj) == Sign::Zero));
+    // Entering through an edge or a corner: another slab the start is outside
+    // of is entered at the same time, `N_best D_j − N_j D_best = 0` with `j`'s
+    // entry face (the format's rule, as the referee's). A slab the segment
+    // runs parallel to, or leaves exactly at the entry, is not a tie: the
+    // format names the face by the entries alone.
+    let tie = (0..3).any(|j| j != best && start[j] != 0 && order(best, start[best], j, start[j]) == Sign::Zero);
     let u = quaternion_units(&qt, best);
     let num = value_of!(
         entry_numerator,
