@@ -104,8 +104,25 @@ impl Region {
     }
 
     /// The Euclidean distance from `p` to the region (0 inside it), by
-    /// collide's closest points on a segment or on the polygon's triangles.
+    /// collide's closest points on a segment or on the polygon's triangles,
+    /// on the scene scaled by the power of two that brings its largest
+    /// coordinate near 1 (exact but where it pushes a coordinate into the
+    /// subnormals): at `1e-226` the squares inside the closest-point
+    /// computations would underflow to 0, at `1e300` overflow.
     pub fn distance(&self, p: &P3) -> f64 {
+        let m = self.vertices[..self.len].iter().chain(std::iter::once(p)).fold(0.0f64, |m, q| m.max(max_abs(*q)));
+        if m == 0.0 || !m.is_finite() {
+            return self.distance_unscaled(p);
+        }
+        let e = m.log2().floor() as i32;
+        let (d1, d2) = (2f64.powi(-e / 2), 2f64.powi(-e - (-e / 2)));
+        let down = |q: &P3| q.map(|x| x * d1 * d2);
+        let scaled = Region { vertices: self.vertices.map(|q| down(&q)), len: self.len };
+        let (u1, u2) = (2f64.powi(e / 2), 2f64.powi(e - e / 2));
+        clean(scaled.distance_unscaled(&down(p)) * u1 * u2)
+    }
+
+    fn distance_unscaled(&self, p: &P3) -> f64 {
         use collide::Vec3;
         use collide::contact::{closest_pt_point_segment, closest_pt_point_triangle};
         let v = |q: &P3| Vec3::new(q[0], q[1], q[2]);
@@ -932,5 +949,32 @@ pub fn answer_scale(lc: &LoadedCase, truth: &Answer) -> f64 {
         f64::MAX
     } else {
         scene_scale(lc)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The distances here are exact in binary and the closest-point arithmetic
+    /// on coordinates near 1 rounds a few times: a few ulps.
+    const REGION_DISTANCE_REL: f64 = 8.0 * f64::EPSILON;
+
+    #[test]
+    fn region_distance_holds_at_every_scale() {
+        // The square [0, 1]² at z = 0: a point above its middle is 1 away, a
+        // point in it 0, a point beside its edge 1 from the edge.
+        for s in [1.0, 1e-226, 2f64.powi(-1060), 1e300] {
+            let square = Region::of(&[[0.0, 0.0, 0.0], [s, 0.0, 0.0], [s, s, 0.0], [0.0, s, 0.0]]).expect("a patch");
+            let above = square.distance(&[s / 2.0, s / 2.0, s]);
+            assert!((above - s).abs() <= REGION_DISTANCE_REL * s, "{s:e}: {above:e}");
+            let inside = square.distance(&[s / 4.0, s / 2.0, 0.0]);
+            assert!(inside <= REGION_DISTANCE_REL * s, "{s:e}: inside, {inside:e}");
+            let beside = square.distance(&[2.0 * s, s / 2.0, 0.0]);
+            assert!((beside - s).abs() <= REGION_DISTANCE_REL * s, "{s:e}: {beside:e}");
+            let segment = Region::of(&[[0.0, 0.0, 0.0], [s, 0.0, 0.0]]).expect("a segment");
+            let off = segment.distance(&[s / 2.0, s, 0.0]);
+            assert!((off - s).abs() <= REGION_DISTANCE_REL * s, "{s:e}: {off:e}");
+        }
     }
 }
