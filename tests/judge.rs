@@ -116,7 +116,7 @@ impl Queries for LongNormals {
 fn a_users_engine_with_long_sphere_plane_normals_disagrees_on_every_contact() {
     let set = EngineSet::of(vec![Engine::new("long normals", Some(53), LongNormals)]);
     let mut contacts = 0;
-    for lc in campaign(Some(Query::Contact), 2_000) {
+    for lc in campaign(Some(Query::Contact), 3_000) {
         let is_pair = matches!(
             (&lc.case.a, lc.case.b.as_ref()),
             (harness::case::Shape::Sphere(_), Some(harness::case::Shape::Plane(_)))
@@ -157,7 +157,7 @@ fn a_time_off_by_a_factor_one_plus_1e_12_agrees_by_default_and_disagrees_under_6
     let referee = referee();
     let (default, strict) = (Tolerance::for_precision(Some(53)), Tolerance::for_engine(Some(53), Some(64.0)));
     let (mut hits, mut well_conditioned) = (0, 0);
-    for lc in campaign(Some(Query::Intersect), 2_000) {
+    for lc in campaign(Some(Query::Intersect), 3_000) {
         if !matches!(lc.case.b, Some(harness::case::Shape::Plane(_))) {
             continue;
         }
