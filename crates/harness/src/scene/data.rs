@@ -18,14 +18,23 @@ pub enum Level {
     SphereMinimal,
     /// The scene's AABB.
     Aabb,
+    /// The scene's oriented box, along the principal axes of its points.
+    Obb,
     /// A bounding volume hierarchy (AABB tree).
     Bvh,
 }
 
 impl Level {
     /// Every level, in the order the tables show them (and ties are broken).
-    pub const ALL: [Level; 6] =
-        [Level::None, Level::SphereCentroid, Level::SphereRitter, Level::SphereMinimal, Level::Aabb, Level::Bvh];
+    pub const ALL: [Level; 7] = [
+        Level::None,
+        Level::SphereCentroid,
+        Level::SphereRitter,
+        Level::SphereMinimal,
+        Level::Aabb,
+        Level::Obb,
+        Level::Bvh,
+    ];
 
     /// For a bounding-sphere level, its method's index in the scenes' sphere
     /// triples (centroid 0, Ritter 1, minimal 2); 0 for the other levels.
@@ -45,6 +54,7 @@ impl Level {
             Level::SphereRitter => "bounding sphere: Ritter",
             Level::SphereMinimal => "bounding sphere: minimal (Welzl)",
             Level::Aabb => "AABB",
+            Level::Obb => "oriented box (principal axes)",
             Level::Bvh => "BVH",
         }
     }

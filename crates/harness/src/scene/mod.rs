@@ -1,15 +1,18 @@
 //! What a scene needs: for mesh scenes, which bounding level — none, one
 //! bounding sphere (the lecture's centroid method, Ritter's, the minimal one),
-//! one AABB, or a BVH — is the cheapest that loses no contact, measured; and
-//! how tight each bounding-sphere method is.
+//! one AABB, one oriented box, or a BVH — is the cheapest that loses no
+//! contact, measured; and how tight each bounding-sphere method is.
 //!
-//! Two scenes, at opposite ends:
+//! Scenes at opposite ends:
 //!
 //! - **the bunny** (`fixtures/meshes/bunny.obj`, 3,674 faces), queried by
 //!   segments whose endpoints are uniform in its box grown by its largest size
 //!   on each side (so many pass beside it): the exact test is collide's robust
 //!   segment–mesh first hit over every face
 //!   ([`intersect_segment_mesh_brute`](collide::mesh::intersect_segment_mesh_brute)), a few hundred microseconds;
+//!   and **the bunny turned** by [`BUNNY_TURN`], the same queries drawn in its
+//!   new box: its AABB is looser, its oriented box (principal axes of the
+//!   vertices, [`obb_of_points`]) is the same box turned;
 //! - **scattered spheres** (analytic, radius [`SCATTER_RADIUS`], centres
 //!   uniform in a cube of side `2·`[`SCATTER_HALF_SIDE`]), queried by spheres:
 //!   the exact test is collide's sphere–sphere contact against every sphere
@@ -56,9 +59,9 @@ pub use render::{
     SAME_RADIUS_REL, charts, markdown, scene_table, section_of, strip_chart, tightness_notes, tightness_table,
 };
 pub use run::{
-    MINIMAL_TIGHTNESS_TOL, Outcome, QUERY_RADIUS_MAX, SCATTER_HALF_SIDE, SCATTER_RADIUS, SPHERE_LEAF, SceneSettings,
-    SphereTree, TIGHTNESS_ROUNDING, cheapest_lossless, level_stats, mesh_levels, run, segment_meets_ball,
-    sphere_levels, tightness,
+    BUNNY_TURN, MINIMAL_TIGHTNESS_TOL, OBB_PAD_REL, Obb, Outcome, QUERY_RADIUS_MAX, SCATTER_HALF_SIDE, SCATTER_RADIUS,
+    SPHERE_LEAF, SceneSettings, SphereTree, TIGHTNESS_ROUNDING, cheapest_lossless, level_stats, mesh_levels,
+    obb_of_points, run, segment_meets_ball, segment_meets_obb, sphere_levels, tightness,
 };
 
 use crate::render::section::Section;

@@ -204,6 +204,122 @@ pub fn segment_meets_ball(q0: P3, q1: P3, center: P3, radius: f64) -> bool {
     e[0] * e[0] + e[1] * e[1] + e[2] * e[2] <= radius * radius
 }
 
+/// An oriented box: `center + Σ uᵢ axesᵢ`, `|uᵢ| ≤ half[i]`, the axes orthonormal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Obb {
+    /// Centre.
+    pub center: P3,
+    /// Orthonormal axes.
+    pub axes: [P3; 3],
+    /// Half-extents along them.
+    pub half: P3,
+}
+
+/// The oriented box's growth on each side, relative to the largest
+/// coordinate of the points: its axes, projections and centre are computed
+/// in `f64` (a few roundings of size `2⁻⁵³` of that coordinate each), so a
+/// point of the mesh could lie a rounding outside the box it was measured
+/// into; `1e-12` is far above those roundings and far below the scene's
+/// size, so the level stays conservative (no contact lost to rounding) and as
+/// tight as measured.
+pub const OBB_PAD_REL: f64 = 1e-12;
+
+/// Jacobi sweeps of the symmetric 3×3 eigenproblem: more than enough for the
+/// off-diagonal to fall below the diagonal's rounding (each sweep squares it).
+const JACOBI_SWEEPS: usize = 16;
+
+/// The oriented box of `points` along their principal axes — the
+/// eigenvectors of their covariance (Jacobi rotations), the extents the
+/// points' projections on them — as a textbook builds it, grown by
+/// [`OBB_PAD_REL`] so that it encloses every point despite the roundings;
+/// `None` for no point.
+pub fn obb_of_points(points: &[P3]) -> Option<Obb> {
+    let n = points.len() as f64;
+    if points.is_empty() {
+        return None;
+    }
+    let mean = [0, 1, 2].map(|k| points.iter().map(|p| p[k] / n).sum::<f64>());
+    let mut c = [[0.0; 3]; 3];
+    for p in points {
+        let d = [0, 1, 2].map(|k| p[k] - mean[k]);
+        for i in 0..3 {
+            for j in 0..3 {
+                c[i][j] += d[i] * d[j] / n;
+            }
+        }
+    }
+    // v's columns become the eigenvectors.
+    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for _ in 0..JACOBI_SWEEPS {
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            if c[p][q] == 0.0 {
+                continue;
+            }
+            let theta = (c[q][q] - c[p][p]) / (2.0 * c[p][q]);
+            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+            let t = if theta == 0.0 { 1.0 } else { t };
+            let (cs, sn) = (1.0 / (t * t + 1.0).sqrt(), t / (t * t + 1.0).sqrt());
+            for row in &mut c {
+                let (a, b) = (row[p], row[q]);
+                row[p] = cs * a - sn * b;
+                row[q] = sn * a + cs * b;
+            }
+            let (rp, rq) = (c[p], c[q]);
+            c[p] = std::array::from_fn(|k| cs * rp[k] - sn * rq[k]);
+            c[q] = std::array::from_fn(|k| sn * rp[k] + cs * rq[k]);
+            for row in &mut v {
+                let (a, b) = (row[p], row[q]);
+                row[p] = cs * a - sn * b;
+                row[q] = sn * a + cs * b;
+            }
+        }
+    }
+    let axes = [0, 1, 2].map(|j| [v[0][j], v[1][j], v[2][j]]);
+    let dot = |a: P3, b: P3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in points {
+        for j in 0..3 {
+            let x = dot(*p, axes[j]);
+            lo[j] = lo[j].min(x);
+            hi[j] = hi[j].max(x);
+        }
+    }
+    let mid = [0, 1, 2].map(|j| (lo[j] + hi[j]) / 2.0);
+    let center = [0, 1, 2].map(|k| (0..3).map(|j| mid[j] * axes[j][k]).sum::<f64>());
+    let size = points.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    let pad = OBB_PAD_REL * size;
+    Some(Obb { center, axes, half: [0, 1, 2].map(|j| (hi[j] - lo[j]) / 2.0 + pad) })
+}
+
+/// Whether the segment meets the oriented box: its ends in the box's frame,
+/// then the slab test (the entering parameter at most the leaving one within
+/// `[0, 1]`), in `f64` — the test a reader would write.
+pub fn segment_meets_obb(q0: P3, q1: P3, b: &Obb) -> bool {
+    let local = |p: P3| {
+        let d = [0, 1, 2].map(|k| p[k] - b.center[k]);
+        [0, 1, 2].map(|j| d[0] * b.axes[j][0] + d[1] * b.axes[j][1] + d[2] * b.axes[j][2])
+    };
+    let (a, e) = (local(q0), local(q1));
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for j in 0..3 {
+        let d = e[j] - a[j];
+        let h = b.half[j];
+        if d == 0.0 {
+            if a[j].abs() > h {
+                return false;
+            }
+            continue;
+        }
+        let (u, w) = ((-h - a[j]) / d, (h - a[j]) / d);
+        t0 = t0.max(u.min(w));
+        t1 = t1.min(u.max(w));
+        if t0 > t1 {
+            return false;
+        }
+    }
+    true
+}
+
 fn p3(v: &Vec3<f64>) -> P3 {
     [v.x, v.y, v.z]
 }
@@ -223,6 +339,7 @@ pub fn mesh_levels(mesh: &TriMesh<f64>, segments: &[(P3, P3)], timing: bool, tim
     let contacts = truth.iter().filter(|t| **t).count();
     let spheres = scene_spheres(&points);
     let aabb = mesh.aabb();
+    let obb = obb_of_points(&points.iter().map(p3).collect::<Vec<_>>());
     let timed_segs = &segs[..timed.min(segs.len())];
     let time = |f: &dyn Fn(&Segment<f64>) -> bool| if timing { time_loop(timed_segs, f) } else { None };
     let brute = |s: &Segment<f64>| intersect_segment_mesh_brute(s, mesh).hit.is_some();
@@ -256,6 +373,10 @@ pub fn mesh_levels(mesh: &TriMesh<f64>, segments: &[(P3, P3)], timing: bool, tim
                 let Some(bb) = aabb else { continue };
                 filtered(&|s| test_aabb_aabb(&aabb_of_segment(s), &bb))
             }
+            Level::Obb => {
+                let Some(ob) = obb else { continue };
+                filtered(&|s| segment_meets_obb(p3(&s.start), p3(&s.end), &ob))
+            }
             Level::Bvh => {
                 let mut near = Vec::new();
                 let outcomes = segs
@@ -277,23 +398,36 @@ pub fn mesh_levels(mesh: &TriMesh<f64>, segments: &[(P3, P3)], timing: bool, tim
     (out, contacts)
 }
 
-fn bunny_scene(settings: &SceneSettings) -> Result<SceneNeeds, String> {
+/// The quaternion `[w, x, y, z]` the turned bunny is rotated by: `‖q‖ = 5`, so
+/// its rotation's entries are multiples of `1/25` (an oblique turn, about
+/// 47° about `(1, 2, 2)/3`), fixed so the scene is the same in every run.
+pub const BUNNY_TURN: [f64; 4] = [4.0, 1.0, 2.0, 2.0];
+
+fn bunny_scene(settings: &SceneSettings, turned: bool) -> Result<SceneNeeds, String> {
     let bunny = crate::mesh::load_mesh_builtin_or_file(&settings.bunny)?;
-    let mesh = TriMesh::new(bunny.vertices.iter().map(|p| v(*p)).collect(), bunny.triangles.clone())
+    let r = crashtest_core::geom::rotation_matrix(BUNNY_TURN);
+    let vertices: Vec<P3> =
+        if turned { bunny.vertices.iter().map(|p| rotate(&r, p)).collect() } else { bunny.vertices };
+    let mesh = TriMesh::new(vertices.iter().map(|p| v(*p)).collect(), bunny.triangles.clone())
         .map_err(|e| format!("{}: {e}", settings.bunny.display()))?;
     let mut rng = Rng(settings.seed ^ 0xb0b0);
-    let b = bounds(&bunny.vertices);
+    let b = bounds(&vertices);
     let segments: Vec<(P3, P3)> = (0..settings.bunny_queries)
         .map(|_| (point_in_grown(&mut rng, b, BUNNY_GROW), point_in_grown(&mut rng, b, BUNNY_GROW)))
         .collect();
     let timed = if settings.timing { settings.bunny_timed.min(segments.len()) } else { 0 };
     let (levels, contacts) = mesh_levels(&mesh, &segments, settings.timing, timed);
     let (cheapest, by) = cheapest_lossless(&levels);
+    let (name, turn) = if turned {
+        ("The bunny turned, queried by segments", format!(", turned by the quaternion {BUNNY_TURN:?}"))
+    } else {
+        ("The bunny, queried by segments", String::new())
+    };
     Ok(SceneNeeds {
-        name: "The bunny, queried by segments".into(),
+        name: name.into(),
         description: format!(
-            "{} faces; {} segments with both endpoints uniform in the bunny's box grown by {BUNNY_GROW} of its \
-             largest size on each side; exact test: collide's robust segment–mesh first hit over every face",
+            "{} faces{turn}; {} segments with both endpoints uniform in the bunny's box grown by {BUNNY_GROW} of \
+             its largest size on each side; exact test: collide's robust segment–mesh first hit over every face",
             mesh.len(),
             segments.len()
         ),
@@ -441,6 +575,9 @@ pub fn sphere_levels(spheres: &[Sphere<f64>], queries: &[Sphere<f64>], timing: b
                 let outcomes = queries.iter().zip(&truth).map(|(q, &t)| gated(cheap(q), t)).collect();
                 (outcomes, time(&|q| if cheap(q) { all(q) } else { 0 }))
             }
+            // The spheres' scene is the analytic one (a sphere stays a
+            // sphere): an oriented box of it is not measured.
+            Level::Obb => continue,
             Level::Aabb => {
                 let Some(bb) = scene_box else { continue };
                 let cheap = |q: &Sphere<f64>| test_aabb_aabb(&aabb_of_sphere(q), &bb);
@@ -573,9 +710,11 @@ pub fn run(settings: &SceneSettings) -> SceneReport {
         }
     };
     if bunny.is_some() {
-        match bunny_scene(settings) {
-            Ok(s) => scenes.push(s),
-            Err(e) => problems.push(format!("the bunny scene was not measured: {e}")),
+        for turned in [false, true] {
+            match bunny_scene(settings, turned) {
+                Ok(s) => scenes.push(s),
+                Err(e) => problems.push(format!("the bunny scene was not measured: {e}")),
+            }
         }
     }
     scenes.push(scatter_scene(settings));
@@ -624,6 +763,57 @@ mod tests {
             lost,
             exact_tests_per_query: tests,
             timing: t,
+        }
+    }
+
+    /// How closely the principal axes of a box's eight corners recover its
+    /// half-extents: the Jacobi sweeps converge to the covariance's rounding,
+    /// far below this, and [`OBB_PAD_REL`] adds `1e-12` of the size.
+    const OBB_RECOVERY_TOL: f64 = 1e-9;
+
+    #[test]
+    fn scene_obb_of_a_turned_box_is_the_box() {
+        let r = crashtest_core::geom::rotation_matrix(BUNNY_TURN);
+        let half = [3.0, 2.0, 1.0];
+        let center = [10.0, -4.0, 2.5];
+        let corners: Vec<P3> = (0..8)
+            .map(|k| {
+                let u = [0, 1, 2].map(|i| if k >> i & 1 == 1 { half[i] } else { -half[i] });
+                let p = rotate(&r, &u);
+                [0, 1, 2].map(|i| p[i] + center[i])
+            })
+            .collect();
+        let ob = obb_of_points(&corners).expect("eight points");
+        let mut got = ob.half;
+        got.sort_by(f64::total_cmp);
+        for (g, w) in got.iter().zip([1.0, 2.0, 3.0]) {
+            assert!((g - w).abs() <= OBB_RECOVERY_TOL * w, "half-extents {:?}", ob.half);
+        }
+        for (got, want) in ob.center.iter().zip(center) {
+            assert!((got - want).abs() <= OBB_RECOVERY_TOL * 10.0, "centre {:?}", ob.center);
+        }
+        // A segment through the centre meets it; one beside a corner of the
+        // turned box, inside the box's AABB but outside the box, does not.
+        assert!(segment_meets_obb([0.0, 0.0, 0.0], [20.0, -8.0, 5.0], &ob));
+        let aabb_max = [0, 1, 2].map(|i| corners.iter().map(|p| p[i]).fold(f64::NEG_INFINITY, f64::max));
+        let near_corner = [0, 1, 2].map(|i| aabb_max[i] - 0.01);
+        let inside = |p: P3| {
+            let d = [0, 1, 2].map(|i| p[i] - center[i]);
+            (0..3).all(|j| (d[0] * r[0][j] + d[1] * r[1][j] + d[2] * r[2][j]).abs() <= half[j])
+        };
+        assert!(!inside(near_corner), "the AABB's corner region is outside the turned box");
+        assert!(!segment_meets_obb(near_corner, near_corner, &ob));
+        assert!(obb_of_points(&[]).is_none());
+    }
+
+    #[test]
+    fn scene_the_oriented_box_loses_no_contact_on_either_bunny() {
+        let settings = SceneSettings { timing: false, bunny_queries: 300, ..SceneSettings::default() };
+        for turned in [false, true] {
+            let scene = bunny_scene(&settings, turned).expect("the built-in bunny");
+            let obb = scene.levels.iter().find(|l| l.level == Level::Obb).expect("an OBB row");
+            assert_eq!(obb.lost, 0, "{}: the oriented box lost contacts", scene.name);
+            assert!(obb.passed >= scene.contacts, "{}", scene.name);
         }
     }
 
