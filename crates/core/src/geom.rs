@@ -95,7 +95,7 @@ impl OrientedBox {
 /// quaternion, which the format refuses, gives the identity.
 pub fn rotation_matrix(q: [f64; 4]) -> [[f64; 3]; 3] {
     let m = q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    if !(m > 0.0) || !m.is_finite() {
+    if m <= 0.0 || !m.is_finite() {
         return [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     }
     // 2^-e in two factors: one alone overflows for a subnormal `m`.

@@ -34,7 +34,7 @@ fn integer_quaternion() -> impl Strategy<Value = [f64; 4]> + Clone {
 
 /// A quaternion of random doubles (any length, as the format allows).
 fn random_quaternion() -> impl Strategy<Value = [f64; 4]> + Clone {
-    prop::array::uniform4(-1.0..1.0f64).prop_map(|q| if q == [0.0; 4] { [1.0, 0.0, 0.0, 0.0] } else { q })
+    prop::array::uniform4(-1.0..1.0f64).prop_map(|q| if q.iter().all(|x| *x == 0.0) { [1.0, 0.0, 0.0, 0.0] } else { q })
 }
 
 /// Either kind of rotation.

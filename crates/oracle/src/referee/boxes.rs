@@ -534,8 +534,10 @@ pub fn intersect_segment_box(s: &Segment, b: &OrientedBox) -> Result<IntersectAn
     check_v3(&s.end, "a.end")?;
     check_box(b, BOX_B)?;
     if apart(|| super::boxes_fast::segment_box_miss(s, b)) {
-        // A zero-length segment is degenerate however it is answered.
-        return Ok(IntersectAnswer { hit: None, parallel: false, degenerate: s.start == s.end });
+        // A zero-length segment is degenerate however it is answered: the
+        // exact stage's `p1 − p0 = 0`, coordinate by coordinate (−0 = +0).
+        let zero_length = (0..3).all(|i| s.start[i] - s.end[i] == 0.0);
+        return Ok(IntersectAnswer { hit: None, parallel: false, degenerate: zero_length });
     }
     let p0 = v3(&s.start, "a.start")?;
     let p1 = v3(&s.end, "a.end")?;
