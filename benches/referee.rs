@@ -48,11 +48,26 @@ const PER_KIND: u64 = 400;
 /// many times lower than the exact stage's, for every query kind.
 const TARGET_RATIO: f64 = 50.0;
 
+/// Cases drawn per query kind for the box and capsule pairs' own rows: they
+/// are a share of each kind's families, so more are drawn and those kept.
+const BOX_DRAWN: u64 = 4000;
+
 fn cases(q: harness::case::Query) -> Vec<LoadedCase> {
-    let full = PER_KIND / 10;
-    let mut out: Vec<LoadedCase> = (0..PER_KIND - full).map(|i| generate(q, SEED, i)).collect();
+    drawn(q, PER_KIND)
+}
+
+fn drawn(q: harness::case::Query, n: u64) -> Vec<LoadedCase> {
+    let full = n / 10;
+    let mut out: Vec<LoadedCase> = (0..n - full).map(|i| generate(q, SEED, i)).collect();
     out.extend((0..full).filter_map(|i| try_generate_full_range(q, SEED, i)));
     out
+}
+
+/// Whether a case's shapes include a box or a capsule.
+fn boxy(lc: &LoadedCase) -> bool {
+    use harness::case::ShapeKind;
+    let kinds = [Some(lc.case.a.shape_kind()), lc.case.b.as_ref().map(harness::case::Shape::shape_kind)];
+    kinds.iter().flatten().any(|k| matches!(k, ShapeKind::Box | ShapeKind::Capsule))
 }
 
 /// Splits `inputs` into the cases the floating-point stages finish and those
@@ -113,6 +128,26 @@ fn main() {
         let by_pair: Vec<String> = by_pair.iter().map(|(p, n)| format!("{p} {n}")).collect();
         rows.push((q, inputs.len(), left.len(), by_pair.join(", "), staged, exact, ceiling));
     }
+    // The box and capsule pairs alone: each pair's campaign cases, staged
+    // against exact.
+    let mut box_rows = Vec::new();
+    for q in CAMPAIGN_QUERIES {
+        let mut by_pair = std::collections::BTreeMap::<String, Vec<LoadedCase>>::new();
+        for lc in drawn(q, BOX_DRAWN).into_iter().filter(boxy) {
+            let pair = lc.case.pair().map_or_else(|| "(no pair)".into(), |p| p.to_string());
+            by_pair.entry(pair).or_default().push(lc);
+        }
+        for (pair, inputs) in by_pair {
+            let group = format!("referee-{q}-{}", pair.replace([' ', '–', '/'], "_"));
+            let mut g = c.benchmark_group(&group);
+            run(&mut g, "staged", &inputs, truth);
+            run(&mut g, "exact", &inputs, |lc| oracle::referee::exact_only(|| truth(lc)));
+            g.finish();
+            let staged = ns_per(&group, "staged", inputs.len(), since);
+            let exact = ns_per(&group, "exact", inputs.len(), since);
+            box_rows.push((pair, inputs.len(), staged, exact));
+        }
+    }
     c.final_summary();
     let mut table = format!(
         "# The referee's stages\n\nMean ns per query (answer and margin) over the campaign's mix, {PER_KIND} cases \
@@ -139,6 +174,19 @@ fn main() {
             cell(staged),
             cell(exact),
             cell(x)
+        ));
+    }
+    table.push_str(&format!(
+        "\n## Box and capsule pairs\n\nEach pair's own cases among {BOX_DRAWN} drawn per query kind (seed {SEED}, a \
+         tenth full-range), answer and margin, staged against exact.\n\n\
+         | pair | cases | staged ns | exact ns | exact / staged |\n| --- | ---: | ---: | ---: | ---: |\n"
+    ));
+    for (pair, n, staged, exact) in box_rows {
+        table.push_str(&format!(
+            "| {pair} | {n} | {} | {} | {} |\n",
+            cell(staged),
+            cell(exact),
+            cell(ratio(exact, staged))
         ));
     }
     println!("\n{table}");

@@ -1,0 +1,343 @@
+//! Oriented boxes and capsules, collide against parry3d-f64, one run:
+//! `cargo bench --bench boxes`.
+//!
+//! Three pairs, each on the campaign's own cases of it ([`PER_QUERY`]
+//! generated cases of the default seed per query kind, a tenth full-range,
+//! as a report draws them, kept where the shapes are the pair's):
+//!
+//! | pair | collide (robust and lecture) | parry3d-f64 |
+//! | --- | --- | --- |
+//! | sphere–box contact | `contact_sphere_box`, `contact_sphere_box_lecture` | `query::contact(pose, Ball, pose, Cuboid, 0)` |
+//! | box–box overlap | `test_box_box`, `test_box_box_lecture` | `query::intersection_test(pose, Cuboid, pose, Cuboid)` |
+//! | capsule–capsule contact | `contact_capsule_capsule`, `contact_capsule_capsule_lecture` | `query::contact(id, Capsule, id, Capsule, 0)` |
+//!
+//! Every engine's inputs are built before timing, in its own types, as the
+//! harness's adapters build them (parry's box: a `Cuboid` at the pose of the
+//! normalized quaternion; its capsule: two points and a radius at the
+//! identity). A timed iteration runs the query on every case
+//! (`shared/criterion.rs`). Each collide method is also measured paired
+//! against parry (both back to back, alternating, many rounds), and the table
+//! gives ns per query (criterion's estimate and the paired rounds' median),
+//! the paired ratio collide / parry with its quartiles, and how many cases
+//! collide's robust method and parry answer alike (contact or not, overlap or
+//! not). It is printed and written to `target/criterion/crashtest-boxes-table.md`.
+
+#[path = "shared/criterion.rs"]
+#[allow(
+    dead_code,
+    reason = "shared with the other benches; this one uses the loop, the estimates and the paired ratios"
+)]
+mod criterion_files;
+use criterion_files::{PAIRING, Pairs, cell, criterion_dir, ns_per, paired_ratio, run};
+
+use collide::Vec3;
+use criterion::{Criterion, Throughput};
+use harness::case::{Query, Shape};
+use harness::generate::{generate, try_generate_full_range};
+use harness::load::LoadedCase;
+use oracle::geom::{Capsule, OrientedBox, Sphere};
+use parry3d_f64::math::{Pose, Rotation, Vector};
+use parry3d_f64::query;
+use parry3d_f64::shape::{Ball, Capsule as ParryCapsule, Cuboid};
+use std::time::{Duration, SystemTime};
+
+/// Seed of the cases: the campaign's default, so the mix is a report's.
+const SEED: u64 = harness::defaults::DEFAULT_SEED;
+
+/// Cases generated per query kind (contact, overlap), a tenth full-range; the
+/// box and capsule families are a share of them.
+const PER_QUERY: u64 = 4000;
+
+/// Warm-up per benchmark.
+const WARM_UP: Duration = Duration::from_millis(300);
+/// Measurement per benchmark.
+const MEASUREMENT: Duration = Duration::from_millis(1000);
+/// Samples per benchmark (criterion's minimum is 10).
+const SAMPLES: usize = 20;
+/// Bootstrap resamples.
+const RESAMPLES: usize = 10_000;
+
+fn cases(q: Query) -> Vec<LoadedCase> {
+    let full = PER_QUERY / 10;
+    let mut out: Vec<LoadedCase> = (0..PER_QUERY - full).map(|i| generate(q, SEED, i)).collect();
+    out.extend((0..full).filter_map(|i| try_generate_full_range(q, SEED, i)));
+    out
+}
+
+fn v(p: &[f64; 3]) -> Vec3<f64> {
+    Vec3::new(p[0], p[1], p[2])
+}
+
+fn pv(p: &[f64; 3]) -> Vector {
+    Vector::new(p[0], p[1], p[2])
+}
+
+fn collide_box(b: &OrientedBox) -> collide::OrientedBox<f64> {
+    collide::OrientedBox::new(v(&b.center), v(&b.half_extents), b.rotation)
+}
+
+fn collide_capsule(c: &Capsule) -> collide::Capsule<f64> {
+    collide::Capsule::new(v(&c.start), v(&c.end), c.radius)
+}
+
+/// parry's box as the adapter builds it: the quaternion scaled by a power of
+/// two (exact), normalized, at the centre; `None` where the adapter refuses
+/// the box.
+fn parry_box(b: &OrientedBox) -> Option<(Pose, Cuboid)> {
+    let m = b.rotation.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if !(m > 0.0 && m.is_finite()) || b.half_extents.iter().any(|h| *h < 0.0) {
+        return None;
+    }
+    let [w, x, y, z] = b.rotation.map(|c| c * 2f64.powi(-(m.log2().floor() as i32)));
+    let q = Rotation::from_xyzw(x, y, z, w).normalize();
+    q.is_finite().then(|| (Pose::from_parts(pv(&b.center), q), Cuboid::new(pv(&b.half_extents))))
+}
+
+fn parry_capsule(c: &Capsule) -> Option<ParryCapsule> {
+    (c.radius > 0.0).then(|| ParryCapsule::new(pv(&c.start), pv(&c.end), c.radius))
+}
+
+/// One pair's inputs in every engine's types.
+struct PairInputs<C, P> {
+    collide: Vec<C>,
+    parry: Vec<P>,
+}
+
+type SphereBox = (collide::Sphere<f64>, collide::OrientedBox<f64>);
+type ParrySphereBox = (Pose, Ball, Pose, Cuboid);
+type BoxBox = (collide::OrientedBox<f64>, collide::OrientedBox<f64>);
+type ParryBoxBox = (Pose, Cuboid, Pose, Cuboid);
+type CapsuleCapsule = (collide::Capsule<f64>, collide::Capsule<f64>);
+type ParryCapsules = (ParryCapsule, ParryCapsule);
+
+fn sphere_box(all: &[LoadedCase]) -> PairInputs<SphereBox, ParrySphereBox> {
+    let mut out = PairInputs { collide: Vec::new(), parry: Vec::new() };
+    for lc in all {
+        if let (Shape::Sphere(s), Some(Shape::Box(b))) = (&lc.case.a, lc.case.b.as_ref()) {
+            let b = b.to_geom();
+            let Some((pose, cuboid)) = parry_box(&b) else { continue };
+            let s: Sphere = s.to_geom();
+            out.collide.push((collide::Sphere::new(v(&s.center), s.radius), collide_box(&b)));
+            out.parry.push((Pose::from_translation(pv(&s.center)), Ball::new(s.radius), pose, cuboid));
+        }
+    }
+    out
+}
+
+fn box_box(all: &[LoadedCase]) -> PairInputs<BoxBox, ParryBoxBox> {
+    let mut out = PairInputs { collide: Vec::new(), parry: Vec::new() };
+    for lc in all {
+        if let (Shape::Box(a), Some(Shape::Box(b))) = (&lc.case.a, lc.case.b.as_ref()) {
+            let (a, b) = (a.to_geom(), b.to_geom());
+            let (Some((pa, ca)), Some((pb, cb))) = (parry_box(&a), parry_box(&b)) else { continue };
+            out.collide.push((collide_box(&a), collide_box(&b)));
+            out.parry.push((pa, ca, pb, cb));
+        }
+    }
+    out
+}
+
+fn capsule_capsule(all: &[LoadedCase]) -> PairInputs<CapsuleCapsule, ParryCapsules> {
+    let mut out = PairInputs { collide: Vec::new(), parry: Vec::new() };
+    for lc in all {
+        if let (Shape::Capsule(a), Some(Shape::Capsule(b))) = (&lc.case.a, lc.case.b.as_ref()) {
+            let (Some(pa), Some(pb)) = (parry_capsule(a), parry_capsule(b)) else { continue };
+            out.collide.push((collide_capsule(a), collide_capsule(b)));
+            out.parry.push((pa, pb));
+        }
+    }
+    out
+}
+
+/// Leaves out the cases parry panics on (its EPA indexes out of bounds on
+/// some capsule pairs): a panic is not an answer to time, and the report
+/// shows those cases as findings. The count goes in the table.
+fn without_parry_panics<C, P, B>(inputs: PairInputs<C, P>, parry: fn(&P) -> B) -> (PairInputs<C, P>, usize) {
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let mut kept = PairInputs { collide: Vec::new(), parry: Vec::new() };
+    let mut panics = 0;
+    for (c, p) in inputs.collide.into_iter().zip(inputs.parry) {
+        if std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| parry(&p))).is_ok() {
+            kept.collide.push(c);
+            kept.parry.push(p);
+        } else {
+            panics += 1;
+        }
+    }
+    std::panic::set_hook(hook);
+    (kept, panics)
+}
+
+/// One row of the table.
+struct Row {
+    label: &'static str,
+    group: &'static str,
+    n: usize,
+    /// Cases left out because parry panicked on them.
+    panics: usize,
+    /// Cases where collide's robust method and parry give the same decision.
+    alike: usize,
+}
+
+/// One pair's three engines and how each answer reads as a decision
+/// (contact or not, overlap or not).
+struct Engines<C, P, A, B> {
+    robust: fn(&C) -> A,
+    lecture: fn(&C) -> A,
+    parry: fn(&P) -> B,
+    decided: fn(&A) -> bool,
+    parry_decided: fn(&B) -> bool,
+}
+
+/// Times the three engines on one pair as group `group`, paired ratios of
+/// both collide methods against parry, and counts the cases where collide's
+/// robust method and parry decide alike.
+fn bench<C, P, A, B>(
+    c: &mut Criterion,
+    (label, group): (&'static str, &'static str),
+    inputs: PairInputs<C, P>,
+    e: Engines<C, P, A, B>,
+) -> Row {
+    let (kept, panics) = without_parry_panics(inputs, e.parry);
+    let inputs = &kept;
+    let n = inputs.collide.len();
+    let mut g = c.benchmark_group(group);
+    g.throughput(Throughput::Elements(n as u64));
+    run(&mut g, "robust", &inputs.collide, e.robust);
+    run(&mut g, "lecture", &inputs.collide, e.lecture);
+    run(&mut g, "parry64", &inputs.parry, e.parry);
+    g.finish();
+    let mut pairs = Pairs::new(group);
+    pairs.keep("robust", &inputs.collide, e.robust);
+    pairs.keep("lecture", &inputs.collide, e.lecture);
+    pairs.keep("parry64", &inputs.parry, e.parry);
+    pairs.measure(&[("robust", "parry64"), ("lecture", "parry64")]);
+    let alike = inputs
+        .collide
+        .iter()
+        .zip(&inputs.parry)
+        .filter(|(x, p)| (e.decided)(&(e.robust)(x)) == (e.parry_decided)(&(e.parry)(p)))
+        .count();
+    Row { label, group, n, panics, alike }
+}
+
+fn sb_robust(x: &SphereBox) -> Option<collide::contact::Contact<f64>> {
+    collide::boxes::contact_sphere_box(&x.0, &x.1)
+}
+fn sb_lecture(x: &SphereBox) -> Option<collide::contact::Contact<f64>> {
+    collide::boxes::contact_sphere_box_lecture(&x.0, &x.1)
+}
+fn sb_parry(x: &ParrySphereBox) -> Option<query::Contact> {
+    query::contact(&x.0, &x.1, &x.2, &x.3, 0.0).ok().flatten()
+}
+fn bb_robust(x: &BoxBox) -> bool {
+    collide::boxes::test_box_box(&x.0, &x.1)
+}
+fn bb_lecture(x: &BoxBox) -> bool {
+    collide::boxes::test_box_box_lecture(&x.0, &x.1)
+}
+fn bb_parry(x: &ParryBoxBox) -> bool {
+    query::intersection_test(&x.0, &x.1, &x.2, &x.3).is_ok_and(|i| i.intersecting)
+}
+fn cc_robust(x: &CapsuleCapsule) -> Option<collide::contact::Contact<f64>> {
+    collide::boxes::contact_capsule_capsule(&x.0, &x.1)
+}
+fn cc_lecture(x: &CapsuleCapsule) -> Option<collide::contact::Contact<f64>> {
+    collide::boxes::contact_capsule_capsule_lecture(&x.0, &x.1)
+}
+fn cc_parry(x: &ParryCapsules) -> Option<query::Contact> {
+    query::contact(&Pose::IDENTITY, &x.0, &Pose::IDENTITY, &x.1, 0.0).ok().flatten()
+}
+
+fn table(rows: &[Row], since: SystemTime) -> String {
+    let mut s = format!(
+        "# crashtest speed: oriented boxes and capsules, collide against parry3d-f64, one run\n\n\
+         The campaign's own cases of each pair ({PER_QUERY} cases of seed {SEED} per query kind, a tenth \
+         full-range, kept where the shapes are the pair's; parry's inputs built as its adapter builds them, before \
+         timing). ns per query: criterion's estimate (slope, else mean, over the cases per iteration). The ratios \
+         are paired medians (both engines back to back over the same cases, alternating, 31 rounds) with their \
+         quartiles. \"alike\": cases where collide's robust method and parry give the same decision (contact or \
+         not, overlap or not). \"parry panics\": cases left out because parry3d-f64 panicked on them (the \
+         report shows them as findings).\n\n\
+         | pair | cases | parry panics | robust ns | lecture ns | parry3d-f64 ns | robust / parry (quartiles) | \
+         lecture / parry (quartiles) | alike |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n"
+    );
+    for r in rows {
+        let ns = |id: &str| cell(ns_per(r.group, id, r.n, since));
+        let q = |id: &str| paired_ratio(r.group, id, "parry64").map_or("—".into(), |p| p.quartiles());
+        s.push_str(&format!(
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            r.label,
+            r.n,
+            r.panics,
+            ns("robust"),
+            ns("lecture"),
+            ns("parry64"),
+            q("robust"),
+            q("lecture"),
+            r.alike
+        ));
+    }
+    s
+}
+
+fn main() {
+    let since = SystemTime::now();
+    // `cargo bench` passes `--bench`; `cargo test --benches` does not: then
+    // each benchmark runs once as a test, with no pairs and no table.
+    let benching = std::env::args().any(|a| a == "--bench");
+    PAIRING.store(benching, std::sync::atomic::Ordering::Relaxed);
+    let (contact, overlap) = (cases(Query::Contact), cases(Query::Overlap));
+    let (sb, bb, cc) = (sphere_box(&contact), box_box(&overlap), capsule_capsule(&contact));
+    assert!(!sb.collide.is_empty() && !bb.collide.is_empty() && !cc.collide.is_empty(), "no box or capsule cases");
+    let mut c = Criterion::default()
+        .output_directory(&criterion_dir())
+        .warm_up_time(WARM_UP)
+        .measurement_time(MEASUREMENT)
+        .sample_size(SAMPLES)
+        .nresamples(RESAMPLES)
+        .configure_from_args();
+    let rows = vec![
+        bench(
+            &mut c,
+            ("sphere–box contact", "boxes_sphere_box"),
+            sb,
+            Engines {
+                robust: sb_robust,
+                lecture: sb_lecture,
+                parry: sb_parry,
+                decided: Option::is_some,
+                parry_decided: Option::is_some,
+            },
+        ),
+        bench(
+            &mut c,
+            ("box–box overlap", "boxes_box_box"),
+            bb,
+            Engines { robust: bb_robust, lecture: bb_lecture, parry: bb_parry, decided: |x| *x, parry_decided: |x| *x },
+        ),
+        bench(
+            &mut c,
+            ("capsule–capsule contact", "boxes_capsule_capsule"),
+            cc,
+            Engines {
+                robust: cc_robust,
+                lecture: cc_lecture,
+                parry: cc_parry,
+                decided: Option::is_some,
+                parry_decided: Option::is_some,
+            },
+        ),
+    ];
+    c.final_summary();
+    if benching {
+        let report = table(&rows, since);
+        println!("\n{report}");
+        let path = criterion_dir().join("crashtest-boxes-table.md");
+        match std::fs::create_dir_all(criterion_dir()).and_then(|()| std::fs::write(&path, &report)) {
+            Ok(()) => println!("(written to {})", path.display()),
+            Err(e) => eprintln!("could not write {}: {e}", path.display()),
+        }
+    }
+}
