@@ -36,6 +36,23 @@ fn cmp1(out: &mut Vec<Mismatch>, field: &str, want: f64, got: f64, tol: f64) {
     }
 }
 
+/// `contact.point`: where the contact region is a patch or a segment (a box
+/// or a capsule on a plane, two capsules: `docs/FORMAT.md`, "any point of it
+/// is right") and the expected point lies in it (within `tol`), any point of
+/// the region within `tol` meets the expectation; otherwise the points are
+/// compared.
+fn contact_point(out: &mut Vec<Mismatch>, case: &Case, want: &P3, got: &P3, tol: f64) {
+    let region = case.b.as_ref().and_then(|b| super::sizes::contact_region(&case.a, b));
+    match region {
+        Some(r) if r.distance(want) <= tol => {
+            if !(r.distance(got) <= tol) {
+                out.push(mm("contact.point (in the contact region)", want, got));
+            }
+        }
+        _ => cmp3(out, "contact.point", want, got, tol),
+    }
+}
+
 /// Compares an answer with the case's `expect`, every scalar within the case's
 /// absolute `tol`. Only what `expect` names is compared. An empty list is a pass.
 pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
@@ -55,7 +72,7 @@ pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
                 match (want, &a.contact) {
                     (None, None) => {}
                     (Some(w), Some(g)) => {
-                        cmp3(&mut out, "contact.point", &w.point, &g.point, tol);
+                        contact_point(&mut out, case, &w.point, &g.point, tol);
                         cmp3(&mut out, "contact.normal", &w.normal, &g.normal, tol);
                         unit_expect(&mut out, "contact.normal", &g.normal, tol);
                         cmp1(&mut out, "contact.depth", w.depth, g.depth, tol);
@@ -191,4 +208,48 @@ fn farthest_outside(center: &P3, radius: f64, pts: &[P3], tol: f64) -> Option<(u
         let d = super::sizes::distance(p, center);
         (!(d <= radius + tol)).then_some((i, d - radius))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::load::{Loaded, load_str_into};
+    use oracle::geom::{Contact, ContactAnswer};
+
+    /// A box resting face down on the plane z = 0 (its face z = 0 is the
+    /// region), expecting the face's centre; and two capsules side by side.
+    fn cases() -> Vec<LoadedCase> {
+        let text = r#"{"schema": "crashtest-fixture/1", "cases": [
+            {"name": "resting box", "query": "contact",
+             "a": {"box": {"center": [0, 0, 1], "half_extents": [1, 1, 1]}},
+             "b": {"plane": {"normal": [0, 0, 1], "offset": 0}},
+             "expect": {"contact": {"point": [0, 0, 0], "normal": [0, 0, 1], "depth": 0}}},
+            {"name": "parallel capsules", "query": "contact",
+             "a": {"capsule": {"start": [0, 0, 1], "end": [4, 0, 1], "radius": 0.5}},
+             "b": {"capsule": {"start": [0, 0, 0], "end": [4, 0, 0], "radius": 0.5}},
+             "expect": {"contact": {"point": [2, 0, 0.5], "normal": [0, 0, 1], "depth": 0}}}
+        ]}"#;
+        let mut loaded = Loaded::default();
+        load_str_into(std::path::Path::new("region.json"), text, &mut loaded);
+        assert!(loaded.errors.is_empty(), "{:?}", loaded.errors);
+        loaded.cases
+    }
+
+    fn answer(point: P3, normal: P3) -> Answer {
+        Answer::Contact(ContactAnswer { contact: Some(Contact { point, normal, depth: 0.0 }), degenerate: false })
+    }
+
+    #[test]
+    fn expect_takes_any_point_of_the_contact_region() {
+        let cs = cases();
+        // Another corner of the resting face, and another point of the
+        // capsules' contact segment: right.
+        assert!(check_expect(&cs[0], &answer([1.0, -1.0, 0.0], [0.0, 0.0, 1.0])).is_empty());
+        assert!(check_expect(&cs[1], &answer([0.5, 0.0, 0.5], [0.0, 0.0, 1.0])).is_empty());
+        // Beside the face, and beyond the segment's end: wrong.
+        let off = check_expect(&cs[0], &answer([1.5, 0.0, 0.0], [0.0, 0.0, 1.0]));
+        assert_eq!(off.len(), 1, "{off:?}");
+        assert!(off[0].field.starts_with("contact.point"), "{off:?}");
+        assert_eq!(check_expect(&cs[1], &answer([5.0, 0.0, 0.5], [0.0, 0.0, 1.0])).len(), 1);
+    }
 }

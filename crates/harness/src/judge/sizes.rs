@@ -587,7 +587,7 @@ fn contact(a: &Shape, b: &Shape, w: Option<&oracle::geom::Contact>) -> Local {
 /// The referee's contact region of a box or capsule on a plane, or of two
 /// capsules, when it is more than a point (`None` otherwise, and for a case
 /// the referee refuses).
-fn contact_region(a: &Shape, b: &Shape) -> Option<Region> {
+pub(crate) fn contact_region(a: &Shape, b: &Shape) -> Option<Region> {
     use oracle::referee;
     let vertices = match (a, b) {
         (Shape::Box(a), Shape::Plane(p)) => referee::contact_region_box_plane(&a.to_geom(), &p.to_geom()),
