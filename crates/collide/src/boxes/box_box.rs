@@ -1,7 +1,7 @@
 //! Overlap of two boxes, and of a box and an AABB.
 
 use super::poly::{Ring, at, cross3, dot3, norm2, quaternion_axes, refs, select, sign_of, sub3};
-use super::{all_finite, wide3};
+use super::{all_finite, stage, wide3};
 use crate::exact::Sign;
 use crate::real::{Real, Vec3};
 use crate::shapes::{Aabb, OrientedBox};
@@ -79,13 +79,30 @@ pub fn test_box_aabb_lecture<T: Real>(a: &OrientedBox<T>, b: &Aabb<T>) -> bool {
 /// means the closed solids share a point.
 ///
 /// Non-finite input or a zero quaternion: `false`.
+///
+/// A floating-point stage answers first when it is certain
+/// (`crate::boxes::stage`), which is the exact answer; it declines otherwise.
 pub fn test_box_box<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>) -> bool {
+    box_box(a, b, true)
+}
+
+/// [`test_box_box`] without its floating-point stage: the exact decisions
+/// alone, which the stage must agree with bit for bit.
+#[cfg(test)]
+pub(super) fn test_box_box_unstaged<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>) -> bool {
+    box_box(a, b, false)
+}
+
+fn box_box<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>, staged: bool) -> bool {
     let (qa, qb) = (a.rotation.map(|x| x.wide()), b.rotation.map(|x| x.wide()));
     let (ca, cb) = (wide3(&a.center), wide3(&b.center));
     let (ha, hb) = (wide3(&a.half_extents).map(f64::abs), wide3(&b.half_extents).map(f64::abs));
     let lengths = [ca[0], ca[1], ca[2], cb[0], cb[1], cb[2], ha[0], ha[1], ha[2], hb[0], hb[1], hb[2]];
     if !all_finite(&lengths) || !all_finite(&qa) || !all_finite(&qb) || zero_quaternion(&qa) || zero_quaternion(&qb) {
         return false;
+    }
+    if staged && let Some(overlap) = stage::box_box(&qa, &qb, &lengths) {
+        return overlap;
     }
     let separates = |x: usize, y: usize| {
         let mut u = [0.0; 20];
@@ -115,13 +132,29 @@ pub fn test_box_box<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>) -> bool {
 ///
 /// Non-finite input or a zero quaternion: `false`. An AABB with `min > max`
 /// on an axis is malformed; its answer is not meaningful.
+///
+/// A floating-point stage answers first when it is certain, as in
+/// [`test_box_box`].
 pub fn test_box_aabb<T: Real>(a: &OrientedBox<T>, b: &Aabb<T>) -> bool {
+    box_aabb(a, b, true)
+}
+
+/// [`test_box_aabb`] without its floating-point stage.
+#[cfg(test)]
+pub(super) fn test_box_aabb_unstaged<T: Real>(a: &OrientedBox<T>, b: &Aabb<T>) -> bool {
+    box_aabb(a, b, false)
+}
+
+fn box_aabb<T: Real>(a: &OrientedBox<T>, b: &Aabb<T>, staged: bool) -> bool {
     let q = a.rotation.map(|x| x.wide());
     let (ca, ha) = (wide3(&a.center), wide3(&a.half_extents).map(f64::abs));
     let (lo, hi) = (wide3(&b.min), wide3(&b.max));
     let lengths = [ca[0], ca[1], ca[2], ha[0], ha[1], ha[2], lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]];
     if !all_finite(&lengths) || !all_finite(&q) || zero_quaternion(&q) {
         return false;
+    }
+    if staged && let Some(overlap) = stage::box_aabb(&q, &lengths) {
+        return overlap;
     }
     let separates = |x: usize, y: usize| {
         let mut u = [0.0; 17];

@@ -34,6 +34,19 @@
 //!   (a depth, a distance) is divided by `‖q‖²` after. So a sphere exactly
 //!   touching the 3-4-5 box touches, and a segment through its exact corner
 //!   hits it. A zero quaternion is the identity.
+//! - *A floating-point stage* answers first where it is certain
+//!   (`crate::boxes::stage`): each box's rotation is computed once per call in
+//!   plain `f64` within a derived bound per entry of the exact `R(q)`
+//!   (`2^−48`), the scene is scaled by a power of two to unit size, and each
+//!   decision's quantity is evaluated with a running forward error bound. A
+//!   sign beyond its bound is the exact sign; anything closer declines to the
+//!   exact evaluation. Box–box and box–AABB overlap are answered whole when
+//!   some axis certainly separates or every axis certainly does not (a pair
+//!   of parallel edges, an exactly zero axis, makes it decline unless another
+//!   axis separates); sphere–box settles "no contact", the slab
+//!   classification, the reach test and the nearest face from inside, and
+//!   computes the values as before. The answers are therefore bit for bit
+//!   those of the exact decisions alone (tested against them).
 //! - *Values* (points, normals, depths, times) are computed in `f64` from the
 //!   inputs (every `f32` is an `f64`, exactly) and rounded to the type once: on
 //!   the scene scaled by a power of two when it lies outside the plain range,
@@ -55,6 +68,7 @@ pub(crate) mod poly;
 mod segment_box;
 mod sphere_box;
 mod sphere_capsule;
+mod stage;
 #[cfg(test)]
 mod tests;
 
@@ -83,22 +97,6 @@ pub(crate) fn fallback_normal<T: Real>() -> Vec3<T> {
 #[inline(always)]
 pub(crate) fn wide3<T: Real>(v: &Vec3<T>) -> P3 {
     [v.x.wide(), v.y.wide(), v.z.wide()]
-}
-
-/// The columns of a rotation (the box's axes) as `f64`, axis `i` at `3i..3i+3`.
-#[inline(always)]
-pub(crate) fn axes_of<T: Real>(r: &nalgebra::Matrix3<T>) -> [f64; 9] {
-    [
-        r[(0, 0)].wide(),
-        r[(1, 0)].wide(),
-        r[(2, 0)].wide(),
-        r[(0, 1)].wide(),
-        r[(1, 1)].wide(),
-        r[(2, 1)].wide(),
-        r[(0, 2)].wide(),
-        r[(1, 2)].wide(),
-        r[(2, 2)].wide(),
-    ]
 }
 
 /// A box's quaternion as `f64`, the rotation every robust decision is exact

@@ -3,7 +3,9 @@
 use super::poly::{
     Ring, at, dot3, norm2, over_norm2, picked_axis, quaternion_axes, refs, scaled_f64, select, sign_of, sub3, value_of,
 };
-use super::{all_finite, fallback_normal, finish, quaternion_of, quaternion_units, scene_scale, unit, up, up1, wide3};
+use super::{
+    all_finite, fallback_normal, finish, quaternion_of, quaternion_units, scene_scale, stage, unit, up, up1, wide3,
+};
 use crate::contact::Contact;
 use crate::exact::{Estimate, P3, Sign};
 use crate::real::{Real, Vec3};
@@ -82,7 +84,23 @@ fn contact_sphere_box_lecture_raw<T: Real>(a: &Sphere<T>, b: &OrientedBox<T>) ->
 /// which ties the faces `+i` and `−i`, as at the centre of a flat box): the
 /// first face in the order `+x, −x, +y, −y, +z, −z`, flagged. A non-finite
 /// input is no contact.
+///
+/// A floating-point stage settles first what it is certain of
+/// (`crate::boxes::stage`): no contact, the slab classification, the reach
+/// test, the nearest face — each the exact decision; the values are computed
+/// as without it.
 pub fn contact_sphere_box<T: Real>(a: &Sphere<T>, b: &OrientedBox<T>) -> Option<Contact<T>> {
+    sphere_box(a, b, true)
+}
+
+/// [`contact_sphere_box`] without its floating-point stage: the exact
+/// decisions alone, which the stage must agree with bit for bit.
+#[cfg(test)]
+pub(super) fn contact_sphere_box_unstaged<T: Real>(a: &Sphere<T>, b: &OrientedBox<T>) -> Option<Contact<T>> {
+    sphere_box(a, b, false)
+}
+
+fn sphere_box<T: Real>(a: &Sphere<T>, b: &OrientedBox<T>, staged: bool) -> Option<Contact<T>> {
     let qt = quaternion_of(b)?;
     let (m, c) = (wide3(&a.center), wide3(&b.center));
     let h = wide3(&b.half_extents).map(f64::abs);
@@ -91,13 +109,17 @@ pub fn contact_sphere_box<T: Real>(a: &Sphere<T>, b: &OrientedBox<T>) -> Option<
     if !all_finite(&lengths) {
         return None;
     }
-    let side = classify(m, c, h, &qt);
+    let settled = if staged { stage::sphere_box(&qt, &lengths) } else { stage::SphereBox::default() };
+    if settled.apart {
+        return None;
+    }
+    let side = settled.side.unwrap_or_else(|| classify(m, c, h, &qt));
     let k = scene_scale(&lengths);
     let rot = b.rotation_matrix().map(|x| x.wide());
     let (ms, cs, hs, rs) = (up(m, k), up(c, k), up(h, k), up1(r, k));
     let us = rot.transpose() * (ms - cs);
     if side == [0; 3] {
-        let (i, s, tie) = nearest_face(m, c, h, &qt);
+        let (i, s, tie) = settled.nearest.unwrap_or_else(|| nearest_face(m, c, h, &qt));
         let gap = scaled_f64(over_norm2(face_gap(m, c, h, &qt, i), &qt), i64::from(k));
         let mut q = clamp(&us, &hs);
         q[i] = f64::from(s) * hs[i];
@@ -107,7 +129,7 @@ pub fn contact_sphere_box<T: Real>(a: &Sphere<T>, b: &OrientedBox<T>) -> Option<
     let s = side.map(f64::from);
     let mask = side.map(|x| f64::from(x.abs()));
     let units = [qt[0], qt[1], qt[2], qt[3], s[0], s[1], s[2], mask[0], mask[1], mask[2]];
-    if sign_of!(outside_reach, lengths, units) == Sign::Positive {
+    if !settled.within && sign_of!(outside_reach, lengths, units) == Sign::Positive {
         return None;
     }
     // The excess beyond each face the centre is outside of, signed: u − p

@@ -1048,3 +1048,231 @@ proptest! {
         prop_assert_eq!(test_box_box(&bx, &bx2), test_box_box(&bx2, &bx), "box–box symmetric");
     }
 }
+
+// ---------------------------------------------------------------------------
+// The floating-point stage: a certified answer is the exact one
+// ---------------------------------------------------------------------------
+
+/// Random scenes per kind of scene in the stage tests (each runs the exact
+/// code too, so a few thousand keep the test quick in release).
+const STAGE_CASES: usize = 3000;
+
+/// The least share of generic scenes (random quaternions, centres and
+/// half-extents of unit size, nothing touching) the stage must settle: it
+/// fails only within a few ulps of a boundary or for an exactly zero axis,
+/// which random reals almost never hit, so anything well below all of them
+/// means the bound is far looser than its derivation.
+const STAGE_MIN_SHARE: f64 = 0.9;
+
+/// The least share of the stage tests' own scenes (half of them on the
+/// quarter grid, where faces, edges and corners touch and parallel edges give
+/// exactly zero axes, and nudged by ulps) the stage must settle: it must
+/// decline at every such boundary, yet most scenes are clear of one.
+const STAGE_MIN_SHARE_TOUCHING: f64 = 0.5;
+
+/// The scales of the stage tests: unit, `2^±997` (exact scalings) and
+/// `1e±300` (rounded ones: a different scene, compared with itself).
+const STAGE_SCALES: [f64; 5] =
+    [1.0, f64::from_bits((1023 + 997) << 52), f64::from_bits((1023 - 997) << 52), 1e300, 1e-300];
+
+/// SplitMix64: a fixed, dependency-free stream, so the shares are the same on
+/// every run.
+struct Mix(u64);
+
+impl Mix {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `[lo, hi)`.
+    fn real(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+
+    /// On the grid of quarters in `[−2, 2]`: touching configurations.
+    fn quarter(&mut self) -> f64 {
+        (self.below(17) as f64 - 8.0) / 4.0
+    }
+
+    /// A quaternion: uniform, exact (the 3-4-5 and other Pythagorean
+    /// rotations, quarter turns, the identity), small integers, or scaled
+    /// far from unit length.
+    fn quaternion(&mut self) -> [f64; 4] {
+        const EXACT: [[f64; 4]; 8] = [
+            [2.0, 0.0, 0.0, 1.0],
+            [6.0, 0.0, 0.0, 3.0],
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0, 0.0],
+            [1.0, 0.0, 1.0, 0.0],
+            [4.0, 1.0, 2.0, 2.0],
+            [1.0, 2.0, 0.0, 2.0],
+        ];
+        let q = match self.below(4) {
+            0 => [0; 4].map(|_| self.real(-1.0, 1.0)),
+            1 => EXACT[self.below(EXACT.len() as u64) as usize],
+            _ => [0; 4].map(|_| self.below(7) as f64 - 3.0),
+        };
+        if q.iter().all(|x| *x == 0.0) {
+            return [1.0, 0.0, 0.0, 0.0];
+        }
+        match self.below(6) {
+            0 => q.map(|x| x * 1e-300),
+            1 => q.map(|x| x * 1e300),
+            _ => q,
+        }
+    }
+
+    /// Centre coordinates: on the quarter grid (touching) or uniform.
+    fn centre(&mut self, grid: bool) -> [f64; 3] {
+        [0; 3].map(|_| if grid { self.quarter() } else { self.real(-2.0, 2.0) })
+    }
+
+    /// Half-extents: on the quarter grid in `[0, 1.5]` (zeros make flat
+    /// boxes) or uniform.
+    fn half(&mut self, grid: bool) -> [f64; 3] {
+        [0; 3].map(|_| if grid { self.below(7) as f64 / 4.0 } else { self.real(0.05, 1.5) })
+    }
+}
+
+/// `x` moved by `k` ulps (a near-touching scene from a touching one).
+fn nudge(x: f64, k: i32) -> f64 {
+    (0..k.abs()).fold(x, |x, _| if k > 0 { x.next_up() } else { x.next_down() })
+}
+
+fn scaled(p: [f64; 3], s: f64) -> Vec3<f64> {
+    Vec3::new(p[0] * s, p[1] * s, p[2] * s)
+}
+
+fn same_contact<T: Real>(a: &Option<Contact<T>>, b: &Option<Contact<T>>) -> bool {
+    match (a, b) {
+        (None, None) => true,
+        (Some(x), Some(y)) => {
+            same_bits(&x.point, &y.point)
+                && same_bits(&x.normal, &y.normal)
+                && x.depth.wide().to_bits() == y.depth.wide().to_bits()
+                && x.degenerate == y.degenerate
+        }
+        _ => false,
+    }
+}
+
+#[test]
+fn the_stage_answers_box_box_and_box_aabb_as_the_exact_code() {
+    use super::box_box::{test_box_aabb_unstaged, test_box_box_unstaged};
+    let mut rng = Mix(0x5eed_b0c5);
+    let mut certified = [0usize; 2];
+    for n in 0..STAGE_CASES * STAGE_SCALES.len() {
+        let s = STAGE_SCALES[n % STAGE_SCALES.len()];
+        let grid = rng.below(2) == 0;
+        let (ca, mut cb, ha, hb) = (rng.centre(grid), rng.centre(grid), rng.half(grid), rng.half(grid));
+        if grid && rng.below(4) == 0 {
+            cb[0] = nudge(cb[0], rng.below(5) as i32 - 2);
+        }
+        let (qa, qb) = (rng.quaternion(), rng.quaternion());
+        let a = OrientedBox::new(scaled(ca, s), scaled(ha, s), qa);
+        let b = OrientedBox::new(scaled(cb, s), scaled(hb, s), qb);
+        let what = format!("{a:?} {b:?}");
+        let exact = test_box_box_unstaged(&a, &b);
+        assert_eq!(test_box_box(&a, &b), exact, "box–box {what}");
+        assert_eq!(test_box_box(&b, &a), test_box_box_unstaged(&b, &a), "box–box swapped {what}");
+        let lengths = [ca, cb, ha, hb].concat().iter().map(|x| x * s).collect::<Vec<_>>();
+        let stage = super::stage::box_box(&qa, &qb, &lengths.try_into().expect("12 lengths"));
+        assert!(stage.is_none_or(|x| x == exact), "box–box stage {stage:?} {what}");
+        certified[0] += usize::from(stage.is_some());
+        // The second box's corners as an AABB, swapped on an axis now and
+        // then (malformed: still the same answer).
+        let (mut lo, mut hi) = (scaled(cb, s) - scaled(hb, s), scaled(cb, s) + scaled(hb, s));
+        if rng.below(8) == 0 {
+            std::mem::swap(&mut lo.x, &mut hi.x);
+        }
+        let ab = Aabb::new(lo, hi);
+        let exact = test_box_aabb_unstaged(&a, &ab);
+        assert_eq!(test_box_aabb(&a, &ab), exact, "box–aabb {what} {ab:?}");
+        let lengths = [a.center, a.half_extents, lo, hi].map(|p| [p.x, p.y, p.z]).concat();
+        let stage = super::stage::box_aabb(&qa, &lengths.try_into().expect("12 lengths"));
+        assert!(stage.is_none_or(|x| x == exact), "box–aabb stage {stage:?} {what} {ab:?}");
+        certified[1] += usize::from(stage.is_some());
+        // In f32 too (the same decisions on the f32 inputs, widened).
+        let (a32, b32) = (to_f32_box(&a), to_f32_box(&b));
+        assert_eq!(test_box_box(&a32, &b32), test_box_box_unstaged(&a32, &b32), "box–box f32 {what}");
+    }
+    // Some configurations touch or share a zero axis: the stage must decline
+    // there, but it still settles most of them.
+    let total = (STAGE_CASES * STAGE_SCALES.len()) as f64;
+    assert!(
+        certified.iter().all(|c| *c as f64 >= STAGE_MIN_SHARE_TOUCHING * total),
+        "certified {certified:?} of {total}"
+    );
+}
+
+fn to_f32_box(b: &OrientedBox<f64>) -> OrientedBox<f32> {
+    OrientedBox::new(b.center.map(|x| x as f32), b.half_extents.map(|x| x as f32), b.rotation.map(|x| x as f32))
+}
+
+#[test]
+fn the_stage_answers_sphere_box_as_the_exact_code() {
+    use super::sphere_box::{classify, contact_sphere_box_unstaged, nearest_face};
+    let mut rng = Mix(0x5eed_5b0c);
+    let mut inside = 0;
+    for n in 0..STAGE_CASES * STAGE_SCALES.len() {
+        let s = STAGE_SCALES[n % STAGE_SCALES.len()];
+        let grid = rng.below(2) == 0;
+        let (mut m, c, h, q) = (rng.centre(grid), rng.centre(grid), rng.half(grid), rng.quaternion());
+        if grid && rng.below(4) == 0 {
+            m[0] = nudge(m[0], rng.below(5) as i32 - 2);
+        }
+        let r = if grid { rng.below(9) as f64 / 4.0 } else { rng.real(0.0, 1.5) };
+        let ball = Sphere::new(scaled(m, s), r * s);
+        let b = OrientedBox::new(scaled(c, s), scaled(h, s), q);
+        let what = format!("{ball:?} {b:?}");
+        let exact = contact_sphere_box_unstaged(&ball, &b);
+        assert!(same_contact(&contact_sphere_box(&ball, &b), &exact), "sphere–box {what}");
+        let (ms, cs, hs) =
+            ([m[0] * s, m[1] * s, m[2] * s], [c[0] * s, c[1] * s, c[2] * s], [h[0] * s, h[1] * s, h[2] * s]);
+        let lengths = [ms[0], ms[1], ms[2], cs[0], cs[1], cs[2], hs[0], hs[1], hs[2], r * s];
+        let settled = super::stage::sphere_box(&q, &lengths);
+        assert!(!settled.apart || exact.is_none(), "apart, yet {exact:?}: {what}");
+        assert!(!(settled.apart && settled.within), "{what}");
+        let side = settled.side;
+        assert!(side.is_none_or(|x| x == classify(ms, cs, hs, &q)), "side {side:?} {what}");
+        let near = settled.nearest;
+        assert!(near.is_none_or(|x| x == nearest_face(ms, cs, hs, &q)), "nearest {near:?} {what}");
+        inside += usize::from(exact.is_some_and(|k| !k.degenerate) && side == Some([0; 3]) && near.is_some());
+        let (ball32, b32) = (Sphere::new(ball.center.map(|x| x as f32), r as f32 * s as f32), to_f32_box(&b));
+        let exact32 = contact_sphere_box_unstaged(&ball32, &b32);
+        assert!(same_contact(&contact_sphere_box(&ball32, &b32), &exact32), "sphere–box f32 {what}");
+    }
+    // The stage settles the inside case's face too, not only "apart".
+    assert!(inside > 0, "no inside contact settled by the stage");
+}
+
+#[test]
+fn the_stage_settles_generic_scenes() {
+    let mut rng = Mix(0x9e4e_71c5);
+    let (mut boxes, mut aabbs, mut spheres) = (0, 0, 0);
+    for _ in 0..STAGE_CASES {
+        let (qa, qb) = ([0; 4].map(|_| rng.real(-1.0, 1.0)), [0; 4].map(|_| rng.real(-1.0, 1.0)));
+        let lengths: [f64; 12] = std::array::from_fn(|i| if i < 6 { rng.real(-2.0, 2.0) } else { rng.real(0.05, 1.5) });
+        boxes += usize::from(super::stage::box_box(&qa, &qb, &lengths).is_some());
+        let mut aabb = lengths;
+        for k in 0..3 {
+            (aabb[6 + k], aabb[9 + k]) = (lengths[3 + k] - lengths[9 + k], lengths[3 + k] + lengths[9 + k]);
+        }
+        aabbs += usize::from(super::stage::box_aabb(&qa, &aabb).is_some());
+        let ball: [f64; 10] = std::array::from_fn(|i| if i < 6 { rng.real(-2.0, 2.0) } else { rng.real(0.05, 1.5) });
+        let settled = super::stage::sphere_box(&qa, &ball);
+        // Settled: no contact, or every slab and (outside) the reach.
+        spheres += usize::from(settled.apart || settled.side.is_some_and(|s| s == [0; 3] || settled.within));
+    }
+    let need = (STAGE_MIN_SHARE * STAGE_CASES as f64) as usize;
+    assert!(boxes >= need && aabbs >= need && spheres >= need, "settled {boxes}, {aabbs}, {spheres} of {STAGE_CASES}");
+}
