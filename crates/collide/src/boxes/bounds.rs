@@ -22,7 +22,7 @@ pub fn aabb_of_box_lecture<T: Real>(b: &OrientedBox<T>) -> Aabb<T> {
 
 /// The AABB of a box, **robust form**: each face
 /// `center_i ± Σ_j |R_ij| h_j` of the quaternion's own rotation
-/// `R = M/‖q‖²` (`M`'s entries quadratics in `q`, [`quaternion_axes`]), taken
+/// `R = M/‖q‖²` (`M`'s entries quadratics in `q`), taken
 /// as `(center_i ‖q‖² ± Σ_j |M_ij| h_j) / ‖q‖²`: numerator and denominator
 /// exact, the quotient formed on their exponents to `2⁻⁴⁰` relative (so no
 /// product of a huge half-extent and a tiny entry is lost, as it is with the
