@@ -395,6 +395,30 @@ fn shapes(lc: &LoadedCase) -> (&'static str, Option<&'static str>) {
 /// parry3d-f64 and parry3d: the divergences `oracle::parry` documents.
 pub const PARRY: Known = Known::rules(&[
     Rule {
+        parry_what: Some("segment–box: a segment starting in the box"),
+        reason: "",
+        explains: |lc, a, t, reasons| {
+            let zero = |n: &[f64; 3]| n.iter().all(|x| *x == 0.0);
+            matches!((a, t), (Answer::Intersect(a), Answer::Intersect(t))
+                if shapes(lc).1 == Some("box")
+                    && a.hit.is_some_and(|h| h.t == 0.0 && zero(&h.normal))
+                    && t.hit.is_some_and(|h| h.t == 0.0))
+                && !reasons.is_empty()
+                && reasons.iter().all(|r| r.starts_with("normal") || r.starts_with("degenerate"))
+        },
+    },
+    Rule {
+        parry_what: Some("sphere–box: a centre tied between faces"),
+        reason: "",
+        explains: |lc, a, t, reasons| {
+            matches!((a, t), (Answer::Contact(a), Answer::Contact(t))
+                if shapes(lc) == ("sphere", Some("box")) && !a.degenerate && t.degenerate
+                    && a.contact.is_some_and(|c| c.normal.iter().any(|x| *x != 0.0)))
+                && !reasons.is_empty()
+                && reasons.iter().all(|r| r.starts_with("degenerate"))
+        },
+    },
+    Rule {
         parry_what: Some("sphere–sphere: exactly touching"),
         reason: "",
         explains: |lc, a, t, _| {

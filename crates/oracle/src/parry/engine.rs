@@ -530,9 +530,9 @@ mod tests {
     use super::super::SMOKE_TOL;
     use super::*;
     use crate::parry::api::{
-        CENTRE_NEAR_TRIANGLE, CENTROID_SPHERE, CLAMPED_BARYCENTRICS, CONCENTRIC_SPHERES, DIVERGENCES, Divergence,
-        MESH_END_HIT, MESH_NO_PARALLEL, MESH_TIE_FACE, NO_TRIANGLE_PARALLEL, PLANE_PARALLEL_EPSILON, TOUCHING_SPHERES,
-        known_divergences,
+        BOX_RAY_FROM_INSIDE, BOX_TIE_NO_FLAG, CENTRE_NEAR_TRIANGLE, CENTROID_SPHERE, CLAMPED_BARYCENTRICS,
+        CONCENTRIC_SPHERES, DIVERGENCES, Divergence, MESH_END_HIT, MESH_NO_PARALLEL, MESH_TIE_FACE,
+        NO_TRIANGLE_PARALLEL, PLANE_PARALLEL_EPSILON, TOUCHING_SPHERES, known_divergences,
     };
     use proptest::prelude::*;
 
@@ -1148,6 +1148,38 @@ mod tests {
         }
     }
 
+    fn unit_box() -> OrientedBox {
+        OrientedBox { center: [0.0; 3], half_extents: [1.0; 3], rotation: [1.0, 0.0, 0.0, 0.0] }
+    }
+
+    #[test]
+    fn parry_divergence_box_ray_from_inside_has_a_zero_normal() {
+        assert_listed(&BOX_RAY_FROM_INSIDE);
+        // From the unit box's centre outward: the format's answer is t = 0 at
+        // the start with a nearest face's normal (all six tie); parry's is t = 0
+        // with the zero vector. From (0.5, 0, 0): +x is nearest, still zero.
+        for start in [[0.0; 3], [0.5, 0.0, 0.0]] {
+            let a = engine().intersect_segment_box(segment(start, [3.0, 0.2, 0.1]), unit_box());
+            let h = a.hit.expect("a hit at the start");
+            assert_close("t", h.t, 0.0);
+            assert_p3("point", h.point, start);
+            assert_p3("normal", h.normal, [0.0; 3]);
+        }
+    }
+
+    #[test]
+    fn parry_divergence_box_tie_is_not_flagged() {
+        assert_listed(&BOX_TIE_NO_FLAG);
+        // A centre on the unit box's edge (1, 1, 0), radius 1/2: the faces +x
+        // and +y tie; the format's answer is normal +x, point (1, 1, 0),
+        // depth 1/2, degenerate. parry gives the same contact, unflagged; on
+        // the corner (1, 1, 1) likewise.
+        for center in [[1.0, 1.0, 0.0], [1.0, 1.0, 1.0]] {
+            let a = engine().contact_sphere_box(sphere(center, 0.5), unit_box());
+            assert_contact(a, center, [1.0, 0.0, 0.0], 0.5);
+        }
+    }
+
     #[test]
     fn parry_every_divergence_is_pinned() {
         // The divergences the tests above pin; a new entry needs a pin here.
@@ -1162,6 +1194,8 @@ mod tests {
             MESH_END_HIT,
             MESH_TIE_FACE,
             MESH_NO_PARALLEL,
+            BOX_RAY_FROM_INSIDE,
+            BOX_TIE_NO_FLAG,
         ];
         for d in DIVERGENCES {
             assert!(pinned.iter().any(|p| p.what == d.what), "`{}` has a pin", d.what);
