@@ -423,34 +423,32 @@ def ray_guard(vec):
                            "too small': |end - start| < mjMINVAL = 1e-15); not called")
 
 
+def ray_on(sc, seg):
+    """mj_ray of the segment on the scene's model (pnt = start, vec = end - start, geomgroup
+    NULL, flg_static 1, bodyexclude -1), translated."""
+    mujoco.mj_kinematics(sc.m, sc.d)
+    start = np.array(seg["start"])
+    vec = np.array(seg["end"]) - start
+    ray_guard(vec)
+    normal = np.zeros(3)
+    gid = np.zeros(1, np.int32)
+    x = timed(mujoco.mj_ray, sc.m, sc.d, start, vec, None, 1, -1, gid, normal)
+    return translate_hit(float(x), seg["start"], vec.tolist(), normal)
+
+
 def intersect_plane(case):
     seg, p = case["a"]["segment"], case["b"]["plane"]
     sc = scene("plane-only")
     set_plane(sc, "b", p)
-    mujoco.mj_kinematics(sc.m, sc.d)
-    start = np.array(seg["start"])
-    vec = np.array(seg["end"]) - start
-    ray_guard(vec)
-    normal = np.zeros(3)
-    gid = np.zeros(1, np.int32)
-    x = timed(mujoco.mj_ray, sc.m, sc.d, start, vec, None, 1, -1, gid, normal)
-    return translate_hit(float(x), seg["start"], vec.tolist(), normal)
+    return ray_on(sc, seg)
 
 
 def intersect_box(case):
-    """segment-box: mj_ray on the box alone (set_obox), as segment-plane (pnt = start, vec =
-    end - start, geomgroup NULL, flg_static 1, bodyexclude -1): MuJoCo's ray_box."""
+    """segment-box: mj_ray on the box alone (set_obox), as segment-plane: MuJoCo's ray_box."""
     seg, bx = case["a"]["segment"], case["b"]["box"]
     sc = scene("box-only")
     set_obox(sc, "b", bx)
-    mujoco.mj_kinematics(sc.m, sc.d)
-    start = np.array(seg["start"])
-    vec = np.array(seg["end"]) - start
-    ray_guard(vec)
-    normal = np.zeros(3)
-    gid = np.zeros(1, np.int32)
-    x = timed(mujoco.mj_ray, sc.m, sc.d, start, vec, None, 1, -1, gid, normal)
-    return translate_hit(float(x), seg["start"], vec.tolist(), normal)
+    return ray_on(sc, seg)
 
 
 def intersect_triangle(case):

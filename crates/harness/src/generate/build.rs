@@ -83,7 +83,7 @@ pub(crate) fn quaternion_of(r: [P3; 3]) -> [f64; 4] {
 }
 
 /// The Hamilton product `p ⊗ q`, whose rotation is `R(p)·R(q)`.
-fn hamilton(p: [f64; 4], q: [f64; 4]) -> [f64; 4] {
+pub(crate) fn hamilton(p: [f64; 4], q: [f64; 4]) -> [f64; 4] {
     let ([a1, b1, c1, d1], [a2, b2, c2, d2]) = (p, q);
     [
         a1 * a2 - b1 * b2 - c1 * c2 - d1 * d2,

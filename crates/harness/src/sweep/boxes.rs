@@ -39,7 +39,7 @@
 //! a small parameter is a rounding.
 
 use super::grid::{Pose, Rng, sin_cos};
-use crate::generate::build::{Scene, aabb, capsule, oriented_box, plane, segment, sphere};
+use crate::generate::build::{Scene, aabb, capsule, hamilton, oriented_box, plane, segment, sphere};
 use crashtest_core::vec3::{add, scale};
 use oracle::geom::{P3, rotation_matrix};
 
@@ -60,17 +60,6 @@ fn turn(q: [f64; 4], l: P3) -> P3 {
     [0, 1, 2].map(|i| r[i][0] * l[0] + r[i][1] * l[1] + r[i][2] * l[2])
 }
 
-/// The Hamilton product `p ⊗ q`.
-fn product(p: [f64; 4], q: [f64; 4]) -> [f64; 4] {
-    let ([a1, b1, c1, d1], [a2, b2, c2, d2]) = (p, q);
-    [
-        a1 * a2 - b1 * b2 - c1 * c2 - d1 * d2,
-        a1 * b2 + b1 * a2 + c1 * d2 - d1 * c2,
-        a1 * c2 - b1 * d2 + c1 * a2 + d1 * b2,
-        a1 * d2 + b1 * c2 - c1 * b2 + d1 * a2,
-    ]
-}
-
 fn turned_boxes(rng: &mut Rng, theta: f64, pose: &Pose, gap_sign: f64) -> Scene {
     let qa = integer_quaternion(rng);
     let (ha, hb) = ([0; 3].map(|_| grid(rng, 0.5, 1.5)), [0; 3].map(|_| grid(rng, 0.5, 1.5)));
@@ -81,7 +70,7 @@ fn turned_boxes(rng: &mut Rng, theta: f64, pose: &Pose, gap_sign: f64) -> Scene 
     let cb = turn(qa, l);
     let axis = rng.unit();
     let (s, c) = sin_cos(theta / 2.0);
-    let qb = product(qa, [c, s * axis[0], s * axis[1], s * axis[2]]);
+    let qb = hamilton(qa, [c, s * axis[0], s * axis[1], s * axis[2]]);
     pose.scene(&(oriented_box([0.0; 3], ha, qa), Some(oriented_box(cb, hb, qb))))
 }
 

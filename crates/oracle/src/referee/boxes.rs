@@ -784,4 +784,4 @@ pub fn overlap_margin_box_aabb(a: &OrientedBox, b: &Aabb) -> Result<f64, Referee
 
 #[cfg(test)]
 #[path = "boxes_tests.rs"]
-mod tests;
+pub(crate) mod tests;

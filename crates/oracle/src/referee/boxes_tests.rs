@@ -14,7 +14,8 @@ use crate::referee::exact::{Q, within_ulps};
 use crate::referee::stage::exact_only;
 
 /// The referee is correctly rounded and the expectations are correctly
-/// rounded literals or exact values: no ulp of slack.
+/// rounded literals or exact values: no ulp of slack. (The capsule tests use
+/// these helpers too.)
 const EXACT_ULPS: u64 = 0;
 
 /// The 3-4-5 rotation about z: `R = [[3/5, −4/5, 0], [4/5, 3/5, 0], [0, 0, 1]]`.
@@ -29,27 +30,27 @@ fn unit_box() -> OrientedBox {
     obb([0.0; 3], [1.0; 3], IDENTITY)
 }
 
-fn sphere(center: P3, radius: f64) -> Sphere {
+pub(crate) fn sphere(center: P3, radius: f64) -> Sphere {
     Sphere { center, radius }
 }
 
-fn close(got: f64, want: f64, what: &str) {
+pub(crate) fn close(got: f64, want: f64, what: &str) {
     assert!(within_ulps(got, want, EXACT_ULPS), "{what}: got {got:e}, want {want:e}");
 }
 
-fn close_v(got: P3, want: P3, what: &str) {
+pub(crate) fn close_v(got: P3, want: P3, what: &str) {
     for k in 0..3 {
         assert!(within_ulps(got[k], want[k], EXACT_ULPS), "{what}[{k}]: got {got:?}, want {want:?}");
     }
 }
 
-fn contact(answer: Result<ContactAnswer, RefereeError>, what: &str) -> (Contact, bool) {
+pub(crate) fn contact(answer: Result<ContactAnswer, RefereeError>, what: &str) -> (Contact, bool) {
     let a = answer.unwrap_or_else(|e| panic!("{what}: refused: {e}"));
     (a.contact.unwrap_or_else(|| panic!("{what}: expected contact")), a.degenerate)
 }
 
 /// A margin's sign bit is the decision: `+0.0` on the boundary.
-fn positive(m: f64) -> bool {
+pub(crate) fn positive(m: f64) -> bool {
     !m.is_sign_negative()
 }
 

@@ -8,37 +8,11 @@
 //! rounds correctly, so they are compared with no ulp of slack.
 
 use super::*;
+use crate::referee::boxes::tests::{close, close_v, contact, positive, sphere};
 use crate::referee::contact::contact_sphere_sphere;
-use crate::referee::exact::within_ulps;
-
-/// Correctly rounded answers against correctly rounded literals: no slack.
-const EXACT_ULPS: u64 = 0;
 
 fn cap(start: P3, end: P3, radius: f64) -> Capsule {
     Capsule { start, end, radius }
-}
-
-fn sphere(center: P3, radius: f64) -> Sphere {
-    Sphere { center, radius }
-}
-
-fn close(got: f64, want: f64, what: &str) {
-    assert!(within_ulps(got, want, EXACT_ULPS), "{what}: got {got:e}, want {want:e}");
-}
-
-fn close_v(got: P3, want: P3, what: &str) {
-    for k in 0..3 {
-        assert!(within_ulps(got[k], want[k], EXACT_ULPS), "{what}[{k}]: got {got:?}, want {want:?}");
-    }
-}
-
-fn contact(answer: Result<ContactAnswer, RefereeError>, what: &str) -> (Contact, bool) {
-    let a = answer.unwrap_or_else(|e| panic!("{what}: refused: {e}"));
-    (a.contact.unwrap_or_else(|| panic!("{what}: expected contact")), a.degenerate)
-}
-
-fn positive(m: f64) -> bool {
-    !m.is_sign_negative()
 }
 
 /// The axis from the origin to (4, 0, 0).
