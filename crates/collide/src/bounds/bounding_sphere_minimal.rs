@@ -99,6 +99,7 @@ pub fn bounding_sphere_minimal<T: Real>(points: &[Vec3<T>]) -> Option<BoundingSp
     };
     let mut pts = std::mem::take(&mut cloud.points);
     shuffle(&mut pts);
+    extremes_first(&mut pts);
     let slack = c::<T>(WELZL_SLACK_EPS) * T::EPSILON;
     let mut s = Ball { center: pts[0], radius: T::zero() };
     for i in 1..pts.len() {
@@ -135,9 +136,12 @@ struct Ball<T: Real> {
 }
 
 impl<T: Real> Ball<T> {
-    /// `‖p − center‖ ≤ radius + slack`.
+    /// `‖p − center‖ ≤ radius + slack`, compared squared (no square root: in
+    /// the local frame nothing overflows, and the slack absorbs the rounding
+    /// either way; [`enclose`] makes the final radius reach every point).
     fn contains(&self, p: &Vec3<T>, slack: T) -> bool {
-        (p - self.center).norm() <= self.radius + slack
+        let reach = self.radius + slack;
+        (p - self.center).norm_squared() <= reach * reach
     }
 
     /// The sphere about `center` reaching the farthest of `support`.
@@ -213,6 +217,33 @@ fn smallest_ball_of_four<T: Real>(q: [&Vec3<T>; 4]) -> Ball<T> {
         }
     }
     best
+}
+
+/// Moves the points of least and greatest `x`, `y` and `z` (the first of
+/// equals, in the shuffled order) to the front, in that order, the rest keeping
+/// their shuffled order. The sphere of the first points then nearly encloses
+/// the cloud, and few later points fall outside it and restart the inner
+/// loops: the answer is the same minimal sphere (Welzl's algorithm is correct
+/// for every order; only its expected time rests on the order being random,
+/// and six points first change that by a constant).
+fn extremes_first<T: Real>(pts: &mut [Vec3<T>]) {
+    let mut front = 0;
+    for axis in 0..3 {
+        for greatest in [false, true] {
+            if front >= pts.len() {
+                return;
+            }
+            let mut best = front;
+            for i in front + 1..pts.len() {
+                let (x, b) = (pts[i][axis], pts[best][axis]);
+                if (greatest && x > b) || (!greatest && x < b) {
+                    best = i;
+                }
+            }
+            pts[front..=best].rotate_right(1);
+            front += 1;
+        }
+    }
 }
 
 /// Fisher–Yates shuffle driven by SplitMix64 from [`WELZL_SHUFFLE_SEED`].
