@@ -102,6 +102,22 @@ pub trait Queries: Send + Sync {
     fn contact_capsule_plane(&self, a: &Capsule, b: &Plane) -> Reply<ContactAnswer> {
         unsupported("capsule–plane contact")
     }
+    /// `contact`, box `a`, box `b`.
+    fn contact_box_box(&self, a: &OrientedBox, b: &OrientedBox) -> Reply<ContactAnswer> {
+        unsupported("box–box contact")
+    }
+    /// `contact`, box `a`, triangle `b` (two-sided).
+    fn contact_box_triangle(&self, a: &OrientedBox, b: &Triangle) -> Reply<ContactAnswer> {
+        unsupported("box–triangle contact")
+    }
+    /// `contact`, capsule `a`, box `b`.
+    fn contact_capsule_box(&self, a: &Capsule, b: &OrientedBox) -> Reply<ContactAnswer> {
+        unsupported("capsule–box contact")
+    }
+    /// `contact`, capsule `a`, triangle `b` (two-sided).
+    fn contact_capsule_triangle(&self, a: &Capsule, b: &Triangle) -> Reply<ContactAnswer> {
+        unsupported("capsule–triangle contact")
+    }
     /// `intersect`, segment and plane.
     fn intersect_segment_plane(&self, s: &Segment, p: &Plane) -> Reply<IntersectAnswer> {
         unsupported("segment–plane intersection")

@@ -161,6 +161,10 @@ pub enum Pair {
     ContactSphereCapsule,
     ContactCapsuleCapsule,
     ContactCapsulePlane,
+    ContactBoxBox,
+    ContactBoxTriangle,
+    ContactCapsuleBox,
+    ContactCapsuleTriangle,
     IntersectSegmentPlane,
     IntersectSegmentTriangle,
     IntersectSegmentMesh,
@@ -204,7 +208,7 @@ use Query as Q;
 use ShapeKind as K;
 
 /// The pair table, in report order (query by query, as the format lists them).
-pub const PAIRS: [PairRow; 30] = [
+pub const PAIRS: [PairRow; 34] = [
     row(P::ContactSphereSphere, Q::Contact, K::Sphere, Some(K::Sphere)),
     row(P::ContactSpherePlane, Q::Contact, K::Sphere, Some(K::Plane)),
     row(P::ContactPlaneSphere, Q::Contact, K::Plane, Some(K::Sphere)),
@@ -216,6 +220,10 @@ pub const PAIRS: [PairRow; 30] = [
     row(P::ContactSphereCapsule, Q::Contact, K::Sphere, Some(K::Capsule)),
     row(P::ContactCapsuleCapsule, Q::Contact, K::Capsule, Some(K::Capsule)),
     row(P::ContactCapsulePlane, Q::Contact, K::Capsule, Some(K::Plane)),
+    row(P::ContactBoxBox, Q::Contact, K::Box, Some(K::Box)),
+    row(P::ContactBoxTriangle, Q::Contact, K::Box, Some(K::Triangle)),
+    row(P::ContactCapsuleBox, Q::Contact, K::Capsule, Some(K::Box)),
+    row(P::ContactCapsuleTriangle, Q::Contact, K::Capsule, Some(K::Triangle)),
     row(P::IntersectSegmentPlane, Q::Intersect, K::Segment, Some(K::Plane)),
     row(P::IntersectSegmentTriangle, Q::Intersect, K::Segment, Some(K::Triangle)),
     row(P::IntersectSegmentMesh, Q::Intersect, K::Segment, Some(K::Mesh)),

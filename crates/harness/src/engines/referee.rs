@@ -54,6 +54,18 @@ impl Queries for RefereeQueries {
     fn contact_capsule_plane(&self, a: &Capsule, b: &Plane) -> Reply<ContactAnswer> {
         r(referee::contact_capsule_plane(a, b))
     }
+    fn contact_box_box(&self, a: &OrientedBox, b: &OrientedBox) -> Reply<ContactAnswer> {
+        r(referee::contact_box_box(a, b))
+    }
+    fn contact_box_triangle(&self, a: &OrientedBox, b: &Triangle) -> Reply<ContactAnswer> {
+        r(referee::contact_box_triangle(a, b))
+    }
+    fn contact_capsule_box(&self, a: &Capsule, b: &OrientedBox) -> Reply<ContactAnswer> {
+        r(referee::contact_capsule_box(a, b))
+    }
+    fn contact_capsule_triangle(&self, a: &Capsule, b: &Triangle) -> Reply<ContactAnswer> {
+        r(referee::contact_capsule_triangle(a, b))
+    }
     fn intersect_segment_box(&self, s: &Segment, b: &OrientedBox) -> Reply<IntersectAnswer> {
         r(referee::intersect_segment_box(s, b))
     }
@@ -184,6 +196,16 @@ pub fn margin(lc: &LoadedCase) -> Option<f64> {
         }
         (P::ContactCapsulePlane, S::Capsule(a), Some(S::Plane(b))) => {
             referee::contact_margin_capsule_plane(a, &b.to_geom()).ok()
+        }
+        (P::ContactBoxBox, S::Box(a), Some(S::Box(b))) => referee::contact_margin_box_box(&a.to_geom(), &b.to_geom()).ok(),
+        (P::ContactBoxTriangle, S::Box(a), Some(S::Triangle(b))) => {
+            referee::contact_margin_box_triangle(&a.to_geom(), &b.to_geom()).ok()
+        }
+        (P::ContactCapsuleBox, S::Capsule(a), Some(S::Box(b))) => {
+            referee::contact_margin_capsule_box(a, &b.to_geom()).ok()
+        }
+        (P::ContactCapsuleTriangle, S::Capsule(a), Some(S::Triangle(b))) => {
+            referee::contact_margin_capsule_triangle(a, &b.to_geom()).ok()
         }
         (P::ToiSphereSphere, S::Sphere(a), Some(S::Sphere(b))) => {
             referee::toi_margin_sphere_sphere(&a.to_geom(), &va, &b.to_geom(), &vb, t_max).ok()

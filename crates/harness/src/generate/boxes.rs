@@ -286,6 +286,91 @@ fn nearly_aligned_boxes() -> SBoxedStrategy<Scene> {
         .sboxed()
 }
 
+fn uniform_box_box_contact() -> SBoxedStrategy<Scene> {
+    (random_box(), random_box()).prop_map(|(a, b)| (a, Some(b))).sboxed()
+}
+
+fn uniform_box_triangle() -> SBoxedStrategy<Scene> {
+    (random_box(), random_triangle()).prop_map(|(a, t)| (a, Some(triangle(t)))).sboxed()
+}
+
+fn uniform_capsule_box() -> SBoxedStrategy<Scene> {
+    (random_capsule(), random_box()).prop_map(|(a, b)| (a, Some(b))).sboxed()
+}
+
+fn uniform_capsule_triangle() -> SBoxedStrategy<Scene> {
+    (random_capsule(), random_triangle()).prop_map(|(a, t)| (a, Some(triangle(t)))).sboxed()
+}
+
+/// `c + R·l` for the exact rotation `q` rounded to `f64` (exact for the
+/// 3-4-5 rotations about `z` on grid points: their entries times 5/64 steps
+/// are dyadic).
+fn placed(c: P3, q: [f64; 4], l: P3) -> P3 {
+    let rot = oracle::geom::rotation_matrix(q);
+    add(c, [0, 1, 2].map(|i| rot[i][0] * l[0] + rot[i][1] * l[1] + rot[i][2] * l[2]))
+}
+
+/// A box with the 3-4-5 rotation about `z` (or a quarter turn about `x`,
+/// edge down) resting on a triangle in the plane `z = d`, sunk by `k/64`
+/// (0: touching): the triangle holds the box's footprint, cuts it, or lies
+/// under a corner.
+fn box_on_triangle() -> SBoxedStrategy<Scene> {
+    (grid_point(), prop::array::uniform3(1..=16i64), 0..ABOUT_Z.len(), 0..=8i64, any::<bool>(), 0..3usize)
+        .prop_map(|(c, h, q, sink, edge_down, cover)| {
+            let h = h.map(|m| m as f64 * 5.0 / 64.0);
+            let (rotation, low) = if edge_down { ([1.0, 1.0, 0.0, 0.0], h[1]) } else { (ABOUT_Z[q], h[2]) };
+            let d = c[2] - low + sink as f64 / 64.0;
+            let reach = h[0] + h[1] + h[2];
+            let span = [4.0, 1.0, 0.25][cover] * reach;
+            let t = [[c[0] - span, c[1] - span, d], [c[0] + 2.0 * span, c[1] - span, d], [c[0] - span, c[1] + 2.0 * span, d]];
+            (oriented_box(c, h, rotation), Some(triangle(t)))
+        })
+        .sboxed()
+}
+
+/// A capsule at a box with the 3-4-5 rotation about `z`: its axis along a
+/// face at the radius (± grid steps), through the box's centre (four ways
+/// out at once), or from a corner outward.
+fn capsule_at_box() -> SBoxedStrategy<Scene> {
+    (grid_point(), 1..=8i64, 0..ABOUT_Z.len(), 0..3usize, 1..=16i64, -2..=2i64, 1..=16i64)
+        .prop_map(|(c, m, q, kind, r, gap, len)| {
+            let h = m as f64 * 5.0 / 64.0;
+            let r = r as f64 / 32.0;
+            let len = len as f64 * 5.0 / 64.0;
+            let (s, e) = match kind {
+                0 => {
+                    let z = h + r + gap as f64 * 5.0 / 64.0;
+                    ([-len, 0.0, z], [len, 0.0, z])
+                }
+                1 => ([-h - len, 0.0, 0.0], [h + len, 0.0, 0.0]),
+                _ => ([h, h, h], [h + len, h + len, h + len]),
+            };
+            (capsule(placed(c, ABOUT_Z[q], s), placed(c, ABOUT_Z[q], e), r), Some(oriented_box(c, [h, h, h], ABOUT_Z[q])))
+        })
+        .sboxed()
+}
+
+/// A capsule at a triangle in a grid plane: its axis along the face at the
+/// radius (± grid steps), through the face, or along an edge's line.
+fn capsule_at_triangle() -> SBoxedStrategy<Scene> {
+    (flat_grid_triangle(), 0..3usize, 1..=16i64, -2..=2i64, 0.0..1.0f64, 0.0..1.0f64)
+        .prop_map(|(t, kind, r, gap, s, u)| {
+            let r = r as f64 / 32.0;
+            let n = unit_normal(&t);
+            let inside = at_barycentric(&t, s * 0.5, u * 0.5);
+            let (start, end) = match kind {
+                0 => {
+                    let lift = scale(n, r + gap as f64 / 64.0);
+                    (add(t[0], lift), add(inside, lift))
+                }
+                1 => (add(inside, scale(n, -r)), add(inside, scale(n, 2.0 * r))),
+                _ => (t[0], add(t[0], scale(sub(t[1], t[0]), 0.5 + s))),
+            };
+            (capsule(start, end, r), Some(triangle(t)))
+        })
+        .sboxed()
+}
+
 /// Every scene of this file's contact families, for the moved and resized
 /// variants.
 fn contact_base() -> SBoxedStrategy<Scene> {
@@ -297,6 +382,9 @@ fn contact_base() -> SBoxedStrategy<Scene> {
         uniform_capsule_plane(),
         box_resting_on_plane(),
         parallel_capsules(),
+        // Nested: `prop_oneof!` of more than ten is a union that is not `Sync`.
+        prop_oneof![uniform_box_box_contact(), uniform_box_triangle(), uniform_capsule_box(), uniform_capsule_triangle()]
+            .sboxed(),
     ]
     .sboxed()
 }
@@ -315,6 +403,15 @@ pub(super) fn contact_families() -> Vec<Family> {
         Family::biased("parallel capsules side by side", parallel_capsules),
         Family::biased("capsules whose axes meet", meeting_capsules),
         Family::biased("capsule along or tipped onto a plane", capsule_on_plane),
+        Family::uniform("uniform box–box", uniform_box_box_contact),
+        Family::uniform("uniform box–triangle", uniform_box_triangle),
+        Family::uniform("uniform capsule–box", uniform_capsule_box),
+        Family::uniform("uniform capsule–triangle", uniform_capsule_triangle),
+        Family::biased("boxes resting face, edge or corner on each other under one exact rotation", touching_boxes),
+        Family::biased("boxes turned against each other by a tiny angle", nearly_aligned_boxes),
+        Family::biased("box resting on a triangle, face or edge down", box_on_triangle),
+        Family::biased("capsule along a box's face, through it, or off a corner", capsule_at_box),
+        Family::biased("capsule along a triangle, through it, or along an edge", capsule_at_triangle),
         Family::biased("boxes and capsules far from the origin", || far_from_origin(contact_base())),
         Family::biased("boxes and capsules at tiny and huge sizes", || resized(contact_base())),
     ]

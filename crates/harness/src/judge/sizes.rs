@@ -31,6 +31,8 @@ use crate::load::LoadedCase;
 use crashtest_core::vec3::{cross, dot, max_abs, sub};
 use oracle::geom::P3;
 
+mod convex;
+
 /// How nearly a contact normal must be the triangle's face normal (the cosine
 /// of the angle between them) for the closest point to count as in the face
 /// region, where the plane's tilt moves it: within 1e-6 rad. An edge or vertex
@@ -81,13 +83,14 @@ pub struct Local {
     pub region: Option<Region>,
 }
 
-/// A contact region: a segment (2 vertices) or a convex polygon (3 or 4, in
-/// order), each vertex the referee's correctly rounded one.
+/// A contact region: a segment (2 vertices) or a convex polygon (3 to 8, in
+/// order: two rectangles clipped have up to eight corners), each vertex the
+/// referee's correctly rounded one.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Region {
     /// The vertices; the first `len` are used.
-    pub vertices: [P3; 4],
-    /// How many (2 to 4).
+    pub vertices: [P3; 8],
+    /// How many (2 to 8).
     pub len: usize,
 }
 
@@ -95,10 +98,10 @@ impl Region {
     /// The region of the referee's vertices, when it is more than a point.
     fn of(vertices: &[P3]) -> Option<Region> {
         let len = vertices.len();
-        if !(2..=4).contains(&len) {
+        if !(2..=8).contains(&len) {
             return None;
         }
-        let mut r = Region { vertices: [[0.0; 3]; 4], len };
+        let mut r = Region { vertices: [[0.0; 3]; 8], len };
         r.vertices[..len].copy_from_slice(vertices);
         Some(r)
     }
@@ -432,6 +435,9 @@ fn contact(a: &Shape, b: &Shape, w: Option<&oracle::geom::Contact>) -> Local {
         let m = contact_margin_size(a, b);
         return Local { margin: m, ..Local::default() };
     };
+    if let Some(local) = convex::contact(a, b, w) {
+        return local;
+    }
     let pm = max_abs(w.point);
     let dm = w.depth.abs();
     match (a, b) {
@@ -584,15 +590,19 @@ fn contact(a: &Shape, b: &Shape, w: Option<&oracle::geom::Contact>) -> Local {
     }
 }
 
-/// The referee's contact region of a box or capsule on a plane, or of two
-/// capsules, when it is more than a point (`None` otherwise, and for a case
-/// the referee refuses).
+/// The referee's contact region of a box or capsule on a plane, of two
+/// capsules, and of a box or capsule on a box or triangle, when it is more
+/// than a point (`None` otherwise, and for a case the referee refuses).
 pub(crate) fn contact_region(a: &Shape, b: &Shape) -> Option<Region> {
     use oracle::referee;
     let vertices = match (a, b) {
         (Shape::Box(a), Shape::Plane(p)) => referee::contact_region_box_plane(&a.to_geom(), &p.to_geom()),
         (Shape::Capsule(a), Shape::Capsule(b)) => referee::contact_region_capsule_capsule(a, b),
         (Shape::Capsule(a), Shape::Plane(p)) => referee::contact_region_capsule_plane(a, &p.to_geom()),
+        (Shape::Box(a), Shape::Box(b)) => referee::contact_region_box_box(&a.to_geom(), &b.to_geom()),
+        (Shape::Box(a), Shape::Triangle(t)) => referee::contact_region_box_triangle(&a.to_geom(), &t.to_geom()),
+        (Shape::Capsule(a), Shape::Box(b)) => referee::contact_region_capsule_box(a, &b.to_geom()),
+        (Shape::Capsule(a), Shape::Triangle(t)) => referee::contact_region_capsule_triangle(a, &t.to_geom()),
         _ => return None,
     };
     Region::of(&vertices.ok()??)
@@ -657,6 +667,16 @@ fn contact_margin_size(a: &Shape, b: &Shape) -> Size {
         (Shape::Sphere(s), Shape::Triangle(t)) | (Shape::Triangle(t), Shape::Sphere(s)) => {
             let tri = TriangleShape::new(&t.vertices);
             tri.height(&s.center) * tri.tilt()
+        }
+        // The distance to a sliver's plane tilts with it, from the farther
+        // of the axis's ends or the box's centre (plus its reach).
+        (Shape::Capsule(c), Shape::Triangle(t)) => {
+            let tri = TriangleShape::new(&t.vertices);
+            tri.height(&c.start).max(tri.height(&c.end)) * tri.tilt()
+        }
+        (Shape::Box(b), Shape::Triangle(t)) => {
+            let tri = TriangleShape::new(&t.vertices);
+            (tri.height(&b.center) + box_size(b)) * tri.tilt()
         }
         _ => 0.0,
     };

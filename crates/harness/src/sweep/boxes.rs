@@ -1,7 +1,7 @@
 //! `box-turn`, `box-tie`, `capsule-parallel` and `kissing`: oriented boxes and
 //! capsules swept toward their degeneracies.
 //!
-//! - `box-turn` (overlap box–box): box `b` turned by θ from `a`'s orientation
+//! - `box-turn` (overlap box–box, and their contact): box `b` turned by θ from `a`'s orientation
 //!   about a random axis, θ from 1 down to 1e-16, and exactly 0 (the same
 //!   rotation). Every edge of `b` is then nearly parallel to one of `a`'s, and
 //!   the separating axes built from their cross products nearly vanish — the
@@ -28,9 +28,11 @@
 //!   down to 1e-16, and exactly parallel (the contact region is then a
 //!   segment: any of its points is right). The closest points slide along the
 //!   axes as θ → 0.
-//! - `kissing` (contact sphere–box and capsule–capsule): the gap between the
-//!   surfaces from 1 down to 1e-16, apart, and exactly touching: a sphere beside
-//!   a box's face (in the face region), two crossing capsules. Radii and
+//! - `kissing` (contact of spheres, boxes, capsules, planes and triangles):
+//!   the gap between the surfaces from 1 down to 1e-16, apart, and exactly
+//!   touching: a sphere beside a box's face (in the face region), two crossing
+//!   capsules, a box face down on a box or a large triangle, a capsule across a
+//!   box's face or tipped over a triangle. Radii and
 //!   half-extents on the 1/32 grid, the box's quaternion an integer one with a
 //!   dyadic rotation (the quarter turns), so that exactly touching is exact.
 //!
@@ -204,4 +206,54 @@ pub(super) fn kissing_sphere_capsule(rng: &mut Rng, g: f64, pose: &Pose) -> Scen
     let l = grid(rng, 0.5, 2.0);
     let x = grid(rng, -0.5, 0.5) * l;
     pose.scene(&(sphere([x, 0.0, ra + rb + g], ra), Some(capsule([-l, 0.0, 0.0], [l, 0.0, 0.0], rb))))
+}
+
+/// A box under a quarter turn at the origin, with its extent along `z`.
+fn quarter_turned_box(rng: &mut Rng) -> (crate::case::Shape, f64) {
+    let q = QUARTER_TURNS[rng.int(0, 3) as usize];
+    let h = [grid(rng, 0.5, 1.5), grid(rng, 0.5, 1.5), grid(rng, 0.5, 1.5)];
+    let r = rotation_matrix(q);
+    let up = (0..3).map(|j| r[2][j].abs() * h[j]).sum::<f64>();
+    (oriented_box([0.0; 3], h, q), up)
+}
+
+/// A large triangle in the plane `z = 0` (it holds every footprint here).
+fn floor_triangle() -> crate::case::Shape {
+    crate::generate::build::triangle([[-8.0, -8.0, 0.0], [8.0, -8.0, 0.0], [0.0, 8.0, 0.0]])
+}
+
+/// `kissing`, probe `box–box`: box `a` face down over box `b`'s top face
+/// (each under a quarter turn), `g` above it.
+pub(super) fn kissing_box_box(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    let (b, up_b) = quarter_turned_box(rng);
+    let (a, down_a) = quarter_turned_box(rng);
+    let crate::case::Shape::Box(mut a) = a else { unreachable!("a box") };
+    a.center = [grid(rng, -0.25, 0.25), grid(rng, -0.25, 0.25), up_b + down_a + g];
+    pose.scene(&(crate::case::Shape::Box(a), Some(b)))
+}
+
+/// `kissing`, probe `capsule–box`: a capsule across box `b`'s top face, its
+/// surface `g` above it.
+pub(super) fn kissing_capsule_box(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    let (b, up) = quarter_turned_box(rng);
+    let (r, l) = (grid(rng, 0.25, 1.0), grid(rng, 0.25, 1.0));
+    let z = up + r + g;
+    pose.scene(&(capsule([-l, 0.25, z], [l, -0.25, z], r), Some(b)))
+}
+
+/// `kissing`, probe `box–triangle`: a box face down over a triangle, `g` above it.
+pub(super) fn kissing_box_triangle(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    let (a, down) = quarter_turned_box(rng);
+    let crate::case::Shape::Box(mut a) = a else { unreachable!("a box") };
+    a.center = [grid(rng, -0.5, 0.5), grid(rng, -0.5, 0.5), down + g];
+    pose.scene(&(crate::case::Shape::Box(a), Some(floor_triangle())))
+}
+
+/// `kissing`, probe `capsule–triangle`: a capsule tipped by a Pythagorean
+/// slope, its lower end's sphere `g` above a triangle.
+pub(super) fn kissing_capsule_triangle(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    let r = grid(rng, 0.25, 1.0);
+    let len = grid(rng, 0.5, 2.0);
+    let start = [0.0, 0.0, r + g];
+    pose.scene(&(capsule(start, add(start, [0.6 * len, 0.0, 0.8 * len]), r), Some(floor_triangle())))
 }

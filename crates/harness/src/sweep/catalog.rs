@@ -544,6 +544,7 @@ pub static SWEEPS: &[Sweep] = &[
             Probe { name: "box–box overlapping", query: Query::Overlap, build: boxes::turned_overlapping },
             Probe { name: "box–box apart", query: Query::Overlap, build: boxes::turned_apart },
             Probe { name: "box–aabb overlapping", query: Query::Overlap, build: boxes::turned_box_aabb_overlapping },
+            Probe { name: "box–box contact", query: Query::Contact, build: boxes::turned_overlapping },
         ],
         about: "Box b is a's orientation (an integer quaternion) turned by θ about a random axis, its \
                 centre moved along one of a's face normals by the half-extents' sum less 0.06–0.19 \
@@ -589,7 +590,7 @@ pub static SWEEPS: &[Sweep] = &[
     },
     Sweep {
         name: "kissing",
-        title: "a sphere and a box, and two capsules, just apart",
+        title: "boxes, capsules, spheres, planes and triangles, just apart",
         parameter: "gap between the surfaces",
         lo: -16,
         hi: 0,
@@ -602,9 +603,14 @@ pub static SWEEPS: &[Sweep] = &[
             Probe { name: "box–plane", query: Query::Contact, build: boxes::kissing_box_plane },
             Probe { name: "capsule–plane", query: Query::Contact, build: boxes::kissing_capsule_plane },
             Probe { name: "sphere–capsule", query: Query::Contact, build: boxes::kissing_sphere_capsule },
+            Probe { name: "box–box", query: Query::Contact, build: boxes::kissing_box_box },
+            Probe { name: "capsule–box", query: Query::Contact, build: boxes::kissing_capsule_box },
+            Probe { name: "box–triangle", query: Query::Contact, build: boxes::kissing_box_triangle },
+            Probe { name: "capsule–triangle", query: Query::Contact, build: boxes::kissing_capsule_triangle },
         ],
         about: "A sphere beside a box's face (the box turned by a quarter turn, half-extents and radius on \
-                the 1/32 grid) and two crossing capsules, the gap g between their surfaces from 1 down \
+                the 1/32 grid), two crossing capsules, a box face down on a box or a triangle, a capsule \
+                across a box's face or tipped over a triangle, the gap g between their surfaces from 1 down \
                 to 1e-16 and exactly 0 (touching is contact). The gap rounds at the ulp of the sizes \
                 (about 1e-16): below it the referee judges what it rounded to.",
     },

@@ -269,6 +269,35 @@ pub trait ParryEngine {
     /// **Degenerate input:** as [`ParryEngine::contact_sphere_box`].
     fn contact_capsule_plane(&self, a: Capsule, b: Plane) -> ContactAnswer;
 
+    /// Contact of two boxes: `query::contact` on two `Cuboid`s, each at its
+    /// pose, which dispatches to `contact_cuboid_cuboid` (parry's separating
+    /// axes: `query/contact/contact_cuboid_cuboid.rs`). Translated as every
+    /// contact.
+    ///
+    /// **Degenerate input:** as [`ParryEngine::contact_sphere_box`].
+    fn contact_box_box(&self, a: OrientedBox, b: OrientedBox) -> ContactAnswer;
+
+    /// Contact of box `a` with triangle `b`: `query::contact` on a `Cuboid`
+    /// and parry's `Triangle` (its world vertices at the identity pose),
+    /// dispatched to `contact_support_map_support_map` (GJK, then EPA).
+    /// Translated as every contact.
+    ///
+    /// **Degenerate input:** as [`ParryEngine::contact_sphere_box`].
+    fn contact_box_triangle(&self, a: OrientedBox, b: Triangle) -> ContactAnswer;
+
+    /// Contact of capsule `a` with box `b`: `query::contact` on parry's
+    /// `Capsule` and a `Cuboid`, dispatched to `contact_support_map_support_map`.
+    /// Translated as every contact.
+    ///
+    /// **Degenerate input:** as [`ParryEngine::contact_sphere_box`].
+    fn contact_capsule_box(&self, a: Capsule, b: OrientedBox) -> ContactAnswer;
+
+    /// Contact of capsule `a` with triangle `b`: as
+    /// [`ParryEngine::contact_capsule_box`], the triangle at the identity pose.
+    ///
+    /// **Degenerate input:** as [`ParryEngine::contact_sphere_box`].
+    fn contact_capsule_triangle(&self, a: Capsule, b: Triangle) -> ContactAnswer;
+
     /// First hit of a segment on the solid box `b`: parry's
     /// `RayCast::cast_ray_and_get_normal` on the `Cuboid` with `solid = true` and
     /// the ray `start + t (end − start)`, `t ≤ 1` (`query/ray/ray_cuboid.rs`,

@@ -367,6 +367,34 @@ impl ParryEngine for Engine {
         contact_answer(query::contact(&Pose::IDENTITY, &ca, &pb, &hb, PREDICTION), false)
     }
 
+    fn contact_box_box(&self, a: OrientedBox, b: OrientedBox) -> ContactAnswer {
+        let (Some((pa, ca)), Some((pb, cb))) = (cuboid(&a), cuboid(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        contact_answer(query::contact(&pa, &ca, &pb, &cb, PREDICTION), false)
+    }
+
+    fn contact_box_triangle(&self, a: OrientedBox, b: Triangle) -> ContactAnswer {
+        let (Some((pa, ca)), Some(tb)) = (cuboid(&a), triangle(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        contact_answer(query::contact(&pa, &ca, &Pose::IDENTITY, &tb, PREDICTION), false)
+    }
+
+    fn contact_capsule_box(&self, a: Capsule, b: OrientedBox) -> ContactAnswer {
+        let (Some(ca), Some((pb, cb))) = (capsule(&a), cuboid(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        contact_answer(query::contact(&Pose::IDENTITY, &ca, &pb, &cb, PREDICTION), false)
+    }
+
+    fn contact_capsule_triangle(&self, a: Capsule, b: Triangle) -> ContactAnswer {
+        let (Some(ca), Some(tb)) = (capsule(&a), triangle(&b)) else {
+            return NO_CONTACT_DEGENERATE;
+        };
+        contact_answer(query::contact(&Pose::IDENTITY, &ca, &Pose::IDENTITY, &tb, PREDICTION), false)
+    }
+
     fn intersect_segment_box(&self, s: Segment, b: OrientedBox) -> IntersectAnswer {
         let (Some(ray), Some((pose, cb))) = (ray(&s), cuboid(&b)) else {
             return NO_HIT_DEGENERATE;

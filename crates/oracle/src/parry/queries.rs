@@ -48,6 +48,18 @@ macro_rules! parry_queries {
             fn contact_capsule_plane(&self, a: &Capsule, b: &Plane) -> Reply<ContactAnswer> {
                 Ok(ParryEngine::contact_capsule_plane(self, *a, *b))
             }
+            fn contact_box_box(&self, a: &OrientedBox, b: &OrientedBox) -> Reply<ContactAnswer> {
+                Ok(ParryEngine::contact_box_box(self, *a, *b))
+            }
+            fn contact_box_triangle(&self, a: &OrientedBox, b: &Triangle) -> Reply<ContactAnswer> {
+                Ok(ParryEngine::contact_box_triangle(self, *a, *b))
+            }
+            fn contact_capsule_box(&self, a: &Capsule, b: &OrientedBox) -> Reply<ContactAnswer> {
+                Ok(ParryEngine::contact_capsule_box(self, *a, *b))
+            }
+            fn contact_capsule_triangle(&self, a: &Capsule, b: &Triangle) -> Reply<ContactAnswer> {
+                Ok(ParryEngine::contact_capsule_triangle(self, *a, *b))
+            }
             fn intersect_segment_box(&self, s: &Segment, b: &OrientedBox) -> Reply<IntersectAnswer> {
                 Ok(ParryEngine::intersect_segment_box(self, *s, *b))
             }

@@ -60,6 +60,11 @@ fn exact_capsule(c: &Capsule, fields: [&'static str; 3]) -> Result<ExactCapsule,
 }
 
 const CAPSULE_A: [&str; 3] = ["a.start", "a.end", "a.radius"];
+
+/// The refusals of a capsule `a` (its ends, its radius), in order.
+pub(crate) fn check_capsule_fields(a: &Capsule) -> Result<(), RefereeError> {
+    check_capsule(a, CAPSULE_A)
+}
 const CAPSULE_B: [&str; 3] = ["b.start", "b.end", "b.radius"];
 
 /// A contact between two round shapes shrunk to their cores: `pa` on `a`'s
@@ -168,9 +173,9 @@ pub fn contact_margin_sphere_capsule(a: &Sphere, b: &Capsule) -> Result<f64, Ref
 /// (`s, t ∈ [0, 1]`), exactly: the pairs `(s, t)` at the least distance form
 /// one pair, or — parallel segments side by side — a line of pairs from
 /// `lo` to `hi` (`lo` with the smaller `s`), all at the same distance.
-struct ClosestPairs {
-    lo: (Q, Q),
-    hi: (Q, Q),
+pub(crate) struct ClosestPairs {
+    pub(crate) lo: (Q, Q),
+    pub(crate) hi: (Q, Q),
 }
 
 fn clamp01(x: Q) -> Q {
@@ -198,7 +203,7 @@ fn clamp01(x: Q) -> Q {
 ///   the two ranges meet, every `s` in the common range `[lo, hi]` pairs with
 ///   `t = (s·A + C)/B` at the lines' distance; where they do not, the nearest
 ///   ends are the one pair.
-fn closest_pairs(a0: &V3, a1: &V3, b0: &V3, b1: &V3) -> ClosestPairs {
+pub(crate) fn closest_pairs(a0: &V3, a1: &V3, b0: &V3, b1: &V3) -> ClosestPairs {
     let one = |s: Q, t: Q| ClosestPairs { lo: (s.clone(), t.clone()), hi: (s, t) };
     let da = sub(a1, a0);
     let db = sub(b1, b0);

@@ -98,6 +98,7 @@ mod ccd_fast;
 mod ccd_poly;
 mod closest;
 pub mod contact;
+pub mod convex;
 mod contact_fast;
 mod dyadic;
 mod error;
@@ -126,6 +127,11 @@ pub use capsule::{
     contact_sphere_capsule,
 };
 pub use ccd::{ccd_point_triangle, ccd_segment_segment};
+pub use convex::{
+    contact_box_box, contact_box_triangle, contact_capsule_box, contact_capsule_triangle, contact_margin_box_box,
+    contact_margin_box_triangle, contact_margin_capsule_box, contact_margin_capsule_triangle, contact_region_box_box,
+    contact_region_box_triangle, contact_region_capsule_box, contact_region_capsule_triangle,
+};
 pub use contact::{
     CONCENTRIC_FALLBACK_NORMAL, contact_margin_sphere_mesh, contact_margin_sphere_plane, contact_margin_sphere_sphere,
     contact_margin_sphere_triangle, contact_plane_sphere, contact_sphere_mesh, contact_sphere_plane,
