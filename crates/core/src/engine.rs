@@ -134,6 +134,10 @@ pub trait Queries: Send + Sync {
     fn intersect_segment_box(&self, s: &Segment, b: &OrientedBox) -> Reply<IntersectAnswer> {
         unsupported("segment–box intersection")
     }
+    /// `intersect`, segment and solid capsule: the first hit.
+    fn intersect_segment_capsule(&self, s: &Segment, b: &Capsule) -> Reply<IntersectAnswer> {
+        unsupported("segment–capsule intersection")
+    }
     /// `barycentric`, point and triangle.
     fn barycentric_triangle(&self, p: &P3, t: &Triangle) -> Reply<BarycentricAnswer> {
         unsupported("barycentric coordinates")

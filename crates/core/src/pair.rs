@@ -169,6 +169,7 @@ pub enum Pair {
     IntersectSegmentTriangle,
     IntersectSegmentMesh,
     IntersectSegmentBox,
+    IntersectSegmentCapsule,
     BarycentricPointTriangle,
     BoundsPoints,
     BoundsMesh,
@@ -208,7 +209,7 @@ use Query as Q;
 use ShapeKind as K;
 
 /// The pair table, in report order (query by query, as the format lists them).
-pub const PAIRS: [PairRow; 34] = [
+pub const PAIRS: [PairRow; 35] = [
     row(P::ContactSphereSphere, Q::Contact, K::Sphere, Some(K::Sphere)),
     row(P::ContactSpherePlane, Q::Contact, K::Sphere, Some(K::Plane)),
     row(P::ContactPlaneSphere, Q::Contact, K::Plane, Some(K::Sphere)),
@@ -228,6 +229,7 @@ pub const PAIRS: [PairRow; 34] = [
     row(P::IntersectSegmentTriangle, Q::Intersect, K::Segment, Some(K::Triangle)),
     row(P::IntersectSegmentMesh, Q::Intersect, K::Segment, Some(K::Mesh)),
     row(P::IntersectSegmentBox, Q::Intersect, K::Segment, Some(K::Box)),
+    row(P::IntersectSegmentCapsule, Q::Intersect, K::Segment, Some(K::Capsule)),
     row(P::BarycentricPointTriangle, Q::Barycentric, K::Point, Some(K::Triangle)),
     row(P::BoundsPoints, Q::Bounds, K::Points, None),
     row(P::BoundsMesh, Q::Bounds, K::Mesh, None),

@@ -229,6 +229,7 @@ fn dispatch(q: &dyn Queries, pair: Pair, lc: &LoadedCase) -> Reply<Answer> {
         P::IntersectSegmentTriangle => Answer::Intersect(q.intersect_segment_triangle(&segment(a)?, &triangle(b)?)?),
         P::IntersectSegmentMesh => Answer::Intersect(q.intersect_segment_mesh(&segment(a)?, mesh(lc, 1)?)?),
         P::IntersectSegmentBox => Answer::Intersect(q.intersect_segment_box(&segment(a)?, &oriented_box(b)?)?),
+        P::IntersectSegmentCapsule => Answer::Intersect(q.intersect_segment_capsule(&segment(a)?, &capsule(b)?)?),
         P::BarycentricPointTriangle => Answer::Barycentric(q.barycentric_triangle(&point(a)?, &triangle(b)?)?),
         P::BoundsPoints => match &case.a {
             Shape::Points(p) => Answer::Bounds(q.bounds(&p.points)?),

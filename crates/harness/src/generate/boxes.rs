@@ -189,6 +189,35 @@ fn capsule_on_plane() -> SBoxedStrategy<Scene> {
         .sboxed()
 }
 
+fn uniform_segment_capsule() -> SBoxedStrategy<Scene> {
+    (vec3(BOX), vec3(BOX), random_capsule()).prop_map(|(s, e, c)| (segment(s, e), Some(c))).sboxed()
+}
+
+/// Segments at a capsule along a Pythagorean direction (its axis exact):
+/// grazing its side at the radius (± ulps), through an end cap along the
+/// axis, starting inside (on the axis too), or ending on its surface.
+fn segment_at_capsule() -> SBoxedStrategy<Scene> {
+    (grid_point(), pythagorean(), 1..=16i64, 1..=16i64, 0..4usize, ulps(), -16..=16i64)
+        .prop_map(|(p, (v, _), len, r, kind, k, along)| {
+            let r = r as f64 / 32.0;
+            let dir = scale(v, len as f64 / 64.0);
+            let across = if v[2] == 0.0 { [0.0, 0.0, 1.0] } else if v[0] == 0.0 && v[1] == 0.0 { [1.0, 0.0, 0.0] } else { [v[1], -v[0], 0.0] };
+            let across = scale(across, 1.0 / crashtest_core::vec3::norm(across));
+            let mid = add(p, scale(dir, 0.5 + along as f64 / 64.0));
+            let (s, e) = match kind {
+                0 => {
+                    let side = add(mid, scale(across, r));
+                    (sub(side, scale(dir, 2.0)), add(side, scale(dir, 2.0)).map(|x| step_ulps(x, k)))
+                }
+                1 => (sub(p, scale(dir, 1.0)), add(p, scale(dir, 2.0))),
+                2 => (mid, add(mid, scale(across, 4.0 * r))),
+                _ => (add(mid, scale(across, 4.0 * r)), add(mid, scale(across, r))),
+            };
+            (segment(s, e), Some(capsule(p, add(p, dir), r)))
+        })
+        .sboxed()
+}
+
 fn uniform_segment_box() -> SBoxedStrategy<Scene> {
     (vec3(BOX), vec3(BOX), random_box()).prop_map(|(s, e, b)| (segment(s, e), Some(b))).sboxed()
 }
@@ -422,6 +451,8 @@ pub(super) fn intersect_families() -> Vec<Family> {
     vec![
         Family::uniform("uniform segment–box", uniform_segment_box),
         Family::biased("segment through a box's edge or corner, from inside, or ending on a face", segment_at_box_edge),
+        Family::uniform("uniform segment–capsule", uniform_segment_capsule),
+        Family::biased("segment grazing a capsule, through its cap, from inside, or ending on it", segment_at_capsule),
     ]
 }
 

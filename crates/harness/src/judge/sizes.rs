@@ -379,6 +379,9 @@ pub fn local(lc: &LoadedCase, truth: &Answer) -> Local {
         (Query::Intersect, Shape::Segment(s), Some(Shape::Box(b)), Answer::Intersect(w)) => {
             intersect_box(&s.start, &s.end, b, w.hit.as_ref())
         }
+        (Query::Intersect, Shape::Segment(s), Some(Shape::Capsule(c)), Answer::Intersect(w)) => {
+            intersect_capsule(&s.start, &s.end, c, w.hit.as_ref())
+        }
         (Query::Intersect, Shape::Segment(s), Some(b), Answer::Intersect(w)) => {
             let tri = match b {
                 Shape::Triangle(t) => Some(TriangleShape::new(&t.vertices)),
@@ -648,6 +651,29 @@ fn intersect_box(s0: &P3, s1: &P3, b: &crate::case::BoxSpec, w: Option<&oracle::
             f64::INFINITY
         };
         out.normal.condition = clean(out.normal.condition + tie(1.0, size, gap));
+    }
+    out
+}
+
+/// A segment's first hit on a capsule: as on the plane tangent at the hit
+/// (a grazing segment's `t` and point move by the sizes over the sine of its
+/// incidence), plus the capsule's own size; the normal, `(hit − foot)/r`,
+/// turns by the point's move over `r`.
+fn intersect_capsule(s0: &P3, s1: &P3, c: &oracle::geom::Capsule, w: Option<&oracle::geom::SegmentHit>) -> Local {
+    let plane = match w {
+        Some(h) => {
+            let n = unit(&h.normal);
+            crate::case::PlaneSpec { normal: n, offset: dot(n, h.point), velocity: None }
+        }
+        None => crate::case::PlaneSpec { normal: [0.0, 0.0, 1.0], offset: 0.0, velocity: None },
+    };
+    let mut out = intersect(s0, s1, &Shape::Plane(plane), None, None, w);
+    let size = capsule_size(c) + max_abs(*s0) + max_abs(*s1);
+    out.point.magnitude = clean(out.point.magnitude + size);
+    out.margin = Size::new(clean(out.margin.magnitude + size), out.margin.condition);
+    if w.is_some() {
+        let turn = ratio(out.point.magnitude + out.point.condition, c.radius).min(std::f64::consts::PI / f64::EPSILON);
+        out.normal.condition = clean(out.normal.condition + turn);
     }
     out
 }

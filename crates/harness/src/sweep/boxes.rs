@@ -32,7 +32,8 @@
 //!   the gap between the surfaces from 1 down to 1e-16, apart, and exactly
 //!   touching: a sphere beside a box's face (in the face region), two crossing
 //!   capsules, a box face down on a box or a large triangle, a capsule across a
-//!   box's face or tipped over a triangle. Radii and
+//!   box's face or tipped over a triangle, a segment across a capsule's side
+//!   (its first hit). Radii and
 //!   half-extents on the 1/32 grid, the box's quaternion an integer one with a
 //!   dyadic rotation (the quarter turns), so that exactly touching is exact.
 //!
@@ -256,4 +257,12 @@ pub(super) fn kissing_capsule_triangle(rng: &mut Rng, g: f64, pose: &Pose) -> Sc
     let len = grid(rng, 0.5, 2.0);
     let start = [0.0, 0.0, r + g];
     pose.scene(&(capsule(start, add(start, [0.6 * len, 0.0, 0.8 * len]), r), Some(floor_triangle())))
+}
+
+/// `kissing`, probe `segment–capsule`: a segment across a capsule's side,
+/// passing `g` outside its surface.
+pub(super) fn kissing_segment_capsule(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    let (r, l) = (grid(rng, 0.25, 1.0), grid(rng, 0.5, 2.0));
+    let z = r + g;
+    pose.scene(&(segment([0.25, -2.0, z], [-0.25, 2.0, z]), Some(capsule([-l, 0.0, 0.0], [l, 0.0, 0.0], r))))
 }

@@ -308,6 +308,17 @@ pub trait ParryEngine {
     /// flagged.
     fn intersect_segment_box(&self, s: Segment, b: OrientedBox) -> IntersectAnswer;
 
+    /// First hit of a segment on the solid capsule `b`: parry's
+    /// `RayCast::cast_ray_and_get_normal` on its `Capsule` (at the identity
+    /// pose) with `solid = true`, the ray as for
+    /// [`ParryEngine::intersect_segment_box`] (`query/ray/ray_capsule.rs`: a
+    /// circle in the plane across the axis, then the end caps' spheres). A
+    /// start inside gives `t = 0` with parry's own normal.
+    /// Not flagged; `parallel` false.
+    ///
+    /// **Degenerate input:** as [`ParryEngine::intersect_segment_box`].
+    fn intersect_segment_capsule(&self, s: Segment, b: Capsule) -> IntersectAnswer;
+
     /// The bounding volumes of box `b`: the `Cuboid`'s `aabb(pose)` (its
     /// half-extents turned by the absolute rotation matrix) and
     /// `bounding_sphere(pose)` (the centre, radius `‖h‖`).

@@ -415,6 +415,26 @@ impl ParryEngine for Engine {
         }
     }
 
+    fn intersect_segment_capsule(&self, s: Segment, b: Capsule) -> IntersectAnswer {
+        let (Some(ray), Some((pose, cb))) = (ray(&s), capsule(&b).map(|c| (Pose::IDENTITY, c))) else {
+            return NO_HIT_DEGENERATE;
+        };
+        match cb.cast_ray_and_get_normal(&pose, &ray, MAX_TIME_OF_IMPACT, true) {
+            Some(hit) => match (answer_scalar(hit.time_of_impact), answer_point(ray.point_at(hit.time_of_impact))) {
+                (Some(t), Some(point)) => match answer_point(hit.normal) {
+                    Some(normal) => IntersectAnswer {
+                        hit: Some(SegmentHit { t, point, normal, barycentric: None, triangle: None }),
+                        parallel: false,
+                        degenerate: false,
+                    },
+                    None => NO_HIT_DEGENERATE,
+                },
+                _ => NO_HIT_DEGENERATE,
+            },
+            None => IntersectAnswer::default(),
+        }
+    }
+
     fn bounds_box(&self, b: OrientedBox) -> BoundsAnswer {
         let Some((pose, cb)) = cuboid(&b) else {
             return BoundsAnswer::default();

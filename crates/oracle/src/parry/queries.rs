@@ -63,6 +63,9 @@ macro_rules! parry_queries {
             fn intersect_segment_box(&self, s: &Segment, b: &OrientedBox) -> Reply<IntersectAnswer> {
                 Ok(ParryEngine::intersect_segment_box(self, *s, *b))
             }
+            fn intersect_segment_capsule(&self, s: &Segment, b: &Capsule) -> Reply<IntersectAnswer> {
+                Ok(ParryEngine::intersect_segment_capsule(self, *s, *b))
+            }
             fn bounds_box(&self, b: &OrientedBox) -> Reply<BoundsAnswer> {
                 Ok(ParryEngine::bounds_box(self, *b))
             }

@@ -18,7 +18,7 @@ use super::exact::{
     Q, Root, V3, add, check, check_radius, check_v3, dot, is_zero, lerp, q, radius, round_unit, round_v, scale, sub, v3,
 };
 use super::stage::apart;
-use crate::geom::{Capsule, Contact, ContactAnswer, P3, Plane, Sphere};
+use crate::geom::{Capsule, Contact, ContactAnswer, IntersectAnswer, P3, Plane, Segment, SegmentHit, Sphere};
 
 /// The normal when the direction is undefined (a sphere's centre on a capsule's
 /// axis, axes that meet): `+z`, as for concentric spheres
@@ -447,3 +447,155 @@ pub fn contact_region_capsule_plane(a: &Capsule, b: &Plane) -> Result<Option<Vec
 #[cfg(test)]
 #[path = "capsule_tests.rs"]
 mod tests;
+
+/// One piece of a segment's path past a capsule: over `t ∈ [lo, hi]` the
+/// point of the axis nearest `s(t)` is `foot0 + t·foot1` (an end, or the
+/// foot of the perpendicular), so `s(t) − foot(t) = g0 + t·g1`.
+struct Piece {
+    lo: Q,
+    hi: Q,
+    g0: V3,
+    g1: V3,
+}
+
+impl Piece {
+    /// `A`, `B`, `C` of `‖g0 + t·g1‖² − r² = A t² + 2B t + C`.
+    fn quadratic(&self, r: &Q) -> (Q, Q, Q) {
+        (dot(&self.g1, &self.g1), dot(&self.g0, &self.g1), dot(&self.g0, &self.g0) - r * r)
+    }
+}
+
+/// The pieces of `s(t) = s0 + t·d`, `t ∈ [0, 1]`, against the axis
+/// `p0 + x·u`, `x ∈ [0, 1]`, in the order of `t`: where the axial coordinate
+/// `(s(t) − p0)·u` is below 0 the nearest point is `p0`, above `u·u` it is
+/// `p1`, between them the foot of the perpendicular. The breakpoints are
+/// rational.
+fn pieces(s0: &V3, d: &V3, p0: &V3, p1: &V3) -> Vec<Piece> {
+    let u = sub(p1, p0);
+    let uu = dot(&u, &u);
+    let w = sub(s0, p0);
+    let end = |p: &V3, lo: Q, hi: Q| Piece { lo, hi, g0: sub(s0, p), g1: d.clone() };
+    if uu.is_zero() {
+        return vec![end(p0, Q::ZERO, Q::ONE)];
+    }
+    let (wu, du) = (dot(&w, &u), dot(d, &u));
+    // The foot of the perpendicular: p0 + (axial(t)/uu)·u.
+    let side = Piece {
+        lo: Q::ZERO,
+        hi: Q::ONE,
+        g0: sub(&w, &scale(&u, &(&wu / &uu))),
+        g1: sub(d, &scale(&u, &(&du / &uu))),
+    };
+    if du.is_zero() {
+        return vec![if wu < Q::ZERO {
+            end(p0, Q::ZERO, Q::ONE)
+        } else if wu > uu {
+            end(p1, Q::ZERO, Q::ONE)
+        } else {
+            side
+        }];
+    }
+    // axial(t) = wu + t·du reaches 0 at ta and uu at tb.
+    let ta = -&wu / &du;
+    let tb = (&uu - &wu) / &du;
+    let (first, t1, t2, last) = if du > Q::ZERO { (p0, ta, tb, p1) } else { (p1, tb, ta, p0) };
+    let clip = |x: &Q| if *x < Q::ZERO { Q::ZERO } else if *x > Q::ONE { Q::ONE } else { x.clone() };
+    let (c1, c2) = (clip(&t1), clip(&t2));
+    let mut out = Vec::new();
+    if c1 > Q::ZERO {
+        out.push(end(first, Q::ZERO, c1.clone()));
+    }
+    if c2 > c1 {
+        out.push(Piece { lo: c1.clone(), hi: c2.clone(), ..side });
+    }
+    if c2 < Q::ONE {
+        out.push(end(last, c2, Q::ONE));
+    }
+    out
+}
+
+/// The first hit of segment `s` on the solid capsule `b`: the least
+/// `t ∈ [0, 1]` at which `s(t)` is within `r` of the axis.
+///
+/// **Definition** (`docs/FORMAT.md`, segment–capsule). The squared distance
+/// from `s(t)` to the axis is convex in `t` and, between rational
+/// breakpoints (where the nearest axis point leaves an end), a quadratic.
+/// A start within `r` is hit at `t = 0`. Otherwise the first piece whose
+/// quadratic reaches `r²` in its range holds the hit, at its smaller root
+/// `t = (−B − √(B² − AC))/A` (`A t² + 2B t + C = ‖s(t) − foot(t)‖² − r²`);
+/// the point is `s(t)`, the normal the capsule's outward normal there,
+/// `(s(t) − foot(t))/r`. Each output is `x + y·√(B² − AC)`, rounded once; a
+/// grazing segment (`B² = AC`) touches at `t = −B/A`.
+///
+/// **Degenerate input.** A start inside on the axis has no unique normal:
+/// `(0, 0, 1)`, flagged. A zero-length segment is flagged, as for a box: a
+/// point in the capsule is hit at `t = 0` with its outward direction.
+/// `barycentric` and `triangle` are `None`; `parallel` is always false.
+pub fn intersect_segment_capsule(s: &Segment, b: &Capsule) -> Result<IntersectAnswer, RefereeError> {
+    check_v3(&s.start, "a.start")?;
+    check_v3(&s.end, "a.end")?;
+    check_capsule(b, CAPSULE_B)?;
+    let (s0, s1) = (v3(&s.start, "a.start")?, v3(&s.end, "a.end")?);
+    let cb = exact_capsule(b, CAPSULE_B)?;
+    let d = sub(&s1, &s0);
+    let zero_length = is_zero(&d);
+    let pieces = pieces(&s0, &d, &cb.p0, &cb.p1);
+    let first = &pieces[0];
+    let (_, _, c0) = first.quadratic(&cb.r);
+    if c0 <= Q::ZERO {
+        let (normal, on_axis) = if is_zero(&first.g0) { ([0.0, 0.0, 1.0], true) } else { (round_unit(&first.g0), false) };
+        return Ok(IntersectAnswer {
+            hit: Some(SegmentHit { t: 0.0, point: s.start, normal, barycentric: None, triangle: None }),
+            parallel: false,
+            degenerate: on_axis || zero_length,
+        });
+    }
+    for piece in &pieces {
+        let (a, bq, c) = piece.quadratic(&cb.r);
+        if a.is_zero() {
+            continue;
+        }
+        let vertex = -&bq / &a;
+        let tv = if vertex < piece.lo {
+            piece.lo.clone()
+        } else if vertex > piece.hi {
+            piece.hi.clone()
+        } else {
+            vertex
+        };
+        if &a * &tv * &tv + Q::from(2u8) * &bq * &tv + &c > Q::ZERO {
+            continue;
+        }
+        let root = Root::new(&bq * &bq - &a * &c);
+        let k = -&bq / &a;
+        let m = Q::NEG_ONE / &a;
+        let at = |x0: &V3, x1: &V3| -> P3 {
+            std::array::from_fn(|i| root.round_affine(&(&x0[i] + &k * &x1[i]), &(&m * &x1[i])))
+        };
+        let normal_num = at(&scale(&piece.g0, &(Q::ONE / &cb.r)), &scale(&piece.g1, &(Q::ONE / &cb.r)));
+        return Ok(IntersectAnswer {
+            hit: Some(SegmentHit {
+                t: root.round_affine(&k, &m),
+                point: at(&s0, &d),
+                normal: normal_num,
+                barycentric: None,
+                triangle: None,
+            }),
+            parallel: false,
+            degenerate: zero_length,
+        });
+    }
+    Ok(IntersectAnswer { hit: None, parallel: false, degenerate: zero_length })
+}
+
+/// The signed margin behind [`intersect_segment_capsule`]'s decision: `r`
+/// less the distance between the segment and the axis (exact closest pairs),
+/// correctly rounded; ≥ 0 exactly when the segment hits.
+pub fn intersect_margin_segment_capsule(s: &Segment, b: &Capsule) -> Result<f64, RefereeError> {
+    let (s0, s1) = (v3(&s.start, "a.start")?, v3(&s.end, "a.end")?);
+    let cb = exact_capsule(b, CAPSULE_B)?;
+    let pairs = closest_pairs(&s0, &s1, &cb.p0, &cb.p1);
+    let (x, y) = &pairs.lo;
+    let gap = sub(&lerp(&s0, &s1, x), &lerp(&cb.p0, &cb.p1, y));
+    Ok(Root::new(dot(&gap, &gap)).round_affine(&cb.r, &Q::NEG_ONE))
+}

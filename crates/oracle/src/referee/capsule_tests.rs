@@ -438,3 +438,74 @@ mod sampled {
         }
     }
 }
+
+fn seg(start: P3, end: P3) -> Segment {
+    Segment { start, end }
+}
+
+fn hit(a: IntersectAnswer) -> (SegmentHit, bool) {
+    (a.hit.expect("a hit"), a.degenerate)
+}
+
+/// The rod from (−1,0,0) to (1,0,0) of radius 1: every expected value below
+/// is exact in `f64` but `t = 1/3`, its correct rounding.
+#[test]
+fn referee_segment_capsule_side_end_and_grazing() {
+    let c = cap([-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], 1.0);
+    let (h, degenerate) = hit(intersect_segment_capsule(&seg([0.0, 3.0, 0.0], [0.0, -3.0, 0.0]), &c).unwrap());
+    assert_eq!((h.t, h.point, h.normal, degenerate), (1.0 / 3.0, [0.0, 1.0, 0.0], [0.0, 1.0, 0.0], false));
+    let (h, _) = hit(intersect_segment_capsule(&seg([-5.0, 0.0, 0.0], [5.0, 0.0, 0.0]), &c).unwrap());
+    assert_eq!((h.t, h.point, h.normal), (0.3, [-2.0, 0.0, 0.0], [-1.0, 0.0, 0.0]));
+    // Along the side at the radius: it touches from the start cap's rim on.
+    let (h, _) = hit(intersect_segment_capsule(&seg([-5.0, 1.0, 0.0], [5.0, 1.0, 0.0]), &c).unwrap());
+    assert_eq!((h.t, h.point, h.normal), (0.4, [-1.0, 1.0, 0.0], [0.0, 1.0, 0.0]));
+    // Ending on the surface: t = 1 counts.
+    let (h, _) = hit(intersect_segment_capsule(&seg([0.0, 3.0, 0.0], [0.0, 1.0, 0.0]), &c).unwrap());
+    assert_eq!((h.t, h.point), (1.0, [0.0, 1.0, 0.0]));
+    let miss = seg([0.0, 3.0, 0.0], [5.0, 3.0, 0.0]);
+    assert_eq!(intersect_segment_capsule(&miss, &c).unwrap().hit, None);
+    assert_eq!(intersect_margin_segment_capsule(&miss, &c).unwrap(), -2.0);
+}
+
+#[test]
+fn referee_segment_capsule_from_inside() {
+    let c = cap([-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], 1.0);
+    let (h, degenerate) = hit(intersect_segment_capsule(&seg([0.5, 0.5, 0.0], [0.5, 5.0, 0.0]), &c).unwrap());
+    assert_eq!((h.t, h.point, h.normal, degenerate), (0.0, [0.5, 0.5, 0.0], [0.0, 1.0, 0.0], false));
+    let (h, degenerate) = hit(intersect_segment_capsule(&seg([0.0; 3], [0.0, 5.0, 0.0]), &c).unwrap());
+    assert!(degenerate, "a start on the axis has no outward direction");
+    assert_eq!((h.t, h.normal), (0.0, [0.0, 0.0, 1.0]));
+    let point = seg([1.5, 0.0, 0.0], [1.5, 0.0, 0.0]);
+    let (h, degenerate) = hit(intersect_segment_capsule(&point, &c).unwrap());
+    assert!(degenerate, "a zero-length segment is flagged");
+    assert_eq!((h.t, h.normal), (0.0, [1.0, 0.0, 0.0]));
+}
+
+/// How far from the surface a correctly rounded hit point may lie in these
+/// scenes (coordinates below 16): each coordinate within half an ulp of 16
+/// (2⁻⁴⁹), so the point within √3·2⁻⁴⁹ of the exact one, and the distance
+/// rounded once more; 2⁻⁴⁵ is that with room.
+const ON_SURFACE: f64 = 1.0 / 35_184_372_088_832.0;
+
+proptest::proptest! {
+    /// The hit's point is on the capsule's surface (its distance from the
+    /// axis within a few ulps of r), and the margin's sign is the decision.
+    #[test]
+    fn referee_segment_capsule_hits_the_surface(
+        s in proptest::array::uniform3(-8i32..=8), e in proptest::array::uniform3(-8i32..=8),
+        p in proptest::array::uniform3(-4i32..=4), q in proptest::array::uniform3(-4i32..=4), r in 1i32..=6,
+    ) {
+        let (s, e, p, q) = (s.map(f64::from), e.map(f64::from), p.map(f64::from), q.map(f64::from));
+        let c = cap(p, q, f64::from(r) / 2.0);
+        let answer = intersect_segment_capsule(&seg(s, e), &c).unwrap();
+        let margin = intersect_margin_segment_capsule(&seg(s, e), &c).unwrap();
+        proptest::prop_assert_eq!(answer.hit.is_some(), margin.is_sign_positive());
+        if let Some(h) = answer.hit.filter(|h| h.t > 0.0) {
+            let point = v3(&h.point, "point").unwrap();
+            let foot = closest_on_segment(&point, &v3(&p, "p").unwrap(), &v3(&q, "q").unwrap());
+            let gap = sub(&point, &foot);
+            let dist = Root::new(dot(&gap, &gap)).round_sqrt();
+            proptest::prop_assert!((dist - c.radius).abs() <= ON_SURFACE, "{dist} against {}", c.radius);
+        }
+    }
+}

@@ -124,7 +124,7 @@ pub use boxes::{
 pub use capsule::{
     contact_capsule_capsule, contact_capsule_plane, contact_margin_capsule_capsule, contact_margin_capsule_plane,
     contact_margin_sphere_capsule, contact_region_capsule_capsule, contact_region_capsule_plane,
-    contact_sphere_capsule,
+    contact_sphere_capsule, intersect_margin_segment_capsule, intersect_segment_capsule,
 };
 pub use ccd::{ccd_point_triangle, ccd_segment_segment};
 pub use convex::{
