@@ -201,7 +201,13 @@ fn segment_at_capsule() -> SBoxedStrategy<Scene> {
         .prop_map(|(p, (v, _), len, r, kind, k, along)| {
             let r = r as f64 / 32.0;
             let dir = scale(v, len as f64 / 64.0);
-            let across = if v[2] == 0.0 { [0.0, 0.0, 1.0] } else if v[0] == 0.0 && v[1] == 0.0 { [1.0, 0.0, 0.0] } else { [v[1], -v[0], 0.0] };
+            let across = if v[2] == 0.0 {
+                [0.0, 0.0, 1.0]
+            } else if v[0] == 0.0 && v[1] == 0.0 {
+                [1.0, 0.0, 0.0]
+            } else {
+                [v[1], -v[0], 0.0]
+            };
             let across = scale(across, 1.0 / crashtest_core::vec3::norm(across));
             let mid = add(p, scale(dir, 0.5 + along as f64 / 64.0));
             let (s, e) = match kind {
@@ -351,7 +357,11 @@ fn box_on_triangle() -> SBoxedStrategy<Scene> {
             let d = c[2] - low + sink as f64 / 64.0;
             let reach = h[0] + h[1] + h[2];
             let span = [4.0, 1.0, 0.25][cover] * reach;
-            let t = [[c[0] - span, c[1] - span, d], [c[0] + 2.0 * span, c[1] - span, d], [c[0] - span, c[1] + 2.0 * span, d]];
+            let t = [
+                [c[0] - span, c[1] - span, d],
+                [c[0] + 2.0 * span, c[1] - span, d],
+                [c[0] - span, c[1] + 2.0 * span, d],
+            ];
             (oriented_box(c, h, rotation), Some(triangle(t)))
         })
         .sboxed()
@@ -374,7 +384,10 @@ fn capsule_at_box() -> SBoxedStrategy<Scene> {
                 1 => ([-h - len, 0.0, 0.0], [h + len, 0.0, 0.0]),
                 _ => ([h, h, h], [h + len, h + len, h + len]),
             };
-            (capsule(placed(c, ABOUT_Z[q], s), placed(c, ABOUT_Z[q], e), r), Some(oriented_box(c, [h, h, h], ABOUT_Z[q])))
+            (
+                capsule(placed(c, ABOUT_Z[q], s), placed(c, ABOUT_Z[q], e), r),
+                Some(oriented_box(c, [h, h, h], ABOUT_Z[q])),
+            )
         })
         .sboxed()
 }
@@ -412,8 +425,13 @@ fn contact_base() -> SBoxedStrategy<Scene> {
         box_resting_on_plane(),
         parallel_capsules(),
         // Nested: `prop_oneof!` of more than ten is a union that is not `Sync`.
-        prop_oneof![uniform_box_box_contact(), uniform_box_triangle(), uniform_capsule_box(), uniform_capsule_triangle()]
-            .sboxed(),
+        prop_oneof![
+            uniform_box_box_contact(),
+            uniform_box_triangle(),
+            uniform_capsule_box(),
+            uniform_capsule_triangle()
+        ]
+        .sboxed(),
     ]
     .sboxed()
 }

@@ -480,12 +480,8 @@ fn pieces(s0: &V3, d: &V3, p0: &V3, p1: &V3) -> Vec<Piece> {
     }
     let (wu, du) = (dot(&w, &u), dot(d, &u));
     // The foot of the perpendicular: p0 + (axial(t)/uu)·u.
-    let side = Piece {
-        lo: Q::ZERO,
-        hi: Q::ONE,
-        g0: sub(&w, &scale(&u, &(&wu / &uu))),
-        g1: sub(d, &scale(&u, &(&du / &uu))),
-    };
+    let side =
+        Piece { lo: Q::ZERO, hi: Q::ONE, g0: sub(&w, &scale(&u, &(&wu / &uu))), g1: sub(d, &scale(&u, &(&du / &uu))) };
     if du.is_zero() {
         return vec![if wu < Q::ZERO {
             end(p0, Q::ZERO, Q::ONE)
@@ -499,7 +495,15 @@ fn pieces(s0: &V3, d: &V3, p0: &V3, p1: &V3) -> Vec<Piece> {
     let ta = -&wu / &du;
     let tb = (&uu - &wu) / &du;
     let (first, t1, t2, last) = if du > Q::ZERO { (p0, ta, tb, p1) } else { (p1, tb, ta, p0) };
-    let clip = |x: &Q| if *x < Q::ZERO { Q::ZERO } else if *x > Q::ONE { Q::ONE } else { x.clone() };
+    let clip = |x: &Q| {
+        if *x < Q::ZERO {
+            Q::ZERO
+        } else if *x > Q::ONE {
+            Q::ONE
+        } else {
+            x.clone()
+        }
+    };
     let (c1, c2) = (clip(&t1), clip(&t2));
     let mut out = Vec::new();
     if c1 > Q::ZERO {
@@ -543,7 +547,8 @@ pub fn intersect_segment_capsule(s: &Segment, b: &Capsule) -> Result<IntersectAn
     let first = &pieces[0];
     let (_, _, c0) = first.quadratic(&cb.r);
     if c0 <= Q::ZERO {
-        let (normal, on_axis) = if is_zero(&first.g0) { ([0.0, 0.0, 1.0], true) } else { (round_unit(&first.g0), false) };
+        let (normal, on_axis) =
+            if is_zero(&first.g0) { ([0.0, 0.0, 1.0], true) } else { (round_unit(&first.g0), false) };
         return Ok(IntersectAnswer {
             hit: Some(SegmentHit { t: 0.0, point: s.start, normal, barycentric: None, triangle: None }),
             parallel: false,

@@ -47,7 +47,9 @@ use super::boxes::{BOX_A, BOX_B, ExactBox, check_box, exact_box};
 use super::capsule::{check_capsule_fields, closest_pairs};
 use super::closest::closest_on_triangle;
 use super::error::RefereeError;
-use super::exact::{Q, Root, V3, add, check_v3, cross, dot, is_zero, lerp, radius, round_unit, round_v, scale, sub, v3};
+use super::exact::{
+    Q, Root, V3, add, check_v3, cross, dot, is_zero, lerp, radius, round_unit, round_v, scale, sub, v3,
+};
 use super::stage::apart;
 use crate::geom::{Capsule, Contact, ContactAnswer, OrientedBox, P3, Triangle};
 
@@ -73,7 +75,8 @@ impl Convex {
                 b.to_world(&u)
             })
             .collect();
-        let edges = (0..8usize).flat_map(|s| (0..3).filter(move |i| s >> i & 1 == 0).map(move |i| (s, s | 1 << i))).collect();
+        let edges =
+            (0..8usize).flat_map(|s| (0..3).filter(move |i| s >> i & 1 == 0).map(move |i| (s, s | 1 << i))).collect();
         Self { vertices, edges, directions: b.axes.to_vec(), normals: b.axes.to_vec() }
     }
 
@@ -171,8 +174,13 @@ struct Least {
 }
 
 fn least_push(a: &Convex, b: &Convex) -> Option<Least> {
+    least_on(a, b, axes(a, b).into_iter())
+}
+
+/// [`least_push`] over the given axes (none of them zero).
+fn least_on(a: &Convex, b: &Convex, axes: impl Iterator<Item = V3>) -> Option<Least> {
     let mut best: Option<Least> = None;
-    for l in axes(a, b) {
+    for l in axes {
         let (lo_a, hi_a) = a.project(&l);
         let (lo_b, hi_b) = b.project(&l);
         let norm2 = dot(&l, &l);
@@ -291,9 +299,9 @@ fn touching_region(a: &Convex, b: &Convex, push: &Push) -> Vec<V3> {
     let moved: Vec<V3> = a.vertices.iter().map(|v| add(v, &t)).collect();
     let feature = |pts: &[V3], lowest: bool| -> Vec<V3> {
         let heights: Vec<Q> = pts.iter().map(|v| dot(&n, v)).collect();
-        let pick = heights.iter().fold(heights[0].clone(), |m, h| {
-            if (lowest && *h < m) || (!lowest && *h > m) { h.clone() } else { m }
-        });
+        let pick = heights
+            .iter()
+            .fold(heights[0].clone(), |m, h| if (lowest && *h < m) || (!lowest && *h > m) { h.clone() } else { m });
         pts.iter().zip(&heights).filter(|(_, h)| **h == pick).map(|(v, _)| v.clone()).collect()
     };
     let ij = kept(&n);
@@ -356,8 +364,39 @@ impl Resting {
 /// A contact answer of separated shapes.
 const APART: ContactAnswer = ContactAnswer { contact: None, degenerate: false };
 
-fn box_box(a: &OrientedBox, b: &OrientedBox) -> Result<(Convex, Convex), RefereeError> {
-    Ok((Convex::of_box(&exact_box(a, BOX_A)?), Convex::of_box(&exact_box(b, BOX_B)?)))
+/// Two boxes as polytopes, and their least push: on the one axis the
+/// floating-point stage certifies to be strictly the least (`boxes_fast`'s
+/// `least_axis`, the same fifteen axes in the same order), else over all.
+/// A certified axis has no rival: only its own two ways can tie.
+struct BoxPair {
+    a: Convex,
+    b: Convex,
+    least: Option<Least>,
+}
+
+fn box_box(a: &OrientedBox, b: &OrientedBox) -> Result<BoxPair, RefereeError> {
+    check_box(a, BOX_A)?;
+    check_box(b, BOX_B)?;
+    let certified = super::stage::fast_stage(super::stage::Stage::BoxOverlap, || {
+        use super::boxes_fast::{FastBox, least_axis};
+        least_axis(&FastBox::of(a), &FastBox::of(b))
+    });
+    let (ea, eb) = (exact_box(a, BOX_A)?, exact_box(b, BOX_B)?);
+    let (ca, cb) = (Convex::of_box(&ea), Convex::of_box(&eb));
+    let least = match certified {
+        Some(k) => {
+            let l = if k < 3 {
+                ea.axes[k].clone()
+            } else if k < 6 {
+                eb.axes[k - 3].clone()
+            } else {
+                cross(&ea.axes[(k - 6) / 3], &eb.axes[(k - 6) % 3])
+            };
+            least_on(&ca, &cb, std::iter::once(l))
+        }
+        None => least_push(&ca, &cb),
+    };
+    Ok(BoxPair { a: ca, b: cb, least })
 }
 
 /// Contact between oriented boxes `a` and `b`.
@@ -384,12 +423,12 @@ pub fn contact_box_box(a: &OrientedBox, b: &OrientedBox) -> Result<ContactAnswer
     if apart(fast) {
         return Ok(APART);
     }
-    let (ca, cb) = box_box(a, b)?;
-    let rest = Resting::of(&ca, &cb);
+    let pair = box_box(a, b)?;
+    let rest = Resting { least: pair.least };
     if !rest.touches() {
         return Ok(APART);
     }
-    Ok(rest.answer(&ca, &cb, &Q::ZERO).unwrap_or(APART))
+    Ok(rest.answer(&pair.a, &pair.b, &Q::ZERO).unwrap_or(APART))
 }
 
 /// The signed margin behind [`contact_box_box`]'s decision: the least push
@@ -398,17 +437,16 @@ pub fn contact_box_box(a: &OrientedBox, b: &OrientedBox) -> Result<ContactAnswer
 /// of the distance (as [`super::overlap_margin_box_box`]'s). The sign bit is
 /// the decision.
 pub fn contact_margin_box_box(a: &OrientedBox, b: &OrientedBox) -> Result<f64, RefereeError> {
-    let (ca, cb) = box_box(a, b)?;
-    Ok(least_push(&ca, &cb).map_or(0.0, |l| l.push.round_plus(&Q::ZERO)))
+    Ok(box_box(a, b)?.least.map_or(0.0, |l| l.push.round_plus(&Q::ZERO)))
 }
 
 /// The contact region of [`contact_box_box`] on `b`'s surface, each vertex
 /// correctly rounded: one point, a segment's two ends, or a convex polygon's
 /// corners in order (up to eight); `None` when apart.
 pub fn contact_region_box_box(a: &OrientedBox, b: &OrientedBox) -> Result<Option<Vec<P3>>, RefereeError> {
-    let (ca, cb) = box_box(a, b)?;
-    let rest = Resting::of(&ca, &cb);
-    Ok(if rest.touches() { rest.region(&ca, &cb) } else { None })
+    let pair = box_box(a, b)?;
+    let rest = Resting { least: pair.least };
+    Ok(if rest.touches() { rest.region(&pair.a, &pair.b) } else { None })
 }
 
 /// The refusals of a triangle `b`: a non-finite vertex.
@@ -632,7 +670,8 @@ impl AxisSolid {
     fn margin(&self) -> f64 {
         match &self.apart {
             Some((d2, _, _)) => Root::new(d2.clone()).round_affine(&self.r, &Q::NEG_ONE),
-            None => least_push(&self.axis, &self.solid).map_or_else(|| super::exact::round(&self.r), |l| l.push.round_plus(&self.r)),
+            None => least_push(&self.axis, &self.solid)
+                .map_or_else(|| super::exact::round(&self.r), |l| l.push.round_plus(&self.r)),
         }
     }
 

@@ -213,6 +213,14 @@ proptest! {
         let b = OrientedBox { center: cb, half_extents: hb.map(f64::abs), rotation: qb };
         let answer = contact_box_box(&a, &b).unwrap();
         let margin = contact_margin_box_box(&a, &b).unwrap();
+        // The floating-point stage's certified axis gives the same bits as
+        // all fifteen axes in rationals.
+        let exact = super::super::exact_only(|| contact_box_box(&a, &b).unwrap());
+        prop_assert_eq!(answer, exact);
+        let exact_margin = super::super::exact_only(|| contact_margin_box_box(&a, &b).unwrap());
+        prop_assert_eq!(margin.to_bits(), exact_margin.to_bits());
+        let region = contact_region_box_box(&a, &b).unwrap();
+        prop_assert_eq!(region, super::super::exact_only(|| contact_region_box_box(&a, &b).unwrap()));
         prop_assert_eq!(answer.contact.is_some(), margin.is_sign_positive());
         let (ea, eb) = (exact_box(&a, BOX_A).unwrap(), exact_box(&b, BOX_B).unwrap());
         let (pa, pb) = (Convex::of_box(&ea), Convex::of_box(&eb));

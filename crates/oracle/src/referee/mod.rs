@@ -98,8 +98,8 @@ mod ccd_fast;
 mod ccd_poly;
 mod closest;
 pub mod contact;
-pub mod convex;
 mod contact_fast;
+pub mod convex;
 mod dyadic;
 mod error;
 mod exact;
@@ -127,15 +127,15 @@ pub use capsule::{
     contact_sphere_capsule, intersect_margin_segment_capsule, intersect_segment_capsule,
 };
 pub use ccd::{ccd_point_triangle, ccd_segment_segment};
-pub use convex::{
-    contact_box_box, contact_box_triangle, contact_capsule_box, contact_capsule_triangle, contact_margin_box_box,
-    contact_margin_box_triangle, contact_margin_capsule_box, contact_margin_capsule_triangle, contact_region_box_box,
-    contact_region_box_triangle, contact_region_capsule_box, contact_region_capsule_triangle,
-};
 pub use contact::{
     CONCENTRIC_FALLBACK_NORMAL, contact_margin_sphere_mesh, contact_margin_sphere_plane, contact_margin_sphere_sphere,
     contact_margin_sphere_triangle, contact_plane_sphere, contact_sphere_mesh, contact_sphere_plane,
     contact_sphere_sphere, contact_sphere_triangle, contact_triangle_sphere,
+};
+pub use convex::{
+    contact_box_box, contact_box_triangle, contact_capsule_box, contact_capsule_triangle, contact_margin_box_box,
+    contact_margin_box_triangle, contact_margin_capsule_box, contact_margin_capsule_triangle, contact_region_box_box,
+    contact_region_box_triangle, contact_region_capsule_box, contact_region_capsule_triangle,
 };
 pub use intersect::{
     intersect_margin_segment_plane, intersect_margin_segment_triangle, intersect_segment_mesh, intersect_segment_plane,

@@ -80,7 +80,10 @@ fn pushes(a: &Poly, b: &Poly) -> Vec<Push> {
         }
     }
     let project = |p: &Poly, u: &P3| {
-        p.vertices.iter().map(|v| dot(*u, *v)).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)))
+        p.vertices
+            .iter()
+            .map(|v| dot(*u, *v))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)))
     };
     let mut out = Vec::new();
     for (l, sine) in axes {
