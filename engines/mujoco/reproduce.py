@@ -116,7 +116,9 @@ m.geom_rbound[g], m.geom_aabb[g] = r + hl, [0.0, 0.0, 0.0, r, r, r + hl]
 
 SETTER = {"sphere": SPHERE, "box": OBOX, "capsule": CAPSULE, "plane": PLANE}
 SCENE_OF = {("sphere", "box"): "sphere-box", ("box", "plane"): "plane-box", ("sphere", "capsule"): "sphere-capsule",
-            ("capsule", "capsule"): "capsule-capsule", ("capsule", "plane"): "plane-capsule"}
+            ("capsule", "capsule"): "capsule-capsule", ("capsule", "plane"): "plane-capsule",
+            ("box", "box"): "box-box", ("capsule", "box"): "capsule-box"}
+FLEX_SCENE_OF = {"box": "flex-box", "capsule": "flex-capsule"}
 
 
 def script(query, ka, kb, models, geom_attrs, inertia):
@@ -148,6 +150,12 @@ def body(query, ka, kb, models, geom_attrs, inertia):
         # the adapter takes the deepest contact (the least dist)
         return (scene(SCENE_OF[(ka, kb)]) + SETTER[ka].replace("@", "a").replace("<geom>", "a")
                 + SETTER[kb].replace("@", "b").replace("<geom>", "b") + contacts()
+                + "# the adapter takes the contact with the least dist (the first of equals)\n")
+    if query == "contact" and kb == "triangle" and ka in FLEX_SCENE_OF:
+        # the case's a is the model's geom "a" (in a free body), its triangle b the flex's one
+        # element; the adapter takes the deepest contact (the least dist)
+        return (scene(FLEX_SCENE_OF[ka]) + SETTER[ka].replace("@", "a").replace("<geom>", "a")
+                + "m.flex_vert[:] = {{b.vertices}}  # the one-triangle flex's vertices\n" + contacts(True)
                 + "# the adapter takes the contact with the least dist (the first of equals)\n")
     if query == "intersect" and kb == "box":
         return scene("box-only") + OBOX.replace("@", "b").replace("<geom>", "b") + ray(RAY_GEOM, "geomid")
