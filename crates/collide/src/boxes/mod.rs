@@ -1,6 +1,7 @@
 //! Oriented boxes and capsules: contact (sphere–box, box–plane,
-//! sphere–capsule, capsule–capsule, capsule–plane), the first hit of a segment
-//! on a box, a box's bounds, and the overlap of two boxes (or a box and an
+//! sphere–capsule, capsule–capsule, capsule–plane, box–box, box–triangle,
+//! capsule–box, capsule–triangle), the first hit of a segment on a box or a
+//! capsule, a box's bounds, and the overlap of two boxes (or a box and an
 //! AABB). The definitions are the fixture format's (`docs/FORMAT.md`, "Boxes and
 //! capsules"); each query comes twice, as everywhere in collide.
 //!
@@ -61,11 +62,14 @@
 
 mod bounds;
 mod box_box;
+mod box_contact;
 mod box_plane;
 mod capsule_capsule;
 mod capsule_plane;
+mod capsule_polytope;
 pub(crate) mod poly;
 mod segment_box;
+mod segment_capsule;
 mod sphere_box;
 mod sphere_capsule;
 mod stage;
@@ -75,10 +79,18 @@ mod tests;
 pub use crate::shapes::{Capsule, OrientedBox};
 pub use bounds::{aabb_of_box, aabb_of_box_lecture, bounding_sphere_of_box, bounding_sphere_of_box_lecture};
 pub use box_box::{OBB_EPSILON, test_box_aabb, test_box_aabb_lecture, test_box_box, test_box_box_lecture};
+pub use box_contact::{
+    TOUCH_TOL, TOUCH_TOL_ABS, contact_box_box, contact_box_box_lecture, contact_box_triangle,
+    contact_box_triangle_lecture,
+};
 pub use box_plane::{contact_box_plane, contact_box_plane_lecture};
 pub use capsule_capsule::{SEGMENT_EPSILON, contact_capsule_capsule, contact_capsule_capsule_lecture};
 pub use capsule_plane::{contact_capsule_plane, contact_capsule_plane_lecture};
+pub use capsule_polytope::{
+    contact_capsule_box, contact_capsule_box_lecture, contact_capsule_triangle, contact_capsule_triangle_lecture,
+};
 pub use segment_box::{SLAB_EPSILON, intersect_segment_box, intersect_segment_box_lecture};
+pub use segment_capsule::{intersect_segment_capsule, intersect_segment_capsule_lecture};
 pub use sphere_box::{contact_sphere_box, contact_sphere_box_lecture};
 pub use sphere_capsule::{contact_sphere_capsule, contact_sphere_capsule_lecture};
 

@@ -227,11 +227,51 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
         }))
     }
 
+    fn contact_box_box(&self, a: &OrientedBox, b: &OrientedBox) -> Reply<ContactAnswer> {
+        let (a, b) = (oriented_box::<T>(a), oriented_box(b));
+        Ok(contact(match self.method {
+            Method::Lecture => collide::boxes::contact_box_box_lecture(&a, &b),
+            Method::Robust => collide::boxes::contact_box_box(&a, &b),
+        }))
+    }
+
+    fn contact_box_triangle(&self, a: &OrientedBox, b: &Triangle) -> Reply<ContactAnswer> {
+        let (a, b) = (oriented_box::<T>(a), triangle(b));
+        Ok(contact(match self.method {
+            Method::Lecture => collide::boxes::contact_box_triangle_lecture(&a, &b),
+            Method::Robust => collide::boxes::contact_box_triangle(&a, &b),
+        }))
+    }
+
+    fn contact_capsule_box(&self, a: &Capsule, b: &OrientedBox) -> Reply<ContactAnswer> {
+        let (a, b) = (capsule::<T>(a), oriented_box(b));
+        Ok(contact(match self.method {
+            Method::Lecture => collide::boxes::contact_capsule_box_lecture(&a, &b),
+            Method::Robust => collide::boxes::contact_capsule_box(&a, &b),
+        }))
+    }
+
+    fn contact_capsule_triangle(&self, a: &Capsule, b: &Triangle) -> Reply<ContactAnswer> {
+        let (a, b) = (capsule::<T>(a), triangle(b));
+        Ok(contact(match self.method {
+            Method::Lecture => collide::boxes::contact_capsule_triangle_lecture(&a, &b),
+            Method::Robust => collide::boxes::contact_capsule_triangle(&a, &b),
+        }))
+    }
+
     fn intersect_segment_box(&self, s: &Segment, b: &OrientedBox) -> Reply<IntersectAnswer> {
         let (s, b) = (segment::<T>(s), oriented_box(b));
         Ok(intersection(match self.method {
             Method::Lecture => collide::boxes::intersect_segment_box_lecture(&s, &b),
             Method::Robust => collide::boxes::intersect_segment_box(&s, &b),
+        }))
+    }
+
+    fn intersect_segment_capsule(&self, s: &Segment, b: &Capsule) -> Reply<IntersectAnswer> {
+        let (s, b) = (segment::<T>(s), capsule(b));
+        Ok(intersection(match self.method {
+            Method::Lecture => collide::boxes::intersect_segment_capsule_lecture(&s, &b),
+            Method::Robust => collide::boxes::intersect_segment_capsule(&s, &b),
         }))
     }
 

@@ -435,3 +435,103 @@ pub(crate) fn segment_box_miss(s: &Segment, b: &OrientedBox) -> bool {
         lo.sub(c.add(reach)).positive() || c.sub(reach).sub(hi).positive()
     })
 }
+
+/// `x × y` in plain `f64`, for choosing directions.
+fn cross_plain(x: &P3, y: &P3) -> P3 {
+    [x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]]
+}
+
+/// The lowest and highest of `n·p` over `points`, bounded.
+fn points_span(n: &BV, points: &[P3]) -> (Bounded, Bounded) {
+    let mut it = points.iter().map(|p| dot(n, &exact_v(p)));
+    let first = it.next().expect("a point");
+    it.fold((first, first), |(lo, hi), x| (lo.min(x), hi.max(x)))
+}
+
+/// Whether the convex hull of `points` and the box are certainly further
+/// apart than `r` along `n` (a plain `f64` vector, taken exactly).
+fn points_box_apart_along(n: &P3, points: &[P3], fb: &FastBox, r: Bounded) -> bool {
+    if !n.iter().all(|x| x.is_finite()) || n.iter().all(|x| *x == 0.0) {
+        return false;
+    }
+    let n = exact_v(n);
+    let (c, reach) = box_span(fb, &n);
+    let (lo, hi) = points_span(&n, points);
+    clear_gap(lo.sub(c.add(reach)), r, &n) || clear_gap(c.sub(reach).sub(hi), r, &n)
+}
+
+/// A capsule (checked input) certainly apart from a box: along one of the
+/// box's axes, `d × Aᵢ` (`d` the axis's direction), or `m − p` for `m` an
+/// end or the axis's point nearest the box's centre and `p` its `f64` clamp
+/// into the box.
+pub(crate) fn capsule_box_apart(a: &Capsule, b: &OrientedBox) -> bool {
+    let fb = FastBox::of(b);
+    let axes = plain_axes(&fb);
+    let d: P3 = std::array::from_fn(|i| a.end[i] - a.start[i]);
+    let clamp_dir = |m: &P3| -> P3 {
+        let rel: P3 = std::array::from_fn(|i| m[i] - b.center[i]);
+        let u: P3 = std::array::from_fn(|i| axes[i][0] * rel[0] + axes[i][1] * rel[1] + axes[i][2] * rel[2]);
+        let w: P3 = std::array::from_fn(|i| u[i] - u[i].clamp(-b.half_extents[i], b.half_extents[i]));
+        std::array::from_fn(|k| (0..3).map(|i| w[i] * axes[i][k]).sum())
+    };
+    let mid = nearest_on(&b.center, &a.start, &a.end);
+    let directions = [
+        clamp_dir(&a.start),
+        clamp_dir(&a.end),
+        clamp_dir(&mid),
+        axes[0],
+        axes[1],
+        axes[2],
+        cross_plain(&d, &axes[0]),
+        cross_plain(&d, &axes[1]),
+        cross_plain(&d, &axes[2]),
+    ];
+    let r = Bounded::exact(a.radius);
+    directions.iter().any(|n| points_box_apart_along(n, &[a.start, a.end], &fb, r))
+}
+
+/// Whether the hulls of `pa` and `pb` are certainly further apart than `r`
+/// along `n`.
+fn hulls_apart_along(n: &P3, pa: &[P3], pb: &[P3], r: Bounded) -> bool {
+    if !n.iter().all(|x| x.is_finite()) || n.iter().all(|x| *x == 0.0) {
+        return false;
+    }
+    let n = exact_v(n);
+    let ((lo_a, hi_a), (lo_b, hi_b)) = (points_span(&n, pa), points_span(&n, pb));
+    clear_gap(lo_a.sub(hi_b), r, &n) || clear_gap(lo_b.sub(hi_a), r, &n)
+}
+
+/// A triangle's edges `v1 − v0`, `v2 − v1`, `v0 − v2` and normal, in `f64`.
+fn triangle_frame(t: &crate::geom::Triangle) -> ([P3; 3], P3) {
+    let v = &t.vertices;
+    let e = [0, 1, 2].map(|k| {
+        let (p, q) = (v[k], v[(k + 1) % 3]);
+        std::array::from_fn(|i| q[i] - p[i])
+    });
+    (e, cross_plain(&e[0], &std::array::from_fn(|i| v[2][i] - v[0][i])))
+}
+
+/// A box and a triangle (checked input) certainly apart: along one of the
+/// separating axes (the box's, the triangle's normal, the box's axes crossed
+/// with the edges), taken in `f64` and bounded.
+pub(crate) fn box_triangle_apart(a: &OrientedBox, t: &crate::geom::Triangle) -> bool {
+    let fb = FastBox::of(a);
+    let axes = plain_axes(&fb);
+    let (edges, normal) = triangle_frame(t);
+    let mut directions = vec![axes[0], axes[1], axes[2], normal];
+    directions.extend(axes.iter().flat_map(|x| edges.iter().map(move |e| cross_plain(x, e))));
+    directions.iter().any(|n| points_box_apart_along(n, &t.vertices, &fb, Bounded::exact(0.0)))
+}
+
+/// A capsule and a triangle (checked input) certainly apart: along the
+/// triangle's normal, the axis's direction crossed with the edges, or the
+/// normal crossed with them (the edges' outward directions in its plane).
+pub(crate) fn capsule_triangle_apart(a: &Capsule, t: &crate::geom::Triangle) -> bool {
+    let d: P3 = std::array::from_fn(|i| a.end[i] - a.start[i]);
+    let (edges, normal) = triangle_frame(t);
+    let mut directions = vec![normal];
+    directions.extend(edges.iter().map(|e| cross_plain(&d, e)));
+    directions.extend(edges.iter().map(|e| cross_plain(&normal, e)));
+    let r = Bounded::exact(a.radius);
+    directions.iter().any(|n| hulls_apart_along(n, &[a.start, a.end], &t.vertices, r))
+}

@@ -453,32 +453,45 @@ fn hit(a: IntersectAnswer) -> (SegmentHit, bool) {
 fn referee_segment_capsule_side_end_and_grazing() {
     let c = cap([-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], 1.0);
     let (h, degenerate) = hit(intersect_segment_capsule(&seg([0.0, 3.0, 0.0], [0.0, -3.0, 0.0]), &c).unwrap());
-    assert_eq!((h.t, h.point, h.normal, degenerate), (1.0 / 3.0, [0.0, 1.0, 0.0], [0.0, 1.0, 0.0], false));
+    close(h.t, 1.0 / 3.0, "h.t");
+    close_v(h.point, [0.0, 1.0, 0.0], "h.point");
+    close_v(h.normal, [0.0, 1.0, 0.0], "h.normal");
+    assert!(!degenerate);
     let (h, _) = hit(intersect_segment_capsule(&seg([-5.0, 0.0, 0.0], [5.0, 0.0, 0.0]), &c).unwrap());
-    assert_eq!((h.t, h.point, h.normal), (0.3, [-2.0, 0.0, 0.0], [-1.0, 0.0, 0.0]));
+    close(h.t, 0.3, "h.t");
+    close_v(h.point, [-2.0, 0.0, 0.0], "h.point");
+    close_v(h.normal, [-1.0, 0.0, 0.0], "h.normal");
     // Along the side at the radius: it touches from the start cap's rim on.
     let (h, _) = hit(intersect_segment_capsule(&seg([-5.0, 1.0, 0.0], [5.0, 1.0, 0.0]), &c).unwrap());
-    assert_eq!((h.t, h.point, h.normal), (0.4, [-1.0, 1.0, 0.0], [0.0, 1.0, 0.0]));
+    close(h.t, 0.4, "h.t");
+    close_v(h.point, [-1.0, 1.0, 0.0], "h.point");
+    close_v(h.normal, [0.0, 1.0, 0.0], "h.normal");
     // Ending on the surface: t = 1 counts.
     let (h, _) = hit(intersect_segment_capsule(&seg([0.0, 3.0, 0.0], [0.0, 1.0, 0.0]), &c).unwrap());
-    assert_eq!((h.t, h.point), (1.0, [0.0, 1.0, 0.0]));
+    close(h.t, 1.0, "h.t");
+    close_v(h.point, [0.0, 1.0, 0.0], "h.point");
     let miss = seg([0.0, 3.0, 0.0], [5.0, 3.0, 0.0]);
     assert_eq!(intersect_segment_capsule(&miss, &c).unwrap().hit, None);
-    assert_eq!(intersect_margin_segment_capsule(&miss, &c).unwrap(), -2.0);
+    close(intersect_margin_segment_capsule(&miss, &c).unwrap(), -2.0, "margin");
 }
 
 #[test]
 fn referee_segment_capsule_from_inside() {
     let c = cap([-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], 1.0);
     let (h, degenerate) = hit(intersect_segment_capsule(&seg([0.5, 0.5, 0.0], [0.5, 5.0, 0.0]), &c).unwrap());
-    assert_eq!((h.t, h.point, h.normal, degenerate), (0.0, [0.5, 0.5, 0.0], [0.0, 1.0, 0.0], false));
+    close(h.t, 0.0, "h.t");
+    close_v(h.point, [0.5, 0.5, 0.0], "h.point");
+    close_v(h.normal, [0.0, 1.0, 0.0], "h.normal");
+    assert!(!degenerate);
     let (h, degenerate) = hit(intersect_segment_capsule(&seg([0.0; 3], [0.0, 5.0, 0.0]), &c).unwrap());
     assert!(degenerate, "a start on the axis has no outward direction");
-    assert_eq!((h.t, h.normal), (0.0, [0.0, 0.0, 1.0]));
+    close(h.t, 0.0, "h.t");
+    close_v(h.normal, [0.0, 0.0, 1.0], "h.normal");
     let point = seg([1.5, 0.0, 0.0], [1.5, 0.0, 0.0]);
     let (h, degenerate) = hit(intersect_segment_capsule(&point, &c).unwrap());
     assert!(degenerate, "a zero-length segment is flagged");
-    assert_eq!((h.t, h.normal), (0.0, [1.0, 0.0, 0.0]));
+    close(h.t, 0.0, "h.t");
+    close_v(h.normal, [1.0, 0.0, 0.0], "h.normal");
 }
 
 /// How far from the surface a correctly rounded hit point may lie in these

@@ -474,6 +474,11 @@ fn box_triangle(a: &OrientedBox, b: &Triangle) -> Result<(Convex, Convex), Refer
 /// **Degenerate input.** As box–box; a zero-area triangle is the segment or
 /// point it collapsed to (no normal axis), answered the same way.
 pub fn contact_box_triangle(a: &OrientedBox, b: &Triangle) -> Result<ContactAnswer, RefereeError> {
+    check_box(a, BOX_A)?;
+    check_triangle(b)?;
+    if apart(|| super::boxes_fast::box_triangle_apart(a, b)) {
+        return Ok(APART);
+    }
     let (ca, cb) = box_triangle(a, b)?;
     let rest = Resting::of(&ca, &cb);
     if !rest.touches() {
@@ -500,8 +505,8 @@ pub fn contact_region_box_triangle(a: &OrientedBox, b: &Triangle) -> Result<Opti
 
 /// The solid a capsule meets: a box or a triangle.
 enum Solid {
-    Box(ExactBox),
-    Triangle([V3; 3]),
+    Box(Box<ExactBox>),
+    Triangle(Box<[V3; 3]>),
 }
 
 impl Solid {
@@ -692,13 +697,13 @@ impl AxisSolid {
 fn capsule_box(a: &Capsule, b: &OrientedBox) -> Result<AxisSolid, RefereeError> {
     check_capsule_fields(a)?;
     check_box(b, BOX_B)?;
-    axis_solid(a, Solid::Box(exact_box(b, BOX_B)?))
+    axis_solid(a, Solid::Box(Box::new(exact_box(b, BOX_B)?)))
 }
 
 fn capsule_triangle(a: &Capsule, b: &Triangle) -> Result<AxisSolid, RefereeError> {
     check_capsule_fields(a)?;
     check_triangle(b)?;
-    axis_solid(a, Solid::Triangle(exact_triangle(b)?))
+    axis_solid(a, Solid::Triangle(Box::new(exact_triangle(b)?)))
 }
 
 /// Contact between a capsule `a` and an oriented box `b`.
@@ -719,6 +724,11 @@ fn capsule_triangle(a: &Capsule, b: &Triangle) -> Result<AxisSolid, RefereeError
 /// give the first in the format's order, `degenerate: true`. A zero-length
 /// axis is a sphere.
 pub fn contact_capsule_box(a: &Capsule, b: &OrientedBox) -> Result<ContactAnswer, RefereeError> {
+    check_capsule_fields(a)?;
+    check_box(b, BOX_B)?;
+    if apart(|| super::boxes_fast::capsule_box_apart(a, b)) {
+        return Ok(APART);
+    }
     Ok(capsule_box(a, b)?.answer())
 }
 
@@ -748,6 +758,11 @@ pub fn contact_region_capsule_box(a: &Capsule, b: &OrientedBox) -> Result<Option
 /// push along: normal `(0, 0, 1)`, depth `r`, point a common point,
 /// `degenerate: true`.
 pub fn contact_capsule_triangle(a: &Capsule, b: &Triangle) -> Result<ContactAnswer, RefereeError> {
+    check_capsule_fields(a)?;
+    check_triangle(b)?;
+    if apart(|| super::boxes_fast::capsule_triangle_apart(a, b)) {
+        return Ok(APART);
+    }
     Ok(capsule_triangle(a, b)?.answer())
 }
 

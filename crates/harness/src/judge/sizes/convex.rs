@@ -10,6 +10,10 @@
 //!   the least could take over under a perturbation; the normal then jumps (by
 //!   up to 2, the chord between unit normals) and the point across the shapes,
 //!   weighed as the other pairs weigh a tie ([`super::tie`]).
+//! - **Nearly collinear edges**: a corner of the region where an edge of `a`
+//!   crosses one of `b` slides along them by the sizes over the sine of
+//!   their angle, within the shorter edge; edges on one line decide between
+//!   a stretch and a point.
 //! - **A capsule apart from the solid** (its axis at distance `d > 0`): the
 //!   normal turns by the sizes over `d` (as sphere–capsule), and an axis nearly
 //!   parallel to a face slides its closest point along its length (as
@@ -27,6 +31,8 @@ use oracle::geom::P3;
 /// A polytope in `f64`, scaled: its vertices, edge directions and face normals.
 struct Poly {
     vertices: Vec<P3>,
+    /// Edges as pairs of vertex indices.
+    edges: Vec<(usize, usize)>,
     directions: Vec<P3>,
     normals: Vec<P3>,
 }
@@ -47,19 +53,21 @@ fn of_box(b: &crate::case::BoxSpec, k: f64) -> Poly {
             })
         })
         .collect();
-    Poly { vertices, directions: axes.clone(), normals: axes }
+    let edges =
+        (0..8usize).flat_map(|s| (0..3).filter(move |i| s >> i & 1 == 0).map(move |i| (s, s | 1 << i))).collect();
+    Poly { vertices, edges, directions: axes.clone(), normals: axes }
 }
 
 fn of_triangle(v: &[P3; 3], k: f64) -> Poly {
     let v = v.map(|p| scaled(&p, k));
     let directions = vec![sub(v[1], v[0]), sub(v[2], v[1]), sub(v[0], v[2])];
     let normals = vec![cross(sub(v[1], v[0]), sub(v[2], v[0]))];
-    Poly { vertices: v.to_vec(), directions, normals }
+    Poly { vertices: v.to_vec(), edges: vec![(0, 1), (1, 2), (2, 0)], directions, normals }
 }
 
 fn of_segment(p0: &P3, p1: &P3, k: f64) -> Poly {
     let (p0, p1) = (scaled(p0, k), scaled(p1, k));
-    Poly { vertices: vec![p0, p1], directions: vec![sub(p1, p0)], normals: vec![] }
+    Poly { vertices: vec![p0, p1], edges: vec![(0, 1)], directions: vec![sub(p1, p0)], normals: vec![] }
 }
 
 /// A push in `f64`: its amount over `‖L‖`, its unit direction, and the sine
@@ -88,7 +96,7 @@ fn pushes(a: &Poly, b: &Poly) -> Vec<Push> {
     let mut out = Vec::new();
     for (l, sine) in axes {
         let u = unit(&l);
-        if u == [0.0; 3] {
+        if u.iter().all(|x| *x == 0.0) {
             continue;
         }
         let ((lo_a, hi_a), (lo_b, hi_b)) = (project(a, &u), project(b, &u));
@@ -115,6 +123,65 @@ fn unit_scale(points: &[P3]) -> f64 {
     if m == 0.0 || !m.is_finite() { 1.0 } else { 2f64.powi(-(m.log2().floor() as i32)) }
 }
 
+/// How far a corner of the region can slide: where an edge of `a` and an
+/// edge of `b` nearly on one line overlap, a perturbation decides whether
+/// the one runs inside or outside the other's face, and the region is their
+/// shared stretch or one point (a capsule's axis along a triangle's edge);
+/// crossing at a small angle `θ`, their crossing moves by the sizes over
+/// `sin θ`. Weighed as a tie of the shorter edge's length with the gap
+/// `max(sin θ · length, the edges' distance)`: edges side by side (parallel
+/// faces of two boxes) are as far from crossing as they are apart.
+fn slide(a: &Poly, b: &Poly, k: f64, size: f64) -> f64 {
+    let mut worst = 0.0f64;
+    for &(i, j) in &a.edges {
+        let (p0, p1) = (a.vertices[i], a.vertices[j]);
+        for &(m, n) in &b.edges {
+            let (q0, q1) = (b.vertices[m], b.vertices[n]);
+            let (da, db) = (sub(p1, p0), sub(q1, q0));
+            let len = clean(super::norm(&da).min(super::norm(&db)) / k);
+            if len == 0.0 {
+                continue;
+            }
+            let sine = super::norm(&cross(unit(&da), unit(&db)));
+            let apart = segment_distance(&p0, &p1, &q0, &q1) / k;
+            worst = worst.max(tie(len, size, clean((sine * len).max(apart))));
+        }
+    }
+    worst
+}
+
+/// The distance between segments `[p0, p1]` and `[q0, q1]` in plain `f64`
+/// (Ericson's closest points of two segments, §5.1.9), for sizes only.
+fn segment_distance(p0: &P3, p1: &P3, q0: &P3, q1: &P3) -> f64 {
+    let (d1, d2, r) = (sub(*p1, *p0), sub(*q1, *q0), sub(*p0, *q0));
+    let (a, e, f) = (dot(d1, d1), dot(d2, d2), dot(d2, r));
+    let (mut s, mut t);
+    if a == 0.0 && e == 0.0 {
+        (s, t) = (0.0, 0.0);
+    } else if a == 0.0 {
+        (s, t) = (0.0, (f / e).clamp(0.0, 1.0));
+    } else {
+        let c = dot(d1, r);
+        if e == 0.0 {
+            (s, t) = ((-c / a).clamp(0.0, 1.0), 0.0);
+        } else {
+            let b = dot(d1, d2);
+            let denom = a * e - b * b;
+            s = if denom > 0.0 { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
+            t = (b * s + f) / e;
+            if t < 0.0 {
+                t = 0.0;
+                s = (-c / a).clamp(0.0, 1.0);
+            } else if t > 1.0 {
+                t = 1.0;
+                s = ((b - c) / a).clamp(0.0, 1.0);
+            }
+        }
+    }
+    let at = |o: &P3, d: &P3, x: f64| [o[0] + d[0] * x, o[1] + d[1] * x, o[2] + d[2] * x];
+    clean(super::norm(&sub(at(p0, &d1, s), at(q0, &d2, t))))
+}
+
 /// The sizes of a contact between polytopes `a` and `b` (a capsule's axis
 /// when it meets the solid), `size` the shapes' and the answer's sizes.
 fn resting(a: &Poly, b: &Poly, k: f64, size: f64, across: f64) -> Local {
@@ -122,7 +189,7 @@ fn resting(a: &Poly, b: &Poly, k: f64, size: f64, across: f64) -> Local {
     let turn = ratio(1.0, sine).min(std::f64::consts::PI / f64::EPSILON);
     let depth = Size::new(size, clean(size * (turn - 1.0)));
     Local {
-        point: Size::new(size, clean(size * (turn - 1.0) + tie(across, size, gap))),
+        point: Size::new(size, clean(size * (turn - 1.0) + tie(across, size, gap) + slide(a, b, k, size))),
         depth,
         normal: Size::new(1.0, clean(turn + tie(2.0, size, gap))),
         margin: depth,
