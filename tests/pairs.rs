@@ -57,20 +57,6 @@ const NO_SWEEP: &[(Pair, &str)] = &[
         "response has no degeneracy parameter beyond the masses' ratio, which the random campaign spans",
     ),
     (Pair::ResponseSpherePlane, "as response sphere–sphere"),
-    (
-        Pair::ContactCapsuleBox,
-        "the referee has no floating-point stage for it yet: its exact closest pairs (the axis against twelve \
-         edges) on 24 rotated poses of 161 points cost the kissing sweep 17 s with the triangle pairs, beyond the \
-         report's budget; box–box and sphere–box cover a face kissing a face, capsule–capsule an axis over an edge",
-    ),
-    (
-        Pair::ContactBoxTriangle,
-        "as capsule–box: no floating-point stage yet; the triangle's own degeneracies are swept by sphere–triangle",
-    ),
-    (
-        Pair::ContactCapsuleTriangle,
-        "as capsule–box: no floating-point stage yet; the triangle's own degeneracies are swept by sphere–triangle",
-    ),
 ];
 
 fn pairs_of<'a>(cases: impl IntoIterator<Item = &'a LoadedCase>) -> BTreeSet<Pair> {

@@ -200,6 +200,13 @@ pub fn margin(lc: &LoadedCase) -> Option<f64> {
         (P::ContactCapsulePlane, S::Capsule(a), Some(S::Plane(b))) => {
             referee::contact_margin_capsule_plane(a, &b.to_geom()).ok()
         }
+        // A segment against a box: minus its distance from the box when it
+        // misses, how deep it passes when it hits (its least push out) — the
+        // margin of a capsule of radius 0 on that axis.
+        (P::IntersectSegmentBox, S::Segment(s), Some(S::Box(b))) => {
+            let axis = oracle::geom::Capsule { start: s.start, end: s.end, radius: 0.0 };
+            referee::contact_margin_capsule_box(&axis, &b.to_geom()).ok()
+        }
         (P::IntersectSegmentCapsule, S::Segment(s), Some(S::Capsule(b))) => {
             referee::intersect_margin_segment_capsule(&s.to_geom(), b).ok()
         }
@@ -237,11 +244,6 @@ pub fn margin(lc: &LoadedCase) -> Option<f64> {
             _,
         )
         | (P::ResponseSphereSphere | P::ResponseSpherePlane, _, _) => None,
-        // A segment against a box has none yet: its distance from flipping is
-        // the margin of a zero-radius capsule on it (`contact_margin_capsule_box`),
-        // to be switched on with the sample report written again (it makes
-        // some shrunk findings borderline).
-        (P::IntersectSegmentBox, _, _) => None,
         // Continuous collision is judged exactly, with no borderline band (the
         // CCD benchmark's terms: a method's false positives and negatives are
         // counted against the exact answer; docs/FORMAT.md).
