@@ -28,12 +28,11 @@
 //!   down to 1e-16, and exactly parallel (the contact region is then a
 //!   segment: any of its points is right). The closest points slide along the
 //!   axes as θ → 0.
-//! - `kissing` (contact of spheres, boxes, capsules, planes and triangles):
+//! - `kissing` (contact of spheres, boxes, capsules and planes):
 //!   the gap between the surfaces from 1 down to 1e-16, apart, and exactly
 //!   touching: a sphere beside a box's face (in the face region), two crossing
-//!   capsules, a box face down on a box or a large triangle, a capsule across a
-//!   box's face or tipped over a triangle, a segment across a capsule's side
-//!   (its first hit). Radii and
+//!   capsules, a box face down on a box, a capsule across a box's face. Radii
+//!   and
 //!   half-extents on the 1/32 grid, the box's quaternion an integer one with a
 //!   dyadic rotation (the quarter turns), so that exactly touching is exact.
 //!
@@ -228,19 +227,6 @@ pub(super) fn kissing_box_box(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
     pose.scene(&(crate::case::Shape::Box(a), Some(b)))
 }
 
-/// `kissing`, probe `segment–capsule`: a segment across a capsule's side,
-/// passing `g` outside its surface.
-pub(super) fn kissing_segment_capsule(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
-    let (r, l) = (grid(rng, 0.25, 1.0), grid(rng, 0.5, 2.0));
-    let z = r + g;
-    pose.scene(&(segment([0.25, -2.0, z], [-0.25, 2.0, z]), Some(capsule([-l, 0.0, 0.0], [l, 0.0, 0.0], r))))
-}
-
-/// A large triangle in the plane `z = 0` (it holds every footprint here).
-fn floor_triangle() -> crate::case::Shape {
-    crate::generate::build::triangle([[-8.0, -8.0, 0.0], [8.0, -8.0, 0.0], [0.0, 8.0, 0.0]])
-}
-
 /// `kissing`, probe `capsule–box`: a capsule across box `b`'s top face, its
 /// surface `g` above it.
 pub(super) fn kissing_capsule_box(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
@@ -248,21 +234,4 @@ pub(super) fn kissing_capsule_box(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
     let (r, l) = (grid(rng, 0.25, 1.0), grid(rng, 0.25, 1.0));
     let z = up + r + g;
     pose.scene(&(capsule([-l, 0.25, z], [l, -0.25, z], r), Some(b)))
-}
-
-/// `kissing`, probe `box–triangle`: a box face down over a triangle, `g` above it.
-pub(super) fn kissing_box_triangle(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
-    let (a, down) = quarter_turned_box(rng);
-    let crate::case::Shape::Box(mut a) = a else { unreachable!("a box") };
-    a.center = [grid(rng, -0.5, 0.5), grid(rng, -0.5, 0.5), down + g];
-    pose.scene(&(crate::case::Shape::Box(a), Some(floor_triangle())))
-}
-
-/// `kissing`, probe `capsule–triangle`: a capsule tipped by a Pythagorean
-/// slope, its lower end's sphere `g` above a triangle.
-pub(super) fn kissing_capsule_triangle(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
-    let r = grid(rng, 0.25, 1.0);
-    let len = grid(rng, 0.5, 2.0);
-    let start = [0.0, 0.0, r + g];
-    pose.scene(&(capsule(start, add(start, [0.6 * len, 0.0, 0.8 * len]), r), Some(floor_triangle())))
 }

@@ -605,13 +605,10 @@ pub static SWEEPS: &[Sweep] = &[
             Probe { name: "sphere–capsule", query: Query::Contact, build: boxes::kissing_sphere_capsule },
             Probe { name: "box–box", query: Query::Contact, build: boxes::kissing_box_box },
             Probe { name: "capsule–box", query: Query::Contact, build: boxes::kissing_capsule_box },
-            Probe { name: "box–triangle", query: Query::Contact, build: boxes::kissing_box_triangle },
-            Probe { name: "capsule–triangle", query: Query::Contact, build: boxes::kissing_capsule_triangle },
-            Probe { name: "segment–capsule", query: Query::Intersect, build: boxes::kissing_segment_capsule },
         ],
         about: "A sphere beside a box's face (the box turned by a quarter turn, half-extents and radius on \
-                the 1/32 grid), two crossing capsules, a box face down on a box or a triangle, a capsule \
-                across a box's face or tipped over a triangle, a segment across a capsule's side, the gap g between their surfaces from 1 down \
+                the 1/32 grid), two crossing capsules, a box face down on a box, a capsule across a box's \
+                face, the gap g between their surfaces from 1 down \
                 to 1e-16 and exactly 0 (touching is contact). The gap rounds at the ulp of the sizes \
                 (about 1e-16): below it the referee judges what it rounded to.",
     },
