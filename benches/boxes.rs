@@ -1,7 +1,7 @@
 //! Oriented boxes and capsules, collide against parry3d-f64, one run:
 //! `cargo bench --bench boxes`.
 //!
-//! Three pairs, each on the campaign's own cases of it ([`PER_QUERY`]
+//! Five pairs, each on the campaign's own cases of it ([`PER_QUERY`]
 //! generated cases of the default seed per query kind, a tenth full-range,
 //! as a report draws them, kept where the shapes are the pair's):
 //!
@@ -10,6 +10,8 @@
 //! | sphere–box contact | `contact_sphere_box`, `contact_sphere_box_lecture` | `query::contact(pose, Ball, pose, Cuboid, 0)` |
 //! | box–box overlap | `test_box_box`, `test_box_box_lecture` | `query::intersection_test(pose, Cuboid, pose, Cuboid)` |
 //! | capsule–capsule contact | `contact_capsule_capsule`, `contact_capsule_capsule_lecture` | `query::contact(id, Capsule, id, Capsule, 0)` |
+//! | box–box contact | `contact_box_box`, `contact_box_box_lecture` | `query::contact(pose, Cuboid, pose, Cuboid, 0)` |
+//! | capsule–box contact | `contact_capsule_box`, `contact_capsule_box_lecture` | `query::contact(id, Capsule, pose, Cuboid, 0)` |
 //!
 //! Every engine's inputs are built before timing, in its own types, as the
 //! harness's adapters build them (parry's box: a `Cuboid` at the pose of the
@@ -109,6 +111,8 @@ type BoxBox = (collide::OrientedBox<f64>, collide::OrientedBox<f64>);
 type ParryBoxBox = (Pose, Cuboid, Pose, Cuboid);
 type CapsuleCapsule = (collide::Capsule<f64>, collide::Capsule<f64>);
 type ParryCapsules = (ParryCapsule, ParryCapsule);
+type CapsuleBox = (collide::Capsule<f64>, collide::OrientedBox<f64>);
+type ParryCapsuleBox = (ParryCapsule, Pose, Cuboid);
 
 fn sphere_box(all: &[LoadedCase]) -> PairInputs<SphereBox, ParrySphereBox> {
     let mut out = PairInputs { collide: Vec::new(), parry: Vec::new() };
@@ -144,6 +148,19 @@ fn capsule_capsule(all: &[LoadedCase]) -> PairInputs<CapsuleCapsule, ParryCapsul
             let (Some(pa), Some(pb)) = (parry_capsule(a), parry_capsule(b)) else { continue };
             out.collide.push((collide_capsule(a), collide_capsule(b)));
             out.parry.push((pa, pb));
+        }
+    }
+    out
+}
+
+fn capsule_box(all: &[LoadedCase]) -> PairInputs<CapsuleBox, ParryCapsuleBox> {
+    let mut out = PairInputs { collide: Vec::new(), parry: Vec::new() };
+    for lc in all {
+        if let (Shape::Capsule(a), Some(Shape::Box(b))) = (&lc.case.a, lc.case.b.as_ref()) {
+            let b = b.to_geom();
+            let (Some(pa), Some((pb, cb))) = (parry_capsule(a), parry_box(&b)) else { continue };
+            out.collide.push((collide_capsule(a), collide_box(&b)));
+            out.parry.push((pa, pb, cb));
         }
     }
     out
@@ -250,6 +267,25 @@ fn cc_parry(x: &ParryCapsules) -> Option<query::Contact> {
     query::contact(&Pose::IDENTITY, &x.0, &Pose::IDENTITY, &x.1, 0.0).ok().flatten()
 }
 
+fn bbc_robust(x: &BoxBox) -> Option<collide::contact::Contact<f64>> {
+    collide::boxes::contact_box_box(&x.0, &x.1)
+}
+fn bbc_lecture(x: &BoxBox) -> Option<collide::contact::Contact<f64>> {
+    collide::boxes::contact_box_box_lecture(&x.0, &x.1)
+}
+fn bbc_parry(x: &ParryBoxBox) -> Option<query::Contact> {
+    query::contact(&x.0, &x.1, &x.2, &x.3, 0.0).ok().flatten()
+}
+fn cb_robust(x: &CapsuleBox) -> Option<collide::contact::Contact<f64>> {
+    collide::boxes::contact_capsule_box(&x.0, &x.1)
+}
+fn cb_lecture(x: &CapsuleBox) -> Option<collide::contact::Contact<f64>> {
+    collide::boxes::contact_capsule_box_lecture(&x.0, &x.1)
+}
+fn cb_parry(x: &ParryCapsuleBox) -> Option<query::Contact> {
+    query::contact(&Pose::IDENTITY, &x.0, &x.1, &x.2, 0.0).ok().flatten()
+}
+
 fn table(rows: &[Row], since: SystemTime) -> String {
     let mut s = format!(
         "# crashtest speed: oriented boxes and capsules, collide against parry3d-f64, one run\n\n\
@@ -290,7 +326,13 @@ fn main() {
     PAIRING.store(benching, std::sync::atomic::Ordering::Relaxed);
     let (contact, overlap) = (cases(Query::Contact), cases(Query::Overlap));
     let (sb, bb, cc) = (sphere_box(&contact), box_box(&overlap), capsule_capsule(&contact));
-    assert!(!sb.collide.is_empty() && !bb.collide.is_empty() && !cc.collide.is_empty(), "no box or capsule cases");
+    let (bbc, cb) = (box_box(&contact), capsule_box(&contact));
+    assert!(
+        [sb.collide.len(), bb.collide.len(), cc.collide.len(), bbc.collide.len(), cb.collide.len()]
+            .iter()
+            .all(|n| *n > 0),
+        "no box or capsule cases"
+    );
     let mut c = Criterion::default()
         .output_directory(&criterion_dir())
         .warm_up_time(WARM_UP)
@@ -325,6 +367,30 @@ fn main() {
                 robust: cc_robust,
                 lecture: cc_lecture,
                 parry: cc_parry,
+                decided: Option::is_some,
+                parry_decided: Option::is_some,
+            },
+        ),
+        bench(
+            &mut c,
+            ("box–box contact", "boxes_box_box_contact"),
+            bbc,
+            Engines {
+                robust: bbc_robust,
+                lecture: bbc_lecture,
+                parry: bbc_parry,
+                decided: Option::is_some,
+                parry_decided: Option::is_some,
+            },
+        ),
+        bench(
+            &mut c,
+            ("capsule–box contact", "boxes_capsule_box"),
+            cb,
+            Engines {
+                robust: cb_robust,
+                lecture: cb_lecture,
+                parry: cb_parry,
                 decided: Option::is_some,
                 parry_decided: Option::is_some,
             },

@@ -116,7 +116,7 @@ impl Queries for LongNormals {
 fn a_users_engine_with_long_sphere_plane_normals_disagrees_on_every_contact() {
     let set = EngineSet::of(vec![Engine::new("long normals", Some(53), LongNormals)]);
     let mut contacts = 0;
-    for lc in campaign(Some(Query::Contact), 3_000) {
+    for lc in campaign(Some(Query::Contact), 4_000) {
         let is_pair = matches!(
             (&lc.case.a, lc.case.b.as_ref()),
             (harness::case::Shape::Sphere(_), Some(harness::case::Shape::Plane(_)))

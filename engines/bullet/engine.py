@@ -218,7 +218,8 @@ def contact_from_points(points):
 # read. For a mesh pybullet does not say which face was hit, so the normal is left as
 # Bullet gives it (facing the segment's start). A box is convex: Bullet's convex cast
 # (btGjkConvexCast, kF_UseGjkConvexCastRaytest) gives the surface normal where the ray
-# enters, outward, and it is left as given. No barycentric, no face index, no
+# enters, outward, and it is left as given; a capsule (make_capsule's body) is cast the
+# same way. No barycentric, no face index, no
 # `parallel`: pybullet reports none of them.
 def hit_from_ray(result, face_normal):
     obj, _link, frac, pos, nrm = result
@@ -471,6 +472,7 @@ HANDLERS = {
     ("contact", "capsule", "box"): contact,
     ("contact", "capsule", "triangle"): contact,
     ("intersect", "segment", "box"): intersect,
+    ("intersect", "segment", "capsule"): intersect,
     ("overlap", "box", "box"): overlap,
     ("overlap", "box", "aabb"): overlap,
     ("bounds", "box", None): bounds_box,
@@ -498,7 +500,7 @@ PROVENANCE = {
     "capsule_shape": "GEOM_CAPSULE -> btCapsuleShapeZ(r, height = |end - start|), body at start/2 + end/2 "
                      "rotated z -> end - start; its margin is its radius (none sent)",
     "box_capsule_contacts": "getClosestPoints(bodyA, bodyB or a bare sphere, distance=0), the point with the "
-                            "smallest contactDistance; segment-box: rayTest",
+                            "smallest contactDistance; segment-box, segment-capsule: rayTest",
     "polytope_contacts": "box-box and capsule-box: btConvexConvexAlgorithm (GJK + EPA; the closest-points dispatch "
                          "has no btBoxBoxCollisionAlgorithm); box-triangle and capsule-triangle: "
                          "btConvexConcaveCollisionAlgorithm -> convex-convex against the btTriangleShape",

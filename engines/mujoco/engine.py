@@ -108,13 +108,17 @@ XML_FLEX_CAPSULE = _xml_flex(_CAPSULE)
 XML_BOX_ONLY = f"""<mujoco><worldbody>
   <geom name="b" {_BOX} contype="0" conaffinity="0" {_GEOM}/>
 </worldbody></mujoco>"""
+# segment-capsule: the capsule alone, likewise
+XML_CAPSULE_ONLY = f"""<mujoco><worldbody>
+  <geom name="b" {_CAPSULE} contype="0" conaffinity="0" {_GEOM}/>
+</worldbody></mujoco>"""
 
 
 # the fixed models by scene name (also the MJCF of the hello's reproductions)
 MODELS = {"sphere-sphere": XML_SPHERE_SPHERE, "plane-sphere": XML_PLANE_SPHERE, "flex-sphere": XML_FLEX_SPHERE,
           "plane-only": XML_PLANE_ONLY, "box-box": XML_BOX_BOX, "sphere-box": XML_SPHERE_BOX,
           "plane-box": XML_PLANE_BOX, "sphere-capsule": XML_SPHERE_CAPSULE, "capsule-capsule": XML_CAPSULE_CAPSULE,
-          "plane-capsule": XML_PLANE_CAPSULE, "box-only": XML_BOX_ONLY, "capsule-box": XML_CAPSULE_BOX,
+          "plane-capsule": XML_PLANE_CAPSULE, "box-only": XML_BOX_ONLY, "capsule-only": XML_CAPSULE_ONLY, "capsule-box": XML_CAPSULE_BOX,
           "flex-box": XML_FLEX_BOX, "flex-capsule": XML_FLEX_CAPSULE}
 
 
@@ -496,6 +500,14 @@ def intersect_box(case):
     return ray_on(sc, seg)
 
 
+def intersect_capsule(case):
+    """segment-capsule: mj_ray on the capsule alone (set_capsule), as segment-box: MuJoCo's ray_capsule."""
+    seg, cap = case["a"]["segment"], case["b"]["capsule"]
+    sc = scene("capsule-only")
+    set_capsule(sc, "b", cap)
+    return ray_on(sc, seg)
+
+
 def intersect_triangle(case):
     seg, tri = case["a"]["segment"], case["b"]["triangle"]
     sc = scene("flex-sphere")  # the same one-triangle flex
@@ -561,6 +573,7 @@ HANDLERS = {
     ("contact", "box", "triangle"): contact_shape_triangle,
     ("contact", "capsule", "triangle"): contact_shape_triangle,
     ("intersect", "segment", "box"): intersect_box,
+    ("intersect", "segment", "capsule"): intersect_capsule,
     ("overlap", "box", "box"): overlap_box,
     ("overlap", "box", "aabb"): overlap_box,
 }
@@ -743,6 +756,7 @@ PROVENANCE = {
                                       "(radius 0, margin 0, gap 0) -> mj_collideGeomElem -> mjraw_BoxTriangle / "
                                       "mjraw_CapsuleTriangle; the contact with the least dist",
     "segment-box": "mj_ray on a model holding only the box (contype 0, conaffinity 0)",
+    "segment-capsule": "mj_ray on a model holding only the capsule (contype 0, conaffinity 0): ray_capsule",
     "stdout": "fd 1 redirected to stderr; the protocol uses a duplicate of the original fd 1",
 }
 

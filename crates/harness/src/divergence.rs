@@ -408,6 +408,19 @@ pub const PARRY: Known = Known::rules(&[
         },
     },
     Rule {
+        parry_what: Some("segment–capsule: a segment starting in the capsule"),
+        reason: "",
+        explains: |lc, a, t, reasons| {
+            let zero = |n: &[f64; 3]| n.iter().all(|x| *x == 0.0);
+            matches!((a, t), (Answer::Intersect(a), Answer::Intersect(t))
+                if shapes(lc).1 == Some("capsule")
+                    && a.hit.is_some_and(|h| h.t == 0.0 && zero(&h.normal))
+                    && t.hit.is_some_and(|h| h.t == 0.0))
+                && !reasons.is_empty()
+                && reasons.iter().all(|r| r.starts_with("normal") || r.starts_with("degenerate"))
+        },
+    },
+    Rule {
         parry_what: Some("sphere–box: a centre tied between faces"),
         reason: "",
         explains: |lc, a, t, reasons| {

@@ -578,9 +578,9 @@ mod tests {
     use super::super::SMOKE_TOL;
     use super::*;
     use crate::parry::api::{
-        BOX_RAY_FROM_INSIDE, BOX_TIE_NO_FLAG, CENTRE_NEAR_TRIANGLE, CENTROID_SPHERE, CLAMPED_BARYCENTRICS,
-        CONCENTRIC_SPHERES, DIVERGENCES, Divergence, MESH_END_HIT, MESH_NO_PARALLEL, MESH_TIE_FACE,
-        NO_TRIANGLE_PARALLEL, PLANE_PARALLEL_EPSILON, TOUCHING_SPHERES, known_divergences,
+        BOX_RAY_FROM_INSIDE, BOX_TIE_NO_FLAG, CAPSULE_RAY_FROM_INSIDE, CENTRE_NEAR_TRIANGLE, CENTROID_SPHERE,
+        CLAMPED_BARYCENTRICS, CONCENTRIC_SPHERES, DIVERGENCES, Divergence, MESH_END_HIT, MESH_NO_PARALLEL,
+        MESH_TIE_FACE, NO_TRIANGLE_PARALLEL, PLANE_PARALLEL_EPSILON, TOUCHING_SPHERES, known_divergences,
     };
     use proptest::prelude::*;
 
@@ -1216,6 +1216,20 @@ mod tests {
     }
 
     #[test]
+    fn parry_divergence_capsule_ray_from_inside_has_a_zero_normal() {
+        assert_listed(&CAPSULE_RAY_FROM_INSIDE);
+        // The rod from (−1,0,0) to (1,0,0) of radius 1, a start 0.5 off its
+        // axis: the format's answer is t = 0 with the normal +y; parry's is
+        // t = 0 with the zero vector.
+        let rod = Capsule { start: [-1.0, 0.0, 0.0], end: [1.0, 0.0, 0.0], radius: 1.0 };
+        let a = engine().intersect_segment_capsule(segment([0.5, 0.5, 0.0], [0.5, 5.0, 0.0]), rod);
+        let h = a.hit.expect("a hit at the start");
+        assert_close("t", h.t, 0.0);
+        assert_p3("point", h.point, [0.5, 0.5, 0.0]);
+        assert_p3("normal", h.normal, [0.0; 3]);
+    }
+
+    #[test]
     fn parry_divergence_box_tie_is_not_flagged() {
         assert_listed(&BOX_TIE_NO_FLAG);
         // A centre on the unit box's edge (1, 1, 0), radius 1/2: the faces +x
@@ -1244,6 +1258,7 @@ mod tests {
             MESH_NO_PARALLEL,
             BOX_RAY_FROM_INSIDE,
             BOX_TIE_NO_FLAG,
+            CAPSULE_RAY_FROM_INSIDE,
         ];
         for d in DIVERGENCES {
             assert!(pinned.iter().any(|p| p.what == d.what), "`{}` has a pin", d.what);
