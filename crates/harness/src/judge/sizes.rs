@@ -1111,7 +1111,7 @@ fn least_and_gap(a: &Poly, b: &Poly, k: f64) -> (f64, f64) {
     let mut all = pushes(a, b);
     all.sort_by(|x, y| x.amount.total_cmp(&y.amount));
     let Some(least) = all.first() else { return (1.0, f64::MAX) };
-    let other = all[1..].iter().find(|p| dot(p.direction, least.direction) < 1.0 - 1e-12);
+    let other = all[1..].iter().find(|p| dot(p.direction, least.direction) < SAME_PUSH_COSINE);
     let gap = other.map_or(f64::MAX, |p| clean((p.amount - least.amount) / k));
     (least.sine, gap)
 }
@@ -1121,6 +1121,17 @@ fn unit_scale(points: &[P3]) -> f64 {
     let m = points.iter().copied().map(max_abs).fold(0.0, f64::max);
     if m == 0.0 || !m.is_finite() { 1.0 } else { 2f64.powi(-(m.log2().floor() as i32)) }
 }
+
+/// Two pushes go the same way when their unit directions' cosine is at least
+/// this (within 1.4e-6 rad: parallel candidate axes, such as `aᵢ × bⱼ`
+/// along one of `a`'s own axes, computed in `f64`); a push any further off
+/// is another direction, whose gap to the least is a tie's.
+const SAME_PUSH_COSINE: f64 = 1.0 - 1e-12;
+
+/// The scene is scaled to a largest coordinate near 1, then by this more,
+/// so that a box's corners (its centre plus three half-extents) stay below
+/// 4 and no product of two of them overflows or loses its scale.
+const SCENE_HEADROOM: f64 = 4.0;
 
 /// How far a corner of the region can slide: where an edge of `a` and an
 /// edge of `b` nearly on one line overlap, a perturbation decides whether
@@ -1205,13 +1216,14 @@ fn contact_convex(a: &Shape, b: &Shape, w: &oracle::geom::Contact) -> Option<Loc
     let extra = max_abs(w.point) + w.depth.abs();
     Some(match (a, b) {
         (Shape::Box(ba), Shape::Box(bb)) => {
-            let k = unit_scale(&[ba.center, ba.half_extents, bb.center, bb.half_extents]) / 4.0;
+            let k = unit_scale(&[ba.center, ba.half_extents, bb.center, bb.half_extents]) / SCENE_HEADROOM;
             let (pa, pb) = (of_box(ba, k), of_box(bb, k));
             let size = clean(box_size(ba) + box_size(bb) + extra);
             resting(&pa, &pb, k, size, size)
         }
         (Shape::Box(ba), Shape::Triangle(t)) => {
-            let k = unit_scale(&[ba.center, ba.half_extents, t.vertices[0], t.vertices[1], t.vertices[2]]) / 4.0;
+            let k =
+                unit_scale(&[ba.center, ba.half_extents, t.vertices[0], t.vertices[1], t.vertices[2]]) / SCENE_HEADROOM;
             let (pa, pb) = (of_box(ba, k), of_triangle(&t.vertices, k));
             let size = clean(box_size(ba) + triangle_size(&t.vertices) + extra);
             resting(&pa, &pb, k, size, size)
@@ -1219,11 +1231,11 @@ fn contact_convex(a: &Shape, b: &Shape, w: &oracle::geom::Contact) -> Option<Loc
         (Shape::Capsule(c), Shape::Box(_) | Shape::Triangle(_)) => {
             let (k, pb, b_size) = match b {
                 Shape::Box(bb) => {
-                    let k = unit_scale(&[c.start, c.end, bb.center, bb.half_extents]) / 4.0;
+                    let k = unit_scale(&[c.start, c.end, bb.center, bb.half_extents]) / SCENE_HEADROOM;
                     (k, of_box(bb, k), box_size(bb))
                 }
                 Shape::Triangle(t) => {
-                    let k = unit_scale(&[c.start, c.end, t.vertices[0], t.vertices[1], t.vertices[2]]) / 4.0;
+                    let k = unit_scale(&[c.start, c.end, t.vertices[0], t.vertices[1], t.vertices[2]]) / SCENE_HEADROOM;
                     (k, of_triangle(&t.vertices, k), triangle_size(&t.vertices))
                 }
                 _ => return None,
