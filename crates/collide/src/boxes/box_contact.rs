@@ -31,6 +31,7 @@ use crate::real::{Real, Vec3};
 use crate::shapes::{OrientedBox, Triangle};
 
 use super::OBB_EPSILON;
+use super::capsule_capsule::closest_pt_segment_segment_lecture;
 
 /// The touching set's tolerance, relative to the features' size (and the
 /// depth): a feature's vertex within this of the other feature counts as
@@ -595,55 +596,10 @@ fn contact_box_box_lecture_raw<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>) 
             let mut pb = support_lecture(&b.center, &rb, &eb, &n);
             pb -= rb.column(j) * (sign_or_zero(rb.column(j).dot(&n)) * eb[j]);
             let (da, db) = (ra.column(i) * ea[i], rb.column(j) * eb[j]);
-            closest_segments_lecture(&(pa - da), &(pa + da), &(pb - db), &(pb + db)).1
+            closest_pt_segment_segment_lecture(&(pa - da), &(pa + da), &(pb - db), &(pb + db)).1
         }
     };
     Some(Contact { point, normal: n, depth: best.depth, degenerate: tie })
-}
-
-/// Ericson's `ClosestPtSegmentSegment` (§5.1.9), as written: the closest
-/// points of `[p1, q1]` and `[p2, q2]` (a squared length at most
-/// [`super::SEGMENT_EPSILON`] is a point; parallel segments take `s = 0`).
-pub(crate) fn closest_segments_lecture<T: Real>(
-    p1: &Vec3<T>,
-    q1: &Vec3<T>,
-    p2: &Vec3<T>,
-    q2: &Vec3<T>,
-) -> (Vec3<T>, Vec3<T>) {
-    let eps = T::of(super::SEGMENT_EPSILON);
-    let clamp01 = |x: T| x.max(T::zero()).min(T::one());
-    let (d1, d2, r) = (q1 - p1, q2 - p2, p1 - p2);
-    let (a, e, f) = (d1.dot(&d1), d2.dot(&d2), d2.dot(&r));
-    if a <= eps && e <= eps {
-        return (*p1, *p2);
-    }
-    let (s, t);
-    if a <= eps {
-        s = T::zero();
-        t = clamp01(f / e);
-    } else {
-        let c = d1.dot(&r);
-        if e <= eps {
-            t = T::zero();
-            s = clamp01(-c / a);
-        } else {
-            let b = d1.dot(&d2);
-            let denom = a * e - b * b;
-            let s0 = if denom != T::zero() { clamp01((b * f - c * e) / denom) } else { T::zero() };
-            let t0 = (b * s0 + f) / e;
-            if t0 < T::zero() {
-                t = T::zero();
-                s = clamp01(-c / a);
-            } else if t0 > T::one() {
-                t = T::one();
-                s = clamp01((b - c) / a);
-            } else {
-                t = t0;
-                s = s0;
-            }
-        }
-    }
-    (p1 + d1 * s, p2 + d2 * t)
 }
 
 /// Contact between boxes `a` and `b`, **robust form**: the format's least
@@ -810,7 +766,7 @@ fn contact_box_triangle_lecture_raw<T: Real>(a: &OrientedBox<T>, b: &Triangle<T>
             pa -= ra.column(i) * (sign_or_zero(-ra.column(i).dot(&n)) * h[i]);
             let da = ra.column(i) * h[i];
             let (s, t) = (v[k], v[(k + 1) % 3]);
-            closest_segments_lecture(&(pa - da), &(pa + da), &s, &t).1
+            closest_pt_segment_segment_lecture(&(pa - da), &(pa + da), &s, &t).1
         }
     };
     Some(Contact { point, normal: n, depth: best.depth, degenerate: tie })

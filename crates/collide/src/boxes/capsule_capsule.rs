@@ -39,8 +39,10 @@ fn contact_capsule_capsule_lecture_raw<T: Real>(a: &Capsule<T>, b: &Capsule<T>) 
 }
 
 /// Ericson's `ClosestPtSegmentSegment` (§5.1.9) as written: the closest points
-/// of `[p1, q1]` and `[p2, q2]`.
-fn closest_pt_segment_segment_lecture<T: Real>(
+/// of `[p1, q1]` and `[p2, q2]` (a squared length at most [`SEGMENT_EPSILON`]
+/// is a point; parallel segments take `s = 0`). Shared by the capsule
+/// forms' lecture methods.
+pub(crate) fn closest_pt_segment_segment_lecture<T: Real>(
     p1: &Vec3<T>,
     q1: &Vec3<T>,
     p2: &Vec3<T>,

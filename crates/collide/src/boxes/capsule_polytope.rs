@@ -1,9 +1,10 @@
 //! Capsule–box and capsule–triangle contact.
 
 use super::box_contact::{
-    Cand, Least, add3, at3, box_feature, cand, cat, closest_segments_lecture, comb3, e3, extent, max2x2, max3x4,
-    over_sqrt, rotation_f64, sat_polys, scale3, side, times2, touching_point, tri_edges, triangle_top,
+    Cand, Least, add3, at3, box_feature, cand, cat, comb3, e3, extent, max2x2, max3x4, over_sqrt, rotation_f64,
+    sat_polys, scale3, side, times2, touching_point, tri_edges, triangle_top,
 };
+use super::capsule_capsule::closest_pt_segment_segment_lecture;
 use super::poly::{self, Filt, Ring, cross3, dot3, over_norm2, quaternion_axes, refs, scaled_f64, select, sub3};
 use super::{
     OBB_EPSILON, all_finite, contact_capsule_capsule, contact_sphere_box, fallback_normal, finish, lecture_finite,
@@ -80,7 +81,7 @@ fn contact_capsule_box_lecture_raw<T: Real>(a: &Capsule<T>, b: &OrientedBox<T>) 
     let clamp = |p: &Vec3<T>| Vec3::new(p.x.max(-h.x).min(h.x), p.y.max(-h.y).min(h.y), p.z.max(-h.z).min(h.z));
     let mut pairs = vec![(p0, clamp(&p0)), (p1, clamp(&p1))];
     for (e0, e1) in box_edges_lecture(&h) {
-        pairs.push(closest_segments_lecture(&p0, &p1, &e0, &e1));
+        pairs.push(closest_pt_segment_segment_lecture(&p0, &p1, &e0, &e1));
     }
     let (pa, pb) = nearest_pair(&pairs)?;
     sphere_touch(&(rot * (pa - pb)), &(b.center + rot * pb), a.radius)
@@ -238,7 +239,7 @@ fn contact_capsule_triangle_lecture_raw<T: Real>(a: &Capsule<T>, b: &Triangle<T>
     }
     let mut pairs = vec![(p0, closest_pt_point_triangle(&p0, b)), (p1, closest_pt_point_triangle(&p1, b))];
     for k in 0..3 {
-        pairs.push(closest_segments_lecture(&p0, &p1, &b.vertices[k], &b.vertices[(k + 1) % 3]));
+        pairs.push(closest_pt_segment_segment_lecture(&p0, &p1, &b.vertices[k], &b.vertices[(k + 1) % 3]));
     }
     let (pa, pb) = nearest_pair(&pairs)?;
     sphere_touch(&(pa - pb), &pb, a.radius)
