@@ -609,19 +609,25 @@ pub(crate) fn contact_region(a: &Shape, b: &Shape) -> Option<Region> {
     Region::of(&vertices.ok()??)
 }
 
-/// A segment's first hit on a box: the entering face's plane plays the
-/// surface of [`intersect`], with the box's size at the hit; a hit near an edge
-/// or corner (another slab entering within the gap) may enter through the
-/// neighbouring face, whose normal is a right angle away.
-fn intersect_box(s0: &P3, s1: &P3, b: &crate::case::BoxSpec, w: Option<&oracle::geom::SegmentHit>) -> Local {
-    let plane = match w {
+/// The plane of the surface at a hit (its normal through its point), whose
+/// segment–plane sizes stand for a curved or boxed surface's there; `z = 0`
+/// when there is no hit.
+fn tangent_plane(w: Option<&oracle::geom::SegmentHit>) -> crate::case::PlaneSpec {
+    match w {
         Some(h) => {
             let n = unit(&h.normal);
             crate::case::PlaneSpec { normal: n, offset: dot(n, h.point), velocity: None }
         }
         None => crate::case::PlaneSpec { normal: [0.0, 0.0, 1.0], offset: 0.0, velocity: None },
-    };
-    let mut out = intersect(s0, s1, &Shape::Plane(plane), None, None, w);
+    }
+}
+
+/// A segment's first hit on a box: the entering face's plane plays the
+/// surface of [`intersect`], with the box's size at the hit; a hit near an edge
+/// or corner (another slab entering within the gap) may enter through the
+/// neighbouring face, whose normal is a right angle away.
+fn intersect_box(s0: &P3, s1: &P3, b: &crate::case::BoxSpec, w: Option<&oracle::geom::SegmentHit>) -> Local {
+    let mut out = intersect(s0, s1, &Shape::Plane(tangent_plane(w)), None, None, w);
     let size = box_size(b) + max_abs(*s0) + max_abs(*s1);
     out.point.magnitude = clean(out.point.magnitude + size);
     // The margin is the segment's distance from the box, or how deep it
@@ -662,14 +668,7 @@ fn intersect_box(s0: &P3, s1: &P3, b: &crate::case::BoxSpec, w: Option<&oracle::
 /// incidence), plus the capsule's own size; the normal, `(hit − foot)/r`,
 /// turns by the point's move over `r`.
 fn intersect_capsule(s0: &P3, s1: &P3, c: &oracle::geom::Capsule, w: Option<&oracle::geom::SegmentHit>) -> Local {
-    let plane = match w {
-        Some(h) => {
-            let n = unit(&h.normal);
-            crate::case::PlaneSpec { normal: n, offset: dot(n, h.point), velocity: None }
-        }
-        None => crate::case::PlaneSpec { normal: [0.0, 0.0, 1.0], offset: 0.0, velocity: None },
-    };
-    let mut out = intersect(s0, s1, &Shape::Plane(plane), None, None, w);
+    let mut out = intersect(s0, s1, &Shape::Plane(tangent_plane(w)), None, None, w);
     let size = capsule_size(c) + max_abs(*s0) + max_abs(*s1);
     out.point.magnitude = clean(out.point.magnitude + size);
     out.margin = Size::new(clean(out.margin.magnitude + size), out.margin.condition);

@@ -135,6 +135,20 @@ impl ExactBox {
         add(&self.c, &self.dir_to_world(u))
     }
 
+    /// `u` (in the box's frame) clamped into the closed box: its nearest point.
+    pub(crate) fn clamp(&self, u: &V3) -> V3 {
+        std::array::from_fn(|i| {
+            let h = &self.h[i];
+            if u[i] > *h {
+                h.clone()
+            } else if u[i] < -h.clone() {
+                -h.clone()
+            } else {
+                u[i].clone()
+            }
+        })
+    }
+
     /// Whether `u` (in the box's frame) lies in the closed box.
     fn holds(&self, u: &V3) -> bool {
         (0..3).all(|i| abs(&u[i]) <= self.h[i])
@@ -224,16 +238,7 @@ fn sphere_box(a: &Sphere, b: &OrientedBox) -> Result<SphereBox, RefereeError> {
         let (face, dist, tie) = nearest_face(&bx.h, &u);
         Place::Inside { face, dist, tie }
     } else {
-        let p: V3 = std::array::from_fn(|i| {
-            let h = &bx.h[i];
-            if u[i] > *h {
-                h.clone()
-            } else if u[i] < -h.clone() {
-                -h.clone()
-            } else {
-                u[i].clone()
-            }
-        });
+        let p = bx.clamp(&u);
         let w = sub(&u, &p);
         let root = Root::new(dot(&w, &w));
         Place::Outside(Box::new(Outside { p, w, root }))

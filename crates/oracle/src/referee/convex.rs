@@ -522,17 +522,7 @@ impl Solid {
         match self {
             Solid::Box(b) => {
                 let u = b.to_local(x);
-                let p: V3 = std::array::from_fn(|i| {
-                    let h = &b.h[i];
-                    if u[i] > *h {
-                        h.clone()
-                    } else if u[i] < -h.clone() {
-                        -h.clone()
-                    } else {
-                        u[i].clone()
-                    }
-                });
-                b.to_world(&p)
+                b.to_world(&b.clamp(&u))
             }
             Solid::Triangle(t) => closest_on_triangle(x, t),
         }
