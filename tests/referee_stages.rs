@@ -30,11 +30,18 @@ const DEFAULT_RANDOM: u64 = 100_000;
 /// Seed of the random cases (the campaign's default).
 const SEED: u64 = harness::defaults::DEFAULT_SEED;
 
-/// The referee's answer and margin as exact text: `{:?}` prints every `f64`
-/// with the shortest digits that read back to the same bits, and `-0.0` as
-/// such; the margin is compared by its bits.
-fn verdict(r: &harness::engine::Engine, lc: &LoadedCase) -> (String, Option<u64>) {
-    (format!("{:?}", run_caught(r, lc)), referee::margin(lc).map(f64::to_bits))
+/// The referee's answer, margin and contact region as exact text: `{:?}`
+/// prints every `f64` with the shortest digits that read back to the same
+/// bits, and `-0.0` as such; the margin is compared by its bits. The region
+/// (a box's or a capsule's touching set, which the judge measures a contact
+/// point against) has its own apart stage.
+fn verdict(r: &harness::engine::Engine, lc: &LoadedCase) -> (String, Option<u64>, String) {
+    let answer = run_caught(r, lc);
+    let region = match &answer {
+        Ok(a) => format!("{:?}", harness::judge::sizes::local(lc, a).region),
+        Err(_) => String::new(),
+    };
+    (format!("{answer:?}"), referee::margin(lc).map(f64::to_bits), region)
 }
 
 /// The cases that differ between the stages, named, on two threads (the

@@ -30,7 +30,7 @@
 use crate::ccd_benchmark::{self, BenchmarkQuery};
 use crate::check::{self, Truth};
 use crate::engine::{Answer, Engine};
-use crate::engines::{self, EngineSet};
+use crate::engines::EngineSet;
 use crate::judge::{self, Misclass, Verdict};
 use crate::load::LoadedCase;
 use crate::render::markdown::{Table, table_md};
@@ -297,8 +297,7 @@ fn truth_of(referee: &Result<Answer, Verdict>, lc: &LoadedCase) -> Truth {
         Err(Verdict::Unsupported { reason }) | Err(Verdict::Failed { reason }) => (None, reason.clone()),
         Err(_) => (None, "the referee gave no answer".to_string()),
     };
-    let scale = answer.as_ref().map_or_else(|| judge::scene_scale(lc), |t| judge::answer_scale(lc, t));
-    Truth { answer, missing, scale, margin: engines::referee::margin(lc) }
+    Truth::new(lc, answer, missing)
 }
 
 fn ccd_time(a: &Answer) -> Option<f64> {

@@ -279,6 +279,9 @@ pub struct Truth {
     pub scale: f64,
     /// The referee's signed margin from the nearest decision boundary.
     pub margin: Option<f64>,
+    /// The sizes of the answer's fields ([`judge::sizes::local`]), taken once
+    /// for every engine judged on the case; `None` without an answer.
+    pub sizes: Option<judge::sizes::Local>,
 }
 
 impl Truth {
@@ -290,8 +293,15 @@ impl Truth {
             Err(Verdict::Unsupported { reason }) | Err(Verdict::Failed { reason }) => (None, reason),
             Err(_) => (None, "the referee gave no answer".to_string()),
         };
+        Truth::new(lc, answer, missing)
+    }
+
+    /// The truth of `lc` from the referee's `answer` (or why there is
+    /// none): its scale, the case's margin and the answer's sizes.
+    pub fn new(lc: &LoadedCase, answer: Option<Answer>, missing: String) -> Truth {
         let scale = answer.as_ref().map_or_else(|| judge::scene_scale(lc), |t| judge::answer_scale(lc, t));
-        Truth { answer, missing, scale, margin: engines::referee::margin(lc) }
+        let sizes = answer.as_ref().map(|t| judge::sizes::local(lc, t));
+        Truth { answer, missing, scale, margin: engines::referee::margin(lc), sizes }
     }
 }
 
@@ -308,9 +318,9 @@ pub fn judge_engine(engine: &Engine, set: &EngineSet, lc: &LoadedCase, truth: &T
     let (answer, verdict, errors, mism) = match run_caught(engine, lc) {
         Ok(a) => {
             let mism = has_expect.then(|| judge::check_expect(lc, &a));
-            let (v, e) = match &truth.answer {
-                Some(t) => {
-                    let (v, e) = judge::judge(lc, &a, t, &tol, truth.margin);
+            let (v, e) = match (&truth.answer, &truth.sizes) {
+                (Some(t), Some(sizes)) => {
+                    let (v, e) = judge::judge_sized(lc, &a, t, sizes, &tol, truth.margin);
                     match &v {
                         Verdict::Disagree { reasons } => match engine.known.explain(&engine.name, lc, &a, t, reasons) {
                             Some(reason) => (Verdict::KnownDivergence { reason }, e),
@@ -323,7 +333,7 @@ pub fn judge_engine(engine: &Engine, set: &EngineSet, lc: &LoadedCase, truth: &T
                         _ => (v, e),
                     }
                 }
-                None => (Verdict::Unsupported { reason: truth.missing.clone() }, Errors::default()),
+                _ => (Verdict::Unsupported { reason: truth.missing.clone() }, Errors::default()),
             };
             (Some(answer_as_expect(&a)), v, e, mism)
         }
@@ -341,8 +351,8 @@ pub const F32_BITS: u32 = 24;
 fn agrees_rounded(referee: &Engine, lc: &LoadedCase, a: &Answer, tol: &Tolerance) -> bool {
     let Some(rounded) = rounded_to_f32(lc) else { return false };
     let t = Truth::of(referee, &rounded);
-    t.answer.as_ref().is_some_and(|t_ans| {
-        let (v, _) = judge::judge(&rounded, a, t_ans, tol, t.margin);
+    t.answer.as_ref().zip(t.sizes.as_ref()).is_some_and(|(t_ans, sizes)| {
+        let (v, _) = judge::judge_sized(&rounded, a, t_ans, sizes, tol, t.margin);
         matches!(v, Verdict::Agree | Verdict::Borderline { .. })
     })
 }

@@ -55,13 +55,27 @@ pub fn judge(
     tol: &Tolerance,
     margin: Option<f64>,
 ) -> (Verdict, Errors) {
+    judge_sized(lc, answer, truth, &sizes::local(lc, truth), tol, margin)
+}
+
+/// [`judge`] with the case's sizes `sizes` already taken ([`sizes::local`] of
+/// `lc` and `truth`): they depend on the case and the referee's answer only,
+/// so a case judged for several engines takes them once (a box's exact
+/// contact region is most of a judgement's time).
+pub fn judge_sized(
+    lc: &LoadedCase,
+    answer: &Answer,
+    truth: &Answer,
+    sizes: &sizes::Local,
+    tol: &Tolerance,
+    margin: Option<f64>,
+) -> (Verdict, Errors) {
     if !all_finite(answer) {
         return (Verdict::Failed { reason: NON_FINITE.into() }, Errors::default());
     }
-    // 1. The sizes; 2. the allowances; 3. the comparison.
-    let sizes = sizes::local(lc, truth);
-    let allow = Allowances::of(lc, truth, tol, &sizes);
-    let compared = compare::compare(lc, answer, truth, &sizes);
+    // 1. The sizes (given); 2. the allowances; 3. the comparison.
+    let allow = Allowances::of(lc, truth, tol, sizes);
+    let compared = compare::compare(lc, answer, truth, sizes);
     // 4. The reasons: each measured error against its allowance, and its
     // ulps beyond the conditioning.
     let mut e = compared.errors;

@@ -316,6 +316,11 @@ pub fn contact_margin_capsule_capsule(a: &Capsule, b: &Capsule) -> Result<f64, R
 /// parallel axes side by side (collinear overlapping axes included, with the
 /// fallback normal); `None` when apart.
 pub fn contact_region_capsule_capsule(a: &Capsule, b: &Capsule) -> Result<Option<Vec<P3>>, RefereeError> {
+    check_capsule(a, CAPSULE_A)?;
+    check_capsule(b, CAPSULE_B)?;
+    if apart(|| super::boxes_fast::capsule_capsule_apart(a, b)) {
+        return Ok(None);
+    }
     let cp = capsule_capsule(a, b)?;
     if !cp.cores.touches() {
         return Ok(None);
@@ -431,6 +436,10 @@ pub fn contact_margin_capsule_plane(a: &Capsule, b: &Plane) -> Result<f64, Refer
 /// point), or — an axis of non-zero length parallel to the plane — the
 /// projections of `start` then `end`. `None` when apart.
 pub fn contact_region_capsule_plane(a: &Capsule, b: &Plane) -> Result<Option<Vec<P3>>, RefereeError> {
+    check_capsule_plane(a, b)?;
+    if apart(|| super::boxes_fast::capsule_plane_apart(a, b)) {
+        return Ok(None);
+    }
     let cp = capsule_plane(a, b)?;
     if !cp.touches() {
         return Ok(None);

@@ -444,6 +444,14 @@ pub fn contact_margin_box_box(a: &OrientedBox, b: &OrientedBox) -> Result<f64, R
 /// correctly rounded: one point, a segment's two ends, or a convex polygon's
 /// corners in order (up to eight); `None` when apart.
 pub fn contact_region_box_box(a: &OrientedBox, b: &OrientedBox) -> Result<Option<Vec<P3>>, RefereeError> {
+    check_box(a, BOX_A)?;
+    check_box(b, BOX_B)?;
+    if apart(|| {
+        use super::boxes_fast::{FastBox, overlap};
+        overlap(&FastBox::of(a), &FastBox::of(b)) == Some(false)
+    }) {
+        return Ok(None);
+    }
     let pair = box_box(a, b)?;
     let rest = Resting { least: pair.least };
     Ok(if rest.touches() { rest.region(&pair.a, &pair.b) } else { None })
@@ -498,6 +506,11 @@ pub fn contact_margin_box_triangle(a: &OrientedBox, b: &Triangle) -> Result<f64,
 /// The contact region of [`contact_box_triangle`] on the triangle, as
 /// [`contact_region_box_box`]'s.
 pub fn contact_region_box_triangle(a: &OrientedBox, b: &Triangle) -> Result<Option<Vec<P3>>, RefereeError> {
+    check_box(a, BOX_A)?;
+    check_triangle(b)?;
+    if apart(|| super::boxes_fast::box_triangle_apart(a, b)) {
+        return Ok(None);
+    }
     let (ca, cb) = box_triangle(a, b)?;
     let rest = Resting::of(&ca, &cb);
     Ok(if rest.touches() { rest.region(&ca, &cb) } else { None })
@@ -732,6 +745,11 @@ pub fn contact_margin_capsule_box(a: &Capsule, b: &OrientedBox) -> Result<f64, R
 /// The contact region of [`contact_capsule_box`] on the box, each vertex
 /// correctly rounded; `None` when apart.
 pub fn contact_region_capsule_box(a: &Capsule, b: &OrientedBox) -> Result<Option<Vec<P3>>, RefereeError> {
+    check_capsule_fields(a)?;
+    check_box(b, BOX_B)?;
+    if apart(|| super::boxes_fast::capsule_box_apart(a, b)) {
+        return Ok(None);
+    }
     Ok(capsule_box(a, b)?.region())
 }
 
@@ -764,6 +782,11 @@ pub fn contact_margin_capsule_triangle(a: &Capsule, b: &Triangle) -> Result<f64,
 
 /// The contact region of [`contact_capsule_triangle`] on the triangle.
 pub fn contact_region_capsule_triangle(a: &Capsule, b: &Triangle) -> Result<Option<Vec<P3>>, RefereeError> {
+    check_capsule_fields(a)?;
+    check_triangle(b)?;
+    if apart(|| super::boxes_fast::capsule_triangle_apart(a, b)) {
+        return Ok(None);
+    }
     Ok(capsule_triangle(a, b)?.region())
 }
 
