@@ -79,7 +79,7 @@ PROVENANCE = {
     "box-triangle, capsule-triangle": "the triangle as the one-face BVHModel; FCL's mesh-shape leaf test -> "
                                       "shapeTriangleIntersect: libccd MPR (no dedicated routine for a box or a capsule)",
     "toi": "fcl.continuousCollide(a, a's pose at t_max, b, b's pose at t_max) from the poses at 0 (each shape "
-           "translated by velocity*t_max); t = time_of_contact * t_max when is_collide, else null; the "
+           "translated by velocity*t_max, a box's rotation kept); t = time_of_contact * t_max when is_collide, else null; the "
            "contact at t from FCL's static queries with both shapes moved by velocity*t: fcl.collide's "
            "contact (as for contact) if they touch, else fcl.distance's nearest points",
     "toi ccd_request": "ccd_solver_type=CCDC_CONSERVATIVE_ADVANCEMENT, ccd_motion_type=CCDM_TRANS, "
@@ -413,8 +413,9 @@ def toi_in_child(case, emit):
 
     req = fcl.ContinuousCollisionRequest(**CCD_REQUEST)
     res = fcl.ContinuousCollisionResult()
-    call("continuousCollide", fcl.continuousCollide, oa, fcl.Transform(start_a + t_max * va),
-         ob, fcl.Transform(start_b + t_max * vb), req, res)
+    # The poses at t_max: translated, each rotation kept (a box's is fixed while it moves).
+    call("continuousCollide", fcl.continuousCollide, oa, fcl.Transform(oa.getRotation(), start_a + t_max * va),
+         ob, fcl.Transform(ob.getRotation(), start_b + t_max * vb), req, res)
     if not res.is_collide:
         return {"answer": {"toi": None}, "ns": ns}
     t = float(res.time_of_contact) * t_max  # FCL's time is a fraction of the motion
@@ -630,6 +631,7 @@ HANDLERS = {
     ("toi", "sphere", "plane"): toi,
     ("toi", "sphere", "triangle"): toi,
     ("toi", "sphere", "mesh"): toi,
+    ("toi", "sphere", "box"): toi,
 }
 
 if __name__ == "__main__":

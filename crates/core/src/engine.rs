@@ -178,6 +178,11 @@ pub trait Queries: Send + Sync {
     fn toi_sphere_mesh(&self, a: &Sphere, va: &P3, b: &Mesh, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
         unsupported("sphere–mesh time of impact")
     }
+    /// `toi`, sphere against a box that may be rotated (its rotation fixed,
+    /// moving at `vb`).
+    fn toi_sphere_box(&self, a: &Sphere, va: &P3, b: &OrientedBox, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        unsupported("sphere–box time of impact")
+    }
     /// `response`, two spheres with velocities and masses, restitution `e`.
     #[allow(clippy::too_many_arguments)]
     fn response_sphere_sphere(

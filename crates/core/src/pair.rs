@@ -181,6 +181,7 @@ pub enum Pair {
     ToiSpherePlane,
     ToiSphereTriangle,
     ToiSphereMesh,
+    ToiSphereBox,
     ResponseSphereSphere,
     ResponseSpherePlane,
     CcdPointTriangle,
@@ -209,7 +210,7 @@ use Query as Q;
 use ShapeKind as K;
 
 /// The pair table, in report order (query by query, as the format lists them).
-pub const PAIRS: [PairRow; 35] = [
+pub const PAIRS: [PairRow; 36] = [
     row(P::ContactSphereSphere, Q::Contact, K::Sphere, Some(K::Sphere)),
     row(P::ContactSpherePlane, Q::Contact, K::Sphere, Some(K::Plane)),
     row(P::ContactPlaneSphere, Q::Contact, K::Plane, Some(K::Sphere)),
@@ -241,6 +242,7 @@ pub const PAIRS: [PairRow; 35] = [
     row(P::ToiSpherePlane, Q::Toi, K::Sphere, Some(K::Plane)),
     row(P::ToiSphereTriangle, Q::Toi, K::Sphere, Some(K::Triangle)),
     row(P::ToiSphereMesh, Q::Toi, K::Sphere, Some(K::Mesh)),
+    row(P::ToiSphereBox, Q::Toi, K::Sphere, Some(K::Box)),
     row(P::ResponseSphereSphere, Q::Response, K::Sphere, Some(K::Sphere)),
     row(P::ResponseSpherePlane, Q::Response, K::Sphere, Some(K::Plane)),
     row(P::CcdPointTriangle, Q::Ccd, K::MovingPoint, Some(K::MovingTriangle)),

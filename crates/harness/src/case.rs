@@ -244,6 +244,9 @@ pub struct BoxSpec {
     /// The quaternion `[w, x, y, z]`, non-zero, any length (default `[1, 0, 0, 0]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotation: Option<[f64; 4]>,
+    /// Linear velocity for `toi` (default zero; the rotation stays fixed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<P3>,
 }
 
 /// The rotation of a box without one: the identity.
@@ -423,6 +426,7 @@ impl Shape {
             Shape::Plane(p) => p.velocity,
             Shape::Triangle(t) => t.velocity,
             Shape::Mesh(m) => m.velocity,
+            Shape::Box(b) => b.velocity,
             _ => None,
         }
         .unwrap_or([0.0; 3])

@@ -244,6 +244,7 @@ fn dispatch(q: &dyn Queries, pair: Pair, lc: &LoadedCase) -> Reply<Answer> {
         P::ToiSpherePlane => Answer::Toi(q.toi_sphere_plane(&sphere(a)?, &va, &plane(b)?, &vb, t_max)?),
         P::ToiSphereTriangle => Answer::Toi(q.toi_sphere_triangle(&sphere(a)?, &va, &triangle(b)?, &vb, t_max)?),
         P::ToiSphereMesh => Answer::Toi(q.toi_sphere_mesh(&sphere(a)?, &va, mesh(lc, 1)?, &vb, t_max)?),
+        P::ToiSphereBox => Answer::Toi(q.toi_sphere_box(&sphere(a)?, &va, &oriented_box(b)?, &vb, t_max)?),
         P::ResponseSphereSphere => {
             Answer::Response(q.response_sphere_sphere(&sphere(a)?, &va, mass(a), &sphere(b)?, &vb, mass(b), e)?)
         }

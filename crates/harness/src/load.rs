@@ -596,6 +596,7 @@ fn validate_shape(key: &str, shape: &Shape, query: Query) -> FieldResult {
             }
         }
         Shape::Box(b) => {
+            velocity(&b.velocity)?;
             finite3(&format!("{k}.center"), &b.center)?;
             finite3(&format!("{k}.half_extents"), &b.half_extents)?;
             for (i, h) in b.half_extents.iter().enumerate() {

@@ -114,6 +114,9 @@ impl Queries for RefereeQueries {
     fn toi_sphere_mesh(&self, a: &Sphere, va: &P3, b: &Mesh, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
         r(referee::toi_sphere_mesh(a, va, &b.vertices, &b.triangles, vb, t_max))
     }
+    fn toi_sphere_box(&self, a: &Sphere, va: &P3, b: &OrientedBox, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        r(referee::toi_sphere_box(a, va, b, vb, t_max))
+    }
     fn response_sphere_sphere(
         &self,
         a: &Sphere,
@@ -234,6 +237,9 @@ pub fn margin(lc: &LoadedCase) -> Option<f64> {
         (P::ToiSphereMesh, S::Sphere(a), _) => lc.meshes[1].as_ref().and_then(|m| {
             referee::toi_margin_sphere_mesh(&a.to_geom(), &va, &m.vertices, &m.triangles, &vb, t_max).ok()
         }),
+        (P::ToiSphereBox, S::Sphere(a), Some(S::Box(b))) => {
+            referee::toi_margin_sphere_box(&a.to_geom(), &va, &b.to_geom(), &vb, t_max).ok()
+        }
         // No margin, with the reason: the segment–mesh hit is decided face by
         // face (each face's margin is its own); a barycentric, a bound and a
         // response have no yes/no predicate whose distance from flipping a

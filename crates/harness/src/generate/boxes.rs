@@ -33,7 +33,7 @@ fn integer_quaternion() -> impl Strategy<Value = [f64; 4]> + Clone {
 }
 
 /// A quaternion of random doubles (any length, as the format allows).
-fn random_quaternion() -> impl Strategy<Value = [f64; 4]> + Clone {
+pub(super) fn random_quaternion() -> impl Strategy<Value = [f64; 4]> + Clone {
     prop::array::uniform4(-1.0..1.0f64).prop_map(|q| if q.iter().all(|x| *x == 0.0) { [1.0, 0.0, 0.0, 0.0] } else { q })
 }
 
@@ -42,7 +42,7 @@ fn any_rotation() -> impl Strategy<Value = [f64; 4]> + Clone {
     prop_oneof![integer_quaternion(), random_quaternion()]
 }
 
-fn random_box() -> impl Strategy<Value = Shape> + Clone {
+pub(super) fn random_box() -> impl Strategy<Value = Shape> + Clone {
     (vec3(BOX), prop::array::uniform3(HALF), any_rotation()).prop_map(|(c, h, q)| oriented_box(c, h, q))
 }
 

@@ -55,7 +55,7 @@ pub(crate) fn aabb(min: P3, max: P3) -> Shape {
 
 /// A box that may be rotated: `rotation` the quaternion `[w, x, y, z]`.
 pub(crate) fn oriented_box(center: P3, half_extents: P3, rotation: [f64; 4]) -> Shape {
-    Shape::Box(BoxSpec { center, half_extents, rotation: Some(rotation) })
+    Shape::Box(BoxSpec { center, half_extents, rotation: Some(rotation), velocity: None })
 }
 
 /// A capsule.
@@ -499,7 +499,7 @@ mod tests {
     #[test]
     fn a_box_under_a_similarity_is_the_image_of_the_box() {
         let q = [2.0, 0.0, 0.0, 1.0];
-        let b = crate::case::BoxSpec { center: [1.0, -2.0, 0.5], half_extents: [1.0, 2.0, 3.0], rotation: Some(q) };
+        let b = crate::case::BoxSpec { center: [1.0, -2.0, 0.5], half_extents: [1.0, 2.0, 3.0], rotation: Some(q), velocity: None };
         let corners = crate::load::box_corners(&b.to_geom());
         let rotations = [
             // A reflection (a signed permutation of determinant −1) and a rotation.

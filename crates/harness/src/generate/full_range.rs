@@ -132,6 +132,9 @@ fn map_numbers(case: &mut Case, f: &mut dyn FnMut(f64, Role) -> f64) {
                         *x = f(*x, Role::Rotation);
                     }
                 }
+                if let Some(v) = &mut b.velocity {
+                    p3(v, Role::Velocity, f);
+                }
             }
             Shape::Capsule(c) => {
                 p3(&mut c.start, Role::Coord, f);

@@ -209,6 +209,7 @@ fn generate_toi_exact_impacts_are_exact() {
         "impact built exactly: spheres",
         "impact built exactly: sphere–plane",
         "impact built exactly: a triangle's face, edge or vertex",
+        "impact built exactly: a box's face, edge or corner",
     ] {
         let (mut hits, mut at_end) = (0, 0);
         for lc in draw(Query::Toi, name, 150) {

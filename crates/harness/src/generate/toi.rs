@@ -29,7 +29,7 @@ const RADIUS: std::ops::Range<f64> = 0.05..2.0;
 /// a shape moves up to about twice the box's half-width.
 const SPEED: f64 = 8.0;
 
-/// `shape` moving at `v` (spheres, planes, triangles and meshes move; other
+/// `shape` moving at `v` (spheres, planes, triangles, meshes and boxes move; other
 /// shapes are returned as they are).
 pub(super) fn moving(shape: Shape, v: P3) -> Shape {
     match shape {
@@ -49,6 +49,10 @@ pub(super) fn moving(shape: Shape, v: P3) -> Shape {
             m.velocity = Some(v);
             Shape::Mesh(m)
         }
+        Shape::Box(mut b) => {
+            b.velocity = Some(v);
+            Shape::Box(b)
+        }
         other => other,
     }
 }
@@ -60,6 +64,7 @@ fn velocity_of(shape: &Shape) -> Option<P3> {
         Shape::Plane(p) => p.velocity,
         Shape::Triangle(t) => t.velocity,
         Shape::Mesh(m) => m.velocity,
+        Shape::Box(b) => b.velocity,
         _ => None,
     }
 }
@@ -300,14 +305,16 @@ fn exact_sphere_triangle() -> impl Strategy<Value = (Posed, f64)> + Clone {
 }
 
 fn exact_impacts() -> SBoxedStrategy<Posed> {
-    prop_oneof![exact_spheres(), exact_sphere_plane(), exact_sphere_triangle()].prop_map(|(s, _)| s).sboxed()
+    prop_oneof![exact_spheres(), exact_sphere_plane(), exact_sphere_triangle(), exact_sphere_box()]
+        .prop_map(|(s, _)| s)
+        .sboxed()
 }
 
 /// An exact impact (sphere, plane or triangle) with the interval ending exactly
 /// at the impact and then stepped `k ∈ [-8, 8]` ULPs: a touch at the very end,
 /// or one a few ULPs too late.
 fn walk_t_max() -> SBoxedStrategy<Posed> {
-    (prop_oneof![exact_spheres(), exact_sphere_plane(), exact_sphere_triangle()], ulps())
+    (prop_oneof![exact_spheres(), exact_sphere_plane(), exact_sphere_triangle(), exact_sphere_box()], ulps())
         .prop_map(|(((shapes, p), ts), k)| (shapes, Params { t_max: Some(step_ulps(ts, k)), ..p }))
         .sboxed()
 }
@@ -517,6 +524,7 @@ fn moved_base() -> SBoxedStrategy<Posed> {
         uniform_sphere_plane(),
         uniform_sphere_triangle(),
         uniform_sphere_mesh(),
+        uniform_sphere_box(),
         exact_impacts(),
     ]
     .sboxed()
@@ -532,6 +540,112 @@ fn resized_scene() -> SBoxedStrategy<Posed> {
     (moved_base(), size_factor()).prop_map(|(s, f)| transformed(&Similarity::scale_shift(f, [0.0; 3]), &s)).sboxed()
 }
 
+// ------------------------------------------------------------------- boxes
+
+fn uniform_sphere_box() -> SBoxedStrategy<Posed> {
+    (vec3(BOX), RADIUS, velocity(), super::boxes::random_box(), velocity(), t_max())
+        .prop_map(|(c, r, va, b, vb, tm)| posed(sphere(c, r), va, b, vb, tm))
+        .sboxed()
+}
+
+/// Exact rotations of a box, each with its matrix as small integers `M` over a
+/// denominator `k` (`R = M/k`, rows): the identity, the 3-4-5 turn about `z`,
+/// the quarter turns about `z` and about `x`. A point of the box's frame on the
+/// `5/64` grid lands on the `1/64` grid in the world, exactly.
+const EXACT_TURNS: [([f64; 4], [[f64; 3]; 3], f64); 4] = [
+    ([1.0, 0.0, 0.0, 0.0], [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], 1.0),
+    ([2.0, 0.0, 0.0, 1.0], [[3.0, -4.0, 0.0], [4.0, 3.0, 0.0], [0.0, 0.0, 5.0]], 5.0),
+    ([1.0, 0.0, 0.0, 1.0], [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]], 1.0),
+    ([1.0, 1.0, 0.0, 0.0], [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]], 1.0),
+];
+
+/// `M x` for a row matrix of small integers.
+fn times(m: &[[f64; 3]; 3], x: P3) -> P3 {
+    [dot(m[0], x), dot(m[1], x), dot(m[2], x)]
+}
+
+/// A sphere touching a box's face, edge or corner exactly at `t*`, approaching:
+/// the box turned exactly ([`EXACT_TURNS`]), half-extents multiples of 5/64;
+/// in its frame the contact point `p` on the feature and the outward unit
+/// normal `n` — `(1, 0, 0)` on a face, `(3, 4, 0)/5` at an edge along `z`,
+/// `(2, 3, 6)/7` at a corner, mirrored to any of the feature's copies — with
+/// the radius a multiple of `5·d/64` (`d` the normal's denominator), so the
+/// centre `p + r n` at `t*` is on the 5/64 grid. The relative velocity closes
+/// along the normal (the distance, convex in time, falls through `r` at `t*`:
+/// the first contact), every input exact; the interval ends at, after or
+/// before `t*` ([`end_around`]).
+fn exact_sphere_box() -> impl Strategy<Value = (Posed, f64)> + Clone {
+    (
+        (0..3u8, prop::array::uniform3(1..=16i64), (-16..=16i64, -16..=16i64), 1..=8i64),
+        (0..EXACT_TURNS.len(), prop::array::uniform3(any::<bool>()), grid_point()),
+        (dyadic_velocity(), dyadic_velocity(), impact_time()),
+        (0..4u8, 1..=32i64),
+    )
+        .prop_map(|((feature, m, (jy, jz), j), (turn, flip, c0), (vb, v, ts), (pick, mm))| {
+            let unit = 5.0 / 64.0;
+            let h = m.map(|k| k as f64 * unit);
+            let (p, n_int, d) = match feature {
+                0 => {
+                    let y = jy.clamp(-m[1], m[1]) as f64 * unit;
+                    let z = jz.clamp(-m[2], m[2]) as f64 * unit;
+                    ([h[0], y, z], [1.0, 0.0, 0.0], 1.0)
+                }
+                1 => ([h[0], h[1], jz.clamp(-m[2], m[2]) as f64 * unit], [3.0, 4.0, 0.0], 5.0),
+                _ => (h, [2.0, 3.0, 6.0], 7.0),
+            };
+            let s = flip.map(|f| if f { -1.0 } else { 1.0 });
+            let (p, n_int) = ([0, 1, 2].map(|i| s[i] * p[i]), [0, 1, 2].map(|i| s[i] * n_int[i]));
+            let r = j as f64 * 5.0 * d / 64.0;
+            let local = add(p, scale(n_int, r / d));
+            let (q, mat, k) = EXACT_TURNS[turn];
+            let centre_star = add(c0, scale(vb, ts));
+            let c_star = add(centre_star, scale(times(&mat, local), 1.0 / k));
+            let v = approaching(v, times(&mat, n_int));
+            let va = add(vb, v);
+            let c_start = sub(c_star, scale(va, ts));
+            let scene = posed(sphere(c_start, r), va, oriented_box(c0, h, q), vb, Some(end_around(ts, pick, mm)));
+            (scene, ts)
+        })
+}
+
+/// A sphere passing a box's edge (along its own axis `z`) at a closest
+/// approach `r (1 + g)`, `|g|` from `2^-60` to `2^-3` either side, moving
+/// parallel to the edge from beyond its end: it touches the rounded edge
+/// (first at a corner's sphere) or misses by a hair. The box has a random
+/// rotation (the world path is rounded: a generic orientation).
+fn grazing_box() -> SBoxedStrategy<Posed> {
+    (
+        (vec3(BOX), prop::array::uniform3(0.25..1.5f64), super::boxes::random_quaternion()),
+        (RADIUS, signed_magnitude(-60, -3), 0.5..8.0f64, velocity()),
+    )
+        .prop_map(|((c, h, q), (r, g, speed, vb))| {
+            let rot = oracle::geom::rotation_matrix(q);
+            let world = |u: P3| add(c, [dot(rot[0], u), dot(rot[1], u), dot(rot[2], u)]);
+            let reach = r * (1.0 + g);
+            // Beside the edge (h₀, h₁, ·) along (3, 4)/5, from below −h₂ − r
+            // to beyond +h₂ + r over the interval.
+            let off = [h[0] + 0.6 * reach, h[1] + 0.8 * reach, -(h[2] + r) - 0.25 * speed];
+            let along = rot.map(|row| row[2] * speed);
+            let along = [along[0], along[1], along[2]];
+            posed(sphere(world(off), r), add(vb, along), oriented_box(c, h, q), vb, None)
+        })
+        .sboxed()
+}
+
+/// A small fast sphere through a thin box (one half-extent from `2^-12` to
+/// `2^-6`) within one interval, clear of it at the end.
+fn tunneling_box() -> SBoxedStrategy<Posed> {
+    (
+        (magnitude(-10, -4), magnitude(4, 13), unit(), 0.05..0.95f64),
+        (vec3(BOX / 2.0), (0.25..2.0f64, 0.25..2.0f64, magnitude(-12, -6)), super::boxes::random_quaternion()),
+    )
+        .prop_map(|((r, speed, u, th), (c, (hx, hy, hz), q))| {
+            let v = scale(u, speed);
+            posed(sphere(sub(c, scale(v, th)), r), v, oriented_box(c, [hx, hy, hz], q), [0.0; 3], None)
+        })
+        .sboxed()
+}
+
 /// The toi families: uniform first, then biased.
 pub(super) fn families() -> Vec<Family> {
     vec![
@@ -539,6 +653,7 @@ pub(super) fn families() -> Vec<Family> {
         Family::uniform_posed("uniform sphere–plane", uniform_sphere_plane),
         Family::uniform_posed("uniform sphere–triangle", uniform_sphere_triangle),
         Family::uniform_posed("uniform sphere–mesh", uniform_sphere_mesh),
+        Family::uniform_posed("uniform sphere–box", uniform_sphere_box),
         Family::biased_posed("impact built exactly: spheres", || exact_spheres().prop_map(|(s, _)| s).sboxed()),
         Family::biased_posed("impact built exactly: sphere–plane", || {
             exact_sphere_plane().prop_map(|(s, _)| s).sboxed()
@@ -546,6 +661,11 @@ pub(super) fn families() -> Vec<Family> {
         Family::biased_posed("impact built exactly: a triangle's face, edge or vertex", || {
             exact_sphere_triangle().prop_map(|(s, _)| s).sboxed()
         }),
+        Family::biased_posed("impact built exactly: a box's face, edge or corner", || {
+            exact_sphere_box().prop_map(|(s, _)| s).sboxed()
+        }),
+        Family::biased_posed("sphere grazing a box's edge", grazing_box),
+        Family::biased_posed("tunneling: small fast sphere through a thin box", tunneling_box),
         Family::biased_posed("edge walker: impact at t_max ± k ulps", walk_t_max),
         Family::biased_posed("grazing spheres", grazing_spheres),
         Family::biased_posed("sphere grazing a triangle's edge or vertex", grazing_triangle),

@@ -795,7 +795,9 @@ fn contact_at_start(lc: &LoadedCase, a: &crate::case::SphereSpec, b: &Shape, h: 
         clean(along.abs() * k) * along.signum()
     };
     let depth = match b {
-        Shape::Sphere(_) | Shape::Plane(_) => a.radius - along(&h.point),
+        // A box's point is on the face the normal leaves (a centre inside
+        // it is behind that face: the depth is r plus the distance).
+        Shape::Sphere(_) | Shape::Plane(_) | Shape::Box(_) => a.radius - along(&h.point),
         _ => a.radius - distance(&a.center, &h.point),
     };
     let c = oracle::geom::Contact { point: h.point, normal: h.normal, depth };
@@ -833,6 +835,8 @@ fn toi(lc: &LoadedCase, a: &crate::case::SphereSpec, b: &Shape, w: &oracle::geom
         Shape::Mesh(_) => {
             lc.meshes[1].as_ref().map(|m| m.vertices.iter().copied().map(max_abs).fold(0.0, f64::max)).unwrap_or(0.0)
         }
+        // Its corners' reach: an engine's rotation rounds them at this size.
+        Shape::Box(bx) => max_abs(bx.center) + bx.half_extents.iter().map(|h| h.abs()).sum::<f64>(),
         _ => 0.0,
     };
     let moving = max_abs(va) + max_abs(vb);

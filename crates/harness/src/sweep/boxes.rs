@@ -41,6 +41,7 @@
 //! a small parameter is a rounding.
 
 use super::grid::{Pose, Rng, sin_cos};
+use super::scene::{moving_sphere, posed_with_velocity};
 use crate::generate::build::{Scene, aabb, capsule, hamilton, oriented_box, plane, segment, sphere};
 use crashtest_core::vec3::{add, scale};
 use oracle::geom::{P3, rotation_matrix};
@@ -133,6 +134,21 @@ pub(super) fn kissing_sphere_box(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
     let along = [grid(rng, -0.4, 0.4) * h[1], grid(rng, -0.4, 0.4) * h[2]];
     let local = [h[0] + r + g, along[0], along[1]];
     pose.scene(&(sphere(turn(q, local), r), Some(oriented_box([0.0; 3], h, q))))
+}
+
+/// `kissing`, probe `toi sphere–box`: the sphere's centre passing over the
+/// face `+y`, `r + g` above it, across the whole face within the interval
+/// (the box turned by a quarter turn, so the height is exact): at `g = 0` it
+/// first touches where it reaches the edge `x = −h₀`, then slides along the face.
+pub(super) fn kissing_toi_sphere_box(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    let q = QUARTER_TURNS[rng.int(0, 3) as usize];
+    let h = [grid(rng, 0.5, 1.5), grid(rng, 0.5, 1.5), grid(rng, 0.5, 1.5)];
+    let r = grid(rng, 0.25, 1.0);
+    let z = grid(rng, -0.4, 0.4) * h[2];
+    let start = [-(h[0] + r + 1.0), h[1] + r + g, z];
+    let speed = 2.0 * (h[0] + r + 1.0);
+    let v = turn(q, [speed, 0.0, 0.0]);
+    posed_with_velocity(pose, (moving_sphere(turn(q, start), r, v), Some(oriented_box([0.0; 3], h, q))), v)
 }
 
 /// `kissing`, probe `capsule–capsule`: crossing axes, surfaces `g` apart.

@@ -52,7 +52,7 @@
 //! [`cast_known_divergences`] lists what no translation removes, for both
 //! engines; each entry is pinned by a test below that shows it still happens.
 
-use crate::geom::{P3, Plane, Sphere, ToiAnswer, Triangle};
+use crate::geom::{OrientedBox, P3, Plane, Sphere, ToiAnswer, Triangle};
 use crate::parry::api::{KnownDivergence, Parry32, Parry64};
 
 /// How parry's cast ended: `ShapeCastStatus`, by name. Which fields of the
@@ -177,6 +177,16 @@ pub trait ParryCast {
     /// (zero area) is cast and flagged; a radius that is not positive or a
     /// non-finite input: no impact, flagged.
     fn cast_sphere_triangle(&self, a: Sphere, va: P3, b: Triangle, vb: P3, t_max: f64) -> CastAnswer;
+
+    /// Sphere against a box (a `Cuboid` at the box's pose, its rotation fixed,
+    /// translated with `vb`): `cast_shapes` of a ball and a cuboid, parry's
+    /// support-map cast (conservative advancement on GJK distances). The
+    /// point is `witness2` placed by the box's pose at `t`, the normal
+    /// `normal2` rotated by the box's rotation.
+    ///
+    /// **Degenerate input:** a negative half-extent, a zero quaternion, a
+    /// radius that is not positive or a non-finite input: no impact, flagged.
+    fn cast_sphere_box(&self, a: Sphere, va: P3, b: OrientedBox, vb: P3, t_max: f64) -> CastAnswer;
 }
 
 /// Every known divergence of the casts of [`Parry64`] and [`Parry32`] (each entry
@@ -244,11 +254,11 @@ macro_rules! cast_adapter {
         use crate::parry::cast::{CastAnswer, CastStatus, ParryCast};
         // The edge conversions and shape placements are the query adapter's, so
         // a sphere or a plane is placed the same way for every parry query.
-        use crate::geom::{P3, Plane, Sphere, Toi, ToiAnswer, Triangle};
+        use crate::geom::{OrientedBox, P3, Plane, Sphere, Toi, ToiAnswer, Triangle};
         use backend::math::{Pose, Vector};
         use backend::query::{self, ShapeCastHit, ShapeCastOptions, ShapeCastStatus, Unsupported};
         use backend::shape::{Ball, Shape, Triangle as EngineTriangle};
-        use $edge::{answer_point, ball, half_space, vector};
+        use $edge::{answer_point, ball, cuboid, half_space, vector};
 
         /// The options of every cast (the table in the module docs): stop at a
         /// touch (target distance 0), at `t_max` inclusive, answer `t = 0` for
@@ -375,6 +385,13 @@ macro_rules! cast_adapter {
                 let tri = EngineTriangle::new(v0, v1, v2);
                 let flat = tri.normal().is_none();
                 run(&pa, va, &ba, &Pose::IDENTITY, vb, &tri, t_max, flat)
+            }
+
+            fn cast_sphere_box(&self, a: Sphere, va: P3, b: OrientedBox, vb: P3, t_max: f64) -> CastAnswer {
+                let (Some(((pa, ba), va, vb, t_max)), Some((pb, cb))) = (inputs(&a, va, vb, t_max), cuboid(&b)) else {
+                    return REFUSED;
+                };
+                run(&pa, va, &ba, &pb, vb, &cb, t_max, false)
             }
         }
 

@@ -93,7 +93,7 @@ pub(crate) fn half_space(p: &Plane) -> Option<(Pose, HalfSpace)> {
 /// (centre, `q/‖q‖`). The quaternion is scaled by a power of two in `f64` first
 /// (exact), so that a huge or subnormal one normalizes in the engine's scalar.
 /// `None` for a negative half-extent, a zero quaternion or a non-finite input.
-fn cuboid(b: &OrientedBox) -> Option<(Pose, Cuboid)> {
+pub(crate) fn cuboid(b: &OrientedBox) -> Option<(Pose, Cuboid)> {
     let center = vector(b.center)?;
     let half = vector(b.half_extents)?;
     if half.min_element() < 0.0 {

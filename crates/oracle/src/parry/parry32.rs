@@ -36,4 +36,4 @@ mod engine;
 
 pub use engine::PreparedMesh;
 /// The edge conversions and shape placements, shared with the casts.
-pub(crate) use engine::{answer_point, ball, half_space, vector};
+pub(crate) use engine::{answer_point, ball, cuboid, half_space, vector};

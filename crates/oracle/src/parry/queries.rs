@@ -104,6 +104,9 @@ macro_rules! parry_queries {
             fn toi_sphere_triangle(&self, a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
                 Ok(ParryCast::cast_sphere_triangle(self, *a, *va, *b, *vb, t_max).answer)
             }
+            fn toi_sphere_box(&self, a: &Sphere, va: &P3, b: &OrientedBox, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+                Ok(ParryCast::cast_sphere_box(self, *a, *va, *b, *vb, t_max).answer)
+            }
         }
     };
 }

@@ -112,6 +112,7 @@ mod response_fast;
 mod root_fast;
 mod stage;
 pub mod toi;
+pub mod toi_box;
 mod toi_fast;
 
 pub use barycentric::barycentric_triangle;
@@ -147,6 +148,7 @@ pub use toi::{
     toi_margin_sphere_mesh, toi_margin_sphere_plane, toi_margin_sphere_sphere, toi_margin_sphere_triangle,
     toi_sphere_mesh, toi_sphere_plane, toi_sphere_sphere, toi_sphere_triangle,
 };
+pub use toi_box::{toi_margin_sphere_box, toi_sphere_box};
 
 pub use error::{PRECISION_BITS, RefereeError};
 pub use stage::{EXACT_STAGE_ONLY, Stage, exact_only, stage_counts, stage_counts_on_this_thread};

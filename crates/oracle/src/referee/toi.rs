@@ -46,10 +46,10 @@ use crate::geom::{ContactAnswer, P3, Plane, Sphere, Toi, ToiAnswer, Triangle};
 
 /// `a + b·√d`, exact (`d ≥ 0`).
 #[derive(Clone, Debug)]
-struct Surd {
-    a: Q,
-    b: Q,
-    d: Q,
+pub(super) struct Surd {
+    pub(super) a: Q,
+    pub(super) b: Q,
+    pub(super) d: Q,
 }
 
 fn sign(x: &Q) -> Ordering {
@@ -75,16 +75,16 @@ fn sign_surd(a: &Q, b: &Q, d: &Q) -> Ordering {
 }
 
 impl Surd {
-    fn rational(a: Q) -> Self {
+    pub(super) fn rational(a: Q) -> Self {
         Self { a, b: Q::ZERO, d: Q::ZERO }
     }
 
-    fn sign(&self) -> Ordering {
+    pub(super) fn sign(&self) -> Ordering {
         sign_surd(&self.a, &self.b, &self.d)
     }
 
     /// `k + m·self`, exactly (same `√d`).
-    fn affine(&self, k: &Q, m: &Q) -> Self {
+    pub(super) fn affine(&self, k: &Q, m: &Q) -> Self {
         Self { a: k + m * &self.a, b: m * &self.b, d: self.d.clone() }
     }
 
@@ -92,7 +92,7 @@ impl Surd {
     /// `X = (a₁ − a₂) + b₁√d₁` and `Y = b₂√d₂`, compare the signs of `X` and `Y`;
     /// if they agree, `X − Y` has the sign of `X² − Y²` (both positive) or its
     /// opposite (both negative), and `X² − Y² = A + B√d₁` with rational `A`, `B`.
-    fn cmp(&self, o: &Self) -> Ordering {
+    pub(super) fn cmp(&self, o: &Self) -> Ordering {
         let big_a = &self.a - &o.a;
         let sx = sign_surd(&big_a, &self.b, &self.d);
         let sy = if o.d.is_zero() { Ordering::Equal } else { sign(&o.b) };
@@ -108,7 +108,7 @@ impl Surd {
         if sx == Ordering::Greater { s } else { s.reverse() }
     }
 
-    fn in_interval(&self, t_max: &Q) -> bool {
+    pub(super) fn in_interval(&self, t_max: &Q) -> bool {
         self.sign() != Ordering::Less && self.cmp(&Surd::rational(t_max.clone())) != Ordering::Greater
     }
 }
@@ -116,25 +116,25 @@ impl Surd {
 /// A candidate first contact, exact: time, world contact point on `b`, and the
 /// unit normal — all in the same `√d` — or `None` for the normal when the
 /// shapes meet with no radius between them.
-struct Hit {
-    t: Surd,
-    point: [Surd; 3],
-    normal: Option<[Surd; 3]>,
+pub(super) struct Hit {
+    pub(super) t: Surd,
+    pub(super) point: [Surd; 3],
+    pub(super) normal: Option<[Surd; 3]>,
 }
 
 /// Every component of `k + m·t`.
-fn along(t: &Surd, k: &V3, m: &V3) -> [Surd; 3] {
+pub(super) fn along(t: &Surd, k: &V3, m: &V3) -> [Surd; 3] {
     [t.affine(&k[0], &m[0]), t.affine(&k[1], &m[1]), t.affine(&k[2], &m[2])]
 }
 
 /// The contact at `t = 0` from the static query.
-fn at_zero(k: ContactAnswer) -> ToiAnswer {
+pub(super) fn at_zero(k: ContactAnswer) -> ToiAnswer {
     ToiAnswer { toi: k.contact.map(|k| Toi { t: 0.0, point: k.point, normal: k.normal }), degenerate: k.degenerate }
 }
 
 /// The winning hit, every component correctly rounded. A missing normal falls
 /// back to the direction `a` came from, `−v/‖v‖` (flagged).
-fn finish(h: &Hit, v: &V3) -> ToiAnswer {
+pub(super) fn finish(h: &Hit, v: &V3) -> ToiAnswer {
     let root = Root::new(h.t.d.clone());
     let r = |s: &Surd| root.round_affine(&s.a, &s.b);
     let (normal, degenerate) = match &h.normal {
@@ -148,7 +148,7 @@ fn finish(h: &Hit, v: &V3) -> ToiAnswer {
 }
 
 /// The floating-point stage's answer ([`super::toi_fast`]), counted.
-fn staged<T>(fast: impl FnOnce() -> Option<T>) -> Option<T> {
+pub(super) fn staged<T>(fast: impl FnOnce() -> Option<T>) -> Option<T> {
     super::stage::fast_stage(super::stage::Stage::Toi, fast)
 }
 
@@ -162,7 +162,7 @@ fn time(t_max: f64) -> Result<Q, RefereeError> {
 /// of `A t² + 2B t + C`, `A = v·v`, `B = w0·v`, `C = w0·w0 − r²`, i.e.
 /// `t = −B/A − √(B² − AC)/A`. None without motion, when moving away (`B ≥ 0`:
 /// both roots ≤ 0) or passing wide (`B² − AC < 0`).
-fn point_root(w0: &V3, v: &V3, r: &Q) -> Option<Surd> {
+pub(super) fn point_root(w0: &V3, v: &V3, r: &Q) -> Option<Surd> {
     let a = dot(v, v);
     let b = dot(w0, v);
     if a.is_zero() || b >= Q::ZERO {
@@ -282,15 +282,15 @@ fn first_contact(c: &V3, r: &Q, v: &V3, vb: &V3, verts: &[V3; 3], t_max: &Q) -> 
     best
 }
 
-struct Moving {
-    c: V3,
-    r: Q,
-    va: V3,
-    vb: V3,
-    t_max: Q,
+pub(super) struct Moving {
+    pub(super) c: V3,
+    pub(super) r: Q,
+    pub(super) va: V3,
+    pub(super) vb: V3,
+    pub(super) t_max: Q,
 }
 
-fn moving(a: &Sphere, va: &P3, vb: &P3, t_max: f64) -> Result<Moving, RefereeError> {
+pub(super) fn moving(a: &Sphere, va: &P3, vb: &P3, t_max: f64) -> Result<Moving, RefereeError> {
     Ok(Moving {
         c: v3(&a.center, "a.center")?,
         r: radius(a.radius, "a.radius")?,
@@ -305,7 +305,7 @@ fn triangle(t: &Triangle, field: &'static str) -> Result<[V3; 3], RefereeError> 
 }
 
 /// [`moving`]'s checks, in its order, without its rationals ([`check`]).
-fn check_moving(a: &Sphere, va: &P3, vb: &P3, t_max: f64) -> Result<(), RefereeError> {
+pub(super) fn check_moving(a: &Sphere, va: &P3, vb: &P3, t_max: f64) -> Result<(), RefereeError> {
     check_v3(&a.center, "a.center")?;
     check_radius(a.radius, "a.radius")?;
     check_v3(va, "a.velocity")?;
@@ -690,7 +690,7 @@ pub fn toi_sphere_mesh(
 }
 
 /// `r − √d2`, correctly rounded.
-fn gap_margin(r: &Q, d2: Q) -> f64 {
+pub(super) fn gap_margin(r: &Q, d2: Q) -> f64 {
     Root::new(d2).round_affine(r, &Q::NEG_ONE)
 }
 
@@ -752,7 +752,7 @@ pub fn toi_margin_sphere_plane(a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f
 /// (Ericson §5.1.9, `ClosestPtSegmentSegment`, in rationals: every branch is
 /// decided exactly, and parallel segments take `s = 0` then clamp, which the book
 /// shows still yields a closest pair).
-fn dist2_segments(p1: &V3, q1: &V3, p2: &V3, q2: &V3) -> Q {
+pub(super) fn dist2_segments(p1: &V3, q1: &V3, p2: &V3, q2: &V3) -> Q {
     let d1 = sub(q1, p1);
     let d2 = sub(q2, p2);
     let r = sub(p1, p2);
