@@ -10,6 +10,9 @@
 //! - **closed form** for sphere–sphere and sphere–plane: the touching time is a
 //!   root of a quadratic (a linear equation for the plane), taken in a form
 //!   without catastrophic cancellation;
+//! - **closed form** for sphere–box (`toi_sphere_box`): in the box's own frame
+//!   the faces give linear equations, the edges and corners quadratics, and
+//!   the first contact is the least root whose contact lies on its feature;
 //! - **conservative advancement** for triangles and meshes: step forward by a
 //!   distance bound that can never step past the first contact, until the gap
 //!   is below a tolerance; against a mesh, per face, over the faces its
@@ -25,6 +28,8 @@
 
 mod feature_roots;
 mod halving;
+mod sphere_box;
+mod sphere_box_halving;
 mod sphere_mesh;
 mod sphere_mesh_halving;
 mod sphere_plane;
@@ -37,6 +42,8 @@ mod sweep;
 mod time_of_impact;
 
 pub use halving::toi_halving;
+pub use sphere_box::toi_sphere_box;
+pub use sphere_box_halving::toi_sphere_box_halving;
 pub use sphere_mesh::{MeshToi, toi_sphere_mesh, toi_sphere_mesh_brute};
 pub use sphere_mesh_halving::toi_sphere_mesh_halving;
 pub use sphere_plane::toi_sphere_plane;
@@ -47,5 +54,7 @@ pub use sphere_triangle::{ADVANCE_TOL_EPS, Advancement, MAX_ADVANCE_STEPS, toi_s
 pub use sphere_triangle_halving::toi_sphere_triangle_halving;
 pub use time_of_impact::{Halving, Toi, ToiStatus};
 
+#[cfg(test)]
+mod sphere_box_tests;
 #[cfg(test)]
 mod tests;

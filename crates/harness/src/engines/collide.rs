@@ -419,6 +419,21 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
         }))
     }
 
+    fn toi_sphere_box(&self, a: &Sphere, va: &P3, b: &OrientedBox, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
+        let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), oriented_box::<T>(b), v::<T>(vb), time::<T>(t_max));
+        Ok(toi(match self.method {
+            Method::Lecture => collide::toi::toi_sphere_box_halving(
+                &a,
+                &va,
+                &b,
+                &vb,
+                t_max,
+                collide::toi::Halving::Steps(HALVING_STEPS),
+            ),
+            Method::Robust => collide::toi::toi_sphere_box(&a, &va, &b, &vb, t_max),
+        }))
+    }
+
     fn toi_sphere_mesh(&self, a: &Sphere, va: &P3, b: &Mesh, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
         // The format's mesh rule for toi: the earliest touch over the faces, each
         // a two-sided triangle; ties to the lowest face index. The robust method
