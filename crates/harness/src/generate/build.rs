@@ -499,7 +499,12 @@ mod tests {
     #[test]
     fn a_box_under_a_similarity_is_the_image_of_the_box() {
         let q = [2.0, 0.0, 0.0, 1.0];
-        let b = crate::case::BoxSpec { center: [1.0, -2.0, 0.5], half_extents: [1.0, 2.0, 3.0], rotation: Some(q), velocity: None };
+        let b = crate::case::BoxSpec {
+            center: [1.0, -2.0, 0.5],
+            half_extents: [1.0, 2.0, 3.0],
+            rotation: Some(q),
+            velocity: None,
+        };
         let corners = crate::load::box_corners(&b.to_geom());
         let rotations = [
             // A reflection (a signed permutation of determinant −1) and a rotation.

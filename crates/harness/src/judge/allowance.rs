@@ -8,6 +8,7 @@ use super::tolerance::Tolerance;
 use crate::case::Shape;
 use crate::engine::Answer;
 use crate::load::LoadedCase;
+use oracle::geom::P3;
 use serde::Serialize;
 
 /// What each field of one case's answer is allowed to be off by, for one
@@ -167,17 +168,160 @@ struct ToiAllowance {
 /// spheres, the sphere's radius against a triangle's edge or vertex or a mesh)
 /// the shift is also at most `√(2 R δ)/‖v_rel‖`, the time a path at distance
 /// `δ` inside the grazing one spends closer than it. The smaller of the two is
-/// the time's allowance; a plane has no curvature (the first only).
+/// the time's allowance; a plane has no curvature (the first only). A box's
+/// surface is curved only at its edges and corners (the rounded box of radius
+/// `r`): on a face the first only, at an edge the second with the speed across
+/// the edge alone (a path along an edge's cylinder never leaves it: a grazing
+/// pass parallel to an edge has a time no perturbation pins down), at a
+/// corner the whole speed (see [`box_curved_speed`]).
 ///
 /// The point then moves by the speeds of both shapes and of the motion
 /// between them over that time, plus `δ`; the normal turns by the relative
-/// displacement over the distance `R_n` between the points it joins (the sum of
+/// displacement across the curved directions (for a box, the speed of
+/// [`box_curved_speed`]: a face's normal does not turn, an edge's only with
+/// motion across it) over the distance `R_n` between the points it joins (the sum of
 /// the radii, or the sphere's radius; a plane's normal is an input and does
 /// not turn). Shapes in contact at `t = 0` answer a static contact at `t = 0`
 /// exactly; their normal gets the same `δ / R_n` as
 /// `tolerance::NORMAL_CONDITION_ULPS` gives a static contact. Every norm is
 /// scaled before it squares and every product of a speed and a time skips a
 /// zero factor, so no allowance is NaN for any finite input.
+/// How close to a box's edge, relative to the box's size (the largest
+/// coordinate of its centre plus its half-extents), the referee's contact
+/// point counts as on it when the judge reads which feature an impact is on:
+/// far above the `f64` rounding of the point taken to the box's frame (a few
+/// ε of that size), so an edge or corner contact is never read as a face's.
+/// Reading a face contact near an edge as the edge's is the strict side: the
+/// edge's allowance is never larger than the face's.
+const BOX_FEATURE_SLACK: f64 = 1.0 / (1u64 << 26) as f64;
+
+/// The relative speed across the curved directions of box `bx`'s surface at
+/// the referee's impact `w` (what makes a grazing time's second-order term;
+/// `v·k` the relative velocity, `vb` the box's): the contact point, taken back
+/// to time 0 and into the box's frame, lies on a face (every coordinate but
+/// one inside by more than [`BOX_FEATURE_SLACK`]: no curvature, 0), an edge
+/// (one coordinate inside: the speed across the edge's direction) or a
+/// corner (the whole speed).
+fn box_curved_speed(bx: &crate::case::BoxSpec, w: &oracle::geom::Toi, vb: &P3, v: &P3, k: f64) -> f64 {
+    use super::sizes::norm;
+    let rot = oracle::geom::rotation_matrix(bx.rotation.unwrap_or(crate::case::IDENTITY_ROTATION));
+    let at: P3 = std::array::from_fn(|i| w.point[i] - vb[i] * w.t - bx.center[i]);
+    let u: [f64; 3] = std::array::from_fn(|j| (0..3).map(|i| rot[i][j] * at[i]).sum());
+    let size = bx.center.iter().fold(0.0f64, |m, x| m.max(x.abs())) + bx.half_extents.iter().sum::<f64>();
+    let slack = BOX_FEATURE_SLACK * size;
+    let inside: Vec<usize> = (0..3).filter(|&j| bx.half_extents[j] - u[j].abs() > slack).collect();
+    match inside.as_slice() {
+        [_, _, ..] => 0.0,
+        [j] => {
+            // The edge runs along axis j: the speed without its component there.
+            let e: P3 = [rot[0][*j], rot[1][*j], rot[2][*j]];
+            let along = v[0] * e[0] + v[1] * e[1] + v[2] * e[2];
+            norm(&[v[0] - along * e[0], v[1] - along * e[1], v[2] - along * e[2]]) * k
+        }
+        [] => norm(v) * k,
+    }
+}
+
+/// `x·2^e` in two exact steps (one alone overflows for `|e|` past 1023).
+fn times_pow2(x: f64, e: i32) -> f64 {
+    x * 2f64.powi(e / 2) * 2f64.powi(e - e / 2)
+}
+
+/// The most steps of the searches of [`box_time_window`]: each halves (or
+/// cuts by a third) an interval of `f64` times, and 2,200 such steps take any
+/// interval in `[0, f64::MAX]` down to adjacent doubles (2,098 binades of
+/// doubles, 52 bits each way). A search stops as soon as its interval no
+/// longer shrinks, which ordinary intervals reach in about 60.
+const WINDOW_STEPS: u32 = 2200;
+
+/// The time allowance of a sphere's impact on a box, from the window around
+/// the referee's time `t*` in which the path is within `δ` of touching: the
+/// distance `D(t)` from the centre to the box (convex in `t`: a moving point
+/// and a convex set), taken in `f64` in the box's frame on the scene scaled
+/// by a power of two, is at most `r + δ` from `t₁` on; a perturbation of the
+/// inputs by `δ` can move the first touch as early as `t₁`, and as late as the
+/// first time `D ≤ r − δ` (where the path sinks that far), or, where it never
+/// does, the last time `D ≤ r + δ`. The allowance is the larger side. On a
+/// face hit this is `δ/closing` either side; on a path that glides along an
+/// edge or a face within `δ` of touching it is the whole glide (no
+/// perturbation pins the touch down). `None` (the caller's estimate stands)
+/// when the scaled motion leaves `f64`'s range or the referee's time is not
+/// where `D = r` in `f64`.
+fn box_time_window(
+    lc: &LoadedCase,
+    bx: &crate::case::BoxSpec,
+    w: &oracle::geom::Toi,
+    v: &P3,
+    k: f64,
+    delta: f64,
+) -> Option<f64> {
+    let Shape::Sphere(a) = &lc.case.a else { return None };
+    let big = [a.radius, delta]
+        .into_iter()
+        .chain(a.center.iter().chain(&bx.center).chain(&bx.half_extents).map(|x| x.abs()))
+        .fold(0.0f64, f64::max);
+    if !(big > 0.0 && big.is_finite()) {
+        return None;
+    }
+    let e = -(big.log2().floor() as i32);
+    let sc = |x: f64| times_pow2(x, e);
+    let rot = oracle::geom::rotation_matrix(bx.rotation.unwrap_or(crate::case::IDENTITY_ROTATION));
+    let rel: P3 = std::array::from_fn(|i| sc(a.center[i]) - sc(bx.center[i]));
+    let vel: P3 = std::array::from_fn(|i| times_pow2(v[i] * k, e));
+    let local = |p: &P3| -> P3 { std::array::from_fn(|j| (0..3).map(|i| rot[i][j] * p[i]).sum()) };
+    let (u0, wl) = (local(&rel), local(&vel));
+    let h = bx.half_extents.map(sc);
+    let (r, d) = (sc(a.radius), sc(delta));
+    if !u0.iter().chain(&wl).chain(&h).all(|x| x.is_finite()) {
+        return None;
+    }
+    let dist = |t: f64| -> f64 {
+        let u: P3 = std::array::from_fn(|j| if t > 0.0 { u0[j] + t * wl[j] } else { u0[j] });
+        let g: P3 = std::array::from_fn(|j| u[j] - u[j].clamp(-h[j], h[j]));
+        super::sizes::norm(&g)
+    };
+    // The first time in [lo, hi] at which `near(D)` holds, `near(D(hi))` true.
+    let first_near = |lo: f64, hi: f64, near: &dyn Fn(f64) -> bool| -> f64 {
+        let (mut lo, mut hi) = (lo, hi);
+        if near(dist(lo)) {
+            return lo;
+        }
+        for _ in 0..WINDOW_STEPS {
+            let mid = lo + (hi - lo) / 2.0;
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if near(dist(mid)) { hi = mid } else { lo = mid }
+        }
+        hi
+    };
+    let (ts, t_max) = (w.t, lc.case.t_max().max(w.t));
+    if !(dist(ts) <= r + d) {
+        return None;
+    }
+    let early = ts - first_near(0.0, ts, &|x| x <= r + d);
+    // The least D on [t*, t_max] (convex: a ternary search).
+    let (mut lo, mut hi) = (ts, t_max);
+    for _ in 0..WINDOW_STEPS {
+        let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+        if !(m1 > lo && m2 < hi) {
+            break;
+        }
+        if dist(m1) <= dist(m2) { hi = m2 } else { lo = m1 }
+    }
+    let tm = lo;
+    let late = if dist(tm) <= r - d {
+        first_near(ts, tm, &|x| x <= r - d) - ts
+    } else if dist(t_max) <= r + d {
+        t_max - ts
+    } else {
+        // The last time within r + δ: the first past tm at which D exceeds it.
+        first_near(tm, t_max, &|x| x > r + d) - ts
+    };
+    let out = early.max(late);
+    out.is_finite().then_some(out)
+}
+
 fn toi_allowance(lc: &LoadedCase, w: &oracle::geom::Toi, b: &Shape, tol: &Tolerance, reach: f64) -> ToiAllowance {
     use super::sizes::norm;
     let va = lc.case.a.velocity();
@@ -201,12 +345,19 @@ fn toi_allowance(lc: &LoadedCase, w: &oracle::geom::Toi, b: &Shape, tol: &Tolera
         _ => (ra, ra),
     };
     let first = if closing > 0.0 { c_eps * (reach / closing) } else { f64::INFINITY };
-    let second = if curvature.is_finite() && speed > 0.0 {
-        (2.0 * curvature).sqrt() * (c_eps.sqrt() * reach.sqrt()) / speed
+    let curved = match b {
+        Shape::Box(bx) => box_curved_speed(bx, w, &vb, &v, k),
+        _ => speed,
+    };
+    let second = if curvature.is_finite() && curved > 0.0 {
+        (2.0 * curvature).sqrt() * (c_eps.sqrt() * reach.sqrt()) / curved
     } else {
         f64::INFINITY
     };
-    let t = first.min(second);
+    let t = match b {
+        Shape::Box(bx) if w.t > 0.0 => box_time_window(lc, bx, w, &v, k, delta).unwrap_or(first.min(second)),
+        _ => first.min(second),
+    };
     // A speed of 0 moves nothing, however long the time (no 0 · ∞).
     let moved = |speed: f64| if speed > 0.0 && t > 0.0 { speed * t } else { 0.0 };
     // A contact at t = 0 has the static contact's sizes (`super::sizes`), whose
@@ -216,7 +367,7 @@ fn toi_allowance(lc: &LoadedCase, w: &oracle::geom::Toi, b: &Shape, tol: &Tolera
     let point = moved(norm(&va) + norm(&vb) + 2.0 * speed) + if at_start { 0.0 } else { delta };
     let normal = if span.is_finite() {
         let still = if at_start { 0.0 } else { c_eps * (reach / span) };
-        if span > 0.0 { moved(speed) / span + still } else { f64::INFINITY }
+        if span > 0.0 { moved(curved) / span + still } else { f64::INFINITY }
     } else {
         0.0
     };

@@ -171,6 +171,44 @@ mod tests {
         }
     }
 
+    /// The time allowance of a sphere's impact on a box is the window in
+    /// which its path is within δ of touching: a head-on hit on a face pins
+    /// the time to a few ulps, a path gliding exactly `r` above a face (it
+    /// first touches at the face's edge, t = 2, and stays touching to t = 4)
+    /// allows any time from the edge on — a perturbation of one ulp lifts the
+    /// path clear or sinks it along the whole face.
+    #[test]
+    fn a_box_impact_is_allowed_the_window_its_path_is_within_reach() {
+        let case = |name: &str, center: &str, velocity: &str| {
+            format!(
+                r#"{{"name": "{name}", "query": "toi", "t_max": 4,
+                "a": {{"sphere": {{"center": {center}, "radius": 0.5, "velocity": {velocity}}}}},
+                "b": {{"box": {{"center": [0, 0, 0], "half_extents": [1, 1, 1]}}}}}}"#
+            )
+        };
+        let text = format!(
+            r#"{{"schema": "crashtest-fixture/1", "cases": [{}, {}]}}"#,
+            case("head-on", "[3, 0, 0]", "[-1, 0, 0]"),
+            case("gliding", "[-3, 1.5, 0]", "[1, 0, 0]")
+        );
+        let mut loaded = Loaded::default();
+        load_str_into(std::path::Path::new("c.json"), &text, &mut loaded);
+        let set = crate::engines::EngineSet::default();
+        let tol = Tolerance::for_precision(Some(53));
+        let t_allowed = |lc: &LoadedCase| {
+            let truth = set.referee.run(lc).expect("the referee answers");
+            allowed(lc, &truth, &tol).t
+        };
+        let (head_on, gliding) = (t_allowed(&loaded.cases[0]), t_allowed(&loaded.cases[1]));
+        // The table's fixed part (its relative tolerance of t_max = 4) and
+        // δ = 64 ε of the reach (about 8) over a closing speed of 1: below
+        // twice the fixed part.
+        let fixed = tol.rel * 4.0;
+        assert!(head_on < 2.0 * fixed, "a face hit head-on: {head_on:e} against {fixed:e}");
+        // The glide over the face lasts from t = 2 (the edge x = −1) to t = 4.
+        assert!(gliding >= 2.0, "a glide along the face: {gliding:e}");
+    }
+
     /// Coplanar motion (the referee's degenerate flag) allows a time anywhere
     /// in the interval, but an impact after `t_max` is no answer: a point
     /// entering a face in its plane at t = 1/4, the interval cut at 1/2.

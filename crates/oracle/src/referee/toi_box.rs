@@ -88,9 +88,7 @@ fn first_contact(bx: &ExactBox, s: &Moving, v: &V3) -> Option<Hit> {
         for plus in [true, false] {
             let sign = if plus { Q::ONE } else { Q::NEG_ONE };
             let t = (&sign * (&h[i] + r) - &u0[i]) / &w[i];
-            let inside = (0..3)
-                .filter(|&j| j != i)
-                .all(|j| (&u0[j] + &t * &w[j]).abs() <= h[j]);
+            let inside = (0..3).filter(|&j| j != i).all(|j| (&u0[j] + &t * &w[j]).abs() <= h[j]);
             if !inside {
                 continue;
             }
@@ -111,9 +109,8 @@ fn first_contact(bx: &ExactBox, s: &Moving, v: &V3) -> Option<Hit> {
             }
             let mut pm = zero.clone();
             pm[i] = w[i].clone();
-            let normal = unit_r
-                .as_ref()
-                .map(|k| (std::array::from_fn(|j| &w0[j] * k), std::array::from_fn(|j| &wi[j] * k)));
+            let normal =
+                unit_r.as_ref().map(|k| (std::array::from_fn(|j| &w0[j] * k), std::array::from_fn(|j| &wi[j] * k)));
             consider(t, &with(&e, i, u0[i].clone()), &pm, normal);
         }
     }
@@ -122,8 +119,7 @@ fn first_contact(bx: &ExactBox, s: &Moving, v: &V3) -> Option<Hit> {
         let e = offset(h, signs, None);
         let w0 = sub(&u0, &e);
         let Some(t) = point_root(&w0, &w, r) else { continue };
-        let normal =
-            unit_r.as_ref().map(|k| (std::array::from_fn(|j| &w0[j] * k), std::array::from_fn(|j| &w[j] * k)));
+        let normal = unit_r.as_ref().map(|k| (std::array::from_fn(|j| &w0[j] * k), std::array::from_fn(|j| &w[j] * k)));
         consider(t, &e, &zero, normal);
     }
     best
