@@ -553,8 +553,14 @@ fn face_gap2_below(path: &Path, vertices: &[P3], tri: &[usize; 3]) -> f64 {
     let (c, e) = (&path.start, &path.end);
     let u: P3 = std::array::from_fn(|k| e[k] - c[k]);
     let w: P3 = std::array::from_fn(|k| m[k] - c[k]);
-    let uu = dot(&u, &u);
-    let t = if uu > 0.0 { (dot(&w, &u) / uu).clamp(0.0, 1.0) } else { 0.0 };
+    let (uu, wu) = (dot(&u, &u), dot(&w, &u));
+    // A path so long that `u·u` (or `w·u`) overflows has no foot here: the
+    // foot would fall at the start, and the start's distance is no bound on
+    // the path's (the boxes' gap alone stands).
+    if !(uu.is_finite() && wu.is_finite()) {
+        return by_box;
+    }
+    let t = if uu > 0.0 { (wu / uu).clamp(0.0, 1.0) } else { 0.0 };
     let off: P3 = std::array::from_fn(|k| m[k] - (c[k] + t * u[k]));
     let d = dot(&off, &off).sqrt();
     let error = 64.0 * f64::EPSILON * (norm1(c) + norm1(e) + norm1(&m)) + path.end_error + PATH_ERROR_FLOOR;
@@ -1241,6 +1247,40 @@ mod tests {
         let (_, deg) = hit(toi_sphere_triangle(&sphere([0.5, 0.5, 0.0], 1.0), &STILL, &tri(), &STILL, 1.0), "on face");
         assert!(deg);
         miss(toi_sphere_triangle(&sphere([0.5, 0.5, 3.0], 1.0), &[1.0, 0.0, 0.0], &tri(), &STILL, 10.0), "sideways");
+    }
+
+    /// A path whose length squared overflows (a sphere of radius 1.4e153
+    /// moving 2.4e154 through a tetrahedron of size 1e153, both moving): the
+    /// face skipping must not rule a face out from the path's start alone.
+    /// Every face is hit (each one's own answer); the mesh's is the earliest,
+    /// t = 0.145…, the same with the stages as without.
+    #[test]
+    fn referee_toi_sphere_mesh_long_path_skips_no_face_it_reaches() {
+        let a = Sphere {
+            center: [3.1310303430341712e153, 2.1108267093141695e153, 1.841260250693431e153],
+            radius: 1.3725049409728446e153,
+        };
+        let va = [-1.7293686147459996e154, -1.5867995431728833e154, -1.5076426123701341e153];
+        let vs = [
+            [3.844358783706491e152, -1.3070426409782342e153, 1.36044295386168e153],
+            [2.2379665178669997e152, 9.921716518281729e152, 5.580805066462855e152],
+            [-1.62480679927288e153, -8.54099351118536e152, 9.752400938818175e152],
+            [-7.385505558596373e152, -2.1601811846375226e150, -1.0495408493478584e153],
+        ];
+        let tris = [[0usize, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+        let vb = [-5.341508138680669e153, -5.640501147607259e153, 7.033993091736005e152];
+        let staged = toi_sphere_mesh(&a, &va, &vs, &tris, &vb, 1.0).unwrap();
+        let exact = crate::referee::exact_only(|| toi_sphere_mesh(&a, &va, &vs, &tris, &vb, 1.0).unwrap());
+        assert_eq!(staged, exact, "the stages agree bit for bit");
+        let first = tris
+            .iter()
+            .filter_map(|t| {
+                let face = Triangle { vertices: [vs[t[0]], vs[t[1]], vs[t[2]]] };
+                toi_sphere_triangle(&a, &va, &face, &vb, 1.0).unwrap().toi.map(|k| k.t)
+            })
+            .fold(f64::INFINITY, f64::min);
+        let got = staged.toi.expect("the sphere reaches the mesh");
+        close(got.t, first, "the earliest face's time");
     }
 
     #[test]
