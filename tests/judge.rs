@@ -198,6 +198,7 @@ fn still(shape: &harness::case::Shape) -> harness::case::Shape {
         S::Plane(p) => S::Plane(harness::case::PlaneSpec { velocity: None, ..p }),
         S::Triangle(t) => S::Triangle(harness::case::TriangleSpec { velocity: None, ..t }),
         S::Mesh(m) => S::Mesh(harness::case::MeshSpec { velocity: None, ..m }),
+        S::Box(b) => S::Box(harness::case::BoxSpec { velocity: None, ..b }),
         other => other,
     }
 }
