@@ -50,10 +50,11 @@ use super::error::RefereeError;
 use super::exact::{
     Q, Root, V3, add, check_v3, cross, dot, is_zero, lerp, radius, round_unit, round_v, scale, sub, v3,
 };
-use super::stage::apart;
+use super::stage::{Memo, apart, remembered};
 use crate::geom::{Capsule, Contact, ContactAnswer, OrientedBox, P3, Triangle};
 
 /// A convex polytope held exactly.
+#[derive(Clone)]
 pub(crate) struct Convex {
     vertices: Vec<V3>,
     /// Edges as pairs of vertex indices (a closest pair's candidates).
@@ -168,6 +169,7 @@ impl Push {
 /// another way (`degenerate`). `None` when there is no axis at all. The least
 /// is negative exactly when some axis separates them (then it is minus the
 /// widest gap, a lower bound of their distance).
+#[derive(Clone)]
 struct Least {
     push: Push,
     tie: bool,
@@ -368,13 +370,44 @@ const APART: ContactAnswer = ContactAnswer { contact: None, degenerate: false };
 /// floating-point stage certifies to be strictly the least (`boxes_fast`'s
 /// `least_axis`, the same fifteen axes in the same order), else over all.
 /// A certified axis has no rival: only its own two ways can tie.
+#[derive(Clone)]
 struct BoxPair {
     a: Convex,
     b: Convex,
     least: Option<Least>,
 }
 
+/// The bits of a box's numbers: a memory's key.
+fn box_bits(b: &OrientedBox) -> [u64; 10] {
+    let mut k = [0; 10];
+    for (slot, x) in k.iter_mut().zip(b.center.iter().chain(&b.half_extents).chain(&b.rotation)) {
+        *slot = x.to_bits();
+    }
+    k
+}
+
+/// The bits of a capsule's numbers: a memory's key.
+fn capsule_bits(c: &Capsule) -> [u64; 7] {
+    let mut k = [0; 7];
+    for (slot, x) in k.iter_mut().zip(c.start.iter().chain(&c.end).chain(std::iter::once(&c.radius))) {
+        *slot = x.to_bits();
+    }
+    k
+}
+
+thread_local! {
+    static BOX_BOX: Memo<([u64; 10], [u64; 10]), Result<BoxPair, RefereeError>> = const { std::cell::RefCell::new(None) };
+    static CAPSULE_BOX: Memo<([u64; 7], [u64; 10]), Result<AxisSolid, RefereeError>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// [`box_box_computed`], remembered for the last pair on this thread (a
+/// case's answer, margin and region share it: `stage::remembered`).
 fn box_box(a: &OrientedBox, b: &OrientedBox) -> Result<BoxPair, RefereeError> {
+    remembered(&BOX_BOX, (box_bits(a), box_bits(b)), || box_box_computed(a, b))
+}
+
+fn box_box_computed(a: &OrientedBox, b: &OrientedBox) -> Result<BoxPair, RefereeError> {
     check_box(a, BOX_A)?;
     check_box(b, BOX_B)?;
     let certified = super::stage::fast_stage(super::stage::Stage::BoxOverlap, || {
@@ -591,6 +624,7 @@ impl Solid {
 
 /// A capsule's axis against a solid: the closest pairs found, or that they
 /// meet.
+#[derive(Clone)]
 struct AxisSolid {
     axis: Convex,
     solid: Convex,
@@ -697,7 +731,12 @@ impl AxisSolid {
     }
 }
 
+/// [`capsule_box_computed`], remembered as [`box_box`] is.
 fn capsule_box(a: &Capsule, b: &OrientedBox) -> Result<AxisSolid, RefereeError> {
+    remembered(&CAPSULE_BOX, (capsule_bits(a), box_bits(b)), || capsule_box_computed(a, b))
+}
+
+fn capsule_box_computed(a: &Capsule, b: &OrientedBox) -> Result<AxisSolid, RefereeError> {
     check_capsule_fields(a)?;
     check_box(b, BOX_B)?;
     axis_solid(a, Solid::Box(Box::new(exact_box(b, BOX_B)?)))

@@ -287,3 +287,24 @@ proptest! {
         }
     }
 }
+
+/// The last box pair is remembered on its thread (a case's answer, margin and
+/// region share it): asked again, it gives the same bits and counts the same
+/// stages as computing it the first time did.
+#[test]
+fn a_remembered_box_pair_counts_its_stages_again() {
+    use crate::referee::stage::stage_counts_on_this_thread as counts;
+    let (a, b) = (bx([1.5, 0.25, 0.0], 1.0, Z345), bx([0.0; 3], 1.0, ID));
+    let delta = |x: &[(crate::referee::Stage, u64, u64)], y: &[(crate::referee::Stage, u64, u64)]| {
+        x.iter().zip(y).map(|(p, q)| (q.1 - p.1, q.2 - p.2)).collect::<Vec<_>>()
+    };
+    let before = counts();
+    let first = contact_margin_box_box(&a, &b).unwrap();
+    let mid = counts();
+    let again = contact_margin_box_box(&a, &b).unwrap();
+    let after = counts();
+    assert_eq!(first.to_bits(), again.to_bits());
+    let (d1, d2) = (delta(&before, &mid), delta(&mid, &after));
+    assert!(d1.iter().any(|&(f, e)| f + e > 0), "the first computation counts a stage: {d1:?}");
+    assert_eq!(d1, d2, "the remembered pair counts what computing it counted");
+}

@@ -160,6 +160,39 @@ pub(crate) fn count(stage: Stage, fast: bool, n: u64) {
     });
 }
 
+/// A one-entry memory of an exact computation on this thread: the last key
+/// (with whether the stages were on), its value and the stage counts
+/// computing it made.
+pub(crate) type Memo<K, V> = std::cell::RefCell<Option<((K, bool), V, [u64; 20])>>;
+
+/// `f()`, remembered for `key` on this thread (in `slot`, one entry): asked
+/// again for the same key — as a case's answer, its margin and its contact
+/// region each ask for the same polytopes and least push — it returns the
+/// value computed before and counts that computation's stages again, so the
+/// counts are what computing it each time would give. The key holds whether
+/// the floating-point stages are on ([`exact_only`] computes afresh).
+pub(crate) fn remembered<K: PartialEq, V: Clone>(
+    slot: &'static std::thread::LocalKey<Memo<K, V>>,
+    key: K,
+    f: impl FnOnce() -> V,
+) -> V {
+    let key = (key, staged());
+    let hit = slot.with(|m| m.borrow().as_ref().filter(|(k, _, _)| *k == key).map(|(_, v, c)| (v.clone(), *c)));
+    if let Some((value, counts)) = hit {
+        for (i, &stage) in Stage::ALL.iter().enumerate() {
+            count(stage, true, counts[2 * i]);
+            count(stage, false, counts[2 * i + 1]);
+        }
+        return value;
+    }
+    let before = HERE.with(Cell::get);
+    let value = f();
+    let after = HERE.with(Cell::get);
+    let made: [u64; 20] = std::array::from_fn(|i| after[i] - before[i]);
+    slot.with(|m| *m.borrow_mut() = Some((key, value.clone(), made)));
+    value
+}
+
 /// [`stage_counts`] for the work done on this thread only.
 pub fn stage_counts_on_this_thread() -> Vec<(Stage, u64, u64)> {
     let c = HERE.with(Cell::get);
