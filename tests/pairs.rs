@@ -57,21 +57,6 @@ const NO_SWEEP: &[(Pair, &str)] = &[
         "response has no degeneracy parameter beyond the masses' ratio, which the random campaign spans",
     ),
     (Pair::ResponseSpherePlane, "as response sphere–sphere"),
-    (
-        Pair::ContactBoxTriangle,
-        "a box face down on a triangle is the kissing sweep's box face down on a box (the same least push along a \
-         face normal); each probe there costs about 5 s of the report's stability section with the four peers, \
-         which is already beyond its share",
-    ),
-    (
-        Pair::ContactCapsuleTriangle,
-        "as box–triangle: the kissing sweep's capsule across a box's face is the same decision",
-    ),
-    (
-        Pair::IntersectSegmentCapsule,
-        "as box–triangle: a segment grazing a capsule is the kissing sweep's capsule–capsule at radius 0 (the same \
-         reach test)",
-    ),
 ];
 
 fn pairs_of<'a>(cases: impl IntoIterator<Item = &'a LoadedCase>) -> BTreeSet<Pair> {

@@ -42,7 +42,7 @@
 
 use super::grid::{Pose, Rng, sin_cos};
 use super::scene::{moving_sphere, posed_with_velocity};
-use crate::generate::build::{Scene, aabb, capsule, hamilton, oriented_box, plane, segment, sphere};
+use crate::generate::build::{Scene, aabb, capsule, hamilton, oriented_box, plane, segment, sphere, triangle};
 use crashtest_core::vec3::{add, scale};
 use oracle::geom::{P3, rotation_matrix};
 
@@ -250,4 +250,39 @@ pub(super) fn kissing_capsule_box(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
     let (r, l) = (grid(rng, 0.25, 1.0), grid(rng, 0.25, 1.0));
     let z = up + r + g;
     pose.scene(&(capsule([-l, 0.25, z], [l, -0.25, z], r), Some(b)))
+}
+
+/// A triangle in the plane `z = 0` around the origin, its corners on the grid
+/// (legs from 1 to 2), so that a shape just above the origin is over its face.
+fn floor_triangle(rng: &mut Rng) -> crate::case::Shape {
+    let (a, b, c) = (grid(rng, 1.0, 2.0), grid(rng, 1.0, 2.0), grid(rng, 1.0, 2.0));
+    triangle([[-a, -b, 0.0], [c, -b, 0.0], [0.0, a + b, 0.0]])
+}
+
+/// `kissing`, probe `box–triangle`: a box under a quarter turn face down over
+/// a triangle in `z = 0`, `g` above it.
+pub(super) fn kissing_box_triangle(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    let t = floor_triangle(rng);
+    let (a, down) = quarter_turned_box(rng);
+    let crate::case::Shape::Box(mut a) = a else { unreachable!("a box") };
+    a.center = [grid(rng, -0.25, 0.25), grid(rng, -0.25, 0.25), down + g];
+    pose.scene(&(crate::case::Shape::Box(a), Some(t)))
+}
+
+/// `kissing`, probe `capsule–triangle`: a capsule lying across a triangle in
+/// `z = 0`, its surface `g` above it.
+pub(super) fn kissing_capsule_triangle(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    let t = floor_triangle(rng);
+    let (r, l) = (grid(rng, 0.25, 1.0), grid(rng, 0.25, 0.75));
+    let z = r + g;
+    pose.scene(&(capsule([-l, 0.25, z], [l, -0.25, z], r), Some(t)))
+}
+
+/// `kissing`, probe `segment–capsule`: a segment across a capsule's side at
+/// `r + g` from its axis (`g = 0`: it grazes the surface, a hit).
+pub(super) fn kissing_segment_capsule(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    let (r, l) = (grid(rng, 0.25, 1.0), grid(rng, 0.5, 2.0));
+    let (x, reach) = (grid(rng, -0.5, 0.5) * l, grid(rng, 1.0, 2.0));
+    let z = r + g;
+    pose.scene(&(segment([x, -reach, z], [x, reach, z]), Some(capsule([-l, 0.0, 0.0], [l, 0.0, 0.0], r))))
 }

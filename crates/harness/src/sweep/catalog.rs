@@ -605,11 +605,15 @@ pub static SWEEPS: &[Sweep] = &[
             Probe { name: "sphere–capsule", query: Query::Contact, build: boxes::kissing_sphere_capsule },
             Probe { name: "box–box", query: Query::Contact, build: boxes::kissing_box_box },
             Probe { name: "capsule–box", query: Query::Contact, build: boxes::kissing_capsule_box },
+            Probe { name: "box–triangle", query: Query::Contact, build: boxes::kissing_box_triangle },
+            Probe { name: "capsule–triangle", query: Query::Contact, build: boxes::kissing_capsule_triangle },
+            Probe { name: "segment–capsule", query: Query::Intersect, build: boxes::kissing_segment_capsule },
             Probe { name: "toi sphere–box", query: Query::Toi, build: boxes::kissing_toi_sphere_box },
         ],
         about: "A sphere beside a box's face (the box turned by a quarter turn, half-extents and radius on \
                 the 1/32 grid), two crossing capsules, a box face down on a box, a capsule across a box's \
-                face, a sphere's path passing over a box's face (toi), the gap g between their surfaces from 1 \
+                face, a box face down and a capsule lying on a triangle, a segment across a capsule's side, a \
+                sphere's path passing over a box's face (toi), the gap g between their surfaces from 1 \
                 down to 1e-16 and exactly 0 (touching is contact). The gap rounds at the ulp of the sizes \
                 (about 1e-16): below it the referee judges what it rounded to.",
     },
