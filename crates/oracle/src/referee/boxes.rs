@@ -135,6 +135,35 @@ impl ExactBox {
         add(&self.c, &self.dir_to_world(u))
     }
 
+    /// The first parameter `s ∈ [0, 1]` at which the segment `u0 → u1` (in
+    /// the box's frame) is in the closed box, by the slabs (Ericson §5.3.3,
+    /// exactly); `None` when it misses.
+    pub(crate) fn entry(&self, u0: &V3, u1: &V3) -> Option<Q> {
+        let (mut lo, mut hi) = (Q::ZERO, Q::ONE);
+        for i in 0..3 {
+            let d = &u1[i] - &u0[i];
+            let (neg_h, h) = (-self.h[i].clone(), self.h[i].clone());
+            if d.is_zero() {
+                if u0[i] < neg_h || u0[i] > h {
+                    return None;
+                }
+                continue;
+            }
+            let (ta, tb) = ((&neg_h - &u0[i]) / &d, (&h - &u0[i]) / &d);
+            let (t0, t1) = if ta <= tb { (ta, tb) } else { (tb, ta) };
+            if t0 > lo {
+                lo = t0;
+            }
+            if t1 < hi {
+                hi = t1;
+            }
+            if lo > hi {
+                return None;
+            }
+        }
+        Some(lo)
+    }
+
     /// `u` (in the box's frame) clamped into the closed box: its nearest point.
     pub(crate) fn clamp(&self, u: &V3) -> V3 {
         std::array::from_fn(|i| {

@@ -582,32 +582,7 @@ impl Solid {
     /// distance 0.
     fn pierce(&self, p0: &V3, p1: &V3) -> Option<V3> {
         match self {
-            Solid::Box(b) => {
-                let (u0, u1) = (b.to_local(p0), b.to_local(p1));
-                let (mut lo, mut hi) = (Q::ZERO, Q::ONE);
-                for i in 0..3 {
-                    let d = &u1[i] - &u0[i];
-                    let (neg_h, h) = (-b.h[i].clone(), b.h[i].clone());
-                    if d.is_zero() {
-                        if u0[i] < neg_h || u0[i] > h {
-                            return None;
-                        }
-                        continue;
-                    }
-                    let (ta, tb) = ((&neg_h - &u0[i]) / &d, (&h - &u0[i]) / &d);
-                    let (t0, t1) = if ta <= tb { (ta, tb) } else { (tb, ta) };
-                    if t0 > lo {
-                        lo = t0;
-                    }
-                    if t1 < hi {
-                        hi = t1;
-                    }
-                    if lo > hi {
-                        return None;
-                    }
-                }
-                Some(lerp(p0, p1, &lo))
-            }
+            Solid::Box(b) => b.entry(&b.to_local(p0), &b.to_local(p1)).map(|s| lerp(p0, p1, &s)),
             Solid::Triangle(t) => {
                 let n = cross(&sub(&t[1], &t[0]), &sub(&t[2], &t[0]));
                 let (s0, s1) = (dot(&n, &sub(p0, &t[0])), dot(&n, &sub(p1, &t[0])));

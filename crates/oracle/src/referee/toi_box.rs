@@ -15,13 +15,12 @@ use std::cmp::Ordering;
 
 use super::boxes::{BOX_B, ExactBox, check_box, contact_sphere_box, exact_box};
 use super::error::RefereeError;
-use dashu::base::Abs;
-
 use super::exact::{Q, V3, dot, sub};
 use super::toi::{
     Hit, Moving, Surd, along, at_zero, check_moving, dist2_segments, finish, gap_margin, moving, point_root, staged,
 };
 use crate::geom::{Capsule, OrientedBox, P3, Sphere, ToiAnswer};
+use dashu::base::Abs;
 
 /// `x` with component `i` replaced by `y`.
 fn with(x: &V3, i: usize, y: Q) -> V3 {
@@ -185,40 +184,13 @@ pub fn toi_sphere_box(a: &Sphere, va: &P3, b: &OrientedBox, vb: &P3, t_max: f64)
     })
 }
 
-/// Whether the segment `p0 → p1` meets the axis-aligned box `|uᵢ| ≤ hᵢ`,
-/// exactly (the slabs' parameter intervals intersected).
-fn segment_meets_box(p0: &V3, p1: &V3, h: &V3) -> bool {
-    let (mut lo, mut hi) = (Q::ZERO, Q::ONE);
-    for i in 0..3 {
-        let d = &p1[i] - &p0[i];
-        if d.is_zero() {
-            if p0[i].clone().abs() > h[i] {
-                return false;
-            }
-            continue;
-        }
-        let (a, b) = ((-&h[i] - &p0[i]) / &d, (&h[i] - &p0[i]) / &d);
-        let (a, b) = if a <= b { (a, b) } else { (b, a) };
-        if a > lo {
-            lo = a;
-        }
-        if b < hi {
-            hi = b;
-        }
-        if lo > hi {
-            return false;
-        }
-    }
-    true
-}
-
 /// The squared distance from the segment `p0 → p1` to the axis-aligned box
 /// `|uᵢ| ≤ hᵢ`, exactly: 0 when they meet; otherwise the closest pair of two
 /// disjoint convex polytopes has a vertex of one or an edge against an edge,
 /// so it is the least of the ends' distances to the box (their clamps) and the
 /// segment's distances to the box's twelve edges.
 fn dist2_segment_box(bx: &ExactBox, p0: &V3, p1: &V3) -> Q {
-    if segment_meets_box(p0, p1, &bx.h) {
+    if bx.entry(p0, p1).is_some() {
         return Q::ZERO;
     }
     let to_box = |p: &V3| {
