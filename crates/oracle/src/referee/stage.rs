@@ -71,7 +71,8 @@ pub enum Stage {
     Intersect,
     /// A sphere's time of impact with a sphere, a plane, a triangle or a
     /// mesh, and its margin: certified from double-word numbers, or computed
-    /// in exact rationals.
+    /// in exact rationals; with a box, a miss certified from bounded `f64`
+    /// projections of the path's capsule, or the answer computed exactly.
     Toi,
     /// Collision response of a sphere against a sphere or a plane: certified
     /// from double-word numbers or decided in exact dyadic ones, or computed
@@ -123,7 +124,7 @@ impl Stage {
                 "intersect of a segment with a plane, triangle or mesh, and margins: certified from double-word or exact dyadic numbers / computed in rationals"
             }
             Stage::Toi => {
-                "toi of a sphere with a sphere, plane, triangle or mesh, and margins: certified from double-word numbers / computed exactly"
+                "toi of a sphere with a sphere, plane, triangle, mesh or box, and margins: certified from double-word numbers (a box: a miss from bounded f64 projections) / computed exactly"
             }
             Stage::Response => {
                 "response of a sphere against a sphere or plane: certified from double-word or exact dyadic numbers / computed in rationals"
