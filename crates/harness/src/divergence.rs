@@ -392,33 +392,30 @@ fn shapes(lc: &LoadedCase) -> (&'static str, Option<&'static str>) {
     (lc.case.a.kind(), lc.case.b.as_ref().map(Shape::kind))
 }
 
+/// A segment starting inside `b` of kind `kind`, answered at `t = 0` with a
+/// zero normal where the referee also hits at `t = 0`, and disagreeing only
+/// in the normal and the flag.
+fn starts_inside_with_no_normal(lc: &LoadedCase, a: &Answer, t: &Answer, reasons: &[String], kind: &str) -> bool {
+    let zero = |n: &[f64; 3]| n.iter().all(|x| *x == 0.0);
+    matches!((a, t), (Answer::Intersect(a), Answer::Intersect(t))
+        if shapes(lc).1 == Some(kind)
+            && a.hit.is_some_and(|h| h.t == 0.0 && zero(&h.normal))
+            && t.hit.is_some_and(|h| h.t == 0.0))
+        && !reasons.is_empty()
+        && reasons.iter().all(|r| r.starts_with("normal") || r.starts_with("degenerate"))
+}
+
 /// parry3d-f64 and parry3d: the divergences `oracle::parry` documents.
 pub const PARRY: Known = Known::rules(&[
     Rule {
         parry_what: Some("segment–box: a segment starting in the box"),
         reason: "",
-        explains: |lc, a, t, reasons| {
-            let zero = |n: &[f64; 3]| n.iter().all(|x| *x == 0.0);
-            matches!((a, t), (Answer::Intersect(a), Answer::Intersect(t))
-                if shapes(lc).1 == Some("box")
-                    && a.hit.is_some_and(|h| h.t == 0.0 && zero(&h.normal))
-                    && t.hit.is_some_and(|h| h.t == 0.0))
-                && !reasons.is_empty()
-                && reasons.iter().all(|r| r.starts_with("normal") || r.starts_with("degenerate"))
-        },
+        explains: |lc, a, t, reasons| starts_inside_with_no_normal(lc, a, t, reasons, "box"),
     },
     Rule {
         parry_what: Some("segment–capsule: a segment starting in the capsule"),
         reason: "",
-        explains: |lc, a, t, reasons| {
-            let zero = |n: &[f64; 3]| n.iter().all(|x| *x == 0.0);
-            matches!((a, t), (Answer::Intersect(a), Answer::Intersect(t))
-                if shapes(lc).1 == Some("capsule")
-                    && a.hit.is_some_and(|h| h.t == 0.0 && zero(&h.normal))
-                    && t.hit.is_some_and(|h| h.t == 0.0))
-                && !reasons.is_empty()
-                && reasons.iter().all(|r| r.starts_with("normal") || r.starts_with("degenerate"))
-        },
+        explains: |lc, a, t, reasons| starts_inside_with_no_normal(lc, a, t, reasons, "capsule"),
     },
     Rule {
         parry_what: Some("sphere–box: a centre tied between faces"),

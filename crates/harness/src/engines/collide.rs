@@ -47,6 +47,18 @@ impl<T> CollideQueries<T> {
     }
 }
 
+impl<T: Real> CollideQueries<T> {
+    /// A time of impact by this engine's method: `lecture`, the interval
+    /// halving, given its stopping rule ([`HALVING_STEPS`] bisections), or
+    /// `robust`.
+    fn toi_by<R>(&self, lecture: impl FnOnce(collide::toi::Halving<T>) -> R, robust: impl FnOnce() -> R) -> R {
+        match self.method {
+            Method::Lecture => lecture(collide::toi::Halving::Steps(HALVING_STEPS)),
+            Method::Robust => robust(),
+        }
+    }
+}
+
 fn v<T: Real>(p: &P3) -> collide::Vec3<T> {
     collide::Vec3::new(T::of(p[0]), T::of(p[1]), T::of(p[2]))
 }
@@ -374,64 +386,34 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
 
     fn toi_sphere_sphere(&self, a: &Sphere, va: &P3, b: &Sphere, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
         let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), sphere::<T>(b), v::<T>(vb), time::<T>(t_max));
-        Ok(toi(match self.method {
-            Method::Lecture => collide::toi::toi_sphere_sphere_halving(
-                &a,
-                &va,
-                &b,
-                &vb,
-                t_max,
-                collide::toi::Halving::Steps(HALVING_STEPS),
-            ),
-            Method::Robust => collide::toi::toi_sphere_sphere(&a, &va, &b, &vb, t_max),
-        }))
+        Ok(toi(self.toi_by(
+            |stop| collide::toi::toi_sphere_sphere_halving(&a, &va, &b, &vb, t_max, stop),
+            || collide::toi::toi_sphere_sphere(&a, &va, &b, &vb, t_max),
+        )))
     }
 
     fn toi_sphere_plane(&self, a: &Sphere, va: &P3, b: &Plane, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
         let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), plane::<T>(b), v::<T>(vb), time::<T>(t_max));
-        Ok(toi(match self.method {
-            Method::Lecture => collide::toi::toi_sphere_plane_halving(
-                &a,
-                &va,
-                &b,
-                &vb,
-                t_max,
-                collide::toi::Halving::Steps(HALVING_STEPS),
-            ),
-            Method::Robust => collide::toi::toi_sphere_plane(&a, &va, &b, &vb, t_max),
-        }))
+        Ok(toi(self.toi_by(
+            |stop| collide::toi::toi_sphere_plane_halving(&a, &va, &b, &vb, t_max, stop),
+            || collide::toi::toi_sphere_plane(&a, &va, &b, &vb, t_max),
+        )))
     }
 
     fn toi_sphere_triangle(&self, a: &Sphere, va: &P3, b: &Triangle, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
         let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), triangle::<T>(b), v::<T>(vb), time::<T>(t_max));
-        Ok(toi(match self.method {
-            Method::Lecture => collide::toi::toi_sphere_triangle_halving(
-                &a,
-                &va,
-                &b,
-                &vb,
-                t_max,
-                collide::toi::Halving::Steps(HALVING_STEPS),
-            ),
-            Method::Robust => {
-                collide::toi::toi_sphere_triangle(&a, &va, &b, &vb, t_max, &collide::toi::Advancement::default())
-            }
-        }))
+        Ok(toi(self.toi_by(
+            |stop| collide::toi::toi_sphere_triangle_halving(&a, &va, &b, &vb, t_max, stop),
+            || collide::toi::toi_sphere_triangle(&a, &va, &b, &vb, t_max, &collide::toi::Advancement::default()),
+        )))
     }
 
     fn toi_sphere_box(&self, a: &Sphere, va: &P3, b: &OrientedBox, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
         let (a, va, b, vb, t_max) = (sphere::<T>(a), v::<T>(va), oriented_box::<T>(b), v::<T>(vb), time::<T>(t_max));
-        Ok(toi(match self.method {
-            Method::Lecture => collide::toi::toi_sphere_box_halving(
-                &a,
-                &va,
-                &b,
-                &vb,
-                t_max,
-                collide::toi::Halving::Steps(HALVING_STEPS),
-            ),
-            Method::Robust => collide::toi::toi_sphere_box(&a, &va, &b, &vb, t_max),
-        }))
+        Ok(toi(self.toi_by(
+            |stop| collide::toi::toi_sphere_box_halving(&a, &va, &b, &vb, t_max, stop),
+            || collide::toi::toi_sphere_box(&a, &va, &b, &vb, t_max),
+        )))
     }
 
     fn toi_sphere_mesh(&self, a: &Sphere, va: &P3, b: &Mesh, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
@@ -445,19 +427,10 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
             .map_err(|e| Unsupported(format!("mesh refused by collide: {e}")))?;
         let bvh = collide::mesh::MeshBvh::new(mesh);
         let (a, va, vb, t_max) = (sphere::<T>(a), v::<T>(va), v::<T>(vb), time::<T>(t_max));
-        let r = match self.method {
-            Method::Lecture => collide::toi::toi_sphere_mesh_halving(
-                &a,
-                &va,
-                &bvh,
-                &vb,
-                t_max,
-                collide::toi::Halving::Steps(HALVING_STEPS),
-            ),
-            Method::Robust => {
-                collide::toi::toi_sphere_mesh(&a, &va, &bvh, &vb, t_max, &collide::toi::Advancement::default())
-            }
-        };
+        let r = self.toi_by(
+            |stop| collide::toi::toi_sphere_mesh_halving(&a, &va, &bvh, &vb, t_max, stop),
+            || collide::toi::toi_sphere_mesh(&a, &va, &bvh, &vb, t_max, &collide::toi::Advancement::default()),
+        );
         Ok(toi(r.map(|m| m.toi)))
     }
 

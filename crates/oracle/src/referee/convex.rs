@@ -432,6 +432,13 @@ fn box_box_computed(a: &OrientedBox, b: &OrientedBox) -> Result<BoxPair, Referee
     Ok(BoxPair { a: ca, b: cb, least })
 }
 
+/// Whether the floating-point stage proves boxes `a` and `b` apart (some
+/// separating axis, bounded).
+fn boxes_apart(a: &OrientedBox, b: &OrientedBox) -> bool {
+    use super::boxes_fast::{FastBox, overlap};
+    overlap(&FastBox::of(a), &FastBox::of(b)) == Some(false)
+}
+
 /// Contact between oriented boxes `a` and `b`.
 ///
 /// **Definition** (`docs/FORMAT.md`, box–box): the least push of `a` clear of
@@ -449,11 +456,7 @@ fn box_box_computed(a: &OrientedBox, b: &OrientedBox) -> Result<BoxPair, Referee
 pub fn contact_box_box(a: &OrientedBox, b: &OrientedBox) -> Result<ContactAnswer, RefereeError> {
     check_box(a, BOX_A)?;
     check_box(b, BOX_B)?;
-    let fast = || {
-        use super::boxes_fast::{FastBox, overlap};
-        overlap(&FastBox::of(a), &FastBox::of(b)) == Some(false)
-    };
-    if apart(fast) {
+    if apart(|| boxes_apart(a, b)) {
         return Ok(APART);
     }
     let pair = box_box(a, b)?;
@@ -479,10 +482,7 @@ pub fn contact_margin_box_box(a: &OrientedBox, b: &OrientedBox) -> Result<f64, R
 pub fn contact_region_box_box(a: &OrientedBox, b: &OrientedBox) -> Result<Option<Vec<P3>>, RefereeError> {
     check_box(a, BOX_A)?;
     check_box(b, BOX_B)?;
-    if apart(|| {
-        use super::boxes_fast::{FastBox, overlap};
-        overlap(&FastBox::of(a), &FastBox::of(b)) == Some(false)
-    }) {
+    if apart(|| boxes_apart(a, b)) {
         return Ok(None);
     }
     let pair = box_box(a, b)?;

@@ -504,12 +504,12 @@ type Bounds = (P3, P3);
 /// The path of `a`'s centre over `[0, t_max]` in `b`'s frame, `c + t (va − vb)`,
 /// in `f64`: its ends (the far one computed, so rounded), a bound on that end's
 /// error, and a box holding the exact path.
-struct Path {
+pub(super) struct Path {
     bounds: Bounds,
     start: P3,
-    end: P3,
+    pub(super) end: P3,
     /// Bound on the far end's error, summed over the axes (≥ its length).
-    end_error: f64,
+    pub(super) end_error: f64,
 }
 
 /// [`Path`] of `a`'s centre: the far end computed in `f64` and its error
@@ -517,7 +517,7 @@ struct Path {
 /// 4·2⁻⁵³ of the magnitudes involved, plus an absolute floor for subnormal
 /// results); the box is the two ends' widened by that bound. `None` when not
 /// finite.
-fn path_bounds(c: &P3, va: &P3, vb: &P3, t_max: f64) -> Option<Path> {
+pub(super) fn path_bounds(c: &P3, va: &P3, vb: &P3, t_max: f64) -> Option<Path> {
     let t = t_max.max(0.0);
     let (mut lo, mut hi, mut end, mut end_error) = (*c, *c, *c, 0.0);
     for k in 0..3 {

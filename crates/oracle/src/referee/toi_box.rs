@@ -17,7 +17,8 @@ use super::boxes::{BOX_B, ExactBox, check_box, contact_sphere_box, exact_box};
 use super::error::RefereeError;
 use super::exact::{Q, V3, dot, sub};
 use super::toi::{
-    Hit, Moving, Surd, along, at_zero, check_moving, dist2_segments, finish, gap_margin, moving, point_root, staged,
+    Hit, Moving, Surd, along, at_zero, check_moving, dist2_segments, finish, gap_margin, moving, path_bounds,
+    point_root, staged,
 };
 use crate::geom::{Capsule, OrientedBox, P3, Sphere, ToiAnswer};
 use dashu::base::Abs;
@@ -126,24 +127,13 @@ fn first_contact(bx: &ExactBox, s: &Moving, v: &V3) -> Option<Hit> {
 
 /// Whether the floating-point stage certifies that the centre's whole path
 /// stays further than `r` from the box: the capsule from the centre to its
-/// place at `t_max` (in `b`'s frame), its radius grown by a bound on the
-/// rounding of that end, certainly apart from the box
-/// ([`super::boxes_fast::capsule_box_apart`]).
-///
-/// The end `c + t·(va − vb)` takes three roundings per coordinate, each at
-/// most `ε` of `|cᵢ| + t(|vaᵢ| + |vbᵢ|)` (`M` the largest): the end is within
-/// `3.01·√3·ε·M < 8εM` of the exact one, and `8εM + MIN_POSITIVE` (for
-/// subnormal roundings) added to `r`, the sum rounded up by a relative `2ε`,
-/// covers it.
+/// place at `t_max` (in `b`'s frame, [`super::toi::path_bounds`]'s far end),
+/// its radius grown by that end's error bound and rounded up by a relative
+/// `2ε`, certainly apart from the box ([`super::boxes_fast::capsule_box_apart`]).
 fn path_apart(a: &Sphere, va: &P3, b: &OrientedBox, vb: &P3, t_max: f64) -> bool {
-    let t = t_max.max(0.0);
-    let end: P3 = std::array::from_fn(|i| a.center[i] + t * (va[i] - vb[i]));
-    let m = (0..3).map(|i| a.center[i].abs() + t * (va[i].abs() + vb[i].abs())).fold(0.0, f64::max);
-    let radius = (a.radius + (8.0 * f64::EPSILON * m + f64::MIN_POSITIVE)) * (1.0 + 2.0 * f64::EPSILON);
-    if !(end.iter().all(|x| x.is_finite()) && radius.is_finite()) {
-        return false;
-    }
-    super::boxes_fast::capsule_box_apart(&Capsule { start: a.center, end, radius }, b)
+    let Some(path) = path_bounds(&a.center, va, vb, t_max) else { return false };
+    let radius = (a.radius + path.end_error) * (1.0 + 2.0 * f64::EPSILON);
+    radius.is_finite() && super::boxes_fast::capsule_box_apart(&Capsule { start: a.center, end: path.end, radius }, b)
 }
 
 /// Time of impact of sphere `a` (centre `c`, radius `r`, velocity `va`) and
