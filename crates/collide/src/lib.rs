@@ -32,6 +32,7 @@ pub mod bounds;
 pub mod boxes;
 pub mod ccd;
 pub mod contact;
+pub mod convex;
 pub mod exact;
 pub mod intersect;
 pub mod mesh;

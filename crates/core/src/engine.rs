@@ -7,8 +7,9 @@
 //! its own conventions inside its methods and nowhere else.
 
 use crate::geom::{
-    Aabb, BarycentricAnswer, BoundsAnswer, Capsule, CcdAnswer, ContactAnswer, IntersectAnswer, MovingPoint,
-    MovingSegment, MovingTriangle, OrientedBox, P3, Plane, ResponseAnswer, Segment, Sphere, ToiAnswer, Triangle,
+    Aabb, BarycentricAnswer, BoundsAnswer, Capsule, CcdAnswer, ContactAnswer, DistanceAnswer, IntersectAnswer,
+    MovingPoint, MovingSegment, MovingTriangle, OrientedBox, P3, Plane, ResponseAnswer, Segment, Solid, Sphere,
+    ToiAnswer, Triangle,
 };
 use crate::mesh::Mesh;
 use std::fmt;
@@ -32,6 +33,8 @@ pub enum Answer {
     Response(ResponseAnswer),
     /// `ccd`.
     Ccd(CcdAnswer),
+    /// `distance`.
+    Distance(DistanceAnswer),
 }
 
 /// The engine does not answer this kind of case, with the reason.
@@ -210,6 +213,12 @@ pub trait Queries: Send + Sync {
     /// `[0, t_max]`.
     fn ccd_segment_segment(&self, a: &MovingSegment, b: &MovingSegment, t_max: f64) -> Reply<CcdAnswer> {
         unsupported("edge–edge continuous collision")
+    }
+    /// `distance`, solid `a` and solid `b`: every distance pair of the table
+    /// comes here, its shapes' kinds in `a` and `b` (an engine that answers
+    /// only some kinds says `Unsupported` for the others).
+    fn distance(&self, a: Solid<'_>, b: Solid<'_>) -> Reply<DistanceAnswer> {
+        Err(Unsupported(format!("{}–{} distance is not implemented by this engine", a.kind(), b.kind())))
     }
 }
 

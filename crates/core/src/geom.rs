@@ -124,6 +124,66 @@ pub struct Capsule {
     pub radius: f64,
 }
 
+/// The convex hull of a non-empty set of points (flat, segment-like and
+/// single-point hulls included).
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]
+pub struct Convex {
+    /// The points, at least one; their order, repeats and interior points do
+    /// not change the solid.
+    pub points: Vec<P3>,
+}
+
+/// A solid of a `distance` query, borrowed from its case.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Solid<'a> {
+    /// A ball.
+    Sphere(&'a Sphere),
+    /// A capsule.
+    Capsule(&'a Capsule),
+    /// A box that may be rotated.
+    Box(&'a OrientedBox),
+    /// A convex hull.
+    Convex(&'a Convex),
+    /// A triangle: a flat solid.
+    Triangle(&'a Triangle),
+    /// The solid half-space `normal · x ≤ offset`.
+    Plane(&'a Plane),
+}
+
+impl Solid<'_> {
+    /// Its shape kind.
+    pub fn kind(&self) -> crate::pair::ShapeKind {
+        use crate::pair::ShapeKind as K;
+        match self {
+            Solid::Sphere(_) => K::Sphere,
+            Solid::Capsule(_) => K::Capsule,
+            Solid::Box(_) => K::Box,
+            Solid::Convex(_) => K::Convex,
+            Solid::Triangle(_) => K::Triangle,
+            Solid::Plane(_) => K::Plane,
+        }
+    }
+}
+
+/// The answer to a `distance` query: the signed distance of two solids and its
+/// witnesses.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct DistanceAnswer {
+    /// The separation (> 0), 0 touching, or minus the penetration depth (< 0).
+    pub distance: f64,
+    /// On `a`: its closest point, or for a penetration its deepest point, on
+    /// its boundary.
+    pub point_a: P3,
+    /// On `b`, likewise; `point_a = point_b + distance · normal`.
+    pub point_b: P3,
+    /// Unit, from `b` toward `a`.
+    pub normal: P3,
+    /// The witnesses or the normal are not unique (parallel faces or edges;
+    /// two least pushes), or the answer is a documented fallback.
+    pub degenerate: bool,
+}
+
 /// A contact (see the module docs for the convention).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(Serialize, Deserialize, JsonSchema), serde(deny_unknown_fields))]

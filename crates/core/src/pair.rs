@@ -37,11 +37,13 @@ pub enum Query {
     Response,
     /// Continuous collision of linearly moving points: vertex–face and edge–edge.
     Ccd,
+    /// Signed distance of two solids (GJK and EPA's query).
+    Distance,
 }
 
 impl Query {
     /// Every query kind, in the format's order.
-    pub const ALL: [Query; 8] = [
+    pub const ALL: [Query; 9] = [
         Query::Contact,
         Query::Intersect,
         Query::Barycentric,
@@ -50,6 +52,7 @@ impl Query {
         Query::Toi,
         Query::Response,
         Query::Ccd,
+        Query::Distance,
     ];
 
     /// The name used in fixture files.
@@ -63,6 +66,7 @@ impl Query {
             Query::Toi => "toi",
             Query::Response => "response",
             Query::Ccd => "ccd",
+            Query::Distance => "distance",
         }
     }
 
@@ -117,6 +121,8 @@ pub enum ShapeKind {
     Box,
     /// `capsule`.
     Capsule,
+    /// `convex`: the convex hull of points.
+    Convex,
 }
 
 impl ShapeKind {
@@ -136,6 +142,7 @@ impl ShapeKind {
             ShapeKind::MovingTriangle => "moving_triangle",
             ShapeKind::Box => "box",
             ShapeKind::Capsule => "capsule",
+            ShapeKind::Convex => "convex",
         }
     }
 }
@@ -186,6 +193,24 @@ pub enum Pair {
     ResponseSpherePlane,
     CcdPointTriangle,
     CcdSegmentSegment,
+    DistanceSphereSphere,
+    DistanceSpherePlane,
+    DistanceSphereTriangle,
+    DistanceSphereBox,
+    DistanceSphereCapsule,
+    DistanceSphereConvex,
+    DistanceBoxPlane,
+    DistanceBoxBox,
+    DistanceBoxTriangle,
+    DistanceCapsuleCapsule,
+    DistanceCapsulePlane,
+    DistanceCapsuleBox,
+    DistanceCapsuleTriangle,
+    DistanceCapsuleConvex,
+    DistanceConvexConvex,
+    DistanceConvexPlane,
+    DistanceConvexBox,
+    DistanceConvexTriangle,
 }
 
 /// A row of the pair table.
@@ -210,7 +235,7 @@ use Query as Q;
 use ShapeKind as K;
 
 /// The pair table, in report order (query by query, as the format lists them).
-pub const PAIRS: [PairRow; 36] = [
+pub const PAIRS: [PairRow; 54] = [
     row(P::ContactSphereSphere, Q::Contact, K::Sphere, Some(K::Sphere)),
     row(P::ContactSpherePlane, Q::Contact, K::Sphere, Some(K::Plane)),
     row(P::ContactPlaneSphere, Q::Contact, K::Plane, Some(K::Sphere)),
@@ -247,6 +272,24 @@ pub const PAIRS: [PairRow; 36] = [
     row(P::ResponseSpherePlane, Q::Response, K::Sphere, Some(K::Plane)),
     row(P::CcdPointTriangle, Q::Ccd, K::MovingPoint, Some(K::MovingTriangle)),
     row(P::CcdSegmentSegment, Q::Ccd, K::MovingSegment, Some(K::MovingSegment)),
+    row(P::DistanceSphereSphere, Q::Distance, K::Sphere, Some(K::Sphere)),
+    row(P::DistanceSpherePlane, Q::Distance, K::Sphere, Some(K::Plane)),
+    row(P::DistanceSphereTriangle, Q::Distance, K::Sphere, Some(K::Triangle)),
+    row(P::DistanceSphereBox, Q::Distance, K::Sphere, Some(K::Box)),
+    row(P::DistanceSphereCapsule, Q::Distance, K::Sphere, Some(K::Capsule)),
+    row(P::DistanceSphereConvex, Q::Distance, K::Sphere, Some(K::Convex)),
+    row(P::DistanceBoxPlane, Q::Distance, K::Box, Some(K::Plane)),
+    row(P::DistanceBoxBox, Q::Distance, K::Box, Some(K::Box)),
+    row(P::DistanceBoxTriangle, Q::Distance, K::Box, Some(K::Triangle)),
+    row(P::DistanceCapsuleCapsule, Q::Distance, K::Capsule, Some(K::Capsule)),
+    row(P::DistanceCapsulePlane, Q::Distance, K::Capsule, Some(K::Plane)),
+    row(P::DistanceCapsuleBox, Q::Distance, K::Capsule, Some(K::Box)),
+    row(P::DistanceCapsuleTriangle, Q::Distance, K::Capsule, Some(K::Triangle)),
+    row(P::DistanceCapsuleConvex, Q::Distance, K::Capsule, Some(K::Convex)),
+    row(P::DistanceConvexConvex, Q::Distance, K::Convex, Some(K::Convex)),
+    row(P::DistanceConvexPlane, Q::Distance, K::Convex, Some(K::Plane)),
+    row(P::DistanceConvexBox, Q::Distance, K::Convex, Some(K::Box)),
+    row(P::DistanceConvexTriangle, Q::Distance, K::Convex, Some(K::Triangle)),
 ];
 
 impl Pair {

@@ -10,7 +10,7 @@
 //! `source`.
 
 use oracle::geom::{
-    Aabb, Capsule, Contact, MovingPoint, MovingSegment, MovingTriangle, OrientedBox, P3, SegmentHit, Toi,
+    Aabb, Capsule, Contact, Convex, MovingPoint, MovingSegment, MovingTriangle, OrientedBox, P3, SegmentHit, Toi,
 };
 use schemars::JsonSchema;
 use serde::{Deserialize, Deserializer, Serialize};
@@ -110,6 +110,8 @@ pub enum Shape {
     Box(BoxSpec),
     /// The points within a radius of a segment.
     Capsule(Capsule),
+    /// The convex hull of points (at least one).
+    Convex(Convex),
 }
 
 impl Shape {
@@ -134,6 +136,7 @@ impl Shape {
             Shape::MovingTriangle(_) => ShapeKind::MovingTriangle,
             Shape::Box(_) => ShapeKind::Box,
             Shape::Capsule(_) => ShapeKind::Capsule,
+            Shape::Convex(_) => ShapeKind::Convex,
         }
     }
 }
@@ -302,6 +305,18 @@ pub struct Expect {
     #[serde(default, deserialize_with = "present", skip_serializing_if = "Option::is_none")]
     #[schemars(with = "Option<CcdTime>")]
     pub ccd: Option<Option<CcdTime>>,
+    /// `distance`: the signed distance (< 0: minus the penetration depth).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distance: Option<f64>,
+    /// `distance`: the witness on `a`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub point_a: Option<P3>,
+    /// `distance`: the witness on `b`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub point_b: Option<P3>,
+    /// `distance`: the unit normal from `b` toward `a`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal: Option<P3>,
 }
 
 /// A `ccd` impact as the format writes it: `{"t": T}`.

@@ -429,6 +429,15 @@ pub const PARRY: Known = Known::rules(&[
         },
     },
     Rule {
+        parry_what: Some("distance: witnesses that are not unique"),
+        reason: "",
+        explains: |_, a, t, reasons| {
+            matches!((a, t), (Answer::Distance(a), Answer::Distance(t)) if !a.degenerate && t.degenerate)
+                && !reasons.is_empty()
+                && reasons.iter().all(|r| r.starts_with("degenerate"))
+        },
+    },
+    Rule {
         parry_what: Some("sphere–sphere: exactly touching"),
         reason: "",
         explains: |lc, a, t, _| {

@@ -12,7 +12,8 @@ use crate::load::LoadedCase;
 use crate::mesh::Mesh;
 use crate::protocol::client::{Outcome, ProcessEngine};
 use oracle::geom::{
-    Aabb, Capsule, MovingPoint, MovingSegment, MovingTriangle, OrientedBox, P3, Plane, Segment, Sphere, Triangle,
+    Aabb, Capsule, Convex, MovingPoint, MovingSegment, MovingTriangle, OrientedBox, P3, Plane, Segment, Solid, Sphere,
+    Triangle,
 };
 use std::fmt;
 use std::sync::Arc;
@@ -251,7 +252,73 @@ fn dispatch(q: &dyn Queries, pair: Pair, lc: &LoadedCase) -> Reply<Answer> {
         P::ResponseSpherePlane => Answer::Response(q.response_sphere_plane(&sphere(a)?, &va, &plane(b)?, e)?),
         P::CcdPointTriangle => Answer::Ccd(q.ccd_point_triangle(&moving_point(a)?, &moving_triangle(b)?, t_max)?),
         P::CcdSegmentSegment => Answer::Ccd(q.ccd_segment_segment(&moving_segment(a)?, &moving_segment(b)?, t_max)?),
+        P::DistanceSphereSphere
+        | P::DistanceSpherePlane
+        | P::DistanceSphereTriangle
+        | P::DistanceSphereBox
+        | P::DistanceSphereCapsule
+        | P::DistanceSphereConvex
+        | P::DistanceBoxPlane
+        | P::DistanceBoxBox
+        | P::DistanceBoxTriangle
+        | P::DistanceCapsuleCapsule
+        | P::DistanceCapsulePlane
+        | P::DistanceCapsuleBox
+        | P::DistanceCapsuleTriangle
+        | P::DistanceCapsuleConvex
+        | P::DistanceConvexConvex
+        | P::DistanceConvexPlane
+        | P::DistanceConvexBox
+        | P::DistanceConvexTriangle => {
+            let (a, b) = (SolidValue::of(&case.a)?, SolidValue::of(b.ok_or_else(|| missing("solid"))?)?);
+            Answer::Distance(q.distance(a.solid(), b.solid())?)
+        }
     })
+}
+
+/// A `distance` query's shape as the geometry engines receive it: the case's
+/// spec turned into its value, a convex hull borrowed.
+#[derive(Clone, Debug)]
+pub enum SolidValue<'a> {
+    /// A ball.
+    Sphere(Sphere),
+    /// A capsule.
+    Capsule(Capsule),
+    /// A box that may be rotated.
+    Box(OrientedBox),
+    /// A convex hull.
+    Convex(&'a Convex),
+    /// A triangle.
+    Triangle(Triangle),
+    /// The solid half-space.
+    Plane(Plane),
+}
+
+impl<'a> SolidValue<'a> {
+    /// The solid of a shape, or why it is none.
+    pub fn of(s: &'a Shape) -> Reply<Self> {
+        Ok(match s {
+            Shape::Sphere(s) => SolidValue::Sphere(s.to_geom()),
+            Shape::Capsule(c) => SolidValue::Capsule(*c),
+            Shape::Box(b) => SolidValue::Box(b.to_geom()),
+            Shape::Convex(c) => SolidValue::Convex(c),
+            Shape::Triangle(t) => SolidValue::Triangle(t.to_geom()),
+            Shape::Plane(p) => SolidValue::Plane(p.to_geom()),
+            other => return Err(kind_error("solid", other.kind())),
+        })
+    }
+
+    /// Borrowed as the engines' [`Solid`].
+    pub fn solid(&self) -> Solid<'_> {
+        match self {
+            SolidValue::Sphere(s) => Solid::Sphere(s),
+            SolidValue::Capsule(c) => Solid::Capsule(c),
+            SolidValue::Box(b) => Solid::Box(b),
+            SolidValue::Convex(c) => Solid::Convex(c),
+            SolidValue::Triangle(t) => Solid::Triangle(t),
+            SolidValue::Plane(p) => Solid::Plane(p),
+        }
+    }
 }
 
 fn kind_error(want: &str, got: &str) -> Unsupported {

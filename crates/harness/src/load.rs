@@ -555,6 +555,14 @@ fn validate_shape(key: &str, shape: &Shape, query: Query) -> FieldResult {
             velocity(&t.velocity)?;
         }
         Shape::Point(p) => finite3(&format!("{k}.at"), &p.at)?,
+        Shape::Convex(c) => {
+            if c.points.is_empty() {
+                return bad(format!("{k}.points"), "needs at least one point");
+            }
+            for (i, v) in c.points.iter().enumerate() {
+                finite3(&format!("{k}.points[{i}]"), v)?;
+            }
+        }
         Shape::Points(p) => {
             if p.points.is_empty() {
                 return bad(format!("{k}.points"), "needs at least one point");
@@ -636,6 +644,7 @@ fn expect_fields(query: Query) -> &'static [&'static str] {
         Query::Toi => &["toi", "degenerate"],
         Query::Response => &["velocity_a", "velocity_b", "degenerate"],
         Query::Ccd => &["ccd", "impact", "degenerate"],
+        Query::Distance => &["distance", "point_a", "point_b", "normal", "degenerate"],
     }
 }
 
@@ -659,6 +668,10 @@ fn named_fields(e: &Expect) -> Vec<&'static str> {
     add(e.velocity_b.is_some(), "velocity_b");
     add(e.impact.is_some(), "impact");
     add(e.ccd.is_some(), "ccd");
+    add(e.distance.is_some(), "distance");
+    add(e.point_a.is_some(), "point_a");
+    add(e.point_b.is_some(), "point_b");
+    add(e.normal.is_some(), "normal");
     v
 }
 

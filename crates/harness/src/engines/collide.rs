@@ -10,9 +10,9 @@ use crate::engine::{Queries, Reply, Unsupported};
 use crate::mesh::Mesh;
 use collide::Real;
 use oracle::geom::{
-    Aabb, Ball, BarycentricAnswer, BoundsAnswer, Capsule, CcdAnswer, Contact, ContactAnswer, IntersectAnswer,
-    MovingPoint, MovingSegment, MovingTriangle, OrientedBox, P3, Plane, ResponseAnswer, Segment, SegmentHit, Sphere,
-    Toi, ToiAnswer, Triangle,
+    Aabb, Ball, BarycentricAnswer, BoundsAnswer, Capsule, CcdAnswer, Contact, ContactAnswer, DistanceAnswer,
+    IntersectAnswer, MovingPoint, MovingSegment, MovingTriangle, OrientedBox, P3, Plane, ResponseAnswer, Segment,
+    SegmentHit, Solid, Sphere, Toi, ToiAnswer, Triangle,
 };
 
 /// Bisection steps of the lecture's interval halving as an engine: 40, so its
@@ -478,6 +478,46 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
             Method::Robust => collide::ccd::ccd_edge_edge(&x0, &x1, t_max),
         }))
     }
+    fn distance(&self, a: Solid<'_>, b: Solid<'_>) -> Reply<DistanceAnswer> {
+        use collide::convex::{Rounded, distance, distance_lecture, distance_plane, distance_plane_lecture};
+        let (pa, ra) = rounded::<T>(a).ok_or_else(|| Unsupported("a plane is a distance's `b` only".into()))?;
+        let ra = Rounded { points: &pa, radius: ra };
+        let d = match b {
+            Solid::Plane(p) => match self.method {
+                Method::Lecture => distance_plane_lecture(&ra, &plane::<T>(p)),
+                Method::Robust => distance_plane(&ra, &plane::<T>(p)),
+            },
+            _ => {
+                let (pb, rb) = rounded::<T>(b).ok_or_else(|| Unsupported("no solid".into()))?;
+                let rb = Rounded { points: &pb, radius: rb };
+                match self.method {
+                    Method::Lecture => distance_lecture(&ra, &rb),
+                    Method::Robust => distance(&ra, &rb),
+                }
+            }
+        };
+        Ok(DistanceAnswer {
+            distance: d.distance.wide(),
+            point_a: w(&d.point_a),
+            point_b: w(&d.point_b),
+            normal: w(&d.normal),
+            degenerate: d.degenerate,
+        })
+    }
+}
+
+/// A distance's solid as collide's GJK takes it: the points of its core and
+/// its radius (a box's eight corners from its rotation matrix, a triangle's
+/// vertices); `None` for a plane.
+fn rounded<T: Real>(s: Solid<'_>) -> Option<(Vec<collide::Vec3<T>>, T)> {
+    Some(match s {
+        Solid::Sphere(x) => (vec![v(&x.center)], T::of(x.radius)),
+        Solid::Capsule(c) => (vec![v(&c.start), v(&c.end)], T::of(c.radius)),
+        Solid::Box(b) => (collide::convex::box_corners(&oriented_box::<T>(b)).to_vec(), T::of(0.0)),
+        Solid::Triangle(t) => (t.vertices.iter().map(v).collect(), T::of(0.0)),
+        Solid::Convex(c) => (c.points.iter().map(v).collect(), T::of(0.0)),
+        Solid::Plane(_) => return None,
+    })
 }
 
 #[cfg(test)]

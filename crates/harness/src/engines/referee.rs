@@ -7,8 +7,9 @@ use crate::load::LoadedCase;
 use crate::mesh::Mesh;
 use crashtest_core::vec3::{norm_sqrt_dot, sub};
 use oracle::geom::{
-    Aabb, BarycentricAnswer, BoundsAnswer, Capsule, CcdAnswer, ContactAnswer, IntersectAnswer, MovingPoint,
-    MovingSegment, MovingTriangle, OrientedBox, P3, Plane, ResponseAnswer, Segment, Sphere, ToiAnswer, Triangle,
+    Aabb, BarycentricAnswer, BoundsAnswer, Capsule, CcdAnswer, ContactAnswer, DistanceAnswer, IntersectAnswer,
+    MovingPoint, MovingSegment, MovingTriangle, OrientedBox, P3, Plane, ResponseAnswer, Segment, Solid, Sphere,
+    ToiAnswer, Triangle,
 };
 use oracle::referee::{self, RefereeError};
 
@@ -138,6 +139,9 @@ impl Queries for RefereeQueries {
     fn ccd_segment_segment(&self, a: &MovingSegment, b: &MovingSegment, t_max: f64) -> Reply<CcdAnswer> {
         r(referee::ccd_segment_segment(a, b, t_max))
     }
+    fn distance(&self, a: Solid<'_>, b: Solid<'_>) -> Reply<DistanceAnswer> {
+        r(referee::distance(a, b))
+    }
 }
 
 /// The referee's signed distance of a case from its nearest decision boundary
@@ -254,6 +258,9 @@ pub fn margin(lc: &LoadedCase) -> Option<f64> {
         // CCD benchmark's terms: a method's false positives and negatives are
         // counted against the exact answer; docs/FORMAT.md).
         (P::CcdPointTriangle | P::CcdSegmentSegment, _, _) => None,
+        // A distance is a number, not a yes/no answer: its error is measured
+        // as it is (a touching pair is distance 0, judged like any other).
+        (p, _, _) if p.query() == crate::case::Query::Distance => None,
         // The pair's shapes are not the kinds its row names: only a case built by
         // hand and never loaded.
         _ => None,

@@ -46,7 +46,7 @@ pub(super) fn random_box() -> impl Strategy<Value = Shape> + Clone {
     (vec3(BOX), prop::array::uniform3(HALF), any_rotation()).prop_map(|(c, h, q)| oriented_box(c, h, q))
 }
 
-fn random_capsule() -> impl Strategy<Value = Shape> + Clone {
+pub(super) fn random_capsule() -> impl Strategy<Value = Shape> + Clone {
     (vec3(BOX), vec3(1.5), RADIUS).prop_map(|(c, d, r)| capsule(sub(c, d), add(c, d), r))
 }
 

@@ -59,6 +59,10 @@ pub(crate) fn oriented_box(center: P3, half_extents: P3, rotation: [f64; 4]) -> 
 }
 
 /// A capsule.
+pub(crate) fn convex(points: Vec<P3>) -> Shape {
+    Shape::Convex(oracle::geom::Convex { points })
+}
+
 pub(crate) fn capsule(start: P3, end: P3, radius: f64) -> Shape {
     Shape::Capsule(Capsule { start, end, radius })
 }
@@ -359,6 +363,7 @@ impl Similarity {
                 };
                 oriented_box(self.point(b.center), half, rotation)
             }
+            Shape::Convex(c) => convex(c.points.iter().map(|&v| self.point(v)).collect()),
             Shape::Capsule(c) => capsule(self.point(c.start), self.point(c.end), c.radius * self.scale),
         }
     }

@@ -141,6 +141,11 @@ fn map_numbers(case: &mut Case, f: &mut dyn FnMut(f64, Role) -> f64) {
                 p3(&mut c.end, Role::Coord, f);
                 c.radius = f(c.radius, Role::Radius);
             }
+            Shape::Convex(c) => {
+                for p in &mut c.points {
+                    p3(p, Role::Coord, f);
+                }
+            }
         }
     }
 }
@@ -512,6 +517,7 @@ fn multi_scale(query: Query) -> SBoxedStrategy<Case> {
             ),
         ]
         .sboxed(),
+        Query::Distance => super::distance::full_range_scene().prop_map(move |s| case(s, None, None)).sboxed(),
         Query::Ccd => super::ccd::full_range_scene().prop_map(move |(scene, p)| case(scene, p.t_max, None)).sboxed(),
         Query::Response => (
             vec3(BOX),

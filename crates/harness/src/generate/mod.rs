@@ -32,6 +32,7 @@ mod boxes;
 pub(crate) mod build;
 mod ccd;
 mod contact;
+mod distance;
 mod family;
 pub mod full_range;
 mod intersect;
@@ -48,7 +49,7 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 /// The query kinds with generators, in the format's order: every kind.
-pub const GENERATED: [Query; 8] = Query::ALL;
+pub const GENERATED: [Query; 9] = Query::ALL;
 
 /// The `file` of every generated [`LoadedCase`].
 pub const GENERATED_FILE: &str = "generated";
@@ -75,6 +76,7 @@ fn families_of(query: Query) -> Vec<Family> {
         Query::Toi => toi::families(),
         Query::Response => response::families(),
         Query::Ccd => ccd::families(),
+        Query::Distance => distance::families(),
     }
 }
 

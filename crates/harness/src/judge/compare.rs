@@ -276,6 +276,21 @@ pub fn compare(lc: &LoadedCase, answer: &Answer, truth: &Answer, sizes: &Local) 
             (Some(_), None) => c.classify("false impact (referee: none)".into(), FalsePositive),
             (None, Some(_)) => c.classify("missed impact (referee: impact)".into(), FalseNegative),
         },
+        (Answer::Distance(g), Answer::Distance(w)) => {
+            let dd = (g.distance - w.distance).abs();
+            c.errors.depth = Some(dd);
+            c.measure("distance", dd, "", field(|a| a.depth));
+            // Where the witnesses are not unique, any pair of the sets is
+            // right: each point's distance to its set.
+            let on = |r: &Option<super::sizes::Region>, got: &P3, want: &P3| match r {
+                Some(r) => r.distance(got),
+                None => dist3(got, want),
+            };
+            let dp = on(&sizes.region_a, &g.point_a, &w.point_a).max(on(&sizes.region, &g.point_b, &w.point_b));
+            c.errors.point = Some(dp);
+            c.measure("witness point", dp, "", field(|a| a.point));
+            c.normal(&g.normal, &w.normal);
+        }
         _ => c.class.push("answer of another query kind".into()),
     }
     c

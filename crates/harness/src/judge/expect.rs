@@ -2,6 +2,7 @@
 //! within its absolute `tol`), beside the verdict against the referee.
 
 use super::compare::{dist3, unit_excess};
+use super::sizes::Region;
 use super::verdict::degenerate;
 use crate::case::{Case, Expect};
 use crate::engine::Answer;
@@ -187,8 +188,38 @@ pub fn check_expect(lc: &LoadedCase, answer: &Answer) -> Vec<Mismatch> {
                 }
             }
         }
+        Answer::Distance(a) => {
+            if let Some(w) = e.distance {
+                cmp1(&mut out, "distance", w, a.distance, tol);
+            }
+            let witnesses = case.b.as_ref().and_then(|b| super::sizes::distance_regions(&case.a, b));
+            if let Some(w) = &e.point_a {
+                witness(&mut out, "point_a", witnesses.as_ref().map(|w| &w.0), w, &a.point_a, tol);
+            }
+            if let Some(w) = &e.point_b {
+                witness(&mut out, "point_b", witnesses.as_ref().map(|w| &w.1), w, &a.point_b, tol);
+            }
+            if let Some(w) = &e.normal {
+                cmp3(&mut out, "normal", w, &a.normal, tol);
+                unit_expect(&mut out, "normal", &a.normal, tol);
+            }
+        }
     }
     out
+}
+
+/// A distance witness: where the witnesses are not unique (`docs/FORMAT.md`,
+/// "Distance") and the expected one lies in their set within `tol`, any point
+/// of the set within `tol` meets it; otherwise the points are compared.
+fn witness(out: &mut Vec<Mismatch>, field: &str, set: Option<&Region>, want: &P3, got: &P3, tol: f64) {
+    match set {
+        Some(r) if r.distance(want) <= tol => {
+            if !(r.distance(got) <= tol) {
+                out.push(mm(&format!("{field} (in the witness set)"), want, got));
+            }
+        }
+        _ => cmp3(out, field, want, got, tol),
+    }
 }
 
 /// An expected normal is unit: the engine's must be too, its length within

@@ -79,28 +79,47 @@ pub struct Local {
     /// parallel capsules side by side): a point is judged by its distance to
     /// it, never to one chosen point of it.
     pub region: Option<Region>,
+    /// A distance's witness set on `a` where the witnesses are not unique
+    /// (`region` holds `b`'s).
+    pub region_a: Option<Region>,
 }
 
-/// A contact region: a segment (2 vertices) or a convex polygon (3 to 8, in
-/// order: two rectangles clipped have up to eight corners), each vertex the
+/// The most vertices a [`Region`] holds.
+pub const REGION_VERTICES: usize = 16;
+
+/// A contact region or a set of distance witnesses: a segment (2 vertices) or
+/// a convex polygon (3 to [`REGION_VERTICES`], in order: two rectangles
+/// clipped have up to eight corners, two hulls' faces more), each vertex the
 /// referee's correctly rounded one.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Region {
     /// The vertices; the first `len` are used.
-    pub vertices: [P3; 8],
-    /// How many (2 to 8).
+    pub vertices: [P3; REGION_VERTICES],
+    /// How many (2 to [`REGION_VERTICES`]).
     pub len: usize,
 }
 
+impl Default for Region {
+    fn default() -> Self {
+        Region { vertices: [[0.0; 3]; REGION_VERTICES], len: 0 }
+    }
+}
+
 impl Region {
-    /// The region of the referee's vertices, when it is more than a point.
-    fn of(vertices: &[P3]) -> Option<Region> {
-        let len = vertices.len();
-        if !(2..=8).contains(&len) {
+    /// The region of the referee's vertices, when it is more than a point. A
+    /// polygon of more vertices than a region holds keeps every `k`-th of them
+    /// in order: a convex polygon inside the set, so the judge is stricter
+    /// there, never more lenient.
+    pub(crate) fn of(vertices: &[P3]) -> Option<Region> {
+        let n = vertices.len();
+        if n < 2 {
             return None;
         }
-        let mut r = Region { vertices: [[0.0; 3]; 8], len };
-        r.vertices[..len].copy_from_slice(vertices);
+        let len = n.min(REGION_VERTICES);
+        let mut r = Region { vertices: [[0.0; 3]; REGION_VERTICES], len };
+        for (k, v) in r.vertices[..len].iter_mut().enumerate() {
+            *v = vertices[k * n / len];
+        }
         Some(r)
     }
 
@@ -425,6 +444,10 @@ pub fn local(lc: &LoadedCase, truth: &Answer) -> Local {
         (Query::Toi, Shape::Sphere(a), Some(b), Answer::Toi(w)) => toi(lc, a, b, w),
         (Query::Response, Shape::Sphere(a), Some(b), Answer::Response(w)) => response(a, b, w),
         (Query::Ccd, a, Some(b), Answer::Ccd(w)) => ccd(a, b, w, lc.case.t_max()),
+        (Query::Distance, a, Some(b), Answer::Distance(w)) => {
+            let (region_a, region) = distance_regions(a, b).unzip();
+            Local { region, region_a, ..distance_sizes(a, b, w) }
+        }
         _ => Local::default(),
     }
 }
@@ -981,6 +1004,7 @@ pub fn scene_scale(lc: &LoadedCase) -> f64 {
                 p3(&c.end);
                 scalars.push(c.radius);
             }
+            Some(Shape::Convex(c)) => c.points.iter().for_each(&mut p3),
             None => {}
         }
     }
@@ -1268,6 +1292,134 @@ fn contact_convex(a: &Shape, b: &Shape, w: &oracle::geom::Contact) -> Option<Loc
         }
         _ => return None,
     })
+}
+
+// Distance (`docs/FORMAT.md`, "Distance"): every solid is a polytope (its
+// core) grown by a radius, and the answer's sizes are those of the cores':
+//
+// - **Cores apart** (`distance + r > 0`, `r` the radii's sum): the distance is
+//   as well-conditioned as a distance is (moving every input by ε of the
+//   shapes' size moves it by at most 2ε of that size); the normal turns by the
+//   sizes over the cores' distance, as a capsule apart from a box; the
+//   witnesses move with it, and where two of a core's vertices are nearly as
+//   low along the normal (faces nearly parallel), a perturbation swaps them:
+//   a tie of the core's extent with their height gap.
+// - **Cores meeting**: the sizes of a resting contact of the two polytopes
+//   (`resting`: the least push's edge angle, its gap to the next push in
+//   another direction, the region's slide), plus the same support ties.
+// - **A plane** (`b`): its normal is an input; the witness ties as above.
+
+/// The referee's witness sets of a distance case, `a`'s and `b`'s, where the
+/// witnesses are not unique.
+pub(crate) fn distance_regions(a: &Shape, b: &Shape) -> Option<(Region, Region)> {
+    let (a, b) = (crate::engine::SolidValue::of(a).ok()?, crate::engine::SolidValue::of(b).ok()?);
+    let (wa, wb) = oracle::referee::distance_witnesses(a.solid(), b.solid()).ok()??;
+    Some((Region::of(&wa)?, Region::of(&wb)?))
+}
+
+/// The core of a solid in `f64`, scaled by `k`, with its radius (unscaled).
+/// A hull's faces and edges are built only when `faces` asks (the resting
+/// sizes of meeting cores); otherwise its points stand for its vertices.
+fn core_of(s: &Shape, k: f64, faces: bool) -> Option<(Poly, f64)> {
+    Some(match s {
+        Shape::Sphere(x) => (
+            Poly { vertices: vec![scaled(&x.center, k)], edges: vec![], directions: vec![], normals: vec![] },
+            x.radius,
+        ),
+        Shape::Capsule(c) => (of_segment(&c.start, &c.end, k), c.radius),
+        Shape::Box(b) => (of_box(b, k), 0.0),
+        Shape::Triangle(t) => (of_triangle(&t.vertices, k), 0.0),
+        Shape::Convex(c) if !faces => {
+            let vertices = c.points.iter().map(|v| scaled(v, k)).collect();
+            (Poly { vertices, edges: vec![], directions: vec![], normals: vec![] }, 0.0)
+        }
+        Shape::Convex(c) => {
+            let (vertices, edges, normals) = oracle::referee::hull::hull_outline(&c.points).ok()?;
+            let vertices: Vec<P3> = vertices.iter().map(|v| scaled(v, k)).collect();
+            let directions = edges.iter().map(|&(i, j)| sub(vertices[j], vertices[i])).collect();
+            (Poly { vertices, edges, directions, normals }, 0.0)
+        }
+        _ => return None,
+    })
+}
+
+/// The points that set a solid's scale (for the power-of-two scaling).
+fn anchor_points(s: &Shape) -> Vec<P3> {
+    match s {
+        Shape::Sphere(x) => vec![x.center, [x.radius; 3]],
+        Shape::Capsule(c) => vec![c.start, c.end, [c.radius; 3]],
+        Shape::Box(b) => vec![b.center, b.half_extents],
+        Shape::Triangle(t) => t.vertices.to_vec(),
+        Shape::Convex(c) => c.points.clone(),
+        Shape::Plane(p) => vec![p.normal],
+        _ => vec![],
+    }
+}
+
+/// A solid's size: its core's largest coordinate plus its radius (unscaled).
+fn solid_size(core: &Poly, r: f64, k: f64) -> f64 {
+    clean(core.vertices.iter().copied().map(max_abs).fold(0.0, f64::max) / k + r)
+}
+
+/// The witness tie of a core along `n` (unit, pointing away from the core's
+/// witness side when `lowest`): its extent over the gap between its lowest
+/// two heights, unscaled.
+fn support_tie(core: &Poly, n: &P3, lowest: bool, k: f64, size: f64) -> f64 {
+    let mut h: Vec<f64> = core.vertices.iter().map(|v| if lowest { dot(*n, *v) } else { -dot(*n, *v) }).collect();
+    if h.len() < 2 {
+        return 0.0;
+    }
+    h.sort_by(f64::total_cmp);
+    // The extent by the bounding box's diagonal: at most √3 times the
+    // diameter, in one pass (a hull of a thousand points has a million pairs).
+    let (lo, hi) = core.vertices.iter().fold(([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]), |(lo, hi), v| {
+        ([0, 1, 2].map(|i| lo[i].min(v[i])), [0, 1, 2].map(|i| hi[i].max(v[i])))
+    });
+    let extent = norm(&sub(hi, lo));
+    // The first height that differs from the least: ties exactly at the
+    // least are the referee's region.
+    let gap = h.iter().map(|x| x - h[0]).find(|g| *g > 0.0).unwrap_or(0.0);
+    tie(clean(extent / k), size, clean(gap / k))
+}
+
+fn distance_sizes(a: &Shape, b: &Shape, w: &oracle::geom::DistanceAnswer) -> Local {
+    let mut anchors = anchor_points(a);
+    anchors.extend(anchor_points(b));
+    let k = unit_scale(&anchors) / SCENE_HEADROOM;
+    let meeting = |ra: f64, rb: f64| w.distance + ra + rb <= 0.0;
+    let radius = |s: &Shape| match s {
+        Shape::Sphere(x) => x.radius,
+        Shape::Capsule(c) => c.radius,
+        _ => 0.0,
+    };
+    let faces = meeting(radius(a), radius(b));
+    let Some((pa, ra)) = core_of(a, k, faces) else { return Local::default() };
+    let extra = max_abs(w.point_a).max(max_abs(w.point_b)) + w.distance.abs();
+    if let Shape::Plane(p) = b {
+        let size = clean(solid_size(&pa, ra, k) + ratio(p.offset.abs(), norm(&p.normal)) + extra);
+        let n = unit(&p.normal);
+        let point = Size::new(size, support_tie(&pa, &n, true, k, size));
+        return Local { point, depth: Size::new(size, 0.0), normal: Size::new(1.0, 0.0), ..Local::default() };
+    }
+    let Some((pb, rb)) = core_of(b, k, faces) else { return Local::default() };
+    let size = clean(solid_size(&pa, ra, k) + solid_size(&pb, rb, k) + extra);
+    let n = unit(&w.normal);
+    let ties = support_tie(&pa, &n, true, k, size) + support_tie(&pb, &n, false, k, size);
+    let core_gap = w.distance + ra + rb;
+    if core_gap > 0.0 {
+        let turn = ratio(size, core_gap).min(std::f64::consts::PI / f64::EPSILON);
+        Local {
+            point: Size::new(size, clean(size * turn + ties)),
+            depth: Size::new(size, 0.0),
+            normal: Size::new(1.0, turn),
+            ..Local::default()
+        }
+    } else {
+        let mut l = resting(&pa, &pb, k, size, size);
+        l.point.condition = clean(l.point.condition + ties);
+        l.margin = Size::default();
+        l
+    }
 }
 
 #[cfg(test)]

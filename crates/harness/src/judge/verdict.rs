@@ -115,6 +115,7 @@ pub fn degenerate(answer: &Answer) -> bool {
         Answer::Toi(a) => a.degenerate,
         Answer::Response(a) => a.degenerate,
         Answer::Ccd(a) => a.degenerate,
+        Answer::Distance(a) => a.degenerate,
         Answer::Bounds(_) | Answer::Overlap(_) => false,
     }
 }
@@ -138,6 +139,7 @@ pub fn all_finite(answer: &Answer) -> bool {
         Answer::Toi(a) => a.toi.is_none_or(|t| t.t.is_finite() && f3(&t.point) && f3(&t.normal)),
         Answer::Response(a) => f3(&a.velocity_a) && f3(&a.velocity_b),
         Answer::Ccd(a) => a.t.is_none_or(f64::is_finite),
+        Answer::Distance(a) => a.distance.is_finite() && f3(&a.point_a) && f3(&a.point_b) && f3(&a.normal),
     }
 }
 

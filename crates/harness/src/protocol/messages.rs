@@ -7,8 +7,8 @@ use crate::case::{Case, CcdTime, Expect, MeshSpec, Query, Shape};
 use crate::load::LoadedCase;
 use crashtest_core::engine::Answer;
 use crashtest_core::geom::{
-    Aabb, Ball, BarycentricAnswer, BoundsAnswer, CcdAnswer, Contact, ContactAnswer, IntersectAnswer, P3,
-    ResponseAnswer, SegmentHit, Toi, ToiAnswer,
+    Aabb, Ball, BarycentricAnswer, BoundsAnswer, CcdAnswer, Contact, ContactAnswer, DistanceAnswer, IntersectAnswer,
+    P3, ResponseAnswer, SegmentHit, Toi, ToiAnswer,
 };
 use crashtest_core::pair::{Pair, ShapeKind};
 use schemars::JsonSchema;
@@ -487,6 +487,18 @@ pub struct WireAnswer {
     #[serde(default, deserialize_with = "crate::case::present", skip_serializing_if = "Option::is_none")]
     #[schemars(with = "Option<CcdTime>")]
     pub ccd: Option<Option<CcdTime>>,
+    /// `distance`: the signed distance (< 0: minus the penetration depth).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distance: Option<f64>,
+    /// `distance`: the witness on `a`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub point_a: Option<P3>,
+    /// `distance`: the witness on `b`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub point_b: Option<P3>,
+    /// `distance`: the unit normal from `b` toward `a`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal: Option<P3>,
 }
 
 impl WireAnswer {
@@ -526,6 +538,13 @@ impl WireAnswer {
                 w.ccd = Some(c.t.map(|t| CcdTime { t }));
                 w.degenerate = Some(c.degenerate);
             }
+            Answer::Distance(d) => {
+                w.distance = Some(d.distance);
+                w.point_a = Some(d.point_a);
+                w.point_b = Some(d.point_b);
+                w.normal = Some(d.normal);
+                w.degenerate = Some(d.degenerate);
+            }
         }
         w
     }
@@ -547,6 +566,10 @@ impl WireAnswer {
             velocity_b: self.velocity_b,
             impact: None,
             ccd: self.ccd,
+            distance: self.distance,
+            point_a: self.point_a,
+            point_b: self.point_b,
+            normal: self.normal,
         }
     }
 
@@ -570,6 +593,10 @@ impl WireAnswer {
         has(self.velocity_a.is_some(), "velocity_a");
         has(self.velocity_b.is_some(), "velocity_b");
         has(self.ccd.is_some(), "ccd");
+        has(self.distance.is_some(), "distance");
+        has(self.point_a.is_some(), "point_a");
+        has(self.point_b.is_some(), "point_b");
+        has(self.normal.is_some(), "normal");
         out
     }
 
@@ -585,6 +612,7 @@ impl WireAnswer {
             Query::Toi => &["toi", "degenerate"],
             Query::Response => &["velocity_a", "velocity_b", "degenerate"],
             Query::Ccd => &["ccd", "degenerate"],
+            Query::Distance => &["distance", "point_a", "point_b", "normal", "degenerate"],
         };
         if let Some(f) = self.present().into_iter().find(|f| !allowed.contains(f)) {
             return Err(format!("{f}: not a field of a {query} answer (its fields: {})", allowed.join(", ")));
@@ -618,6 +646,13 @@ impl WireAnswer {
                 degenerate,
             }),
             Query::Ccd => Answer::Ccd(CcdAnswer { t: self.ccd.ok_or_else(|| need("ccd"))?.map(|c| c.t), degenerate }),
+            Query::Distance => Answer::Distance(DistanceAnswer {
+                distance: self.distance.ok_or_else(|| need("distance"))?,
+                point_a: self.point_a.ok_or_else(|| need("point_a"))?,
+                point_b: self.point_b.ok_or_else(|| need("point_b"))?,
+                normal: self.normal.ok_or_else(|| need("normal"))?,
+                degenerate,
+            }),
         };
         Ok(answer)
     }

@@ -3,7 +3,7 @@
 //! of a sweep ([`cases`]).
 
 use super::grid::{GridValue, Pose, PoseKind, Rng, r10_grid};
-use super::{angle, boxes, ccd, feature, offset, size_ratio, sliver, spheres};
+use super::{angle, boxes, ccd, distance, feature, offset, size_ratio, sliver, spheres};
 use crate::case::{Case, FixtureFile, Query, SCHEMA, Shape};
 use crate::generate::build::Scene;
 use crate::load::LoadedCase;
@@ -319,6 +319,7 @@ pub fn rounded_to_f32(lc: &LoadedCase) -> LoadedCase {
                 x.end = r3(x.end);
                 x.radius = r(x.radius);
             }
+            Shape::Convex(x) => x.points.iter_mut().for_each(|p| *p = r3(*p)),
         }
         s
     }
@@ -617,7 +618,76 @@ pub static SWEEPS: &[Sweep] = &[
                 down to 1e-16 and exactly 0 (touching is contact). The gap rounds at the ulp of the sizes \
                 (about 1e-16): below it the referee judges what it rounded to.",
     },
+    Sweep {
+        name: "distance-kissing",
+        title: "every distance pair, its surfaces just apart",
+        parameter: "gap between the surfaces",
+        lo: -16,
+        hi: 0,
+        benign: 0,
+        exact: Some("exactly touching"),
+        poses: PoseMix::Alternate,
+        probes: &[
+            Probe { name: "sphere–sphere", query: Query::Distance, build: distance::sphere_sphere },
+            Probe { name: "sphere–plane", query: Query::Distance, build: distance::sphere_plane },
+            Probe { name: "sphere–triangle", query: Query::Distance, build: distance::sphere_triangle },
+            Probe { name: "sphere–box", query: Query::Distance, build: boxes::kissing_sphere_box },
+            Probe { name: "sphere–capsule", query: Query::Distance, build: boxes::kissing_sphere_capsule },
+            Probe { name: "sphere–convex", query: Query::Distance, build: distance::sphere_convex },
+            Probe { name: "box–plane", query: Query::Distance, build: boxes::kissing_box_plane },
+            Probe { name: "box–box", query: Query::Distance, build: boxes::kissing_box_box },
+            Probe { name: "box–triangle", query: Query::Distance, build: boxes::kissing_box_triangle },
+            Probe { name: "capsule–capsule", query: Query::Distance, build: boxes::kissing_capsules },
+            Probe { name: "capsule–plane", query: Query::Distance, build: boxes::kissing_capsule_plane },
+            Probe { name: "capsule–box", query: Query::Distance, build: boxes::kissing_capsule_box },
+            Probe { name: "capsule–triangle", query: Query::Distance, build: boxes::kissing_capsule_triangle },
+            Probe { name: "capsule–convex", query: Query::Distance, build: distance::capsule_convex },
+            Probe { name: "convex–convex", query: Query::Distance, build: distance::convex_convex },
+            Probe { name: "convex–plane", query: Query::Distance, build: distance::convex_plane },
+            Probe { name: "convex–box", query: Query::Distance, build: distance::convex_box },
+            Probe { name: "convex–triangle", query: Query::Distance, build: distance::convex_triangle },
+        ],
+        about: "The kissing sweep's scenes asked for their signed distance, and the same with each box \
+                given as the hull of its eight (exact) corners: a box face down on a box, a plane or a \
+                triangle (parallel faces), a capsule lying across a face, a sphere beside one, two spheres \
+                and two crossing capsules, the gap g from 1 down to 1e-16 and exactly 0. Witnesses on \
+                parallel faces are any pair of the faces' overlap; the gap rounds at the ulp of the sizes.",
+    },
+    Sweep {
+        name: "distance-points",
+        title: "a hull of more and more points, in a shuffled order",
+        parameter: "number of points",
+        lo: 1,
+        hi: 4,
+        benign: 1,
+        exact: None,
+        poses: PoseMix::Alternate,
+        probes: &[Probe { name: "convex–convex", query: Query::Distance, build: distance::shuffled_hull }],
+        about: "n points on the unit sphere (every one a vertex of the hull), centred 2.25 above a unit \
+                cube given as a hull, n from 10 to 10⁴; every pose draws the points in another order, so \
+                the same solid comes in many orders (the answer should not change), and the cost of \
+                each engine grows with n as its method does.",
+    },
 ];
+
+/// Sweeps the report's stability section leaves to `crashtest sweep NAME`,
+/// with the reason: their cost would take the default report past its time.
+pub const STANDALONE: &[(&str, &str)] = &[
+    (
+        "distance-kissing",
+        "18 distance probes over 162 points: about 100 s with every built-in engine on 2 cores, the \
+         referee's exact GJK on rotated boxes most of it",
+    ),
+    (
+        "distance-points",
+        "hulls of up to 10⁴ points: the cost it measures is the point, and it is many seconds per engine",
+    ),
+];
+
+/// Whether the report leaves sweep `name` out (see [`STANDALONE`]).
+pub fn standalone(name: &str) -> bool {
+    STANDALONE.iter().any(|(n, _)| *n == name)
+}
 
 /// The sweeps' names, in order.
 pub fn names() -> Vec<&'static str> {

@@ -401,7 +401,7 @@ pub fn run(sweep: &Sweep, settings: &Settings, engines: &EngineSet) -> SweepResu
 
 /// Runs every sweep, in order.
 pub fn run_all(settings: &Settings, engines: &EngineSet) -> Vec<SweepResult> {
-    SWEEPS.iter().map(|s| run(s, settings, engines)).collect()
+    SWEEPS.iter().filter(|s| !super::catalog::standalone(s.name)).map(|s| run(s, settings, engines)).collect()
 }
 
 #[cfg(test)]

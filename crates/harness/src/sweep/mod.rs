@@ -47,6 +47,7 @@ mod angle;
 mod boxes;
 mod catalog;
 mod ccd;
+mod distance;
 mod feature;
 pub mod grid;
 mod measure;
@@ -58,9 +59,9 @@ mod sliver;
 mod spheres;
 
 pub use catalog::{
-    BREAK_REL, BYTES_PER_SWEEP_CASE, DEFAULT_POSES, DEFAULT_SEED, PoseMix, Probe, SWEEP_FILE, SWEEP_MEMORY_BYTES,
-    SWEEPS, Settings, Sweep, SweepCase, SweepPoint, cases, check_poses, find, fixture_at, list_text, max_poses, names,
-    rounded_to_f32, unknown_name,
+    BREAK_REL, BYTES_PER_SWEEP_CASE, DEFAULT_POSES, DEFAULT_SEED, PoseMix, Probe, STANDALONE, SWEEP_FILE,
+    SWEEP_MEMORY_BYTES, SWEEPS, Settings, Sweep, SweepCase, SweepPoint, cases, check_poses, find, fixture_at,
+    list_text, max_poses, names, rounded_to_f32, standalone, unknown_name,
 };
 pub use measure::{Break, BreakWhy, PointStats, ProbeResult, Series, SweepResult, Walk, headline, run, run_all};
 pub use render::{SECTION_ID, breaking_table, chart, files, section_from, table_text, write};

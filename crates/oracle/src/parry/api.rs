@@ -4,7 +4,7 @@
 //! use, so that they import it, never the module that re-exports them.
 
 use crate::geom::{Aabb, Ball, BarycentricAnswer, BoundsAnswer, ContactAnswer, IntersectAnswer};
-use crate::geom::{Capsule, OrientedBox, P3, Plane, Segment, Sphere, Triangle};
+use crate::geom::{Capsule, DistanceAnswer, OrientedBox, P3, Plane, Segment, Solid, Sphere, Triangle};
 
 /// The parry release both engines are pinned to (`=0.31.1` in the workspace
 /// manifest); reports print it beside each engine's name.
@@ -298,6 +298,21 @@ pub trait ParryEngine {
     /// **Degenerate input:** as [`ParryEngine::contact_sphere_box`].
     fn contact_capsule_triangle(&self, a: Capsule, b: Triangle) -> ContactAnswer;
 
+    /// Signed distance of solids `a` and `b`: `query::contact` with a
+    /// prediction of the scalar's largest value, so that separated shapes get
+    /// their closest points too (support-map pairs go to GJK, then EPA when
+    /// they overlap). Shapes as for the contacts; a convex hull is
+    /// `ConvexPolyhedron::from_convex_hull` of its points, a plane a
+    /// `HalfSpace`. **Translated:** `distance` = parry's `dist` (negative
+    /// inside), `point_a` = `point1`, `point_b` = `point2`, `normal` =
+    /// `−normal1` (parry's points from `a` toward `b`). parry has no
+    /// degenerate flag: `degenerate` is always false.
+    ///
+    /// `Err` with parry's reason when it builds no shape (a hull whose points
+    /// are flat, collinear or one point: `from_convex_hull` gives none) or
+    /// returns no contact or a non-finite number.
+    fn distance(&self, a: Solid<'_>, b: Solid<'_>) -> Result<DistanceAnswer, String>;
+
     /// First hit of a segment on the solid box `b`: parry's
     /// `RayCast::cast_ray_and_get_normal` on the `Cuboid` with `solid = true` and
     /// the ray `start + t (end − start)`, `t ≤ 1` (`query/ray/ray_cuboid.rs`,
@@ -523,8 +538,16 @@ pub(super) const BOX_TIE_NO_FLAG: Divergence = Divergence {
              as well (the rule covers only answers equal to the format's but for the flag).",
 };
 
+pub(super) const DISTANCE_NO_FLAG: Divergence = Divergence {
+    query: "distance",
+    what: "distance: witnesses that are not unique (parallel faces or edges) are not flagged degenerate",
+    reason: "parry's Contact has no degenerate flag: it answers one pair of the witness sets, which the \
+             format allows, and nothing says that another pair would do as well (the rule covers only \
+             answers that differ from the referee's in the flag alone).",
+};
+
 /// The shared divergences, in the order [`known_divergences`] lists them per engine.
-pub(super) const DIVERGENCES: [Divergence; 13] = [
+pub(super) const DIVERGENCES: [Divergence; 14] = [
     TOUCHING_SPHERES,
     CONCENTRIC_SPHERES,
     CENTRE_NEAR_TRIANGLE,
@@ -538,6 +561,7 @@ pub(super) const DIVERGENCES: [Divergence; 13] = [
     BOX_RAY_FROM_INSIDE,
     BOX_TIE_NO_FLAG,
     CAPSULE_RAY_FROM_INSIDE,
+    DISTANCE_NO_FLAG,
 ];
 
 static KNOWN: [KnownDivergence; 2 * DIVERGENCES.len()] = stamp_both_engines();

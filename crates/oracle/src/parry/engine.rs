@@ -15,13 +15,13 @@ use super::backend::math::{DEFAULT_EPSILON, Pose, Vector};
 use super::backend::query::details::line_toi_with_halfspace;
 use super::backend::query::{self, PointQuery, PointQueryWithLocation, Ray, RayCast, RayIntersection, Unsupported};
 use super::backend::shape::{
-    Ball as EngineBall, Capsule as EngineCapsule, Cuboid, HalfSpace, TriMesh as EngineTriMesh,
+    Ball as EngineBall, Capsule as EngineCapsule, ConvexPolyhedron, Cuboid, HalfSpace, Shape, TriMesh as EngineTriMesh,
     Triangle as EngineTriangle, TrianglePointLocation,
 };
 use super::{Engine, Real, narrow, widen};
 use crate::geom::{
-    Aabb, Ball, BarycentricAnswer, BoundsAnswer, Capsule, Contact, ContactAnswer, IntersectAnswer, OrientedBox, P3,
-    Plane, Segment, SegmentHit, Sphere, Triangle,
+    Aabb, Ball, BarycentricAnswer, BoundsAnswer, Capsule, Contact, ContactAnswer, DistanceAnswer, IntersectAnswer,
+    OrientedBox, P3, Plane, Segment, SegmentHit, Solid, Sphere, Triangle,
 };
 use crate::parry::api::ParryEngine;
 
@@ -116,6 +116,34 @@ fn capsule(c: &Capsule) -> Option<EngineCapsule> {
     let radius = scalar(c.radius)?;
     (radius > 0.0).then_some(())?;
     Some(EngineCapsule::new(vector(c.start)?, vector(c.end)?, radius))
+}
+
+/// A distance query's solid as parry's shape and pose, or why there is none.
+fn solid(s: Solid<'_>) -> Result<(Pose, Box<dyn Shape>), String> {
+    let bad = |what: &str| format!("parry: {what} not representable in the engine's scalar");
+    Ok(match s {
+        Solid::Sphere(x) => {
+            let (p, b) = ball(x).ok_or_else(|| bad("sphere"))?;
+            (p, Box::new(b))
+        }
+        Solid::Capsule(c) => (Pose::IDENTITY, Box::new(capsule(c).ok_or_else(|| bad("capsule"))?)),
+        Solid::Box(b) => {
+            let (p, c) = cuboid(b).ok_or_else(|| bad("box"))?;
+            (p, Box::new(c))
+        }
+        Solid::Triangle(t) => (Pose::IDENTITY, Box::new(triangle(t).ok_or_else(|| bad("triangle"))?)),
+        Solid::Plane(p) => {
+            let (pose, h) = half_space(p).ok_or_else(|| bad("plane"))?;
+            (pose, Box::new(h))
+        }
+        Solid::Convex(c) => {
+            let points: Vec<Vector> =
+                c.points.iter().map(|p| vector(*p)).collect::<Option<_>>().ok_or_else(|| bad("hull"))?;
+            let hull = ConvexPolyhedron::from_convex_hull(&points)
+                .ok_or_else(|| "parry: ConvexPolyhedron::from_convex_hull gave no hull for these points".to_string())?;
+            (Pose::IDENTITY, Box::new(hull))
+        }
+    })
 }
 
 /// An AABB as a `Cuboid` at its centre, in the engine's scalar.
@@ -388,6 +416,23 @@ impl ParryEngine for Engine {
         contact_answer(query::contact(&Pose::IDENTITY, &ca, &pb, &cb, PREDICTION), false)
     }
 
+    fn distance(&self, a: Solid<'_>, b: Solid<'_>) -> Result<DistanceAnswer, String> {
+        let ((pa, sa), (pb, sb)) = (solid(a)?, solid(b)?);
+        let c = query::contact(&pa, sa.as_ref(), &pb, sb.as_ref(), Real::MAX)
+            .map_err(|_| "parry: query::contact does not dispatch this pair".to_string())?
+            .ok_or_else(|| "parry: query::contact returned no contact at the largest prediction".to_string())?;
+        let answer = || {
+            Some(DistanceAnswer {
+                distance: answer_scalar(c.dist)?,
+                point_a: answer_point(c.point1)?,
+                point_b: answer_point(c.point2)?,
+                normal: answer_point(-c.normal1)?,
+                degenerate: false,
+            })
+        };
+        answer().ok_or_else(|| "parry: a non-finite number in the contact".to_string())
+    }
+
     fn contact_capsule_triangle(&self, a: Capsule, b: Triangle) -> ContactAnswer {
         let (Some(ca), Some(tb)) = (capsule(&a), triangle(&b)) else {
             return NO_CONTACT_DEGENERATE;
@@ -579,8 +624,9 @@ mod tests {
     use super::*;
     use crate::parry::api::{
         BOX_RAY_FROM_INSIDE, BOX_TIE_NO_FLAG, CAPSULE_RAY_FROM_INSIDE, CENTRE_NEAR_TRIANGLE, CENTROID_SPHERE,
-        CLAMPED_BARYCENTRICS, CONCENTRIC_SPHERES, DIVERGENCES, Divergence, MESH_END_HIT, MESH_NO_PARALLEL,
-        MESH_TIE_FACE, NO_TRIANGLE_PARALLEL, PLANE_PARALLEL_EPSILON, TOUCHING_SPHERES, known_divergences,
+        CLAMPED_BARYCENTRICS, CONCENTRIC_SPHERES, DISTANCE_NO_FLAG, DIVERGENCES, Divergence, MESH_END_HIT,
+        MESH_NO_PARALLEL, MESH_TIE_FACE, NO_TRIANGLE_PARALLEL, PLANE_PARALLEL_EPSILON, TOUCHING_SPHERES,
+        known_divergences,
     };
     use proptest::prelude::*;
 
@@ -1243,6 +1289,21 @@ mod tests {
     }
 
     #[test]
+    fn parry_divergence_distance_witnesses_are_not_flagged() {
+        assert_listed(&DISTANCE_NO_FLAG);
+        // Boxes of half-size 1 whose faces x = 1.5 and x = 1 face each other:
+        // 0.5 apart, every facing pair closest; parry answers one pair,
+        // unflagged.
+        let (a, b) = (
+            OrientedBox { center: [2.5, 0.0, 0.0], half_extents: [1.0; 3], rotation: [1.0, 0.0, 0.0, 0.0] },
+            unit_box(),
+        );
+        let d = engine().distance(Solid::Box(&a), Solid::Box(&b)).expect("an answer");
+        assert!(!d.degenerate);
+        assert_close("distance", d.distance, 0.5);
+    }
+
+    #[test]
     fn parry_every_divergence_is_pinned() {
         // The divergences the tests above pin; a new entry needs a pin here.
         let pinned = [
@@ -1259,6 +1320,7 @@ mod tests {
             BOX_RAY_FROM_INSIDE,
             BOX_TIE_NO_FLAG,
             CAPSULE_RAY_FROM_INSIDE,
+            DISTANCE_NO_FLAG,
         ];
         for d in DIVERGENCES {
             assert!(pinned.iter().any(|p| p.what == d.what), "`{}` has a pin", d.what);

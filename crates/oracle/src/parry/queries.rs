@@ -6,8 +6,8 @@ use super::api::{Parry32, Parry64, ParryEngine};
 use super::cast::ParryCast;
 use crashtest_core::engine::{Queries, Reply};
 use crashtest_core::geom::{
-    Aabb, BarycentricAnswer, BoundsAnswer, Capsule, ContactAnswer, IntersectAnswer, OrientedBox, P3, Plane, Segment,
-    Sphere, ToiAnswer, Triangle,
+    Aabb, BarycentricAnswer, BoundsAnswer, Capsule, ContactAnswer, DistanceAnswer, IntersectAnswer, OrientedBox, P3,
+    Plane, Segment, Solid, Sphere, ToiAnswer, Triangle,
 };
 use crashtest_core::mesh::Mesh;
 
@@ -106,6 +106,9 @@ macro_rules! parry_queries {
             }
             fn toi_sphere_box(&self, a: &Sphere, va: &P3, b: &OrientedBox, vb: &P3, t_max: f64) -> Reply<ToiAnswer> {
                 Ok(ParryCast::cast_sphere_box(self, *a, *va, *b, *vb, t_max).answer)
+            }
+            fn distance(&self, a: Solid<'_>, b: Solid<'_>) -> Reply<DistanceAnswer> {
+                ParryEngine::distance(self, a, b).map_err(crashtest_core::engine::Unsupported)
             }
         }
     };

@@ -56,20 +56,20 @@ use crate::geom::{Capsule, Contact, ContactAnswer, OrientedBox, P3, Triangle};
 /// A convex polytope held exactly.
 #[derive(Clone)]
 pub(crate) struct Convex {
-    vertices: Vec<V3>,
+    pub(super) vertices: Vec<V3>,
     /// Edges as pairs of vertex indices (a closest pair's candidates).
-    edges: Vec<(usize, usize)>,
+    pub(super) edges: Vec<(usize, usize)>,
     /// The directions of the edges, once per direction (the cross products'
     /// factors).
-    directions: Vec<V3>,
+    pub(super) directions: Vec<V3>,
     /// Face normals, any length and either sign (a zero one is no axis).
-    normals: Vec<V3>,
+    pub(super) normals: Vec<V3>,
 }
 
 impl Convex {
     /// A box's eight corners `c + Σ ±hᵢ·Rᵢ` (corner `s` takes `+hᵢ` where bit
     /// `i` of `s` is set), its twelve edges, its axes as directions and normals.
-    fn of_box(b: &ExactBox) -> Self {
+    pub(super) fn of_box(b: &ExactBox) -> Self {
         let vertices = (0..8usize)
             .map(|s| {
                 let u: V3 = std::array::from_fn(|i| if s >> i & 1 == 1 { b.h[i].clone() } else { -b.h[i].clone() });
@@ -83,14 +83,14 @@ impl Convex {
 
     /// A triangle: its edges `v1 − v0`, `v2 − v1`, `v0 − v2` and its face
     /// normal `(v1 − v0) × (v2 − v0)`.
-    fn of_triangle(v: &[V3; 3]) -> Self {
+    pub(super) fn of_triangle(v: &[V3; 3]) -> Self {
         let directions = vec![sub(&v[1], &v[0]), sub(&v[2], &v[1]), sub(&v[0], &v[2])];
         let normal = cross(&sub(&v[1], &v[0]), &sub(&v[2], &v[0]));
         Self { vertices: v.to_vec(), edges: vec![(0, 1), (1, 2), (2, 0)], directions, normals: vec![normal] }
     }
 
     /// A segment: two vertices, one edge, no face.
-    fn of_segment(p0: &V3, p1: &V3) -> Self {
+    pub(super) fn of_segment(p0: &V3, p1: &V3) -> Self {
         Self {
             vertices: vec![p0.clone(), p1.clone()],
             edges: vec![(0, 1)],
@@ -121,18 +121,18 @@ fn axes(a: &Convex, b: &Convex) -> Vec<V3> {
 
 /// One way to push `a` clear of `b`: along `sign·l`, by `amount/√norm2`.
 #[derive(Clone)]
-struct Push {
-    l: V3,
-    norm2: Q,
+pub(super) struct Push {
+    pub(super) l: V3,
+    pub(super) norm2: Q,
     /// `true`: along `+l`.
-    plus: bool,
+    pub(super) plus: bool,
     /// The push times `‖l‖`: `max_b l·x − min_a l·x` or `max_a l·x − min_b l·x`.
-    amount: Q,
+    pub(super) amount: Q,
 }
 
 impl Push {
     /// `sign·l`.
-    fn direction(&self) -> V3 {
+    pub(super) fn direction(&self) -> V3 {
         if self.plus { self.l.clone() } else { scale(&self.l, &Q::NEG_ONE) }
     }
 
@@ -154,12 +154,12 @@ impl Push {
     }
 
     /// `amount/√norm2 + base`, correctly rounded.
-    fn round_plus(&self, base: &Q) -> f64 {
+    pub(super) fn round_plus(&self, base: &Q) -> f64 {
         Root::new(self.norm2.clone()).round_over(base, &self.amount)
     }
 
     /// The translation `(amount/norm2)·(sign·l)` that makes `a` touch `b`.
-    fn translation(&self) -> V3 {
+    pub(super) fn translation(&self) -> V3 {
         scale(&self.direction(), &(&self.amount / &self.norm2))
     }
 }
@@ -170,12 +170,12 @@ impl Push {
 /// is negative exactly when some axis separates them (then it is minus the
 /// widest gap, a lower bound of their distance).
 #[derive(Clone)]
-struct Least {
-    push: Push,
-    tie: bool,
+pub(super) struct Least {
+    pub(super) push: Push,
+    pub(super) tie: bool,
 }
 
-fn least_push(a: &Convex, b: &Convex) -> Option<Least> {
+pub(super) fn least_push(a: &Convex, b: &Convex) -> Option<Least> {
     least_on(a, b, axes(a, b).into_iter())
 }
 
@@ -206,7 +206,7 @@ fn least_on(a: &Convex, b: &Convex, axes: impl Iterator<Item = V3>) -> Option<Le
 
 /// The plane's two kept coordinates: those other than the normal's largest
 /// in magnitude (dropping it is one to one on the plane).
-fn kept(n: &V3) -> (usize, usize) {
+pub(super) fn kept(n: &V3) -> (usize, usize) {
     let abs = |x: &Q| if *x < Q::ZERO { -x.clone() } else { x.clone() };
     let k = (0..3).fold(0, |k, i| if abs(&n[i]) > abs(&n[k]) { i } else { k });
     ((k + 1) % 3, (k + 2) % 3)
@@ -220,7 +220,7 @@ fn orient(a: &V3, b: &V3, c: &V3, (i, j): (usize, usize)) -> Q {
 /// The convex hull of coplanar points, exactly (Andrew's monotone chain in the
 /// kept coordinates): one point, a segment's two ends, or a polygon's
 /// vertices in counter-clockwise order without collinear ones.
-fn hull(points: &[V3], ij: (usize, usize)) -> Vec<V3> {
+pub(super) fn hull(points: &[V3], ij: (usize, usize)) -> Vec<V3> {
     let (i, j) = ij;
     let mut p: Vec<V3> = Vec::with_capacity(points.len());
     for x in points {
@@ -295,7 +295,7 @@ fn crossing(p: &V3, q: &V3, r: &V3, s: &V3, ij: (usize, usize)) -> Option<V3> {
 /// The touching set of `a` moved by `push`'s translation and `b`: the
 /// intersection of `a`'s support feature in `−n` and `b`'s in `+n` (`n` the
 /// push's direction), as a hull (one point, a segment, a polygon).
-fn touching_region(a: &Convex, b: &Convex, push: &Push) -> Vec<V3> {
+pub(super) fn touching_region(a: &Convex, b: &Convex, push: &Push) -> Vec<V3> {
     let n = push.direction();
     let t = push.translation();
     let moved: Vec<V3> = a.vertices.iter().map(|v| add(v, &t)).collect();
@@ -322,7 +322,7 @@ fn touching_region(a: &Convex, b: &Convex, push: &Push) -> Vec<V3> {
 }
 
 /// The mean of a region's vertices: a point of it (the region is convex).
-fn middle(region: &[V3]) -> V3 {
+pub(super) fn middle(region: &[V3]) -> V3 {
     let k = Q::from(region.len() as u64);
     let sum = region.iter().skip(1).fold(region[0].clone(), |s, v| add(&s, v));
     scale(&sum, &(Q::ONE / k))

@@ -1,0 +1,208 @@
+//! The faces and edges of a point set's convex hull, found with exact
+//! orientation predicates (`crate::exact`), for the robust penetration depth's
+//! separating axes. Duplicated, coplanar and collinear points are handled:
+//! a flat hull's faces are its plane's two sides and its edges the polygon's
+//! boundary; a segment's one edge is its two extreme points; a point has none.
+//!
+//! A solid hull is built incrementally (`O(n·f)` predicates for `n` points
+//! and `f` faces); a flat one's edges by pairs (`O(n³)` on its plane).
+
+use crate::exact::{P3, Sign, collinear, cross_estimate, orient3d, points_equal};
+use crate::real::Vec3;
+
+/// Relative accuracy asked of a face normal's components (2^−50).
+const NORMAL_REL_ERR: f64 = 1.0 / (1u64 << 50) as f64;
+
+/// A face: its outward unit normal (components within a few ulps).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Face {
+    /// Outward unit normal.
+    pub n: Vec3<f64>,
+}
+
+/// A convex hull's combinatorics.
+#[derive(Clone, Debug)]
+pub(crate) struct Hull {
+    /// The distinct input points.
+    pub pts: Vec<P3>,
+    /// Affine dimension, 0 to 3.
+    pub dim: usize,
+    /// Faces (for a flat hull, the plane's two sides).
+    pub faces: Vec<Face>,
+    /// Edges, as pairs of indices into `pts` (for a flat or solid hull a
+    /// boundary segment may appear also split at collinear points).
+    pub edges: Vec<(usize, usize)>,
+}
+
+fn unit_normal(a: P3, b: P3, c: P3) -> Option<Vec3<f64>> {
+    let n = crate::exact::Estimate::unit_vector(cross_estimate(a, b, c, NORMAL_REL_ERR))?;
+    Some(Vec3::new(n[0], n[1], n[2]))
+}
+
+/// Whether all signs are `≥ 0` or all `≤ 0`.
+fn one_sided(signs: impl Iterator<Item = Sign>) -> bool {
+    let (mut pos, mut neg) = (false, false);
+    for s in signs {
+        pos |= s == Sign::Positive;
+        neg |= s == Sign::Negative;
+    }
+    !(pos && neg)
+}
+
+impl Hull {
+    /// The hull of `points` (finite; at least one).
+    pub(crate) fn new(points: &[P3]) -> Self {
+        let mut pts: Vec<P3> = Vec::with_capacity(points.len());
+        for p in points {
+            if !pts.iter().any(|q| points_equal(*p, *q)) {
+                pts.push(*p);
+            }
+        }
+        let mut hull = Hull { pts, dim: 0, faces: Vec::new(), edges: Vec::new() };
+        let p = &hull.pts;
+        if p.len() == 1 {
+            return hull;
+        }
+        let Some(i2) = (2..p.len()).find(|&i| !collinear(p[0], p[1], p[i])) else {
+            hull.dim = 1;
+            hull.edges.push(segment_ends(p));
+            return hull;
+        };
+        if (3..p.len()).all(|i| orient3d(p[0], p[1], p[i2], p[i]) == Sign::Zero) {
+            hull.dim = 2;
+            hull.flat(i2);
+            return hull;
+        };
+        hull.dim = 3;
+        hull.solid();
+        hull
+    }
+
+    /// A flat hull: the plane through `p0, p1, p[i2]`.
+    fn flat(&mut self, i2: usize) {
+        let p = &self.pts;
+        let Some(n) = unit_normal(p[0], p[1], p[i2]) else { return };
+        // A point off the plane (checked exactly), to orient lines within it.
+        let extent = p.iter().flatten().fold(0.0f64, |m, x| m.max((x - p[0][0]).abs()).max(x.abs()));
+        let mut off = None;
+        let mut scale = extent.max(f64::MIN_POSITIVE);
+        for _ in 0..8 {
+            let r = [p[0][0] + n.x * scale, p[0][1] + n.y * scale, p[0][2] + n.z * scale];
+            if orient3d(p[0], p[1], p[i2], r) != Sign::Zero {
+                off = Some(r);
+                break;
+            }
+            scale *= 4.0;
+        }
+        self.faces.push(Face { n });
+        self.faces.push(Face { n: -n });
+        if let Some(r) = off {
+            let all: Vec<usize> = (0..self.pts.len()).collect();
+            self.edges = boundary_edges(&self.pts, &all, r);
+        }
+    }
+
+    /// A solid hull (its points span space), incrementally: from a
+    /// tetrahedron of four points that span space, each point outside the
+    /// current hull (strictly beyond some face: a point outside a
+    /// full-dimensional polytope is strictly beyond one of its facets, so a
+    /// point beyond none is inside or on it and adds nothing) removes the
+    /// faces it sees and joins the horizon's edges to itself. `O(n·f)`
+    /// predicates for `n` points and `f` faces. Coplanar neighbouring faces
+    /// are kept as triangles: their normals repeat and their diagonals are
+    /// edges too, which adds candidate axes (each a valid push, never less
+    /// than the depth) and never changes the least.
+    fn solid(&mut self) {
+        let p = &self.pts;
+        let n = p.len();
+        // `new` found p0, p1, p[i2] not collinear and some point off their plane.
+        let Some(i2) = (2..n).find(|&i| !collinear(p[0], p[1], p[i])) else { return };
+        let Some(i3) = (3..n).find(|&i| orient3d(p[0], p[1], p[i2], p[i]) != Sign::Zero) else { return };
+        // Faces (i, j, k) with outward normal (p_j − p_i) × (p_k − p_i): a point
+        // beyond the face has orient3d < 0 (see `outward` below).
+        let beyond = |f: &[usize; 3], x: P3| orient3d(p[f[0]], p[f[1]], p[f[2]], x) == Sign::Negative;
+        let start = [0, 1, i2, i3];
+        let mut faces: Vec<[usize; 3]> = Vec::new();
+        for (f, opposite) in [([0, 1, i2], i3), ([0, 1, i3], i2), ([0, i2, i3], 1), ([1, i2, i3], 0)] {
+            faces.push(if beyond(&f, p[opposite]) { [f[0], f[2], f[1]] } else { f });
+        }
+        for (q, x) in p.iter().enumerate() {
+            if start.contains(&q) {
+                continue;
+            }
+            let visible: Vec<bool> = faces.iter().map(|f| beyond(f, *x)).collect();
+            if !visible.contains(&true) {
+                continue;
+            }
+            let mut kept_edges = std::collections::HashSet::new();
+            for (f, _) in faces.iter().zip(&visible).filter(|(_, v)| !**v) {
+                for e in 0..3 {
+                    kept_edges.insert((f[e], f[(e + 1) % 3]));
+                }
+            }
+            let mut next = Vec::with_capacity(faces.len() + 4);
+            for (f, v) in faces.iter().zip(&visible) {
+                if !*v {
+                    next.push(*f);
+                    continue;
+                }
+                for e in 0..3 {
+                    let (u, w) = (f[e], f[(e + 1) % 3]);
+                    if kept_edges.contains(&(w, u)) {
+                        next.push([u, w, q]);
+                    }
+                }
+            }
+            faces = next;
+        }
+        let mut seen = std::collections::HashSet::new();
+        for f in &faces {
+            if let Some(nrm) = unit_normal(p[f[0]], p[f[1]], p[f[2]]) {
+                self.faces.push(Face { n: nrm });
+            }
+            for e in 0..3 {
+                let (u, w) = (f[e].min(f[(e + 1) % 3]), f[e].max(f[(e + 1) % 3]));
+                if seen.insert((u, w)) {
+                    self.edges.push((u, w));
+                }
+            }
+        }
+    }
+}
+
+/// The two extreme points of a collinear set (distinct, at least two).
+fn segment_ends(p: &[P3]) -> (usize, usize) {
+    let d = [0, 1, 2].map(|k| (p[1][k] - p[0][k]).abs());
+    let axis = if d[0] >= d[1] && d[0] >= d[2] {
+        0
+    } else if d[1] >= d[2] {
+        1
+    } else {
+        2
+    };
+    let (mut lo, mut hi) = (0, 0);
+    for (i, q) in p.iter().enumerate() {
+        if q[axis] < p[lo][axis] {
+            lo = i;
+        }
+        if q[axis] > p[hi][axis] {
+            hi = i;
+        }
+    }
+    (lo.min(hi), lo.max(hi))
+}
+
+/// The boundary edges of the coplanar points `on` of `p` (a convex polygon
+/// with possibly collinear and interior points): the pairs with every other
+/// point on one side of their line. `r` is a point off their plane.
+fn boundary_edges(p: &[P3], on: &[usize], r: P3) -> Vec<(usize, usize)> {
+    let mut edges = Vec::new();
+    for (x, &i) in on.iter().enumerate() {
+        for &j in &on[x + 1..] {
+            if one_sided(on.iter().map(|&m| orient3d(p[i], p[j], r, p[m]))) {
+                edges.push((i, j));
+            }
+        }
+    }
+    edges
+}

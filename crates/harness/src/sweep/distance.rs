@@ -1,0 +1,125 @@
+//! The `distance` sweeps: every distance pair with its surfaces `g` apart
+//! (`distance-kissing`), most of them parallel faces or a face and an edge
+//! lying on it as `g` goes to 0; and hulls of more and more points, each
+//! given in shuffled orders (`distance-points`).
+//!
+//! The scenes are the `kissing` sweep's (`super::boxes`, `super::spheres`):
+//! boxes under a quarter turn with half-extents on a 1/32 grid, so every
+//! corner is exact, and a box's hull is the convex shape of its eight
+//! corners — the same solid, given as points. Each scene is built unposed,
+//! its boxes turned into hulls where the pair asks for one, then posed.
+
+use super::boxes;
+use super::grid::{Pose, Rng};
+use super::spheres;
+use crate::case::Shape;
+use crate::generate::build::{Scene, convex, plane, sphere, triangle};
+use crashtest_core::geom::rotation_matrix;
+use oracle::geom::P3;
+
+/// A multiple of 1/32 in `[lo, hi]`, as the `kissing` scenes draw them.
+fn grid(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
+    rng.int((lo * 32.0) as i64, (hi * 32.0) as i64) as f64 / 32.0
+}
+
+/// The identity pose: the builders' scenes as they are made.
+fn unposed() -> Pose {
+    Pose {
+        kind: super::grid::PoseKind::Exact,
+        rot: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        shift: [0.0; 3],
+    }
+}
+
+/// A box's eight corners as a convex shape. The box generators use quarter
+/// turns (signed permutations) and grid half-extents, so each corner
+/// `c + R·(±h)` is exact.
+fn hull_of(s: &Shape) -> Shape {
+    let Shape::Box(b) = s else { return s.clone() };
+    let r = rotation_matrix(b.rotation.unwrap_or(crate::case::IDENTITY_ROTATION));
+    let corners: Vec<P3> = (0..8usize)
+        .map(|k| {
+            let u: P3 = std::array::from_fn(|j| if k >> j & 1 == 1 { b.half_extents[j] } else { -b.half_extents[j] });
+            std::array::from_fn(|i| b.center[i] + (0..3).map(|j| r[i][j] * u[j]).sum::<f64>())
+        })
+        .collect();
+    convex(corners)
+}
+
+/// `build`'s scene with `a` (when `ha`) and `b` (when `hb`) turned into hulls,
+/// then posed.
+fn hulled(build: fn(&mut Rng, f64, &Pose) -> Scene, rng: &mut Rng, g: f64, pose: &Pose, ha: bool, hb: bool) -> Scene {
+    let (a, b) = build(rng, g, &unposed());
+    let a = if ha { hull_of(&a) } else { a };
+    let b = b.map(|b| if hb { hull_of(&b) } else { b });
+    pose.scene(&(a, b))
+}
+
+/// The `kissing` sphere–box scene with its box as a hull.
+pub(super) fn sphere_convex(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    hulled(boxes::kissing_sphere_box, rng, g, pose, false, true)
+}
+
+pub(super) fn capsule_convex(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    hulled(boxes::kissing_capsule_box, rng, g, pose, false, true)
+}
+
+pub(super) fn convex_convex(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    hulled(boxes::kissing_box_box, rng, g, pose, true, true)
+}
+
+pub(super) fn convex_box(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    hulled(boxes::kissing_box_box, rng, g, pose, true, false)
+}
+
+pub(super) fn convex_plane(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    hulled(boxes::kissing_box_plane, rng, g, pose, true, false)
+}
+
+pub(super) fn convex_triangle(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    hulled(boxes::kissing_box_triangle, rng, g, pose, true, false)
+}
+
+pub(super) fn sphere_sphere(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    spheres::apart(rng, g, pose)
+}
+
+/// A sphere over the plane `z = 0`, its surface `g` above it.
+pub(super) fn sphere_plane(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    let r = grid(rng, 0.25, 1.0);
+    let (x, y) = (grid(rng, -1.0, 1.0), grid(rng, -1.0, 1.0));
+    pose.scene(&(sphere([x, y, r + g], r), Some(plane([0.0, 0.0, 1.0], 0.0))))
+}
+
+/// A sphere over a triangle in `z = 0` (legs 1 to 2 about the origin), its
+/// surface `g` above the face.
+pub(super) fn sphere_triangle(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
+    let (a, b, c) = (grid(rng, 1.0, 2.0), grid(rng, 1.0, 2.0), grid(rng, 1.0, 2.0));
+    let t = triangle([[-a, -b, 0.0], [c, -b, 0.0], [0.0, a + b, 0.0]]);
+    let r = grid(rng, 0.25, 1.0);
+    pose.scene(&(sphere([0.0, 0.0, r + g], r), Some(t)))
+}
+
+/// `distance-points`: a hull of `n` points (`n` the parameter rounded, 4 to
+/// 10⁴) on the unit sphere (the Fibonacci lattice: the same points for the
+/// same `n`, each a vertex), 2.25 above a unit cube given as a hull. Every
+/// pose shuffles the points: one solid, many orders.
+pub(super) fn shuffled_hull(rng: &mut Rng, n: f64, pose: &Pose) -> Scene {
+    let count = (n.round() as usize).clamp(4, 10_000);
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let mut points: Vec<P3> = (0..count)
+        .map(|i| {
+            let z = 1.0 - 2.0 * (i as f64 + 0.5) / count as f64;
+            let r = (1.0 - z * z).sqrt();
+            let (s, c) = (golden * i as f64).sin_cos();
+            [r * c, r * s, z]
+        })
+        .collect();
+    for i in (1..points.len()).rev() {
+        let j = rng.int(0, i as i64) as usize;
+        points.swap(i, j);
+    }
+    let lifted: Vec<P3> = points.iter().map(|p| [p[0], p[1], p[2] + 2.25]).collect();
+    let b = hull_of(&crate::generate::build::oriented_box([0.0; 3], [1.0; 3], [1.0, 0.0, 0.0, 0.0]));
+    pose.scene(&(convex(lifted), Some(b)))
+}
