@@ -81,7 +81,9 @@ pub fn test_box_aabb_lecture<T: Real>(a: &OrientedBox<T>, b: &Aabb<T>) -> bool {
 /// Non-finite input or a zero quaternion: `false`.
 ///
 /// A floating-point stage answers first when it is certain
-/// (`crate::boxes::stage`), which is the exact answer; it declines otherwise.
+/// (`crate::boxes::stage`), which is the exact answer; otherwise only the
+/// axes it left undecided are decided by the exact code (the others
+/// certainly do not separate).
 pub fn test_box_box<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>) -> bool {
     box_box(a, b, true)
 }
@@ -101,9 +103,14 @@ fn box_box<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>, staged: bool) -> boo
     if !all_finite(&lengths) || !all_finite(&qa) || !all_finite(&qb) || zero_quaternion(&qa) || zero_quaternion(&qb) {
         return false;
     }
-    if staged && let Some(overlap) = stage::box_box(&qa, &qb, &lengths) {
-        return overlap;
-    }
+    let undecided = if staged {
+        match stage::box_box_axes(&qa, &qb, &lengths) {
+            Ok(overlap) => return overlap,
+            Err(mask) => mask,
+        }
+    } else {
+        stage::ALL_AXES
+    };
     let separates = |x: usize, y: usize| {
         let mut u = [0.0; 20];
         u[..4].copy_from_slice(&qa);
@@ -112,13 +119,20 @@ fn box_box<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>, staged: bool) -> boo
         u[14 + y] = 1.0;
         sign_of!(separation, lengths, u) == Sign::Positive
     };
-    for i in 0..3 {
+    !undecided_axes(undecided).any(|(x, y)| separates(x, y))
+}
+
+/// The exact code's selectors `(X, Y)` (`L = X × Y` among `[A_0..2, B_0..2]`)
+/// of the axes in a mask of [`stage::box_box_axes`]' (bit `i`: `A_i`, that is
+/// `A_{i+1} × A_{i+2}`; `3 + j`: `B_j`; `6 + 3i + j`: `A_i × B_j`), in the
+/// exact code's order: the face axes, then the edge pairs.
+fn undecided_axes(mask: u16) -> impl Iterator<Item = (usize, usize)> {
+    let faces = (0..3).flat_map(|i| {
         let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-        if separates(j, k) || separates(3 + j, 3 + k) {
-            return false;
-        }
-    }
-    !(0..3).any(|i| (0..3).any(|j| separates(i, 3 + j)))
+        [(i, (j, k)), (3 + i, (3 + j, 3 + k))]
+    });
+    let edges = (0..3).flat_map(|i| (0..3).map(move |j| (6 + 3 * i + j, (i, 3 + j))));
+    faces.chain(edges).filter(move |(bit, _)| mask & (1 << bit) != 0).map(|(_, xy)| xy)
 }
 
 /// Whether a box and an axis-aligned box overlap, **robust form**: as
@@ -153,9 +167,14 @@ fn box_aabb<T: Real>(a: &OrientedBox<T>, b: &Aabb<T>, staged: bool) -> bool {
     if !all_finite(&lengths) || !all_finite(&q) || zero_quaternion(&q) {
         return false;
     }
-    if staged && let Some(overlap) = stage::box_aabb(&q, &lengths) {
-        return overlap;
-    }
+    let undecided = if staged {
+        match stage::box_aabb_axes(&q, &lengths) {
+            Ok(overlap) => return overlap,
+            Err(mask) => mask,
+        }
+    } else {
+        stage::ALL_AXES
+    };
     let separates = |x: usize, y: usize| {
         let mut u = [0.0; 17];
         u[..4].copy_from_slice(&q);
@@ -164,13 +183,7 @@ fn box_aabb<T: Real>(a: &OrientedBox<T>, b: &Aabb<T>, staged: bool) -> bool {
         u[10 + y] = 1.0;
         sign_of!(separation_aabb, lengths, u) == Sign::Positive
     };
-    for i in 0..3 {
-        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-        if separates(j, k) || separates(3 + j, 3 + k) {
-            return false;
-        }
-    }
-    !(0..3).any(|i| (0..3).any(|k| separates(i, 3 + k)))
+    !undecided_axes(undecided).any(|(x, y)| separates(x, y))
 }
 
 fn zero_quaternion(q: &[f64; 4]) -> bool {

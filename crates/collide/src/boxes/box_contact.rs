@@ -23,8 +23,8 @@
 //! - two least pushes are along the same direction when `L_1 × L_2 = 0` and
 //!   `dir_1 dir_2 L_1 · L_2 > 0`: anything else is a tie (`degenerate`).
 
-use super::poly::{self, Filt, Ring, cross3, dot3, over_norm2, quaternion_axes, refs, scaled_f64, select, sub3};
-use super::{all_finite, fallback_normal, finish, lecture_finite, quaternion_of, scene_scale, up, wide3};
+use super::poly::{self, Fast, Filt, Ring, cross3, dot3, over_norm2, quaternion_axes, refs, scaled_f64, select, sub3};
+use super::{all_finite, fallback_normal, finish, lecture_finite, quaternion_of, scene_scale, stage, up, wide3};
 use crate::contact::Contact;
 use crate::exact::{BigFloat, Estimate, Sign};
 use crate::real::{Real, Vec3};
@@ -61,6 +61,33 @@ pub(crate) enum Least {
     /// The least push, its candidate, and whether another direction ties it.
     Touch { best: Cand, tie: bool },
 }
+
+/// Signs of a problem's least-push predicates known before the exact code
+/// runs (a floating-point stage's certified ones, `crate::boxes::stage`):
+/// `None` leaves the sign to the exact code.
+pub(crate) trait Hints {
+    /// Whether the candidate's axis is not the zero vector.
+    fn nonzero(&self, _: &Cand) -> Option<bool> {
+        None
+    }
+    /// The sign of the candidate's push.
+    fn push(&self, _: &Cand) -> Option<Sign> {
+        None
+    }
+    /// The sign of push 1 − push 2 (of non-negative pushes).
+    fn cmp(&self, _: &Cand, _: &Cand) -> Option<Sign> {
+        None
+    }
+    /// Whether the two candidates push along one direction.
+    fn same(&self, _: &Cand, _: &Cand) -> Option<bool> {
+        None
+    }
+}
+
+/// No hints: the exact code decides everything.
+pub(crate) struct NoHints;
+
+impl Hints for NoHints {}
 
 /// The least push over `axes` (each with `dir = +1`; `+L` is tried before
 /// `−L`, in the order given), decided exactly by the problem's predicates:
@@ -190,22 +217,48 @@ macro_rules! sat_polys {
             g: [f64; $g],
             axes: &[$crate::boxes::box_contact::Cand],
         ) -> $crate::boxes::box_contact::Least {
+            least_by(l, g, axes, &$crate::boxes::box_contact::NoHints)
+        }
+
+        /// The least push over `axes`, exactly, taking the signs `hints`
+        /// certifies as given.
+        pub(super) fn least_by(
+            l: [f64; $k],
+            g: [f64; $g],
+            axes: &[$crate::boxes::box_contact::Cand],
+            hints: &impl $crate::boxes::box_contact::Hints,
+        ) -> $crate::boxes::box_contact::Least {
             use $crate::boxes::box_contact::cat;
-            use $crate::boxes::poly::sign;
+            use $crate::boxes::poly::sign_fast;
             use $crate::exact::Sign;
             let one = |c: &[f64; 10]| -> [f64; $g + 10] { cat(&[&g, c]) };
             let two = |c: &[f64; 10], d: &[f64; 10]| -> [f64; $g + 20] { cat(&[&g, c, d]) };
             $crate::boxes::box_contact::least_push(
                 axes,
-                |c| sign(l, one(c), norm_p::<Filt>, norm_p::<BigFloat>) != Sign::Zero,
-                |c| sign(l, one(c), push_p::<Filt>, push_p::<BigFloat>),
-                |c, d| sign(l, two(c, d), cmp_p::<Filt>, cmp_p::<BigFloat>),
+                |c| {
+                    hints.nonzero(c).unwrap_or_else(|| {
+                        sign_fast(l, one(c), norm_p::<Fast>, norm_p::<Filt>, norm_p::<BigFloat>) != Sign::Zero
+                    })
+                },
+                |c| {
+                    hints
+                        .push(c)
+                        .unwrap_or_else(|| sign_fast(l, one(c), push_p::<Fast>, push_p::<Filt>, push_p::<BigFloat>))
+                },
                 |c, d| {
+                    hints
+                        .cmp(c, d)
+                        .unwrap_or_else(|| sign_fast(l, two(c, d), cmp_p::<Fast>, cmp_p::<Filt>, cmp_p::<BigFloat>))
+                },
+                |c, d| {
+                    if let Some(same) = hints.same(c, d) {
+                        return same;
+                    }
                     let e = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
                     e.iter().all(|e| {
                         let u: [f64; $g + 23] = cat(&[&g, c, d, e]);
-                        sign(l, u, cross_p::<Filt>, cross_p::<BigFloat>) == Sign::Zero
-                    }) && sign(l, two(c, d), dot_p::<Filt>, dot_p::<BigFloat>) == Sign::Positive
+                        sign_fast(l, u, cross_p::<Fast>, cross_p::<Filt>, cross_p::<BigFloat>) == Sign::Zero
+                    }) && sign_fast(l, two(c, d), dot_p::<Fast>, dot_p::<Filt>, dot_p::<BigFloat>) == Sign::Positive
                 },
             )
         }
@@ -217,7 +270,7 @@ macro_rules! sat_polys {
             let e = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
             let comps = e.map(|e| {
                 let u: [f64; $g + 13] = cat(&[&g, c, &e]);
-                $crate::boxes::poly::value(l, u, deg, comp_p::<Filt>, comp_p::<BigFloat>)
+                $crate::boxes::poly::value_fast(l, u, deg, comp_p::<Fast>, comp_p::<Filt>, comp_p::<BigFloat>)
             });
             $crate::exact::Estimate::unit_vector(comps).map(|d| $crate::real::Vec3::new(d[0], d[1], d[2]))
         }
@@ -231,8 +284,8 @@ macro_rules! sat_polys {
         ) -> ($crate::exact::Estimate, $crate::exact::Estimate) {
             use $crate::boxes::box_contact::cat;
             let u: [f64; $g + 10] = cat(&[&g, c]);
-            let o = $crate::boxes::poly::value(l, u, 1 + deg, push_p::<Filt>, push_p::<BigFloat>);
-            let n = $crate::boxes::poly::value(l, u, 2 * deg, norm_p::<Filt>, norm_p::<BigFloat>);
+            let o = $crate::boxes::poly::value_fast(l, u, 1 + deg, push_p::<Fast>, push_p::<Filt>, push_p::<BigFloat>);
+            let n = $crate::boxes::poly::value_fast(l, u, 2 * deg, norm_p::<Fast>, norm_p::<Filt>, norm_p::<BigFloat>);
             (o, n)
         }
     };
@@ -621,8 +674,22 @@ fn contact_box_box_lecture_raw<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>) 
 /// [`OrientedBox::rotation_matrix`], within [`TOUCH_TOL`] and [`TOUCH_TOL_ABS`]
 /// of that set.
 ///
+/// A floating-point stage settles the least push first where it is certain
+/// (`crate::boxes::stage`), which is the exact decision.
+///
 /// Non-finite input: no contact. A zero quaternion is the identity.
 pub fn contact_box_box<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>) -> Option<Contact<T>> {
+    box_box(a, b, true)
+}
+
+/// [`contact_box_box`] without its floating-point stage: the exact decisions
+/// alone, which the stage must agree with bit for bit.
+#[cfg(test)]
+pub(super) fn contact_box_box_unstaged<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>) -> Option<Contact<T>> {
+    box_box(a, b, false)
+}
+
+fn box_box<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>, staged: bool) -> Option<Contact<T>> {
     let (qa, qb) = (quaternion_of(a)?, quaternion_of(b)?);
     let (ca, cb) = (wide3(&a.center), wide3(&b.center));
     let (ha, hb) = (wide3(&a.half_extents).map(f64::abs), wide3(&b.half_extents).map(f64::abs));
@@ -631,31 +698,49 @@ pub fn contact_box_box<T: Real>(a: &OrientedBox<T>, b: &OrientedBox<T>) -> Optio
         return None;
     }
     let g: [f64; 8] = cat(&[&qa, &qb]);
-    let z = [0.0; 3];
-    let mut axes = Vec::with_capacity(15);
-    axes.extend((0..3).map(|i| cand(e3(i), z, [1.0, 0.0, 0.0])));
-    axes.extend((0..3).map(|j| cand(z, e3(j), [0.0, 1.0, 0.0])));
-    for i in 0..3 {
-        axes.extend((0..3).map(|j| cand(e3(i), e3(j), [0.0, 0.0, 1.0])));
-    }
-    let Least::Touch { best, tie } = bb::least(l, g, &axes) else { return None };
+    let axes = box_box_axes();
+    // The floating-point stage settles the least push and the signs along
+    // the axes where it is certain (`stage::box_box_contact`: the exact
+    // decisions); the exact code decides the rest.
+    let settled = if staged { stage::box_box_contact(&qa, &qb, &l) } else { None };
+    let least = match &settled {
+        None => bb::least(l, g, &axes),
+        Some(s) if s.apart() => Least::Apart,
+        Some(s) => s.least(&axes).unwrap_or_else(|| bb::least_by(l, g, &axes, s)),
+    };
+    let Least::Touch { best, tie } = least else { return None };
     let k = scene_scale(&l);
     let normal = bb::normal(l, g, &best, 0).unwrap_or_else(fallback_normal);
     let (o, n2) = bb::depth(l, g, &best, 0);
     let depth = scaled_f64(over_norm2(over_norm2(over_sqrt(o, n2), &qa), &qb), i64::from(k));
     // The features: a's in −n, b's in +n, by the exact signs of L · axis.
-    let along = |w: [f64; 6]| {
-        let u: [f64; 24] = cat(&[&g, &best, &w]);
-        poly::sign(l, u, bb::along::<Filt>, bb::along::<BigFloat>)
+    let known = settled.map_or([None; 6], |s| s.along(&best));
+    let along = |x: usize| {
+        known[x].unwrap_or_else(|| {
+            let w: [f64; 6] = std::array::from_fn(|y| if y == x { 1.0 } else { 0.0 });
+            let u: [f64; 24] = cat(&[&g, &best, &w]);
+            poly::sign_fast(l, u, bb::along::<Fast>, bb::along::<Filt>, bb::along::<BigFloat>)
+        })
     };
-    let sa = [0, 1, 2].map(|i| -side(along(cat(&[&e3(i), &z]))));
-    let sb = [0, 1, 2].map(|j| side(along(cat(&[&z, &e3(j)]))));
+    let sa = [0, 1, 2].map(|i| -side(along(i)));
+    let sb = [0, 1, 2].map(|j| side(along(3 + j)));
     let (ras, rbs) = (rotation_f64(&qa), rotation_f64(&qb));
     let (cas, cbs, has, hbs) = (up(ca, k), up(cb, k), up(ha, k), up(hb, k));
     let fa: Vec<Vec3<f64>> = box_feature(&cas, &ras, &has, sa).into_iter().map(|p| p + normal * depth).collect();
     let fb = box_feature(&cbs, &rbs, &hbs, sb);
     let point = touching_point(&fa, &fb, &normal, extent(&[cas, cbs, has, hbs]));
     Some(finish(point, normal, depth, k, tie))
+}
+
+/// The 15 candidate axes of two boxes, in the format's order: `A_0..2`,
+/// `B_0..2`, then `A_i × B_j` (`i` outer).
+pub(super) fn box_box_axes() -> [Cand; 15] {
+    let z = [0.0; 3];
+    std::array::from_fn(|x| match x {
+        0..3 => cand(e3(x), z, [1.0, 0.0, 0.0]),
+        3..6 => cand(z, e3(x - 3), [0.0, 1.0, 0.0]),
+        _ => cand(e3((x - 6) / 3), e3((x - 6) % 3), [0.0, 0.0, 1.0]),
+    })
 }
 
 mod bb {
@@ -811,7 +896,7 @@ pub fn contact_box_triangle<T: Real>(a: &OrientedBox<T>, b: &Triangle<T>) -> Opt
     let depth = scaled_f64(over_norm2(times2(over_sqrt(o, n2), -2), &q), i64::from(k));
     let along = |w: [f64; 6]| {
         let u: [f64; 20] = cat(&[&q, &best, &w]);
-        poly::sign(l, u, bt::along::<Filt>, bt::along::<BigFloat>)
+        poly::sign_fast(l, u, bt::along::<Fast>, bt::along::<Filt>, bt::along::<BigFloat>)
     };
     let s = [0, 1, 2].map(|i| -side(along(cat(&[&e3(i), &z]))));
     let top = triangle_top(|i, j| {

@@ -2,7 +2,7 @@
 
 use super::poly::{Ring, at, cross3, dot3, ratio, refs, scaled_f64, sign_of, sub3, value_of};
 use super::sphere_capsule::{Foot, foot_of, foot_values, reach_test, touch_lecture};
-use super::{all_finite, fallback_normal, finish, scene_scale, up, up1, wide3};
+use super::{all_finite, fallback_normal, finish, scene_scale, stage, up, up1, wide3};
 use crate::contact::Contact;
 use crate::exact::{Estimate, P3, Sign, triple_product};
 use crate::real::{Real, Vec3};
@@ -113,14 +113,14 @@ pub fn contact_capsule_capsule<T: Real>(a: &Capsule<T>, b: &Capsule<T>) -> Optio
     }
     let k = scene_scale(&lengths);
     let (ras, rbs) = (up1(ra, k), up1(rb, k));
-    let crit = |w: [f64; 3]| sign_of!(critical, l12, w);
-    let between = crit([0.0, 0.0, 1.0]) == Sign::Positive
-        && crit([1.0, 0.0, 0.0]) != Sign::Negative
-        && crit([-1.0, 0.0, 1.0]) != Sign::Negative
-        && crit([0.0, 1.0, 0.0]) != Sign::Negative
-        && crit([0.0, -1.0, 1.0]) != Sign::Negative;
+    // The floating-point stage certifies most signs; the exact code decides
+    // the rest.
+    let settled = stage::capsule_capsule(&lengths);
+    let weights = [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [-1.0, 0.0, 1.0], [0.0, 1.0, 0.0], [0.0, -1.0, 1.0]];
+    let crit = |i: usize| stage::or_exact(settled.critical[i], || sign_of!(critical, l12, weights[i]));
+    let between = crit(0) == Sign::Positive && (1..5).all(|i| crit(i) != Sign::Negative);
     if between {
-        if sign_of!(skew_reach, lengths, []) == Sign::Positive {
+        if stage::or_exact(settled.skew, || sign_of!(skew_reach, lengths, [])) == Sign::Positive {
             return None;
         }
         let side = triple_product(a0, a1, b0, b1, b0, a0);
@@ -205,7 +205,9 @@ impl Feature {
         ];
         let flag = |line: bool| if line { [1.0, 0.0] } else { [0.0, 1.0] };
         let (fx, fy) = (flag(x.line), flag(y.line));
-        sign_of!(distance_order, l, [fx[0], fx[1], fy[0], fy[1]]) == Sign::Negative
+        stage::or_exact(stage::distance_order(&l, [x.line, y.line]), || {
+            sign_of!(distance_order, l, [fx[0], fx[1], fy[0], fy[1]])
+        }) == Sign::Negative
     }
 }
 

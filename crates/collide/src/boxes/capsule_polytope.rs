@@ -5,10 +5,10 @@ use super::box_contact::{
     sat_polys, scale3, side, times2, touching_point, tri_edges, triangle_top,
 };
 use super::capsule_capsule::closest_pt_segment_segment_lecture;
-use super::poly::{self, Filt, Ring, cross3, dot3, over_norm2, quaternion_axes, refs, scaled_f64, select, sub3};
+use super::poly::{self, Fast, Filt, Ring, cross3, dot3, over_norm2, quaternion_axes, refs, scaled_f64, select, sub3};
 use super::{
     OBB_EPSILON, all_finite, contact_capsule_capsule, contact_sphere_box, fallback_normal, finish, lecture_finite,
-    quaternion_of, scene_scale, up, up1, wide3,
+    quaternion_of, scene_scale, stage, up, up1, wide3,
 };
 use crate::contact::{Contact, closest_pt_point_triangle, contact_sphere_triangle};
 use crate::exact::{BigFloat, P3, Sign, collinear, orient2d, points_equal};
@@ -294,16 +294,32 @@ pub fn contact_capsule_box<T: Real>(a: &Capsule<T>, b: &OrientedBox<T>) -> Optio
     let z = [0.0; 3];
     let mut axes: Vec<Cand> = (0..3).map(|j| cand(e3(j), z, [1.0, 0.0, 0.0])).collect();
     axes.extend((0..3).map(|j| cand(e3(j), z, [0.0, 0.0, 1.0])));
-    match cb::least(l, q, &axes) {
+    // The floating-point stage settles what it is certain of (the same
+    // exact decisions, `stage::capsule_box_contact`); the exact code decides
+    // the rest.
+    let settled = stage::capsule_box_contact(&q, &cat(&[&l, &[r]]));
+    if settled.as_ref().is_some_and(|s| s.far()) {
+        return None;
+    }
+    let least = match &settled {
+        None => cb::least(l, q, &axes),
+        Some(s) if s.apart() => Least::Apart,
+        Some(s) => s.least(&axes).unwrap_or_else(|| cb::least_by(l, q, &axes, s)),
+    };
+    match least {
         Least::Touch { best, tie } => {
             let k = scene_scale(&[l.as_slice(), &[r]].concat());
             let deg = if best[6] != 0.0 { 0 } else { 1 };
             let normal = cb::normal(l, q, &best, deg).unwrap_or_else(fallback_normal);
             let (o, n2) = cb::depth(l, q, &best, deg);
             let s = scaled_f64(over_norm2(times2(over_sqrt(o, n2), -1), &q), i64::from(k));
+            let known = settled.map_or([None; 6], |s| s.along(&best));
             let along = |w: [f64; 4]| {
-                let u: [f64; 18] = cat(&[&q, &best, &w]);
-                poly::sign(l, u, cb::along::<Filt>, cb::along::<BigFloat>)
+                let x = (0..4).find(|&x| w[x] != 0.0).unwrap_or(0);
+                known[x].unwrap_or_else(|| {
+                    let u: [f64; 18] = cat(&[&q, &best, &w]);
+                    poly::sign_fast(l, u, cb::along::<Fast>, cb::along::<Filt>, cb::along::<BigFloat>)
+                })
             };
             let sb = [0, 1, 2].map(|j| side(along([e3(j)[0], e3(j)[1], e3(j)[2], 0.0])));
             let (p0s, p1s, cs, hs) = (up(p0, k), up(p1, k), up(c, k), up(h, k));
@@ -336,8 +352,12 @@ pub fn contact_capsule_box<T: Real>(a: &Capsule<T>, b: &OrientedBox<T>) -> Optio
             // the values come from the capsule–capsule query on the rounded
             // corners, or, where it rounds a touching pair apart, from the
             // closest points of the two segments.
+            // The floating-point stage settles the edges certainly out of
+            // reach first (`stage::capsule_box_edges_apart`: the same answer
+            // as `edge_reach`'s); the exact test decides the rest.
+            let apart = stage::capsule_box_edges_apart(&q, &cat(&[&l, &[r]]));
             for (e, (e0, e1)) in box_edges(&(cv - origin), &rot, &Vec3::from(h)).into_iter().enumerate() {
-                if !edge_reach(l, r, &q, e) {
+                if apart & (1 << e) != 0 || !edge_reach(l, r, &q, e) {
                     continue;
                 }
                 let k = contact_capsule_capsule(&cap, &Capsule::new(e0, e1, 0.0))
@@ -412,14 +432,16 @@ fn edge_reach(l: [f64; 12], r: f64, q: &[f64; 4], e: usize) -> bool {
     sv[k] = sk;
     let lr: [f64; 13] = cat(&[&l, &[r]]);
     let g: [f64; 10] = cat(&[q, &sv, &e3(i)]);
-    let crit = |w: [f64; 3]| poly::sign(lr, cat::<13>(&[&g, &w]), er::critical::<Filt>, er::critical::<BigFloat>);
+    let crit = |w: [f64; 3]| {
+        poly::sign_fast(lr, cat::<13>(&[&g, &w]), er::critical::<Fast>, er::critical::<Filt>, er::critical::<BigFloat>)
+    };
     let between = crit([0.0, 0.0, 1.0]) == Sign::Positive
         && crit([1.0, 0.0, 0.0]) != Sign::Negative
         && crit([-1.0, 0.0, 1.0]) != Sign::Negative
         && crit([0.0, 1.0, 0.0]) != Sign::Negative
         && crit([0.0, -1.0, 1.0]) != Sign::Negative;
     if between {
-        return poly::sign(lr, g, er::skew::<Filt>, er::skew::<BigFloat>) != Sign::Positive;
+        return poly::sign_fast(lr, g, er::skew::<Fast>, er::skew::<Filt>, er::skew::<BigFloat>) != Sign::Positive;
     }
     // An end X against the segment [Y0, Y1] (points 0, 1: the axis; 2, 3:
     // the edge).
@@ -427,11 +449,11 @@ fn edge_reach(l: [f64; 12], r: f64, q: &[f64; 4], e: usize) -> bool {
         let pick = |a: usize| e4(a);
         let near = |y: usize| {
             let u: [f64; 18] = cat(&[&g, &pick(x), &pick(y)]);
-            poly::sign(lr, u, er::apart::<Filt>, er::apart::<BigFloat>) != Sign::Positive
+            poly::sign_fast(lr, u, er::apart::<Fast>, er::apart::<Filt>, er::apart::<BigFloat>) != Sign::Positive
         };
         let foot = |w: [f64; 3]| {
             let u: [f64; 25] = cat(&[&g, &pick(x), &pick(y0), &pick(y1), &w]);
-            poly::sign(lr, u, er::foot::<Filt>, er::foot::<BigFloat>)
+            poly::sign_fast(lr, u, er::foot::<Fast>, er::foot::<Filt>, er::foot::<BigFloat>)
         };
         near(y0)
             || near(y1)
@@ -662,7 +684,7 @@ pub fn contact_capsule_triangle<T: Real>(a: &Capsule<T>, b: &Triangle<T>) -> Opt
             let s = scaled_f64(times2(over_sqrt(o, n2), -2), i64::from(k));
             let along = |w: [f64; 4]| {
                 let u: [f64; 14] = cat(&[&best, &w]);
-                poly::sign(l, u, ct::along::<Filt>, ct::along::<BigFloat>)
+                poly::sign_fast(l, u, ct::along::<Fast>, ct::along::<Filt>, ct::along::<BigFloat>)
             };
             let (p0s, p1s) = (up(p0, k), up(p1, k));
             let vs = v.map(|x| up(x, k));
@@ -718,9 +740,13 @@ pub fn contact_capsule_triangle<T: Real>(a: &Capsule<T>, b: &Triangle<T>) -> Opt
 /// triangle has no face (its edges answer).
 fn over_face(p: P3, v: [P3; 3], r: f64) -> bool {
     let l: [f64; 13] = cat(&[&p, &v[0], &v[1], &v[2], &[r]]);
-    let inside = (0..3).all(|k| poly::sign(l, e3(k), edge_side::<Filt>, edge_side::<BigFloat>) != Sign::Negative);
-    let flat = poly::sign(l, [], face_area::<Filt>, face_area::<BigFloat>) == Sign::Zero;
-    !flat && inside && poly::sign(l, [], face_reach::<Filt>, face_reach::<BigFloat>) != Sign::Positive
+    let inside = (0..3).all(|k| {
+        poly::sign_fast(l, e3(k), edge_side::<Fast>, edge_side::<Filt>, edge_side::<BigFloat>) != Sign::Negative
+    });
+    let flat = poly::sign_fast(l, [], face_area::<Fast>, face_area::<Filt>, face_area::<BigFloat>) == Sign::Zero;
+    !flat
+        && inside
+        && poly::sign_fast(l, [], face_reach::<Fast>, face_reach::<Filt>, face_reach::<BigFloat>) != Sign::Positive
 }
 
 /// A face contact computed from the plane (for an end that the exact test

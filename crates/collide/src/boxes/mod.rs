@@ -41,13 +41,23 @@
 //!   (`2^−48`), the scene is scaled by a power of two to unit size, and each
 //!   decision's quantity is evaluated with a running forward error bound. A
 //!   sign beyond its bound is the exact sign; anything closer declines to the
-//!   exact evaluation. Box–box and box–AABB overlap are answered whole when
-//!   some axis certainly separates or every axis certainly does not (a pair
-//!   of parallel edges, an exactly zero axis, makes it decline unless another
-//!   axis separates); sphere–box settles "no contact", the slab
-//!   classification, the reach test and the nearest face from inside, and
-//!   computes the values as before. The answers are therefore bit for bit
-//!   those of the exact decisions alone (tested against them).
+//!   exact evaluation, and only the declined decisions are evaluated
+//!   exactly. Box–box and box–AABB overlap are answered whole when some axis
+//!   certainly separates or every axis certainly does not, else only the
+//!   undecided axes go to the exact code; sphere–box settles "no contact",
+//!   each slab, the reach test, and each order of the faces from inside;
+//!   box–box and capsule–box contact settle the least push (every axis's
+//!   push in the box's frame with its bound: "apart", or the least certainly
+//!   below every other; the other pushes' signs and comparisons are hints to
+//!   the exact loop) and the features' sides, and capsule–box settles "out
+//!   of reach" along an axis and the edges certainly out of reach;
+//!   capsule–capsule (and the point–segment tests it shares with
+//!   sphere–capsule) settles the lines' critical signs, the reach tests and
+//!   the order of the ends' distances. The values are computed as before.
+//!   The answers are therefore bit for bit those of the exact decisions
+//!   alone (tested against them). Every filtered polynomial is evaluated
+//!   first without exactness tracking (`poly::Fast`), then with it, then
+//!   exactly.
 //! - *Values* (points, normals, depths, times) are computed in `f64` from the
 //!   inputs (every `f32` is an `f64`, exactly) and rounded to the type once: on
 //!   the scene scaled by a power of two when it lies outside the plain range,

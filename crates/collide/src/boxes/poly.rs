@@ -140,6 +140,56 @@ impl Ring for Filt {
     }
 }
 
+/// [`Filt`] without its exactness tracking (only an exactly zero operand
+/// still gives an exact zero product): the same values, cheaper, and at every
+/// node a bound at least [`Filt`]'s. By induction: the leaves are the same;
+/// each operation computes the same value, and [`Filt`]'s bound is either 0
+/// or the same formula, which grows with the operands' bounds. So when
+/// [`Fast`] settles a sign or a value, [`Filt`] settles the same one (the
+/// same value, with a bound no larger), and [`sign_fast`] and [`value_fast`]
+/// answer as [`sign`] and [`value`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Fast {
+    v: f64,
+    e: f64,
+}
+
+impl Ring for Fast {
+    #[inline(always)]
+    fn add(&self, o: &Self) -> Self {
+        let v = self.v + o.v;
+        Self { v, e: (self.e + o.e + 2.0 * U * v.abs()) * (1.0 + 4.0 * U) }
+    }
+    #[inline(always)]
+    fn sub(&self, o: &Self) -> Self {
+        self.add(&Self { v: -o.v, e: o.e })
+    }
+    #[inline(always)]
+    fn mul(&self, o: &Self) -> Self {
+        let v = self.v * o.v;
+        let exact_zero = (self.v == 0.0 && self.e == 0.0) || (o.v == 0.0 && o.e == 0.0);
+        let e = if exact_zero {
+            0.0
+        } else {
+            (self.v.abs() * o.e + o.v.abs() * self.e + self.e * o.e + 2.0 * U * v.abs() + UNDERFLOW) * (1.0 + 8.0 * U)
+        };
+        Self { v, e }
+    }
+    #[inline(always)]
+    fn abs(&self) -> Self {
+        Self { v: self.v.abs(), e: self.e }
+    }
+}
+
+impl Fast {
+    /// As [`Filt::scaled`].
+    #[inline(always)]
+    fn scaled(x: f64, k: i64) -> Self {
+        let f = Filt::scaled(x, k);
+        Self { v: f.v, e: f.e }
+    }
+}
+
 impl Ring for BigFloat {
     fn add(&self, o: &Self) -> Self {
         self + o
@@ -216,18 +266,77 @@ pub(crate) fn value<const K: usize, const J: usize>(
     exact(&len, &unit, g).estimate()
 }
 
-/// `sign_of!(p, lengths, units)`: [`sign`] of the generic polynomial `p`.
+/// [`sign`], after a first evaluation in [`Fast`] (`fast` the same
+/// polynomial) that answers when it settles the sign: the same answer.
+#[inline]
+pub(crate) fn sign_fast<const K: usize, const J: usize>(
+    len: [f64; K],
+    unit: [f64; J],
+    fast: Poly<Fast, K, J>,
+    f: Poly<Filt, K, J>,
+    g: Poly<BigFloat, K, J>,
+) -> Sign {
+    let k = exponent_of(&len);
+    let x = fast(&len.map(|x| Fast::scaled(x, k)), &unit.map(|u| Fast { v: u, e: 0.0 }));
+    if x.v.is_finite() && x.e.is_finite() && (x.v.abs() > x.e || x.e == 0.0) {
+        return Sign::of(x.v);
+    }
+    sign(len, unit, f, g)
+}
+
+/// [`value`], after a first evaluation in [`Fast`] (`fast` the same
+/// polynomial) that answers when it meets the accuracy: the same value (its
+/// stated relative error may be larger, never above [`VALUE_REL_ERR`]).
+#[inline]
+pub(crate) fn value_fast<const K: usize, const J: usize>(
+    len: [f64; K],
+    unit: [f64; J],
+    deg: i64,
+    fast: Poly<Fast, K, J>,
+    f: Poly<Filt, K, J>,
+    g: Poly<BigFloat, K, J>,
+) -> Estimate {
+    let k = exponent_of(&len);
+    let x = fast(&len.map(|x| Fast::scaled(x, k)), &unit.map(|u| Fast { v: u, e: 0.0 }));
+    if x.e == 0.0 && x.v.is_finite() {
+        return Estimate::from_scaled(x.v, -k * deg, 0.0);
+    }
+    if x.v.is_finite() && x.e.is_finite() && x.v.abs() > x.e {
+        let rel = x.e / (x.v.abs() - x.e) * (1.0 + 4.0 * U);
+        if rel <= VALUE_REL_ERR {
+            return Estimate::from_scaled(x.v, -k * deg, rel);
+        }
+    }
+    value(len, unit, deg, f, g)
+}
+
+/// `sign_of!(p, lengths, units)`: [`sign`] of the generic polynomial `p`
+/// (through [`sign_fast`]).
 macro_rules! sign_of {
     ($p:ident, $len:expr, $unit:expr) => {
-        $crate::boxes::poly::sign($len, $unit, $p::<$crate::boxes::poly::Filt>, $p::<$crate::exact::BigFloat>)
+        $crate::boxes::poly::sign_fast(
+            $len,
+            $unit,
+            $p::<$crate::boxes::poly::Fast>,
+            $p::<$crate::boxes::poly::Filt>,
+            $p::<$crate::exact::BigFloat>,
+        )
     };
 }
 pub(crate) use sign_of;
 
-/// `value_of!(p, degree, lengths, units)`: [`value`] of the generic polynomial `p`.
+/// `value_of!(p, degree, lengths, units)`: [`value`] of the generic polynomial
+/// `p` (through [`value_fast`]).
 macro_rules! value_of {
     ($p:ident, $deg:expr, $len:expr, $unit:expr) => {
-        $crate::boxes::poly::value($len, $unit, $deg, $p::<$crate::boxes::poly::Filt>, $p::<$crate::exact::BigFloat>)
+        $crate::boxes::poly::value_fast(
+            $len,
+            $unit,
+            $deg,
+            $p::<$crate::boxes::poly::Fast>,
+            $p::<$crate::boxes::poly::Filt>,
+            $p::<$crate::exact::BigFloat>,
+        )
     };
 }
 pub(crate) use value_of;
@@ -384,5 +493,35 @@ mod tests {
         // The same value at unit scale, exactly.
         let y = value_of!(p, 2, [3.0, 1.0, 1.0], [1.0]);
         assert!((y.to_f64() - 3.0).abs() <= 3.0 * VALUE_REL_ERR, "{y:?}");
+    }
+
+    #[test]
+    fn the_fast_evaluation_answers_as_the_filtered_one() {
+        // Random, grid (exact) and near-cancelling inputs at several scales:
+        // the sign and the value through `Fast` first are those of `Filt`
+        // then the exact path.
+        let mut x = 0x1234_5678_9abc_def0u64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for n in 0..3000 {
+            let s = [1.0, 1e300, 1e-300, 2f64.powi(-1060)][n % 4];
+            let (a, c, r, m) = match n % 3 {
+                0 => (next(), next(), next(), next() * 4.0),
+                1 => ((next() * 8.0).round(), (next() * 8.0).round(), (next() * 8.0).round(), (next() * 4.0).round()),
+                _ => {
+                    let a = next();
+                    (a, a * 3.0, 0.0, 3.0)
+                }
+            };
+            let (len, unit) = ([a * s, c * s, r * s], [m]);
+            let fast = sign_of!(p, len, unit);
+            assert_eq!(fast, sign(len, unit, p::<Filt>, p::<BigFloat>), "{len:?} {unit:?}");
+            let (v, w) = (value_of!(p, 2, len, unit), value(len, unit, 2, p::<Filt>, p::<BigFloat>));
+            assert!(v.sign == w.sign && v.mant.to_bits() == w.mant.to_bits() && v.exp == w.exp, "{v:?} {w:?}");
+        }
     }
 }

@@ -113,13 +113,13 @@ fn sphere_box<T: Real>(a: &Sphere<T>, b: &OrientedBox<T>, staged: bool) -> Optio
     if settled.apart {
         return None;
     }
-    let side = settled.side.unwrap_or_else(|| classify(m, c, h, &qt));
+    let side = settled.side.unwrap_or_else(|| classify_with(m, c, h, &qt, settled.sides));
     let k = scene_scale(&lengths);
     let rot = b.rotation_matrix().map(|x| x.wide());
     let (ms, cs, hs, rs) = (up(m, k), up(c, k), up(h, k), up1(r, k));
     let us = rot.transpose() * (ms - cs);
     if side == [0; 3] {
-        let (i, s, tie) = settled.nearest.unwrap_or_else(|| nearest_face(m, c, h, &qt));
+        let (i, s, tie) = settled.nearest.unwrap_or_else(|| nearest_face_with(m, c, h, &qt, &settled));
         let gap = scaled_f64(over_norm2(face_gap(m, c, h, &qt, i), &qt), i64::from(k));
         let mut q = clamp(&us, &hs);
         q[i] = f64::from(s) * hs[i];
@@ -216,7 +216,16 @@ pub(crate) fn coord<N: Ring>(l: &[N; 6], u: &[N; 7]) -> N {
 /// Where `m` lies against each slab of the box of quaternion `q`, exactly:
 /// `+1` beyond the face `+i`, `−1` beyond `−i`, `0` within (faces included).
 pub(crate) fn classify(m: P3, c: P3, h: P3, q: &[f64; 4]) -> [i8; 3] {
+    classify_with(m, c, h, q, [None; 3])
+}
+
+/// [`classify`], with the axes already settled (by the floating-point stage,
+/// exactly) taken as given.
+fn classify_with(m: P3, c: P3, h: P3, q: &[f64; 4], known: [Option<i8>; 3]) -> [i8; 3] {
     [0, 1, 2].map(|i| {
+        if let Some(s) = known[i] {
+            return s;
+        }
         let l = [m[0], m[1], m[2], c[0], c[1], c[2], h[i]];
         let u = quaternion_units(q, i);
         let beyond = |s: f64| sign_of!(face_excess, l, [u[0], u[1], u[2], u[3], u[4], u[5], u[6], s]) == Sign::Positive;
@@ -235,7 +244,25 @@ pub(crate) fn classify(m: P3, c: P3, h: P3, q: &[f64; 4]) -> [i8; 3] {
 /// format's first face in the order `+x, −x, +y, −y, +z, −z` is the one
 /// returned).
 pub(crate) fn nearest_face(m: P3, c: P3, h: P3, q: &[f64; 4]) -> (usize, i8, bool) {
+    nearest_face_with(m, c, h, q, &stage::SphereBox::default())
+}
+
+/// The exact sign as the stage states it (`Equal` is never certified).
+fn sign_of_order(o: std::cmp::Ordering) -> Sign {
+    match o {
+        std::cmp::Ordering::Greater => Sign::Positive,
+        std::cmp::Ordering::Less => Sign::Negative,
+        std::cmp::Ordering::Equal => Sign::Zero,
+    }
+}
+
+/// [`nearest_face`], with the orders of the gaps and the signs of the
+/// coordinates the floating-point stage settled (exactly) taken as given.
+fn nearest_face_with(m: P3, c: P3, h: P3, q: &[f64; 4], settled: &stage::SphereBox) -> (usize, i8, bool) {
     let order = |i: usize, j: usize| {
+        if let Some(o) = settled.orders[i][j] {
+            return sign_of_order(o);
+        }
         let mut u = [q[0], q[1], q[2], q[3], 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
         u[4 + i] = 1.0;
         u[7 + j] = 1.0;
@@ -248,7 +275,11 @@ pub(crate) fn nearest_face(m: P3, c: P3, h: P3, q: &[f64; 4]) -> (usize, i8, boo
         }
     }
     let mut tie = (0..3).any(|j| j != best && order(j, best) == Sign::Zero);
-    let side = match sign_of!(coord, [m[0], m[1], m[2], c[0], c[1], c[2]], quaternion_units(q, best)) {
+    let coord_sign = settled.coords[best].map_or_else(
+        || sign_of!(coord, [m[0], m[1], m[2], c[0], c[1], c[2]], quaternion_units(q, best)),
+        sign_of_order,
+    );
+    let side = match coord_sign {
         Sign::Negative => -1,
         Sign::Positive => 1,
         Sign::Zero => {

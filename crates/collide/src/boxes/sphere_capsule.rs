@@ -1,7 +1,7 @@
 //! Sphere–capsule contact, and the exact point–segment tests capsules share.
 
 use super::poly::{Ring, at, cross3, dot3, refs, scaled_f64, sign_of, sub3, value_of};
-use super::{all_finite, fallback_normal, finish, scene_scale, unit, up, up1, wide3};
+use super::{all_finite, fallback_normal, finish, scene_scale, stage, unit, up, up1, wide3};
 use crate::contact::Contact;
 use crate::exact::{Estimate, P3, Sign, collinear, points_equal};
 use crate::real::{Real, Vec3};
@@ -143,9 +143,10 @@ fn moment<N: Ring>(l: &[N; 9], u: &[N; 3]) -> N {
 /// Where the foot of `m` on `[a, b]` lies, exactly.
 pub(crate) fn foot_of(m: P3, a: P3, b: P3) -> Foot {
     let cat = |x: P3, y: P3, z: P3| [x[0], x[1], x[2], y[0], y[1], y[2], z[0], z[1], z[2]];
-    if sign_of!(along, cat(m, a, b), []) != Sign::Positive {
+    let along_sign = |l: [f64; 9]| stage::or_exact(stage::along(&l), || sign_of!(along, l, []));
+    if along_sign(cat(m, a, b)) != Sign::Positive {
         Foot::Start
-    } else if sign_of!(along, cat(m, b, a), []) != Sign::Positive {
+    } else if along_sign(cat(m, b, a)) != Sign::Positive {
         Foot::End
     } else {
         Foot::Between
@@ -157,14 +158,16 @@ pub(crate) fn foot_of(m: P3, a: P3, b: P3) -> Foot {
 pub(crate) fn reach_test(m: P3, a: P3, b: P3, ra: f64, rb: f64, foot: Foot) -> (bool, bool) {
     let end = |e: P3| {
         let l = [m[0], m[1], m[2], e[0], e[1], e[2], ra, rb];
-        (sign_of!(point_reach, l, []) != Sign::Positive, points_equal(m, e))
+        let reach = stage::or_exact(stage::point_reach(&l), || sign_of!(point_reach, l, []));
+        (reach != Sign::Positive, points_equal(m, e))
     };
     match foot {
         Foot::Start => end(a),
         Foot::End => end(b),
         Foot::Between => {
             let l = [m[0], m[1], m[2], a[0], a[1], a[2], b[0], b[1], b[2], ra, rb];
-            (sign_of!(line_reach, l, []) != Sign::Positive, collinear(a, b, m))
+            let reach = stage::or_exact(stage::line_reach(&l), || sign_of!(line_reach, l, []));
+            (reach != Sign::Positive, collinear(a, b, m))
         }
     }
 }
