@@ -931,11 +931,10 @@ pub(super) fn box_box_contact(qa: &[f64; 4], qb: &[f64; 4], lengths: &[f64; 12])
                 3..6 => (x - 3, false),
                 _ => {
                     let (i, j) = ((x - 6) / 3, (x - 6) % 3);
-                    // i == j is no axis (its class is never compared).
-                    (3 - i - j, j != (i + 1) % 3)
+                    // i == j is no axis: a class of its own, never compared.
+                    if i == j { (3 + x, true) } else { (3 - i - j, j != (i + 1) % 3) }
                 }
             };
-            let k = if x >= 6 && (x - 6) / 3 == (x - 6) % 3 { 3 + x } else { k };
             [0, 1].map(|u| (2 * k + (u ^ usize::from(flip))) as u8)
         })
     });
