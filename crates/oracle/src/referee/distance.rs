@@ -46,7 +46,7 @@ use super::boxes::{BOX_A, BOX_B, exact_box};
 use super::convex::{Convex, Push, least_push, middle, touching_region};
 use super::error::RefereeError;
 use super::exact::{Q, Root, V3, add, check_v3, dot, is_zero, q, radius, round_unit, scale, sub, v3};
-use super::hull::convex_hull;
+use super::hull::{convex_hull, distinct_points};
 use crate::geom::{DistanceAnswer, P3, Solid};
 
 /// The field names of one side's shapes, for errors.
@@ -122,17 +122,8 @@ fn held<'a>(s: Solid<'a>, f: &Fields, is_a: bool) -> Result<Held<'a>, RefereeErr
             Held::Grown { core: Convex::of_triangle(&v), r: Q::ZERO, hull: None }
         }
         Solid::Convex(c) => {
-            if c.points.is_empty() {
-                return Err(RefereeError::NoPoints { field: f.points });
-            }
-            let mut vertices: Vec<V3> = Vec::with_capacity(c.points.len());
-            let mut seen = std::collections::HashSet::with_capacity(c.points.len());
-            for p in &c.points {
-                check_v3(p, f.points)?;
-                if seen.insert(p.map(|x| if x == 0.0 { 0u64 } else { x.to_bits() })) {
-                    vertices.push(v3(p, f.points)?);
-                }
-            }
+            let vertices =
+                distinct_points(&c.points, f.points)?.iter().map(|p| v3(p, f.points)).collect::<Result<_, _>>()?;
             let core = Convex { vertices, edges: vec![], directions: vec![], normals: vec![] };
             Held::Grown { core, r: Q::ZERO, hull: Some(&c.points) }
         }

@@ -71,26 +71,27 @@ fn collinear(a: &P3, b: &P3, c: &P3) -> bool {
     is_zero(&cross(&sub(&q(b), &q(a)), &sub(&q(c), &q(a))))
 }
 
-/// The exact hull of `points` (at least one, each finite), as the polytope
-/// the separating axes and the contact regions work on.
-pub(crate) fn convex_hull(points: &[P3], field: &'static str) -> Result<Convex, RefereeError> {
+/// A `convex` shape's points, checked (at least one, each finite) and each
+/// kept once, in their order (−0 and +0 are the same coordinate).
+pub(crate) fn distinct_points(points: &[P3], field: &'static str) -> Result<Vec<P3>, RefereeError> {
     if points.is_empty() {
         return Err(RefereeError::NoPoints { field });
     }
+    let mut distinct: Vec<P3> = Vec::with_capacity(points.len());
+    let mut seen = std::collections::HashSet::with_capacity(points.len());
     for p in points {
         super::exact::check_v3(p, field)?;
-    }
-    let mut distinct: Vec<P3> = Vec::with_capacity(points.len());
-    {
-        let mut seen = std::collections::HashSet::with_capacity(points.len());
-        for p in points {
-            // −0 and +0 are the same point.
-            let key = p.map(|x| if x == 0.0 { 0u64 } else { x.to_bits() });
-            if seen.insert(key) {
-                distinct.push(*p);
-            }
+        if seen.insert(p.map(|x| if x == 0.0 { 0u64 } else { x.to_bits() })) {
+            distinct.push(*p);
         }
     }
+    Ok(distinct)
+}
+
+/// The exact hull of `points` (at least one, each finite), as the polytope
+/// the separating axes and the contact regions work on.
+pub(crate) fn convex_hull(points: &[P3], field: &'static str) -> Result<Convex, RefereeError> {
+    let distinct = distinct_points(points, field)?;
     let p0 = distinct[0];
     let Some(i1) = (1..distinct.len()).next() else {
         return Ok(Convex { vertices: vec![v3(&p0, field)?], edges: vec![], directions: vec![], normals: vec![] });
