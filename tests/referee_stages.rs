@@ -742,3 +742,106 @@ fn refusals_name_the_same_field_with_the_stages() {
     // The corruptions reach the checks: most variants are refusals.
     assert!(refused > calls.len() * 100, "only {refused} refusals");
 }
+
+/// Meeting polytopes at the separating-axes filter's edges: boxes given as
+/// hulls of their corners under rotations a few ulps apart (edges nearly
+/// parallel: cross products that cancel to almost nothing, and exact zeros),
+/// the same box slightly moved (many pushes exactly equal: the ties the
+/// filter must keep), boxes against those hulls and against capsules along
+/// their edges, and small hulls meeting, at scales from 2⁻⁵⁰⁰ to 2⁵⁰⁰. Every
+/// answer and witness set is the same with the filter as without, and the
+/// filter set some pushes aside (it ran).
+#[test]
+fn distance_near_parallel_edges_and_tied_pushes_are_the_same() {
+    use harness::case::BoxSpec;
+    use oracle::geom::{Capsule, Convex, P3};
+    // Corners of the box `center ± h` under the unit quaternion `q`.
+    let corners = |center: P3, h: f64, q: [f64; 4]| -> Vec<P3> {
+        let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let [w, x, y, z] = q.map(|c| c / n);
+        let r = [
+            [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
+            [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
+            [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
+        ];
+        (0..8)
+            .map(|s| {
+                let u = [0, 1, 2].map(|i| if s >> i & 1 == 1 { h } else { -h });
+                [0, 1, 2].map(|i| center[i] + r[i][0] * u[0] + r[i][1] * u[1] + r[i][2] * u[2])
+            })
+            .collect()
+    };
+    let distance = |a: Shape, b: Shape, source: String| {
+        loaded(Case {
+            name: source.clone(),
+            source,
+            query: Query::Distance,
+            a,
+            b: Some(b),
+            expect: None,
+            tol: None,
+            t_max: None,
+            restitution: None,
+        })
+    };
+    let mut cases = Vec::new();
+    let mut rng = harness::rng::SplitMix64(SEED);
+    for (k, scale) in [-500, -30, 0, 30, 500].into_iter().enumerate() {
+        let s = 2f64.powi(scale);
+        for ulps in [0u64, 1, 3, 1 << 20] {
+            let q: [f64; 4] = [2.0, 1.0, 0.5, 0.25];
+            let nudged = [q[0], f64::from_bits(q[1].to_bits() + ulps), q[2], q[3]];
+            let a = corners([0.3 * s, 0.2 * s, 0.1 * s], s, q);
+            let b = corners([0.0; 3], s, nudged);
+            let what = format!("scale 2^{scale}, rotations {ulps} ulps apart");
+            cases.push(distance(
+                Shape::Convex(Convex { points: a.clone() }),
+                Shape::Convex(Convex { points: b.clone() }),
+                what.clone(),
+            ));
+            let boxed = BoxSpec { center: [0.0; 3], half_extents: [s; 3], rotation: Some(nudged), velocity: None };
+            cases.push(distance(
+                Shape::Convex(Convex { points: a.clone() }),
+                Shape::Box(boxed),
+                format!("{what}, box"),
+            ));
+            let capsule = Capsule { start: a[0], end: a[1], radius: 0.25 * s };
+            cases.push(distance(
+                Shape::Capsule(capsule),
+                Shape::Convex(Convex { points: b }),
+                format!("{what}, capsule along an edge"),
+            ));
+        }
+        // The same box moved by a little: every face pair parallel.
+        let q = [2.0, 0.0, 0.0, 1.0];
+        for shift in [0.0, 0.5, 1.0, 2.0] {
+            let a = corners([shift * s, 0.5 * s, 0.0], s, q);
+            let b = corners([0.0; 3], s, q);
+            cases.push(distance(
+                Shape::Convex(Convex { points: a }),
+                Shape::Convex(Convex { points: b }),
+                format!("scale 2^{scale}: one box moved by {shift}"),
+            ));
+        }
+        // Small random hulls meeting.
+        for i in 0..20 {
+            let hull = |rng: &mut harness::rng::SplitMix64, c: f64| -> Vec<P3> {
+                (0..4 + i % 9).map(|_| [0, 1, 2].map(|_| (c + rng.range(-1.0, 1.0)) * s)).collect()
+            };
+            let (a, b) = (hull(&mut rng, 0.25), hull(&mut rng, 0.0));
+            cases.push(distance(
+                Shape::Convex(Convex { points: a }),
+                Shape::Convex(Convex { points: b }),
+                format!("scale 2^{scale}: random hulls {k}.{i}"),
+            ));
+        }
+    }
+    assert_same("distance at the separating-axes filter's edges", &cases);
+    let r = engines::referee();
+    let before = stage_counts_on_this_thread();
+    for lc in &cases {
+        run_caught(&r, lc).expect("the referee answers");
+    }
+    let (exact, set_aside) = delta(&before, &stage_counts_on_this_thread(), Stage::SeparatingAxes);
+    assert!(set_aside > 0 && exact > 0, "the filter ran: {set_aside} pushes set aside, {exact} compared exactly");
+}

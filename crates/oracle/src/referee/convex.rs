@@ -50,6 +50,7 @@ use super::error::RefereeError;
 use super::exact::{
     Q, Root, V3, add, check_v3, cross, dot, is_zero, lerp, radius, round_unit, round_v, scale, sub, v3,
 };
+use super::push_filter::AxisOf;
 use super::stage::{Memo, apart, remembered};
 use crate::geom::{Capsule, Contact, ContactAnswer, OrientedBox, P3, Triangle};
 
@@ -115,8 +116,16 @@ impl Convex {
 /// `b`'s normals, then `a`'s directions crossed with `b`'s, row by row; zero
 /// vectors left out.
 fn axes(a: &Convex, b: &Convex) -> Vec<V3> {
-    let crosses = a.directions.iter().flat_map(|da| b.directions.iter().map(move |db| cross(da, db)));
-    a.normals.iter().chain(b.normals.iter()).cloned().chain(crosses).filter(|l| !is_zero(l)).collect()
+    super::push_filter::axis_order(a, b).map(|id| axis(a, b, id)).filter(|l| !is_zero(l)).collect()
+}
+
+/// One candidate axis, exactly.
+fn axis(a: &Convex, b: &Convex, id: AxisOf) -> V3 {
+    match id {
+        AxisOf::NormalA(i) => a.normals[i].clone(),
+        AxisOf::NormalB(j) => b.normals[j].clone(),
+        AxisOf::Cross(i, j) => cross(&a.directions[i], &b.directions[j]),
+    }
 }
 
 /// One way to push `a` clear of `b`: along `sign·l`, by `amount/√norm2`.
@@ -175,18 +184,49 @@ pub(super) struct Least {
     pub(super) tie: bool,
 }
 
+///
+/// A floating-point filter (`super::push_filter`) first sets aside the pushes
+/// that are certainly longer than another; the exact search runs over the
+/// rest in the same order, which gives the same answer.
 pub(super) fn least_push(a: &Convex, b: &Convex) -> Option<Least> {
-    least_on(a, b, axes(a, b).into_iter())
+    let filtered = if super::stage::staged() { super::push_filter::may_be_least(a, b) } else { None };
+    match filtered {
+        Some(kept) => {
+            let signs = kept.len() as u64 * 2;
+            let exact = kept.iter().map(|(_, s)| u64::from(s[0]) + u64::from(s[1])).sum::<u64>();
+            super::stage::count(super::stage::Stage::SeparatingAxes, true, signs - exact);
+            super::stage::count(super::stage::Stage::SeparatingAxes, false, exact);
+            let axes = kept.into_iter().filter(|(_, signs)| signs[0] || signs[1]).filter_map(|(id, signs)| {
+                let l = axis(a, b, id);
+                (!is_zero(&l)).then_some((l, signs))
+            });
+            least_signed(a, b, axes)
+        }
+        None => {
+            let all = axes(a, b);
+            super::stage::count(super::stage::Stage::SeparatingAxes, false, 2 * all.len() as u64);
+            least_on(a, b, all.into_iter())
+        }
+    }
 }
 
 /// [`least_push`] over the given axes (none of them zero).
 fn least_on(a: &Convex, b: &Convex, axes: impl Iterator<Item = V3>) -> Option<Least> {
+    least_signed(a, b, axes.map(|l| (l, [true, true])))
+}
+
+/// [`least_on`], each axis with the senses (`[+L, −L]`) to try.
+fn least_signed(a: &Convex, b: &Convex, axes: impl Iterator<Item = (V3, [bool; 2])>) -> Option<Least> {
     let mut best: Option<Least> = None;
-    for l in axes {
+    for (l, signs) in axes {
         let (lo_a, hi_a) = a.project(&l);
         let (lo_b, hi_b) = b.project(&l);
         let norm2 = dot(&l, &l);
-        for (plus, amount) in [(true, &hi_b - &lo_a), (false, &hi_a - &lo_b)] {
+        let both = [(true, signs[0]), (false, signs[1])];
+        for (plus, amount) in both.into_iter().filter(|(_, keep)| *keep).map(|(plus, _)| {
+            let amount = if plus { &hi_b - &lo_a } else { &hi_a - &lo_b };
+            (plus, amount)
+        }) {
             let push = Push { l: l.clone(), norm2: norm2.clone(), plus, amount };
             best = Some(match best {
                 None => Least { push, tie: false },

@@ -47,6 +47,7 @@ use super::convex::{Convex, Push, least_push, middle, touching_region};
 use super::error::RefereeError;
 use super::exact::{Q, Root, V3, add, check_v3, dot, is_zero, q, radius, round_unit, scale, sub, v3};
 use super::hull::{convex_hull, distinct_points};
+use super::stage::{Memo, remembered};
 use crate::geom::{DistanceAnswer, P3, Solid};
 
 /// The field names of one side's shapes, for errors.
@@ -457,7 +458,7 @@ fn solid_bits(s: Solid<'_>, out: &mut Vec<u64>) {
 thread_local! {
     /// The last pair solved on this thread: a case's answer and its witness
     /// sets (asked for by the judge's sizes) are one computation.
-    static LAST: std::cell::RefCell<Option<(Vec<u64>, std::rc::Rc<Solved>)>> = const { std::cell::RefCell::new(None) };
+    static LAST: Memo<Vec<u64>, Result<std::rc::Rc<Solved>, RefereeError>> = const { std::cell::RefCell::new(None) };
 }
 
 fn remembered_solve(a: Solid<'_>, b: Solid<'_>) -> Result<std::rc::Rc<Solved>, RefereeError> {
@@ -465,12 +466,7 @@ fn remembered_solve(a: Solid<'_>, b: Solid<'_>) -> Result<std::rc::Rc<Solved>, R
     solid_bits(a, &mut key);
     key.push(u64::MAX);
     solid_bits(b, &mut key);
-    if let Some(hit) = LAST.with(|l| l.borrow().as_ref().filter(|(k, _)| *k == key).map(|(_, s)| s.clone())) {
-        return Ok(hit);
-    }
-    let solved = std::rc::Rc::new(solve(a, b)?);
-    LAST.with(|l| *l.borrow_mut() = Some((key, solved.clone())));
-    Ok(solved)
+    remembered(&LAST, key, || solve(a, b).map(std::rc::Rc::new))
 }
 
 /// `a`'s and `b`'s witness sets, each as its hull's vertices.

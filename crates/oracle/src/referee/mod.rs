@@ -109,6 +109,7 @@ pub mod hull;
 pub mod intersect;
 mod intersect_fast;
 pub mod overlap;
+mod push_filter;
 pub mod response;
 mod response_fast;
 mod root_fast;

@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 thread_local! {
     static EXACT_ONLY: Cell<bool> = const { Cell::new(false) };
     /// This thread's counts: fast then exact, per stage.
-    static HERE: Cell<[u64; 20]> = const { Cell::new([0; 20]) };
+    static HERE: Cell<[u64; 2 * STAGES]> = const { Cell::new([0; 2 * STAGES]) };
 }
 
 /// Runs `f` with the referee's floating-point stages off on this thread: every
@@ -92,11 +92,19 @@ pub enum Stage {
     /// chosen in `f64`, from bounded projections, or the answer computed in
     /// rationals.
     ShapesApart,
+    /// The least push over separating axes (the penetration of two meeting
+    /// polytopes: `distance`, and box and capsule contact): pushes set aside
+    /// as certainly longer than another from bounded `f64` projections, or
+    /// computed and compared in rationals.
+    SeparatingAxes,
 }
+
+/// How many stages there are.
+const STAGES: usize = 11;
 
 impl Stage {
     /// Every stage, in report order.
-    pub const ALL: [Stage; 10] = [
+    pub const ALL: [Stage; STAGES] = [
         Stage::MinBall,
         Stage::MeshFaces,
         Stage::Barycentric,
@@ -107,6 +115,7 @@ impl Stage {
         Stage::Ccd,
         Stage::BoxOverlap,
         Stage::ShapesApart,
+        Stage::SeparatingAxes,
     ];
 
     /// What is counted, for the report.
@@ -138,6 +147,9 @@ impl Stage {
             Stage::ShapesApart => {
                 "contact of a box or capsule, segment–box: apart certified from bounded f64 projections / computed in rationals"
             }
+            Stage::SeparatingAxes => {
+                "least push over separating axes (distance, box and capsule contact): pushes set aside from bounded f64 projections / compared in rationals"
+            }
         }
     }
 }
@@ -147,8 +159,8 @@ impl Stage {
 /// the report beside [`Stage`]'s counts.
 pub const EXACT_STAGE_ONLY: &str = "overlap of two aabbs (its exact stage is already a handful of f64 comparisons); a box's bounds (a handful of products, rounded once); box and capsule contact and segment–box where the shapes meet (the floating-point stage certifies only that they are apart)";
 
-static FAST: [AtomicU64; 10] = [const { AtomicU64::new(0) }; 10];
-static EXACT: [AtomicU64; 10] = [const { AtomicU64::new(0) }; 10];
+static FAST: [AtomicU64; STAGES] = [const { AtomicU64::new(0) }; STAGES];
+static EXACT: [AtomicU64; STAGES] = [const { AtomicU64::new(0) }; STAGES];
 
 /// Counts `n` answers of `stage`, by the floating-point stage or the exact one.
 pub(crate) fn count(stage: Stage, fast: bool, n: u64) {
@@ -164,7 +176,7 @@ pub(crate) fn count(stage: Stage, fast: bool, n: u64) {
 /// A one-entry memory of an exact computation on this thread: the last key
 /// (with whether the stages were on), its value and the stage counts
 /// computing it made.
-pub(crate) type Memo<K, V> = std::cell::RefCell<Option<((K, bool), V, [u64; 20])>>;
+pub(crate) type Memo<K, V> = std::cell::RefCell<Option<((K, bool), V, [u64; 2 * STAGES])>>;
 
 /// `f()`, remembered for `key` on this thread (in `slot`, one entry): asked
 /// again for the same key — as a case's answer, its margin and its contact
@@ -189,7 +201,7 @@ pub(crate) fn remembered<K: PartialEq, V: Clone>(
     let before = HERE.with(Cell::get);
     let value = f();
     let after = HERE.with(Cell::get);
-    let made: [u64; 20] = std::array::from_fn(|i| after[i] - before[i]);
+    let made: [u64; 2 * STAGES] = std::array::from_fn(|i| after[i] - before[i]);
     slot.with(|m| *m.borrow_mut() = Some((key, value.clone(), made)));
     value
 }
