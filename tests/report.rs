@@ -26,6 +26,7 @@ fn small(seed: u64) -> Config {
 fn comparable(mut s: Summary) -> Summary {
     s.provenance = Default::default();
     s.throughput.clear();
+    s.growth.clear();
     for st in &mut s.stats {
         st.timing = None;
     }
@@ -142,4 +143,39 @@ fn the_peer_section_shows_every_engine_on_every_peer_case_and_collide_meets_them
     }
     let section = harness::report::peers::section(&result.cases).expect("peer cases exist");
     assert_eq!(section.html.matches("<tr>").count(), rows.len() + 1, "one table row per case, plus the header");
+}
+
+/// A timed run with distance cases measures every built-in engine's distance
+/// cost at each vertex count of the ladder, and the referee's, and draws it.
+#[test]
+fn a_timed_distance_run_measures_and_charts_the_cost_growth() {
+    use harness::case::Query;
+    use harness::report::growth::GROWTH_POINTS;
+    let config = Config {
+        only: Some(Query::Distance),
+        cases_per_query: 10,
+        full_range_per_query: 0,
+        timing: true,
+        progress: false,
+        sections: false,
+        engines: EngineSet::of(judged()),
+        ..Config::default()
+    };
+    let out = run(&config, Default::default());
+    let growth = &out.summary.growth;
+    // Every built-in engine answers distance; the referee is last.
+    let mut want: Vec<String> = judged().iter().map(|e| e.name.clone()).collect();
+    want.push("referee".into());
+    let names: Vec<&str> = growth.iter().map(|g| g.engine.as_str()).collect();
+    assert_eq!(names, want.iter().map(String::as_str).collect::<Vec<_>>());
+    for g in growth {
+        let counts: Vec<u64> = g.points.iter().map(|p| p.0).collect();
+        assert_eq!(counts, GROWTH_POINTS.iter().map(|&n| n as u64).collect::<Vec<_>>(), "{}", g.engine);
+        assert!(g.points.iter().all(|p| p.1 > 0.0 && p.1.is_finite()), "{}: {:?}", g.engine, g.points);
+    }
+    let charts = harness::render::charts::all(&out.summary);
+    let chart = charts.iter().find(|c| c.file == "distance-cost-growth.svg").expect("the growth chart");
+    assert!(want.iter().all(|name| chart.svg.contains(name.as_str())), "every engine in the legend");
+    let md = harness::render::markdown::summary_md(&out.summary);
+    assert!(md.contains("## distance: cost by vertex count"), "{md}");
 }

@@ -352,6 +352,11 @@ pub struct Summary {
     /// Campaign throughput, cases per second, per engine (referee included) and
     /// for the whole run with and without the referee's share.
     pub throughput: Vec<(String, f64)>,
+    /// `distance`'s cost per query against the hulls' vertex counts, per
+    /// engine and the referee (`report::growth`); empty when the run was not
+    /// timed or had no distance cases.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub growth: Vec<crate::report::growth::Growth>,
 }
 
 #[cfg(test)]

@@ -12,6 +12,7 @@
 //! marked floor, and the markup carries no element ids, so any number of charts
 //! can be inlined in one HTML page without clashing.
 
+use super::plot::{Axis, Line, line_chart};
 use super::xml::escape;
 use crate::case::Query;
 use crate::summary::{BINS_PER_DECADE, Dist, EngineQueryStats, Summary};
@@ -73,7 +74,46 @@ pub fn all(summary: &Summary) -> Vec<Chart> {
             });
         }
     }
+    if let Some(svg) = cost_growth(summary) {
+        out.push(Chart {
+            query: Query::Distance,
+            title: "distance: cost against the hull's vertex count".into(),
+            file: "distance-cost-growth.svg".into(),
+            svg,
+        });
+    }
     out
+}
+
+/// `distance`'s cost per query against the hull's vertex count, log–log, one
+/// line per engine and the referee (`report::growth`): a slope of 1 is linear
+/// growth. `None` when the run measured none.
+pub fn cost_growth(summary: &Summary) -> Option<String> {
+    if summary.growth.is_empty() {
+        return None;
+    }
+    let series: Vec<Line> = summary
+        .growth
+        .iter()
+        .enumerate()
+        .map(|(i, g)| Line {
+            name: g.engine.clone(),
+            style: i,
+            points: g.points.iter().map(|&(n, ns)| (n as f64, ns)).collect(),
+            failures: Vec::new(),
+        })
+        .collect();
+    let xa = Axis::log_covering(series.iter().flat_map(|l| l.points.iter().map(|p| p.0)));
+    let ya = Axis::log_covering(series.iter().flat_map(|l| l.points.iter().map(|p| p.1)));
+    Some(line_chart(
+        "distance: cost against vertex count (hulls apart)",
+        "vertices of the hull",
+        "ns per query (median)",
+        xa,
+        ya,
+        &series,
+        0.0,
+    ))
 }
 
 /// Indices of the points on the Pareto front of `(x, y)` pairs where smaller is
@@ -872,6 +912,7 @@ pub(crate) mod fixture {
             full_range: Vec::new(),
             discrepancies: 3,
             throughput: vec![("fast<f32>".into(), 1.5e6), ("all".into(), 2.0e4)],
+            growth: Vec::new(),
         }
     }
 

@@ -9,8 +9,8 @@
 
 use super::charts::Chart;
 use super::markdown::{
-    Table, detail_table, engines_table, provenance_lines, queries, query_table, query_title, reading_notes,
-    throughput_table,
+    GROWTH_NOTE, Table, detail_table, engines_table, growth_table, provenance_lines, queries, query_table, query_title,
+    reading_notes, throughput_table,
 };
 use crate::summary::Summary;
 use std::fmt::Write;
@@ -191,6 +191,11 @@ pub fn index_html_with(summary: &Summary, charts: &[Chart], opening: &super::ope
         out.push_str("<p>Not measured.</p>\n");
     } else {
         out.push_str(&table_html(&throughput_table(summary)));
+    }
+    if !summary.growth.is_empty() {
+        out.push_str("<h2 id=\"growth\">distance: cost by vertex count</h2>\n");
+        let _ = writeln!(out, "<p>{}</p>", escape(GROWTH_NOTE));
+        out.push_str(&table_html(&growth_table(summary)));
     }
 
     out.push_str("<h2 id=\"reading\">Reading the tables</h2>\n<ul class=\"notes\">\n");

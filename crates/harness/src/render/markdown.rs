@@ -300,6 +300,31 @@ pub fn throughput_table(summary: &Summary) -> Table {
     t
 }
 
+/// `distance`'s cost by the hull's vertex count (`report::growth`): µs per
+/// query, per engine and the referee.
+pub fn growth_table(summary: &Summary) -> Table {
+    let counts: Vec<u64> = crate::report::growth::GROWTH_POINTS.iter().map(|&n| n as u64).collect();
+    let labels: Vec<String> = counts.iter().map(|n| format!("{n} pts")).collect();
+    let mut columns: Vec<(&str, bool)> = vec![("engine", false)];
+    columns.extend(labels.iter().map(|l| (l.as_str(), true)));
+    let mut t = Table::new(&columns);
+    for g in &summary.growth {
+        let mut row = vec![g.engine.clone()];
+        for n in &counts {
+            let cell = g.points.iter().find(|(m, _)| m == n).map_or_else(|| "—".into(), |(_, ns)| sig3(ns / 1e3));
+            row.push(cell);
+        }
+        t.rows.push(row);
+    }
+    t
+}
+
+/// What the growth table and chart measure.
+pub const GROWTH_NOTE: &str = "Median µs per distance query for a hull of n points on the unit sphere above a unit \
+     cube given as the hull of its corners (the cores apart: GJK's growth), three orders of the points per count. \
+     In-process engines are timed whole, building their shapes from the points included; process engines report \
+     their own engine call. Chart: charts/distance-cost-growth.svg.";
+
 /// The engines and their versions.
 pub fn engines_table(summary: &Summary) -> Table {
     let mut t = Table::new(&[("engine", false), ("version", false)]);
@@ -566,6 +591,12 @@ pub fn summary_md_with(summary: &Summary, opening: &str) -> String {
     if !summary.throughput.is_empty() {
         out.push_str("## Throughput\n\n");
         out.push_str(&table_md(&throughput_table(summary)));
+        out.push('\n');
+    }
+    if !summary.growth.is_empty() {
+        out.push_str("## distance: cost by vertex count\n\n");
+        let _ = writeln!(out, "{}\n", escape_md(GROWTH_NOTE));
+        out.push_str(&table_md(&growth_table(summary)));
         out.push('\n');
     }
     out.push_str("## Reading the tables\n\n");

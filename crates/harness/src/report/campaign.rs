@@ -536,6 +536,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
     phases.end(PHASE_SHRINK);
 
     let mut throughput = Vec::new();
+    let mut growth = Vec::new();
     let mut referee_seconds = 0.0;
     if config.timing {
         // The process engines' answers to the sample, in batches (kept while
@@ -570,6 +571,9 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
             if !ns.is_empty() {
                 throughput.push((engine.name.clone(), 1e9 * ns.len() as f64 / ns.iter().sum::<f64>()));
             }
+        }
+        if config.only.is_none_or(|q| q == Query::Distance) && config.cases_per_query > 0 {
+            growth = crate::report::growth::measure(set, config.seed);
         }
         let n = (fixture_cases + random_cases) as f64;
         throughput.push(("campaign (referee included)".into(), n / judge_seconds.max(1e-9)));
@@ -627,6 +631,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
             full_range,
             discrepancies: total_discrepancies,
             throughput,
+            growth,
         },
         discrepancies,
         input_errors,

@@ -6,6 +6,7 @@
 
 pub mod bench;
 pub mod campaign;
+pub mod growth;
 pub mod peers;
 pub mod provenance;
 pub mod shard;

@@ -100,6 +100,13 @@ pub(super) fn sphere_triangle(rng: &mut Rng, g: f64, pose: &Pose) -> Scene {
     pose.scene(&(sphere([0.0, 0.0, r + g], r), Some(t)))
 }
 
+/// The `distance-points` scene of `n` points, its points in the order of
+/// shuffle `k` (the report's cost-growth cases, `crate::report::growth`).
+pub(crate) fn growth_scene(seed: u64, n: usize, k: u64) -> Scene {
+    let mut rng = Rng::keyed(seed, &[0x6772_6f77_7468, n as u64, k]);
+    shuffled_hull(&mut rng, n as f64, &unposed())
+}
+
 /// `distance-points`: a hull of `n` points (`n` the parameter rounded, 4 to
 /// 10⁴) on the unit sphere (the Fibonacci lattice: the same points for the
 /// same `n`, each a vertex), 2.25 above a unit cube given as a hull. Every

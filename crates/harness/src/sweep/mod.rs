@@ -47,7 +47,7 @@ mod angle;
 mod boxes;
 mod catalog;
 mod ccd;
-mod distance;
+pub(crate) mod distance;
 mod feature;
 pub mod grid;
 mod measure;
