@@ -1,7 +1,7 @@
-//! Oriented boxes and capsules, collide against parry3d-f64, one run:
+//! Oriented boxes, capsules and convex distance, collide against parry3d-f64, one run:
 //! `cargo bench --bench boxes`.
 //!
-//! Five pairs, each on the campaign's own cases of it ([`PER_QUERY`]
+//! Five pairs and `distance`, each on the campaign's own cases of it ([`PER_QUERY`]
 //! generated cases of the default seed per query kind, a tenth full-range,
 //! as a report draws them, kept where the shapes are the pair's):
 //!
@@ -12,6 +12,14 @@
 //! | capsule–capsule contact | `contact_capsule_capsule`, `contact_capsule_capsule_lecture` | `query::contact(id, Capsule, id, Capsule, 0)` |
 //! | box–box contact | `contact_box_box`, `contact_box_box_lecture` | `query::contact(pose, Cuboid, pose, Cuboid, 0)` |
 //! | capsule–box contact | `contact_capsule_box`, `contact_capsule_box_lecture` | `query::contact(id, Capsule, pose, Cuboid, 0)` |
+//! | distance (18 pairs) | `convex::distance`, `convex::distance_lecture` (and `_plane`): GJK and EPA | `query::contact(pose, shape, pose, shape, MAX)`, as its adapter asks |
+//!
+//! `distance` runs on the campaign's distance mix whole, and on its cases of
+//! two `convex` shapes alone. Its inputs are built before timing as well:
+//! collide's are each solid's core points and radius (collide's GJK takes
+//! points), parry's its shapes (a hull's `ConvexPolyhedron` built once);
+//! cases parry cannot build (flat, needle and one-point hulls) are left out
+//! and counted.
 //!
 //! Every engine's inputs are built before timing, in its own types, as the
 //! harness's adapters build them (parry's box: a `Cuboid` at the pose of the
@@ -38,6 +46,7 @@ use harness::case::{Query, Shape};
 use harness::generate::{generate, try_generate_full_range};
 use harness::load::LoadedCase;
 use oracle::geom::{Capsule, OrientedBox, Sphere};
+use oracle::parry::{Parry64Solid, parry64_distance, parry64_solid};
 use parry3d_f64::math::{Pose, Rotation, Vector};
 use parry3d_f64::query;
 use parry3d_f64::shape::{Ball, Capsule as ParryCapsule, Cuboid};
@@ -166,6 +175,80 @@ fn capsule_box(all: &[LoadedCase]) -> PairInputs<CapsuleBox, ParryCapsuleBox> {
     out
 }
 
+/// A distance case in collide's types: each solid's core points and radius,
+/// or `b`'s plane.
+type CollideDistance = (Vec<Vec3<f64>>, f64, DistanceB);
+enum DistanceB {
+    Rounded(Vec<Vec3<f64>>, f64),
+    Plane(collide::Plane<f64>),
+}
+type ParryDistance = (Parry64Solid, Parry64Solid);
+
+/// A distance solid's core points and radius, as collide's adapter takes them.
+fn core(s: &Shape) -> Option<(Vec<Vec3<f64>>, f64)> {
+    Some(match s {
+        Shape::Sphere(x) => (vec![v(&x.center)], x.radius),
+        Shape::Capsule(c) => (vec![v(&c.start), v(&c.end)], c.radius),
+        Shape::Box(b) => (collide::convex::box_corners(&collide_box(&b.to_geom())).to_vec(), 0.0),
+        Shape::Triangle(t) => (t.vertices.iter().map(v).collect(), 0.0),
+        Shape::Convex(c) => (c.points.iter().map(v).collect(), 0.0),
+        _ => return None,
+    })
+}
+
+/// The distance cases (those of two `convex` shapes alone when `hulls`), and
+/// how many parry cannot build.
+fn distance_pairs(all: &[LoadedCase], hulls: bool) -> (PairInputs<CollideDistance, ParryDistance>, usize) {
+    let mut out = PairInputs { collide: Vec::new(), parry: Vec::new() };
+    let mut unbuilt = 0;
+    for lc in all {
+        let (a, Some(b)) = (&lc.case.a, lc.case.b.as_ref()) else { continue };
+        if hulls && !matches!((a, b), (Shape::Convex(_), Shape::Convex(_))) {
+            continue;
+        }
+        let (Ok(sa), Ok(sb)) = (harness::engine::SolidValue::of(a), harness::engine::SolidValue::of(b)) else {
+            continue;
+        };
+        let (Ok(pa), Ok(pb)) = (parry64_solid(sa.solid()), parry64_solid(sb.solid())) else {
+            unbuilt += 1;
+            continue;
+        };
+        let Some((points_a, ra)) = core(a) else { continue };
+        let other = match b {
+            Shape::Plane(p) => DistanceB::Plane(collide::Plane::new(v(&p.normal), p.offset)),
+            _ => match core(b) {
+                Some((points, r)) => DistanceB::Rounded(points, r),
+                None => continue,
+            },
+        };
+        out.collide.push((points_a, ra, other));
+        out.parry.push((pa, pb));
+    }
+    (out, unbuilt)
+}
+
+fn d_robust(x: &CollideDistance) -> collide::convex::Distance<f64> {
+    let a = collide::convex::Rounded { points: &x.0, radius: x.1 };
+    match &x.2 {
+        DistanceB::Rounded(points, r) => {
+            collide::convex::distance(&a, &collide::convex::Rounded { points, radius: *r })
+        }
+        DistanceB::Plane(p) => collide::convex::distance_plane(&a, p),
+    }
+}
+fn d_lecture(x: &CollideDistance) -> collide::convex::Distance<f64> {
+    let a = collide::convex::Rounded { points: &x.0, radius: x.1 };
+    match &x.2 {
+        DistanceB::Rounded(points, r) => {
+            collide::convex::distance_lecture(&a, &collide::convex::Rounded { points, radius: *r })
+        }
+        DistanceB::Plane(p) => collide::convex::distance_plane_lecture(&a, p),
+    }
+}
+fn d_parry(x: &ParryDistance) -> Option<f64> {
+    parry64_distance(&x.0, &x.1).ok().map(|d| d.distance)
+}
+
 /// Leaves out the cases parry panics on (its EPA indexes out of bounds on
 /// some capsule pairs): a panic is not an answer to time, and the report
 /// shows those cases as findings. The count goes in the table.
@@ -195,6 +278,8 @@ struct Row {
     panics: usize,
     /// Cases where collide's robust method and parry give the same decision.
     alike: usize,
+    /// Cases left out because parry cannot build a shape of them.
+    unbuilt: usize,
 }
 
 /// One pair's three engines and how each answer reads as a decision
@@ -236,7 +321,7 @@ fn bench<C, P, A, B>(
         .zip(&inputs.parry)
         .filter(|(x, p)| (e.decided)(&(e.robust)(x)) == (e.parry_decided)(&(e.parry)(p)))
         .count();
-    Row { label, group, n, panics, alike }
+    Row { label, group, n, panics, alike, unbuilt: 0 }
 }
 
 fn sb_robust(x: &SphereBox) -> Option<collide::contact::Contact<f64>> {
@@ -288,25 +373,29 @@ fn cb_parry(x: &ParryCapsuleBox) -> Option<query::Contact> {
 
 fn table(rows: &[Row], since: SystemTime) -> String {
     let mut s = format!(
-        "# crashtest speed: oriented boxes and capsules, collide against parry3d-f64, one run\n\n\
+        "# crashtest speed: oriented boxes, capsules and convex distance, collide against parry3d-f64, one run\n\n\
          The campaign's own cases of each pair ({PER_QUERY} cases of seed {SEED} per query kind, a tenth \
          full-range, kept where the shapes are the pair's; parry's inputs built as its adapter builds them, before \
          timing). ns per query: criterion's estimate (slope, else mean, over the cases per iteration). The ratios \
          are paired medians (both engines back to back over the same cases, alternating, 31 rounds) with their \
          quartiles. \"alike\": cases where collide's robust method and parry give the same decision (contact or \
          not, overlap or not). \"parry panics\": cases left out because parry3d-f64 panicked on them (the \
-         report shows them as findings).\n\n\
-         | pair | cases | parry panics | robust ns | lecture ns | parry3d-f64 ns | robust / parry (quartiles) | \
-         lecture / parry (quartiles) | alike |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n"
+         report shows them as findings). For distance, \"alike\" is the same sign (apart or not), and \"parry \
+         unbuilt\" counts the cases left out because parry builds no shape of them (flat, needle and one-point \
+         hulls).\n\n\
+         | pair | cases | parry panics | parry unbuilt | robust ns | lecture ns | parry3d-f64 ns | robust / parry \
+         (quartiles) | lecture / parry (quartiles) | alike |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | \
+         ---: | ---: |\n"
     );
     for r in rows {
         let ns = |id: &str| cell(ns_per(r.group, id, r.n, since));
         let q = |id: &str| paired_ratio(r.group, id, "parry64").map_or("—".into(), |p| p.quartiles());
         s.push_str(&format!(
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
             r.label,
             r.n,
             r.panics,
+            r.unbuilt,
             ns("robust"),
             ns("lecture"),
             ns("parry64"),
@@ -327,6 +416,9 @@ fn main() {
     let (contact, overlap) = (cases(Query::Contact), cases(Query::Overlap));
     let (sb, bb, cc) = (sphere_box(&contact), box_box(&overlap), capsule_capsule(&contact));
     let (bbc, cb) = (box_box(&contact), capsule_box(&contact));
+    let distance_cases = cases(Query::Distance);
+    let ((dist, dist_unbuilt), (hulls, hulls_unbuilt)) =
+        (distance_pairs(&distance_cases, false), distance_pairs(&distance_cases, true));
     assert!(
         [sb.collide.len(), bb.collide.len(), cc.collide.len(), bbc.collide.len(), cb.collide.len()]
             .iter()
@@ -396,6 +488,20 @@ fn main() {
             },
         ),
     ];
+    let distance_engines = || Engines {
+        robust: d_robust,
+        lecture: d_lecture,
+        parry: d_parry,
+        decided: |d: &collide::convex::Distance<f64>| d.distance > 0.0,
+        parry_decided: |d: &Option<f64>| d.is_some_and(|d| d > 0.0),
+    };
+    let mut rows = rows;
+    let mut row = bench(&mut c, ("distance (campaign mix)", "boxes_distance"), dist, distance_engines());
+    row.unbuilt = dist_unbuilt;
+    rows.push(row);
+    let mut row = bench(&mut c, ("distance, hull–hull", "boxes_distance_hulls"), hulls, distance_engines());
+    row.unbuilt = hulls_unbuilt;
+    rows.push(row);
     c.final_summary();
     if benching {
         let report = table(&rows, since);

@@ -118,8 +118,12 @@ fn capsule(c: &Capsule) -> Option<EngineCapsule> {
     Some(EngineCapsule::new(vector(c.start)?, vector(c.end)?, radius))
 }
 
+/// A distance query's solid as parry's shape at its pose (built once: a
+/// hull's `ConvexPolyhedron` is the costly part).
+pub type PreparedSolid = (Pose, Box<dyn Shape>);
+
 /// A distance query's solid as parry's shape and pose, or why there is none.
-fn solid(s: Solid<'_>) -> Result<(Pose, Box<dyn Shape>), String> {
+pub fn solid(s: Solid<'_>) -> Result<PreparedSolid, String> {
     let bad = |what: &str| format!("parry: {what} not representable in the engine's scalar");
     Ok(match s {
         Solid::Sphere(x) => {
@@ -144,6 +148,24 @@ fn solid(s: Solid<'_>) -> Result<(Pose, Box<dyn Shape>), String> {
             (Pose::IDENTITY, Box::new(hull))
         }
     })
+}
+
+/// The distance of two prepared solids: `query::contact` at the largest
+/// prediction, translated (`ParryEngine::distance`).
+pub fn distance_prepared((pa, sa): &PreparedSolid, (pb, sb): &PreparedSolid) -> Result<DistanceAnswer, String> {
+    let c = query::contact(pa, sa.as_ref(), pb, sb.as_ref(), Real::MAX)
+        .map_err(|_| "parry: query::contact does not dispatch this pair".to_string())?
+        .ok_or_else(|| "parry: query::contact returned no contact at the largest prediction".to_string())?;
+    let answer = || {
+        Some(DistanceAnswer {
+            distance: answer_scalar(c.dist)?,
+            point_a: answer_point(c.point1)?,
+            point_b: answer_point(c.point2)?,
+            normal: answer_point(-c.normal1)?,
+            degenerate: false,
+        })
+    };
+    answer().ok_or_else(|| "parry: a non-finite number in the contact".to_string())
 }
 
 /// An AABB as a `Cuboid` at its centre, in the engine's scalar.
@@ -417,20 +439,7 @@ impl ParryEngine for Engine {
     }
 
     fn distance(&self, a: Solid<'_>, b: Solid<'_>) -> Result<DistanceAnswer, String> {
-        let ((pa, sa), (pb, sb)) = (solid(a)?, solid(b)?);
-        let c = query::contact(&pa, sa.as_ref(), &pb, sb.as_ref(), Real::MAX)
-            .map_err(|_| "parry: query::contact does not dispatch this pair".to_string())?
-            .ok_or_else(|| "parry: query::contact returned no contact at the largest prediction".to_string())?;
-        let answer = || {
-            Some(DistanceAnswer {
-                distance: answer_scalar(c.dist)?,
-                point_a: answer_point(c.point1)?,
-                point_b: answer_point(c.point2)?,
-                normal: answer_point(-c.normal1)?,
-                degenerate: false,
-            })
-        };
-        answer().ok_or_else(|| "parry: a non-finite number in the contact".to_string())
+        distance_prepared(&solid(a)?, &solid(b)?)
     }
 
     fn contact_capsule_triangle(&self, a: Capsule, b: Triangle) -> ContactAnswer {

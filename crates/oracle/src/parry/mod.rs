@@ -66,7 +66,11 @@ pub mod reproduce;
 pub use api::{KnownDivergence, PARRY_VERSION, Parry32, Parry64, ParryEngine, known_divergences};
 pub use cast::{CastAnswer, CastStatus, ParryCast, cast_known_divergences};
 pub use parry32::PreparedMesh as Parry32Mesh;
+/// A distance's solids built once in each precision's shapes, and the
+/// distance of two of them (the adapters' `distance`, split for benches).
+pub use parry32::{PreparedSolid as Parry32Solid, distance_prepared as parry32_distance, solid as parry32_solid};
 pub use parry64::PreparedMesh as Parry64Mesh;
+pub use parry64::{PreparedSolid as Parry64Solid, distance_prepared as parry64_distance, solid as parry64_solid};
 
 #[cfg(test)]
 mod tests {

@@ -34,6 +34,6 @@ const SMOKE_TOL: f64 = 1e-6;
 #[path = "engine.rs"]
 mod engine;
 
-pub use engine::PreparedMesh;
+pub use engine::{PreparedMesh, PreparedSolid, distance_prepared, solid};
 /// The edge conversions and shape placements, shared with the casts.
 pub(crate) use engine::{answer_point, ball, cuboid, half_space, vector};
