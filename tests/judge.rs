@@ -347,3 +347,67 @@ fn an_answer_within_n_ulps_is_what_ulps_n_lets_through() {
     }
     assert!(checked[0] >= 500 && checked[1] >= 5_000, "{checked:?} (beyond, within)");
 }
+
+/// A user's engine that answers a distance with the referee's other least
+/// push where there is one (the last of them), and with the referee's answer
+/// turned by a quarter turn about z otherwise.
+struct OtherPush;
+
+impl Queries for OtherPush {
+    fn distance(&self, a: oracle::geom::Solid<'_>, b: oracle::geom::Solid<'_>) -> Reply<oracle::geom::DistanceAnswer> {
+        let err = |e: oracle::referee::RefereeError| harness::engine::Unsupported(format!("{e:?}"));
+        let alts = oracle::referee::distance_alternatives(a, b).map_err(err)?;
+        match alts.last() {
+            Some((alt, _)) => Ok(*alt),
+            None => {
+                let mut d = oracle::referee::distance(a, b).map_err(err)?;
+                d.normal = [-d.normal[1], d.normal[0], d.normal[2]];
+                Ok(d)
+            }
+        }
+    }
+}
+
+/// Where the least push is reached in several directions, every one is
+/// right: the judge agrees with an engine that takes another than the
+/// referee's first, and the case's expect (the referee's answer) keeps only
+/// the distance and the flag. A normal that is no least push still
+/// disagrees.
+#[test]
+fn a_distance_along_another_least_push_agrees_and_a_wrong_direction_does_not() {
+    use harness::case::{Case, Shape};
+    use oracle::geom::Convex;
+    let cube = |c: [f64; 3], h: f64| {
+        Shape::Convex(Convex {
+            points: (0..8).map(|s| [0, 1, 2].map(|i| c[i] + if s >> i & 1 == 1 { h } else { -h })).collect(),
+        })
+    };
+    let case = |a: Shape, b: Shape, name: &str| {
+        harness::generate::loaded(Case {
+            name: name.into(),
+            source: name.into(),
+            query: Query::Distance,
+            a,
+            b: Some(b),
+            expect: None,
+            tol: None,
+            t_max: None,
+            restitution: None,
+        })
+    };
+    let set = EngineSet::of(vec![Engine::new("other push", Some(53), OtherPush)]);
+    // Concentric cubes: six least pushes.
+    let tied = case(cube([0.0; 3], 1.0), cube([0.0; 3], 1.0), "concentric cubes");
+    let r = check_case(&tied, &set);
+    assert_eq!(r.engines[0].verdict, Verdict::Agree, "{:?}", r.engines[0]);
+    let referee = r.referee.as_ref().expect("the referee answers");
+    assert!(referee.normal.is_none() && referee.point_a.is_none() && referee.distance.is_some(), "{referee:?}");
+    // Shifted along x: one least push; the turned normal is wrong.
+    let unique = case(cube([0.5, 0.0, 0.0], 1.0), cube([0.0; 3], 1.0), "shifted cubes");
+    let r = check_case(&unique, &set);
+    assert!(
+        matches!(&r.engines[0].verdict, Verdict::Disagree { reasons } if reasons.iter().any(|x| x.contains("normal"))),
+        "{:?}",
+        r.engines[0]
+    );
+}

@@ -256,7 +256,7 @@ pub fn check_case(lc: &LoadedCase, set: &EngineSet) -> CaseResult {
         query: lc.case.query,
         scale: truth.scale,
         margin: truth.margin,
-        referee: truth.answer.as_ref().map(answer_as_expect),
+        referee: truth.answer.as_ref().map(|a| truth.unique_expect(a)),
         referee_meets_expect,
         engines: results,
         passed,
@@ -282,9 +282,28 @@ pub struct Truth {
     /// The sizes of the answer's fields ([`judge::sizes::local`]), taken once
     /// for every engine judged on the case; `None` without an answer.
     pub sizes: Option<judge::sizes::Local>,
+    /// Other answers as right as `answer`, with their sizes: a distance whose
+    /// least push is reached in several directions has one per other
+    /// direction ([`judge::sizes::alternatives`]); an engine that disagrees
+    /// with `answer` is judged against them too.
+    pub alternatives: Vec<(Answer, judge::sizes::Local)>,
 }
 
 impl Truth {
+    /// The referee's answer as a fixture's `expect`, keeping only what is
+    /// unique: where other answers are as right (a distance's least push in
+    /// several directions), its normal and witnesses are one choice among
+    /// them and are left out; the distance and `degenerate` stay.
+    pub fn unique_expect(&self, answer: &Answer) -> Expect {
+        let mut e = answer_as_expect(answer);
+        if !self.alternatives.is_empty() {
+            e.normal = None;
+            e.point_a = None;
+            e.point_b = None;
+        }
+        e
+    }
+
     /// The referee's answer to `lc`.
     pub fn of(referee: &Engine, lc: &LoadedCase) -> Truth {
         let (answer, missing) = match run_caught(referee, lc) {
@@ -301,7 +320,8 @@ impl Truth {
     pub fn new(lc: &LoadedCase, answer: Option<Answer>, missing: String) -> Truth {
         let scale = answer.as_ref().map_or_else(|| judge::scene_scale(lc), |t| judge::answer_scale(lc, t));
         let sizes = answer.as_ref().map(|t| judge::sizes::local(lc, t));
-        Truth { answer, missing, scale, margin: engines::referee::margin(lc), sizes }
+        let alternatives = answer.as_ref().map_or_else(Vec::new, |t| judge::sizes::alternatives(lc, t));
+        Truth { answer, missing, scale, margin: engines::referee::margin(lc), sizes, alternatives }
     }
 }
 
@@ -321,6 +341,17 @@ pub fn judge_engine(engine: &Engine, set: &EngineSet, lc: &LoadedCase, truth: &T
             let (v, e) = match (&truth.answer, &truth.sizes) {
                 (Some(t), Some(sizes)) => {
                     let (v, e) = judge::judge_sized(lc, &a, t, sizes, &tol, truth.margin);
+                    // Disagreeing with the referee's first answer, the engine
+                    // may have given another that is as right.
+                    let (v, e) = match &v {
+                        Verdict::Disagree { .. } => truth
+                            .alternatives
+                            .iter()
+                            .map(|(alt, alt_sizes)| judge::judge_sized(lc, &a, alt, alt_sizes, &tol, truth.margin))
+                            .find(|(v, _)| matches!(v, Verdict::Agree | Verdict::Borderline { .. }))
+                            .unwrap_or((v, e)),
+                        _ => (v, e),
+                    };
                     match &v {
                         Verdict::Disagree { reasons } => match engine.known.explain(&engine.name, lc, &a, t, reasons) {
                             Some(reason) => (Verdict::KnownDivergence { reason }, e),

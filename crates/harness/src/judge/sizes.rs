@@ -1309,6 +1309,30 @@ fn contact_convex(a: &Shape, b: &Shape, w: &oracle::geom::Contact) -> Option<Loc
 //   another direction, the region's slide), plus the same support ties.
 // - **A plane** (`b`): its normal is an input; the witness ties as above.
 
+/// The referee's other answers to `lc` where its least push is reached in
+/// several directions (`oracle::referee::distance_alternatives`), each with
+/// its sizes and witness sets; empty for every other case.
+pub fn alternatives(lc: &LoadedCase, truth: &Answer) -> Vec<(Answer, Local)> {
+    let (Query::Distance, Some(b), Answer::Distance(w)) = (lc.case.query, lc.case.b.as_ref(), truth) else {
+        return Vec::new();
+    };
+    if !w.degenerate {
+        return Vec::new();
+    }
+    let a = &lc.case.a;
+    let (Ok(sa), Ok(sb)) = (crate::engine::SolidValue::of(a), crate::engine::SolidValue::of(b)) else {
+        return Vec::new();
+    };
+    let Ok(alts) = oracle::referee::distance_alternatives(sa.solid(), sb.solid()) else { return Vec::new() };
+    alts.into_iter()
+        .map(|(alt, witnesses)| {
+            let (region_a, region) = witnesses.and_then(|(wa, wb)| Some((Region::of(&wa)?, Region::of(&wb)?))).unzip();
+            let sizes = Local { region, region_a, ..distance_sizes(a, b, &alt) };
+            (Answer::Distance(alt), sizes)
+        })
+        .collect()
+}
+
 /// The referee's witness sets of a distance case, `a`'s and `b`'s, where the
 /// witnesses are not unique.
 pub(crate) fn distance_regions(a: &Shape, b: &Shape) -> Option<(Region, Region)> {

@@ -182,6 +182,9 @@ impl Push {
 pub(super) struct Least {
     pub(super) push: Push,
     pub(super) tie: bool,
+    /// The other least pushes, one per direction other than `push`'s, in the
+    /// format's order (empty unless `tie`).
+    pub(super) others: Vec<Push>,
 }
 
 ///
@@ -229,12 +232,15 @@ fn least_signed(a: &Convex, b: &Convex, axes: impl Iterator<Item = (V3, [bool; 2
         }) {
             let push = Push { l: l.clone(), norm2: norm2.clone(), plus, amount };
             best = Some(match best {
-                None => Least { push, tie: false },
+                None => Least { push, tie: false, others: Vec::new() },
                 Some(cur) => match push.cmp(&cur.push) {
-                    Ordering::Less => Least { push, tie: false },
+                    Ordering::Less => Least { push, tie: false, others: Vec::new() },
                     Ordering::Equal => {
-                        let tie = cur.tie || !push.same_direction(&cur.push);
-                        Least { push: cur.push, tie }
+                        let Least { push: first, mut others, .. } = cur;
+                        if !push.same_direction(&first) && !others.iter().any(|o| push.same_direction(o)) {
+                            others.push(push);
+                        }
+                        Least { tie: !others.is_empty(), push: first, others }
                     }
                     Ordering::Greater => cur,
                 },

@@ -146,40 +146,57 @@ struct Solved {
     tie: bool,
     /// The touching set on `b`'s core (or the plane), as a hull.
     region: Vec<V3>,
+    /// The other least pushes, one per direction (a tie), each with its
+    /// touching set: answers as right as the first.
+    others: Vec<(Push, Vec<V3>)>,
     ra: Q,
     rb: Q,
 }
 
 impl Solved {
     fn answer(&self) -> DistanceAnswer {
+        self.answer_along(&self.push, &self.region)
+    }
+
+    /// The answer `push` and its touching set `region` give.
+    fn answer_along(&self, push: &Push, region: &[V3]) -> DistanceAnswer {
         let r = &self.ra + &self.rb;
-        let dir = self.push.direction();
-        let root = Root::new(self.push.norm2.clone());
-        let x = middle(&self.region);
-        let x_a = sub(&x, &self.push.translation());
+        let dir = push.direction();
+        let root = Root::new(push.norm2.clone());
+        let x = middle(region);
+        let x_a = sub(&x, &push.translation());
         DistanceAnswer {
             // amount/√norm2 + r is the cores' push plus the radii: minus the
             // signed distance. `0 − x` keeps a zero positive.
-            distance: 0.0 - self.push.round_plus(&r),
+            distance: 0.0 - push.round_plus(&r),
             point_a: root.round_over_v(&x_a, &-self.ra.clone(), &dir),
             point_b: root.round_over_v(&x, &self.rb, &dir),
             normal: round_unit(&dir),
-            degenerate: self.tie || self.region.len() > 1,
+            degenerate: self.tie || region.len() > 1,
         }
     }
 
     /// The witness sets when they are more than one point: `a`'s and `b`'s,
     /// each the touching set moved onto its solid's boundary.
     fn regions(&self) -> Option<Witnesses> {
-        if self.region.len() <= 1 {
+        self.regions_along(&self.push, &self.region)
+    }
+
+    fn regions_along(&self, push: &Push, region: &[V3]) -> Option<Witnesses> {
+        if region.len() <= 1 {
             return None;
         }
-        let dir = self.push.direction();
-        let root = Root::new(self.push.norm2.clone());
-        let t = self.push.translation();
-        let on_b = self.region.iter().map(|x| root.round_over_v(x, &self.rb, &dir)).collect();
-        let on_a = self.region.iter().map(|x| root.round_over_v(&sub(x, &t), &-self.ra.clone(), &dir)).collect();
+        let dir = push.direction();
+        let root = Root::new(push.norm2.clone());
+        let t = push.translation();
+        let on_b = region.iter().map(|x| root.round_over_v(x, &self.rb, &dir)).collect();
+        let on_a = region.iter().map(|x| root.round_over_v(&sub(x, &t), &-self.ra.clone(), &dir)).collect();
         Some((on_a, on_b))
+    }
+
+    /// The other least pushes' answers and witness sets.
+    fn alternatives(&self) -> Vec<(DistanceAnswer, Option<Witnesses>)> {
+        self.others.iter().map(|(p, r)| (self.answer_along(p, r), self.regions_along(p, r))).collect()
     }
 }
 
@@ -217,7 +234,7 @@ fn against_plane(a: &Convex, ra: Q, n: &V3, d: &Q) -> Solved {
     let lowest: Vec<V3> =
         a.vertices.iter().zip(&heights).filter(|(_, h)| **h == low).map(|(v, _)| add(v, &t)).collect();
     let region = super::convex::hull(&lowest, super::convex::kept(n));
-    Solved { push, tie: false, region, ra, rb: Q::ZERO }
+    Solved { push, tie: false, region, others: Vec::new(), ra, rb: Q::ZERO }
 }
 
 /// Two grown polytopes whose cores are apart, `v = p_a − p_b` nearest.
@@ -226,7 +243,7 @@ fn apart(a: &Convex, b: &Convex, v: V3, ra: Q, rb: Q) -> Solved {
     let norm2 = dot(&v, &v);
     let push = Push { l: v, amount: -norm2.clone(), norm2, plus: true };
     let region = touching_region(a, b, &push);
-    Solved { push, tie: false, region, ra, rb }
+    Solved { push, tie: false, region, others: Vec::new(), ra, rb }
 }
 
 /// Two grown polytopes whose cores meet.
@@ -234,7 +251,15 @@ fn meeting(a: &Convex, b: &Convex, ra: Q, rb: Q) -> Solved {
     match least_push(a, b) {
         Some(least) => {
             let region = touching_region(a, b, &least.push);
-            Solved { push: least.push, tie: least.tie, region, ra, rb }
+            let others = least
+                .others
+                .into_iter()
+                .map(|p| {
+                    let r = touching_region(a, b, &p);
+                    (p, r)
+                })
+                .collect();
+            Solved { push: least.push, tie: least.tie, region, others, ra, rb }
         }
         None => {
             // No separating axis: points, or points and segments on one line.
@@ -249,7 +274,7 @@ fn meeting(a: &Convex, b: &Convex, ra: Q, rb: Q) -> Solved {
             let norm2 = dot(&l, &l);
             let push = Push { l, norm2, plus: true, amount: Q::ZERO };
             let region = touching_region(a, b, &push);
-            Solved { push, tie: true, region, ra, rb }
+            Solved { push, tie: true, region, others: Vec::new(), ra, rb }
         }
     }
 }
@@ -479,6 +504,20 @@ pub type Witnesses = (Vec<P3>, Vec<P3>);
 /// As [`distance`].
 pub fn distance_witnesses(a: Solid<'_>, b: Solid<'_>) -> Result<Option<Witnesses>, RefereeError> {
     Ok(remembered_solve(a, b)?.regions())
+}
+
+/// Where two least pushes go different ways (`degenerate` for a tie of
+/// directions), the answers along the others, each with its witness sets
+/// (as [`distance_witnesses`]): every one is as right as [`distance`]'s,
+/// which is the first in the referee's order. Empty otherwise.
+///
+/// # Errors
+/// As [`distance`].
+pub fn distance_alternatives(
+    a: Solid<'_>,
+    b: Solid<'_>,
+) -> Result<Vec<(DistanceAnswer, Option<Witnesses>)>, RefereeError> {
+    Ok(remembered_solve(a, b)?.alternatives())
 }
 
 #[cfg(test)]

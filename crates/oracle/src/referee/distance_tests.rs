@@ -228,3 +228,33 @@ mod sampled {
         }
     }
 }
+
+#[test]
+fn concentric_cubes_tie_in_six_directions_and_every_one_is_an_answer() {
+    // Two cubes of half-size 1 on one centre: a must move 2 along any of
+    // ±x, ±y, ±z to leave b. The first is +x in the referee's order
+    // (a's facet normals first); the five others are its alternatives,
+    // each −2 along its own direction with a face as its witness sets.
+    let (a, b) = (cube([0.0; 3], 1.0), cube([0.0; 3], 1.0));
+    let d = distance(Solid::Convex(&a), Solid::Convex(&b)).unwrap();
+    assert!(close(d.distance, -2.0) && d.degenerate, "{d:?}");
+    let alts = super::distance_alternatives(Solid::Convex(&a), Solid::Convex(&b)).unwrap();
+    assert_eq!(alts.len(), 5, "{alts:?}");
+    let mut normals: Vec<P3> = alts.iter().map(|(x, _)| x.normal).collect();
+    normals.push(d.normal);
+    for axis in 0..3 {
+        for sign in [1.0, -1.0] {
+            let want: P3 = std::array::from_fn(|i| if i == axis { sign } else { 0.0 });
+            assert!(normals.iter().any(|n| close3(*n, want)), "{want:?} among {normals:?}");
+        }
+    }
+    for (alt, witnesses) in &alts {
+        check(alt, -2.0, alt.normal, true);
+        let (on_a, on_b) = witnesses.as_ref().expect("a face");
+        assert_eq!((on_a.len(), on_b.len()), (4, 4), "{alt:?}");
+    }
+    // A unique least push has none.
+    let shifted = cube([0.5, 0.0, 0.0], 1.0);
+    let alts = super::distance_alternatives(Solid::Convex(&shifted), Solid::Convex(&b)).unwrap();
+    assert!(alts.is_empty(), "{alts:?}");
+}

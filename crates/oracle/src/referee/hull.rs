@@ -18,9 +18,10 @@
 //!   sees the faces it is strictly above (an outside point is strictly above
 //!   some facet of a full-dimensional polytope, so a point that sees none is
 //!   in the hull, on its boundary included, and adds nothing); those faces go,
-//!   and the horizon's edges are joined to the point. Coplanar neighbouring
-//!   faces are kept as they are: their normals repeat, which costs the
-//!   separating axes a duplicate and never an answer.
+//!   and the horizon's edges are joined to the point. Neighbouring triangles
+//!   in one plane make one facet: the edge between them is not an edge of the
+//!   polytope (it is left out, with its direction) and the facet's normal is
+//!   kept once — fewer separating axes, the same answers.
 //!
 //! The cost is the incremental hull's, `O(n·f)` side tests for `n` points and
 //! `f` faces, each a few dozen floating-point operations when certified.
@@ -209,24 +210,54 @@ fn solid_hull(points: &[P3], start: [usize; 4], field: &'static str) -> Result<C
             }
         }
     }
-    let mut edges: Vec<(usize, usize)> = Vec::new();
-    let mut seen = std::collections::HashSet::new();
-    for f in &faces {
-        for e in 0..3 {
-            let (u, w) = (index[&f[e]], index[&f[(e + 1) % 3]]);
-            if seen.insert((u.min(w), u.max(w))) {
-                edges.push((u.min(w), u.max(w)));
-            }
-        }
-    }
-    let directions = edges.iter().map(|&(i, j)| sub(&vertices[j], &vertices[i])).collect();
-    let normals = faces
+    // Each face's outward normal; neighbouring faces in one plane (a box's
+    // face split in two triangles) form one facet: the edge between them is
+    // no edge of the polytope and is left out, and the facet's normal is
+    // kept once.
+    let face_normals: Vec<V3> = faces
         .iter()
         .map(|f| {
             let (a, b, c) = (&vertices[index[&f[0]]], &vertices[index[&f[1]]], &vertices[index[&f[2]]]);
             cross(&sub(b, a), &sub(c, a))
         })
         .collect();
+    let mut faces_of: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
+    let mut order: Vec<(usize, usize)> = Vec::new();
+    for (k, f) in faces.iter().enumerate() {
+        for e in 0..3 {
+            let (u, w) = (index[&f[e]], index[&f[(e + 1) % 3]]);
+            let key = (u.min(w), u.max(w));
+            let entry = faces_of.entry(key).or_default();
+            if entry.is_empty() {
+                order.push(key);
+            }
+            entry.push(k);
+        }
+    }
+    let mut facet: Vec<usize> = (0..faces.len()).collect();
+    fn root(facet: &mut [usize], mut k: usize) -> usize {
+        while facet[k] != k {
+            facet[k] = facet[facet[k]];
+            k = facet[k];
+        }
+        k
+    }
+    let mut edges: Vec<(usize, usize)> = Vec::new();
+    for key in order {
+        let shared = &faces_of[&key];
+        // Outward normals of two faces of a full-dimensional hull sharing an
+        // edge are parallel only when they point the same way: one plane.
+        if let [f, g] = shared[..]
+            && is_zero(&cross(&face_normals[f], &face_normals[g]))
+        {
+            let (rf, rg) = (root(&mut facet, f), root(&mut facet, g));
+            facet[rf] = rg;
+            continue;
+        }
+        edges.push(key);
+    }
+    let directions = edges.iter().map(|&(i, j)| sub(&vertices[j], &vertices[i])).collect();
+    let normals = (0..faces.len()).filter(|&k| root(&mut facet, k) == k).map(|k| face_normals[k].clone()).collect();
     Ok(Convex { vertices, edges, directions, normals })
 }
 

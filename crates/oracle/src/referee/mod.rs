@@ -141,7 +141,7 @@ pub use convex::{
     contact_margin_box_triangle, contact_margin_capsule_box, contact_margin_capsule_triangle, contact_region_box_box,
     contact_region_box_triangle, contact_region_capsule_box, contact_region_capsule_triangle,
 };
-pub use distance::{distance, distance_witnesses};
+pub use distance::{distance, distance_alternatives, distance_witnesses};
 pub use intersect::{
     intersect_margin_segment_plane, intersect_margin_segment_triangle, intersect_segment_mesh, intersect_segment_plane,
     intersect_segment_triangle,
