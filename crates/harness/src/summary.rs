@@ -356,7 +356,23 @@ pub struct Summary {
     /// engine and the referee (`report::growth`); empty when the run was not
     /// timed or had no distance cases.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub growth: Vec<crate::report::growth::Growth>,
+    pub growth: Vec<Growth>,
+}
+
+/// The hulls' vertex counts of `distance`'s cost growth
+/// (`report::growth`): half decades from 4 to 10⁴.
+pub const GROWTH_POINTS: [usize; 8] = [4, 10, 32, 100, 316, 1000, 3162, 10_000];
+
+/// Orders of the points timed per count.
+pub const GROWTH_CASES: u64 = 3;
+
+/// One engine's cost per query by vertex count.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Growth {
+    /// The engine (or the referee).
+    pub engine: String,
+    /// `(vertices, median ns per query)`, for the counts it answered.
+    pub points: Vec<(u64, f64)>,
 }
 
 #[cfg(test)]

@@ -303,7 +303,7 @@ pub fn throughput_table(summary: &Summary) -> Table {
 /// `distance`'s cost by the hull's vertex count (`report::growth`): µs per
 /// query, per engine and the referee.
 pub fn growth_table(summary: &Summary) -> Table {
-    let counts: Vec<u64> = crate::report::growth::GROWTH_POINTS.iter().map(|&n| n as u64).collect();
+    let counts: Vec<u64> = crate::summary::GROWTH_POINTS.iter().map(|&n| n as u64).collect();
     let labels: Vec<String> = counts.iter().map(|n| format!("{n} pts")).collect();
     let mut columns: Vec<(&str, bool)> = vec![("engine", false)];
     columns.extend(labels.iter().map(|l| (l.as_str(), true)));

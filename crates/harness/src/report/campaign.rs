@@ -573,7 +573,7 @@ pub fn run(config: &Config, provenance: Provenance) -> Outcome {
             }
         }
         if config.only.is_none_or(|q| q == Query::Distance) && config.cases_per_query > 0 {
-            growth = crate::report::growth::measure(set, config.seed);
+            growth = crate::report::growth::measure(set, config.seed, time_engine);
         }
         let n = (fixture_cases + random_cases) as f64;
         throughput.push(("campaign (referee included)".into(), n / judge_seconds.max(1e-9)));

@@ -18,22 +18,7 @@
 use crate::case::{Case, Query};
 use crate::engines::EngineSet;
 use crate::load::LoadedCase;
-use serde::{Deserialize, Serialize};
-
-/// The hulls' vertex counts: half decades from 4 to 10⁴.
-pub const GROWTH_POINTS: [usize; 8] = [4, 10, 32, 100, 316, 1000, 3162, 10_000];
-
-/// Orders of the points timed per count.
-pub const GROWTH_CASES: u64 = 3;
-
-/// One engine's cost per query by vertex count.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Growth {
-    /// The engine (or the referee).
-    pub engine: String,
-    /// `(vertices, median ns per query)`, for the counts it answered.
-    pub points: Vec<(u64, f64)>,
-}
+pub use crate::summary::{GROWTH_CASES, GROWTH_POINTS, Growth};
 
 /// The cases of `n` points.
 pub fn cases(seed: u64, n: usize) -> Vec<LoadedCase> {
@@ -57,8 +42,13 @@ pub fn cases(seed: u64, n: usize) -> Vec<LoadedCase> {
 }
 
 /// Every judged engine's growth and the referee's, in engine order (engines
-/// that answer none of the cases left out).
-pub fn measure(set: &EngineSet, seed: u64) -> Vec<Growth> {
+/// that answer none of the cases left out), each timed by `time` (the
+/// campaign's `time_engine`).
+pub fn measure(
+    set: &EngineSet,
+    seed: u64,
+    time: impl Fn(&crate::engine::Engine, &[&LoadedCase]) -> Option<crate::summary::Timing>,
+) -> Vec<Growth> {
     let ladder: Vec<(usize, Vec<LoadedCase>)> = GROWTH_POINTS.iter().map(|&n| (n, cases(seed, n))).collect();
     set.prefetch(ladder.iter().flat_map(|(_, c)| c));
     let mut out = Vec::new();
@@ -67,7 +57,7 @@ pub fn measure(set: &EngineSet, seed: u64) -> Vec<Growth> {
             .iter()
             .filter_map(|(n, cases)| {
                 let refs: Vec<&LoadedCase> = cases.iter().collect();
-                super::campaign::time_engine(engine, &refs).map(|t| (*n as u64, t.median_ns))
+                time(engine, &refs).map(|t| (*n as u64, t.median_ns))
             })
             .collect();
         if !points.is_empty() {

@@ -50,7 +50,7 @@ use super::error::RefereeError;
 use super::exact::{
     Q, Root, V3, add, check_v3, cross, dot, is_zero, lerp, radius, round_unit, round_v, scale, sub, v3,
 };
-use super::push_filter::AxisOf;
+use super::push_filter::{AxisOf, Polytope};
 use super::stage::{Memo, apart, remembered};
 use crate::geom::{Capsule, Contact, ContactAnswer, OrientedBox, P3, Triangle};
 
@@ -100,6 +100,11 @@ impl Convex {
         }
     }
 
+    /// As the separating-axes filter reads it.
+    fn polytope(&self) -> Polytope<'_> {
+        Polytope { vertices: &self.vertices, normals: &self.normals, directions: &self.directions }
+    }
+
     /// The least and greatest `l·x` over the vertices.
     fn project(&self, l: &V3) -> (Q, Q) {
         let mut it = self.vertices.iter().map(|v| dot(l, v));
@@ -116,7 +121,10 @@ impl Convex {
 /// `b`'s normals, then `a`'s directions crossed with `b`'s, row by row; zero
 /// vectors left out.
 fn axes(a: &Convex, b: &Convex) -> Vec<V3> {
-    super::push_filter::axis_order(a, b).map(|id| axis(a, b, id)).filter(|l| !is_zero(l)).collect()
+    super::push_filter::axis_order(&a.polytope(), &b.polytope())
+        .map(|id| axis(a, b, id))
+        .filter(|l| !is_zero(l))
+        .collect()
 }
 
 /// One candidate axis, exactly.
@@ -192,7 +200,8 @@ pub(super) struct Least {
 /// that are certainly longer than another; the exact search runs over the
 /// rest in the same order, which gives the same answer.
 pub(super) fn least_push(a: &Convex, b: &Convex) -> Option<Least> {
-    let filtered = if super::stage::staged() { super::push_filter::may_be_least(a, b) } else { None };
+    let filtered =
+        if super::stage::staged() { super::push_filter::may_be_least(&a.polytope(), &b.polytope()) } else { None };
     match filtered {
         Some(kept) => {
             let signs = kept.len() as u64 * 2;

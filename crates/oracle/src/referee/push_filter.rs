@@ -26,8 +26,15 @@
 //! cannot be bounded away from zero, or any value that is not finite, keeps
 //! its pushes (or the whole search) exact.
 
-use super::convex::Convex;
 use super::exact::{V3, round};
+
+/// A polytope as the filter reads it: its vertices, its face normals and
+/// its edge directions (`super::convex::Convex`'s).
+pub(super) struct Polytope<'a> {
+    pub(super) vertices: &'a [V3],
+    pub(super) normals: &'a [V3],
+    pub(super) directions: &'a [V3],
+}
 
 const U: f64 = f64::EPSILON / 2.0;
 /// What one operation can lose to underflow, and the rounding's absolute floor.
@@ -46,7 +53,7 @@ pub(super) enum AxisOf {
 
 /// The candidate axes of `a` against `b` in the format's order: `a`'s normals,
 /// `b`'s normals, then `a`'s directions crossed with `b`'s, row by row.
-pub(super) fn axis_order(a: &Convex, b: &Convex) -> impl Iterator<Item = AxisOf> {
+pub(super) fn axis_order(a: &Polytope<'_>, b: &Polytope<'_>) -> impl Iterator<Item = AxisOf> + use<> {
     let (na, nb, da, db) = (a.normals.len(), b.normals.len(), a.directions.len(), b.directions.len());
     (0..na)
         .map(AxisOf::NormalA)
@@ -121,7 +128,7 @@ fn quotient(a: [f64; 2], n: [f64; 2]) -> [f64; 2] {
 /// For each candidate axis in [`axis_order`], whether its push along `+L` and
 /// along `−L` may be the least (`[plus, minus]`). `None` when some value is
 /// not finite: the whole search stays exact.
-pub(super) fn may_be_least(a: &Convex, b: &Convex) -> Option<Vec<(AxisOf, [bool; 2])>> {
+pub(super) fn may_be_least(a: &Polytope<'_>, b: &Polytope<'_>) -> Option<Vec<(AxisOf, [bool; 2])>> {
     let (va, vb): (Vec<Approx>, Vec<Approx>) =
         (a.vertices.iter().map(rounded).collect(), b.vertices.iter().map(rounded).collect());
     let (na, nb): (Vec<Approx>, Vec<Approx>) =
