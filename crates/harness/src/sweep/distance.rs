@@ -13,7 +13,7 @@ use super::boxes;
 use super::grid::{Pose, Rng};
 use super::spheres;
 use crate::case::Shape;
-use crate::generate::build::{Scene, convex, plane, sphere, triangle};
+use crate::generate::build::{Scene, capsule, convex, plane, sphere, triangle};
 use crashtest_core::geom::rotation_matrix;
 use oracle::geom::P3;
 
@@ -129,4 +129,72 @@ pub(super) fn shuffled_hull(rng: &mut Rng, n: f64, pose: &Pose) -> Scene {
     let lifted: Vec<P3> = points.iter().map(|p| [p[0], p[1], p[2] + 2.25]).collect();
     let b = hull_of(&crate::generate::build::oriented_box([0.0; 3], [1.0; 3], [1.0, 0.0, 0.0, 0.0]));
     pose.scene(&(convex(lifted), Some(b)))
+}
+
+/// An axis-aligned box's eight corners as a convex shape.
+fn box_hull(center: P3, h: P3) -> Shape {
+    convex(
+        (0..8usize).map(|k| std::array::from_fn(|i| center[i] + if k >> i & 1 == 1 { h[i] } else { -h[i] })).collect(),
+    )
+}
+
+/// The unit cube at the origin as a hull.
+fn unit_cube() -> Shape {
+    box_hull([0.0; 3], [1.0; 3])
+}
+
+/// `distance-aspect`: a slab `aspect` times wider than it is thick (half
+/// thickness `1/aspect`), its face a grid gap above a unit cube's top face:
+/// parallel faces, witnesses any pair of their overlap.
+pub(super) fn slab_over_cube(rng: &mut Rng, aspect: f64, pose: &Pose) -> Scene {
+    let t = 1.0 / aspect;
+    let (w, gap) = (grid(rng, 0.5, 1.0), grid(rng, 0.125, 0.5));
+    let (x, y) = (grid(rng, -0.5, 0.5), grid(rng, -0.5, 0.5));
+    pose.scene(&(box_hull([x, y, 1.0 + gap + t], [w, w, t]), Some(unit_cube())))
+}
+
+/// A needle (half-extents `(w, 1/aspect, 1/aspect)`) lying a grid gap above
+/// the cube, turned in the plane by the 3-4-5 rotation: its lower edges run
+/// parallel to the top face, across it.
+pub(super) fn needle_over_cube(rng: &mut Rng, aspect: f64, pose: &Pose) -> Scene {
+    let t = 1.0 / aspect;
+    let (w, gap) = (grid(rng, 0.5, 1.0), grid(rng, 0.125, 0.5));
+    let c = [0.0, 0.0, 1.0 + gap + t];
+    let r = rotation_matrix([2.0, 0.0, 0.0, 1.0]);
+    let needle: Vec<P3> = (0..8usize)
+        .map(|k| {
+            let h = [w, t, t];
+            let u: P3 = std::array::from_fn(|i| if k >> i & 1 == 1 { h[i] } else { -h[i] });
+            std::array::from_fn(|i| c[i] + (0..3).map(|j| r[i][j] * u[j]).sum::<f64>())
+        })
+        .collect();
+    pose.scene(&(convex(needle), Some(unit_cube())))
+}
+
+/// A needle standing through the cube's top face, its lower end at the
+/// cube's centre height: the hulls meet (EPA), the least push sideways or
+/// up, whichever is shorter.
+pub(super) fn needle_through_cube(rng: &mut Rng, aspect: f64, pose: &Pose) -> Scene {
+    let t = 1.0 / aspect;
+    let (x, y) = (grid(rng, -0.75, 0.75), grid(rng, -0.75, 0.75));
+    pose.scene(&(box_hull([x, y, 1.0], [t, t, 1.0]), Some(unit_cube())))
+}
+
+/// A capsule of radius `1/aspect` lying a grid gap above a box's top face,
+/// its axis parallel to the face.
+pub(super) fn thin_capsule_over_box(rng: &mut Rng, aspect: f64, pose: &Pose) -> Scene {
+    let r = 1.0 / aspect;
+    let (w, gap) = (grid(rng, 0.5, 1.0), grid(rng, 0.125, 0.5));
+    let z = 1.0 + gap + r;
+    let a = capsule([-w, grid(rng, -0.5, 0.5), z], [w, grid(rng, -0.5, 0.5), z], r);
+    pose.scene(&(a, Some(crate::generate::build::oriented_box([0.0; 3], [1.0; 3], [1.0, 0.0, 0.0, 0.0]))))
+}
+
+/// A flat box (half-extents `(w, w, 1/aspect)`) face down a grid gap above
+/// another box.
+pub(super) fn flat_box_over_box(rng: &mut Rng, aspect: f64, pose: &Pose) -> Scene {
+    let t = 1.0 / aspect;
+    let (w, gap) = (grid(rng, 0.5, 1.0), grid(rng, 0.125, 0.5));
+    let a = crate::generate::build::oriented_box([0.0, 0.0, 1.0 + gap + t], [w, w, t], [1.0, 0.0, 0.0, 0.0]);
+    pose.scene(&(a, Some(crate::generate::build::oriented_box([0.0; 3], [1.0; 3], [1.0, 0.0, 0.0, 0.0]))))
 }
