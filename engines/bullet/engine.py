@@ -2,12 +2,13 @@
 """bullet: Bullet Physics (pybullet 3.2.7) behind crashtest-engine/1.
 
 Every answer is pybullet's own: getClosestPoints (btCollisionWorld::contactPairTest)
-for `contact` and `overlap`, rayTest (btCollisionWorld::rayTest, ClosestRayResultCallback)
-for `intersect`. The conventions Bullet uses are translated in ONE place, the section
+for `contact`, `overlap` and `distance` (asked up to a distance above the case's own),
+rayTest (btCollisionWorld::rayTest, ClosestRayResultCallback) for `intersect`. The conventions Bullet uses are translated in ONE place, the section
 "CONVENTION TRANSLATION" below; README.md has the table and the sources.
 `world` messages are stepped by step_world (section "WORLDS"): Bullet rigid bodies,
 stepSimulation; the restitution translation (sqrt(e) per body) is its one convention.
 """
+import inspect
 import math
 import os
 import sys
@@ -157,6 +158,17 @@ def make_capsule(c):
     return _body(p.createCollisionShape(p.GEOM_CAPSULE, radius=c["radius"], height=height), mid, orn)
 
 
+def make_convex(c):
+    # GEOM_MESH with vertices and no indices: a btConvexHullShape of the points (pybullet adds
+    # each point, then optimizeConvexHull(): btConvexHullComputer's hull vertices replace them;
+    # PhysicsServerCommandProcessor.cpp, createCollisionShape), the child of a btCompoundShape;
+    # collisionMargin 0 reaches the child (changeDynamics sets every child's margin)
+    body = _body(p.createCollisionShape(p.GEOM_MESH, vertices=[[float(x) for x in v] for v in c["points"]]),
+                 [0.0, 0.0, 0.0])
+    _zero_margin(body)
+    return body
+
+
 def make(shape):
     kind, s = next(iter(shape.items()))
     if kind == "sphere":
@@ -173,6 +185,8 @@ def make(shape):
         return make_obox(s)
     if kind == "capsule":
         return make_capsule(s)
+    if kind == "convex":
+        return make_convex(s)
     raise Unsupported(f"no Bullet shape for {kind}")
 
 
@@ -229,7 +243,46 @@ def hit_from_ray(result, face_normal):
     if face_normal is not None and sum(n[i] * face_normal[i] for i in range(3)) < 0:
         n = [-n[0], -n[1], -n[2]]
     return {"hit": {"t": frac, "point": list(pos), "normal": n}}
+# distance: getClosestPoints(A, B, distance = DISTMAX) answers every point with
+# contactDistance <= DISTMAX, so DISTMAX is chosen per case above any distance its shapes can
+# have (distmax_of). Of Bullet's points the one with the least contactDistance (as for
+# contact): distance = contactDistance (signed: < 0 in penetration), point_a = positionOnA,
+# point_b = positionOnB, normal = contactNormalOnB (from B toward A; Bullet's manifold point
+# has positionOnA = positionOnB + contactNormalOnB * contactDistance,
+# btManifoldResult::addContactPoint), for every pair and order as for contact.
+def distance_from_points(points, distmax):
+    if not points:
+        raise RuntimeError(f"getClosestPoints found no point within distance = {distmax!r}")
+    pt = min(points, key=lambda q: q[8])
+    return {"distance": pt[8], "point_a": list(pt[5]), "point_b": list(pt[6]), "normal": list(pt[7])}
 # =====================================================================================
+
+
+def distmax_of(case):
+    """DISTMAX: 8 M + 1 (at most DBL_MAX), with M the largest magnitude among the case's
+    coordinates, radii, half-extents and plane offsets over |n|: every point of a sphere, box,
+    capsule, triangle or hull lies within 2 sqrt(3) M < 3.5 M of the origin, a plane passes
+    within M of it, so no distance between the two shapes reaches 8 M."""
+    m = 0.0
+    for shape in (case["a"], case["b"]):
+        (kind, s), = shape.items()
+        if kind == "plane":
+            m = max(m, abs(float(s["offset"])) / math.hypot(*s["normal"]))
+            continue
+        for key, v in s.items():
+            if key in ("points", "vertices"):
+                m = max(m, max(abs(float(x)) for q in v for x in q))
+            elif key in ("center", "start", "end", "half_extents"):
+                m = max(m, max(abs(float(x)) for x in v))
+            elif key == "radius":
+                m = max(m, abs(float(v)))
+    return min(8.0 * m + 1.0, sys.float_info.max)
+
+
+def distance(case):
+    distmax = distmax_of(case)
+    return distance_from_points(closest_points(case, distmax), distmax)
+
 
 
 def _bare_sphere(shape):
@@ -244,7 +297,7 @@ def _bare_sphere(shape):
     return p.createCollisionShape(p.GEOM_SPHERE, radius=s["radius"]), s["center"]
 
 
-def closest_points(case):
+def closest_points(case, distance=DISTANCE):
     """Bullet's closest points of the case's two shapes (getClosestPoints, distance 0).
 
     Building a body is pybullet's dearest call (createMultiBody serializes the new body
@@ -259,7 +312,7 @@ def closest_points(case):
     _housekeeping()
     sa, sb = _bare_sphere(case["a"]), _bare_sphere(case["b"])
     if sa and sb:
-        return timed(p.getClosestPoints, -1, -1, DISTANCE, collisionShapeA=sa[0], collisionShapeB=sb[0],
+        return timed(p.getClosestPoints, -1, -1, distance, collisionShapeA=sa[0], collisionShapeB=sb[0],
                      collisionShapePositionA=sa[1], collisionShapePositionB=sb[1])
     a = -1 if sa else make(case["a"])
     b = -1 if sb else make(case["b"])
@@ -269,7 +322,7 @@ def closest_points(case):
     if sb:
         bare.update(collisionShapeB=sb[0], collisionShapePositionB=sb[1])
     try:
-        return timed(p.getClosestPoints, a, b, DISTANCE, **bare)
+        return timed(p.getClosestPoints, a, b, distance, **bare)
     finally:
         for body in (a, b):
             if body >= 0:
@@ -478,6 +531,14 @@ HANDLERS = {
     ("bounds", "box", None): bounds_box,
 }
 
+DISTANCE_PAIRS = [("sphere", "sphere"), ("sphere", "plane"), ("sphere", "triangle"), ("sphere", "box"),
+                  ("sphere", "capsule"), ("sphere", "convex"), ("box", "plane"), ("box", "box"),
+                  ("box", "triangle"), ("capsule", "capsule"), ("capsule", "plane"), ("capsule", "box"),
+                  ("capsule", "triangle"), ("capsule", "convex"), ("convex", "convex"), ("convex", "plane"),
+                  ("convex", "box"), ("convex", "triangle")]
+for _a, _b in DISTANCE_PAIRS:
+    HANDLERS[("distance", _a, _b)] = distance
+
 PROVENANCE = {
     "pybullet": package_version("pybullet"),
     "pybullet_api_version": str(p.getAPIVersion()),
@@ -501,6 +562,11 @@ PROVENANCE = {
                      "rotated z -> end - start; its margin is its radius (none sent)",
     "box_capsule_contacts": "getClosestPoints(bodyA, bodyB or a bare sphere, distance=0), the point with the "
                             "smallest contactDistance; segment-box, segment-capsule: rayTest",
+    "distance_query": "getClosestPoints(A, B, distance = DISTMAX) (a sphere as a bare shape, as for contact), the "
+                      "point with the least contactDistance; DISTMAX per case 8 M + 1 (at most DBL_MAX), M the largest "
+                      "magnitude of the case's coordinates, radii, half-extents and plane offsets over |n|",
+    "convex_shape": "GEOM_MESH vertices only -> btConvexHullShape of the points, optimizeConvexHull() "
+                    "(btConvexHullComputer), in a btCompoundShape; collisionMargin 0 (changeDynamics, every child)",
     "polytope_contacts": "box-box and capsule-box: btConvexConvexAlgorithm (GJK + EPA; the closest-points dispatch "
                          "has no btBoxBoxCollisionAlgorithm); box-triangle and capsule-triangle: "
                          "btConvexConcaveCollisionAlgorithm -> convex-convex against the btTriangleShape",
@@ -508,4 +574,4 @@ PROVENANCE = {
 
 if __name__ == "__main__":
     sys.exit(serve("bullet", package_version("pybullet"), 53, HANDLERS, PROVENANCE, world=step_world,
-                   reproductions=reproductions(HANDLERS)))
+                   reproductions=reproductions(HANDLERS, inspect.getsource(distmax_of))))

@@ -65,6 +65,13 @@ shape = p.createCollisionShape(p.GEOM_BOX, halfExtents={{@.half_extents}})
                       baseOrientation=[q[1], q[2], q[3], q[0]])
 p.changeDynamics(@, -1, collisionMargin=0.0)
 """,
+    # GEOM_MESH with vertices only: a btConvexHullShape of the points (optimizeConvexHull) in a
+    # btCompoundShape, at the origin; collisionMargin 0 reaches the hull
+    "convex": """\
+shape = p.createCollisionShape(p.GEOM_MESH, vertices={{@.points}})
+@ = p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=shape, basePosition=[0.0, 0.0, 0.0])
+p.changeDynamics(@, -1, collisionMargin=0.0)
+""",
     # btCapsuleShapeZ(r, height) at the midpoint, its z turned onto end - start (its margin
     # is its radius: none is sent)
     "capsule": """\
@@ -89,6 +96,23 @@ for q in points:  # contactNormalOnB: from B toward A; contactDistance < 0: pene
     print("positionOnA", list(q[5]), "positionOnB", list(q[6]), "contactNormalOnB", list(q[7]), "contactDistance", repr(q[8]))
 """
 
+# distance: getClosestPoints with a distance above any the shapes can have (engine.py's
+# distmax_of, pasted in, of the case's shapes)
+DISTANCE = """\
+points = p.getClosestPoints(a, b, distmax_of(case))
+print("distance threshold:", distmax_of(case), "points:", len(points))
+for q in points:  # contactNormalOnB: from B toward A; contactDistance < 0: penetration
+    print("positionOnA", list(q[5]), "positionOnB", list(q[6]), "contactNormalOnB", list(q[7]), "contactDistance", repr(q[8]))
+"""
+DIST_SHAPE = {
+    "sphere": """{"sphere": {"center": {{@.center}}, "radius": {{@.radius}}}}""",
+    "box": """{"box": {"center": {{@.center}}, "half_extents": {{@.half_extents}}, "rotation": {{@.rotation}}}}""",
+    "capsule": """{"capsule": {"start": {{@.start}}, "end": {{@.end}}, "radius": {{@.radius}}}}""",
+    "plane": """{"plane": {"normal": {{@.normal}}, "offset": {{@.offset}}}}""",
+    "triangle": """{"triangle": {"vertices": {{@.vertices}}}}""",
+    "convex": """{"convex": {"points": {{@.points}}}}""",
+}
+
 # rayTest(from, to): the closest hit; objectUniqueId -1 is none. For a triangle mesh (and
 # the plane's two triangles) Bullet turns the face normal toward the ray's start.
 RAY = """\
@@ -105,17 +129,22 @@ print("getAABB:", list(lo), list(hi))
 """
 
 
-def script(query, ka, kb):
+def script(query, ka, kb, distmax_source=""):
     if query == "bounds":  # a box
         body = SHAPE[ka].replace("@", "a") + AABB
     elif query == "intersect":
         body = SHAPE[kb].replace("@", "b") + RAY
+    elif query == "distance":
+        body = ("import sys\n" + distmax_source + "\n\n"
+                + f'case = {{"a": {DIST_SHAPE[ka].replace("@", "a")}, "b": {DIST_SHAPE[kb].replace("@", "b")}}}\n'
+                + SHAPE[ka].replace("@", "a") + SHAPE[kb].replace("@", "b") + DISTANCE)
     else:  # contact; overlap (the adapter: overlap = at least one point)
         body = SHAPE[ka].replace("@", "a") + SHAPE[kb].replace("@", "b") + CLOSEST
     return (HEAD.replace("<pins>", pinned("pybullet")).replace("<query>", query).replace("<pair>", f"{ka}-{kb}" if kb else ka)
             .replace("<imports>", "import math\n" if "math." in body else "")) + body
 
 
-def reproductions(handlers):
-    """One script for every pair in `handlers` (engine.py's HANDLERS)."""
-    return {(q, a, b): script(q, a, b) for q, a, b in handlers}
+def reproductions(handlers, distmax_source=""):
+    """One script for every pair in `handlers` (engine.py's HANDLERS); `distmax_source`, the
+    source of engine.py's distmax_of, is pasted into the distance scripts."""
+    return {(q, a, b): script(q, a, b, distmax_source) for q, a, b in handlers}

@@ -3,9 +3,12 @@
 through its Python bindings (`import coal`), behind crashtest-engine/1.
 
 Every answer is Coal's own: `coal.collide` for contacts, `coal.AABB.overlap` for box
-tests, `BVHModelBase.computeLocalAABB` for bounds. The only arithmetic this adapter does
-is the convention translation in `to_format_contact` (negating Coal's normal and its
-signed distance). See README.md for the convention table and the sources it rests on.
+tests, `BVHModelBase.computeLocalAABB` for bounds, `coal.distance` for distance. The only
+arithmetic this adapter does is the convention translation in `to_format_contact`
+(negating Coal's normal and its signed distance) and `to_format_distance` (negating
+Coal's normal). The first argument chooses Coal's GJK variant: none (the engine coal,
+DefaultGJK), `nesterov` (coal/nesterov) or `polyak` (coal/polyak), the last two
+distance only. See README.md for the convention table and the sources it rests on.
 """
 import math
 import os
@@ -20,13 +23,22 @@ os.dup2(2, 1)
 sys.stdout = os.fdopen(_PROTOCOL_FD, "w", encoding="utf-8", newline="\n")
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from crashtest_engine import Unsupported, package_version, serve, timed  # noqa: E402
+import crashtest_engine  # noqa: E402
+from crashtest_engine import Unsupported, convex_hull, package_version, serve, timed  # noqa: E402
 from reproduce import reproductions  # noqa: E402  (this folder's reproduce.py)
 
 import numpy as np  # noqa: E402
 import coal  # noqa: E402
 
-NAME = "coal"
+# The engine's GJK variant is its first argument: none (`coal`, Coal's DefaultGJK: contact,
+# overlap, bounds and distance), `nesterov` (`coal/nesterov`, NesterovAcceleration) or
+# `polyak` (`coal/polyak`, PolyakAcceleration), the last two distance only.
+VARIANTS = {"default": ("coal", "DefaultGJK"), "nesterov": ("coal/nesterov", "NesterovAcceleration"),
+            "polyak": ("coal/polyak", "PolyakAcceleration")}
+VARIANT = sys.argv[1] if len(sys.argv) > 1 else "default"
+if VARIANT not in VARIANTS:
+    sys.exit(f"coal: unknown variant {VARIANT!r} (nesterov, polyak, or none)")
+NAME, GJK_VARIANT = VARIANTS[VARIANT]
 
 # ---------------------------------------------------------------------------------
 # The engine's settings (all echoed in the hello's provenance).
@@ -295,6 +307,115 @@ HANDLERS = {
 }
 
 
+# ---------------------------------------------------------------------------------
+# DISTANCE: coal.distance (signed, with witness points and normal) under the engine's GJK
+# variant; every other GJK/EPA setting is Coal's default, echoed in the provenance.
+# ---------------------------------------------------------------------------------
+DIST_REQUEST = coal.DistanceRequest()
+DIST_REQUEST.enable_signed_distance = True  # Coal's default, set: EPA when the shapes overlap
+DIST_REQUEST.gjk_variant = getattr(coal.GJKVariant, GJK_VARIANT)
+# Coal's distance matrix has no TriangleP (src/distance_func_matrix.cpp: "Distance function
+# between node type GEOM_SPHERE and node type GEOM_TRIANGLE is not yet supported"); its
+# collide has (src/collision_func_matrix.cpp) and runs the very same shape-shape distance
+# (include/coal/internal/shape_shape_func.h, ShapeShapeCollider: internal::ShapeShapeDistance
+# with compute_penetration = enable_contact, then a Contact(o1, o2, p1, p2, normal, distance)
+# when distance - security_margin <= collision_distance_threshold). So the triangle pairs ask
+# collide with security_margin = DBL_MAX (every distance is a contact) and the distance
+# request's GJK/EPA settings.
+TRI_REQUEST = coal.CollisionRequest()
+TRI_REQUEST.enable_contact = True
+TRI_REQUEST.num_max_contacts = 1
+TRI_REQUEST.security_margin = sys.float_info.max
+for _field in ("gjk_variant", "gjk_tolerance", "gjk_max_iterations", "gjk_initial_guess", "gjk_convergence_criterion",
+               "gjk_convergence_criterion_type", "epa_tolerance", "epa_max_iterations"):
+    setattr(TRI_REQUEST, _field, getattr(DIST_REQUEST, _field))
+
+
+def convex_shape(c):
+    """coal.Convex(points, triangles) of the hull of the case's points (crashtest_engine.
+    convex_hull: input preparation, its vertices are input points): a solid hull's triangles,
+    a flat hull's polygon as two fans (one per side), a segment or a point with none. Coal
+    searches up to 32 vertices one by one and more by walking the triangles' edges
+    (src/narrowphase/support_functions.cpp, getShapeSupportLog; ConvexBase::neighbors built by
+    the constructor). Not coal.ConvexBase.convexHull: Coal's own Qhull call kills the process
+    (SIGSEGV) on a flat set of points, and refuses fewer than 4 ('You shouldn't use this
+    function with less than 4 points'). At the identity."""
+    h = convex_hull(c["points"])
+    pts = coal.StdVec_Vec3s()
+    for v in h.vertices:
+        pts.append(np.array(v, dtype=np.float64))
+    tris = coal.StdVec_Triangle()
+    for t in h.triangles:
+        tris.append(coal.Triangle(int(t[0]), int(t[1]), int(t[2])))
+    return coal.Convex(pts, tris), _identity()
+
+
+def distance_shape(shape):
+    kind, s = next(iter(shape.items()))
+    return convex_shape(s) if kind == "convex" else coal_shape(shape)
+
+
+# THE DISTANCE TRANSLATION (the only one): Coal's DistanceResult (include/coal/collision_data.h):
+# min_distance is the signed distance (negative: minus the penetration depth, EPA's); the
+# nearest points nearest_points[0] on o1 (= a) and [1] on o2 (= b), getNearestPoint1/2 in
+# Python; `normal` "pointing from o1 to o2 ... normal = (p2 - p1) / dist(o1, o2)" with the
+# SIGNED distance, so "dist(o1, o2) * (p1 - p2) is the separation vector". The format:
+# point_a = p1, point_b = p2, normal from b toward a = -normal (then point_a = point_b +
+# d * normal holds as Coal's does). A collide Contact (the triangle pairs) carries the same
+# three (getNearestPoint1/2, normal o1 -> o2, penetration_depth = the signed distance).
+def to_format_distance(d, p1, p2, n):
+    raw = [float(x) for x in (d, *p1, *p2, *n)]
+    if not all(math.isfinite(x) for x in raw):
+        raise RuntimeError(f"Coal answered a non-finite distance: {raw[0]!r}, witness points "
+                           f"{raw[1:4]}, {raw[4:7]}, normal {raw[7:10]}")
+    return {"distance": raw[0], "point_a": raw[1:4], "point_b": raw[4:7], "normal": [-x + 0.0 for x in raw[7:10]]}
+
+
+def distance(case):
+    ga, ta = distance_shape(case["a"])
+    gb, tb = distance_shape(case["b"])
+    if "triangle" in case["b"]:
+        res = coal.CollisionResult()
+        timed(coal.collide, ga, ta, gb, tb, TRI_REQUEST, res)
+        if res.numContacts() != 1:
+            raise RuntimeError(f"Coal's collide with security_margin = DBL_MAX gave {res.numContacts()} contacts")
+        c = res.getContact(0)
+        return to_format_distance(c.penetration_depth, c.getNearestPoint1(), c.getNearestPoint2(), c.normal)
+    res = coal.DistanceResult()
+    timed(coal.distance, ga, ta, gb, tb, DIST_REQUEST, res)
+    return to_format_distance(res.min_distance, res.getNearestPoint1(), res.getNearestPoint2(), res.normal)
+
+
+DISTANCE_PAIRS = [("sphere", "sphere"), ("sphere", "plane"), ("sphere", "triangle"), ("sphere", "box"),
+                  ("sphere", "capsule"), ("sphere", "convex"), ("box", "plane"), ("box", "box"),
+                  ("box", "triangle"), ("capsule", "capsule"), ("capsule", "plane"), ("capsule", "box"),
+                  ("capsule", "triangle"), ("capsule", "convex"), ("convex", "convex"), ("convex", "plane"),
+                  ("convex", "box"), ("convex", "triangle")]
+DISTANCE_HANDLERS = {("distance", a, b): distance for a, b in DISTANCE_PAIRS}
+if VARIANT == "default":
+    HANDLERS.update(DISTANCE_HANDLERS)
+else:  # coal/nesterov and coal/polyak answer distance only
+    HANDLERS = DISTANCE_HANDLERS
+
+
+def distance_provenance():
+    r = DIST_REQUEST
+    return {
+        "distance call": "coal.distance(geom_a, tf_a, geom_b, tf_b, DistanceRequest, DistanceResult); the triangle "
+                         "pairs: coal.collide with security_margin = DBL_MAX, enable_contact, num_max_contacts 1 "
+                         "(Coal's distance matrix has no TriangleP; collide runs the same shape-shape distance)",
+        "distance gjk": f"variant={r.gjk_variant}, tolerance={r.gjk_tolerance!r}, max_iterations={r.gjk_max_iterations}, "
+                        f"initial_guess={r.gjk_initial_guess}, convergence={r.gjk_convergence_criterion}/"
+                        f"{r.gjk_convergence_criterion_type}",
+        "distance epa": f"tolerance={r.epa_tolerance!r}, max_iterations={r.epa_max_iterations}",
+        "distance request": f"enable_signed_distance={r.enable_signed_distance}, rel_err={r.rel_err!r}, "
+                            f"abs_err={r.abs_err!r} (nearest points always computed in Coal 3)",
+        "distance convex as": "coal.Convex(hull vertices, hull triangles) at the identity; hull: " + crashtest_engine.HULL_NOTE,
+        "distance triangle as": "coal.TriangleP(v0, v1, v2)",
+        "scipy": package_version("scipy"),
+    }
+
+
 def provenance():
     r = REQUEST
     return {
@@ -336,6 +457,17 @@ def provenance():
     }
 
 
+def hello_provenance():
+    """coal echoes every setting of its queries; coal/nesterov and coal/polyak (distance
+    only) the versions and the distance settings."""
+    full = provenance()
+    if VARIANT == "default":
+        return {**full, **distance_provenance()}
+    keep = ("coal (package)", "libcoal (package)", "coal library version", "eigenpy", "numpy", "python", "scalar",
+            "plane as", "box as", "capsule as", "swept_sphere_radius", "stdout")
+    return {**{k: full[k] for k in keep}, **distance_provenance()}
+
+
 if __name__ == "__main__":
-    sys.exit(serve(NAME, package_version("coal"), 53, HANDLERS, provenance(),
-                   reproductions=reproductions(HANDLERS)))
+    sys.exit(serve(NAME, package_version("coal"), 53, HANDLERS, hello_provenance(),
+                   reproductions=reproductions(HANDLERS, GJK_VARIANT)))

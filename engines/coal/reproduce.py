@@ -11,7 +11,7 @@ request or a call there is a change here.
 from crashtest_engine import pinned
 
 HEAD = """\
-# <pins>: crashtest `<query>` <pair>, asked as crashtest's coal adapter asks it
+# <pins>: crashtest `<query>` <pair>, asked as crashtest's <engine> adapter asks it
 import math
 import numpy as np
 import coal
@@ -119,8 +119,68 @@ print("aabb_center:", L(ga.aabb_center), "aabb_radius:", repr(ga.aabb_radius))
 """
 
 
-def script(query, ka, kb):
-    head = (HEAD.replace("<pins>", pinned("coal", "libcoal", "numpy"))
+# --- distance: coal.distance (the triangle pairs: coal.collide with security_margin =
+# DBL_MAX), the request's GJK variant the engine's, every other setting Coal's default ---
+# the convex shape: coal.Convex of the hull's vertices and triangles, made as engine.py makes
+# them (crashtest_engine.convex_hull, whose source is pasted in), at the identity
+CONVEX = """\
+h@ = convex_hull({{@.points}})
+pts, tris = coal.StdVec_Vec3s(), coal.StdVec_Triangle()
+for v in h@.vertices:
+    pts.append(np.array(v, dtype=np.float64))
+for t in h@.triangles:
+    tris.append(coal.Triangle(int(t[0]), int(t[1]), int(t[2])))
+g@, t@ = coal.Convex(pts, tris), coal.Transform3s()
+"""
+
+# Coal's DistanceResult: min_distance signed; nearest point 1 on a, 2 on b; normal from a
+# toward b, = (p2 - p1) / min_distance
+DISTANCE = """\
+L = lambda v: [float(x) for x in v]
+req = coal.DistanceRequest()
+req.enable_signed_distance = True
+req.gjk_variant = coal.GJKVariant.<variant>
+res = coal.DistanceResult()
+coal.distance(ga, ta, gb, tb, req, res)
+print(f"min_distance {res.min_distance!r} normal {L(res.normal)} nearest_point1 {L(res.getNearestPoint1())} "
+      f"nearest_point2 {L(res.getNearestPoint2())}")
+"""
+
+# Coal's distance has no TriangleP: collide with security_margin = DBL_MAX runs the same
+# shape-shape distance and reports it as a Contact (penetration_depth = signed distance)
+DISTANCE_TRIANGLE = """\
+import sys
+L = lambda v: [float(x) for x in v]
+req = coal.CollisionRequest()
+req.enable_contact, req.num_max_contacts, req.security_margin = True, 1, sys.float_info.max
+req.gjk_variant = coal.GJKVariant.<variant>
+res = coal.CollisionResult()
+coal.collide(ga, ta, gb, tb, req, res)
+for i in range(res.numContacts()):
+    c = res.getContact(i)
+    print(f"contact {i}: penetration_depth (signed distance) {c.penetration_depth!r} normal {L(c.normal)} "
+          f"nearest_point1 {L(c.getNearestPoint1())} nearest_point2 {L(c.getNearestPoint2())}")
+"""
+
+
+def distance_script(ka, kb, variant):
+    import inspect
+    import crashtest_engine
+    engine = {"DefaultGJK": "coal", "NesterovAcceleration": "coal/nesterov", "PolyakAcceleration": "coal/polyak"}[variant]
+    head = (HEAD.replace("<pins>", pinned("coal", "libcoal", "numpy", "scipy")).replace("<engine>", engine)
+            .replace("<query>", "distance").replace("<pair>", f"{ka}-{kb}"))
+    if "convex" in (ka, kb):
+        head += ("\n" + inspect.getsource(crashtest_engine.Hull) + "\n\n"
+                 + inspect.getsource(crashtest_engine.convex_hull) + "\n\n")
+    shapes = "".join(CONVEX.replace("@", r) if k == "convex" else SHAPE[k].replace("@", r)
+                     for r, k in (("a", ka), ("b", kb)))
+    return head + shapes + (DISTANCE_TRIANGLE if kb == "triangle" else DISTANCE).replace("<variant>", variant)
+
+
+def script(query, ka, kb, variant="DefaultGJK"):
+    if query == "distance":
+        return distance_script(ka, kb, variant)
+    head = (HEAD.replace("<pins>", pinned("coal", "libcoal", "numpy")).replace("<engine>", "coal")
             .replace("<query>", query).replace("<pair>", f"{ka}-{kb}" if kb else ka))
     if query == "overlap" and (ka, kb) == ("aabb", "aabb"):
         return head + OVERLAP
@@ -138,6 +198,7 @@ def script(query, ka, kb):
     return head + shapes + CONTACT.replace("<max_contacts>", "max(1, len(tris))" if kb == "mesh" else "1")
 
 
-def reproductions(handlers):
-    """One script for every pair in `handlers` (engine.py's HANDLERS)."""
-    return {(q, a, b): script(q, a, b) for q, a, b in handlers}
+def reproductions(handlers, variant="DefaultGJK"):
+    """One script for every pair in `handlers` (engine.py's HANDLERS); `variant`, the engine's
+    coal.GJKVariant, is the one its distance scripts ask for."""
+    return {(q, a, b): script(q, a, b, variant) for q, a, b in handlers}

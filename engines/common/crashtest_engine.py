@@ -15,6 +15,10 @@ PROTOCOL.md): each asks the engine one case of its pair through the engine's own
 package, exactly as the handler does, and prints the engine's raw answer.
 Placeholders such as `{{a.center}}`, `{{b.vertices}}`, `{{t_max}}` become the
 case's values as JSON literals when crashtest fills a finding's draft.
+
+Convex hulls: `convex_hull(points)` gives the vertices and faces of a `convex`
+shape's hull (Qhull through scipy) for adapters whose engine's convex shape wants
+them (FCL's `Convex`, Coal's `Convex`): input preparation, never an answer.
 """
 import json
 import math
@@ -175,3 +179,82 @@ def package_version(dist):
         return metadata.version(dist)
     except metadata.PackageNotFoundError:
         return "not installed"
+
+
+# --- convex hulls: input preparation for the `convex` shape ------------------------------
+HULL_NOTE = ("the case's points made unique (numpy.unique); a solid hull: scipy.spatial.ConvexHull "
+             "(Qhull with scipy's default options for 3-D, 'Qt' only) of the points scaled by a power of two to "
+             "at most 1 and centred (Qhull dies where its products overflow): its vertices (input points, "
+             "never moved) and its triangles, each turned to face out by Qhull's own facet normal; a hull Qhull "
+             "finds flat: its polygon (a 2-D ConvexHull of the points in the coordinate plane their "
+             "normal is least parallel to) as two fans of triangles, one per side; a segment-like one: "
+             "its two extreme points; one point: that point. Points Qhull leaves out lie inside, or "
+             "within its roundoff of a facet (Qhull's coplanar points)")
+
+
+class Hull:
+    """A convex hull prepared for an engine that wants vertices and faces: `vertices` (k, 3)
+    float64, each one of the case's points as given; `triangles` (m, 3) int64 into them,
+    counter-clockwise seen from outside (for `dim` 3; for `dim` 2 each triangle of the
+    polygon once per side); `polygon` the flat hull's vertices in order around it (dim 2);
+    `dim` 0 (a point), 1 (a segment), 2 (a polygon) or 3 (a solid)."""
+
+    def __init__(self, vertices, triangles, dim, polygon=None):
+        self.vertices, self.triangles, self.dim, self.polygon = vertices, triangles, dim, polygon
+
+
+def convex_hull(points):
+    """The hull of a `convex` shape's points, for engines whose convex shape takes vertices
+    and faces (HULL_NOTE says how). This is the adapter's input preparation: the engine
+    still answers every query on it."""
+    import numpy as np
+    from scipy.spatial import ConvexHull, QhullError
+
+    pts = np.unique(np.asarray(points, dtype=np.float64).reshape(-1, 3), axis=0)
+    none = np.zeros((0, 3), dtype=np.int64)
+    if len(pts) == 1:
+        return Hull(pts, none, 0)
+    # Qhull (and the SVD below) are given the points scaled by a power of two to at most 1
+    # in magnitude and moved to their box's centre: Qhull dies (SIGSEGV) where its products
+    # of coordinates overflow (points of 1e270 do it), and which points are vertices does not
+    # change under scaling and translation. The hull's vertices are the case's own points.
+    top = float(np.abs(pts).max())
+    q = np.ldexp(pts, -math.frexp(top)[1]) if top > 0 else pts
+    q = q - (0.5 * q.min(axis=0) + 0.5 * q.max(axis=0))
+    if len(pts) >= 4:
+        try:
+            h = ConvexHull(q)
+        except QhullError:
+            h = None
+        if h is not None:
+            keep = np.asarray(h.vertices)
+            index = np.full(len(pts), -1, dtype=np.int64)
+            index[keep] = np.arange(len(keep))
+            tris = index[np.asarray(h.simplices, dtype=np.int64)]
+            w = q[keep]
+            e0, e1 = w[tris[:, 1]] - w[tris[:, 0]], w[tris[:, 2]] - w[tris[:, 0]]
+            inward = np.einsum("ij,ij->i", np.cross(e0, e1), h.equations[:, :3]) < 0
+            tris[inward] = tris[inward][:, [0, 2, 1]]
+            return Hull(pts[keep], tris, 3)
+    # flat, a segment or fewer than 4 points: the plane the points span, found by the
+    # direction of least spread (SVD), then a 2-D hull in the coordinate plane most
+    # nearly parallel to it (its vertices are input points; the order around is Qhull's)
+    centred = q - q.mean(axis=0)
+    _, _, vt = np.linalg.svd(centred, full_matrices=False)
+    drop = int(np.argmax(np.abs(vt[-1]))) if len(vt) == 3 else None
+    if drop is not None and len(pts) >= 3:
+        axes = [i for i in range(3) if i != drop]
+        try:
+            h2 = ConvexHull(q[:, axes])
+        except QhullError:
+            h2 = None
+        if h2 is not None:
+            ring = np.asarray(h2.vertices, dtype=np.int64)  # counter-clockwise in the 2-D plane
+            v = pts[ring]
+            k = len(v)
+            fan = np.array([[0, i, i + 1] for i in range(1, k - 1)], dtype=np.int64)
+            return Hull(v, np.concatenate([fan, fan[:, [0, 2, 1]]]), 2, polygon=np.arange(k))
+    # a segment: its two extreme points along the direction of greatest spread
+    t = centred @ vt[0]
+    ends = pts[[int(np.argmin(t)), int(np.argmax(t))]]
+    return Hull(ends, none, 1)

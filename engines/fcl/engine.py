@@ -5,8 +5,11 @@ convention table and the divergences found.
 
 Every number in an answer is FCL's; the adapter only builds FCL's shapes from
 the case and translates FCL's conventions into the format's, in ONE place:
-`to_format_contact` below.
+`to_format_contact` below (and beside it `to_format_distance` for distance). The
+first argument chooses FCL's GJK solver: `libccd` (the engine fcl/libccd, the
+default) or `indep` (fcl/indep, distance only).
 """
+import ctypes
 import json
 import math
 import os
@@ -26,7 +29,7 @@ sys.stdout = os.fdopen(_PROTO_FD, "w", encoding="utf-8", newline="\n")
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 import crashtest_engine  # noqa: E402
-from crashtest_engine import Unsupported, package_version, serve, timed  # noqa: E402
+from crashtest_engine import Unsupported, convex_hull, package_version, serve, timed  # noqa: E402
 from reproduce import reproductions  # noqa: E402  (this folder's reproduce.py)
 
 import numpy as np  # noqa: E402
@@ -59,7 +62,7 @@ PROVENANCE = {
     "libccd": "2.1, double precision (python-fcl's build script)",
     "numpy": package_version("numpy"),
     "precision": "f64 (FCL instantiated with double, libccd built with ENABLE_DOUBLE_PRECISION)",
-    "gjk_solver_type": "GST_LIBCCD",
+    "gjk_solver_type": "GST_LIBCCD (contact, overlap)",
     "collision_request": "enable_contact=True, num_max_contacts=1 (sphere-mesh: one per face; the deepest "
                          "taken, ties to the lowest face index)",
     "margins": "none (FCL shapes have no margin or envelope)",
@@ -86,7 +89,9 @@ PROVENANCE = {
                        "gjk_solver_type=GST_INDEP, num_max_iterations=10, toc_err=1e-4 (the last two are "
                        "ignored by FCL 0.7.0's conservative advancement: it stops at a step below t_err = 1e-4, "
                        "hard-coded in its traversal nodes)",
-    "toi distance_request": "enable_nearest_points=True, gjk_solver_type=GST_INDEP",
+    "toi distance_request": "fcl.DistanceRequest(enable_nearest_points=True, gjk_solver_type=GST_INDEP), which "
+                            "python-fcl hands FCL as rel_err = 1.0 with the solver left at GST_LIBCCD "
+                            "(DistanceRequestd(bool, bool, GJKSolverType) meets FCL's (bool, bool, S rel_err, ...))",
     "toi crash containment": "each toi case runs in a forked child (os.fork), which returns its answer and "
                              "the ns of its FCL calls through a pipe; a child killed by a signal is that "
                              "case's error, naming the FCL call",
@@ -193,6 +198,85 @@ def mesh_obj(m):
 
 BUILD = {"sphere": sphere_obj, "plane": halfspace_obj, "triangle": triangle_obj, "mesh": mesh_obj,
          "box": obox_obj, "capsule": capsule_obj, "aabb": box_obj}
+
+
+# --- distance: FCL's signed distance (fcl.distance), under the engine's GJK solver --------
+# The engine's variant is its first argument: `libccd` (fcl/libccd, GST_LIBCCD: FCL's
+# default, which this adapter also uses for contact and overlap) or `indep` (fcl/indep,
+# GST_INDEP: FCL's own GJK/EPA, distance only).
+VARIANT = sys.argv[1] if len(sys.argv) > 1 else "libccd"
+if VARIANT not in ("libccd", "indep"):
+    sys.exit(f"fcl: unknown variant {VARIANT!r} (libccd or indep)")
+NAME = f"fcl/{VARIANT}"
+DISTANCE_SOLVER = fcl.GJKSolverType.GST_INDEP if VARIANT == "indep" else fcl.GJKSolverType.GST_LIBCCD
+DISTANCE_TOLERANCE = 1e-6  # DistanceRequest::distance_tolerance, FCL's default (the only value
+#                            python-fcl can give); FCL copies it into the solver (distance-inl.h)
+
+# GST_INDEP cannot be asked for through python-fcl (reproduce.py, LIBFCL_DISTANCE: its
+# request puts the solver type in rel_err), so fcl/indep calls libfcl's own
+# fcl::distance<double> with FCL's DistanceRequest, built field for field; the text is
+# reproduce.py's, run here, so that engine and reproduction are the same code.
+from reproduce import CONVEX_FACES, LIBFCL_DISTANCE  # noqa: E402
+if VARIANT == "indep":
+    exec(LIBFCL_DISTANCE)  # defines libfcl_distance and cpp_pointer
+    # Python's view of python-fcl's objects: the C++ pointer is Cython's first field after
+    # the header (fcl.cpp: struct __pyx_obj_3fcl_3fcl_CollisionObject {PyObject_HEAD;
+    # CollisionObjectd *thisptr; PyObject *geom; bool _no_instance}). Checked once here:
+    # the object's `geom` field is the geometry given, and FCL's answer names the
+    # geometries by the pointers read the same way.
+    _g = fcl.Sphere(1.0)
+    _o = fcl.CollisionObject(_g, fcl.Transform())
+    _res = libfcl_distance(_o, fcl.CollisionObject(fcl.Sphere(1.0), fcl.Transform(np.array([0.0, 0.0, 3.0]))),
+                           DISTANCE_SOLVER, DISTANCE_TOLERANCE)
+    if not (ctypes.c_void_p.from_address(id(_o) + object.__basicsize__ + 8).value == id(_g)
+            and _res.o1 == cpp_pointer(_g) and _res.min_distance == 1.0):
+        sys.exit("fcl/indep: python-fcl's objects are not laid out as expected; libfcl cannot be called")
+exec(CONVEX_FACES)  # defines convex_faces(hull)
+# The hull's Qhull (scipy.spatial) is loaded here, once: the forked workers that answer
+# distance inherit it, where each new worker would otherwise import it again (~0.3 s).
+convex_hull([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+
+PLANE_CRASH = ("FCL 0.7.0 dies (SIGSEGV) on every distance to a Halfspace under GST_LIBCCD: libccd's GJK "
+               "has no support function for it (gjk_libccd.h: GJKInitializer<S, Halfspace<S>> is not "
+               "specialised, so the generic one hands libccd a null support function and a null object); "
+               "not called")
+
+
+def convex_obj(c):
+    """fcl.Convex of the hull of the points (crashtest_engine.convex_hull: input preparation,
+    its vertices are input points): its triangles as FCL's faces ([3, i, j, k] each), a flat
+    hull's polygon once per side, a segment or a point with no face. fcl.Convex searches its
+    vertices one by one up to 32 of them (convex-inl.h, findExtremeVertex), and beyond by
+    walking the faces' edges when they close up (ValidateTopology: watertight, every vertex
+    on a face), else one by one again. At the identity."""
+    h = convex_hull(c["points"])
+    g = fcl.Convex([vec(v) for v in h.vertices], *convex_faces(h))
+    return g, fcl.CollisionObject(g, fcl.Transform())
+
+
+DIST_BUILD = {**BUILD, "convex": convex_obj}
+
+
+def fcl_distance(oa, ob):
+    """FCL's distance of the two objects under the engine's solver, with nearest points
+    and signed distance: (min_distance, nearest point 0, nearest point 1, the C++ or Python
+    identity of the result's o1)."""
+    if VARIANT == "indep":
+        res = libfcl_distance(oa, ob, DISTANCE_SOLVER, DISTANCE_TOLERANCE)
+        p = list(res.nearest_points)
+        return res.min_distance, p[:3], p[3:], res.o1
+    req = fcl.DistanceRequest(enable_nearest_points=True, enable_signed_distance=True,
+                              gjk_solver_type=DISTANCE_SOLVER)
+    res = fcl.DistanceResult()
+    ret = fcl.distance(oa, ob, req, res)
+    if res.nearest_points[0] is None:  # python-fcl copies FCL's result only below its own DBL_MAX
+        raise RuntimeError(f"FCL gave no distance below DBL_MAX (fcl.distance returned {ret!r}; python-fcl "
+                           f"keeps FCL's result only when its min_distance is below that)")
+    return res.min_distance, res.nearest_points[0], res.nearest_points[1], res.o1
+
+
+def is_geometry(o1, geom):
+    return o1 == cpp_pointer(geom) if VARIANT == "indep" else o1 is geom
 
 
 def fcl_collide(o1, o2, max_contacts=1):
@@ -343,6 +427,53 @@ def to_format_contact(case, contact, geom_b, frames=None):
     depth = DEPTH_SIGN[(ka, kb)] * float(contact.penetration_depth)
     p = np.array(contact.pos, dtype=np.float64) + n * (depth * point_weight(ka, kb, case["a"], case["b"]))
     return {"contact": {"point": [float(x) for x in p], "normal": [float(x) + 0.0 for x in n], "depth": depth}}
+
+
+#  - distance (fcl.distance: enable_nearest_points and enable_signed_distance, under the
+#    engine's solver): FCL's DistanceResult (distance_result.h) holds min_distance, the
+#    signed distance (negative: minus the penetration depth), nearest_points[0] on its o1
+#    and [1] on its o2, and no normal. The format: distance as it is; point_a, point_b the
+#    points on a and on b; normal from b toward a with point_a = point_b + d n.
+#      o1/o2: shape-shape keeps the call's order; a shape-BVH call (a triangle as b) is
+#        swapped to BVH-shape (distance-inl.h) and not swapped back, so a's point is read
+#        from the result's own o1/o2 (as for toi above).
+#      frames: shape-shape and shape-triangle GJK answer world points; FCL's
+#        sphereTriangleDistance with a mesh transform (sphere_triangle-inl.h) puts the
+#        sphere's point in the SPHERE'S frame (tf.inverse() * p1) and the triangle's in the
+#        mesh's (the identity here): for sphere-triangle at d > 0 (the only d that routine
+#        answers) the sphere's point is moved by its centre (its rotation is the identity).
+#      overlap: under GST_LIBCCD FCL gives shapes libccd's EPA (ccdGJKSignedDist,
+#        gjk_libccd-inl.h): min_distance = -depth, nearest points a's deepest point in b
+#        and b's point it must reach (penEPAPosClosest), as the format's. For a triangle
+#        (a BVHModel) under both solvers, and for every overlap under GST_INDEP (whose
+#        shapeSignedDistance is its unsigned GJK, gjk_solver_indep-inl.h: "TODO: should
+#        implement the signed distance version"), distance() replaces the answer by its
+#        collide's (distance-inl.h: min_distance = -the largest penetration_depth, both
+#        nearest points = that contact's pos, documented "NOT guaranteed to be on the
+#        surface", NP_X in distance_request.h), and drops the contact's normal.
+#      normal: FCL gives none, so it is read from FCL's points: (p_a - p_b)/|p_a - p_b|
+#        when d > 0, (p_b - p_a)/|p_b - p_a| when d < 0 (a's deepest point must reach b's
+#        point: the format's EPA convention). Where FCL's two points coincide (an overlap
+#        replaced by collide's contact) or d = 0 (touching: the points are one point, any
+#        difference between them is rounding) FCL's answer has no direction, and the
+#        normal is the zero vector: nothing is made up for it. (The contact distance()
+#        takes its point from is not at hand: its collide runs with the distance solver's
+#        collision_tolerance, eps^(7/8), where python-fcl's collide can only ask for 1e-6,
+#        and the two contacts differ.)
+def to_format_distance(case, d, q0, q1, o1, gb):
+    ka, kb = next(iter(case["a"])), next(iter(case["b"]))
+    q0, q1 = vec(q0), vec(q1)
+    p_a, p_b = (q1, q0) if is_geometry(o1, gb) else (q0, q1)
+    d = float(d)
+    if d > 0 and (ka, kb) == ("sphere", "triangle"):
+        p_a = p_a + vec(case["a"]["sphere"]["center"])
+    diff = p_a - p_b
+    length = math.hypot(*diff)
+    n = (diff / length if d > 0 else -diff / length) if length > 0 and d != 0 else np.zeros(3)
+    return {"distance": d, "point_a": [float(x) for x in p_a], "point_b": [float(x) for x in p_b],
+            "normal": [float(x) + 0.0 for x in n]}
+
+
 # --- end of the convention translation ------------------------------------------
 
 
@@ -369,15 +500,19 @@ def overlap(case):
     return {"overlap": bool(res.is_collision)}
 
 
-# --- toi: FCL's CCD in a forked child -----------------------------------------------
-# The toi worker: a child forked from this process (os.fork) that runs FCL's calls for
-# one toi case at a time, so that a crash of FCL (SIGSEGV) ends the child and not the
-# engine. It is kept for the next case while it lives (forking here costs ~2-4 ms a case,
+# --- toi and distance: FCL in a forked child ----------------------------------------
+# The worker: a child forked from this process (os.fork) that runs FCL's calls for one
+# toi or distance case at a time, so that a crash of FCL (SIGSEGV) ends the child and not
+# the engine. It is kept for the next case while it lives (forking here costs ~2-4 ms a case,
 # which over a campaign would be most of the time) and forked again after a crash.
 CHILD_STACK = 1 << 20  # bytes: FCL's shape-mesh advancement can recurse without end
 #                        (distanceRecurse); 1 MiB ends it in ms rather than the tens of ms
 #                        the default 8 MiB takes (a balanced BVH needs a few KiB)
-CHILD_TIMEOUT = 20.0   # s per case: a worker that does not answer is killed, the case failed
+CHILD_TIMEOUT = {"toi": 20.0, "distance": 0.25}  # s per case, by query: a worker that does not
+#                                                    answer is killed, the case failed. A distance takes
+#                                                    FCL 9 us (median), 0.35 ms (p99), 6 ms at most over
+#                                                    3,000 campaign cases; libccd's EPA can loop without
+#                                                    end (README), and each such case costs this budget
 
 
 class EngineCrash(Exception):
@@ -445,7 +580,8 @@ def worker_loop(rfd, wfd):
     with os.fdopen(rfd, "rb") as cases:
         for line in cases:
             try:
-                emit({"result": toi_in_child(json.loads(line), emit)})
+                case = json.loads(line)
+                emit({"result": IN_CHILD[case["query"]](case, emit)})
             except Exception as exc:
                 emit({"exception": [type(exc).__name__, str(exc)]})
 
@@ -483,7 +619,8 @@ class Worker:
     def send(self, index, case):
         os.write(self.to_w, (json.dumps(case, allow_nan=False) + "\n").encode())
         self.case, self.stage = index, "the adapter"
-        self.deadline = time.monotonic() + CHILD_TIMEOUT
+        self.timeout = CHILD_TIMEOUT[case["query"]]
+        self.deadline = time.monotonic() + self.timeout
 
     def read(self):
         """What has arrived: its complete lines as JSON, and whether the worker is gone (EOF)."""
@@ -514,11 +651,11 @@ def crash_text(status, stage):
     return f"the FCL worker exited (status {os.waitstatus_to_exitcode(status)}) in {stage}"
 
 
-def run_toi(cases):
-    """Runs toi `cases` in the workers, up to WORKERS at a time, each worker one case at a
-    time: per case ("answer", answer, ns), ("exception", type name, text) or ("crash",
-    message). A worker that dies is that case's crash and is replaced by a new fork; one
-    silent for CHILD_TIMEOUT is killed and replaced."""
+def run_in_workers(cases):
+    """Runs toi and distance `cases` in the workers, up to WORKERS at a time, each worker
+    one case at a time: per case ("answer", answer, ns), ("exception", type name, text) or
+    ("crash", message). A worker that dies is that case's crash and is replaced by a new
+    fork; one silent for its query's CHILD_TIMEOUT is killed and replaced."""
     out = [None] * len(cases)
     todo = list(range(len(cases) - 1, -1, -1))  # popped from the end: case order
     busy = {}  # read fd -> the worker on a case
@@ -561,7 +698,7 @@ def run_toi(cases):
             for w in [w for w in busy.values() if w.deadline <= time.monotonic()]:
                 i, stage = w.case, w.stage
                 retire(w, kill=True)
-                out[i] = ("crash", f"FCL did not answer within {CHILD_TIMEOUT:g} s in {stage} (the worker was killed)")
+                out[i] = ("crash", f"FCL did not answer within {w.timeout:g} s in {stage} (the worker was killed)")
             continue
         for fd in ready:
             w = busy.get(fd)
@@ -584,28 +721,37 @@ def run_toi(cases):
 
 
 def prepare(cases):
-    """A batch's toi cases, run in the workers side by side before they are answered one
-    by one (crashtest_engine.serve's `prepare`); `toi` hands each case's outcome back."""
+    """A batch's toi and distance cases, run in the workers side by side before they are
+    answered one by one (crashtest_engine.serve's `prepare`); `toi` and `distance` hand
+    each case's outcome back."""
     _prepared.clear()
     mine = []
     for c in cases:
         try:
-            if HANDLERS.get(crashtest_engine.pair_of(c)) is toi:
+            if HANDLERS.get(crashtest_engine.pair_of(c)) in (toi, distance) and not refused(c):
                 mine.append(c)
         except Exception:
             pass  # a malformed case: answered (with its error) one by one
-    for c, outcome in zip(mine, run_toi(mine)):
+    for c, outcome in zip(mine, run_in_workers(mine)):
         _prepared[id(c)] = outcome
 
 
-def toi(case):
-    outcome = _prepared.pop(id(case), None) or run_toi([case])[0]
+def from_worker(case):
+    """A toi or distance case's outcome from the workers: its answer (FCL's time charged),
+    or its exception raised as it would be in-process, or the crash as EngineCrash."""
+    outcome = _prepared.pop(id(case), None) or run_in_workers([case])[0]
     if outcome[0] == "answer":
         charge(outcome[2])
         return outcome[1]
+    if outcome[0] == "exception" and outcome[1] == "Unsupported":
+        raise Unsupported(outcome[2])
     if outcome[0] == "exception":
         raise type(outcome[1], (Exception,), {})(outcome[2])  # shown as it would be in-process
     raise EngineCrash(outcome[1])
+
+
+def toi(case):
+    return from_worker(case)
 
 
 HANDLERS = {
@@ -634,6 +780,95 @@ HANDLERS = {
     ("toi", "sphere", "box"): toi,
 }
 
+
+def provenance():
+    """The hello's provenance: fcl/libccd echoes every setting of its queries; fcl/indep
+    (distance only) the versions and the distance settings."""
+    solver = ("GJKSolver_indep: gjk_max_iterations 128, gjk_tolerance = distance_tolerance, epa_max_face_num 128, "
+              "epa_max_vertex_num 64, epa_max_iterations 255, epa_tolerance 1e-6, cached guess off "
+              "(gjk_solver_indep-inl.h, GJKSolver_indep(); distance-inl.h sets gjk_tolerance)"
+              if VARIANT == "indep" else
+              "GJKSolver_libccd: max_collision_iterations 500, max_distance_iterations 1000, collision_tolerance "
+              "1e-6, distance_tolerance = the request's (gjk_solver_libccd-inl.h, GJKSolver_libccd(); "
+              "distance-inl.h sets distance_tolerance); libccd's GJK/EPA run with dist_tolerance = epa_tolerance "
+              "= distance_tolerance and max_iterations = max_distance_iterations (gjk_libccd-inl.h, GJKDistanceImpl)")
+    dist = {
+        "distance_solver": "GST_INDEP" if VARIANT == "indep" else "GST_LIBCCD",
+        "distance_request": f"enable_nearest_points=True, enable_signed_distance=True, rel_err=0, abs_err=0, "
+                            f"distance_tolerance={DISTANCE_TOLERANCE!r}, gjk_solver_type="
+                            + ("GST_INDEP" if VARIANT == "indep" else "GST_LIBCCD"),
+        "distance_call": ("libfcl's fcl::distance<double>(CollisionObject*, CollisionObject*, DistanceRequest, "
+                          "DistanceResult) through ctypes with FCL's DistanceRequest built field for field "
+                          "(python-fcl 0.7.0.11 cannot select GST_INDEP: its DistanceRequestd(bool, bool, "
+                          "GJKSolverType) puts the solver type in rel_err); the objects are python-fcl's"
+                          if VARIANT == "indep" else
+                          "fcl.distance(CollisionObject, CollisionObject, DistanceRequest, DistanceResult) "
+                          "(python-fcl hands FCL rel_err = 0.0 for GST_LIBCCD, FCL's default)"),
+        "distance_solver_settings": solver,
+        "distance normal": "FCL's DistanceResult has none: (p_a - p_b)/|p_a - p_b| of FCL's nearest points (d > 0), "
+                           "(p_b - p_a)/|...| (d < 0); the zero vector where FCL's two points coincide (an overlap "
+                           "FCL answers from its collide's contact, both points that contact's pos) or d = 0",
+        "distance plane": ("fcl.Halfspace(n, d)" if VARIANT == "indep" else
+                           "unsupported: FCL 0.7.0 crashes (SIGSEGV) on a Halfspace's distance under GST_LIBCCD"),
+        "distance triangle": "fcl.BVHModel (OBBRSS) of the one triangle (FCL's distance matrix has no TriangleP)",
+        "distance convex": "fcl.Convex(hull vertices, faces) at the identity; hull: " + crashtest_engine.HULL_NOTE,
+        "scipy": package_version("scipy"),
+    }
+    if VARIANT == "libccd":
+        return {**PROVENANCE, **dist}
+    keep = ("python-fcl", "fcl.__version__", "libfcl", "libccd", "numpy", "precision", "margins", "box", "capsule",
+            "stdout")
+    return {**{k: PROVENANCE[k] for k in keep}, **dist}
+
+
+def refused(case):
+    """Why the adapter does not ask FCL this case at all, or None. A plane is FCL's
+    Halfspace: under GST_LIBCCD FCL crashes on every distance to it (PLANE_CRASH)."""
+    if case["query"] == "distance" and VARIANT == "libccd" and "plane" in case["b"]:
+        return PLANE_CRASH
+    return None
+
+
+def distance_in_child(case, emit):
+    """Runs in a worker (as toi_in_child does): FCL's objects, fcl.distance (signed, with
+    nearest points) under the engine's solver, then to_format_distance. FCL dies (SIGSEGV)
+    on some inputs (huge and tiny magnitudes, README): the worker dies with it, not the
+    engine, and the case fails naming the call."""
+    (ka, sa), = case["a"].items()
+    (kb, sb), = case["b"].items()
+    _, oa = DIST_BUILD[ka](sa)
+    gb, ob = DIST_BUILD[kb](sb)
+    emit({"stage": "distance"})
+    t0 = time.perf_counter_ns()
+    d, q0, q1, o1 = fcl_distance(oa, ob)
+    ns = time.perf_counter_ns() - t0
+    return {"answer": to_format_distance(case, d, q0, q1, o1, gb), "ns": ns}
+
+
+IN_CHILD = {"toi": toi_in_child, "distance": distance_in_child}
+
+
+def distance(case):
+    """fcl.distance of a and b, asked in a forked worker (distance_in_child), translated
+    there by to_format_distance; a case the adapter does not ask (`refused`) is
+    `unsupported`."""
+    why = refused(case)
+    if why:
+        raise Unsupported(why)
+    return from_worker(case)
+
+
+DISTANCE_PAIRS = [("sphere", "sphere"), ("sphere", "plane"), ("sphere", "triangle"), ("sphere", "box"),
+                  ("sphere", "capsule"), ("sphere", "convex"), ("box", "plane"), ("box", "box"),
+                  ("box", "triangle"), ("capsule", "capsule"), ("capsule", "plane"), ("capsule", "box"),
+                  ("capsule", "triangle"), ("capsule", "convex"), ("convex", "convex"), ("convex", "plane"),
+                  ("convex", "box"), ("convex", "triangle")]
+DISTANCE_HANDLERS = {("distance", a, b): distance for a, b in DISTANCE_PAIRS}
+if VARIANT == "libccd":
+    HANDLERS.update(DISTANCE_HANDLERS)
+else:  # fcl/indep answers distance only
+    HANDLERS = DISTANCE_HANDLERS
+
 if __name__ == "__main__":
-    sys.exit(serve("fcl", package_version("python-fcl"), 53, HANDLERS, PROVENANCE,
-                   reproductions=reproductions(HANDLERS), prepare=prepare))
+    sys.exit(serve(NAME, package_version("python-fcl"), 53, HANDLERS, provenance(),
+                   reproductions=reproductions(HANDLERS, VARIANT), prepare=prepare))

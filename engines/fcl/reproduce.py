@@ -61,7 +61,7 @@ o@ = fcl.CollisionObject(g@, fcl.Transform(0.5 * lo + 0.5 * hi))
 }
 
 HEAD = """\
-# <pins>: crashtest `<query>` <pair>, asked as crashtest's fcl adapter asks it
+# <pins>: crashtest `<query>` <pair>, asked as crashtest's fcl/libccd adapter asks it
 import math
 import numpy as np
 import fcl
@@ -119,11 +119,100 @@ if ccd.is_collide:  # both moved to t = time_of_contact * t_max, then FCL's cont
 """
 
 
+# --- distance -------------------------------------------------------------------------
+# FCL's own fcl::distance<double>(const CollisionObject*, const CollisionObject*, const
+# DistanceRequest&, DistanceResult&), called past python-fcl: python-fcl 0.7.0.11 builds
+# its request as DistanceRequestd(enable_nearest_points, enable_signed_distance,
+# gjk_solver_type) (fcl.pyx, `distance`), but FCL 0.7.0's constructor takes (bool, bool, S
+# rel_err, S abs_err, S distance_tolerance, GJKSolverType) (distance_request.h): the solver
+# type lands in rel_err (GST_INDEP -> 1.0) and the solver stays GST_LIBCCD. engine.py runs
+# this very text (exec) for the fcl/indep engine; the structures are FCL 0.7.0's, field for
+# field (distance_request.h, distance_result.h; Eigen's Vector3d is three doubles).
+LIBFCL_DISTANCE = """\
+import ctypes, glob, os, sys
+class DistanceRequest(ctypes.Structure):  # fcl::DistanceRequest<double>
+    _fields_ = [("enable_nearest_points", ctypes.c_bool), ("enable_signed_distance", ctypes.c_bool),
+                ("rel_err", ctypes.c_double), ("abs_err", ctypes.c_double),
+                ("distance_tolerance", ctypes.c_double), ("gjk_solver_type", ctypes.c_int)]
+class DistanceResult(ctypes.Structure):  # fcl::DistanceResult<double>
+    _fields_ = [("min_distance", ctypes.c_double), ("nearest_points", ctypes.c_double * 6),
+                ("o1", ctypes.c_void_p), ("o2", ctypes.c_void_p), ("b1", ctypes.c_ssize_t), ("b2", ctypes.c_ssize_t)]
+_libfcl = ctypes.CDLL(glob.glob(os.path.join(os.path.dirname(fcl.__file__), "..", "python_fcl.libs", "libfcl*.so*"))[0])
+_fcl_distance = getattr(_libfcl, "_ZN3fcl8distanceIdEET_PKNS_15CollisionObjectIS1_EES5_RKNS_15DistanceRequestIS1_EERNS_14DistanceResultIS1_EE")
+_fcl_distance.restype = ctypes.c_double
+_fcl_distance.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(DistanceRequest), ctypes.POINTER(DistanceResult)]
+def cpp_pointer(obj):  # python-fcl's C++ object: Cython's `thisptr`, the first field after the object header
+    return ctypes.c_void_p.from_address(id(obj) + object.__basicsize__).value
+def libfcl_distance(o1, o2, solver, tolerance):
+    req = DistanceRequest(True, True, 0.0, 0.0, tolerance, int(solver))
+    res = DistanceResult(sys.float_info.max, (ctypes.c_double * 6)(), None, None, -1, -1)
+    _fcl_distance(cpp_pointer(o1), cpp_pointer(o2), ctypes.byref(req), ctypes.byref(res))
+    return res
+"""
+
+# fcl.Convex's faces from a Hull: FCL's flat list [count, i, j, k, ...]; a flat hull's polygon
+# once per side; a segment or a point has none (FCL then searches its vertices one by one)
+CONVEX_FACES = """\
+def convex_faces(h):
+    if h.dim == 2:
+        ring = [int(i) for i in h.polygon]
+        return 2, [len(ring), *ring, len(ring), *ring[::-1]]
+    return len(h.triangles), [int(x) for t in h.triangles for x in (3, *t)]
+"""
+
+# the convex shape: the hull's vertices and faces for fcl.Convex, made as engine.py makes
+# them (crashtest_engine.convex_hull, whose source is pasted in), at the identity
+CONVEX = """\
+h@ = convex_hull({{@.points}})
+g@ = fcl.Convex([np.array(v, dtype=np.float64) for v in h@.vertices], *convex_faces(h@))
+o@ = fcl.CollisionObject(g@, fcl.Transform())
+"""
+
+DISTANCE_LIBCCD = """\
+# FCL's DistanceResult: min_distance (signed), nearest_points[0] on its o1, [1] on its o2, no normal
+L = lambda v: [float(x) for x in v]
+req = fcl.DistanceRequest(enable_nearest_points=True, enable_signed_distance=True,
+                          gjk_solver_type=fcl.GJKSolverType.GST_LIBCCD)
+res = fcl.DistanceResult()
+fcl.distance(oa, ob, req, res)
+print("min_distance:", repr(res.min_distance), "o1 =", "a" if res.o1 is ga else "b",
+      "nearest_points:", [L(q) for q in res.nearest_points])
+"""
+
+DISTANCE_INDEP = """\
+# FCL's DistanceResult: min_distance (signed), nearest_points[0] on its o1, [1] on its o2, no normal
+res = libfcl_distance(oa, ob, fcl.GJKSolverType.GST_INDEP, 1e-6)
+print("min_distance:", repr(res.min_distance), "o1 =", "a" if res.o1 == cpp_pointer(ga) else "b",
+      "nearest_points:", list(res.nearest_points[:3]), list(res.nearest_points[3:]))
+"""
+
+
+def distance_script(variant, ka, kb):
+    import inspect
+    import crashtest_engine
+    head = (HEAD.replace("<pins>", pinned("python-fcl", "numpy", "scipy"))
+            .replace("<query>", "distance").replace("<pair>", f"{ka}-{kb}")
+            .replace("fcl/libccd adapter", f"fcl/{variant} adapter"))
+    if "convex" in (ka, kb):
+        head += ("\n" + inspect.getsource(crashtest_engine.Hull) + "\n\n"
+                 + inspect.getsource(crashtest_engine.convex_hull) + "\n\n" + CONVEX_FACES + "\n")
+    if variant == "indep":
+        head += LIBFCL_DISTANCE
+    shapes = "".join(CONVEX.replace("@", r) if k == "convex" else SHAPE[k].replace("@", r)
+                     for r, k in (("a", ka), ("b", kb)))
+    call = DISTANCE_INDEP if variant == "indep" else DISTANCE_LIBCCD
+    if variant == "libccd" and kb == "plane":
+        call = "# FCL 0.7.0 dies here (SIGSEGV): no libccd support function for a Halfspace\n" + call
+    return head + shapes + call
+
+
 def indent(text, by="    "):
     return "".join(by + line if line.strip() else line for line in text.splitlines(True))
 
 
-def script(query, ka, kb):
+def script(query, ka, kb, variant="libccd"):
+    if query == "distance":
+        return distance_script(variant, ka, kb)
     head = (HEAD.replace("<pins>", pinned("python-fcl", "numpy"))
             .replace("<query>", query).replace("<pair>", f"{ka}-{kb}"))
     if query == "overlap" and (ka, kb) == ("aabb", "aabb"):
@@ -139,6 +228,7 @@ def script(query, ka, kb):
     return head + shapes + TOI.replace("<collide>", indent(collide))
 
 
-def reproductions(handlers):
-    """One script for every pair in `handlers` (engine.py's HANDLERS)."""
-    return {(q, a, b): script(q, a, b) for q, a, b in handlers}
+def reproductions(handlers, variant="libccd"):
+    """One script for every pair in `handlers` (engine.py's HANDLERS); `variant`, the engine's
+    GJK solver (libccd or indep), is the one its distance scripts ask for."""
+    return {(q, a, b): script(q, a, b, variant) for q, a, b in handlers}

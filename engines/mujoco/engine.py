@@ -6,10 +6,13 @@ MJCF, hits from `mj_ray` (plane, mesh geoms) and `mj_rayFlex` (a one-triangle fl
 The only arithmetic done here is (1) turning the case's shapes into MuJoCo's
 representation (a plane's point and orientation, geom positions and sizes) and
 (2) the convention translation in ONE place, `translate_contact` / `translate_hit`
-below. See README.md.
+below, and `to_format_distance` for distances from `mj_geomDistance` (section
+"DISTANCE"). See README.md.
 """
+import inspect
 import math
 import os
+import re
 import sys
 
 # --- protect the protocol: MuJoCo (C code) may print to fd 1 (warnings go through
@@ -760,8 +763,249 @@ PROVENANCE = {
     "stdout": "fd 1 redirected to stderr; the protocol uses a duplicate of the original fd 1",
 }
 
+# ================================================================ DISTANCE
+# mj_geomDistance(m, d, geom1, geom2, distmax, fromto) (engine_support.c): the smallest
+# signed distance of two geoms, through the geom pair's collision function called with
+# margin = distmax (or, for mjc_Convex and mjc_BoxBox while nativeccd is on, MuJoCo's
+# own GJK/EPA, mjc_ccd with dist_cutoff = distmax); fromto = the point on geom1 and the
+# point on geom2. A distance of distmax or more is not answered (distmax comes back, fromto
+# zero), so distmax is chosen per case above any distance its shapes can have (DISTMAX).
+#
+# The models: every distance case of a batch becomes two geoms "a<i>" and "b<i>" of the world
+# body of ONE model (contype = conaffinity = 0: nothing collides; mj_geomDistance does not
+# ask), compiled once per batch by MuJoCo's compiler, which places every geom itself: a sphere
+# (size r, pos), a box (size = half extents, pos, quat = the case's [w, x, y, z], which the
+# compiler normalizes), a capsule (fromto = start and end, size r), a plane (a plane geom,
+# size "0 0 1": infinite, zaxis = the case's normal, pos = the point n (d/|n|)/|n|: MuJoCo's
+# plane is the half-space z <= 0 of its frame) and a convex shape (a mesh asset of the case's
+# points, which the compiler wraps in their convex hull with qhull, inertia "shell"). Mesh
+# vertices are f32 (mjModel.mesh_vert), re-expressed in the mesh's inertial frame: the convex
+# pairs are answered at precision 24. A shape the compiler refuses (a zero half-extent,
+# equal capsule ends, a hull that is flat, a segment or under 4 points) is `unsupported`
+# with its message.
+#
+# MuJoCo has no triangle geom (a triangle is a flex element, and mj_geomDistance takes geoms
+# only; a mesh of 3 vertices is refused: "at least 4 vertices required"): the triangle
+# pairs are not answered.
+DISTANCE_PAIRS = [("sphere", "sphere"), ("sphere", "plane"), ("sphere", "box"), ("sphere", "capsule"),
+                  ("sphere", "convex"), ("box", "plane"), ("box", "box"), ("capsule", "capsule"),
+                  ("capsule", "plane"), ("capsule", "box"), ("capsule", "convex"), ("convex", "convex"),
+                  ("convex", "plane"), ("convex", "box")]
+DIST_INERTIA = "shell"  # the mesh's inertia: "shell" compiles thin hulls "convex" may refuse
+
+
+def distmax_of(case):
+    """DISTMAX: 8 M + 1 (at most DBL_MAX), with M the largest magnitude among the case's
+    coordinates, radii, half-extents and plane offsets over |n|: every point of a sphere, box,
+    capsule or hull lies within 2 sqrt(3) M < 3.5 M of the origin (a centre or end within
+    sqrt(3) M, plus a radius or a half-diagonal), a plane passes within M of it, so no
+    distance between the two shapes reaches 8 M."""
+    m = 0.0
+    for shape in (case["a"], case["b"]):
+        (kind, s), = shape.items()
+        if kind == "plane":
+            m = max(m, abs(float(s["offset"])) / math.hypot(*s["normal"]))
+            continue
+        for key, v in s.items():
+            if key == "points":
+                m = max(m, max(abs(float(x)) for p in v for x in p))
+            elif key in ("center", "start", "end", "half_extents"):
+                m = max(m, max(abs(float(x)) for x in v))
+            elif key == "radius":
+                m = max(m, abs(float(v)))
+    return min(8.0 * m + 1.0, sys.float_info.max)
+
+
+def _f(xs):
+    return " ".join(repr(float(x)) for x in xs)
+
+
+def dist_geom_xml(name, shape):
+    """The MJCF of one shape as a geom (and a mesh asset for a convex shape), or raises
+    Unsupported for what MuJoCo's compiler refuses."""
+    (kind, s), = shape.items()
+    g = f'name="{name}" contype="0" conaffinity="0" {_GEOM}'
+    if kind == "sphere":
+        return "", f'<geom {g} type="sphere" size="{_f([s["radius"]])}" pos="{_f(s["center"])}"/>'
+    if kind == "box":
+        h = [float(x) for x in s["half_extents"]]
+        if not all(x > 0 for x in h):
+            raise Unsupported("MuJoCo cannot represent a box with a zero extent: its compiler refuses it "
+                              "('size must be positive in geom', checksize in user_objects.cc)")
+        q = s.get("rotation", [1.0, 0.0, 0.0, 0.0])
+        return "", f'<geom {g} type="box" size="{_f(h)}" pos="{_f(s["center"])}" quat="{_f(q)}"/>'
+    if kind == "capsule":
+        if list(s["start"]) == list(s["end"]):
+            raise Unsupported("MuJoCo cannot represent a capsule with a zero-length axis: its compiler refuses "
+                              "it ('fromto points too close in geom')")
+        return "", f'<geom {g} type="capsule" size="{_f([s["radius"]])}" fromto="{_f(list(s["start"]) + list(s["end"]))}"/>'
+    if kind == "plane":
+        n = [float(x) for x in s["normal"]]
+        ln = math.hypot(*n)
+        k = float(s["offset"]) / ln
+        return "", f'<geom {g} type="plane" size="0 0 1" zaxis="{_f(n)}" pos="{_f([x / ln * k for x in n])}"/>'
+    if kind == "convex":
+        if maybe_flat(s["points"]):
+            # MuJoCo's own word on it: the mesh alone, compiled
+            refusal = mesh_refusal(s["points"])
+            if refusal:
+                raise Unsupported("MuJoCo collides a mesh as its convex hull and refuses this one: " + refusal)
+        asset = f'<mesh name="m{name}" inertia="{DIST_INERTIA}" vertex="{_f(x for p in s["points"] for x in p)}"/>'
+        return asset, f'<geom {g} type="mesh" mesh="m{name}"/>'
+    raise Unsupported(f"no MuJoCo geom for {kind}")
+
+
+def maybe_flat(points):
+    """Whether MuJoCo's compiler might refuse a mesh of these points (fewer than 4, or
+    nearly coplanar, collinear or coincident: the least singular value of the centred
+    points under 1e-6 of the largest, or not finite; or all within 1e-9 of the first:
+    its tests are against mjMINVAL = 1e-15, absolute, user_mesh.cc MakeGraph), all taken
+    on the points rounded to f32 as MuJoCo stores them (far from the origin they collapse),
+    so that it is compiled alone first (`mesh_refusal`) and a refusal stays that case's; a
+    refusal this misses is caught when the batch compiles (`prepare_distance`)."""
+    with np.errstate(all="ignore"):
+        p = np.unique(np.asarray(points, dtype=np.float64).astype(np.float32), axis=0).astype(np.float64)
+    if len(p) < 4:
+        return True
+    with np.errstate(all="ignore"):
+        sv = np.linalg.svd(p - p.mean(axis=0), compute_uv=False)
+        spread = np.abs(p - p[0]).max()
+    return not (sv[-1] > 1e-6 * sv[0]) or not spread > 1e-9
+
+
+def mesh_refusal(points):
+    """MuJoCo's compiler's message refusing a mesh of these points, or None if it takes it."""
+    if len(points) < 4:
+        return "its compiler needs at least 4 vertices ('at least 4 vertices required')"
+    try:
+        mujoco.MjModel.from_xml_string(f'<mujoco><asset><mesh name="m" inertia="{DIST_INERTIA}" vertex="'
+                                       f'{_f(x for p in points for x in p)}"/></asset><worldbody>'
+                                       '<geom type="mesh" mesh="m"/></worldbody></mujoco>')
+    except ValueError as exc:
+        return " ".join(str(exc).split())
+    return None
+
+
+_dist_ready = {}  # id(case) -> ("ok", model, data, geom a, geom b, distmax) or ("unsupported", reason)
+
+
+def prepare_distance(cases):
+    """One model for a batch's distance cases (crashtest_engine.serve's `prepare`): each
+    case's two geoms, compiled together; a case whose shape the compiler refuses is taken out
+    (by the element its message names) and the rest compiled again."""
+    _dist_ready.clear()
+    parts = {}
+    for i, c in enumerate(cases):
+        try:
+            if c.get("query") != "distance" or HANDLERS.get((c["query"], next(iter(c["a"])), next(iter(c["b"])))) is not distance:
+                continue
+            pa, pb = dist_geom_xml(f"a{i}", c["a"]), dist_geom_xml(f"b{i}", c["b"])
+            parts[i] = (pa, pb)
+        except Unsupported as why:
+            _dist_ready[id(c)] = ("unsupported", str(why))
+        except Exception:
+            pass  # a malformed case: answered (with its error) one by one
+    while parts:
+        xml = ("<mujoco><asset>" + "".join(pa[0] + pb[0] for pa, pb in parts.values()) + "</asset><worldbody>"
+               + "".join(pa[1] + pb[1] for pa, pb in parts.values()) + "</worldbody></mujoco>")
+        try:
+            m = mujoco.MjModel.from_xml_string(xml)
+        except ValueError as exc:
+            text = " ".join(str(exc).split())
+            named = re.search(r"Element name '(m?)([ab])(\d+)'", text)
+            i = int(named.group(3)) if named else None
+            if i in parts:
+                _dist_ready[id(cases[i])] = ("unsupported", "MuJoCo's compiler refuses this shape: " + text)
+                del parts[i]
+                continue
+            # the message names no case (its XML reader refuses a number, say): each case's
+            # model alone tells which it refuses
+            before = len(parts)
+            for i in list(parts):
+                pa, pb = parts[i]
+                try:
+                    mujoco.MjModel.from_xml_string(f"<mujoco><asset>{pa[0]}{pb[0]}</asset><worldbody>{pa[1]}{pb[1]}"
+                                                   "</worldbody></mujoco>")
+                except ValueError as one:
+                    _dist_ready[id(cases[i])] = ("unsupported", "MuJoCo refuses this case's model: "
+                                                 + " ".join(str(one).split()))
+                    del parts[i]
+            if len(parts) == before:
+                raise  # no case's own: every case answered one by one
+            continue
+        d = mujoco.MjData(m)
+        mujoco.mj_kinematics(m, d)
+        for i in parts:
+            c = cases[i]
+            _dist_ready[id(c)] = ("ok", m, d, m.geom(f"a{i}").id, m.geom(f"b{i}").id, distmax_of(c))
+        return
+
+
+# THE DISTANCE TRANSLATION (the only one). mj_geomDistance returns the signed distance
+# (negative in penetration: the collision functions' contact dist, or mjc_ccd's -depth) and
+# fromto = [point on geom1, point on geom2] (engine_support.c: for a flipped pair the sign
+# puts the points back in the caller's order; mj_geomDistanceCCD copies status.x1 of geom1
+# and x2 of geom2). geom1 = a, geom2 = b: point_a = fromto[0:3], point_b = fromto[3:6].
+# MuJoCo gives no normal: it is (point_a - point_b)/|...| for d > 0, (point_b -
+# point_a)/|...| for d < 0 (the format's EPA convention), the zero vector where the two
+# points coincide or d = 0 (touching: the points are one point, and any difference
+# between them is rounding; no direction is given). A distance of distmax or more is no
+# answer.
+def to_format_distance(dist, fromto, distmax):
+    dist = float(dist)
+    if not dist < distmax:
+        raise RuntimeError(f"mj_geomDistance found no distance below distmax = {distmax!r} (answered {dist!r}, "
+                           f"fromto {[float(x) for x in fromto]})")
+    pa, pb = [float(x) for x in fromto[:3]], [float(x) for x in fromto[3:]]
+    diff = [pa[i] - pb[i] for i in range(3)]
+    length = math.hypot(*diff)
+    sign = 1.0 if dist > 0 else -1.0
+    n = [sign * x / length + 0.0 for x in diff] if length > 0 and dist != 0 else [0.0, 0.0, 0.0]
+    return {"distance": dist, "point_a": pa, "point_b": pb, "normal": n}
+
+
+def distance(case):
+    entry = _dist_ready.pop(id(case), None)
+    if entry is None:  # not prepared with a batch: a model of its own
+        prepare_distance([case])
+        entry = _dist_ready.pop(id(case))
+    if entry[0] == "unsupported":
+        raise Unsupported(entry[1])
+    _, m, d, ga, gb, distmax = entry
+    fromto = np.zeros(6)
+    dist = timed(mujoco.mj_geomDistance, m, d, ga, gb, distmax, fromto)
+    return to_format_distance(dist, fromto, distmax)
+
+
+for _a, _b in DISTANCE_PAIRS:
+    HANDLERS[("distance", _a, _b)] = distance
+PROVENANCE.update({
+    "distance": "mj_geomDistance(m, d, geom a, geom b, distmax, fromto) on one model per batch (every case's two "
+                "geoms in the world body, contype 0, conaffinity 0, margin 0, gap 0), after mj_kinematics; "
+                "default mjOption: nativeccd on (mjc_Convex and mjc_BoxBox pairs go to mjc_ccd), "
+                f"ccd_tolerance {mujoco.MjOption().ccd_tolerance!r}, ccd_iterations {mujoco.MjOption().ccd_iterations}",
+    "distance distmax": "per case, 8 M + 1 (at most DBL_MAX), M the largest magnitude of the case's coordinates, "
+                        "radii, half-extents and plane offsets over |n|: above any distance of the two shapes",
+    "distance shapes": "sphere: size r, pos; box: size = half extents, pos, quat = the case's [w, x, y, z] "
+                       "(normalized by the compiler); capsule: fromto = start end, size r; plane: plane geom size "
+                       "'0 0 1', zaxis = n, pos = n (d/|n|)/|n|; convex: mesh asset of the points (the compiler's "
+                       f'qhull hull, inertia "{DIST_INERTIA}", f32 vertices)',
+    "distance normal": "none from MuJoCo: (p_a - p_b)/|p_a - p_b| of fromto (d > 0), (p_b - p_a)/|...| (d < 0), "
+                       "the zero vector where they coincide or d = 0",
+    "distance triangle": "not answered: no triangle geom (mj_geomDistance takes geoms; a 3-vertex mesh is refused)",
+})
+
+
+def prepare(cases):
+    prepare_distance(cases)
+
+
 if __name__ == "__main__":
     # mjModel.mesh_vert is float: segment–mesh and sphere–mesh are answered on f32 vertices.
+    convex_pairs = {("distance", a, b): 24 for a, b in DISTANCE_PAIRS if "convex" in (a, b)}
     sys.exit(serve("mujoco", package_version("mujoco"), 53, HANDLERS, PROVENANCE,
-                   pair_precision={("intersect", "segment", "mesh"): 24, ("contact", "sphere", "mesh"): 24},
-                   world=step_world, reproductions=reproductions(HANDLERS, MODELS, _GEOM, MESH_INERTIA)))
+                   pair_precision={("intersect", "segment", "mesh"): 24, ("contact", "sphere", "mesh"): 24,
+                                   **convex_pairs},
+                   world=step_world, prepare=prepare,
+                   reproductions=reproductions(HANDLERS, MODELS, _GEOM, MESH_INERTIA,
+                                               (DIST_INERTIA, inspect.getsource(distmax_of)))))

@@ -200,8 +200,67 @@ def imports(body):
             + "import mujoco\n" + body)
 
 
-def reproductions(handlers, models, geom_attrs, inertia):
+# --- distance: the case's two shapes as geoms "a" and "b" of one model's world body, as
+# engine.py's dist_geom_xml writes them (the compiler places them), then mj_geomDistance
+# with engine.py's distmax (distmax_of, pasted in) ---------------------------------------
+DIST_SHAPE = {
+    "sphere": """{"sphere": {"center": {{@.center}}, "radius": {{@.radius}}}}""",
+    "box": """{"box": {"center": {{@.center}}, "half_extents": {{@.half_extents}}, "rotation": {{@.rotation}}}}""",
+    "capsule": """{"capsule": {"start": {{@.start}}, "end": {{@.end}}, "radius": {{@.radius}}}}""",
+    "plane": """{"plane": {"normal": {{@.normal}}, "offset": {{@.offset}}}}""",
+    "convex": """{"convex": {"points": {{@.points}}}}""",
+}
+DIST_GEOM = """\
+def geom(name, shape):  # (asset, geom) MJCF, as engine.py's dist_geom_xml writes them
+    (kind, s), = shape.items()
+    g = f'name="{name}" contype="0" conaffinity="0" <attrs>'
+    if kind == "sphere":
+        return "", f'<geom {g} type="sphere" size="{f([s["radius"]])}" pos="{f(s["center"])}"/>'
+    if kind == "box":
+        return "", f'<geom {g} type="box" size="{f(s["half_extents"])}" pos="{f(s["center"])}" quat="{f(s["rotation"])}"/>'
+    if kind == "capsule":
+        return "", f'<geom {g} type="capsule" size="{f([s["radius"]])}" fromto="{f(s["start"] + s["end"])}"/>'
+    if kind == "plane":  # MuJoCo's plane: the half-space z <= 0 of its frame
+        n = s["normal"]
+        ln = math.hypot(*n)
+        k = s["offset"] / ln
+        return "", f'<geom {g} type="plane" size="0 0 1" zaxis="{f(n)}" pos="{f([x / ln * k for x in n])}"/>'
+    return (f'<mesh name="m{name}" inertia="<inertia>" vertex="{f(x for p in s["points"] for x in p)}"/>',
+            f'<geom {g} type="mesh" mesh="m{name}"/>')
+"""
+DISTANCE = """\
+f = lambda xs: " ".join(repr(float(x)) for x in xs)
+case = {"a": <a>, "b": <b>}
+<geom>
+(asset_a, geom_a), (asset_b, geom_b) = geom("a", case["a"]), geom("b", case["b"])
+m = mujoco.MjModel.from_xml_string(f"<mujoco><asset>{asset_a}{asset_b}</asset><worldbody>{geom_a}{geom_b}</worldbody></mujoco>")
+d = mujoco.MjData(m)
+mujoco.mj_kinematics(m, d)
+
+<distmax>
+fromto = np.zeros(6)
+dist = mujoco.mj_geomDistance(m, d, m.geom("a").id, m.geom("b").id, distmax_of(case), fromto)
+print("distmax:", distmax_of(case), "dist:", repr(float(dist)), "from (on a):", fromto[:3].tolist(),
+      "to (on b):", fromto[3:].tolist())
+"""
+
+
+def distance_script(ka, kb, geom_attrs, inertia, distmax_source):
+    head = (HEAD.replace("<pins>", pinned("mujoco", "numpy")).replace("<query>", "distance")
+            .replace("<pair>", f"{ka}-{kb}") + "import math\nimport sys\nimport numpy as np\nimport mujoco\n")
+    return head + (DISTANCE.replace("<a>", DIST_SHAPE[ka].replace("@", "a"))
+                   .replace("<b>", DIST_SHAPE[kb].replace("@", "b"))
+                   .replace("<geom>", DIST_GEOM.replace("<attrs>", geom_attrs).replace("<inertia>", inertia))
+                   .replace("<distmax>", distmax_source))
+
+
+def reproductions(handlers, models, geom_attrs, inertia, distance=None):
     """One script for every pair in `handlers` (engine.py's HANDLERS). `models`: the
     MJCF of engine.py's fixed models by scene name; `geom_attrs`: the margin and gap
-    attributes of every geom; `inertia`: a mesh's inertia mode."""
-    return {(q, a, b): script(q, a, b, models, geom_attrs, inertia) for q, a, b in handlers}
+    attributes of every geom; `inertia`: a mesh's inertia mode; `distance`: (a distance
+    case's mesh inertia, the source of engine.py's distmax_of)."""
+    if distance is None:
+        return {(q, a, b): script(q, a, b, models, geom_attrs, inertia) for q, a, b in handlers}
+    dist_inertia, distmax_source = distance
+    return {(q, a, b): distance_script(a, b, geom_attrs, dist_inertia, distmax_source) if q == "distance"
+            else script(q, a, b, models, geom_attrs, inertia) for q, a, b in handlers}

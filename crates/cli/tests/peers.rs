@@ -1,11 +1,12 @@
-//! The peer engines crashtest ships adapters for (`engines/engines.json`: FCL,
-//! Coal, MuJoCo, Bullet), each through `crashtest-engine/1`, on a fresh machine
+//! The peer engines crashtest ships adapters for (`engines/engines.json`: FCL's
+//! two GJK solvers, Coal's three GJK variants, MuJoCo, Bullet, ipctk's two CCD
+//! methods), each through `crashtest-engine/1`, on a fresh machine
 //! after `engines/install` (the README's test command runs it first; a peer
 //! that is not installed fails these tests, it is never skipped):
 //!
 //! - the conformance run (handshake, the fixture corpus against the referee,
 //!   the malformed-case probes) finds no protocol violation;
-//! - every case of the adapter's `divergences.json` gets the verdict its
+//! - every case of the engine's `divergences.json` (beside its `known.json`) gets the verdict its
 //!   `source` records — `known divergence:` the known divergence that pins it
 //!   (from the adapter's `known.json`), `engine error:` DISAGREE or FAILED,
 //!   `borderline:` borderline — so a known divergence that stops happening, or
@@ -58,7 +59,10 @@ fn judged_as_recorded(name: &str) {
     assert_eq!(code, 0, "{name}: the conformance run found a violation or could not run:\n{out}\n{err}");
     assert!(out.contains("protocol violations: none"), "{name}:\n{out}");
 
-    let divergences = format!("engines/{name}/divergences.json");
+    // The engine's divergences file lies beside its known divergences
+    // (`engines/fcl/` for fcl/libccd, `engines/fcl/indep/` for fcl/indep).
+    let known = p.known_file.as_ref().unwrap_or_else(|| panic!("{name}: no known file in engines/engines.json"));
+    let divergences = known.with_file_name("divergences.json").to_str().expect("utf-8 path").to_string();
     let (code, out, err) =
         crashtest(&["check", "--json", "--engines", &format!("collide/robust,{name}"), &divergences]);
     assert!(code == 0 || code == 1, "{name}: check on {divergences} exited {code}:\n{err}");
@@ -111,8 +115,13 @@ fn judged_as_recorded(name: &str) {
 }
 
 #[test]
-fn fcl_is_judged_as_recorded() {
-    judged_as_recorded("fcl");
+fn fcl_libccd_is_judged_as_recorded() {
+    judged_as_recorded("fcl/libccd");
+}
+
+#[test]
+fn fcl_indep_is_judged_as_recorded() {
+    judged_as_recorded("fcl/indep");
 }
 
 #[test]
@@ -125,9 +134,9 @@ fn fcl_toi_workers_side_by_side_answer_as_one_case_at_a_time() {
     assert_eq!(code, 0, "{err}");
     let file = Path::new(env!("CARGO_TARGET_TMPDIR")).join("fcl-workers.json");
     std::fs::write(&file, cases).expect("writes the cases");
-    peer("fcl");
+    peer("fcl/libccd");
     let verdicts = |batch: &str| {
-        let args = ["check", "--json", "--engines", "collide/robust,fcl", "--engine-batch", batch];
+        let args = ["check", "--json", "--engines", "collide/robust,fcl/libccd", "--engine-batch", batch];
         let (code, out, err) = crashtest(&[&args[..], &[file.to_str().expect("path")]].concat());
         assert!(code == 0 || code == 1, "check exited {code}:\n{err}");
         let v: serde_json::Value = serde_json::from_str(&out).expect("check --json");
@@ -136,7 +145,10 @@ fn fcl_toi_workers_side_by_side_answer_as_one_case_at_a_time() {
             .expect("cases")
             .iter()
             .map(|c| {
-                let r = c["engines"].as_array().and_then(|es| es.iter().find(|e| e["engine"] == "fcl")).expect("fcl");
+                let r = c["engines"]
+                    .as_array()
+                    .and_then(|es| es.iter().find(|e| e["engine"] == "fcl/libccd"))
+                    .expect("fcl/libccd");
                 (c["name"].to_string(), r["verdict"].to_string(), r["reason"].to_string())
             })
             .collect::<Vec<_>>()
@@ -153,6 +165,16 @@ fn fcl_toi_workers_side_by_side_answer_as_one_case_at_a_time() {
 #[test]
 fn coal_is_judged_as_recorded() {
     judged_as_recorded("coal");
+}
+
+#[test]
+fn coal_nesterov_is_judged_as_recorded() {
+    judged_as_recorded("coal/nesterov");
+}
+
+#[test]
+fn coal_polyak_is_judged_as_recorded() {
+    judged_as_recorded("coal/polyak");
 }
 
 #[test]
@@ -185,7 +207,7 @@ fn all_runs_every_installed_peer_and_names_the_missing_with_how_to_install() {
     let file = file.to_str().expect("utf-8");
     let (code, out, err) = crashtest(&["check", "--engines-file", file, "fixtures/overlap.json"]);
     assert_eq!(code, 0, "{out}\n{err}");
-    for name in ["fcl", "coal", "mujoco", "bullet"] {
+    for name in ["fcl/libccd", "coal", "mujoco", "bullet"] {
         assert!(out.contains(&format!("\n  {name} ")), "{name} runs under `all`:\n{out}");
     }
     assert!(
@@ -212,16 +234,37 @@ fn all_runs_every_installed_peer_and_names_the_missing_with_how_to_install() {
         .iter()
         .filter_map(|e| e["name"].as_str())
         .collect();
-    for name in
-        ["collide/robust", "parry3d-f64", "fcl", "coal", "mujoco", "bullet", "ipctk/tight-inclusion", "ipctk/additive"]
-    {
+    for name in [
+        "collide/robust",
+        "parry3d-f64",
+        "fcl/libccd",
+        "fcl/indep",
+        "coal",
+        "coal/nesterov",
+        "coal/polyak",
+        "mujoco",
+        "bullet",
+        "ipctk/tight-inclusion",
+        "ipctk/additive",
+    ] {
         assert!(engines.contains(&name), "{name} in {engines:?}");
     }
     // Each peer says how many cases it was sent and how long the exchanges
     // took; an in-process engine has no such line.
     for e in summary["provenance"]["engines"].as_array().expect("engines") {
         let (name, process) = (e["name"].as_str().unwrap_or(""), &e["process"]);
-        if ["fcl", "coal", "mujoco", "bullet", "ipctk/tight-inclusion", "ipctk/additive"].contains(&name) {
+        let peers = [
+            "fcl/libccd",
+            "fcl/indep",
+            "coal",
+            "coal/nesterov",
+            "coal/polyak",
+            "mujoco",
+            "bullet",
+            "ipctk/tight-inclusion",
+            "ipctk/additive",
+        ];
+        if peers.contains(&name) {
             let (sent, seconds) = (process["cases_sent"].as_u64(), process["seconds_sent"].as_f64());
             assert!(sent.is_some_and(|n| n > 0) && seconds.is_some_and(|s| s > 0.0), "{name}: {process}");
         } else {
