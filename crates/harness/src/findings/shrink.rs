@@ -10,7 +10,8 @@
 //! the referee still gives the finding's signature ([`Signature::same_defect`])
 //! for the engine's answer. Candidates are tried in a fixed order, so
 //! shrinking is deterministic; it stops when a whole pass keeps nothing, or
-//! after [`MAX_EVALUATIONS`] candidates. Every kept candidate lowers the cost,
+//! after [`MAX_EVALUATIONS`] candidates ([`MAX_FAILED_PROCESS_EVALUATIONS`]
+//! for a process engine's crash or hang). Every kept candidate lowers the cost,
 //! a non-negative integer, so it ends.
 
 use super::signature::{Cause, Signature, cause_of, signature};
@@ -26,6 +27,12 @@ use serde_json::Value;
 /// the referee's slowest queries (a time of impact against a mesh) take a few
 /// milliseconds, so one finding costs at most a few seconds.
 pub const MAX_EVALUATIONS: u32 = 400;
+
+/// Candidates judged at most for a process engine's failure (a crash, or no
+/// answer within the engine's own time limit): each judgement of a case that
+/// hangs costs that limit (FCL's distance worker waits 0.25 s), so the
+/// shrinking of one such finding stays within seconds.
+pub const MAX_FAILED_PROCESS_EVALUATIONS: u32 = 24;
 
 /// How often a shrunk case is judged again after shrinking: an engine that
 /// answers the same case differently between calls (FCL's continuous
@@ -324,6 +331,11 @@ pub fn shrink(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, 
     // distance on a degenerate triangle does, about half the time): its
     // candidate must show the defect in every one of STABLE_CHECKS judgements.
     let checks = if engine.process().is_some() { STABLE_CHECKS } else { 1 };
+    let most = if engine.process().is_some() && sig.wrong.starts_with("failed") {
+        MAX_FAILED_PROCESS_EVALUATIONS
+    } else {
+        MAX_EVALUATIONS
+    };
     let keeps = |c: &Value, evaluations: &mut u32| -> Option<LoadedCase> {
         let cand = load(c, &lc.file)?;
         for _ in 0..checks {
@@ -337,7 +349,7 @@ pub fn shrink(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, 
     'passes: loop {
         let mut kept = false;
         for c in case_candidates(&best) {
-            if evaluations >= MAX_EVALUATIONS {
+            if evaluations >= most {
                 break 'passes;
             }
             let k = cost(&c);
@@ -353,7 +365,7 @@ pub fn shrink(lc: &LoadedCase, sig: &Signature, cause: &Cause, engine: &Engine, 
             present.sort_by(f64::total_cmp);
             present.dedup();
             for y in number_candidates(x, &present) {
-                if evaluations >= MAX_EVALUATIONS {
+                if evaluations >= most {
                     break 'passes;
                 }
                 let mut c = best.clone();
