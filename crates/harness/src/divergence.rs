@@ -676,7 +676,11 @@ mod tests {
     fn rules(json: &str) -> Result<Vec<DataRule>, String> {
         let dir = std::env::temp_dir().join(format!("crashtest-known-{}", std::process::id()));
         std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
-        let path = dir.join(format!("known-{}.json", json.len()));
+        // One file per call: tests run side by side in one process, and two
+        // texts of one length (a schema `/1` and `/2`) must not share a file.
+        static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let n = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let path = dir.join(format!("known-{n}.json"));
         std::fs::write(&path, json).map_err(|e| e.to_string())?;
         load_known(&path)
     }
