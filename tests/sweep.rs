@@ -142,8 +142,9 @@ fn collide_f32_robust_stays_within_the_f32_tolerance_of_its_rounded_input() {
         }
     }
     assert!(judged_cases > 3_000, "{judged_cases} cases");
-    // Known, asserted as it is: collide's robust distance decides ties by a
-    // tolerance (tests/full_range.rs, KNOWN_WRONG_DISTANCE); rounded to f32,
+    // Known, asserted as it is: collide's robust distance decides its flag
+    // exactly, on a box's corners as it is given them (tests/full_range.rs,
+    // KNOWN_WRONG_DISTANCE); rounded to f32,
     // box–box faces 1e-16 apart in a rotated pose are parallel for the
     // referee and not flagged by the f32 method, nor a flat box face down
     // over a box in a rotated pose (`distance-aspect`): collide forms a

@@ -1,8 +1,9 @@
 //! The faces and edges of a point set's convex hull, found with exact
 //! orientation predicates (`crate::exact`), for the robust penetration depth's
 //! separating axes. Duplicated, coplanar and collinear points are handled:
-//! a flat hull's faces are its plane's two sides and its edges the polygon's
+//! a flat hull's face is its plane (once) and its edges the polygon's
 //! boundary; a segment's one edge is its two extreme points; a point has none.
+//! A solid hull's neighbouring triangles in one plane make one facet.
 //!
 //! A solid hull is built incrementally (`O(n·f)` predicates for `n` points
 //! and `f` faces); a flat one's edges by pairs (`O(n³)` on its plane).
@@ -13,11 +14,13 @@ use crate::real::Vec3;
 /// Relative accuracy asked of a face normal's components (2^−50).
 const NORMAL_REL_ERR: f64 = 1.0 / (1u64 << 50) as f64;
 
-/// A face: its outward unit normal (components within a few ulps).
+/// A face: three of its points, indices into [`Hull::pts`], whose normal
+/// `(p₁ − p₀) × (p₂ − p₀)` points out of the hull (for a flat hull, to one
+/// side of its plane).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Face {
-    /// Outward unit normal.
-    pub n: Vec3<f64>,
+    /// The three points.
+    pub idx: [usize; 3],
 }
 
 /// A convex hull's combinatorics.
@@ -25,12 +28,14 @@ pub(crate) struct Face {
 pub(crate) struct Hull {
     /// The distinct input points.
     pub pts: Vec<P3>,
+    /// For each of `pts`, the index of the input point it is.
+    pub orig: Vec<usize>,
     /// Affine dimension, 0 to 3.
     pub dim: usize,
-    /// Faces (for a flat hull, the plane's two sides).
+    /// Faces, one per facet (for a flat hull, its plane once).
     pub faces: Vec<Face>,
-    /// Edges, as pairs of indices into `pts` (for a flat or solid hull a
-    /// boundary segment may appear also split at collinear points).
+    /// Edges, as pairs of indices into `pts` (a boundary segment may appear
+    /// also split at collinear points).
     pub edges: Vec<(usize, usize)>,
 }
 
@@ -53,12 +58,14 @@ impl Hull {
     /// The hull of `points` (finite; at least one).
     pub(crate) fn new(points: &[P3]) -> Self {
         let mut pts: Vec<P3> = Vec::with_capacity(points.len());
-        for p in points {
+        let mut orig = Vec::with_capacity(points.len());
+        for (i, p) in points.iter().enumerate() {
             if !pts.iter().any(|q| points_equal(*p, *q)) {
                 pts.push(*p);
+                orig.push(i);
             }
         }
-        let mut hull = Hull { pts, dim: 0, faces: Vec::new(), edges: Vec::new() };
+        let mut hull = Hull { pts, orig, dim: 0, faces: Vec::new(), edges: Vec::new() };
         let p = &hull.pts;
         if p.len() == 1 {
             return hull;
@@ -94,8 +101,7 @@ impl Hull {
             }
             scale *= 4.0;
         }
-        self.faces.push(Face { n });
-        self.faces.push(Face { n: -n });
+        self.faces.push(Face { idx: [0, 1, i2] });
         if let Some(r) = off {
             let all: Vec<usize> = (0..self.pts.len()).collect();
             self.edges = boundary_edges(&self.pts, &all, r);
@@ -108,10 +114,9 @@ impl Hull {
     /// full-dimensional polytope is strictly beyond one of its facets, so a
     /// point beyond none is inside or on it and adds nothing) removes the
     /// faces it sees and joins the horizon's edges to itself. `O(n·f)`
-    /// predicates for `n` points and `f` faces. Coplanar neighbouring faces
-    /// are kept as triangles: their normals repeat and their diagonals are
-    /// edges too, which adds candidate axes (each a valid push, never less
-    /// than the depth) and never changes the least.
+    /// predicates for `n` points and `f` faces. Neighbouring triangles in one
+    /// plane are then one facet (one face; the edge between them is no
+    /// edge).
     fn solid(&mut self) {
         let p = &self.pts;
         let n = p.len();
@@ -155,16 +160,44 @@ impl Hull {
             }
             faces = next;
         }
-        let mut seen = std::collections::HashSet::new();
-        for f in &faces {
-            if let Some(nrm) = unit_normal(p[f[0]], p[f[1]], p[f[2]]) {
-                self.faces.push(Face { n: nrm });
-            }
+        // Neighbouring triangles in one plane (exactly) are one facet: the
+        // edge between them is no edge of the hull, and the facet keeps one
+        // of its triangles as its face.
+        let mut faces_of: std::collections::HashMap<(usize, usize), Vec<usize>> = std::collections::HashMap::new();
+        let mut order: Vec<(usize, usize)> = Vec::new();
+        for (k, f) in faces.iter().enumerate() {
             for e in 0..3 {
-                let (u, w) = (f[e].min(f[(e + 1) % 3]), f[e].max(f[(e + 1) % 3]));
-                if seen.insert((u, w)) {
-                    self.edges.push((u, w));
+                let key = (f[e].min(f[(e + 1) % 3]), f[e].max(f[(e + 1) % 3]));
+                let entry = faces_of.entry(key).or_default();
+                if entry.is_empty() {
+                    order.push(key);
                 }
+                entry.push(k);
+            }
+        }
+        let mut facet: Vec<usize> = (0..faces.len()).collect();
+        fn root(facet: &mut [usize], mut k: usize) -> usize {
+            while facet[k] != k {
+                facet[k] = facet[facet[k]];
+                k = facet[k];
+            }
+            k
+        }
+        for key in order {
+            if let [f, g] = faces_of[&key][..] {
+                let (ff, gg) = (faces[f], faces[g]);
+                let opposite = gg.iter().copied().find(|&v| v != key.0 && v != key.1).unwrap_or(gg[0]);
+                if orient3d(p[ff[0]], p[ff[1]], p[ff[2]], p[opposite]) == Sign::Zero {
+                    let (rf, rg) = (root(&mut facet, f), root(&mut facet, g));
+                    facet[rf] = rg;
+                    continue;
+                }
+            }
+            self.edges.push(key);
+        }
+        for (k, f) in faces.iter().enumerate() {
+            if root(&mut facet, k) == k {
+                self.faces.push(Face { idx: *f });
             }
         }
     }

@@ -22,22 +22,40 @@
 //!
 //! **The robust form** ([`distance`]) computes in `f64` on the exactly
 //! widened inputs, scaled by a power of two outside the plain range, and
-//! rounds once at the end:
+//! rounds once at the end; every decision that shapes the answer is an exact
+//! predicate on the inputs as given (`robust`, `predicates`: floating-point
+//! filters first, a double-double stage, then exact arithmetic), so it holds
+//! at every scale, far below the rounding of the scene's coordinates:
 //! 1. GJK to termination (no support point improves `v`), then a
 //!    *certificate*: with the exact normal `N` of the final simplex (a
 //!    polynomial in the input coordinates), every core point of `a` has
-//!    `N·x ≥ N·a₀` and every point of `b` has `N·y ≤ N·b₀`, decided with
-//!    filtered exact arithmetic; a violation adds the violating pair to the
-//!    simplex and GJK resumes. The certified distance is `N̂·(a₀ − b₀)`,
-//!    exactly 0 for a touching pair; its supporting sets (points with
-//!    `N·x` exactly at the level) decide the degenerate flag.
-//! 2. When the cores meet (or the certificate cannot be had), the
-//!    penetration depth by separating axes: the least push
-//!    `max_b L·y − min_a L·x` (or the reverse) over the hulls' face normals
-//!    and the cross products of their edges, the hulls' faces and edges found
-//!    with exact orientation predicates (flat, segment and single-point hulls
-//!    included). The witnesses are the closest points of the two supporting
-//!    sets projected onto the plane normal to the push.
+//!    `N·x ≥ N·a₀` and every point of `b` has `N·y ≤ N·b₀`, and the two
+//!    supporting sets (the points exactly on those levels), seen along `N`,
+//!    meet. A point beyond the slab joins the simplex and GJK resumes; where
+//!    floating point cannot find the nearest feature (a distance below the
+//!    rounding of the coordinates), GJK runs again with each step decided
+//!    exactly. The certified distance is `N̂·(a₀ − b₀)`, exactly 0 for a
+//!    touching pair.
+//! 2. When the cores meet, the penetration depth by separating axes: the
+//!    least push `max_b L·y − min_a L·x` (or the reverse) over the hulls'
+//!    face normals and the cross products of their edge directions (each a
+//!    polynomial in the inputs; the hulls' faces, merged where coplanar, and
+//!    edges found with exact orientation predicates), the pushes that may be
+//!    the least kept by a bounded floating-point pass and then ordered
+//!    exactly, so that two least pushes in different directions are found
+//!    as such.
+//!
+//! Along the answer's normal the witnesses are where the two supporting sets
+//! (a point, a segment or a polygon each), seen along it, overlap: unique,
+//! and not `degenerate`, exactly when that overlap is one point; a touching
+//! pair's normal is unique only when that point lies strictly inside a
+//! face or is two edges crossing strictly inside both, and the cores do not
+//! lie in one plane. Cores that meet with no direction at all (points and
+//! segments on one line) take the format's fallback normal: `+z` for
+//! points, else the unit vector of `u × z` (`u × x` for a line along `z`).
+//!
+//! A box reaches [`distance`] as its corners ([`box_corners`], rounded to
+//! the type); the answer is exact for those points.
 //!
 //! **Degenerate input** (an empty point set, a non-finite coordinate) is
 //! answered by the fallback: distance 0, both points at the origin, normal
@@ -47,6 +65,7 @@
 mod epa;
 mod gjk;
 mod hull;
+mod predicates;
 mod robust;
 #[cfg(test)]
 mod tests;
@@ -262,11 +281,11 @@ fn widened<T: Real>(sets: [&[Vec3<T>]; 2], radii: [T; 2]) -> Option<([Vec<P3>; 2
 /// deeply penetrating pairs, scenes far from the origin, the whole `f64`
 /// range). An exact touching pair answers exactly 0.
 ///
-/// `degenerate` when the witnesses are not unique (the exact supporting
-/// sets are a face against an edge or a face, or two parallel edges), when
-/// the normal is not unique (two different least pushes, or a touching
-/// pair whose contact spans less than a facet of the Minkowski difference),
-/// and for the fallback on degenerate input.
+/// `degenerate` exactly when the witnesses are not unique (the exact
+/// supporting sets overlap in more than a point, seen along the normal),
+/// when the normal is not unique (two least pushes in different directions,
+/// or a touching pair whose contact spans less than a facet of the
+/// Minkowski difference), and for the fallback on degenerate input.
 pub fn distance<T: Real>(a: &Rounded<T>, b: &Rounded<T>) -> Distance<T> {
     if a.points.is_empty() || b.points.is_empty() {
         return Distance::fallback();
@@ -276,7 +295,9 @@ pub fn distance<T: Real>(a: &Rounded<T>, b: &Rounded<T>) -> Distance<T> {
     let Some(([wa, wb], [ra, rb], k)) = widened([a.points, b.points], [ra, rb]) else {
         return Distance::fallback();
     };
-    let c = robust::core(&wa, &wb);
+    let (ea, eb): (Vec<P3>, Vec<P3>) =
+        (a.points.iter().map(to_f64_3).collect(), b.points.iter().map(to_f64_3).collect());
+    let c = robust::core(&robust::Sets { a: &ea, b: &eb, sa: &wa, sb: &wb });
     let n = c.n;
     finish(c.d - ra - rb, c.pa - n * ra, c.pb + n * rb, n, k, c.degenerate || bad_a || bad_b)
 }

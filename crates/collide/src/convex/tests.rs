@@ -312,6 +312,161 @@ fn nearly_coplanar_hull() {
     assert!(r.degenerate);
 }
 
+/// The robust form's answer and its `degenerate` flag against hand-derived
+/// ones, at the scene's `scale`.
+fn robust_is(
+    a: &[[f64; 3]],
+    b: &[[f64; 3]],
+    d: f64,
+    n: [f64; 3],
+    p: Option<([f64; 3], [f64; 3])>,
+    g: bool,
+    scale: f64,
+) {
+    let r = run(&(pts::<f64>(a), 0.0), &(pts::<f64>(b), 0.0), false);
+    let tol = HAND_ULPS * f64::EPSILON;
+    assert!(close(r.distance, d, tol * scale), "distance {} ≠ {d}: {r:?}", r.distance);
+    assert!(close3(&r.normal, n, tol), "normal: {r:?}");
+    if let Some((pa, pb)) = p {
+        assert!(close3(&r.point_a, pa, tol * scale) && close3(&r.point_b, pb, tol * scale), "witnesses: {r:?}");
+    }
+    assert_eq!(r.degenerate, g, "degenerate: {r:?}");
+}
+
+#[test]
+fn robust_flag_of_a_thin_triangle_over_a_segment() {
+    // A segment along x at z = 0 under a triangle at z = 1 whose third
+    // vertex is 2^−40 off the line of the other two: the triangle's face
+    // is over the segment along a length 2^−40, so the witnesses are not
+    // unique; with the third vertex exactly on the line the two segments
+    // cross, one witness pair.
+    let b = [[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
+    let thin = [[0.0, -1.0, 1.0], [0.0, 1.0, 1.0], [2f64.powi(-40), 0.0, 1.0]];
+    assert!(!crate::exact::collinear(thin[0], thin[1], thin[2]), "a proper triangle");
+    robust_is(&thin, &b, 1.0, [0.0, 0.0, 1.0], None, true, 2.0);
+    let line = [[0.0, -1.0, 1.0], [0.0, 1.0, 1.0], [0.0, 0.0, 1.0]];
+    robust_is(&line, &b, 1.0, [0.0, 0.0, 1.0], Some(([0.0, 0.0, 1.0], [0.0, 0.0, 0.0])), false, 2.0);
+}
+
+#[test]
+fn robust_flag_of_a_square_tilted_by_an_ulp() {
+    // A square 1 above a cube's top face (corner (−1, −1) over it): level,
+    // the two faces overlap (witnesses not unique); tilted so that its
+    // corners rise by an ulp of 1 along x and along y (a plane), its lowest
+    // point is the corner (−1, −1, 1) alone, over the face's inside.
+    let e = f64::EPSILON;
+    let b: Vec<[f64; 3]> = [[-1.5, -1.5], [-0.5, -1.5], [-1.5, -0.5], [-0.5, -0.5]]
+        .iter()
+        .flat_map(|&[x, y]| [[x, y, -0.5], [x, y, 0.5]])
+        .collect();
+    let level = [[-1.0, -1.0, 1.0], [1.0, -1.0, 1.0], [-1.0, 1.0, 1.0], [1.0, 1.0, 1.0]];
+    robust_is(&level, &b, 0.5, [0.0, 0.0, 1.0], None, true, 2.0);
+    let tilted = [[-1.0, -1.0, 1.0], [1.0, -1.0, 1.0 + e], [-1.0, 1.0, 1.0 + e], [1.0, 1.0, 1.0 + 2.0 * e]];
+    robust_is(&tilted, &b, 0.5, [0.0, 0.0, 1.0], Some(([-1.0, -1.0, 1.0], [-1.0, -1.0, 0.5])), false, 2.0);
+}
+
+#[test]
+fn robust_flag_at_1e300_with_heights_of_1e_minus_300() {
+    // A square of half-side 1e300 at z = 0 under a triangle inside its
+    // outline whose vertices stand 1e-300, 2e-300 and 3e-300 above it:
+    // its lowest vertex alone is nearest (one witness pair), though every
+    // height is far below the rounding of the square's coordinates; level,
+    // the face is over the square (not unique).
+    let b = [[-1e300, -1e300, 0.0], [1e300, -1e300, 0.0], [1e300, 1e300, 0.0], [-1e300, 1e300, 0.0]];
+    let a = [[1e299, 0.0, 1e-300], [-1e299, 1e299, 2e-300], [-1e299, -1e299, 3e-300]];
+    // The distance and the witnesses are right to the scene's scale (they
+    // are formed on the scene scaled by 2^−997, where 1e-300 vanishes); the
+    // normal and the flag are exact.
+    let tol = HAND_ULPS * f64::EPSILON * 1e300;
+    let r = run(&(pts::<f64>(&a), 0.0), &(pts::<f64>(&b), 0.0), false);
+    assert!(close(r.distance, 1e-300, tol), "{r:?}");
+    assert!(close3(&r.normal, [0.0, 0.0, 1.0], HAND_ULPS * f64::EPSILON), "{r:?}");
+    assert!(close3(&r.point_a, [1e299, 0.0, 1e-300], tol), "{r:?}");
+    assert!(!r.degenerate, "{r:?}");
+    let level = a.map(|p| [p[0], p[1], 1e-300]);
+    let r = run(&(pts::<f64>(&level), 0.0), &(pts::<f64>(&b), 0.0), false);
+    assert!(close3(&r.normal, [0.0, 0.0, 1.0], HAND_ULPS * f64::EPSILON) && r.degenerate, "{r:?}");
+}
+
+#[test]
+fn robust_crossing_witnesses_across_magnitudes() {
+    // The segment from the origin to (2^850, 0, 2^990) and the segment
+    // x = 2^600, y = 1, z ∈ [−2^990, 2^990]: they cross, seen along y, at
+    // t = 2^−250 of the first, (2^600, 0, 2^740); the gap is 1.
+    let p = |e: i32| 2f64.powi(e);
+    let a = [[p(850), 0.0, p(990)], [0.0, 0.0, 0.0]];
+    let b = [[p(600), 1.0, -p(990)], [p(600), 1.0, p(990)]];
+    let w = ([p(600), 0.0, p(740)], [p(600), 1.0, p(740)]);
+    let r = run(&(pts::<f64>(&a), 0.0), &(pts::<f64>(&b), 0.0), false);
+    assert!(close(r.distance, 1.0, HAND_ULPS * f64::EPSILON), "{r:?}");
+    assert!(close3(&r.normal, [0.0, -1.0, 0.0], HAND_ULPS * f64::EPSILON), "{r:?}");
+    // The witnesses to the scene's own accuracy (its coordinates reach 2^990).
+    let tol = HAND_ULPS * f64::EPSILON * p(990);
+    assert!(close3(&r.point_a, w.0, tol) && close3(&r.point_b, w.1, tol), "{r:?}");
+    assert!(!r.degenerate, "{r:?}");
+}
+
+#[test]
+fn robust_distance_far_below_the_coordinates_rounding() {
+    // A vertex at (≈0, −3.37e202, ≈0) against a segment from
+    // (≈0, −4.0e264, 5.2e33) to (1.7e11, −2.6e167, ≈0): the segment passes
+    // the vertex's height at 8.4e-63 of its length from its second end, so
+    // the gap is that end's x, 1.7e11, along −x: 1e-254 of the scene, far
+    // below the rounding of its Minkowski points (floating-point GJK loses
+    // it; the exact GJK finds it).
+    let a = [
+        [-9.735253369765886e151, 2.8830347276908635e256, -3.4332283176605212e-211],
+        [-6.129468674341458e-259, -1.2799110256292387e-67, -1.4971109739202433e-90],
+        [3.3238662834666392e-242, -3.3690329998577217e202, 8.040944056494227e-221],
+    ];
+    let b = [
+        [1.2862133687825818e-288, -4.0055723858355485e264, 5.168023051370799e33],
+        [170276451024.6544, -2.6138105906560463e167, -2.8437725234847377e-192],
+    ];
+    let r = run(&(pts::<f64>(&a), 0.0), &(pts::<f64>(&b), 0.0), false);
+    assert!(close(r.distance, 170276451024.6544, HAND_ULPS * f64::EPSILON * 170276451024.6544), "{r:?}");
+    assert!(close3(&r.normal, [-1.0, 0.0, 0.0], HAND_ULPS * f64::EPSILON), "{r:?}");
+    assert!(!r.degenerate, "{r:?}");
+}
+
+fn touching<T: Real>() {
+    let b = (cube::<T>([0.0; 3], 0.5), 0.0);
+    let check = |a: &[[f64; 3]], n: [f64; 3], w: Option<[f64; 3]>, g: bool| {
+        let r = run(&(pts::<T>(a), 0.0), &b, false);
+        let tol = HAND_ULPS * eps::<T>();
+        assert!(r.distance.wide() == 0.0, "touching is exactly 0: {r:?}");
+        assert!(close3(&r.normal, n, tol), "normal: {r:?}");
+        if let Some(p) = w {
+            assert!(close3(&r.point_a, p, tol) && close3(&r.point_b, p, tol), "witnesses: {r:?}");
+        }
+        assert_eq!(r.degenerate, g, "degenerate: {r:?}");
+    };
+    // A vertex strictly inside the top face: one normal, one witness.
+    check(
+        &[[0.1, 0.2, 0.5], [-1.0, -1.0, 2.0], [1.0, -1.0, 2.0], [0.0, 1.0, 2.0]],
+        [0.0, 0.0, 1.0],
+        Some([0.1, 0.2, 0.5]),
+        false,
+    );
+    // An edge from (0, 0, 1) to (1, 0, 0) crossing the top face's edge
+    // x = z = 0.5 at their middles (every point of `a` has x + z ≥ 1, the
+    // cube x + z ≤ 1): the normal is their cross product's, one witness.
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    check(
+        &[[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.5, 0.5, 1.5], [1.5, -0.5, 1.5]],
+        [h, 0.0, h],
+        Some([0.5, 0.0, 0.5]),
+        false,
+    );
+    // A vertex on that edge: the pushes along +x and +z (and between) are
+    // all 0, no one normal.
+    let r = run(&(pts::<T>(&[[0.5, 0.2, 0.5], [1.5, -1.0, 2.0], [2.5, -1.0, 2.0], [1.5, 1.0, 2.0]]), 0.0), &b, false);
+    assert!(r.distance.wide() == 0.0 && r.degenerate, "{r:?}");
+    // An edge lying on the top face: witnesses along it.
+    check(&[[-0.25, 0.0, 0.5], [0.25, 0.0, 0.5], [0.0, 0.5, 1.5], [0.0, -0.5, 1.5]], [0.0, 0.0, 1.0], None, true);
+}
+both!(touching_pairs, touching);
+
 fn plane_cases<T: Real>() {
     let tol = HAND_ULPS * eps::<T>() * 2.0;
     let cubep = cube::<T>([0.0, 0.0, 1.0], 0.5);

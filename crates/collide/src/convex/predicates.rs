@@ -1,0 +1,866 @@
+//! The exact predicates of the robust signed distance: signs of small
+//! homogeneous polynomials in the input coordinates, written once over
+//! [`Ring`](crate::boxes::poly::Ring) and evaluated through filters
+//! ([`decide`]): `f64` with a running error bound, which settles nearly every
+//! sign of an ordinary scene; double-double with a bound of order `2^−100` of
+//! the terms, which settles the values a rounding away from zero (a rotated
+//! box's nearly coplanar corners, nearly parallel edges); then
+//! `crate::boxes::poly`'s stages, exact at the last, for exact zeros and for
+//! the whole range of `f64`.
+//!
+//! Each predicate is about a **direction** [`Dir`]: a polynomial vector `N`
+//! of a few input points, so that a normal, a supporting set or a tie decided
+//! with it is decided exactly, at every scale. The kinds:
+//!
+//! - a Minkowski point `w₀ = a₀ − b₀` (GJK's one-vertex simplex): `N = w₀`;
+//! - a Minkowski segment `w₀ w₁` (`e = w₁ − w₀`): `N = e × (w₀ × e)`, the
+//!   direction from the origin to its foot on the line;
+//! - a Minkowski triangle: `N = (w₁ − w₀) × (w₂ − w₀)`;
+//! - a cross product of two point differences, `N = (p₁ − p₀) × (q₁ − q₀)`: a
+//!   hull's face normal (`q₀ = p₀`) or the cross product of an edge of each
+//!   hull (the separating axes).
+
+use crate::boxes::poly::{Fast, Filt, Poly, Ring, at, cross3, dot3, refs, sign_fast, sub3, value_fast};
+use crate::exact::{BigFloat, Estimate, P3, Sign};
+use crate::real::Vec3;
+
+/// The kind of a [`Dir`] (see the module's documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Kind {
+    /// `N = a₀ − b₀`.
+    Point,
+    /// `N = e × (w₀ × e)`, `w_k = a_k − b_k`, `e = w₁ − w₀`.
+    Edge,
+    /// `N = (w₁ − w₀) × (w₂ − w₀)`.
+    Triangle,
+    /// `N = (p₁ − p₀) × (q₁ − q₀)`.
+    Cross,
+}
+
+const POINT: u8 = 0;
+const EDGE: u8 = 1;
+const TRIANGLE: u8 = 2;
+const CROSS: u8 = 3;
+
+/// A direction: its kind and its six points (`a₀, a₁, a₂, b₀, b₁, b₂` for the
+/// Minkowski kinds, `p₀, p₁, q₀, q₁` and two unused for a cross product;
+/// unused points are the origin).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Dir {
+    pub kind: Kind,
+    pts: [P3; 6],
+}
+
+impl Dir {
+    /// The normal of a Minkowski simplex of one to three vertices
+    /// `a[k] − b[k]`.
+    pub(crate) fn simplex(a: &[P3], b: &[P3]) -> Self {
+        let mut pts = [[0.0; 3]; 6];
+        for (k, (x, y)) in a.iter().zip(b).take(3).enumerate() {
+            pts[k] = *x;
+            pts[3 + k] = *y;
+        }
+        let kind = match a.len().min(b.len()) {
+            0 | 1 => Kind::Point,
+            2 => Kind::Edge,
+            _ => Kind::Triangle,
+        };
+        Self { kind, pts }
+    }
+
+    /// `(p1 − p0) × (q1 − q0)`.
+    pub(crate) fn cross(p0: P3, p1: P3, q0: P3, q1: P3) -> Self {
+        Self { kind: Kind::Cross, pts: [p0, p1, q0, q1, [0.0; 3], [0.0; 3]] }
+    }
+
+    /// The 18 lengths of the direction's points.
+    fn lengths(&self) -> [f64; 18] {
+        let mut l = [0.0; 18];
+        for (k, p) in self.pts.iter().enumerate() {
+            l[3 * k..3 * k + 3].copy_from_slice(p);
+        }
+        l
+    }
+
+    /// The degree of `N` in the coordinates.
+    fn degree(&self) -> i64 {
+        match self.kind {
+            Kind::Point => 1,
+            Kind::Edge => 3,
+            Kind::Triangle | Kind::Cross => 2,
+        }
+    }
+}
+
+/// The Minkowski edge `w_k − w₀ = (a_k − a₀) − (b_k − b₀)` (`a_k` at length
+/// `o`, `b_k` at `o + 9`), formed from each solid's own differences: points
+/// on one level of each give exact zeros.
+#[inline(always)]
+fn edge_of<R: Ring, const K: usize>(l: &[R; K], o: usize) -> [R; 3] {
+    sub3(refs(&sub3(at(l, o), at(l, 0))), refs(&sub3(at(l, o + 9), at(l, 9))))
+}
+
+/// `N` of the direction of kind `KIND` whose points are the first 18 lengths
+/// of `l`.
+#[inline(always)]
+fn dir_of<R: Ring, const KIND: u8, const K: usize>(l: &[R; K]) -> [R; 3] {
+    match KIND {
+        POINT => sub3(at(l, 0), at(l, 9)),
+        EDGE => {
+            let w0 = sub3(at(l, 0), at(l, 9));
+            let e = edge_of(l, 3);
+            cross3(refs(&e), refs(&cross3(refs(&w0), refs(&e))))
+        }
+        TRIANGLE => cross3(refs(&edge_of(l, 3)), refs(&edge_of(l, 6))),
+        _ => cross3(refs(&sub3(at(l, 3), at(l, 0))), refs(&sub3(at(l, 9), at(l, 6)))),
+    }
+}
+
+/// `N · (x − r)`, `x` and `r` the lengths 18..24.
+fn side_poly<R: Ring, const KIND: u8>(l: &[R; 24], _u: &[R; 0]) -> R {
+    let n = dir_of::<R, KIND, 24>(l);
+    dot3(refs(&n), refs(&sub3(at(l, 18), at(l, 21))))
+}
+
+/// `N · ((q − p) × (s − r))`, `p, q, r, s` the lengths 18..30: the
+/// orientation of `p, q, s` (with `r = p`) seen along `N`, which is the same
+/// for every point moved along `N`.
+fn orient_poly<R: Ring, const KIND: u8>(l: &[R; 30], _u: &[R; 0]) -> R {
+    let n = dir_of::<R, KIND, 30>(l);
+    let c = cross3(refs(&sub3(at(l, 21), at(l, 18))), refs(&sub3(at(l, 27), at(l, 24))));
+    dot3(refs(&n), refs(&c))
+}
+
+/// `N · ((x − y) − (r − t))`, `x, y, r, t` the lengths 18..30: the side of
+/// the Minkowski point `x − y` against the level of `r − t`.
+fn side_w_poly<R: Ring, const KIND: u8>(l: &[R; 30], _u: &[R; 0]) -> R {
+    let n = dir_of::<R, KIND, 30>(l);
+    let w = sub3(refs(&sub3(at(l, 18), at(l, 24))), refs(&sub3(at(l, 21), at(l, 27))));
+    dot3(refs(&n), refs(&w))
+}
+
+/// Component `C` of `(x − r) × N`, `x` and `r` the lengths 18..24: all three
+/// vanish exactly when `x` and `r` are one point seen along `N`.
+fn apart_poly<R: Ring, const KIND: u8, const C: usize>(l: &[R; 24], _u: &[R; 0]) -> R {
+    let n = dir_of::<R, KIND, 24>(l);
+    let c = cross3(refs(&sub3(at(l, 18), at(l, 21))), refs(&n));
+    c[C].clone()
+}
+
+/// Component `C` of `N`.
+fn component_poly<R: Ring, const KIND: u8, const C: usize>(l: &[R; 18], _u: &[R; 0]) -> R {
+    dir_of::<R, KIND, 18>(l)[C].clone()
+}
+
+/// `(x − y) · (r₁ − r₀)` of the points `x, y, r₀, r₁`.
+fn along_poly<R: Ring>(l: &[R; 12], _u: &[R; 0]) -> R {
+    dot3(refs(&sub3(at(l, 0), at(l, 3))), refs(&sub3(at(l, 9), at(l, 6))))
+}
+
+/// Component `C` of `(p₁ − p₀) × (q₁ − q₀)`, lengths `[p₀, p₁, q₀, q₁]`.
+fn edge_cross_poly<R: Ring, const C: usize>(l: &[R; 12], _u: &[R; 0]) -> R {
+    cross3(refs(&sub3(at(l, 3), at(l, 0))), refs(&sub3(at(l, 9), at(l, 6))))[C].clone()
+}
+
+/// `w₀ · e` (`k = 0`) or `w₁ · e` (`k = 1`) of a Minkowski segment, lengths
+/// `[a₀, a₁, b₀, b₁]`: the origin's foot lies on the segment exactly when
+/// the first is `≤ 0` and the second `≥ 0`.
+fn foot_edge_poly<R: Ring, const K: usize>(l: &[R; 12], _u: &[R; 0]) -> R {
+    let w0 = sub3(at(l, 0), at(l, 6));
+    let w1 = sub3(at(l, 3), at(l, 9));
+    let e = sub3(refs(&sub3(at(l, 3), at(l, 0))), refs(&sub3(at(l, 9), at(l, 6))));
+    if K == 0 { dot3(refs(&w0), refs(&e)) } else { dot3(refs(&w1), refs(&e)) }
+}
+
+/// `N · (w_j × w_k)` of a Minkowski triangle (`N` its normal, `(j, k)` the
+/// vertices other than `I`): the origin's projection onto its plane has
+/// barycentric coordinate `I` of that sign (their sum is `N·N`).
+fn foot_triangle_poly<R: Ring, const I: usize>(l: &[R; 18], _u: &[R; 0]) -> R {
+    let n = dir_of::<R, TRIANGLE, 18>(l);
+    let w = |k: usize| sub3(at(l, 3 * k), at(l, 9 + 3 * k));
+    let (j, k) = ((I + 1) % 3, (I + 2) % 3);
+    dot3(refs(&n), refs(&cross3(refs(&w(j)), refs(&w(k)))))
+}
+
+/// Two pushes `p_i / ‖L_i‖` with `L_i = (P₁ − P₀) × (P₃ − P₂)` and
+/// `p_i = L_i · (P₄ − P₅)` (points 0..6 the first, 6..12 the second):
+/// `p₁² ‖L₂‖² − p₂² ‖L₁‖²`, whose sign orders two pushes of the same sign.
+fn push_cmp_poly<R: Ring>(l: &[R; 36], _u: &[R; 0]) -> R {
+    let axis = |o: usize| cross3(refs(&sub3(at(l, o + 3), at(l, o))), refs(&sub3(at(l, o + 9), at(l, o + 6))));
+    let (l1, l2) = (axis(0), axis(18));
+    let p1 = dot3(refs(&l1), refs(&sub3(at(l, 12), at(l, 15))));
+    let p2 = dot3(refs(&l2), refs(&sub3(at(l, 30), at(l, 33))));
+    let n1 = dot3(refs(&l1), refs(&l1));
+    let n2 = dot3(refs(&l2), refs(&l2));
+    p1.mul(&p1).mul(&n2).sub(&p2.mul(&p2).mul(&n1))
+}
+
+/// `p = L · (P₄ − P₅)` (`C = 0`) or `‖L‖²` (`C = 1`) of a push,
+/// `L = (P₁ − P₀) × (P₃ − P₂)`.
+fn push_value_poly<R: Ring, const C: usize>(l: &[R; 18], _u: &[R; 0]) -> R {
+    let axis = cross3(refs(&sub3(at(l, 3), at(l, 0))), refs(&sub3(at(l, 9), at(l, 6))));
+    if C == 0 { dot3(refs(&axis), refs(&sub3(at(l, 12), at(l, 15)))) } else { dot3(refs(&axis), refs(&axis)) }
+}
+
+/// Component `C` of `L₁ × L₂` (`C < 3`) or `L₁ · L₂` (`C = 3`) of two cross
+/// product axes (points 0..4 and 4..8).
+fn pair_poly<R: Ring, const C: usize>(l: &[R; 24], _u: &[R; 0]) -> R {
+    let axis = |o: usize| cross3(refs(&sub3(at(l, o + 3), at(l, o))), refs(&sub3(at(l, o + 9), at(l, o + 6))));
+    let (l1, l2) = (axis(0), axis(12));
+    if C == 3 { dot3(refs(&l1), refs(&l2)) } else { cross3(refs(&l1), refs(&l2))[C].clone() }
+}
+
+/// An `f64` value `v` whose exact counterpart lies within `e` of it, with
+/// the running bound of `crate::boxes::poly`'s `Fast` (each operation adds
+/// the propagated errors and its own rounding, twice; a product adds
+/// `2^−1073` for what underflow may lose), evaluated on the inputs as they
+/// are: [`decide`] uses it only where nothing can overflow, so the scaling
+/// that the staged filters start with is not needed.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Fl {
+    v: f64,
+    e: f64,
+}
+
+/// Unit roundoff of `f64`.
+const U: f64 = f64::EPSILON / 2.0;
+
+/// What underflow may lose in one product, `2^−1073`.
+const UNDERFLOW: f64 = f64::from_bits(2);
+
+impl Ring for Fl {
+    #[inline(always)]
+    fn add(&self, o: &Self) -> Self {
+        let v = self.v + o.v;
+        Self { v, e: (self.e + o.e + 2.0 * U * v.abs()) * (1.0 + 4.0 * U) }
+    }
+    #[inline(always)]
+    fn sub(&self, o: &Self) -> Self {
+        self.add(&Self { v: -o.v, e: o.e })
+    }
+    #[inline(always)]
+    fn mul(&self, o: &Self) -> Self {
+        let v = self.v * o.v;
+        let exact_zero = (self.v == 0.0 && self.e == 0.0) || (o.v == 0.0 && o.e == 0.0);
+        let e = if exact_zero {
+            0.0
+        } else {
+            (self.v.abs() * o.e + o.v.abs() * self.e + self.e * o.e + 2.0 * U * v.abs() + UNDERFLOW) * (1.0 + 8.0 * U)
+        };
+        Self { v, e }
+    }
+    #[inline(always)]
+    fn abs(&self) -> Self {
+        Self { v: self.v.abs(), e: self.e }
+    }
+}
+
+/// A double-double value `hi + lo` (`|lo|` at most half an ulp of `hi`)
+/// and a bound `e` on its distance from the exact value: the second stage
+/// of [`decide`], for values within a few ulps of zero relative to their
+/// terms (near-parallel edges, points a rounding off a face), which it
+/// settles at about `2^−100` of the terms.
+///
+/// Every sum and product is formed with error-free transformations (Knuth's
+/// two-sum, Dekker's product with Veltkamp's split: exact for finite
+/// operands below `2^996` whose product's error term does not underflow),
+/// and what is dropped to keep two components — the residuals of a few
+/// further two-sums, and the rounding of `lo·lo'` — is added to `e` as it
+/// is (a computation that dropped nothing has `e = 0`). An operand's own
+/// bound propagates as `|a|·e_b + |b|·e_a + e_a·e_b` (plus what those
+/// products may lose to underflow). A product whose error
+/// term may fall into the subnormals (a product below `2^−968`) adds
+/// [`DD_UNDERFLOW`]. Each bound is the rounded sum of a few non-negative terms,
+/// enlarged by `1 + 8u` for that rounding.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Dd {
+    hi: f64,
+    lo: f64,
+    e: f64,
+}
+
+#[inline(always)]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    let aa = s - bb;
+    (s, (a - aa) + (b - bb))
+}
+
+#[inline(always)]
+fn split(a: f64) -> (f64, f64) {
+    let c = 134_217_729.0 * a; // 2^27 + 1
+    let hi = c - (c - a);
+    (hi, a - hi)
+}
+
+#[inline(always)]
+fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    let ((ah, al), (bh, bl)) = (split(a), split(b));
+    (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
+}
+
+/// Products below this may have an error term in the subnormals (`2^−968`).
+const DD_TINY: f64 = f64::from_bits((1023 - 968) << 52);
+/// What one such product's error term may lose: the term is at most
+/// `u·2^−968 = 2^−1021`, counted twice (for a wrong one), with room
+/// (`2^−1018`).
+const DD_UNDERFLOW: f64 = f64::from_bits((1023 - 1018) << 52);
+/// What the three products of a propagated bound may lose to underflow,
+/// with room (`8·2^−1074`).
+const DD_CARRY_FLOOR: f64 = f64::from_bits(8);
+/// Above this a value's split could overflow: [`Dd`] gives up (`2^900`).
+const DD_HUGE: f64 = f64::from_bits((1023 + 900) << 52);
+
+impl Dd {
+    #[inline(always)]
+    fn tiny(a: f64, b: f64, p: f64) -> bool {
+        a != 0.0 && b != 0.0 && p.abs() < DD_TINY
+    }
+
+    /// The sign, when the bound settles it.
+    fn sign(&self) -> Option<Sign> {
+        if !(self.hi.is_finite() && self.lo.is_finite() && self.e.is_finite()) {
+            return None;
+        }
+        if self.e == 0.0 {
+            return Some(Sign::of(self.hi));
+        }
+        (self.hi.abs() - self.lo.abs() > self.e * (1.0 + 4.0 * U)).then(|| Sign::of(self.hi))
+    }
+}
+
+impl Ring for Dd {
+    #[inline(always)]
+    fn add(&self, o: &Self) -> Self {
+        let (s, t) = two_sum(self.hi, o.hi);
+        let (u, v) = two_sum(self.lo, o.lo);
+        let (t2, w) = two_sum(t, u);
+        let (hi, l1) = two_sum(s, t2);
+        let (l2, r1) = two_sum(l1, w);
+        let (lo, r2) = two_sum(l2, v);
+        let (hi, lo) = two_sum(hi, lo);
+        let e = self.e + o.e + r1.abs() + r2.abs();
+        Self { hi, lo, e: if e == 0.0 { 0.0 } else { e * (1.0 + 8.0 * U) } }
+    }
+    #[inline(always)]
+    fn sub(&self, o: &Self) -> Self {
+        self.add(&Self { hi: -o.hi, lo: -o.lo, e: o.e })
+    }
+    #[inline(always)]
+    fn mul(&self, o: &Self) -> Self {
+        let (a, b) = (self, o);
+        if a.hi.abs() > DD_HUGE || b.hi.abs() > DD_HUGE {
+            return Self { hi: a.hi * b.hi, lo: 0.0, e: f64::INFINITY };
+        }
+        let (p, q) = two_prod(a.hi, b.hi);
+        let (c1, d1) = two_prod(a.hi, b.lo);
+        let (c2, d2) = two_prod(a.lo, b.hi);
+        let m = a.lo * b.lo;
+        let (x1, r1) = two_sum(q, c1);
+        let (x2, r2) = two_sum(x1, c2);
+        let (y1, r3) = two_sum(d1, d2);
+        let (y2, r4) = two_sum(y1, m);
+        let (x3, r5) = two_sum(x2, y2);
+        let (hi, lo) = two_sum(p, x3);
+        let mut dropped = r1.abs() + r2.abs() + r3.abs() + r4.abs() + r5.abs() + 2.0 * U * m.abs();
+        let under = [(a.hi, b.hi, p), (a.hi, b.lo, c1), (a.lo, b.hi, c2), (a.lo, b.lo, m)];
+        if under.iter().any(|&(x, y, z)| Self::tiny(x, y, z)) {
+            dropped += 4.0 * DD_UNDERFLOW;
+        }
+        let (na, nb) = (a.hi.abs() + a.lo.abs(), b.hi.abs() + b.lo.abs());
+        // The propagated bound's own products may underflow: each loses
+        // less than `2^−1074`.
+        let carried = if a.e == 0.0 && b.e == 0.0 { 0.0 } else { na * b.e + nb * a.e + a.e * b.e + DD_CARRY_FLOOR };
+        let e = dropped + carried;
+        Self { hi, lo, e: if e == 0.0 { 0.0 } else { e * (1.0 + 8.0 * U) } }
+    }
+    #[inline(always)]
+    fn abs(&self) -> Self {
+        if self.hi < 0.0 || (self.hi == 0.0 && self.lo < 0.0) {
+            Self { hi: -self.hi, lo: -self.lo, e: self.e }
+        } else {
+            *self
+        }
+    }
+}
+
+/// The sign of the polynomial in [`Dd`] on the inputs scaled by the power
+/// of two that brings the largest into `[0.5, 1)` (a homogeneous
+/// polynomial's sign is unchanged); an input that falls into the subnormals
+/// is within `2^−1074` of its scaled value.
+fn dd_sign<const K: usize>(len: &[f64; K], dd: Poly<Dd, K, 0>) -> Option<Sign> {
+    let m = len.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if !m.is_finite() {
+        return None;
+    }
+    let k = if m == 0.0 { 0 } else { -crate::exact::frexp(m).1 };
+    let l = len.map(|x| {
+        let v = crate::exact::ldexp(x, k);
+        let e = if x != 0.0 && v.abs() < f64::MIN_POSITIVE { f64::from_bits(1) } else { 0.0 };
+        Dd { hi: v, lo: 0.0, e }
+    });
+    dd(&l, &[]).sign()
+}
+
+/// The largest input magnitude [`decide`] evaluates unscaled: a polynomial of
+/// degree at most 10 in such inputs (with at most a few hundred terms) stays
+/// far below `f64::MAX`.
+const PLAIN: f64 = 1.0e27;
+
+/// The exact sign of a homogeneous polynomial of degree at most 10 (`fl`,
+/// `dd`, `fast`, `filt`, `big` the same polynomial over [`Fl`], [`Dd`] and
+/// the staged filters' rings): first in [`Fl`] ([`fl_sign`]: the bound
+/// covers underflow, so tiny inputs cost accuracy, not correctness), then in
+/// [`Dd`] ([`dd_sign`]), then through `crate::boxes::poly`'s stages (scaled
+/// `f64`, exactness-tracking `f64`, exact).
+#[inline]
+fn decide<const K: usize>(
+    len: [f64; K],
+    fl: Poly<Fl, K, 0>,
+    dd: Poly<Dd, K, 0>,
+    fast: Poly<Fast, K, 0>,
+    filt: Poly<Filt, K, 0>,
+    big: Poly<BigFloat, K, 0>,
+) -> Sign {
+    fl_sign(&len, fl).or_else(|| dd_sign(&len, dd)).unwrap_or_else(|| sign_fast(len, [], fast, filt, big))
+}
+
+/// The sign of the polynomial in [`Fl`], when the bound settles it: on the
+/// inputs as they are when all lie within [`PLAIN`], else on the inputs
+/// scaled by the power of two that brings the largest into `[0.5, 1)` (an
+/// input that falls into the subnormals is within `2^−1074` of its scaled
+/// value).
+#[inline]
+fn fl_sign<const K: usize>(len: &[f64; K], fl: Poly<Fl, K, 0>) -> Option<Sign> {
+    let x = if len.iter().all(|x| x.abs() <= PLAIN) {
+        fl(&len.map(|v| Fl { v, e: 0.0 }), &[])
+    } else {
+        let m = len.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if !m.is_finite() {
+            return None;
+        }
+        let k = -crate::exact::frexp(m).1;
+        let l = len.map(|x| {
+            let v = crate::exact::ldexp(x, k);
+            Fl { v, e: if x != 0.0 && v.abs() < f64::MIN_POSITIVE { f64::from_bits(1) } else { 0.0 } }
+        });
+        fl(&l, &[])
+    };
+    (x.v.is_finite() && x.e.is_finite() && (x.v.abs() > x.e || x.e == 0.0)).then(|| Sign::of(x.v))
+}
+
+/// [`decide`] for the generic polynomial `f` (with its const arguments).
+macro_rules! sig {
+    ($f:ident, $len:expr $(, $c:expr)*) => {
+        decide($len, $f::<Fl $(, { $c })*>, $f::<Dd $(, { $c })*>, $f::<Fast $(, { $c })*>, $f::<Filt $(, { $c })*>, $f::<BigFloat $(, { $c })*>)
+    };
+}
+
+/// The sign of a polynomial of kind-dependent form.
+macro_rules! by_kind {
+    ($kind:expr, $f:ident, $len:expr $(, $c:literal)?) => {
+        match $kind {
+            Kind::Point => sig!($f, $len, POINT $(, $c)?),
+            Kind::Edge => sig!($f, $len, EDGE $(, $c)?),
+            Kind::Triangle => sig!($f, $len, TRIANGLE $(, $c)?),
+            Kind::Cross => sig!($f, $len, CROSS $(, $c)?),
+        }
+    };
+}
+
+/// The direction's lengths followed by the given points'.
+fn with<const K: usize>(d: &Dir, pts: &[P3]) -> [f64; K] {
+    let mut l = [0.0; K];
+    l[..18].copy_from_slice(&d.lengths());
+    for (k, p) in pts.iter().enumerate() {
+        l[18 + 3 * k..21 + 3 * k].copy_from_slice(p);
+    }
+    l
+}
+
+/// The exact sign of `N · (x − r)`. Two of the points a cross product is
+/// made of lie on one level by construction (`N ⟂ p₁ − p₀` and
+/// `N ⟂ q₁ − q₀`; a face's three points when `q₀ = p₀`): that zero is
+/// answered without evaluating it (its rounding would defeat the filters).
+pub(crate) fn side(d: &Dir, x: P3, r: P3) -> Sign {
+    if d.kind == Kind::Cross {
+        let [p0, p1, q0, q1, _, _] = d.pts;
+        let is = |set: &[P3], y: P3| set.iter().any(|z| crate::exact::points_equal(*z, y));
+        let face = crate::exact::points_equal(p0, q0);
+        let own = |set: &[P3]| is(set, x) && is(set, r);
+        if own(&[p0, p1]) || own(&[q0, q1]) || (face && own(&[p0, p1, q1])) {
+            return Sign::Zero;
+        }
+    }
+    let l: [f64; 24] = with(d, &[x, r]);
+    by_kind!(d.kind, side_poly, l)
+}
+
+/// The exact sign of `N · ((x − y) − (r − t))`.
+pub(crate) fn side_w(d: &Dir, x: P3, y: P3, r: P3, t: P3) -> Sign {
+    let l: [f64; 30] = with(d, &[x, y, r, t]);
+    by_kind!(d.kind, side_w_poly, l)
+}
+
+/// The exact sign of `N · ((q − p) × (s − r))`; `orient(d, p, q, p, s)` is the
+/// orientation of the triangle `p q s` seen along `N` (positive:
+/// counter-clockwise, seen from `N`'s tip).
+pub(crate) fn orient(d: &Dir, p: P3, q: P3, r: P3, s: P3) -> Sign {
+    let l: [f64; 30] = with(d, &[p, q, r, s]);
+    by_kind!(d.kind, orient_poly, l)
+}
+
+/// Whether `x` and `r` are one point seen along `N` (`(x − r) × N = 0`).
+pub(crate) fn same_along(d: &Dir, x: P3, r: P3) -> bool {
+    let l: [f64; 24] = with(d, &[x, r]);
+    by_kind!(d.kind, apart_poly, l, 0) == Sign::Zero
+        && by_kind!(d.kind, apart_poly, l, 1) == Sign::Zero
+        && by_kind!(d.kind, apart_poly, l, 2) == Sign::Zero
+}
+
+/// Whether `N` is exactly the zero vector.
+pub(crate) fn is_zero(d: &Dir) -> bool {
+    let l = d.lengths();
+    by_kind!(d.kind, component_poly, l, 0) == Sign::Zero
+        && by_kind!(d.kind, component_poly, l, 1) == Sign::Zero
+        && by_kind!(d.kind, component_poly, l, 2) == Sign::Zero
+}
+
+/// `N`'s unit vector, each component within a few `2^−40` (`None` for a zero
+/// `N`).
+pub(crate) fn unit(d: &Dir) -> Option<Vec3<f64>> {
+    let l = d.lengths();
+    let deg = d.degree();
+    macro_rules! comp {
+        ($c:literal) => {
+            match d.kind {
+                Kind::Point => value_fast(
+                    l,
+                    [],
+                    deg,
+                    component_poly::<Fast, POINT, $c>,
+                    component_poly::<Filt, POINT, $c>,
+                    component_poly::<BigFloat, POINT, $c>,
+                ),
+                Kind::Edge => value_fast(
+                    l,
+                    [],
+                    deg,
+                    component_poly::<Fast, EDGE, $c>,
+                    component_poly::<Filt, EDGE, $c>,
+                    component_poly::<BigFloat, EDGE, $c>,
+                ),
+                Kind::Triangle => value_fast(
+                    l,
+                    [],
+                    deg,
+                    component_poly::<Fast, TRIANGLE, $c>,
+                    component_poly::<Filt, TRIANGLE, $c>,
+                    component_poly::<BigFloat, TRIANGLE, $c>,
+                ),
+                Kind::Cross => value_fast(
+                    l,
+                    [],
+                    deg,
+                    component_poly::<Fast, CROSS, $c>,
+                    component_poly::<Filt, CROSS, $c>,
+                    component_poly::<BigFloat, CROSS, $c>,
+                ),
+            }
+        };
+    }
+    let e: [Estimate; 3] = [comp!(0), comp!(1), comp!(2)];
+    Estimate::unit_vector(e).map(|u| Vec3::new(u[0], u[1], u[2]))
+}
+
+/// The exact sign of `(x − y) · (r₁ − r₀)`.
+pub(crate) fn along(x: P3, y: P3, r0: P3, r1: P3) -> Sign {
+    let mut l = [0.0; 12];
+    for (k, p) in [x, y, r0, r1].iter().enumerate() {
+        l[3 * k..3 * k + 3].copy_from_slice(p);
+    }
+    sig!(along_poly, l)
+}
+
+/// Whether `p₁ − p₀` and `q₁ − q₀` are parallel (their cross product is
+/// exactly zero).
+pub(crate) fn parallel(p0: P3, p1: P3, q0: P3, q1: P3) -> bool {
+    let mut l = [0.0; 12];
+    for (k, p) in [p0, p1, q0, q1].iter().enumerate() {
+        l[3 * k..3 * k + 3].copy_from_slice(p);
+    }
+    macro_rules! comp {
+        ($c:literal) => {
+            sig!(edge_cross_poly, l, $c)
+        };
+    }
+    comp!(0) == Sign::Zero && comp!(1) == Sign::Zero && comp!(2) == Sign::Zero
+}
+
+/// Whether the origin's foot on the line of the Minkowski segment
+/// `(a₀ − b₀)(a₁ − b₁)` lies on the segment (ends included).
+pub(crate) fn foot_on_edge(a: [P3; 2], b: [P3; 2]) -> bool {
+    let mut l = [0.0; 12];
+    for (k, p) in [a[0], a[1], b[0], b[1]].iter().enumerate() {
+        l[3 * k..3 * k + 3].copy_from_slice(p);
+    }
+    sig!(foot_edge_poly, l, 0) != Sign::Positive && sig!(foot_edge_poly, l, 1) != Sign::Negative
+}
+
+/// Whether the origin's projection onto the plane of the Minkowski triangle
+/// `a_k − b_k` lies in the triangle (its boundary included); the triangle's
+/// normal must not be zero.
+pub(crate) fn foot_in_triangle(a: [P3; 3], b: [P3; 3]) -> bool {
+    let mut l = [0.0; 18];
+    for (k, p) in a.iter().chain(&b).enumerate() {
+        l[3 * k..3 * k + 3].copy_from_slice(p);
+    }
+    macro_rules! bary {
+        ($i:literal) => {
+            sig!(foot_triangle_poly, l, $i)
+        };
+    }
+    bary!(0) != Sign::Negative && bary!(1) != Sign::Negative && bary!(2) != Sign::Negative
+}
+
+/// A push of `a` clear of `b` along `σ·L`, `L` a cross-product axis:
+/// `p = L · (y − x)` for the given points (`y` the push's support on `b`,
+/// `x` on `a`, swapped for `σ = −1`), and its exact sign.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ExactPush {
+    /// The axis (a [`Kind::Cross`] direction).
+    pub axis: Dir,
+    /// `+1` or `−1`: the push's sense along the axis.
+    pub sense: i8,
+    /// The points whose difference along `L` is `p`.
+    pub p: [P3; 2],
+    /// `sign(p)`.
+    pub sign: Sign,
+}
+
+impl ExactPush {
+    /// The lengths `[p₀, p₁, q₀, q₁, y, x]` of the push.
+    fn lengths(&self, out: &mut [f64]) {
+        let pts = [self.axis.pts[0], self.axis.pts[1], self.axis.pts[2], self.axis.pts[3], self.p[0], self.p[1]];
+        for (k, q) in pts.iter().enumerate() {
+            out[3 * k..3 * k + 3].copy_from_slice(q);
+        }
+    }
+}
+
+impl ExactPush {
+    /// `log₂ |p/‖L‖|` and a bound on its error (from [`Estimate`]s of `p` and
+    /// `‖L‖²` to `2^−40`); `None` for a zero push.
+    pub(crate) fn log_size(&self) -> Option<(f64, f64)> {
+        if self.sign == Sign::Zero {
+            return None;
+        }
+        let mut l = [0.0; 18];
+        self.lengths(&mut l);
+        let p = value_fast(
+            l,
+            [],
+            3,
+            push_value_poly::<Fast, 0>,
+            push_value_poly::<Filt, 0>,
+            push_value_poly::<BigFloat, 0>,
+        );
+        let n = value_fast(
+            l,
+            [],
+            4,
+            push_value_poly::<Fast, 1>,
+            push_value_poly::<Filt, 1>,
+            push_value_poly::<BigFloat, 1>,
+        );
+        if p.sign == Sign::Zero || n.sign == Sign::Zero {
+            return None;
+        }
+        let size = p.mant.log2() + p.exp as f64 - 0.5 * (n.mant.log2() + n.exp as f64);
+        // log₂(1 + r) ≤ 1.5 r for small r; the logarithms' own rounding (of
+        // values up to a few thousand) is far below 2^−30.
+        let err = 1.5 * (p.rel_err + 0.5 * n.rel_err) + LOG_ROUNDING;
+        Some((size, err))
+    }
+}
+
+/// The absolute error allowed for the rounding of a `log₂` of an
+/// [`Estimate`] (`f64` logarithms of numbers below `2^13`, and the exponent
+/// added): far above their few ulps.
+const LOG_ROUNDING: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// `p₁/‖L₁‖` against `p₂/‖L₂‖`, exactly; `sizes` their
+/// [`ExactPush::log_size`]s when known, which decide pushes far apart.
+pub(crate) fn push_cmp(x: &ExactPush, y: &ExactPush, sizes: [Option<(f64, f64)>; 2]) -> std::cmp::Ordering {
+    use std::cmp::Ordering;
+    match x.sign.as_i8().cmp(&y.sign.as_i8()) {
+        Ordering::Equal => {}
+        other => return other,
+    }
+    if x.sign == Sign::Zero {
+        return Ordering::Equal;
+    }
+    if let [Some((sx, ex)), Some((sy, ey))] = sizes
+        && (sx - sy).abs() > ex + ey
+    {
+        let by_size = sx.total_cmp(&sy);
+        return if x.sign == Sign::Positive { by_size } else { by_size.reverse() };
+    }
+    let mut l = [0.0; 36];
+    x.lengths(&mut l[..18]);
+    y.lengths(&mut l[18..]);
+    let s = sig!(push_cmp_poly, l);
+    // p₁²n₂ − p₂²n₁ orders |p₁|/‖L₁‖ against |p₂|/‖L₂‖.
+    let by_size = s.as_i8().cmp(&0);
+    if x.sign == Sign::Positive { by_size } else { by_size.reverse() }
+}
+
+/// Whether two pushes go the same way (`σ₁L₁` and `σ₂L₂` parallel and of one
+/// sense).
+pub(crate) fn same_direction(x: &ExactPush, y: &ExactPush) -> bool {
+    let mut l = [0.0; 24];
+    for (k, q) in x.axis.pts[..4].iter().chain(&y.axis.pts[..4]).enumerate() {
+        l[3 * k..3 * k + 3].copy_from_slice(q);
+    }
+    macro_rules! pair {
+        ($c:literal) => {
+            sig!(pair_poly, l, $c)
+        };
+    }
+    if pair!(0) != Sign::Zero || pair!(1) != Sign::Zero || pair!(2) != Sign::Zero {
+        return false;
+    }
+    pair!(3).as_i8() * x.sense * y.sense > 0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The exact sign, in [`BigFloat`] alone.
+    fn exact<const K: usize>(len: &[f64; K], big: Poly<BigFloat, K, 0>) -> Sign {
+        big(&len.map(BigFloat::from_f64), &[]).sign()
+    }
+
+    /// Each stage's answer, when it gives one, and the whole filter's are
+    /// the exact sign.
+    fn agree<const K: usize>(
+        len: [f64; K],
+        fl: Poly<Fl, K, 0>,
+        dd: Poly<Dd, K, 0>,
+        fast: Poly<Fast, K, 0>,
+        filt: Poly<Filt, K, 0>,
+        big: Poly<BigFloat, K, 0>,
+    ) -> Result<(), TestCaseError> {
+        let want = exact(&len, big);
+        if let Some(s) = fl_sign(&len, fl) {
+            prop_assert_eq!(s, want, "Fl on {:?}", len);
+        }
+        if let Some(s) = dd_sign(&len, dd) {
+            prop_assert_eq!(s, want, "Dd on {:?}", len);
+        }
+        prop_assert_eq!(decide(len, fl, dd, fast, filt, big), want, "decide on {:?}", len);
+        Ok(())
+    }
+
+    macro_rules! check {
+        ($f:ident, $len:expr $(, $c:expr)*) => {
+            agree($len, $f::<Fl $(, { $c })*>, $f::<Dd $(, { $c })*>, $f::<Fast $(, { $c })*>, $f::<Filt $(, { $c })*>, $f::<BigFloat $(, { $c })*>)
+        };
+    }
+
+    /// Twelve points of one of four kinds: random in a unit box; on one
+    /// plane up to rounding (`u₀ + α(u₁ − u₀) + β(u₂ − u₀)`, rounded once
+    /// per operation: the values the predicates take are then within a few
+    /// ulps of zero); the same on a grid of eighths (exact zeros); and
+    /// random magnitudes from `2^−1000` to `2^1000` with either sign.
+    fn points() -> impl Strategy<Value = Vec<P3>> {
+        let unit = || -1.0..1.0f64;
+        let basis = prop::array::uniform3(prop::array::uniform3(unit()));
+        let coef = prop::collection::vec((unit(), unit()), 12);
+        let wide = prop::collection::vec(prop::array::uniform3((-1000i32..1000, 0.5..1.0f64, any::<bool>())), 12);
+        (0..4usize, basis, coef, wide).prop_map(|(kind, u, c, w)| match kind {
+            0 => c
+                .iter()
+                .zip(&u)
+                .map(|((a, b), x)| [*a, *b, x[0]])
+                .chain(c.iter().map(|(a, b)| [*b, *a, a * b]))
+                .take(12)
+                .collect(),
+            3 => w.iter().map(|p| p.map(|(e, m, s)| if s { m * 2f64.powi(e) } else { -m * 2f64.powi(e) })).collect(),
+            _ => {
+                let grid = |x: f64| if kind == 2 { (x * 8.0).round() / 8.0 } else { x };
+                let u = u.map(|p| p.map(grid));
+                c.iter()
+                    .map(|(a, b)| {
+                        let (a, b) = (grid(*a), grid(*b));
+                        [0, 1, 2].map(|k| u[0][k] + a * (u[1][k] - u[0][k]) + b * (u[2][k] - u[0][k]))
+                    })
+                    .collect()
+            }
+        })
+    }
+
+    fn flat<const K: usize>(p: &[P3]) -> [f64; K] {
+        let mut l = [0.0; K];
+        for (k, x) in l.iter_mut().enumerate() {
+            *x = p[k / 3 % p.len()][k % 3];
+        }
+        l
+    }
+
+    /// A value of `−1e-325` relative to its terms in the scaled inputs: the
+    /// double-double products that make it underflow, and the bounds they
+    /// carry underflow with them; the bound must not vanish (it once did,
+    /// and [`Dd`] called the value an exact zero).
+    #[test]
+    fn an_underflowing_bound_is_not_an_exact_zero() {
+        let p: [P3; 10] = [
+            [-0.5, -0.5, -0.5],
+            [-0.5, -0.5, 0.5],
+            [-0.5, -0.5, -0.5],
+            [-0.5, -0.5, -0.8917688435906126],
+            [-0.5, -0.5, -0.5],
+            [-0.5, 0.5, -0.5],
+            [-0.5, -0.5, -0.5],
+            [-0.5, -0.5, 0.5],
+            [-5.871356456934583e107, -1.7031839360032603e-108, -0.5],
+            [-0.5, -8.515919680016301e-109, -0.5],
+        ];
+        let l: [f64; 30] = flat(&p);
+        assert_eq!(exact(&l, orient_poly::<BigFloat, TRIANGLE>), Sign::Negative);
+        assert!(dd_sign(&l, orient_poly::<Dd, TRIANGLE>).is_none_or(|s| s == Sign::Negative));
+        check!(orient_poly, l, TRIANGLE).expect("the filters agree with the exact sign");
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4000))]
+
+        #[test]
+        fn every_stage_gives_the_exact_sign(p in points()) {
+            let l24: [f64; 24] = flat(&p);
+            check!(side_poly, l24, CROSS)?;
+            check!(side_poly, l24, EDGE)?;
+            check!(side_poly, l24, TRIANGLE)?;
+            check!(side_poly, l24, POINT)?;
+            check!(pair_poly, l24, 0)?;
+            check!(pair_poly, l24, 3)?;
+            let l30: [f64; 30] = flat(&p);
+            check!(orient_poly, l30, CROSS)?;
+            check!(orient_poly, l30, TRIANGLE)?;
+            check!(side_w_poly, l30, EDGE)?;
+            let l36: [f64; 36] = flat(&p);
+            check!(push_cmp_poly, l36)?;
+            let l12: [f64; 12] = flat(&p);
+            check!(edge_cross_poly, l12, 1)?;
+            check!(along_poly, l12)?;
+            check!(foot_edge_poly, l12, 0)?;
+            let l18: [f64; 18] = flat(&p);
+            check!(foot_triangle_poly, l18, 2)?;
+            check!(component_poly, l18, EDGE, 1)?;
+        }
+    }
+}
