@@ -24,7 +24,7 @@ os.dup2(2, 1)
 sys.stdout = os.fdopen(_PROTOCOL_FD, "w", encoding="utf-8", newline="\n")
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from crashtest_engine import Unsupported, package_version, serve, timed  # noqa: E402
+from crashtest_engine import DISTANCE_PAIRS, Unsupported, distance_reach, package_version, serve, timed  # noqa: E402
 from reproduce import reproductions  # noqa: E402  (this folder's reproduce.py)
 
 import pybullet as p  # noqa: E402  (prints its build time to fd 1 = standard error)
@@ -245,7 +245,7 @@ def hit_from_ray(result, face_normal):
     return {"hit": {"t": frac, "point": list(pos), "normal": n}}
 # distance: getClosestPoints(A, B, distance = DISTMAX) answers every point with
 # contactDistance <= DISTMAX, so DISTMAX is chosen per case above any distance its shapes can
-# have (distmax_of). Of Bullet's points the one with the least contactDistance (as for
+# have (distance_reach). Of Bullet's points the one with the least contactDistance (as for
 # contact): distance = contactDistance (signed: < 0 in penetration), point_a = positionOnA,
 # point_b = positionOnB, normal = contactNormalOnB (from B toward A; Bullet's manifold point
 # has positionOnA = positionOnB + contactNormalOnB * contactDistance,
@@ -258,29 +258,8 @@ def distance_from_points(points, distmax):
 # =====================================================================================
 
 
-def distmax_of(case):
-    """DISTMAX: 8 M + 1 (at most DBL_MAX), with M the largest magnitude among the case's
-    coordinates, radii, half-extents and plane offsets over |n|: every point of a sphere, box,
-    capsule, triangle or hull lies within 2 sqrt(3) M < 3.5 M of the origin, a plane passes
-    within M of it, so no distance between the two shapes reaches 8 M."""
-    m = 0.0
-    for shape in (case["a"], case["b"]):
-        (kind, s), = shape.items()
-        if kind == "plane":
-            m = max(m, abs(float(s["offset"])) / math.hypot(*s["normal"]))
-            continue
-        for key, v in s.items():
-            if key in ("points", "vertices"):
-                m = max(m, max(abs(float(x)) for q in v for x in q))
-            elif key in ("center", "start", "end", "half_extents"):
-                m = max(m, max(abs(float(x)) for x in v))
-            elif key == "radius":
-                m = max(m, abs(float(v)))
-    return min(8.0 * m + 1.0, sys.float_info.max)
-
-
 def distance(case):
-    distmax = distmax_of(case)
+    distmax = distance_reach(case)
     return distance_from_points(closest_points(case, distmax), distmax)
 
 
@@ -531,11 +510,6 @@ HANDLERS = {
     ("bounds", "box", None): bounds_box,
 }
 
-DISTANCE_PAIRS = [("sphere", "sphere"), ("sphere", "plane"), ("sphere", "triangle"), ("sphere", "box"),
-                  ("sphere", "capsule"), ("sphere", "convex"), ("box", "plane"), ("box", "box"),
-                  ("box", "triangle"), ("capsule", "capsule"), ("capsule", "plane"), ("capsule", "box"),
-                  ("capsule", "triangle"), ("capsule", "convex"), ("convex", "convex"), ("convex", "plane"),
-                  ("convex", "box"), ("convex", "triangle")]
 for _a, _b in DISTANCE_PAIRS:
     HANDLERS[("distance", _a, _b)] = distance
 
@@ -574,4 +548,4 @@ PROVENANCE = {
 
 if __name__ == "__main__":
     sys.exit(serve("bullet", package_version("pybullet"), 53, HANDLERS, PROVENANCE, world=step_world,
-                   reproductions=reproductions(HANDLERS, inspect.getsource(distmax_of))))
+                   reproductions=reproductions(HANDLERS, inspect.getsource(distance_reach))))

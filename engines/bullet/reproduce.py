@@ -97,10 +97,10 @@ for q in points:  # contactNormalOnB: from B toward A; contactDistance < 0: pene
 """
 
 # distance: getClosestPoints with a distance above any the shapes can have (engine.py's
-# distmax_of, pasted in, of the case's shapes)
+# distance_reach, pasted in, of the case's shapes)
 DISTANCE = """\
-points = p.getClosestPoints(a, b, distmax_of(case))
-print("distance threshold:", distmax_of(case), "points:", len(points))
+points = p.getClosestPoints(a, b, distance_reach(case))
+print("distance threshold:", distance_reach(case), "points:", len(points))
 for q in points:  # contactNormalOnB: from B toward A; contactDistance < 0: penetration
     print("positionOnA", list(q[5]), "positionOnB", list(q[6]), "contactNormalOnB", list(q[7]), "contactDistance", repr(q[8]))
 """
@@ -146,5 +146,5 @@ def script(query, ka, kb, distmax_source=""):
 
 def reproductions(handlers, distmax_source=""):
     """One script for every pair in `handlers` (engine.py's HANDLERS); `distmax_source`, the
-    source of engine.py's distmax_of, is pasted into the distance scripts."""
+    source of the common module's distance_reach, is pasted into the distance scripts."""
     return {(q, a, b): script(q, a, b, distmax_source) for q, a, b in handlers}

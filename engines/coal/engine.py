@@ -24,7 +24,7 @@ sys.stdout = os.fdopen(_PROTOCOL_FD, "w", encoding="utf-8", newline="\n")
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 import crashtest_engine  # noqa: E402
-from crashtest_engine import Unsupported, convex_hull, package_version, serve, timed  # noqa: E402
+from crashtest_engine import DISTANCE_PAIRS, Unsupported, convex_hull, package_version, serve, timed  # noqa: E402
 from reproduce import reproductions  # noqa: E402  (this folder's reproduce.py)
 
 import numpy as np  # noqa: E402
@@ -386,11 +386,6 @@ def distance(case):
     return to_format_distance(res.min_distance, res.getNearestPoint1(), res.getNearestPoint2(), res.normal)
 
 
-DISTANCE_PAIRS = [("sphere", "sphere"), ("sphere", "plane"), ("sphere", "triangle"), ("sphere", "box"),
-                  ("sphere", "capsule"), ("sphere", "convex"), ("box", "plane"), ("box", "box"),
-                  ("box", "triangle"), ("capsule", "capsule"), ("capsule", "plane"), ("capsule", "box"),
-                  ("capsule", "triangle"), ("capsule", "convex"), ("convex", "convex"), ("convex", "plane"),
-                  ("convex", "box"), ("convex", "triangle")]
 DISTANCE_HANDLERS = {("distance", a, b): distance for a, b in DISTANCE_PAIRS}
 if VARIANT == "default":
     HANDLERS.update(DISTANCE_HANDLERS)

@@ -258,3 +258,34 @@ def convex_hull(points):
     t = centred @ vt[0]
     ends = pts[[int(np.argmin(t)), int(np.argmax(t))]]
     return Hull(ends, none, 1)
+
+
+# The format's distance pairs (docs/FORMAT.md, "Distance"), `a` then `b`.
+DISTANCE_PAIRS = [("sphere", "sphere"), ("sphere", "plane"), ("sphere", "triangle"), ("sphere", "box"),
+                  ("sphere", "capsule"), ("sphere", "convex"), ("box", "plane"), ("box", "box"),
+                  ("box", "triangle"), ("capsule", "capsule"), ("capsule", "plane"), ("capsule", "box"),
+                  ("capsule", "triangle"), ("capsule", "convex"), ("convex", "convex"), ("convex", "plane"),
+                  ("convex", "box"), ("convex", "triangle")]
+
+
+def distance_reach(case):
+    """8 M + 1 (at most DBL_MAX), with M the largest magnitude among a distance case's
+    coordinates, radii, half-extents and plane offsets over |n|: every point of a sphere, box,
+    capsule, triangle or hull lies within 2 sqrt(3) M < 3.5 M of the origin (a centre or end
+    within sqrt(3) M, plus a radius or a half-diagonal), a plane passes within M of it, so no
+    distance between the two shapes reaches 8 M. For engines that search for closest points
+    only up to a given distance."""
+    m = 0.0
+    for shape in (case["a"], case["b"]):
+        (kind, s), = shape.items()
+        if kind == "plane":
+            m = max(m, abs(float(s["offset"])) / math.hypot(*s["normal"]))
+            continue
+        for key, v in s.items():
+            if key in ("points", "vertices"):
+                m = max(m, max(abs(float(x)) for q in v for x in q))
+            elif key in ("center", "start", "end", "half_extents"):
+                m = max(m, max(abs(float(x)) for x in v))
+            elif key == "radius":
+                m = max(m, abs(float(v)))
+    return min(8.0 * m + 1.0, sys.float_info.max)

@@ -23,7 +23,7 @@ os.dup2(2, 1)
 sys.stdout = os.fdopen(_proto_fd, "w", buffering=1 << 16, encoding="utf-8", newline="\n")
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from crashtest_engine import Unsupported, package_version, serve, timed  # noqa: E402
+from crashtest_engine import DISTANCE_PAIRS as ALL_DISTANCE_PAIRS, Unsupported, distance_reach, package_version, serve, timed  # noqa: E402
 from reproduce import reproductions  # noqa: E402  (this folder's reproduce.py)
 
 import numpy as np  # noqa: E402
@@ -787,33 +787,8 @@ PROVENANCE = {
 # MuJoCo has no triangle geom (a triangle is a flex element, and mj_geomDistance takes geoms
 # only; a mesh of 3 vertices is refused: "at least 4 vertices required"): the triangle
 # pairs are not answered.
-DISTANCE_PAIRS = [("sphere", "sphere"), ("sphere", "plane"), ("sphere", "box"), ("sphere", "capsule"),
-                  ("sphere", "convex"), ("box", "plane"), ("box", "box"), ("capsule", "capsule"),
-                  ("capsule", "plane"), ("capsule", "box"), ("capsule", "convex"), ("convex", "convex"),
-                  ("convex", "plane"), ("convex", "box")]
+DISTANCE_PAIRS = [(a, b) for a, b in ALL_DISTANCE_PAIRS if "triangle" not in (a, b)]
 DIST_INERTIA = "shell"  # the mesh's inertia: "shell" compiles thin hulls "convex" may refuse
-
-
-def distmax_of(case):
-    """DISTMAX: 8 M + 1 (at most DBL_MAX), with M the largest magnitude among the case's
-    coordinates, radii, half-extents and plane offsets over |n|: every point of a sphere, box,
-    capsule or hull lies within 2 sqrt(3) M < 3.5 M of the origin (a centre or end within
-    sqrt(3) M, plus a radius or a half-diagonal), a plane passes within M of it, so no
-    distance between the two shapes reaches 8 M."""
-    m = 0.0
-    for shape in (case["a"], case["b"]):
-        (kind, s), = shape.items()
-        if kind == "plane":
-            m = max(m, abs(float(s["offset"])) / math.hypot(*s["normal"]))
-            continue
-        for key, v in s.items():
-            if key == "points":
-                m = max(m, max(abs(float(x)) for p in v for x in p))
-            elif key in ("center", "start", "end", "half_extents"):
-                m = max(m, max(abs(float(x)) for x in v))
-            elif key == "radius":
-                m = max(m, abs(float(v)))
-    return min(8.0 * m + 1.0, sys.float_info.max)
 
 
 def _f(xs):
@@ -937,7 +912,7 @@ def prepare_distance(cases):
         mujoco.mj_kinematics(m, d)
         for i in parts:
             c = cases[i]
-            _dist_ready[id(c)] = ("ok", m, d, m.geom(f"a{i}").id, m.geom(f"b{i}").id, distmax_of(c))
+            _dist_ready[id(c)] = ("ok", m, d, m.geom(f"a{i}").id, m.geom(f"b{i}").id, distance_reach(c))
         return
 
 
@@ -1008,4 +983,4 @@ if __name__ == "__main__":
                                    **convex_pairs},
                    world=step_world, prepare=prepare,
                    reproductions=reproductions(HANDLERS, MODELS, _GEOM, MESH_INERTIA,
-                                               (DIST_INERTIA, inspect.getsource(distmax_of)))))
+                                               (DIST_INERTIA, inspect.getsource(distance_reach)))))

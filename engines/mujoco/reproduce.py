@@ -202,7 +202,7 @@ def imports(body):
 
 # --- distance: the case's two shapes as geoms "a" and "b" of one model's world body, as
 # engine.py's dist_geom_xml writes them (the compiler places them), then mj_geomDistance
-# with engine.py's distmax (distmax_of, pasted in) ---------------------------------------
+# with the shared distmax (distance_reach, pasted in) ---------------------------------------
 DIST_SHAPE = {
     "sphere": """{"sphere": {"center": {{@.center}}, "radius": {{@.radius}}}}""",
     "box": """{"box": {"center": {{@.center}}, "half_extents": {{@.half_extents}}, "rotation": {{@.rotation}}}}""",
@@ -239,8 +239,8 @@ mujoco.mj_kinematics(m, d)
 
 <distmax>
 fromto = np.zeros(6)
-dist = mujoco.mj_geomDistance(m, d, m.geom("a").id, m.geom("b").id, distmax_of(case), fromto)
-print("distmax:", distmax_of(case), "dist:", repr(float(dist)), "from (on a):", fromto[:3].tolist(),
+dist = mujoco.mj_geomDistance(m, d, m.geom("a").id, m.geom("b").id, distance_reach(case), fromto)
+print("distmax:", distance_reach(case), "dist:", repr(float(dist)), "from (on a):", fromto[:3].tolist(),
       "to (on b):", fromto[3:].tolist())
 """
 
@@ -258,7 +258,7 @@ def reproductions(handlers, models, geom_attrs, inertia, distance=None):
     """One script for every pair in `handlers` (engine.py's HANDLERS). `models`: the
     MJCF of engine.py's fixed models by scene name; `geom_attrs`: the margin and gap
     attributes of every geom; `inertia`: a mesh's inertia mode; `distance`: (a distance
-    case's mesh inertia, the source of engine.py's distmax_of)."""
+    case's mesh inertia, the source of the shared distance_reach (common/crashtest_engine.py))."""
     if distance is None:
         return {(q, a, b): script(q, a, b, models, geom_attrs, inertia) for q, a, b in handlers}
     dist_inertia, distmax_source = distance
