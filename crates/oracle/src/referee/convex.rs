@@ -48,7 +48,7 @@ use super::capsule::{check_capsule_fields, closest_pairs};
 use super::closest::closest_on_triangle;
 use super::error::RefereeError;
 use super::exact::{
-    Q, Root, V3, add, check_v3, cross, dot, is_zero, lerp, radius, round_unit, round_v, scale, sub, v3,
+    Q, Root, V3, add, check_v3, cross, dot, dot_relaxed, is_zero, lerp, radius, round_unit, round_v, scale, sub, v3,
 };
 use super::push_filter::{AxisOf, Polytope};
 use super::stage::{Memo, apart, remembered};
@@ -107,13 +107,15 @@ impl Convex {
 
     /// The least and greatest `l·x` over the vertices.
     fn project(&self, l: &V3) -> (Q, Q) {
-        let mut it = self.vertices.iter().map(|v| dot(l, v));
+        // Compared unreduced; the two ends alone are reduced.
+        let mut it = self.vertices.iter().map(|v| dot_relaxed(l, v));
         let first = it.next().expect("a polytope has a vertex");
-        it.fold((first.clone(), first), |(lo, hi), x| {
+        let (lo, hi) = it.fold((first.clone(), first), |(lo, hi), x| {
             let lo = if x < lo { x.clone() } else { lo };
             let hi = if x > hi { x } else { hi };
             (lo, hi)
-        })
+        });
+        (lo.canonicalize(), hi.canonicalize())
     }
 }
 
@@ -159,8 +161,10 @@ impl Push {
         if sa != sb {
             return if sa { Ordering::Greater } else { Ordering::Less };
         }
-        let lhs = &self.amount * &self.amount * &other.norm2;
-        let rhs = &other.amount * &other.amount * &self.norm2;
+        // Unreduced: only compared.
+        let (a, b) = (self.amount.as_relaxed(), other.amount.as_relaxed());
+        let lhs = a * a * other.norm2.as_relaxed();
+        let rhs = b * b * self.norm2.as_relaxed();
         if sa { lhs.cmp(&rhs) } else { rhs.cmp(&lhs) }
     }
 

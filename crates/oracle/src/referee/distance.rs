@@ -45,7 +45,7 @@
 use super::boxes::{BOX_A, BOX_B, exact_box};
 use super::convex::{Convex, Push, least_push, middle, touching_region};
 use super::error::RefereeError;
-use super::exact::{Q, Root, V3, add, check_v3, dot, is_zero, q, radius, round_unit, scale, sub, v3};
+use super::exact::{Q, Root, V3, add, check_v3, dot, dot_relaxed, is_zero, q, radius, round_unit, scale, sub, v3};
 use super::hull::{convex_hull, distinct_points};
 use super::stage::{Memo, remembered};
 use crate::geom::{DistanceAnswer, P3, Solid};
@@ -468,10 +468,10 @@ fn round_v3(v: &V3) -> P3 {
 fn argmin_exact(points: &[V3], d: &V3, mut among: impl Iterator<Item = usize>) -> usize {
     let first = among.next().expect("a candidate");
     let mut best = first;
-    let mut low = dot(d, &points[first]);
+    let mut low = dot_relaxed(d, &points[first]);
     for i in among {
         let p = &points[i];
-        let h = dot(d, p);
+        let h = dot_relaxed(d, p);
         if h < low {
             low = h;
             best = i;
@@ -540,14 +540,14 @@ fn barycentric_of_projection(w: &[&V3]) -> Option<Vec<Q>> {
 
 /// The determinant of a 1×1 to 3×3 matrix.
 fn determinant(m: &[Vec<Q>]) -> Q {
+    // Formed unreduced, reduced once.
+    let e = |i: usize, j: usize| m[i][j].as_relaxed();
     match m.len() {
-        1 => m[0][0].clone(),
-        2 => &m[0][0] * &m[1][1] - &m[0][1] * &m[1][0],
-        _ => {
-            &m[0][0] * (&m[1][1] * &m[2][2] - &m[1][2] * &m[2][1])
-                - &m[0][1] * (&m[1][0] * &m[2][2] - &m[1][2] * &m[2][0])
-                + &m[0][2] * (&m[1][0] * &m[2][1] - &m[1][1] * &m[2][0])
-        }
+        1 => e(0, 0).clone().canonicalize(),
+        2 => (e(0, 0) * e(1, 1) - e(0, 1) * e(1, 0)).canonicalize(),
+        _ => (e(0, 0) * (e(1, 1) * e(2, 2) - e(1, 2) * e(2, 1)) - e(0, 1) * (e(1, 0) * e(2, 2) - e(1, 2) * e(2, 0))
+            + e(0, 2) * (e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0)))
+        .canonicalize(),
     }
 }
 

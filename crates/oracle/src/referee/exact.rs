@@ -3,7 +3,7 @@
 
 use dashu::base::{Approximation, BitTest, SquareRoot, SquareRootRem, UnsignedAbs};
 use dashu::integer::{IBig, UBig};
-use dashu::rational::RBig;
+use dashu::rational::{RBig, Relaxed};
 
 use super::error::{PRECISION_BITS, RefereeError};
 use crate::geom::P3;
@@ -70,7 +70,16 @@ pub(crate) fn scale(v: &V3, s: &Q) -> V3 {
 }
 
 pub(crate) fn dot(a: &V3, b: &V3) -> Q {
-    &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
+    dot_relaxed(a, b).canonicalize()
+}
+
+/// [`dot`] unreduced: `Relaxed` drops only common factors of two (all a
+/// dyadic input has) and compares exactly as [`Q`] does, so a value that is
+/// only compared is never reduced by a gcd — the most of an exact
+/// comparison's cost on large numbers.
+pub(crate) fn dot_relaxed(a: &V3, b: &V3) -> Relaxed {
+    let t = |i: usize| a[i].as_relaxed() * b[i].as_relaxed();
+    t(0) + t(1) + t(2)
 }
 
 pub(crate) fn cross(a: &V3, b: &V3) -> V3 {
