@@ -16,7 +16,7 @@ use std::sync::OnceLock;
 /// Poses per point here: 8 — four exact and four rotated where a sweep
 /// alternates them, enough for both sides of an edge to be met at every point —
 /// so every point of every sweep is visited in a few seconds; the report runs
-/// [`sweep::DEFAULT_POSES`].
+/// [`sweep::REPORT_POSES`].
 const TEST_POSES: usize = 8;
 
 const SETTINGS: Settings = Settings { poses: TEST_POSES, seed: sweep::DEFAULT_SEED };

@@ -697,7 +697,7 @@ fn sections(config: &Config, results: &[CaseResult], phases: &mut Phases) -> Vec
         }
     };
     out.push(crate::sweep::section(
-        &crate::sweep::Settings { poses: crate::sweep::DEFAULT_POSES, seed: config.seed },
+        &crate::sweep::Settings { poses: crate::sweep::REPORT_POSES, seed: config.seed },
         set,
     ));
     done(&out, phases);

@@ -59,7 +59,7 @@ mod sliver;
 mod spheres;
 
 pub use catalog::{
-    BREAK_REL, BYTES_PER_SWEEP_CASE, DEFAULT_POSES, DEFAULT_SEED, PoseMix, Probe, STANDALONE, SWEEP_FILE,
+    BREAK_REL, BYTES_PER_SWEEP_CASE, DEFAULT_POSES, DEFAULT_SEED, PoseMix, Probe, REPORT_POSES, STANDALONE, SWEEP_FILE,
     SWEEP_MEMORY_BYTES, SWEEPS, Settings, Sweep, SweepCase, SweepPoint, cases, check_poses, find, fixture_at,
     list_text, max_poses, names, rounded_to_f32, standalone, unknown_name,
 };
