@@ -291,11 +291,48 @@ fn load(v: &Value, file: &std::path::Path) -> Option<LoadedCase> {
 /// engine that answers one input differently from call to call shows it.
 pub fn judge_one(engine: &Engine, set: &EngineSet, lc: &LoadedCase) -> (Option<Signature>, EngineResult, Truth) {
     engine.forget_case(lc);
-    let truth = Truth::of(&set.referee, lc);
+    let truth = truth_of(set, lc);
     let r = judge_engine(engine, set, lc, &truth);
     let misclassified = r.errors.misclass.is_some() || matches!(r.verdict, crate::judge::Verdict::Failed { .. });
     let headline = if misclassified { 1.0 } else { crate::judge::headline(&r.errors, truth.scale) };
     (signature(lc, &r, headline), r, truth)
+}
+
+/// Cases whose truths [`truth_of`] keeps at most: 4,096. Reason: a finding's
+/// shrinking judges at most [`MAX_EVALUATIONS`] candidates, and the findings
+/// that share candidates are shrunk side by side, so this holds all of several
+/// findings' candidates; beyond it the memory is emptied and starts again.
+pub const TRUTH_CACHE_CASES: usize = 4096;
+
+/// The referee's truths of the cases judged while shrinking, by the case's
+/// input (its name, source, expectation and tolerance left out): one engine's
+/// candidate is often another's — Coal's three GJK variants, FCL's two solvers
+/// and collide's two methods shrink the same case along the same path — and a
+/// process engine's candidate is judged [`STABLE_CHECKS`] times.
+type TruthCache = std::sync::Mutex<std::collections::HashMap<String, Truth>>;
+
+fn truth_cache() -> &'static TruthCache {
+    static CACHE: std::sync::OnceLock<TruthCache> = std::sync::OnceLock::new();
+    CACHE.get_or_init(Default::default)
+}
+
+/// The referee's truth of `lc`, computed once per input (see [`TruthCache`]).
+fn truth_of(set: &EngineSet, lc: &LoadedCase) -> Truth {
+    let c = &lc.case;
+    let key = serde_json::to_string(&(&set.referee.name, c.query, &c.a, &c.b, c.t_max, c.restitution)).ok();
+    let lock = || truth_cache().lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some(t) = key.as_ref().and_then(|k| lock().get(k).cloned()) {
+        return t;
+    }
+    let truth = Truth::of(&set.referee, lc);
+    if let Some(k) = key {
+        let mut cache = lock();
+        if cache.len() >= TRUTH_CACHE_CASES {
+            cache.clear();
+        }
+        cache.insert(k, truth.clone());
+    }
+    truth
 }
 
 /// What shrinking gave.
@@ -427,6 +464,28 @@ mod tests {
         assert_eq!(round_bits(3.2918, 2).to_bits(), 3.0f64.to_bits());
         assert_eq!(round_bits(3.2918, 4).to_bits(), 3.25f64.to_bits());
         assert_eq!(round_bits(-0.3, 1).to_bits(), (-0.25f64).to_bits());
+    }
+
+    #[test]
+    fn the_truth_kept_is_the_inputs_own_whatever_the_cases_name() {
+        let set = EngineSet::new(crate::engines::judged(), "collide/robust").expect("the built-in set");
+        let case = |name: &str, x: f64| {
+            let v = serde_json::json!({"name": name, "source": "a test", "query": "distance",
+                "a": {"sphere": {"center": [x, 0.0, 0.0], "radius": 1.0}},
+                "b": {"sphere": {"center": [0.0, 0.0, 0.0], "radius": 1.0}}});
+            load(&v, std::path::Path::new("test")).expect("a valid case")
+        };
+        let distance = |t: &Truth| match &t.answer {
+            Some(crate::engine::Answer::Distance(d)) => d.distance,
+            other => panic!("no distance: {other:?}"),
+        };
+        // Spheres 3 and 5 apart: separations 1 and 3, exact in f64.
+        let (a, renamed, other) = (case("one", 3.0), case("two", 3.0), case("one", 5.0));
+        for _ in 0..2 {
+            assert_eq!(distance(&truth_of(&set, &a)).to_bits(), 1.0f64.to_bits());
+            assert_eq!(distance(&truth_of(&set, &renamed)).to_bits(), 1.0f64.to_bits());
+            assert_eq!(distance(&truth_of(&set, &other)).to_bits(), 3.0f64.to_bits());
+        }
     }
 
     #[test]
