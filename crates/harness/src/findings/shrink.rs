@@ -23,10 +23,16 @@ use crate::load::{Loaded, LoadedCase, load_str_into};
 use serde_json::Value;
 
 /// Candidates judged per finding at most: a sphere–triangle case has 13
-/// numbers and about ten candidates each, so this allows three full passes;
-/// the referee's slowest queries (a time of impact against a mesh) take a few
-/// milliseconds, so one finding costs at most a few seconds.
-pub const MAX_EVALUATIONS: u32 = 400;
+/// numbers and about ten candidates each, so this allows one and a half full
+/// passes (a process engine's candidate counts [`STABLE_CHECKS`] times). The
+/// referee's slowest queries (a full-range distance, a time of impact
+/// against a mesh) take several milliseconds, so one finding costs at most a
+/// second or two. Measured on the default report: at 400, 41 of its 348
+/// shrunk findings stopped at the cap and shrinking took 47 s; at 200 it took
+/// 36 s, and the 81 findings that had judged more than 200 candidates ended
+/// 7% above the cost they reached at 400 (1,313,372 against 1,227,032, from
+/// 1,490,487).
+pub const MAX_EVALUATIONS: u32 = 200;
 
 /// Candidates judged at most for a process engine's failure (a crash, or no
 /// answer within the engine's own time limit): each judgement of a case that
