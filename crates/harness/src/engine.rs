@@ -101,11 +101,7 @@ impl Engine {
     /// engine, the one its hello gives for the case's pair when it gives one.
     pub fn precision_for(&self, lc: &LoadedCase) -> Option<u32> {
         let pair = lc.case.pair();
-        self.process
-            .as_ref()
-            .and_then(|p| p.hello())
-            .and_then(|h| h.capabilities.iter().find(|c| pair.is_some() && c.pair() == pair).and_then(|c| c.precision))
-            .or(self.precision)
+        self.process.as_ref().zip(pair).and_then(|(p, pair)| p.precision_for(pair)).or(self.precision)
     }
 
     /// The process behind a process engine.

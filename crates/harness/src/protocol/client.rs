@@ -191,6 +191,10 @@ pub struct ProcessEngine {
     memo: Mutex<HashMap<String, Reply, KeyHasher>>,
     /// Keys of the answers [`ProcessEngine::forget`] keeps.
     kept: Mutex<HashSet<String, KeyHasher>>,
+    /// The precision the last hello declared per pair: read for every
+    /// judgement, so kept apart from `state` (held through a batch's whole
+    /// exchange) and from the hello itself (its reproductions are long).
+    precisions: Mutex<Vec<(Pair, Option<u32>)>>,
 }
 
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
@@ -217,6 +221,7 @@ impl ProcessEngine {
             }),
             memo: Mutex::new(HashMap::with_hasher(KeyHasher::default())),
             kept: Mutex::new(HashSet::with_hasher(KeyHasher::default())),
+            precisions: Mutex::new(Vec::new()),
         };
         {
             let mut st = lock(&engine.state);
@@ -237,6 +242,11 @@ impl ProcessEngine {
     /// Its hello, once it gave one.
     pub fn hello(&self) -> Option<EngineHello> {
         lock(&self.state).hello.clone()
+    }
+
+    /// The precision the engine's hello declares for `pair`, if it declares one.
+    pub fn precision_for(&self, pair: Pair) -> Option<u32> {
+        lock(&self.precisions).iter().find(|(p, _)| *p == pair).and_then(|(_, precision)| *precision)
     }
 
     /// Why it is down, if it is.
@@ -663,6 +673,7 @@ impl ProcessEngine {
         })();
         match shake {
             Ok(h) => {
+                *lock(&self.precisions) = h.capabilities.iter().filter_map(|c| Some((c.pair()?, c.precision))).collect();
                 st.hello = Some(h);
                 st.running = Some(run);
                 Ok(())
