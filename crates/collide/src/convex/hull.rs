@@ -61,6 +61,16 @@ fn one_sided(signs: impl Iterator<Item = Sign>) -> bool {
 impl<'a> Hull<'a> {
     /// The hull of `points` (finite; at least one).
     pub(crate) fn new(points: &[Xp<'a>]) -> Self {
+        let mut boxed = Hull {
+            pts: points.to_vec(),
+            orig: (0..points.len()).collect(),
+            dim: 0,
+            faces: Vec::new(),
+            edges: Vec::new(),
+        };
+        if boxed.a_box() {
+            return boxed;
+        }
         let mut pts: Vec<Xp<'a>> = Vec::with_capacity(points.len());
         let mut orig = Vec::with_capacity(points.len());
         for (i, p) in points.iter().enumerate() {
@@ -87,6 +97,38 @@ impl<'a> Hull<'a> {
         hull.dim = 3;
         hull.solid();
         hull
+    }
+
+    /// The hull of a box's eight corners (in their order: corner `i` has
+    /// `+h_k` where bit `k` of `i` is set) with positive half extents, known
+    /// without a predicate: a face per axis and side, from the corners on
+    /// that side (`(p₁ − p₀) × (p₂ − p₀)` along `±M_k`, outward: the axes of
+    /// a rotation are right-handed), and the twelve pairs of corners that
+    /// differ in one axis. `false` (nothing done) for any other point set.
+    fn a_box(&mut self) -> bool {
+        let p = &self.pts;
+        let Some((b, _)) = p.first().and_then(Xp::corner) else { return false };
+        let ok = p.len() == 8
+            && b.solid()
+            && p.iter()
+                .enumerate()
+                .all(|(i, x)| x.corner().is_some_and(|(y, s)| std::ptr::eq(b, y) && usize::from(s) == i));
+        if !ok {
+            return false;
+        }
+        self.dim = 3;
+        for k in 0..3 {
+            let (j, l) = ((k + 1) % 3, (k + 2) % 3);
+            for side in [0, 1] {
+                let base = side << k;
+                let (p1, p2) = (base | 1 << j, base | 1 << l);
+                self.faces.push(Face { idx: if side == 1 { [base, p1, p2] } else { [base, p2, p1] } });
+            }
+            for c in (0..8).filter(|c| c >> k & 1 == 0) {
+                self.edges.push((c, c | 1 << k));
+            }
+        }
+        true
     }
 
     /// A flat hull: the plane through `p0, p1, p[i2]`.

@@ -86,7 +86,7 @@ mod robust;
 mod tests;
 
 pub use epa::{EPA_MAX_ITER, EPA_REL_TOL};
-use points::{ExactBox, Xp};
+use points::{Corner, ExactBox, Xp};
 
 use crate::exact::{P3, Sign, dot_diff};
 use crate::real::{Real, Vec3, finite3, scale2, scale2v, to_f64_3, unit_scale};
@@ -298,21 +298,31 @@ fn exact_box<T: Real>(s: &Solid<T>) -> Result<Option<ExactBox>, ()> {
     }
 }
 
+/// A box's corners' data (`Ok(None)` for a hull; `Err` when a corner's value
+/// is not finite): each [`Corner`] and its `f64` value and bound.
+type CornerData<'a> = ([Corner<'a>; 8], [(P3, f64); 8]);
+
+fn corner_data(b: Option<&ExactBox>) -> Result<Option<CornerData<'_>>, ()> {
+    let Some(b) = b else { return Ok(None) };
+    let c = b.corners().ok_or(())?;
+    let corners = std::array::from_fn(|i| Corner { b, bits: i as u8, lo: c[i].lo, ed: c[i].ed });
+    Ok(Some((corners, c.map(|x| (x.v, x.e)))))
+}
+
 /// A solid's points (a box's corners with their bounds, see
-/// `points::ExactBox::corners`) and radius (negative or NaN: 0, flagged);
-/// `None` when a number is not finite.
-fn solid_points<'a, T: Real>(s: &Solid<T>, b: Option<&'a ExactBox>) -> Option<(Vec<Xp<'a>>, T, bool)> {
-    match (s, b) {
+/// `points::ExactBox::corners`) and radius (negative or NaN: 0, flagged).
+fn solid_points<'a, T: Real>(s: &Solid<T>, c: Option<&'a CornerData<'a>>) -> (Vec<Xp<'a>>, T, bool) {
+    match (s, c) {
+        (Solid::Box(_), Some((corners, values))) => {
+            let pts = corners.iter().zip(values).map(|(x, (v, e))| Xp { v: *v, e: *e, x: Some(x) });
+            (pts.collect(), T::zero(), false)
+        }
         (Solid::Hull(r), _) => {
             let (rad, bad) = radius(r.radius);
-            Some((r.points.iter().map(|p| Xp::plain(to_f64_3(p))).collect(), rad, bad))
+            (r.points.iter().map(|p| Xp::plain(to_f64_3(p))).collect(), rad, bad)
         }
-        (Solid::Box(_), Some(b)) => {
-            let c = b.corners()?;
-            let pts = (0..8u8).map(|i| Xp { v: c[usize::from(i)].0, e: c[usize::from(i)].1, corner: Some((b, i)) });
-            Some((pts.collect(), T::zero(), false))
-        }
-        (Solid::Box(_), None) => None,
+        // Not reached: a box's corner data is always given.
+        (Solid::Box(_), None) => (Vec::new(), T::zero(), true),
     }
 }
 
@@ -343,10 +353,10 @@ pub fn distance<T: Real>(a: &Rounded<T>, b: &Rounded<T>) -> Distance<T> {
 /// to `f64`.
 pub fn distance_solids<T: Real>(a: &Solid<T>, b: &Solid<T>) -> Distance<T> {
     let (Ok(ba), Ok(bb)) = (exact_box(a), exact_box(b)) else { return Distance::fallback() };
-    let (Some((xa, ra, bad_a)), Some((xb, rb, bad_b))) = (solid_points(a, ba.as_ref()), solid_points(b, bb.as_ref()))
-    else {
+    let (Ok(ca), Ok(cb)) = (corner_data(ba.as_ref()), corner_data(bb.as_ref())) else {
         return Distance::fallback();
     };
+    let ((xa, ra, bad_a), (xb, rb, bad_b)) = (solid_points(a, ca.as_ref()), solid_points(b, cb.as_ref()));
     if xa.is_empty() || xb.is_empty() {
         return Distance::fallback();
     }

@@ -15,6 +15,7 @@
 //! that each coordinate is a polynomial in the inputs. The predicates are
 //! homogeneous in the coordinates: their signs are unchanged by `D`.
 
+use super::predicates::Dd;
 use crate::boxes::poly::{Filt, Ring, norm2, quaternion_axes};
 use crate::boxes::stage::rotation;
 use crate::exact::{BigFloat, P3, frexp, ldexp, points_equal};
@@ -43,18 +44,93 @@ pub(crate) struct ExactBox {
 /// A point: its `f64` value `v`, a bound `e` on the distance of each of its
 /// coordinates from the exact one's, and, for a box corner, the box and the
 /// corner's sign bits (bit `k` set: `+h_k`).
+/// A corner's further data ([`Corner`]) lies behind a reference, so that
+/// a point stays small.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Xp<'a> {
     pub v: P3,
     pub e: f64,
-    pub corner: Option<(&'a ExactBox, u8)>,
+    pub x: Option<&'a Corner<'a>>,
 }
 
-impl Xp<'_> {
+/// A box corner: the box, its sign bits, and a double-double value `v + lo`
+/// (`|lo|` at most half an ulp of `v`) with its bound `ed`, for the
+/// predicates' double-double stage.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Corner<'a> {
+    pub b: &'a ExactBox,
+    pub bits: u8,
+    pub lo: P3,
+    pub ed: f64,
+}
+
+impl<'a> Xp<'a> {
     /// A plain point, exact.
     pub(crate) const fn plain(v: P3) -> Self {
-        Self { v, e: 0.0, corner: None }
+        Self { v, e: 0.0, x: None }
     }
+
+    /// The box and sign bits of a corner.
+    #[inline]
+    pub(crate) fn corner(&self) -> Option<(&'a ExactBox, u8)> {
+        self.x.map(|c| (c.b, c.bits))
+    }
+
+    /// The low part of the double-double value (0 for a plain point).
+    #[inline]
+    pub(crate) fn lo(&self) -> P3 {
+        self.x.map_or([0.0; 3], |c| c.lo)
+    }
+
+    /// The double-double value's bound (`e` for a plain point).
+    #[inline]
+    pub(crate) fn ed(&self) -> f64 {
+        self.x.map_or(self.e, |c| c.ed)
+    }
+}
+
+/// A corner's values: `v` and its bound `e`, `v + lo` and its bound `ed`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct CornerValue {
+    pub v: P3,
+    pub e: f64,
+    pub lo: P3,
+    pub ed: f64,
+}
+
+impl<'a> Xp<'a> {
+    /// When `self` and `o` are corners of one box: the box and the axes
+    /// their signs differ in (`self − o` lies in the span of those axes).
+    #[inline]
+    pub(crate) fn box_diff(&self, o: &Xp<'a>) -> Option<(&'a ExactBox, u8)> {
+        match (self.corner(), o.corner()) {
+            (Some((x, s)), Some((y, t))) if std::ptr::eq(x, y) => Some((x, s ^ t)),
+            _ => None,
+        }
+    }
+
+    /// Whether `self` and `o` are one input point (the same plain value, or
+    /// the same corner of one box): cheaper than [`same`], and only `true`
+    /// when it is.
+    #[inline]
+    pub(crate) fn identical(&self, o: &Xp<'a>) -> bool {
+        match (self.corner(), o.corner()) {
+            (Some((x, s)), Some((y, t))) => std::ptr::eq(x, y) && s == t,
+            _ => self.e == 0.0 && o.e == 0.0 && points_equal(self.v, o.v),
+        }
+    }
+}
+
+/// What `q`'s scaling may move an entry of `R(q)` by when a component
+/// falls into the subnormals: each component by `2^−1074`, the entry by at
+/// most four times that over `‖q‖ ≥ 1` (`|∂R/∂q| ≤ 4/‖q‖`), with room
+/// (`2^−1068`).
+const SCALED_Q_LOSS: f64 = f64::from_bits(7 << 52);
+
+/// `(a + b, error)`, Knuth's TwoSum.
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    (s, two_sum_err(a, b, s))
 }
 
 /// Whether `a + b` rounds to `s` exactly, and the rounding error (Knuth's
@@ -66,6 +142,19 @@ fn two_sum_err(a: f64, b: f64, s: f64) -> f64 {
 }
 
 impl ExactBox {
+    /// Whether every half extent is positive: the eight corners are then
+    /// distinct and span space, and the box's hull is known (its faces and
+    /// edges, `super::hull`).
+    pub(crate) fn solid(&self) -> bool {
+        self.h.iter().all(|h| *h > 0.0)
+    }
+
+    /// The axes with a non-zero half extent, as a bit mask: a difference of
+    /// two corners has no component along the others.
+    pub(crate) fn nonzero(&self) -> u8 {
+        (0..3).filter(|&i| self.h[i] != 0.0).fold(0, |m, i| m | 1 << i)
+    }
+
     /// The box of centre `c`, half extents `h` and quaternion `q`; `None`
     /// when a number is not finite.
     pub(crate) fn new(c: P3, h: P3, q: [f64; 4]) -> Option<Self> {
@@ -110,8 +199,11 @@ impl ExactBox {
         Some(out)
     }
 
-    /// The eight corners' `f64` values and bounds (corner `i`: sign bit `k`
-    /// of `i` set for `+h_k`); `None` when a corner's value is not finite.
+    /// The eight corners' values and bounds (corner `i`: sign bit `k` of `i`
+    /// set for `+h_k`): in double-double when the rotation is not a signed
+    /// permutation ([`Self::corners_dd`]) and the scene lies within its range,
+    /// else in `f64` as follows (`lo = 0`, `ed = e`); `None` when a corner's
+    /// value is not finite.
     ///
     /// A signed permutation's corner coordinate is `c_k ± h_j`, one rounded
     /// sum whose error TwoSum gives exactly. Otherwise `R̃` from
@@ -121,7 +213,92 @@ impl ExactBox {
     /// 6·2^−1074` to first order (the partial sums are below
     /// `|c_k| + Σ|t̃_i|`; each product and sum may lose `2^−1074` to
     /// underflow), enlarged by [`BOUND_SLACK`].
-    pub(crate) fn corners(&self) -> Option<[(P3, f64); 8]> {
+    pub(crate) fn corners(&self) -> Option<[CornerValue; 8]> {
+        let c = self.corners_f64()?;
+        let plain = c.map(|(v, e)| CornerValue { v, e, lo: [0.0; 3], ed: e });
+        if self.exact_axes().is_some() {
+            return Some(plain);
+        }
+        // Far below the normal range the double-double's underflow terms
+        // can exceed the `f64` evaluation's bound: the tighter one.
+        let worst = |c: &[CornerValue; 8]| c.iter().fold(0.0f64, |m, x| m.max(x.e));
+        match self.corners_dd() {
+            Some(d) if worst(&d) <= worst(&plain) => Some(d),
+            _ => Some(plain),
+        }
+    }
+
+    /// The rotation `R(q)` as double-doubles, each entry with a bound on its
+    /// distance from the exact one (`[row][column]`), from `q` scaled by a
+    /// power of two so that its largest component lies in `[1, 2)` (a
+    /// component that falls into the subnormals moves by at most
+    /// `2^−1074`, `R` by at most four times that: [`SCALED_Q_LOSS`]):
+    /// `M_i` and `n = ‖q‖² ≥ 1` in [`Dd`] with their bounds, then each
+    /// `M_ki/n` as `r₀ + r₁` (`r₀ = M/n` in `f64`, `r₁` the residual's
+    /// quotient), whose error is `|M − n r|/n ≤ |res| + e_res` for the
+    /// residual `res = M − n r` formed in [`Dd`] with its bound `e_res`.
+    fn rotation_dd(&self) -> Option<[[Dd; 3]; 3]> {
+        let m = self.q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let k = 1 - frexp(m).1;
+        let qs = self.q.map(|x| ldexp(x, k));
+        let lossy = qs.iter().zip(&self.q).any(|(s, x)| ldexp(*s, -k).to_bits() != x.to_bits());
+        let f = qs.map(|x| Dd::new(x, 0.0, 0.0));
+        let r = [&f[0], &f[1], &f[2], &f[3]];
+        let n = norm2(r);
+        let axes = quaternion_axes(r);
+        let (nh, nl, _) = n.parts();
+        let extra = if lossy { SCALED_Q_LOSS } else { 0.0 };
+        let mut out = [[Dd::new(0.0, 0.0, 0.0); 3]; 3];
+        for (i, ax) in axes.iter().enumerate() {
+            for (kk, mk) in ax.iter().enumerate() {
+                let (mh, _, _) = mk.parts();
+                let r0 = mh / (nh + nl);
+                let res = mk.sub(&n.mul(&Dd::new(r0, 0.0, 0.0)));
+                let r1 = res.parts().0 / (nh + nl);
+                let (hi, lo) = two_sum(r0, r1);
+                let rr = Dd::new(hi, lo, 0.0);
+                let (h2, l2, e2) = mk.sub(&n.mul(&rr)).parts();
+                let e = (h2.abs() + l2.abs() + e2) * (1.0 + 8.0 * U) + extra;
+                if !e.is_finite() || !hi.is_finite() {
+                    return None;
+                }
+                out[kk][i] = Dd::new(hi, lo, e);
+            }
+        }
+        Some(out)
+    }
+
+    /// The corners as double-doubles (`c_k + Σ_i s_i h_i R_ki` in [`Dd`] on
+    /// [`Self::rotation_dd`]): `v + lo` within `ed` of the exact coordinate,
+    /// `v` within `|lo| + ed`. `None` when a bound is not finite (a scene
+    /// beyond [`Dd`]'s range).
+    fn corners_dd(&self) -> Option<[CornerValue; 8]> {
+        let r = self.rotation_dd()?;
+        let mut out = [CornerValue::default(); 8];
+        for (i, o) in out.iter_mut().enumerate() {
+            let (mut e, mut ed) = (0.0f64, 0.0f64);
+            for (k, row) in r.iter().enumerate() {
+                let mut x = Dd::new(self.c[k], 0.0, 0.0);
+                for (j, rkj) in row.iter().enumerate() {
+                    let h = if i >> j & 1 == 1 { self.h[j] } else { -self.h[j] };
+                    x = x.add(&Dd::new(h, 0.0, 0.0).mul(rkj));
+                }
+                let (hi, lo, xe) = x.parts();
+                if !(hi.is_finite() && lo.is_finite() && xe.is_finite()) {
+                    return None;
+                }
+                o.v[k] = hi;
+                o.lo[k] = lo;
+                ed = ed.max(xe);
+                e = e.max((lo.abs() + xe) * (1.0 + 4.0 * U));
+            }
+            (o.e, o.ed) = (e, ed);
+        }
+        Some(out)
+    }
+
+    /// The corners in `f64`: see [`Self::corners`].
+    fn corners_f64(&self) -> Option<[(P3, f64); 8]> {
         let sign = |i: usize, k: usize| if i >> k & 1 == 1 { 1.0 } else { -1.0 };
         let mut out = [([0.0; 3], 0.0); 8];
         if let Some(ax) = self.exact_axes() {
@@ -208,7 +385,7 @@ fn corner_times_n<N: Leaf>(b: &ExactBox, l: &Lifted<N>, signs: u8) -> [N; 3] {
 pub(crate) fn lift<N: Leaf, const K: usize>(pts: &[Xp]) -> [N; K] {
     let mut boxes: Vec<(&ExactBox, Lifted<N>)> = Vec::with_capacity(2);
     for p in pts {
-        if let (true, Some((b, _))) = (p.e > 0.0, p.corner)
+        if let (true, Some((b, _))) = (p.e > 0.0, p.corner())
             && !boxes.iter().any(|(x, _)| std::ptr::eq(*x, b))
         {
             boxes.push((b, lifted(b)));
@@ -225,7 +402,7 @@ pub(crate) fn lift<N: Leaf, const K: usize>(pts: &[Xp]) -> [N; K] {
     let d = prod(None);
     let mut out: [N; K] = std::array::from_fn(|_| N::leaf(0.0));
     for (j, p) in pts.iter().enumerate() {
-        let coords: [N; 3] = match (p.e > 0.0, p.corner) {
+        let coords: [N; 3] = match (p.e > 0.0, p.corner()) {
             (true, Some((b, s))) => {
                 let l = &boxes.iter().find(|(x, _)| std::ptr::eq(*x, b)).expect("collected above").1;
                 let x = corner_times_n(b, l, s);
@@ -254,7 +431,7 @@ pub(crate) fn same(a: &Xp, b: &Xp) -> bool {
     if a.e == 0.0 && b.e == 0.0 {
         return points_equal(a.v, b.v);
     }
-    if let (Some((x, s)), Some((y, t))) = (a.corner, b.corner)
+    if let (Some((x, s)), Some((y, t))) = (a.corner(), b.corner())
         && std::ptr::eq(x, y)
         && s == t
     {
@@ -285,12 +462,16 @@ mod tests {
     fn bounds_hold(b: &ExactBox) -> Result<(), TestCaseError> {
         let Some(cs) = b.corners() else { return Ok(()) };
         let l: Lifted<BigFloat> = lifted(b);
-        for (i, (v, e)) in cs.iter().enumerate() {
+        for (i, c) in cs.iter().enumerate() {
             let x = corner_times_n(b, &l, i as u8);
-            for k in 0..3 {
-                let off = (&(&BigFloat::from_f64(v[k]) * &l.n) - &x[k]).abs();
-                let bound = &BigFloat::from_f64(*e) * &l.n;
-                prop_assert!(off <= bound, "corner {} coordinate {} of {:?}: {:?} ± {:e}", i, k, b, v, e);
+            for (k, xk) in x.iter().enumerate() {
+                let off = (&(&BigFloat::from_f64(c.v[k]) * &l.n) - xk).abs();
+                let bound = &BigFloat::from_f64(c.e) * &l.n;
+                prop_assert!(off <= bound, "corner {} coordinate {} of {:?}: {:?}", i, k, b, c);
+                let dd = &BigFloat::from_f64(c.v[k]) + &BigFloat::from_f64(c.lo[k]);
+                let off = (&(&dd * &l.n) - xk).abs();
+                let bound = &BigFloat::from_f64(c.ed) * &l.n;
+                prop_assert!(off <= bound, "corner {} coordinate {} of {:?} (double-double): {:?}", i, k, b, c);
             }
         }
         Ok(())
@@ -322,12 +503,12 @@ mod tests {
         for q in [[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 3.0, 0.0], [1.0, 1.0, 0.0, 0.0], [0.5; 4]] {
             let b = ExactBox::new([0.5, -1.0, 2.0], [1.0, 0.25, 3.0], q).expect("finite");
             let cs = b.corners().expect("finite corners");
-            assert!(cs.iter().all(|(_, e)| *e == 0.0), "{q:?}: {cs:?}");
+            assert!(cs.iter().all(|c| c.e == 0.0 && c.ed == 0.0), "{q:?}: {cs:?}");
             bounds_hold(&b).expect("exact");
         }
         // The 3-4-5 box's corners are not binary.
         let b = ExactBox::new([0.0; 3], [1.0; 3], [2.0, 0.0, 0.0, 1.0]).expect("finite");
-        assert!(b.corners().expect("finite corners").iter().all(|(_, e)| *e > 0.0));
+        assert!(b.corners().expect("finite corners").iter().all(|c| c.e > 0.0 && c.ed > 0.0));
         bounds_hold(&b).expect("within the bounds");
     }
 }

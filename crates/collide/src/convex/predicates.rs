@@ -19,8 +19,21 @@
 //! - a cross product of two point differences, `N = (p₁ − p₀) × (q₁ − q₀)`: a
 //!   hull's face normal (`q₀ = p₀`) or the cross product of an edge of each
 //!   hull (the separating axes).
+//!
+//! The points are [`Xp`]s: plain `f64` points, or a box's corners as the
+//! format defines them (`super::points`), which `f64` holds only to a bound.
+//! On plain points (and corners `f64` holds exactly) the stages are the
+//! above. A predicate on inexact corners runs [`Fl`] on the `f64` values
+//! with each point's bound as its leaves' error, then [`Dd`] on the
+//! corners' double-double values with theirs, then exactly on the exact
+//! corners (`super::points::lift`: [`Filt`] first, whose exactness tracking
+//! settles the exact zeros of small quaternions, then [`BigFloat`]). The
+//! zeros a box's construction makes (its corners on one face level along
+//! that face's normal, its edges along one axis parallel, a face normal
+//! built twice) are answered from the corners' sign bits without
+//! evaluating them ([`Dir::perpendicular`], [`Dir::known`]).
 
-use super::points::{Xp, lift, same};
+use super::points::{ExactBox, Xp, lift, same};
 use crate::boxes::poly::{Fast, Filt, Poly, Ring, at, cross3, dot3, refs, sign_fast, sub3, value_fast};
 use crate::exact::{BigFloat, Estimate, Sign};
 use crate::real::Vec3;
@@ -52,6 +65,27 @@ pub(crate) struct Dir<'a> {
     pts: [Xp<'a>; 6],
 }
 
+/// A line known from a direction's construction ([`Dir::known`]).
+#[derive(Clone, Copy, Debug)]
+enum KnownLine<'a> {
+    /// Along `M_k` of the box.
+    Normal(&'a ExactBox, u32),
+    /// Along `M_i × M_j` of an axis of each of two boxes.
+    Cross((&'a ExactBox, u32), (&'a ExactBox, u32)),
+}
+
+impl KnownLine<'_> {
+    /// Whether the two lines are one by construction.
+    fn same(&self, o: &Self) -> bool {
+        let eq = |a: &(&ExactBox, u32), b: &(&ExactBox, u32)| std::ptr::eq(a.0, b.0) && a.1 == b.1;
+        match (self, o) {
+            (KnownLine::Normal(x, k), KnownLine::Normal(y, l)) => std::ptr::eq(*x, *y) && k == l,
+            (KnownLine::Cross(a, b), KnownLine::Cross(c, d)) => (eq(a, c) && eq(b, d)) || (eq(a, d) && eq(b, c)),
+            _ => false,
+        }
+    }
+}
+
 /// The origin, for a direction's unused points.
 const ORIGIN: Xp<'static> = Xp::plain([0.0; 3]);
 
@@ -80,6 +114,103 @@ impl<'a> Dir<'a> {
     /// The 18 lengths of the direction's points.
     fn lengths(&self) -> [f64; 18] {
         flat(&self.pts)
+    }
+
+    /// The axes `i` of the box `b` (a bit mask) to which `N` is
+    /// perpendicular by construction, whatever the coordinates. A difference
+    /// of two corners of `b` lies in the span of the axes `M_i` their signs
+    /// differ in, with coefficients `±2h_i` (only the axes with `h_i ≠ 0`
+    /// count: `b.nonzero()`). `N` is perpendicular to each difference it is
+    /// made of: a cross product's two factors `u`, `v` (and, `N = u × v`
+    /// being zero when they are parallel, to the plane of two axes that
+    /// hold both), a Minkowski triangle's edges (and every vector in their
+    /// span: an edge `(a_k − a₀) − (b_k − b₀)` one of whose parts vanishes
+    /// is a difference of the other solid's, and then the other edge's
+    /// parts that match it are in the span too; two such differences of
+    /// distinct non-empty axis sets within two axes are independent, and
+    /// their plane is the span), a Minkowski segment's edge.
+    pub(crate) fn perpendicular(&self, b: &ExactBox) -> u8 {
+        let p = &self.pts;
+        let nz = b.nonzero();
+        let diff = |x: &Xp, y: &Xp| -> Option<u8> {
+            if x.identical(y) {
+                return Some(0);
+            }
+            x.box_diff(y).filter(|(c, _)| std::ptr::eq(*c, b)).map(|(_, s)| s & nz)
+        };
+        let one = |s: u8| if s.count_ones() == 1 { s } else { 0 };
+        match self.kind {
+            Kind::Point => 0,
+            Kind::Cross => match (diff(&p[0], &p[1]), diff(&p[2], &p[3])) {
+                (Some(s), Some(t)) if (s | t).count_ones() <= 2 => s | t,
+                (u, v) => one(u.unwrap_or(0)) | one(v.unwrap_or(0)),
+            },
+            Kind::Edge | Kind::Triangle => {
+                let edges = if self.kind == Kind::Edge { 1 } else { 2 };
+                // The vectors known to lie in the edges' span, as axis sets
+                // of `b`.
+                let mut vecs: [u8; 4] = [0; 4];
+                let mut n = 0;
+                let mut push = |s: Option<u8>| {
+                    if let Some(s) = s.filter(|s| *s != 0) {
+                        vecs[n] = s;
+                        n += 1;
+                    }
+                };
+                for k in 1..=edges {
+                    let (pure_a, pure_b) = (p[3 + k].identical(&p[3]), p[k].identical(&p[0]));
+                    if pure_a {
+                        push(diff(&p[0], &p[k]));
+                    } else if pure_b {
+                        push(diff(&p[3], &p[3 + k]));
+                    } else if edges == 2 {
+                        let j = 3 - k;
+                        let other_b = p[j].identical(&p[0]) && p[3 + j].identical(&p[3 + k]);
+                        let other_a = p[3 + j].identical(&p[3]) && p[j].identical(&p[k]);
+                        if other_b || other_a {
+                            push(diff(&p[0], &p[k]));
+                            push(diff(&p[3], &p[3 + k]));
+                        }
+                    }
+                }
+                let mut mask = vecs[..n].iter().fold(0, |m, s| m | one(*s));
+                if edges == 2 {
+                    for x in 0..n {
+                        for y in x + 1..n {
+                            let (s, t) = (vecs[x], vecs[y]);
+                            if s != t && (s | t).count_ones() <= 2 {
+                                mask |= s | t;
+                            }
+                        }
+                    }
+                }
+                mask
+            }
+        }
+    }
+
+    /// A cross-product direction's known line: normal to axis `k` of a box
+    /// (both factors differences of its corners, of distinct axis sets
+    /// within two axes), or the cross product of an axis of each of two
+    /// boxes (both factors along one axis). `None` otherwise (and for a
+    /// factor that vanishes).
+    fn known(&self) -> Option<KnownLine<'a>> {
+        if self.kind != Kind::Cross {
+            return None;
+        }
+        let p = &self.pts;
+        let (x, s) = p[0].box_diff(&p[1])?;
+        let (y, t) = p[2].box_diff(&p[3])?;
+        let (s, t) = (s & x.nonzero(), t & y.nonzero());
+        if s == 0 || t == 0 {
+            return None;
+        }
+        if std::ptr::eq(x, y) {
+            return (s != t && (s | t).count_ones() == 2)
+                .then(|| KnownLine::Normal(x, (!(s | t) & 7).trailing_zeros()));
+        }
+        (s.count_ones() == 1 && t.count_ones() == 1)
+            .then(|| KnownLine::Cross((x, s.trailing_zeros()), (y, t.trailing_zeros())))
     }
 
     /// The degree of `N` in the coordinates.
@@ -314,6 +445,17 @@ const DD_CARRY_FLOOR: f64 = f64::from_bits(8);
 const DD_HUGE: f64 = f64::from_bits((1023 + 900) << 52);
 
 impl Dd {
+    /// `hi + lo` within `e` of the exact value (`|lo|` at most half an ulp
+    /// of `hi`).
+    pub(crate) const fn new(hi: f64, lo: f64, e: f64) -> Self {
+        Self { hi, lo, e }
+    }
+
+    /// `(hi, lo, e)`.
+    pub(crate) fn parts(&self) -> (f64, f64, f64) {
+        (self.hi, self.lo, self.e)
+    }
+
     #[inline(always)]
     fn tiny(a: f64, b: f64, p: f64) -> bool {
         a != 0.0 && b != 0.0 && p.abs() < DD_TINY
@@ -461,7 +603,36 @@ fn decide<const K: usize>(
     if pts.iter().all(|p| p.e == 0.0) {
         return decide_exact(len, fl, dd, fast, filt, big);
     }
-    fl_sign_err(pts, fl).unwrap_or_else(|| exact_sign(pts, filt, big))
+    fl_sign_err(pts, fl).or_else(|| dd_sign_err(pts, dd)).unwrap_or_else(|| exact_sign(pts, filt, big))
+}
+
+/// The sign of the polynomial in [`Dd`] on inexact points: each point's
+/// double-double value `v + lo` and its bound `ed` as the leaves, scaled by
+/// the power of two that brings the largest `|v|` into `[0.5, 1)` (a scaled
+/// part that falls into the subnormals adds `2^−1074`), when the bound
+/// settles it.
+fn dd_sign_err<const K: usize>(pts: &[Xp], dd: Poly<Dd, K, 0>) -> Option<Sign> {
+    let m = pts.iter().fold(0.0f64, |m, p| p.v.iter().fold(m, |m, x| m.max(x.abs())));
+    if !m.is_finite() || pts.iter().any(|p| !p.ed().is_finite()) {
+        return None;
+    }
+    let k = if m == 0.0 { 0 } else { -crate::exact::frexp(m).1 };
+    let tiny = f64::from_bits(1);
+    let sc = |x: f64| {
+        let v = crate::exact::ldexp(x, k);
+        (v, if x != 0.0 && v.abs() < f64::MIN_POSITIVE { tiny } else { 0.0 })
+    };
+    let mut l = [Dd { hi: 0.0, lo: 0.0, e: 0.0 }; K];
+    for (j, p) in pts.iter().enumerate() {
+        let (ped, plo) = (p.ed(), p.lo());
+        let (ed, _) = sc(ped);
+        let ed = if ped > 0.0 { ed + tiny } else { 0.0 };
+        for i in 0..3 {
+            let ((hi, e1), (lo, e2)) = (sc(p.v[i]), sc(plo[i]));
+            l[3 * j + i] = Dd { hi, lo, e: ed + e1 + e2 };
+        }
+    }
+    dd(&l, &[]).sign()
 }
 
 /// The exact sign on the lifted points: in [`Filt`] first (its bound is 0
@@ -584,12 +755,28 @@ fn with<'a, const N: usize>(d: &Dir<'a>, pts: &[Xp<'a>]) -> [Xp<'a>; N] {
 /// `N ⟂ q₁ − q₀`; a face's three points when `q₀ = p₀`): that zero is
 /// answered without evaluating it (its rounding would defeat the filters).
 pub(crate) fn side(d: &Dir, x: Xp, r: Xp) -> Sign {
+    if let Some((b, bits)) = x.box_diff(&r)
+        && bits & b.nonzero() & !d.perpendicular(b) == 0
+    {
+        return Sign::Zero;
+    }
     if d.kind == Kind::Cross {
         let [p0, p1, q0, q1, _, _] = d.pts;
         let is = |set: &[Xp], y: &Xp| set.iter().any(|z| same(z, y));
         let face = same(&p0, &q0);
         let own = |set: &[Xp]| is(set, &x) && is(set, &r);
         if own(&[p0, p1]) || own(&[q0, q1]) || (face && own(&[p0, p1, q1])) {
+            return Sign::Zero;
+        }
+        // `x − r` parallel to a factor of plain points (a hull's edge beside
+        // its own, under an axis with a box's edge): zero, which the filters
+        // on the box's inexact corners could not see; decided on the plain
+        // points alone.
+        let plain = |set: &[Xp]| set.iter().all(|z| z.e == 0.0);
+        if !plain(&d.pts[..4])
+            && plain(&[x, r])
+            && ((plain(&[p0, p1]) && parallel(p0, p1, x, r)) || (plain(&[q0, q1]) && parallel(q0, q1, x, r)))
+        {
             return Sign::Zero;
         }
     }
@@ -599,6 +786,12 @@ pub(crate) fn side(d: &Dir, x: Xp, r: Xp) -> Sign {
 
 /// The exact sign of `N · ((x − y) − (r − t))`.
 pub(crate) fn side_w(d: &Dir, x: Xp, y: Xp, r: Xp, t: Xp) -> Sign {
+    let level = |u: &Xp, w: &Xp| {
+        u.identical(w) || u.box_diff(w).is_some_and(|(b, bits)| bits & b.nonzero() & !d.perpendicular(b) == 0)
+    };
+    if level(&x, &r) && level(&y, &t) {
+        return Sign::Zero;
+    }
     let p: [Xp; 10] = with(d, &[x, y, r, t]);
     by_kind!(d.kind, side_w_poly, &p)
 }
@@ -680,12 +873,23 @@ pub(crate) fn unit(d: &Dir) -> Option<Vec3<f64>> {
 
 /// The exact sign of `(x − y) · (r₁ − r₀)`.
 pub(crate) fn along(x: Xp, y: Xp, r0: Xp, r1: Xp) -> Sign {
+    if x.identical(&y) {
+        return Sign::Zero;
+    }
     sig!(along_poly, &[x, y, r0, r1])
 }
 
 /// Whether `p₁ − p₀` and `q₁ − q₀` are parallel (their cross product is
 /// exactly zero).
 pub(crate) fn parallel(p0: Xp, p1: Xp, q0: Xp, q1: Xp) -> bool {
+    // Two edges of one box along one axis.
+    if let (Some((b, s)), Some((c, t))) = (p0.box_diff(&p1), q0.box_diff(&q1))
+        && std::ptr::eq(b, c)
+        && s == t
+        && s.count_ones() == 1
+    {
+        return true;
+    }
     let l = [p0, p1, q0, q1];
     sig!(edge_cross_poly, &l, 0) == Sign::Zero
         && sig!(edge_cross_poly, &l, 1) == Sign::Zero
@@ -694,6 +898,14 @@ pub(crate) fn parallel(p0: Xp, p1: Xp, q0: Xp, q1: Xp) -> bool {
 
 /// Whether `a`, `b` and `c` lie on one line (`(b − a) × (c − a) = 0`).
 pub(crate) fn collinear(a: Xp, b: Xp, c: Xp) -> bool {
+    // Three corners of one box with positive half extents: the differences
+    // of distinct corners from one corner are independent unless equal.
+    if let (Some((x, _)), Some((y, _))) = (a.box_diff(&b), a.box_diff(&c))
+        && std::ptr::eq(x, y)
+        && x.solid()
+    {
+        return a.identical(&b) || a.identical(&c) || b.identical(&c);
+    }
     if a.e == 0.0 && b.e == 0.0 && c.e == 0.0 {
         return crate::exact::collinear(a.v, b.v, c.v);
     }
@@ -832,9 +1044,11 @@ pub(crate) fn same_direction(x: &ExactPush, y: &ExactPush) -> bool {
     let mut l = [ORIGIN; 8];
     l[..4].copy_from_slice(&x.axis.pts[..4]);
     l[4..].copy_from_slice(&y.axis.pts[..4]);
-    if sig!(pair_poly, &l, 0) != Sign::Zero
-        || sig!(pair_poly, &l, 1) != Sign::Zero
-        || sig!(pair_poly, &l, 2) != Sign::Zero
+    let parallel = matches!((x.axis.known(), y.axis.known()), (Some(a), Some(b)) if a.same(&b));
+    if !parallel
+        && (sig!(pair_poly, &l, 0) != Sign::Zero
+            || sig!(pair_poly, &l, 1) != Sign::Zero
+            || sig!(pair_poly, &l, 2) != Sign::Zero)
     {
         return false;
     }
