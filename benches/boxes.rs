@@ -12,12 +12,13 @@
 //! | capsule–capsule contact | `contact_capsule_capsule`, `contact_capsule_capsule_lecture` | `query::contact(id, Capsule, id, Capsule, 0)` |
 //! | box–box contact | `contact_box_box`, `contact_box_box_lecture` | `query::contact(pose, Cuboid, pose, Cuboid, 0)` |
 //! | capsule–box contact | `contact_capsule_box`, `contact_capsule_box_lecture` | `query::contact(id, Capsule, pose, Cuboid, 0)` |
-//! | distance (18 pairs) | `convex::distance`, `convex::distance_lecture` (and `_plane`): GJK and EPA | `query::contact(pose, shape, pose, shape, MAX)`, as its adapter asks |
+//! | distance (18 pairs) | `convex::distance_solids` (boxes exactly), `convex::distance_lecture` (and `_plane`): GJK and EPA | `query::contact(pose, shape, pose, shape, MAX)`, as its adapter asks |
 //!
 //! `distance` runs on the campaign's distance mix whole, and on its cases of
 //! two `convex` shapes alone. Its inputs are built before timing as well:
 //! collide's are each solid's core points and radius (collide's GJK takes
-//! points), parry's its shapes (a hull's `ConvexPolyhedron` built once);
+//! points; the robust form takes a box as a box, as collide's adapter gives
+//! it), parry's its shapes (a hull's `ConvexPolyhedron` built once);
 //! cases parry cannot build (flat, needle and one-point hulls) are left out
 //! and counted.
 //!
@@ -176,8 +177,9 @@ fn capsule_box(all: &[LoadedCase]) -> PairInputs<CapsuleBox, ParryCapsuleBox> {
 }
 
 /// A distance case in collide's types: each solid's core points and radius,
-/// or `b`'s plane.
-type CollideDistance = (Vec<Vec3<f64>>, f64, DistanceB);
+/// or `b`'s plane, and each solid's box when it is one (the robust form
+/// takes boxes exactly, as collide's adapter gives them).
+type CollideDistance = (Vec<Vec3<f64>>, f64, DistanceB, [Option<collide::OrientedBox<f64>>; 2]);
 enum DistanceB {
     Rounded(Vec<Vec3<f64>>, f64),
     Plane(collide::Plane<f64>),
@@ -221,17 +223,25 @@ fn distance_pairs(all: &[LoadedCase], hulls: bool) -> (PairInputs<CollideDistanc
                 None => continue,
             },
         };
-        out.collide.push((points_a, ra, other));
+        let as_box = |s: &Shape| match s {
+            Shape::Box(b) => Some(collide_box(&b.to_geom())),
+            _ => None,
+        };
+        out.collide.push((points_a, ra, other, [as_box(a), as_box(b)]));
         out.parry.push((pa, pb));
     }
     (out, unbuilt)
 }
 
 fn d_robust(x: &CollideDistance) -> collide::convex::Distance<f64> {
+    use collide::convex::Solid;
     let a = collide::convex::Rounded { points: &x.0, radius: x.1 };
     match &x.2 {
         DistanceB::Rounded(points, r) => {
-            collide::convex::distance(&a, &collide::convex::Rounded { points, radius: *r })
+            let b = collide::convex::Rounded { points, radius: *r };
+            let sa = x.3[0].as_ref().map_or(Solid::Hull(a), Solid::Box);
+            let sb = x.3[1].as_ref().map_or(Solid::Hull(b), Solid::Box);
+            collide::convex::distance_solids(&sa, &sb)
         }
         DistanceB::Plane(p) => collide::convex::distance_plane(&a, p),
     }

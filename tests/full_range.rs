@@ -259,20 +259,16 @@ fn collide_robust_agrees_over_the_full_range() {
     );
 }
 
-/// A known wrong behaviour, asserted as it is. collide's robust `distance`
-/// decides supporting sets, ties and the degenerate flag with exact
-/// predicates, so it is right on the points it is given; but a box reaches
-/// it as the eight `f64` corners of `collide::convex::box_corners`, while
-/// the referee holds the box exactly (its quaternion's rational rotation).
-/// One case of the 300 differs by that rounding alone: #5 (raw bit
-/// patterns), two boxes whose thinnest extents (1.6e35 beside coordinates of
-/// 2.9e231, and 1.1e-47 beside 1.6e128) vanish in the rounded corners, each
-/// box's eight corners falling on four: flat boxes with parallel faces, whose
-/// witnesses collide rightly calls not unique (`degenerate`), where the
-/// exact, solid boxes have unique ones. Given those rounded corners as
-/// `convex` hulls, collide and the referee agree. Only boxes handed to
-/// collide exactly (with their quaternion) would remove it.
-const KNOWN_WRONG_DISTANCE: usize = 1;
+/// The full-range distance cases collide's robust `distance` gets wrong:
+/// none. It decides supporting sets, ties and the degenerate flag with exact
+/// predicates, and it takes a box exactly as the format defines it (its
+/// quaternion's rational rotation, `collide::convex::distance_solids`), as
+/// the referee holds it. (Given a box as its eight `f64` corners instead, it
+/// was wrong on #5, raw bit patterns: two boxes whose thinnest extents,
+/// 1.6e35 beside coordinates of 2.9e231 and 1.1e-47 beside 1.6e128, vanish
+/// in the rounded corners, flat boxes with parallel faces where the exact,
+/// solid boxes have unique witnesses.)
+const KNOWN_WRONG_DISTANCE: usize = 0;
 
 /// Two spheres of radius 1.5e308 whose centres are 1e308 apart overlap by
 /// 2e308, beyond f64: the case is refused as out of range, and no engine is

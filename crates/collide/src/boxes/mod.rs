@@ -82,7 +82,7 @@ mod segment_box;
 mod segment_capsule;
 mod sphere_box;
 mod sphere_capsule;
-mod stage;
+pub(crate) mod stage;
 #[cfg(test)]
 mod tests;
 

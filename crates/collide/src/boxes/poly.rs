@@ -81,6 +81,12 @@ fn product_exact(a: f64, b: f64, p: f64) -> bool {
 }
 
 impl Filt {
+    /// The value and its bound (0 when every operation was exact).
+    #[inline(always)]
+    pub(crate) fn parts(&self) -> (f64, f64) {
+        (self.v, self.e)
+    }
+
     /// An exact value.
     #[inline(always)]
     pub(crate) fn exact(v: f64) -> Self {
@@ -99,7 +105,7 @@ impl Filt {
 
     /// The sign, when the bound settles it.
     #[inline(always)]
-    fn sign(&self) -> Option<Sign> {
+    pub(crate) fn sign(&self) -> Option<Sign> {
         if self.v.is_finite() && self.e.is_finite() && (self.v.abs() > self.e || self.e == 0.0) {
             Some(Sign::of(self.v))
         } else {

@@ -75,12 +75,18 @@ pub(super) const ROTATION_ERROR: f64 = 32.0 * U;
 /// exact quantity `x` it stands for (up to [`SLACK`] and [`ETA`], see
 /// [`Fe::sign`]).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Fe {
+pub(crate) struct Fe {
     v: f64,
     e: f64,
 }
 
 impl Fe {
+    /// The value and its bound.
+    #[inline(always)]
+    pub(crate) fn parts(&self) -> (f64, f64) {
+        (self.v, self.e)
+    }
+
     /// An exact value.
     #[inline(always)]
     const fn exact(v: f64) -> Self {
@@ -154,11 +160,11 @@ impl Fe {
 
 /// A rotation's entries `r[row][column]` (axis `i` is column `i`), each with
 /// its bound.
-pub(super) type Rot = [[Fe; 3]; 3];
+pub(crate) type Rot = [[Fe; 3]; 3];
 
 /// `R(q)` (the rotation of `q/‖q‖`) in `f64`, every entry within
 /// [`ROTATION_ERROR`] of the exact one; `None` for a zero or non-finite `q`.
-pub(super) fn rotation(q: &[f64; 4]) -> Option<Rot> {
+pub(crate) fn rotation(q: &[f64; 4]) -> Option<Rot> {
     let m = q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     if !(m > 0.0 && m.is_finite()) {
         return None;

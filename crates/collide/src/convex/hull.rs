@@ -8,7 +8,9 @@
 //! A solid hull is built incrementally (`O(n·f)` predicates for `n` points
 //! and `f` faces); a flat one's edges by pairs (`O(n³)` on its plane).
 
-use crate::exact::{P3, Sign, collinear, cross_estimate, orient3d, points_equal};
+use super::points::{Xp, same};
+use super::predicates::{Dir, along, collinear, orient3d, unit};
+use crate::exact::{P3, Sign, cross_estimate};
 use crate::real::Vec3;
 
 /// Relative accuracy asked of a face normal's components (2^−50).
@@ -25,9 +27,9 @@ pub(crate) struct Face {
 
 /// A convex hull's combinatorics.
 #[derive(Clone, Debug)]
-pub(crate) struct Hull {
+pub(crate) struct Hull<'a> {
     /// The distinct input points.
-    pub pts: Vec<P3>,
+    pub pts: Vec<Xp<'a>>,
     /// For each of `pts`, the index of the input point it is.
     pub orig: Vec<usize>,
     /// Affine dimension, 0 to 3.
@@ -39,6 +41,8 @@ pub(crate) struct Hull {
     pub edges: Vec<(usize, usize)>,
 }
 
+/// The unit normal of the `f64` values (to orient a flat hull's lines: its
+/// use is checked exactly).
 fn unit_normal(a: P3, b: P3, c: P3) -> Option<Vec3<f64>> {
     let n = crate::exact::Estimate::unit_vector(cross_estimate(a, b, c, NORMAL_REL_ERR))?;
     Some(Vec3::new(n[0], n[1], n[2]))
@@ -54,13 +58,23 @@ fn one_sided(signs: impl Iterator<Item = Sign>) -> bool {
     !(pos && neg)
 }
 
-impl Hull {
+impl<'a> Hull<'a> {
     /// The hull of `points` (finite; at least one).
-    pub(crate) fn new(points: &[P3]) -> Self {
-        let mut pts: Vec<P3> = Vec::with_capacity(points.len());
+    pub(crate) fn new(points: &[Xp<'a>]) -> Self {
+        let mut boxed = Hull {
+            pts: points.to_vec(),
+            orig: (0..points.len()).collect(),
+            dim: 0,
+            faces: Vec::new(),
+            edges: Vec::new(),
+        };
+        if boxed.a_box() {
+            return boxed;
+        }
+        let mut pts: Vec<Xp<'a>> = Vec::with_capacity(points.len());
         let mut orig = Vec::with_capacity(points.len());
         for (i, p) in points.iter().enumerate() {
-            if !pts.iter().any(|q| points_equal(*p, *q)) {
+            if !pts.iter().any(|q| same(p, q)) {
                 pts.push(*p);
                 orig.push(i);
             }
@@ -85,16 +99,51 @@ impl Hull {
         hull
     }
 
+    /// The hull of a box's eight corners (in their order: corner `i` has
+    /// `+h_k` where bit `k` of `i` is set) with positive half extents, known
+    /// without a predicate: a face per axis and side, from the corners on
+    /// that side (`(p₁ − p₀) × (p₂ − p₀)` along `±M_k`, outward: the axes of
+    /// a rotation are right-handed), and the twelve pairs of corners that
+    /// differ in one axis. `false` (nothing done) for any other point set.
+    fn a_box(&mut self) -> bool {
+        let p = &self.pts;
+        let Some((b, _)) = p.first().and_then(Xp::corner) else { return false };
+        let ok = p.len() == 8
+            && b.solid()
+            && p.iter()
+                .enumerate()
+                .all(|(i, x)| x.corner().is_some_and(|(y, s)| std::ptr::eq(b, y) && usize::from(s) == i));
+        if !ok {
+            return false;
+        }
+        self.dim = 3;
+        for k in 0..3 {
+            let (j, l) = ((k + 1) % 3, (k + 2) % 3);
+            for side in [0, 1] {
+                let base = side << k;
+                let (p1, p2) = (base | 1 << j, base | 1 << l);
+                self.faces.push(Face { idx: if side == 1 { [base, p1, p2] } else { [base, p2, p1] } });
+            }
+            for c in (0..8).filter(|c| c >> k & 1 == 0) {
+                self.edges.push((c, c | 1 << k));
+            }
+        }
+        true
+    }
+
     /// A flat hull: the plane through `p0, p1, p[i2]`.
     fn flat(&mut self, i2: usize) {
         let p = &self.pts;
-        let Some(n) = unit_normal(p[0], p[1], p[i2]) else { return };
+        let Some(n) = unit_normal(p[0].v, p[1].v, p[i2].v).or_else(|| unit(&Dir::cross(p[0], p[1], p[0], p[i2])))
+        else {
+            return;
+        };
         // A point off the plane (checked exactly), to orient lines within it.
-        let extent = p.iter().flatten().fold(0.0f64, |m, x| m.max((x - p[0][0]).abs()).max(x.abs()));
+        let extent = p.iter().flat_map(|x| x.v).fold(0.0f64, |m, x| m.max((x - p[0].v[0]).abs()).max(x.abs()));
         let mut off = None;
         let mut scale = extent.max(f64::MIN_POSITIVE);
         for _ in 0..8 {
-            let r = [p[0][0] + n.x * scale, p[0][1] + n.y * scale, p[0][2] + n.z * scale];
+            let r = Xp::plain([p[0].v[0] + n.x * scale, p[0].v[1] + n.y * scale, p[0].v[2] + n.z * scale]);
             if orient3d(p[0], p[1], p[i2], r) != Sign::Zero {
                 off = Some(r);
                 break;
@@ -125,7 +174,7 @@ impl Hull {
         let Some(i3) = (3..n).find(|&i| orient3d(p[0], p[1], p[i2], p[i]) != Sign::Zero) else { return };
         // Faces (i, j, k) with outward normal (p_j − p_i) × (p_k − p_i): a point
         // beyond the face has orient3d < 0 (see `outward` below).
-        let beyond = |f: &[usize; 3], x: P3| orient3d(p[f[0]], p[f[1]], p[f[2]], x) == Sign::Negative;
+        let beyond = |f: &[usize; 3], x: Xp| orient3d(p[f[0]], p[f[1]], p[f[2]], x) == Sign::Negative;
         let start = [0, 1, i2, i3];
         let mut faces: Vec<[usize; 3]> = Vec::new();
         for (f, opposite) in [([0, 1, i2], i3), ([0, 1, i3], i2), ([0, i2, i3], 1), ([1, i2, i3], 0)] {
@@ -203,22 +252,36 @@ impl Hull {
     }
 }
 
-/// The two extreme points of a collinear set (distinct, at least two).
-fn segment_ends(p: &[P3]) -> (usize, usize) {
-    let d = [0, 1, 2].map(|k| (p[1][k] - p[0][k]).abs());
-    let axis = if d[0] >= d[1] && d[0] >= d[2] {
-        0
-    } else if d[1] >= d[2] {
-        1
-    } else {
-        2
-    };
+/// The two extreme points of a collinear set (distinct, at least two),
+/// ordered exactly along `p₁ − p₀`.
+fn segment_ends(p: &[Xp]) -> (usize, usize) {
+    if p.iter().all(|x| x.e == 0.0) {
+        // Exact values: a coordinate that varies orders them.
+        let d = [0, 1, 2].map(|k| (p[1].v[k] - p[0].v[k]).abs());
+        let axis = if d[0] >= d[1] && d[0] >= d[2] {
+            0
+        } else if d[1] >= d[2] {
+            1
+        } else {
+            2
+        };
+        let (mut lo, mut hi) = (0, 0);
+        for (i, q) in p.iter().enumerate() {
+            if q.v[axis] < p[lo].v[axis] {
+                lo = i;
+            }
+            if q.v[axis] > p[hi].v[axis] {
+                hi = i;
+            }
+        }
+        return (lo.min(hi), lo.max(hi));
+    }
     let (mut lo, mut hi) = (0, 0);
     for (i, q) in p.iter().enumerate() {
-        if q[axis] < p[lo][axis] {
+        if along(*q, p[lo], p[0], p[1]) == Sign::Negative {
             lo = i;
         }
-        if q[axis] > p[hi][axis] {
+        if along(*q, p[hi], p[0], p[1]) == Sign::Positive {
             hi = i;
         }
     }
@@ -228,7 +291,7 @@ fn segment_ends(p: &[P3]) -> (usize, usize) {
 /// The boundary edges of the coplanar points `on` of `p` (a convex polygon
 /// with possibly collinear and interior points): the pairs with every other
 /// point on one side of their line. `r` is a point off their plane.
-fn boundary_edges(p: &[P3], on: &[usize], r: P3) -> Vec<(usize, usize)> {
+fn boundary_edges(p: &[Xp], on: &[usize], r: Xp) -> Vec<(usize, usize)> {
     let mut edges = Vec::new();
     for (x, &i) in on.iter().enumerate() {
         for &j in &on[x + 1..] {

@@ -54,8 +54,22 @@
 //! segments on one line) take the format's fallback normal: `+z` for
 //! points, else the unit vector of `u × z` (`u × x` for a line along `z`).
 //!
-//! A box reaches [`distance`] as its corners ([`box_corners`], rounded to
-//! the type); the answer is exact for those points.
+//! A box given to [`distance_solids`] as a box ([`Solid::Box`]) is decided
+//! about exactly as the format defines it: `center + R(q)·u`, `|u_i| ≤ h_i`,
+//! with `R(q)` the rotation of `q/‖q‖`, rational in `q` (a zero quaternion is
+//! the identity). Its corners are `(‖q‖² c + Σ_i s_i h_i M_i)/‖q‖²` with
+//! `M_i = ‖q‖² R(q) e_i` quadratic in `q` (`crate::boxes::poly`): the
+//! predicates' floating-point filters run on the corners rounded to `f64`
+//! with a bound on that rounding as their inputs' error, and the exact stage
+//! on the exact corners, every point of a predicate multiplied by the
+//! product of the boxes' `‖q‖²` (the predicates are homogeneous: their
+//! signs are unchanged). A box turned by a signed permutation (the
+//! identity, half and quarter turns of small quaternions) has corners `f64`
+//! holds exactly, and costs nothing more. So a face of the 3-4-5 box
+//! (`q = (2, 0, 0, 1)`, whose `3/5` is not a binary number) exactly parallel
+//! to another solid's, or a point exactly on it, is found so. A box given as
+//! points ([`box_corners`], rounded to the type; and the lecture's form
+//! always) is decided about as those points.
 //!
 //! **Degenerate input** (an empty point set, a non-finite coordinate) is
 //! answered by the fallback: distance 0, both points at the origin, normal
@@ -65,12 +79,14 @@
 mod epa;
 mod gjk;
 mod hull;
+mod points;
 mod predicates;
 mod robust;
 #[cfg(test)]
 mod tests;
 
 pub use epa::{EPA_MAX_ITER, EPA_REL_TOL};
+use points::{Corner, ExactBox, Xp};
 
 use crate::exact::{P3, Sign, dot_diff};
 use crate::real::{Real, Vec3, finite3, scale2, scale2v, to_f64_3, unit_scale};
@@ -259,18 +275,55 @@ fn finish<T: Real>(d: f64, pa: Vec3<f64>, pb: Vec3<f64>, n: Vec3<f64>, k: i32, d
     }
 }
 
-/// The inputs widened to `f64` and scaled by `2^k` (`k` from the largest
-/// magnitude, 0 in the plain range); `None` when a number is not finite.
-fn widened<T: Real>(sets: [&[Vec3<T>]; 2], radii: [T; 2]) -> Option<([Vec<P3>; 2], [f64; 2], i32)> {
-    let w: [Vec<P3>; 2] = sets.map(|s| s.iter().map(to_f64_3).collect::<Vec<P3>>());
-    let r = radii.map(|r| r.wide());
-    let m = w.iter().flatten().flatten().chain(&r).fold(0.0f64, |m, x| m.max(x.abs()));
-    if !m.is_finite() {
-        return None;
+/// A solid for the robust distance ([`distance_solids`]): a hull of points
+/// grown by a radius, or a box exactly as the format defines it (its
+/// quaternion's own rotation, never the rounded matrix).
+#[derive(Clone, Copy, Debug)]
+pub enum Solid<'a, T: Real> {
+    /// The hull of the points grown by the radius.
+    Hull(Rounded<'a, T>),
+    /// The box `center + R(q)·u`, `|u_i| ≤ h_i` (radius 0; a zero quaternion
+    /// is the identity).
+    Box(&'a OrientedBox<T>),
+}
+
+/// A solid's exact box, when it is one (`Err` for a number that is not
+/// finite).
+fn exact_box<T: Real>(s: &Solid<T>) -> Result<Option<ExactBox>, ()> {
+    match s {
+        Solid::Hull(_) => Ok(None),
+        Solid::Box(b) => ExactBox::new(to_f64_3(&b.center), to_f64_3(&b.half_extents), b.rotation.map(|q| q.wide()))
+            .map(Some)
+            .ok_or(()),
     }
-    let k = unit_scale::<f64>(m).unwrap_or(0);
-    let w = w.map(|s| s.into_iter().map(|p| p.map(|x| scale2(x, k))).collect());
-    Some((w, r.map(|x| scale2(x, k)), k))
+}
+
+/// A box's corners' data (`Ok(None)` for a hull; `Err` when a corner's value
+/// is not finite): each [`Corner`] and its `f64` value and bound.
+type CornerData<'a> = ([Corner<'a>; 8], [(P3, f64); 8]);
+
+fn corner_data(b: Option<&ExactBox>) -> Result<Option<CornerData<'_>>, ()> {
+    let Some(b) = b else { return Ok(None) };
+    let c = b.corners().ok_or(())?;
+    let corners = std::array::from_fn(|i| Corner { b, bits: i as u8, lo: c[i].lo, ed: c[i].ed });
+    Ok(Some((corners, c.map(|x| (x.v, x.e)))))
+}
+
+/// A solid's points (a box's corners with their bounds, see
+/// `points::ExactBox::corners`) and radius (negative or NaN: 0, flagged).
+fn solid_points<'a, T: Real>(s: &Solid<T>, c: Option<&'a CornerData<'a>>) -> (Vec<Xp<'a>>, T, bool) {
+    match (s, c) {
+        (Solid::Box(_), Some((corners, values))) => {
+            let pts = corners.iter().zip(values).map(|(x, (v, e))| Xp { v: *v, e: *e, x: Some(x) });
+            (pts.collect(), T::zero(), false)
+        }
+        (Solid::Hull(r), _) => {
+            let (rad, bad) = radius(r.radius);
+            (r.points.iter().map(|p| Xp::plain(to_f64_3(p))).collect(), rad, bad)
+        }
+        // Not reached: a box's corner data is always given.
+        (Solid::Box(_), None) => (Vec::new(), T::zero(), true),
+    }
 }
 
 /// Signed distance between the solids `a` and `b`, **robust form** (see the
@@ -287,17 +340,40 @@ fn widened<T: Real>(sets: [&[Vec3<T>]; 2], radii: [T; 2]) -> Option<([Vec<P3>; 2
 /// or a touching pair whose contact spans less than a facet of the
 /// Minkowski difference), and for the fallback on degenerate input.
 pub fn distance<T: Real>(a: &Rounded<T>, b: &Rounded<T>) -> Distance<T> {
-    if a.points.is_empty() || b.points.is_empty() {
-        return Distance::fallback();
-    }
-    let (ra, bad_a) = radius(a.radius);
-    let (rb, bad_b) = radius(b.radius);
-    let Some(([wa, wb], [ra, rb], k)) = widened([a.points, b.points], [ra, rb]) else {
+    distance_solids(&Solid::Hull(*a), &Solid::Hull(*b))
+}
+
+/// [`distance`] between solids that may be boxes, each box decided about
+/// exactly as the format defines it: its corners `c + R(q)·Σ s_i h_i e_i`
+/// with `R(q)` the rotation of `q/‖q‖`, rational in `q` (see the module's
+/// documentation). A box whose faces are exactly parallel to another
+/// solid's face, or whose exact corner lies exactly on one, is found so
+/// (the 3-4-5 box's `3/5` is not a binary number: its `f64` corners
+/// would not show it). Values as [`distance`]'s, from the corners rounded
+/// to `f64`.
+pub fn distance_solids<T: Real>(a: &Solid<T>, b: &Solid<T>) -> Distance<T> {
+    let (Ok(ba), Ok(bb)) = (exact_box(a), exact_box(b)) else { return Distance::fallback() };
+    let (Ok(ca), Ok(cb)) = (corner_data(ba.as_ref()), corner_data(bb.as_ref())) else {
         return Distance::fallback();
     };
-    let (ea, eb): (Vec<P3>, Vec<P3>) =
-        (a.points.iter().map(to_f64_3).collect(), b.points.iter().map(to_f64_3).collect());
-    let c = robust::core(&robust::Sets { a: &ea, b: &eb, sa: &wa, sb: &wb });
+    let ((xa, ra, bad_a), (xb, rb, bad_b)) = (solid_points(a, ca.as_ref()), solid_points(b, cb.as_ref()));
+    if xa.is_empty() || xb.is_empty() {
+        return Distance::fallback();
+    }
+    let (ra, rb) = (ra.wide(), rb.wide());
+    let m = xa.iter().chain(&xb).flat_map(|p| p.v).chain([ra, rb]).fold(0.0f64, |m, x| m.max(x.abs()));
+    if !m.is_finite() {
+        return Distance::fallback();
+    }
+    // Scaled by `2^k` (`k` from the largest magnitude, 0 in the plain range).
+    let k = unit_scale::<f64>(m).unwrap_or(0);
+    let scaled = |x: &[Xp]| -> Vec<P3> { x.iter().map(|p| p.v.map(|c| scale2(c, k))).collect() };
+    let (wa, wb) = (scaled(&xa), scaled(&xb));
+    let e = xa.iter().chain(&xb).fold(0.0f64, |m, p| m.max(p.e));
+    // A scaled bound that falls into the subnormals gains `2^−1074`.
+    let err = if e > 0.0 { scale2(e, k) + f64::from_bits(1) } else { 0.0 };
+    let (ra, rb) = (scale2(ra, k), scale2(rb, k));
+    let c = robust::core(&robust::Sets { a: &xa, b: &xb, sa: &wa, sb: &wb, err });
     let n = c.n;
     finish(c.d - ra - rb, c.pa - n * ra, c.pb + n * rb, n, k, c.degenerate || bad_a || bad_b)
 }

@@ -37,8 +37,9 @@
 
 use super::gjk::{Gjk, Params, Vertex, extreme, gjk, gjk_from};
 use super::hull::Hull;
-use super::predicates::{self as pr, Dir, ExactPush};
-use crate::exact::{P3, Sign, collinear, points_equal};
+use super::points::{Xp, same};
+use super::predicates::{self as pr, Dir, ExactPush, collinear};
+use crate::exact::{P3, Sign};
 use crate::real::Vec3;
 use std::cmp::Ordering;
 
@@ -76,28 +77,34 @@ pub(crate) struct Core {
     pub degenerate: bool,
 }
 
-/// The two point sets: as given (widened to `f64`, for the exact
-/// predicates) and scaled by a power of two into the plain range (for
-/// floating point), index for index.
+/// The two point sets: as given (the exact points, for the exact
+/// predicates) and their `f64` values scaled by a power of two into the
+/// plain range (for floating point), index for index; `err` bounds each
+/// scaled value's distance from the exact point's, per coordinate (0 when
+/// every point is exact in `f64`).
 pub(crate) struct Sets<'a> {
-    pub a: &'a [P3],
-    pub b: &'a [P3],
+    pub a: &'a [Xp<'a>],
+    pub b: &'a [Xp<'a>],
     pub sa: &'a [P3],
     pub sb: &'a [P3],
+    pub err: f64,
 }
 
 /// The scene as the stages see it: the sets, and the scaled points relative
 /// to `o` (`sa[0]`).
 struct Scene<'a> {
-    a: &'a [P3],
-    b: &'a [P3],
+    a: &'a [Xp<'a>],
+    b: &'a [Xp<'a>],
     sa: &'a [P3],
     sb: &'a [P3],
     o: Vec3<f64>,
     ar: Vec<Vec3<f64>>,
     br: Vec<Vec3<f64>>,
-    /// The largest 1-norm of `ar` and `br`, rounded up.
+    /// The largest 1-norm of `ar` and `br`, and of the exact points
+    /// relative to `o` (scaled), rounded up.
     m1: f64,
+    /// [`Sets::err`].
+    pe: f64,
 }
 
 fn v3(p: &P3) -> Vec3<f64> {
@@ -113,8 +120,9 @@ impl<'a> Scene<'a> {
         let o = s.sa[0];
         let ar: Vec<Vec3<f64>> = s.sa.iter().map(|p| sub(p, &o)).collect();
         let br: Vec<Vec3<f64>> = s.sb.iter().map(|p| sub(p, &o)).collect();
-        let m1 = ar.iter().chain(&br).fold(0.0f64, |m, x| m.max(x.x.abs() + x.y.abs() + x.z.abs())) * (1.0 + 4.0 * U);
-        Scene { a: s.a, b: s.b, sa: s.sa, sb: s.sb, o: v3(&o), ar, br, m1 }
+        let m1 = ar.iter().chain(&br).fold(0.0f64, |m, x| m.max(x.x.abs() + x.y.abs() + x.z.abs()));
+        let m1 = (m1 + 6.0 * s.err) * (1.0 + 4.0 * U);
+        Scene { a: s.a, b: s.b, sa: s.sa, sb: s.sb, o: v3(&o), ar, br, m1, pe: s.err }
     }
 
     fn diff(&self, i: usize, j: usize) -> Vec3<f64> {
@@ -131,7 +139,7 @@ impl<'a> Scene<'a> {
 pub(crate) fn core(sets: &Sets) -> Core {
     let s = Scene::new(sets);
     let a0 = s.a[0];
-    if s.a.iter().chain(s.b).all(|p| points_equal(*p, a0)) {
+    if s.a.iter().chain(s.b).all(|p| same(p, &a0)) {
         // Every point is one point: two single points, coincident.
         return Core { d: 0.0, pa: s.o, pb: s.o, n: Vec3::z(), degenerate: true };
     }
@@ -192,7 +200,7 @@ fn exact_gjk(s: &Scene, start: Vec<Vertex<f64>>) -> Option<Core> {
 }
 
 /// The index of the point with the exactly greatest `o·N·x` (the first).
-fn exact_extreme_of(dir: &Dir, p: &[P3], o: i8) -> usize {
+fn exact_extreme_of(dir: &Dir, p: &[Xp], o: i8) -> usize {
     (1..p.len()).fold(0, |best, i| if pr::side(dir, p[i], p[best]).as_i8() * o > 0 { i } else { best })
 }
 
@@ -203,7 +211,7 @@ fn exact_extreme_of(dir: &Dir, p: &[P3], o: i8) -> usize {
 /// the sign of `N·w₀`. `None` when there is none: the origin lies in `w`'s
 /// hull.
 #[allow(clippy::type_complexity, reason = "a private helper's tuple")]
-fn nearest_face(s: &Scene, w: &[Vertex<f64>]) -> Option<(Vec<Vertex<f64>>, Dir, i8, Sign)> {
+fn nearest_face<'a>(s: &Scene<'a>, w: &[Vertex<f64>]) -> Option<(Vec<Vertex<f64>>, Dir<'a>, i8, Sign)> {
     let k = w.len();
     for size in 1..=k.min(3) {
         for m in 1u32..(1 << k) {
@@ -211,8 +219,8 @@ fn nearest_face(s: &Scene, w: &[Vertex<f64>]) -> Option<(Vec<Vertex<f64>>, Dir, 
                 continue;
             }
             let t: Vec<Vertex<f64>> = (0..k).filter(|i| m >> i & 1 == 1).map(|i| w[i]).collect();
-            let pa: Vec<P3> = t.iter().map(|v| s.a[v.ia]).collect();
-            let pb: Vec<P3> = t.iter().map(|v| s.b[v.ib]).collect();
+            let pa: Vec<Xp> = t.iter().map(|v| s.a[v.ia]).collect();
+            let pb: Vec<Xp> = t.iter().map(|v| s.b[v.ib]).collect();
             let dir = Dir::simplex(&pa, &pb);
             if pr::is_zero(&dir) {
                 continue;
@@ -325,8 +333,8 @@ fn support(s: &Scene, dir: &Dir, vertices: &[Vertex<f64>], sep: Sign) -> Option<
     // A simplex vertex `a_k − b_k` has `N·(a_k − b_k − a₀ + b₀) = 0` by
     // construction: with `b_k = b₀`, `a_k` is level with `a₀` (and the same
     // for `b`), a zero the filters could not see through its rounding.
-    let level_a: Vec<usize> = vertices.iter().filter(|v| points_equal(s.b[v.ib], b0)).map(|v| v.ia).collect();
-    let level_b: Vec<usize> = vertices.iter().filter(|v| points_equal(s.a[v.ia], a0)).map(|v| v.ib).collect();
+    let level_a: Vec<usize> = vertices.iter().filter(|v| same(&s.b[v.ib], &b0)).map(|v| v.ia).collect();
+    let level_b: Vec<usize> = vertices.iter().filter(|v| same(&s.a[v.ia], &a0)).map(|v| v.ib).collect();
     let mut fa = Vec::new();
     let mut fb = Vec::new();
     // Orientations still possible: +1 and −1 (only sep's when it is not 0).
@@ -359,8 +367,8 @@ fn support(s: &Scene, dir: &Dir, vertices: &[Vertex<f64>], sep: Sign) -> Option<
 /// Certifies the Minkowski simplex `vertices` (one to three of them): its
 /// exact normal `N`, the slab, and its foot.
 fn certify_vertices(s: &Scene, vertices: &[Vertex<f64>]) -> Result<Core, Fail> {
-    let pa: Vec<P3> = vertices.iter().map(|v| s.a[v.ia]).collect();
-    let pb: Vec<P3> = vertices.iter().map(|v| s.b[v.ib]).collect();
+    let pa: Vec<Xp> = vertices.iter().map(|v| s.a[v.ia]).collect();
+    let pb: Vec<Xp> = vertices.iter().map(|v| s.b[v.ib]).collect();
     let dir = Dir::simplex(&pa, &pb);
     if pr::is_zero(&dir) {
         return Err(Fail::Misses);
@@ -382,7 +390,7 @@ fn certify_vertices(s: &Scene, vertices: &[Vertex<f64>]) -> Result<Core, Fail> {
         _ => pr::foot_in_triangle([pa[0], pa[1], pa[2]], [pb[0], pb[1], pb[2]]),
     };
     let touching = sep == Sign::Zero;
-    let single = |idx: &[usize], p: &[P3]| idx.iter().all(|&i| points_equal(p[i], p[idx[0]]));
+    let single = |idx: &[usize], p: &[Xp]| idx.iter().all(|&i| same(&p[i], &p[idx[0]]));
     let m = if foot && !touching && (single(&sup.fa, s.a) || single(&sup.fb, s.b)) {
         Meet::Point { strict: false, at: None }
     } else {
@@ -411,8 +419,8 @@ enum Sat {
 /// A candidate axis: its exact direction `(p₁ − p₀) × (q₁ − q₀)` and the
 /// float unit vectors of its two factors with their error bounds
 /// ([`unit_diff`]).
-struct Axis {
-    dir: Dir,
+struct Axis<'a> {
+    dir: Dir<'a>,
     units: [Option<(Vec3<f64>, f64)>; 2],
 }
 
@@ -429,7 +437,7 @@ struct Candidate {
 
 /// The candidate axes of the two hulls: `a`'s face normals, `b`'s, and the
 /// cross products of their edges.
-fn axes(ha: &Hull, hb: &Hull) -> Vec<Axis> {
+fn axes<'a>(ha: &Hull<'a>, hb: &Hull<'a>) -> Vec<Axis<'a>> {
     let mut out = Vec::new();
     for h in [ha, hb] {
         let faces = if h.dim == 3 { &h.faces[..] } else { &h.faces[..h.faces.len().min(1)] };
@@ -470,23 +478,26 @@ fn directions(h: &Hull) -> Vec<((usize, usize), Option<(Vec3<f64>, f64)>)> {
     kept
 }
 
-/// The float unit vector of `q − p` and a bound on its error: both points
-/// scaled by the power of two that brings their largest coordinate near 1
-/// (exact, but for coordinates that fall into the subnormals: `2^−1074`
-/// each), subtracted (`u` relative) and normalized (`3u`): the direction is
-/// off by at most `2(√3·u‖d‖ + 4·2^−1074)/‖d‖ + 4u`, bounded here by
-/// `10u + 2^−1068/‖d̃‖`. `None` when the difference vanishes.
-fn unit_diff(p: P3, q: P3) -> Option<(Vec3<f64>, f64)> {
-    let m = p.iter().chain(&q).fold(0.0f64, |m, x| m.max(x.abs()));
+/// The float unit vector of `q − p` and a bound on its error: both points'
+/// values scaled by the power of two that brings their largest coordinate
+/// near 1 (exact, but for coordinates that fall into the subnormals:
+/// `2^−1074` each), subtracted (`u` relative) and normalized (`3u`): the
+/// direction is off by at most `2(√3·u‖d‖ + 4·2^−1074 + √3 ε)/‖d‖ + 4u`
+/// (`ε` the scaled sum of the points' bounds), bounded here by
+/// `10u + (2^−1068 + 4ε)/‖d̃‖`. `None` when the difference vanishes.
+fn unit_diff(p: Xp, q: Xp) -> Option<(Vec3<f64>, f64)> {
+    let (pv, qv) = (p.v, q.v);
+    let m = pv.iter().chain(&qv).fold(0.0f64, |m, x| m.max(x.abs()));
     if m == 0.0 {
         return None;
     }
     let k = -crate::exact::frexp(m).1;
     let sc = |x: f64| crate::exact::ldexp(x, k);
-    let d = Vec3::new(sc(q[0]) - sc(p[0]), sc(q[1]) - sc(p[1]), sc(q[2]) - sc(p[2]));
+    let d = Vec3::new(sc(qv[0]) - sc(pv[0]), sc(qv[1]) - sc(pv[1]), sc(qv[2]) - sc(pv[2]));
     let len = d.norm();
     let u = crate::real::try_normalize_stable(&d)?;
-    Some((u, 10.0 * U + f64::from_bits(7 << 52) / len))
+    let eps = if p.e + q.e > 0.0 { 4.0 * (sc(p.e + q.e) + f64::from_bits(1)) } else { 0.0 };
+    Some((u, 10.0 * U + (f64::from_bits(7 << 52) + eps) / len))
 }
 
 /// The floating-point pass over one axis: its float unit vector `û`, the
@@ -500,8 +511,10 @@ fn unit_diff(p: P3, q: P3) -> Option<(Vec3<f64>, f64)> {
 /// largest 1-norm of a point relative to `o`, that moves a push by at most
 /// `2Mδ` (the push is `2M`-Lipschitz in the direction), and the dot
 /// products and the float relative coordinates add `18uM`: the bound is
-/// twice their sum. An axis whose `‖L̃‖` is within `2E` of zero has an
-/// unknown direction (`err` infinite).
+/// twice their sum. The points' own bounds (the scaled [`Sets::err`] per
+/// coordinate, `2ε` in a support value along a unit vector) add `4ε` to a
+/// push. An axis whose `‖L̃‖` is within `2E` of zero has an unknown
+/// direction (`err` infinite).
 fn float_axis(s: &Scene, ax: &Axis) -> (Vec3<f64>, f64, f64) {
     let unknown = (Vec3::zeros(), f64::INFINITY, f64::INFINITY);
     let [Some((e1, d1)), Some((e2, d2))] = ax.units else { return unknown };
@@ -512,7 +525,7 @@ fn float_axis(s: &Scene, ax: &Axis) -> (Vec3<f64>, f64, f64) {
         return unknown;
     }
     let delta = (2.0 * big_e / (ln - big_e) + 2.0 * U) * (1.0 + 8.0 * U);
-    let err = 2.0 * s.m1 * (18.0 * U + 2.0 * delta) * (1.0 + 8.0 * U) + TINY;
+    let err = 2.0 * (s.m1 * (18.0 * U + 2.0 * delta) + 4.0 * s.pe) * (1.0 + 8.0 * U) + TINY;
     (l / ln, delta, err)
 }
 
@@ -526,7 +539,7 @@ fn range(p: &[Vec3<f64>], u: &Vec3<f64>) -> (f64, f64) {
 
 /// The index of the point with the exactly greatest `σ L · x` (the first
 /// such among those within `err` of the float greatest).
-fn exact_extreme(dir: &Dir, exact: &[P3], rel: &[Vec3<f64>], u: &Vec3<f64>, sense: f64, err: f64) -> usize {
+fn exact_extreme(dir: &Dir, exact: &[Xp], rel: &[Vec3<f64>], u: &Vec3<f64>, sense: f64, err: f64) -> usize {
     let vals: Vec<f64> = rel.iter().map(|x| sense * u.dot(x)).collect();
     let top = vals.iter().fold(f64::NEG_INFINITY, |m, v| m.max(*v));
     let mut best: Option<usize> = None;
@@ -545,7 +558,7 @@ fn exact_extreme(dir: &Dir, exact: &[P3], rel: &[Vec3<f64>], u: &Vec3<f64>, sens
 
 /// The indices of the points level with `exact[r]` along the axis (exactly),
 /// among those within `err` of it in floating point.
-fn level_set(dir: &Dir, exact: &[P3], rel: &[Vec3<f64>], u: &Vec3<f64>, r: usize, err: f64) -> Vec<usize> {
+fn level_set(dir: &Dir, exact: &[Xp], rel: &[Vec3<f64>], u: &Vec3<f64>, r: usize, err: f64) -> Vec<usize> {
     let t = u.dot(&rel[r]);
     (0..exact.len())
         .filter(|&i| {
@@ -708,11 +721,11 @@ fn line_case(s: &Scene, ha: &Hull, hb: &Hull) -> Sat {
 /// A point common to the two collinear (or single-point) sets given by
 /// their ends, decided exactly; its scaled coordinates.
 fn common_point(s: &Scene, ea: &[usize], eb: &[usize]) -> Option<P3> {
-    let on = |p: P3, q0: P3, q1: P3| {
+    let on = |p: Xp, q0: Xp, q1: Xp| {
         collinear(q0, q1, p) && pr::along(p, q0, q0, q1) != Sign::Negative && pr::along(q1, p, q0, q1) != Sign::Negative
     };
     match (ea.len(), eb.len()) {
-        (1, 1) => points_equal(s.a[ea[0]], s.b[eb[0]]).then_some(s.sa[ea[0]]),
+        (1, 1) => same(&s.a[ea[0]], &s.b[eb[0]]).then_some(s.sa[ea[0]]),
         (1, _) => on(s.a[ea[0]], s.b[eb[0]], s.b[eb[1]]).then_some(s.sa[ea[0]]),
         (_, 1) => on(s.b[eb[0]], s.a[ea[0]], s.a[ea[1]]).then_some(s.sb[eb[0]]),
         _ => {
@@ -733,8 +746,8 @@ fn common_point(s: &Scene, ea: &[usize], eb: &[usize]) -> Option<P3> {
 /// `z`), `u` the line's direction (`a`'s first two distinct points, else
 /// `b`'s).
 fn fallback_normal(s: &Scene) -> Vec3<f64> {
-    let dir = |exact: &[P3], scaled: &[P3]| -> Option<Vec3<f64>> {
-        let j = (1..exact.len()).find(|&j| !points_equal(exact[j], exact[0]))?;
+    let dir = |exact: &[Xp], scaled: &[P3]| -> Option<Vec3<f64>> {
+        let j = (1..exact.len()).find(|&j| !same(&exact[j], &exact[0]))?;
         Some(sub(&scaled[j], &scaled[0]))
     };
     let Some(u) = dir(s.a, s.sa).or_else(|| dir(s.b, s.sb)) else { return Vec3::z() };
@@ -746,14 +759,14 @@ fn fallback_normal(s: &Scene) -> Vec3<f64> {
 /// A point of a supporting set: as given (for the predicates) and scaled
 /// (for the witnesses), and whether it is `a`'s.
 #[derive(Clone, Copy, Debug)]
-struct Pt {
-    x: P3,
+struct Pt<'a> {
+    x: Xp<'a>,
     s: Vec3<f64>,
     on_a: bool,
 }
 
 /// The points `idx` of `a` (`on_a`) or `b` as [`Pt`]s.
-fn pts(s: &Scene, idx: &[usize], on_a: bool) -> Vec<Pt> {
+fn pts<'a>(s: &Scene<'a>, idx: &[usize], on_a: bool) -> Vec<Pt<'a>> {
     let (x, sc) = if on_a { (s.a, s.sa) } else { (s.b, s.sb) };
     idx.iter().map(|&i| Pt { x: x[i], s: v3(&sc[i]), on_a }).collect()
 }
@@ -761,25 +774,25 @@ fn pts(s: &Scene, idx: &[usize], on_a: bool) -> Vec<Pt> {
 /// Where two supporting sets meet in one point: at a point of one of them,
 /// or where a segment of `a`'s crosses one of `b`'s (`[a₀, a₁, b₀, b₁]`).
 #[derive(Clone, Debug)]
-enum At {
-    Vertex(Pt),
-    Cross(Box<[Pt; 4]>),
+enum At<'a> {
+    Vertex(Pt<'a>),
+    Cross(Box<[Pt<'a>; 4]>),
 }
 
 /// How two supporting sets meet, seen along the normal.
 #[derive(Clone, Debug)]
-enum Meet {
+enum Meet<'a> {
     /// Not at all.
     Empty,
     /// In one point (where, when known); `strict` when it is a point
     /// strictly inside a polygon or the crossing of two segments strictly
     /// inside both.
-    Point { strict: bool, at: Option<At> },
+    Point { strict: bool, at: Option<At<'a>> },
     /// In more than one point.
     Many,
 }
 
-impl Meet {
+impl<'a> Meet<'a> {
     fn is_empty(&self) -> bool {
         matches!(self, Meet::Empty)
     }
@@ -789,7 +802,7 @@ impl Meet {
     fn is_strict(&self) -> bool {
         matches!(self, Meet::Point { strict: true, .. })
     }
-    fn at(&self) -> Option<&At> {
+    fn at(&self) -> Option<&At<'a>> {
         match self {
             Meet::Point { at, .. } => at.as_ref(),
             _ => None,
@@ -800,18 +813,18 @@ impl Meet {
 /// A supporting set seen along the normal: a point, a segment (its two
 /// ends) or a convex polygon (its vertices, counter-clockwise seen from the
 /// normal's tip, none collinear with its neighbours).
-enum Flat {
-    Point(Pt),
-    Segment(Pt, Pt),
-    Polygon(Vec<Pt>),
+enum Flat<'a> {
+    Point(Pt<'a>),
+    Segment(Pt<'a>, Pt<'a>),
+    Polygon(Vec<Pt<'a>>),
 }
 
 /// The supporting set `pts` (non-empty, on one plane normal to `dir`) as a
 /// [`Flat`], exactly.
-fn flat_of(dir: &Dir, pts: &[Pt]) -> Flat {
-    let mut q: Vec<Pt> = Vec::with_capacity(pts.len());
+fn flat_of<'a>(dir: &Dir, pts: &[Pt<'a>]) -> Flat<'a> {
+    let mut q: Vec<Pt<'a>> = Vec::with_capacity(pts.len());
     for p in pts {
-        if !q.iter().any(|x| points_equal(x.x, p.x)) {
+        if !q.iter().any(|x| same(&x.x, &p.x)) {
             q.push(*p);
         }
     }
@@ -834,7 +847,7 @@ fn flat_of(dir: &Dir, pts: &[Pt]) -> Flat {
     let p2 = q[i2].x;
     // Gift wrapping from the least point in the order along p1 − p0, then
     // p2 − p0 (a vertex: the two directions span the plane).
-    let less = |x: P3, y: P3| match pr::along(x, y, p0, p1) {
+    let less = |x: Xp, y: Xp| match pr::along(x, y, p0, p1) {
         Sign::Zero => pr::along(x, y, p0, p2) == Sign::Negative,
         s => s == Sign::Negative,
     };
@@ -864,12 +877,12 @@ fn flat_of(dir: &Dir, pts: &[Pt]) -> Flat {
 
 /// How the supporting sets `pa` of `a` and `pb` of `b` (each on one plane
 /// normal to `dir`) meet seen along `dir` (see [`Meet`]).
-fn meet(dir: &Dir, pa: &[Pt], pb: &[Pt]) -> Meet {
+fn meet<'a>(dir: &Dir, pa: &[Pt<'a>], pb: &[Pt<'a>]) -> Meet<'a> {
     if pa.is_empty() || pb.is_empty() {
         return Meet::Empty;
     }
     let (x, y) = (flat_of(dir, pa), flat_of(dir, pb));
-    let one = |p: &Pt| Meet::Point { strict: false, at: Some(At::Vertex(*p)) };
+    let one = |p: &Pt<'a>| Meet::Point { strict: false, at: Some(At::Vertex(*p)) };
     match (&x, &y) {
         (Flat::Point(p), Flat::Point(q)) => {
             if pr::same_along(dir, p.x, q.x) {
@@ -926,7 +939,7 @@ fn meet(dir: &Dir, pa: &[Pt], pb: &[Pt]) -> Meet {
 
 /// The overlap of the segment `u v` and the points `ys` (all on its line
 /// seen along the normal): how `[u, v]` meets their span.
-fn overlap(u: Pt, v: Pt, ys: &[Pt]) -> Meet {
+fn overlap<'a>(u: Pt<'a>, v: Pt<'a>, ys: &[Pt<'a>]) -> Meet<'a> {
     let (mut ylo, mut yhi) = (ys[0], ys[0]);
     for y in ys {
         if pr::along(y.x, ylo.x, u.x, v.x) == Sign::Negative {
@@ -949,8 +962,8 @@ fn overlap(u: Pt, v: Pt, ys: &[Pt]) -> Meet {
 /// of one (or through the segment) has the other wholly on its far closed
 /// side, the two meet only on that line; otherwise the segment crosses the
 /// polygon's inside, or the polygons' insides overlap: more than a point.
-fn general_meet(dir: &Dir, x: &Flat, y: &Flat) -> Meet {
-    let verts = |f: &Flat| -> Vec<Pt> {
+fn general_meet<'a>(dir: &Dir, x: &Flat<'a>, y: &Flat<'a>) -> Meet<'a> {
+    let verts = |f: &Flat<'a>| -> Vec<Pt<'a>> {
         match f {
             Flat::Point(p) => vec![*p],
             Flat::Segment(p, q) => vec![*p, *q],
@@ -958,7 +971,7 @@ fn general_meet(dir: &Dir, x: &Flat, y: &Flat) -> Meet {
         }
     };
     // Lines (u, v, σ): the set's side is σ·orient ≥ 0.
-    let lines = |f: &Flat| -> Vec<(Pt, Pt, i8)> {
+    let lines = |f: &Flat<'a>| -> Vec<(Pt<'a>, Pt<'a>, i8)> {
         match f {
             Flat::Point(_) => Vec::new(),
             Flat::Segment(p, q) => vec![(*p, *q, 1), (*p, *q, -1)],
@@ -970,7 +983,7 @@ fn general_meet(dir: &Dir, x: &Flat, y: &Flat) -> Meet {
         for (u, v, sg) in lines(own) {
             let signs: Vec<i8> = others.iter().map(|w| pr::orient(dir, u.x, v.x, u.x, w.x).as_i8() * sg).collect();
             if signs.iter().all(|&t| t <= 0) {
-                let on: Vec<Pt> = others.iter().zip(&signs).filter(|(_, t)| **t == 0).map(|(w, _)| *w).collect();
+                let on: Vec<Pt<'a>> = others.iter().zip(&signs).filter(|(_, t)| **t == 0).map(|(w, _)| *w).collect();
                 return if on.is_empty() { Meet::Empty } else { overlap(u, v, &on) };
             }
         }
@@ -1009,7 +1022,7 @@ fn witnesses(s: &Scene, n: &Vec3<f64>, fa: &[usize], fb: &[usize], d: f64, at: O
     }
     let fa: Vec<usize> = if fa.is_empty() { vec![0] } else { fa.to_vec() };
     let fb: Vec<usize> = if fb.is_empty() { vec![0] } else { fb.to_vec() };
-    let single = |f: &[usize], p: &[P3]| f.iter().all(|&i| points_equal(p[i], p[f[0]]));
+    let single = |f: &[usize], p: &[Xp]| f.iter().all(|&i| same(&p[i], &p[f[0]]));
     if single(&fa, s.a) {
         let x = v3(&s.sa[fa[0]]);
         return (x, x - n * d);

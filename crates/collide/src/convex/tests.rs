@@ -752,3 +752,119 @@ fn lecture_gjk_calls_an_overlapping_pair_apart() {
     assert!(robust.distance < -0.3, "robust: {robust:?}");
     assert!(lecture.distance > 0.3, "the lecture's answer changed: {lecture:?}");
 }
+
+/// The 3-4-5 quaternion `(2, 0, 0, 1)`: a turn about `z` with
+/// `cos = 3/5`, `sin = 4/5` (not binary numbers), so a box turned by it has
+/// axes `x' = (3, 4, 0)/5`, `y' = (−4, 3, 0)/5`, `z' = z`.
+const Q345: [f64; 4] = [2.0, 0.0, 0.0, 1.0];
+
+/// Scales of the exact-box tests: `2^s` for these `s`.
+const BOX_SCALES: [i32; 7] = [-500, -200, -30, 0, 30, 200, 500];
+
+/// An answer's distance is matched to this many ulps of the scene's size:
+/// the exact decisions pick the features, the value carries the rounding of
+/// the box's corners (a few ulps of the scene) and of the final arithmetic.
+const BOX_ULPS: f64 = 64.0;
+
+fn obox(c: [f64; 3], h: [f64; 3], q: [f64; 4], s: f64) -> OrientedBox<f64> {
+    OrientedBox::new(v::<f64>(c[0] * s, c[1] * s, c[2] * s), v::<f64>(h[0] * s, h[1] * s, h[2] * s), q)
+}
+
+fn scaled(p: &[[f64; 3]], s: f64) -> Vec<Vec3<f64>> {
+    p.iter().map(|q| v::<f64>(q[0] * s, q[1] * s, q[2] * s)).collect()
+}
+
+fn box_hull(b: &OrientedBox<f64>, hull: &[Vec3<f64>]) -> Distance<f64> {
+    distance_solids(&super::Solid::Box(b), &super::Solid::Hull(Rounded { points: hull, radius: 0.0 }))
+}
+
+/// Two 3-4-5 boxes turned alike, one `(3, 4, 0)` (5 along `x'`) from the
+/// other: their facing faces are exactly parallel and overlap wholly, 3
+/// apart: the witnesses are not unique.
+#[test]
+fn a_345_box_face_parallel_to_another_box_face_is_degenerate() {
+    for s in BOX_SCALES {
+        let k = 2f64.powi(s);
+        let a = obox([3.0, 4.0, 0.0], [1.0; 3], Q345, k);
+        // The quaternion's scale is free: the rotation is `q/‖q‖`'s.
+        let b = obox([0.0; 3], [1.0; 3], Q345.map(|x| x * 2f64.powi(-s / 2)), k);
+        let r = distance_solids(&super::Solid::Box(&a), &super::Solid::Box(&b));
+        assert!(close(r.distance, 3.0 * k, BOX_ULPS * f64::EPSILON * 5.0 * k), "2^{s}: {r:?}");
+        assert!(close3(&r.normal, [0.6, 0.8, 0.0], BOX_ULPS * f64::EPSILON), "2^{s}: {r:?}");
+        assert!(r.degenerate, "2^{s}: parallel faces: {r:?}");
+    }
+}
+
+/// A 3-4-5 box at the origin (faces at `x' = ±1`) and a hull whose face lies
+/// on `3x + 4y = 15` (`x' = 3`), overlapping the box's face seen along
+/// `x'`: the witnesses are not unique.
+#[test]
+fn a_345_box_face_parallel_to_a_hull_face_is_degenerate() {
+    let hull = [[5.0, 0.0, -1.0], [5.0, 0.0, 1.0], [1.0, 3.0, -1.0], [1.0, 3.0, 1.0], [9.0, 3.0, 0.0]];
+    for s in BOX_SCALES {
+        let k = 2f64.powi(s);
+        let b = obox([0.0; 3], [1.0; 3], Q345, k);
+        let r = box_hull(&b, &scaled(&hull, k));
+        assert!(close(r.distance, 2.0 * k, BOX_ULPS * f64::EPSILON * 5.0 * k), "2^{s}: {r:?}");
+        assert!(close3(&r.normal, [-0.6, -0.8, 0.0], BOX_ULPS * f64::EPSILON), "2^{s}: {r:?}");
+        assert!(r.degenerate, "2^{s}: parallel faces: {r:?}");
+    }
+}
+
+/// A hull vertex exactly on the 3-4-5 box's face `x' = 1`: `(0, 1.25, 0)`
+/// (`3·0 + 4·1.25 = 5`, at `y' = 0.75`, inside the face): touching, exactly
+/// 0, with the face's normal, unique.
+#[test]
+fn a_hull_vertex_on_a_345_box_face_touches() {
+    let hull = [[0.0, 1.25, 0.0], [-1.0, 4.0, -1.0], [1.0, 4.0, -1.0], [0.0, 4.0, 1.0]];
+    for s in BOX_SCALES {
+        let k = 2f64.powi(s);
+        let b = obox([0.0; 3], [1.0; 3], Q345, k);
+        let r = box_hull(&b, &scaled(&hull, k));
+        assert!(r.distance == 0.0, "2^{s}: touching: {r:?}");
+        assert!(close3(&r.normal, [-0.6, -0.8, 0.0], BOX_ULPS * f64::EPSILON), "2^{s}: {r:?}");
+        assert!(close3(&r.point_b, [0.0, 1.25 * k, 0.0], BOX_ULPS * f64::EPSILON * k), "2^{s}: {r:?}");
+        assert!(!r.degenerate, "2^{s}: a vertex inside a face: {r:?}");
+        // Moved off the face by a binary step along `−y`, the vertex enters
+        // the box: a penetration, unique.
+        let mut inside = hull;
+        inside[0][1] = 1.25 - 1.0 / 64.0;
+        let r = box_hull(&b, &scaled(&inside, k));
+        assert!(r.distance < 0.0 && !r.degenerate, "2^{s}: {r:?}");
+    }
+}
+
+/// The 3-4-5 box's top face (`z = 1`; its corners, such as `(−1/5, 7/5, 1)`,
+/// are not binary) on a hull's face in the plane `z = 1` that holds it:
+/// face on face, touching, degenerate; and the same for the identity box
+/// of a zero quaternion.
+#[test]
+fn a_345_box_on_a_hull_face_is_exact() {
+    for s in BOX_SCALES {
+        let k = 2f64.powi(s);
+        let b = obox([0.0; 3], [1.0; 3], Q345, k);
+        let slab = [[-4.0, -4.0, 1.0], [4.0, -4.0, 1.0], [0.0, 4.0, 1.0], [0.0, 0.0, 3.0]];
+        let r = box_hull(&b, &scaled(&slab, k));
+        assert!(r.distance == 0.0 && r.degenerate, "2^{s}: face on face: {r:?}");
+        // A zero quaternion is the identity: the top face is at z = 1 too.
+        let id = obox([0.0; 3], [1.0; 3], [0.0; 4], k);
+        let r = box_hull(&id, &scaled(&slab, k));
+        assert!(r.distance == 0.0 && r.degenerate, "2^{s}: identity: {r:?}");
+    }
+}
+
+/// The plain points' path is unchanged: a box given as its exact corners
+/// (an axis-aligned one) answers as its corners given as a hull.
+#[test]
+fn an_axis_aligned_box_answers_as_its_corners() {
+    let hull = [[3.0, 0.25, 0.5], [4.0, 1.0, -0.5], [3.5, -1.0, 0.0], [5.0, 0.0, 2.0]];
+    for q in [[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [1.0, 1.0, 0.0, 0.0]] {
+        let b = obox([0.5, 0.0, 0.0], [1.5, 1.0, 0.75], q, 1.0);
+        let corners = box_corners(&b);
+        let p = scaled(&hull, 1.0);
+        let want = distance(&Rounded { points: &corners, radius: 0.0 }, &Rounded { points: &p, radius: 0.0 });
+        let got = box_hull(&b, &p);
+        assert!(close(got.distance, want.distance, HAND_ULPS * f64::EPSILON * 4.0), "{q:?}: {got:?} {want:?}");
+        assert_eq!(got.degenerate, want.degenerate, "{q:?}: {got:?} {want:?}");
+    }
+}

@@ -479,7 +479,7 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
         }))
     }
     fn distance(&self, a: Solid<'_>, b: Solid<'_>) -> Reply<DistanceAnswer> {
-        use collide::convex::{Rounded, distance, distance_lecture, distance_plane, distance_plane_lecture};
+        use collide::convex::{Rounded, distance_lecture, distance_plane, distance_plane_lecture, distance_solids};
         let (pa, ra) = rounded::<T>(a).ok_or_else(|| Unsupported("a plane is a distance's `b` only".into()))?;
         let ra = Rounded { points: &pa, radius: ra };
         let d = match b {
@@ -492,7 +492,14 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
                 let rb = Rounded { points: &pb, radius: rb };
                 match self.method {
                     Method::Lecture => distance_lecture(&ra, &rb),
-                    Method::Robust => distance(&ra, &rb),
+                    Method::Robust => {
+                        // The robust distance takes a box as the format
+                        // defines it (its quaternion's exact rotation).
+                        let (ba, bb) = (exact_box::<T>(a), exact_box::<T>(b));
+                        let sa = ba.as_ref().map_or(collide::convex::Solid::Hull(ra), collide::convex::Solid::Box);
+                        let sb = bb.as_ref().map_or(collide::convex::Solid::Hull(rb), collide::convex::Solid::Box);
+                        distance_solids(&sa, &sb)
+                    }
                 }
             }
         };
@@ -503,6 +510,15 @@ impl<T: Real + Send + Sync> Queries for CollideQueries<T> {
             normal: w(&d.normal),
             degenerate: d.degenerate,
         })
+    }
+}
+
+/// A distance's box for collide's robust distance, which decides about it
+/// exactly; `None` for another solid.
+fn exact_box<T: Real>(s: Solid<'_>) -> Option<collide::OrientedBox<T>> {
+    match s {
+        Solid::Box(b) => Some(oriented_box::<T>(b)),
+        _ => None,
     }
 }
 
