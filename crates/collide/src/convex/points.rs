@@ -149,6 +149,18 @@ impl ExactBox {
         self.h.iter().all(|h| *h > 0.0)
     }
 
+    /// `log₂ ‖q‖²`, within `16u` (the quaternion scaled by a power of two
+    /// into `[1, 2)` at its largest component: four squares and three sums
+    /// of non-negative terms, `4u` relative; the logarithm of a number in
+    /// `[1, 16)` and the exponent added, a few ulps of a number below
+    /// `2^12`).
+    pub(crate) fn log2_norm2(&self) -> f64 {
+        let m = self.q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let k = 1 - frexp(m).1;
+        let n: f64 = self.q.iter().map(|x| ldexp(*x, k) * ldexp(*x, k)).sum();
+        n.log2() - 2.0 * k as f64
+    }
+
     /// The axes with a non-zero half extent, as a bit mask: a difference of
     /// two corners has no component along the others.
     pub(crate) fn nonzero(&self) -> u8 {
@@ -350,18 +362,19 @@ impl Leaf for BigFloat {
     }
 }
 
-/// A box's lifted quantities: `n = ‖q‖²`, `M_i` and `n c`.
+/// A box's lifted quantities: `n = ‖q‖²`, `M_i` and `n (c − t)` for a
+/// translation `t`.
 struct Lifted<N> {
     n: N,
     m: [[N; 3]; 3],
     nc: [N; 3],
 }
 
-fn lifted<N: Leaf>(b: &ExactBox) -> Lifted<N> {
+fn lifted<N: Leaf>(b: &ExactBox, t: &P3) -> Lifted<N> {
     let q = b.q.map(N::leaf);
     let r = [&q[0], &q[1], &q[2], &q[3]];
     let n = norm2(r);
-    let nc = b.c.map(|x| n.mul(&N::leaf(x)));
+    let nc = std::array::from_fn(|k| n.mul(&N::leaf(b.c[k]).sub(&N::leaf(t[k]))));
     Lifted { m: quaternion_axes(r), nc, n }
 }
 
@@ -378,17 +391,22 @@ fn corner_times_n<N: Leaf>(b: &ExactBox, l: &Lifted<N>, signs: u8) -> [N; 3] {
     })
 }
 
-/// The exact coordinates of `pts` (flattened, `3·pts.len() = K`), each
+/// The exact coordinates of `pts` (flattened, `3·pts.len() = K`), less a
+/// translation `t` (the centre of the first box below: its corners' lifted
+/// coordinates then carry no digits of a centre far from the origin), each
 /// multiplied by `D`, the product of `‖q‖²` over the distinct boxes whose
 /// corners among `pts` are not exact in `f64` (`D = 1` when there are none),
-/// formed in `N`.
+/// formed in `N`. The predicates are homogeneous in the coordinates and
+/// depend on differences of the points only: their signs, their directions'
+/// unit vectors and the equality of two points are unchanged.
 pub(crate) fn lift<N: Leaf, const K: usize>(pts: &[Xp]) -> [N; K] {
+    let t = pts.iter().find_map(|p| p.corner().filter(|_| p.e > 0.0)).map_or([0.0; 3], |(b, _)| b.c);
     let mut boxes: Vec<(&ExactBox, Lifted<N>)> = Vec::with_capacity(2);
     for p in pts {
         if let (true, Some((b, _))) = (p.e > 0.0, p.corner())
             && !boxes.iter().any(|(x, _)| std::ptr::eq(*x, b))
         {
-            boxes.push((b, lifted(b)));
+            boxes.push((b, lifted(b, &t)));
         }
     }
     let prod = |skip: Option<&ExactBox>| -> Option<N> {
@@ -411,8 +429,8 @@ pub(crate) fn lift<N: Leaf, const K: usize>(pts: &[Xp]) -> [N; K] {
                     None => x,
                 }
             }
-            _ => p.v.map(|c| {
-                let x = N::leaf(c);
+            _ => std::array::from_fn(|k| {
+                let x = N::leaf(p.v[k]).sub(&N::leaf(t[k]));
                 match &d {
                     Some(d) => d.mul(&x),
                     None => x,
@@ -461,7 +479,7 @@ mod tests {
     /// value: `|v·n − (n c + Σ s_i h_i M_i)| ≤ e·n` per coordinate, exactly.
     fn bounds_hold(b: &ExactBox) -> Result<(), TestCaseError> {
         let Some(cs) = b.corners() else { return Ok(()) };
-        let l: Lifted<BigFloat> = lifted(b);
+        let l: Lifted<BigFloat> = lifted(b, &[0.0; 3]);
         for (i, c) in cs.iter().enumerate() {
             let x = corner_times_n(b, &l, i as u8);
             for (k, xk) in x.iter().enumerate() {

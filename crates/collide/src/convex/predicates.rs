@@ -994,7 +994,10 @@ impl<'a> ExactPush<'a> {
             );
             (p, n)
         } else {
-            (fl_value_err(&pts, 3, push_value_poly::<Fl, 0>)?, fl_value_err(&pts, 4, push_value_poly::<Fl, 1>)?)
+            match (fl_value_err(&pts, 3, push_value_poly::<Fl, 0>), fl_value_err(&pts, 4, push_value_poly::<Fl, 1>)) {
+                (Some(p), Some(n)) => (p, n),
+                _ => return lifted_log_size(&pts),
+            }
         };
         if p.sign == Sign::Zero || n.sign == Sign::Zero {
             return None;
@@ -1005,6 +1008,37 @@ impl<'a> ExactPush<'a> {
         let err = 1.5 * (p.rel_err + 0.5 * n.rel_err) + LOG_ROUNDING;
         Some((size, err))
     }
+}
+
+/// [`ExactPush::log_size`] from the push's exact values on the lifted
+/// points (`super::points::lift`: each coordinate multiplied by `D`, so `p`
+/// by `D³` and `‖L‖²` by `D⁴`, and the size by `D`): `log₂ D` (the boxes'
+/// `‖q‖²` in `f64` on their quaternions scaled by powers of two, each
+/// within `4u` relative, `log₂` then within `8u` each, with room
+/// [`LOG_ROUNDING`]) taken off. Cheaper than [`push_cmp`]'s exact degree-10
+/// comparison where the filters fail (a scene of very different
+/// magnitudes), and it orders pushes far apart.
+#[cold]
+fn lifted_log_size(pts: &[Xp; 6]) -> Option<(f64, f64)> {
+    let l: [BigFloat; 18] = lift(pts);
+    let p = push_value_poly::<BigFloat, 0>(&l, &[]).estimate();
+    let n = push_value_poly::<BigFloat, 1>(&l, &[]).estimate();
+    if p.sign == Sign::Zero || n.sign == Sign::Zero {
+        return None;
+    }
+    let mut log_d = 0.0;
+    let mut seen: Vec<&ExactBox> = Vec::with_capacity(2);
+    for x in pts.iter().filter(|x| x.e > 0.0) {
+        if let Some((b, _)) = x.corner()
+            && !seen.iter().any(|y| std::ptr::eq(*y, b))
+        {
+            seen.push(b);
+            log_d += b.log2_norm2();
+        }
+    }
+    let size = p.mant.log2() + p.exp as f64 - 0.5 * (n.mant.log2() + n.exp as f64) - log_d;
+    let err = 1.5 * (p.rel_err + 0.5 * n.rel_err) + LOG_ROUNDING * (1.0 + seen.len() as f64);
+    Some((size, err))
 }
 
 /// The absolute error allowed for the rounding of a `log₂` of an
