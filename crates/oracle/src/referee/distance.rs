@@ -116,7 +116,32 @@ fn held<'a>(s: Solid<'a>, f: &Fields, is_a: bool) -> Result<Held<'a>, RefereeErr
         }
         Solid::Box(b) => {
             let e = exact_box(b, if is_a { BOX_A } else { BOX_B })?;
-            Held::Grown { core: Convex::of_box(&e), r: Q::ZERO, hull: None }
+            // A box without extent along two or three of its axes is a segment
+            // or a point: its core has no face, so its axes are no directions
+            // of its own (the format's rule for cores that meet with no
+            // direction at all gives the normal, as for a capsule or a sphere).
+            let spread: Vec<usize> = (0..3).filter(|&i| !e.h[i].is_zero()).collect();
+            let core = match spread.as_slice() {
+                [] => Convex {
+                    vertices: vec![e.to_world(&[Q::ZERO, Q::ZERO, Q::ZERO])],
+                    edges: vec![],
+                    directions: vec![],
+                    normals: vec![],
+                },
+                &[i] => {
+                    let end = |sign: bool| {
+                        let u: V3 = std::array::from_fn(|k| match (k == i, sign) {
+                            (false, _) => Q::ZERO,
+                            (true, true) => e.h[i].clone(),
+                            (true, false) => -e.h[i].clone(),
+                        });
+                        e.to_world(&u)
+                    };
+                    Convex::of_segment(&end(false), &end(true))
+                }
+                _ => Convex::of_box(&e),
+            };
+            Held::Grown { core, r: Q::ZERO, hull: None }
         }
         Solid::Triangle(t) => {
             let v = [v3(&t.vertices[0], f.vertices)?, v3(&t.vertices[1], f.vertices)?, v3(&t.vertices[2], f.vertices)?];

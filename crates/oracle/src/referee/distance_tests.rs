@@ -152,6 +152,19 @@ fn degenerate_hulls_are_answered() {
     let o = Convex { points: vec![[1.0, 2.0, 3.0]] };
     let d = distance(Solid::Convex(&o), Solid::Convex(&o)).unwrap();
     check(&d, 0.0, [0.0, 0.0, 1.0], true);
+    // A turned box without extent is a point, and with extent along one axis
+    // a segment: its axes are not directions of its own (a full-range case
+    // gave the box's first axis as the normal of a box and a point on it).
+    let turned = [-3.0, 3.0, 1.0, -3.0];
+    let point_box = OrientedBox { center: [1.0, 2.0, 3.0], half_extents: [0.0; 3], rotation: turned };
+    let d = distance(Solid::Box(&point_box), Solid::Convex(&o)).unwrap();
+    check(&d, 0.0, [0.0, 0.0, 1.0], true);
+    // Along z: the segment from z = 1 to 3 at (0, 0); a point at (0, 0, 2) on it.
+    let z = OrientedBox { center: [0.0, 0.0, 2.0], half_extents: [0.0, 0.0, 1.0], rotation: [1.0, 0.0, 0.0, 0.0] };
+    let on = Convex { points: vec![[0.0, 0.0, 2.0]] };
+    let d = distance(Solid::Box(&z), Solid::Convex(&on)).unwrap();
+    // u × x for a line along z, u = (0, 0, ±1): (0, ±1, 0).
+    assert!(close(d.distance, 0.0) && d.degenerate && close(d.normal[1].abs(), 1.0), "{d:?}");
 }
 
 #[test]
