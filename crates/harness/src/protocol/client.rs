@@ -673,7 +673,8 @@ impl ProcessEngine {
         })();
         match shake {
             Ok(h) => {
-                *lock(&self.precisions) = h.capabilities.iter().filter_map(|c| Some((c.pair()?, c.precision))).collect();
+                *lock(&self.precisions) =
+                    h.capabilities.iter().filter_map(|c| Some((c.pair()?, c.precision))).collect();
                 st.hello = Some(h);
                 st.running = Some(run);
                 Ok(())
