@@ -43,13 +43,22 @@ pub struct Example {
     pub verdict: String,
     /// The verdict's reasons (one for a failure or a known divergence).
     pub reasons: Vec<String>,
-    /// The case's headline error (1 for a misclassification or a failure).
+    /// The case's headline error (1 for a misclassification or a failure); an
+    /// infinite one (a distance off by an infinity) is written `null`, as JSON
+    /// has no infinity, and read back as +∞.
+    #[serde(deserialize_with = "infinite_when_null")]
     pub headline: f64,
     /// Every engine's answer and the referee's (`referee`), as written in
     /// `expect` (a non-finite number as `null`).
     pub answers: BTreeMap<String, serde_json::Value>,
     /// The case as a fixture, its `expect` the referee's answer, meshes inline.
     pub fixture: Case,
+}
+
+/// A number written by `serde_json`, which writes a non-finite one as `null`:
+/// `null` is read as +∞ (an error is never negative, and never NaN here).
+fn infinite_when_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::INFINITY))
 }
 
 /// A finding's shrunk case.
@@ -503,4 +512,26 @@ pub fn read(dir: &std::path::Path) -> Result<FindingsFile, String> {
         return Err(format!("{}: field `format`: `{}`, expected `{FORMAT}`", p.display(), f.format));
     }
     Ok(f)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_infinite_headline_is_written_null_and_read_back_infinite() {
+        // A full-range distance off by an infinity gave a report whose
+        // findings.json `crashtest findings` could not read.
+        #[derive(Serialize, Deserialize)]
+        struct H {
+            #[serde(deserialize_with = "infinite_when_null")]
+            headline: f64,
+        }
+        let text = serde_json::to_string(&H { headline: f64::INFINITY }).expect("written");
+        assert_eq!(text, r#"{"headline":null}"#);
+        let back: H = serde_json::from_str(&text).expect("read back");
+        assert!(back.headline.is_infinite() && back.headline > 0.0, "{}", back.headline);
+        let finite: H = serde_json::from_str(r#"{"headline":0.5}"#).expect("read");
+        assert_eq!(finite.headline.to_bits(), 0.5f64.to_bits());
+    }
 }
