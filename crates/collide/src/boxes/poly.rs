@@ -156,8 +156,8 @@ impl Ring for Filt {
 /// answer as [`sign`] and [`value`].
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Fast {
-    v: f64,
-    e: f64,
+    pub(crate) v: f64,
+    pub(crate) e: f64,
 }
 
 impl Ring for Fast {

@@ -346,45 +346,12 @@ fn pair_poly<R: Ring, const C: usize>(l: &[R; 24], _u: &[R; 0]) -> R {
 /// the propagated errors and its own rounding, twice; a product adds
 /// `2^−1073` for what underflow may lose), evaluated on the inputs as they
 /// are: [`decide`] uses it only where nothing can overflow, so the scaling
-/// that the staged filters start with is not needed.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Fl {
-    v: f64,
-    e: f64,
-}
+/// that the staged filters start with is not needed. It is `Fast` itself,
+/// its leaves made here.
+pub(crate) type Fl = Fast;
 
 /// Unit roundoff of `f64`.
 const U: f64 = f64::EPSILON / 2.0;
-
-/// What underflow may lose in one product, `2^−1073`.
-const UNDERFLOW: f64 = f64::from_bits(2);
-
-impl Ring for Fl {
-    #[inline(always)]
-    fn add(&self, o: &Self) -> Self {
-        let v = self.v + o.v;
-        Self { v, e: (self.e + o.e + 2.0 * U * v.abs()) * (1.0 + 4.0 * U) }
-    }
-    #[inline(always)]
-    fn sub(&self, o: &Self) -> Self {
-        self.add(&Self { v: -o.v, e: o.e })
-    }
-    #[inline(always)]
-    fn mul(&self, o: &Self) -> Self {
-        let v = self.v * o.v;
-        let exact_zero = (self.v == 0.0 && self.e == 0.0) || (o.v == 0.0 && o.e == 0.0);
-        let e = if exact_zero {
-            0.0
-        } else {
-            (self.v.abs() * o.e + o.v.abs() * self.e + self.e * o.e + 2.0 * U * v.abs() + UNDERFLOW) * (1.0 + 8.0 * U)
-        };
-        Self { v, e }
-    }
-    #[inline(always)]
-    fn abs(&self) -> Self {
-        Self { v: self.v.abs(), e: self.e }
-    }
-}
 
 /// A double-double value `hi + lo` (`|lo|` at most half an ulp of `hi`)
 /// and a bound `e` on its distance from the exact value: the second stage
