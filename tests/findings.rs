@@ -214,11 +214,47 @@ fn replay_all(file: &FindingsFile, dir: &Path, set: &EngineSet) -> usize {
             .or_else(|| fresh().then(judged).flatten().filter(|(_, sig)| f.signature.same_defect(sig)))
             .or_else(judged)
             .unwrap_or_else(|| panic!("{}: the shrunk case no longer shows a discrepancy{AGAIN}", s.file));
-        assert!(f.signature.same_defect(&sig), "{}: {:?} replays as {:?}{AGAIN}", s.file, f.signature, sig);
+        // A process engine may show the defect with one more field off: FCL's
+        // distance on a degenerate triangle leaves its witness point
+        // uninitialised now and then (7.6e37, 7.4e176 seen beside the zero
+        // normal the finding records).
+        let shown = f.signature.same_defect(&sig)
+            || (engine.process().is_some()
+                && (&f.signature.engine, f.signature.query, &f.signature.pair, &f.signature.magnitude)
+                    == (&sig.engine, sig.query, &sig.pair, &sig.magnitude)
+                && at_least(&f.signature.wrong, &sig.wrong));
+        assert!(shown, "{}: {:?} replays as {:?}{AGAIN}", s.file, f.signature, sig);
         assert_eq!(cause, f.cause, "{}{AGAIN}", s.file);
         n += 1;
     }
     n
+}
+
+/// Whether the wrong parts `replay` names (`"normal is the zero vector;
+/// distance, normal, witness point off"`) hold every one of `recorded`'s: each
+/// clause, and each field of an "… off" clause.
+fn at_least(recorded: &str, replay: &str) -> bool {
+    let parts = |w: &str| -> (Vec<String>, Vec<String>) {
+        let (mut clauses, mut off) = (Vec::new(), Vec::new());
+        for c in w.split("; ") {
+            match c.strip_suffix(" off") {
+                Some(fields) => off.extend(fields.split(", ").map(str::to_string)),
+                None => clauses.push(c.to_string()),
+            }
+        }
+        (clauses, off)
+    };
+    let ((rc, ro), (pc, po)) = (parts(recorded), parts(replay));
+    rc.iter().all(|c| pc.contains(c)) && ro.iter().all(|o| po.contains(o))
+}
+
+#[test]
+fn a_replay_with_one_more_field_off_shows_at_least_the_recorded_defect() {
+    let recorded = "normal is the zero vector; distance, normal off";
+    assert!(at_least(recorded, "normal is the zero vector; distance, normal, witness point off"));
+    assert!(at_least(recorded, recorded));
+    assert!(!at_least(recorded, "distance, normal, witness point off"));
+    assert!(!at_least(recorded, "normal is the zero vector; normal off"));
 }
 
 #[test]
