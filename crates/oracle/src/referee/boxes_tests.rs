@@ -707,7 +707,15 @@ mod sampled {
             prop_assert_eq!(overlap, positive(m), "sign of the margin is the decision");
             prop_assert_eq!(overlap, overlap_box_box(&b, &a).unwrap(), "symmetric");
             if overlap {
-                prop_assert!(gap <= 1e-6, "overlapping boxes {} apart", gap);
+                // Alternating projections crawl where a flat box meets another
+                // at a shallow angle (a fresh-clone run met one 2.1e-6 apart
+                // after every pass): there the exact signed distance — another
+                // method, GJK and separating axes on the exact corners — decides.
+                let touching = || {
+                    crate::referee::distance::distance(crate::geom::Solid::Box(&a), crate::geom::Solid::Box(&b))
+                        .is_ok_and(|d| d.distance <= 0.0)
+                };
+                prop_assert!(gap <= 1e-6 || touching(), "overlapping boxes {} apart", gap);
             } else {
                 // The margin is minus a lower bound of the distance.
                 prop_assert!(-m <= gap + F64_TOL, "margin {} beyond the distance {}", m, gap);
